@@ -1,0 +1,41 @@
+// Assembly kernels: plain functions of (const Model&, Data&).
+//
+// Each loops over the element groups present in the model; a kind the
+// model does not contain has no group and costs nothing.
+#pragma once
+
+#include "lagmb/data.hpp"
+
+namespace lagmb {
+
+/// d.Phi = Phi(q, t).
+void assemble_constraints(const Model& model, Data& d, const double* q, double t);
+/// d.Phi_q = Phi_q(q, t), values written in place.
+void assemble_jacobian(const Model& model, Data& d, const double* q, double t);
+/// d.phi_t = Phi_t(q, t) (zero for a model without time-dependent constraints).
+void assemble_phi_t(const Model& model, Data& d, const double* q, double t);
+/// d.gamma = -(Phi_q v)_q v - 2 Phi_qt v - Phi_tt.
+void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t);
+/// d.Vq = d(Phi_q v + Phi_t)/dq.
+void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
+                                double t);
+/// d.H = sum_r w_r d2Phi_r/dq2  (= (Phi_q^T w)_q).
+void assemble_constraint_hessian(const Model& model, Data& d, const double* q, double t,
+                                 const double* w);
+/// d.Q = Q(q, v, t).
+void assemble_forces(const Model& model, Data& d, const double* q, const double* v, double t);
+/// d.Q_q, d.Q_v: exact derivatives of Q (left zero where no force depends on the state).
+void assemble_force_derivatives(const Model& model, Data& d, const double* q, const double* v,
+                                double t);
+
+/// y += Phi_q^T w (Phi_q from d).
+void add_jacobian_transpose_times(const Data& d, const double* w, double* y);
+/// y += Phi_q x.
+void add_jacobian_times(const Data& d, const double* x, double* y);
+
+/// Kinetic energy 1/2 v^T M v.
+double kinetic_energy(const Model& model, const double* v);
+/// Potential energy of the conservative forces.
+double potential_energy(const Model& model, const double* q, double t);
+
+}  // namespace lagmb

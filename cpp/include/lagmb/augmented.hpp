@@ -1,0 +1,64 @@
+// The augmented (saddle-point) system of one instant, solved with sparse LU.
+#pragma once
+
+#include <Eigen/SparseLU>
+#include <string>
+#include <vector>
+
+#include "lagmb/data.hpp"
+
+namespace lagmb {
+
+/// K = [ M      Phi_q^T  ]
+///     [ Phi_q  -eps I   ]
+///
+/// The pattern is fixed by the model, so the ordering (COLAMD) and symbolic
+/// analysis run once per AugmentedSystem; factorize() is numeric only.
+/// eps > 0 keeps K invertible when Phi_q loses rank (redundant constraints,
+/// singular positions); solve() then refines the solution against the
+/// unregularized K, so for a full-rank Phi_q the answer is exact.
+class AugmentedSystem {
+ public:
+  explicit AugmentedSystem(const Model& model);
+
+  /// Factorizes K with the current d.Phi_q; false if the LU fails.
+  bool factorize(const Data& d);
+  /// Solves K [x1; x2] = [b1; b2] (sizes n, m), refining against eps = 0.
+  void solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
+
+  int factorizations() const { return factorizations_; }
+  double regularization() const { return eps_; }
+
+ private:
+  int n_, m_;
+  double eps_;
+  SpMat K_;
+  std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
+  const VecX& mass_;
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  VecX rhs_, x_, r_;
+  int factorizations_ = 0;
+};
+
+/// q, v, qdd and lam that satisfy Phi = 0, Phi_q v + Phi_t = 0 and the
+/// augmented system at time t.
+struct ConsistentState {
+  VecX q, v, qdd, lam;
+  int position_iterations = 0;
+};
+
+/// Makes (q, v) consistent at time t:
+///  1. positions by Newton least-change in the M-metric:
+///       [M Phi_q^T; Phi_q 0] [dq; kappa] = [0; -Phi],  q += dq, until |Phi| small;
+///  2. velocities by M-orthogonal projection:
+///       [M Phi_q^T; Phi_q 0] [v; kappa] = [M v0; -Phi_t];
+///  3. accelerations and multipliers: [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma].
+/// Throws AssemblyError naming the constraint elements still violated.
+ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
+                                VecX v, double t);
+
+/// Step 3 alone: qdd and lam at the state (q, v, t).
+void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,
+                         const double* v, double t, double* qdd, double* lam);
+
+}  // namespace lagmb

@@ -1,0 +1,25 @@
+// Data: the state-dependent values and scratch of one model (cf. mjData).
+#pragma once
+
+#include "lagmb/model.hpp"
+
+namespace lagmb {
+
+/// Values the kernels write, sized and patterned once from a finalized
+/// Model. Kernels never allocate: they write into these arrays in place.
+/// One Data per thread; a Model may be shared.
+struct Data {
+  explicit Data(const Model& model);
+
+  VecX Phi;     // constraint residual Phi(q, t)                   (m)
+  VecX phi_t;   // partial time derivative Phi_t                  (m)
+  VecX gamma;   // right side of Phi_q qdd = gamma                (m)
+  VecX Q;       // applied generalized forces Q(q, v, t)          (n)
+  SpMat Phi_q;  // constraint Jacobian                            (m x n)
+  SpMat Vq;     // d(Phi_q v + Phi_t)/dq, same pattern as Phi_q  (m x n)
+  SpMat H;      // sum_r w_r d2Phi_r/dq2 for a weight vector w    (n x n)
+  SpMat Q_q;    // dQ/dq                                          (n x n)
+  SpMat Q_v;    // dQ/dv                                          (n x n)
+};
+
+}  // namespace lagmb

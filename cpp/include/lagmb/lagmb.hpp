@@ -1,0 +1,13 @@
+// lagmb: planar multibody dynamics in Cartesian coordinates with Lagrange
+// multipliers. Include this header to use the library from C++.
+#pragma once
+
+#include "lagmb/analysis.hpp"
+#include "lagmb/assembly.hpp"
+#include "lagmb/augmented.hpp"
+#include "lagmb/data.hpp"
+#include "lagmb/errors.hpp"
+#include "lagmb/model.hpp"
+#include "lagmb/simulate.hpp"
+#include "lagmb/trajectory.hpp"
+#include "lagmb/types.hpp"

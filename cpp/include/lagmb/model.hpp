@@ -1,0 +1,161 @@
+// The model: bodies and elements grouped by kind, frozen by finalize().
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <typeindex>
+#include <vector>
+
+#include "lagmb/constraint_group.hpp"
+#include "lagmb/elements/gravity.hpp"
+#include "lagmb/elements/revolute.hpp"
+#include "lagmb/force_group.hpp"
+#include "lagmb/sparsity.hpp"
+#include "lagmb/types.hpp"
+
+namespace lagmb {
+
+/// A planar rigid body (3 coordinates: x, y of the centre of mass and the
+/// angle phi) or a particle (2 coordinates: x, y). SI units.
+struct Body {
+  std::string name;
+  double mass = 1.0;     // kg
+  double inertia = 1.0;  // kg m^2 about the centre of mass (0 for particles)
+  Vec2 position = Vec2::Zero();
+  double angle = 0.0;
+  Vec2 velocity = Vec2::Zero();
+  double angular_velocity = 0.0;
+  bool particle = false;
+  int first_coord = -1;  // set by finalize()
+
+  int n_coordinates() const { return particle ? 2 : 3; }
+  /// Index of the angle coordinate in q, or -1 for a particle.
+  int angle_coord() const { return particle ? -1 : first_coord + 2; }
+};
+
+/// The ground: body index -1, at rest at the origin with angle 0.
+constexpr int kGround = -1;
+
+/// What a name refers to.
+struct ElementRef {
+  enum Type { kBody, kConstraint, kForce } type;
+  int group;  // constraint or force group; body index for kBody
+  int index;  // element within its group
+};
+
+/// A mechanism. Build it with the add_* calls, then finalize(): coordinates,
+/// constraint rows, sparsity patterns and element slots are fixed there, and
+/// the model no longer changes. Kernels take (const Model&, Data&).
+class Model {
+ public:
+  Model() = default;
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+
+  /// Adds a rigid body; returns its index.
+  int add_body(const std::string& name, double mass, double inertia, Vec2 position,
+               double angle = 0.0, Vec2 velocity = Vec2::Zero(), double angular_velocity = 0.0);
+  /// Adds a point mass with two coordinates; returns its index.
+  int add_particle(const std::string& name, double mass, Vec2 position,
+                   Vec2 velocity = Vec2::Zero());
+
+  /// Revolute joint at a global point `at`, given in the initial configuration.
+  void add_revolute(const std::string& name, int body_i, int body_j, Vec2 at);
+  /// Revolute joint at local points s_i on body i and s_j on body j.
+  void add_revolute_local(const std::string& name, int body_i, int body_j, Vec2 s_i, Vec2 s_j);
+
+  /// Uniform gravity acceleration g (m/s^2) on every body.
+  void set_gravity(Vec2 g);
+
+  /// Adds a constraint element of any kind (see constraint_group.hpp).
+  template <class Kind>
+  void add_constraint(Kind element);
+
+  /// Freezes the model: numbers coordinates and rows, builds patterns.
+  void finalize();
+  bool finalized() const { return finalized_; }
+
+  // --- after finalize() -------------------------------------------------
+  int n_coordinates() const { return n_; }
+  int n_constraints() const { return m_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const Body& body(int i) const { return bodies_.at(i); }
+  /// Diagonal of the constant mass matrix M.
+  const VecX& mass_diagonal() const { return mass_diag_; }
+  /// Initial coordinates and velocities as given (not yet consistent).
+  VecX initial_q() const;
+  VecX initial_v() const;
+
+  const std::vector<std::unique_ptr<ConstraintGroupBase>>& constraint_groups() const {
+    return constraints_;
+  }
+  /// Constraint groups whose equations depend on time explicitly.
+  const std::vector<const ConstraintGroupBase*>& time_dependent_groups() const {
+    return time_dependent_;
+  }
+  const std::vector<std::unique_ptr<ForceGroupBase>>& force_groups() const { return forces_; }
+  /// Force groups whose Q depends on q or v.
+  const std::vector<const ForceGroupBase*>& state_dependent_forces() const {
+    return state_dependent_;
+  }
+
+  /// Pattern of Phi_q (m x n).
+  const SpMat& jacobian_pattern() const { return jacobian_pattern_; }
+  /// Pattern of sum_r w_r d2Phi_r/dq2 (n x n).
+  const SpMat& hessian_pattern() const { return hessian_pattern_; }
+  /// Patterns of Q_q and Q_v (n x n).
+  const SpMat& force_q_pattern() const { return force_q_pattern_; }
+  const SpMat& force_v_pattern() const { return force_v_pattern_; }
+
+  /// Looks an element or body up by name; throws ModelError if unknown.
+  const ElementRef& find(const std::string& name) const;
+  bool has(const std::string& name) const { return names_.count(name) > 0; }
+  /// Name of the constraint element owning row `row` of Phi.
+  std::string constraint_name_of_row(int row) const;
+  /// Body owning coordinate `coord` of q.
+  const Body& body_of_coordinate(int coord) const;
+
+  /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
+  double mass_scale() const { return mass_scale_; }
+
+ private:
+  void require_open(const std::string& what) const;
+  void check_new_name(const std::string& name) const;
+  void register_name(const std::string& name, ElementRef ref);
+  void check_pair(const std::string& name, int body_i, int body_j) const;
+  Vec2 to_local(int body, Vec2 global_point) const;
+
+  bool finalized_ = false;
+  std::vector<Body> bodies_;
+  std::vector<std::unique_ptr<ConstraintGroupBase>> constraints_;
+  std::map<std::type_index, int> constraint_group_of_kind_;
+  std::vector<std::pair<int, int>> constraint_order_;  // (group, index) in insertion order
+  std::vector<std::unique_ptr<ForceGroupBase>> forces_;
+  std::vector<const ConstraintGroupBase*> time_dependent_;
+  std::vector<const ForceGroupBase*> state_dependent_;
+  std::map<std::string, ElementRef> names_;
+
+  int n_ = 0, m_ = 0;
+  VecX mass_diag_;
+  SpMat jacobian_pattern_, hessian_pattern_, force_q_pattern_, force_v_pattern_;
+  std::vector<int> row_owner_;  // row -> index into constraint_order_
+  std::vector<int> coord_owner_;
+  double mass_scale_ = 1.0;
+};
+
+template <class Kind>
+void Model::add_constraint(Kind element) {
+  require_open("add " + std::string(Kind::kind) + " '" + element.name + "'");
+  check_new_name(element.name);
+  check_pair(element.name, element.body_i, element.body_j);
+  auto [it, inserted] =
+      constraint_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(constraints_.size()));
+  if (inserted) constraints_.push_back(std::make_unique<ConstraintGroup<Kind>>());
+  auto& group = static_cast<ConstraintGroup<Kind>&>(*constraints_[it->second]);
+  register_name(element.name, {ElementRef::kConstraint, it->second, group.size()});
+  constraint_order_.emplace_back(it->second, group.size());
+  group.add(std::move(element));
+}
+
+}  // namespace lagmb

@@ -1,0 +1,50 @@
+// Time integration of a model: options in, Trajectory out.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "lagmb/augmented.hpp"
+#include "lagmb/errors.hpp"
+#include "lagmb/model.hpp"
+#include "lagmb/trajectory.hpp"
+
+namespace lagmb {
+
+struct SimulationOptions {
+  double t0 = 0.0;
+  double t_end = 1.0;
+  /// Output times, increasing, inside [t0, t_end]; empty: n_out equally
+  /// spaced times from t0 to t_end.
+  std::vector<double> t_out;
+  int n_out = 101;
+  double rtol = 1e-6;
+  double atol = 1e-8;
+  double max_step = 0.0;  // 0: no limit
+  int max_order = 5;
+  std::string formulation = "ggl";
+  std::string integrator = "bdf";
+  /// Called between steps with the time reached, at most every
+  /// progress_interval seconds of wall time; may throw to stop the run.
+  std::function<void(double t)> progress;
+  double progress_interval = 0.2;
+};
+
+/// Makes the initial state consistent, integrates, and returns the states at
+/// the output times. Throws ModelError for bad options, AssemblyError if the
+/// initial positions cannot be made consistent, SimulationError (with the
+/// outputs reached so far) if the integrator fails.
+Trajectory simulate(const Model& model, const SimulationOptions& options);
+
+/// Version of the SUNDIALS library lagmb was built with, e.g. "6.4.1".
+std::string sundials_version();
+
+/// qdd and lam at one instant (the augmented system of DESIGN.md section 1).
+void solve_accelerations(const Model& model, const VecX& q, const VecX& v, double t, VecX& qdd,
+                         VecX& lam);
+
+/// Consistent (q, v, qdd, lam) at time t from the model's initial values.
+ConsistentState assemble(const Model& model, double t = 0.0);
+
+}  // namespace lagmb

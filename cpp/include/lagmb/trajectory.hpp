@@ -1,0 +1,37 @@
+// What a simulation returns: states at the output times, and solver counts.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lagmb {
+
+/// Solver statistics of one run.
+struct Stats {
+  long steps = 0;
+  long residual_evals = 0;
+  long jacobian_evals = 0;
+  long lu_factorizations = 0;
+  long newton_iterations = 0;
+  long error_test_failures = 0;
+  long convergence_failures = 0;
+  int last_order = 0;
+  double last_step = 0.0;
+  double wall_time = 0.0;  // s
+  std::string formulation;
+  std::string integrator;
+};
+
+/// States at the output times, row-major: q[k * n + i] is coordinate i at
+/// output k. a and lam are solved from the augmented system at each output
+/// state (q, v), so they satisfy the equations of motion for exactly the
+/// reported positions and velocities.
+struct Trajectory {
+  int n = 0, m = 0;
+  std::vector<double> t, q, v, a, lam;
+  Stats stats;
+  int size() const { return static_cast<int>(t.size()); }
+};
+
+}  // namespace lagmb

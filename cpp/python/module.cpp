@@ -1,0 +1,245 @@
+// lagmb._core: translation only. numpy in and out, C++ errors to Python errors.
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+
+#include "lagmb/lagmb.hpp"
+
+namespace py = pybind11;
+using namespace lagmb;
+
+namespace {
+
+/// A numpy array that owns `data` (no copy).
+py::array_t<double> to_numpy(std::vector<double>&& data, std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<double>(std::move(data));
+  py::capsule free_when_done(owner, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+  return py::array_t<double>(shape, owner->data(), free_when_done);
+}
+
+py::dict to_python(Trajectory&& tr) {
+  const py::ssize_t k = tr.size();
+  py::dict out;
+  out["t"] = to_numpy(std::move(tr.t), {k});
+  out["q"] = to_numpy(std::move(tr.q), {k, tr.n});
+  out["v"] = to_numpy(std::move(tr.v), {k, tr.n});
+  out["a"] = to_numpy(std::move(tr.a), {k, tr.n});
+  out["lam"] = to_numpy(std::move(tr.lam), {k, tr.m});
+  const Stats& s = tr.stats;
+  py::dict stats;
+  stats["steps"] = s.steps;
+  stats["residual_evals"] = s.residual_evals;
+  stats["jacobian_evals"] = s.jacobian_evals;
+  stats["lu_factorizations"] = s.lu_factorizations;
+  stats["newton_iterations"] = s.newton_iterations;
+  stats["error_test_failures"] = s.error_test_failures;
+  stats["convergence_failures"] = s.convergence_failures;
+  stats["last_order"] = s.last_order;
+  stats["last_step"] = s.last_step;
+  stats["wall_time"] = s.wall_time;
+  stats["formulation"] = s.formulation;
+  stats["integrator"] = s.integrator;
+  out["stats"] = stats;
+  return out;
+}
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+void require_rows(const Model& model, const RowMajor& x, int cols, const char* what) {
+  if (!model.finalized()) throw ModelError("the model is not finalized");
+  if (x.cols() != cols)
+    throw ModelError(std::string(what) + " must have " + std::to_string(cols) + " columns, got " +
+                     std::to_string(x.cols()));
+}
+
+py::handle g_simulation_error, g_assembly_error;
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "lagmb C++ core (planar multibody dynamics, SUNDIALS IDA)";
+  m.attr("sundials_version") = sundials_version();
+
+  static py::exception<ModelError> model_error(m, "ModelError", PyExc_ValueError);
+  g_simulation_error = PyErr_NewException("lagmb._core.SimulationError", PyExc_RuntimeError, nullptr);
+  g_assembly_error = PyErr_NewException("lagmb._core.AssemblyError", g_simulation_error.ptr(), nullptr);
+  m.attr("SimulationError") = g_simulation_error;
+  m.attr("AssemblyError") = g_assembly_error;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const AssemblyError& e) {
+      py::object err = py::reinterpret_borrow<py::object>(g_assembly_error)(e.what());
+      err.attr("t") = e.t;
+      err.attr("violated") = e.violated;
+      err.attr("partial") = py::none();
+      PyErr_SetObject(g_assembly_error.ptr(), err.ptr());
+    } catch (const SimulationError& e) {
+      py::object err = py::reinterpret_borrow<py::object>(g_simulation_error)(e.what());
+      err.attr("t") = e.t;
+      err.attr("partial") = to_python(Trajectory(e.partial));
+      PyErr_SetObject(g_simulation_error.ptr(), err.ptr());
+    }
+  });
+
+  py::class_<Model>(m, "Model")
+      .def(py::init<>())
+      .def("add_body", &Model::add_body, py::arg("name"), py::arg("mass"), py::arg("inertia"),
+           py::arg("position"), py::arg("angle"), py::arg("velocity"), py::arg("angular_velocity"))
+      .def("add_particle", &Model::add_particle, py::arg("name"), py::arg("mass"), py::arg("position"),
+           py::arg("velocity"))
+      .def("add_revolute", &Model::add_revolute, py::arg("name"), py::arg("body_i"), py::arg("body_j"),
+           py::arg("at"))
+      .def("add_revolute_local", &Model::add_revolute_local, py::arg("name"), py::arg("body_i"),
+           py::arg("body_j"), py::arg("s_i"), py::arg("s_j"))
+      .def("set_gravity", &Model::set_gravity, py::arg("g"))
+      .def("finalize", &Model::finalize)
+      .def_property_readonly("finalized", &Model::finalized)
+      .def_property_readonly("n_coordinates", &Model::n_coordinates)
+      .def_property_readonly("n_constraints", &Model::n_constraints)
+      .def("has", &Model::has)
+      .def("body_coordinates",
+           [](const Model& model, const std::string& name) {
+             const ElementRef& r = model.find(name);
+             if (r.type != ElementRef::kBody) throw ModelError("'" + name + "' is not a body");
+             const Body& b = model.body(r.group);
+             return py::make_tuple(b.first_coord, b.n_coordinates());
+           })
+      .def("constraint_rows",
+           [](const Model& model, const std::string& name) {
+             const ElementRef& r = model.find(name);
+             if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
+             const auto& g = *model.constraint_groups()[r.group];
+             return py::make_tuple(g.placement(r.index).row0, g.rows(r.index));
+           })
+      .def("element_kind",
+           [](const Model& model, const std::string& name) -> std::string {
+             const ElementRef& r = model.find(name);
+             if (r.type == ElementRef::kBody) return "body";
+             if (r.type == ElementRef::kConstraint) return model.constraint_groups()[r.group]->kind();
+             return model.force_groups()[r.group]->kind();
+           })
+      .def("initial_state",
+           [](const Model& model) { return py::make_tuple(model.initial_q(), model.initial_v()); })
+      .def(
+          "reaction",
+          [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
+             const RowMajor& lam) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, lam, model.n_constraints(), "lam");
+            const ElementRef& r = model.find(name);
+            if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
+            const auto& g = *model.constraint_groups()[r.group];
+            RowMajor out(q.rows(), 3);
+            for (Eigen::Index k = 0; k < q.rows(); ++k)
+              out.row(k) = g.generalized_reaction(r.index, q.row(k).data(), t[k], lam.row(k).data())
+                               .tail<3>()
+                               .transpose();
+            return out;
+          },
+          py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"),
+          "Force (x, y) and torque about the centre of mass that the joint applies to its second body.")
+      .def(
+          "energy",
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            Eigen::VectorXd E(q.rows());
+            for (Eigen::Index k = 0; k < q.rows(); ++k)
+              E[k] = kinetic_energy(model, v.row(k).data()) + potential_energy(model, q.row(k).data(), t[k]);
+            return E;
+          },
+          py::arg("t"), py::arg("q"), py::arg("v"))
+      .def(
+          "residual",
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            Data d(model);
+            Eigen::VectorXd r(q.rows());
+            for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              assemble_constraints(model, d, q.row(k).data(), t[k]);
+              r[k] = d.Phi.size() ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
+            }
+            return r;
+          },
+          py::arg("t"), py::arg("q"), "max |Phi| at each state")
+      .def(
+          "constraint_jacobian",
+          [](const Model& model, const Eigen::VectorXd& q, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            Data d(model);
+            assemble_jacobian(model, d, q.data(), t);
+            return Eigen::MatrixXd(d.Phi_q);
+          },
+          py::arg("q"), py::arg("t") = 0.0)
+      .def(
+          "rank",
+          [](const Model& model, const Eigen::VectorXd& q, double t) {
+            const ConstraintRank r = constraint_rank(model, q, t);
+            py::dict out;
+            out["rank"] = r.rank;
+            out["equations"] = r.equations;
+            out["coordinates"] = r.coordinates;
+            out["degrees_of_freedom"] = r.degrees_of_freedom();
+            out["dependent_rows"] = r.dependent_rows;
+            return out;
+          },
+          py::arg("q"), py::arg("t") = 0.0);
+
+  m.def(
+      "assemble",
+      [](const Model& model, double t) {
+        ConsistentState s = assemble(model, t);
+        return py::make_tuple(s.q, s.v, s.qdd, s.lam, s.position_iterations);
+      },
+      py::arg("model"), py::arg("t") = 0.0,
+      "Consistent (q, v, qdd, lam) at time t from the model's initial values.");
+
+  m.def(
+      "solve_accelerations",
+      [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) {
+        Eigen::VectorXd qdd, lam;
+        solve_accelerations(model, q, v, t, qdd, lam);
+        return py::make_tuple(qdd, lam);
+      },
+      py::arg("model"), py::arg("q"), py::arg("v"), py::arg("t") = 0.0);
+
+  m.def(
+      "simulate",
+      [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
+         double atol, double max_step, int max_order, std::string formulation, std::string integrator,
+         py::object progress) {
+        SimulationOptions o;
+        o.t0 = t0;
+        o.t_end = t_end;
+        o.t_out = std::move(t_out);
+        o.n_out = n_out;
+        o.rtol = rtol;
+        o.atol = atol;
+        o.max_step = max_step;
+        o.max_order = max_order;
+        o.formulation = std::move(formulation);
+        o.integrator = std::move(integrator);
+        // between steps: let Ctrl-C through, and report progress if asked
+        // (a borrowed pointer: the std::function is copied without the GIL)
+        PyObject* report = progress.ptr();
+        o.progress = [report](double t) {
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+          if (report != Py_None) py::handle{report}(t);
+        };
+        Trajectory tr;
+        {
+          py::gil_scoped_release release;
+          tr = simulate(model, o);
+        }
+        return to_python(std::move(tr));
+      },
+      py::arg("model"), py::arg("t0"), py::arg("t_end"), py::arg("t_out"), py::arg("n_out"), py::arg("rtol"),
+      py::arg("atol"), py::arg("max_step"), py::arg("max_order"), py::arg("formulation"),
+      py::arg("integrator"), py::arg("progress"));
+}

@@ -1,0 +1,96 @@
+#include "lagmb/assembly.hpp"
+
+namespace lagmb {
+
+Data::Data(const Model& model)
+    : Phi(VecX::Zero(model.n_constraints())),
+      phi_t(VecX::Zero(model.n_constraints())),
+      gamma(VecX::Zero(model.n_constraints())),
+      Q(VecX::Zero(model.n_coordinates())),
+      Phi_q(model.jacobian_pattern()),
+      Vq(model.jacobian_pattern()),
+      H(model.hessian_pattern()),
+      Q_q(model.force_q_pattern()),
+      Q_v(model.force_v_pattern()) {
+  if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
+}
+
+void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
+  for (const auto& g : model.constraint_groups()) g->phi(q, t, d.Phi.data());
+}
+
+void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
+  for (const auto& g : model.constraint_groups()) g->jacobian(q, t, d.Phi_q.valuePtr());
+}
+
+void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
+  d.phi_t.setZero();
+  for (const auto* g : model.time_dependent_groups()) g->add_phi_t(q, t, d.phi_t.data());
+}
+
+void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
+  for (const auto& g : model.constraint_groups()) g->gamma(q, v, t, d.gamma.data());
+}
+
+void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
+                                double t) {
+  for (const auto& g : model.constraint_groups()) g->velocity_jacobian(q, v, t, d.Vq.valuePtr());
+}
+
+void assemble_constraint_hessian(const Model& model, Data& d, const double* q, double t,
+                                 const double* w) {
+  d.H.coeffs().setZero();
+  for (const auto& g : model.constraint_groups()) g->add_hessian(q, t, w, d.H.valuePtr());
+}
+
+void assemble_forces(const Model& model, Data& d, const double* q, const double* v, double t) {
+  d.Q.setZero();
+  for (const auto& f : model.force_groups()) f->add_forces(q, v, t, d.Q.data());
+}
+
+void assemble_force_derivatives(const Model& model, Data& d, const double* q, const double* v,
+                                double t) {
+  if (model.state_dependent_forces().empty()) return;
+  d.Q_q.coeffs().setZero();
+  d.Q_v.coeffs().setZero();
+  for (const auto* f : model.state_dependent_forces())
+    f->add_derivatives(q, v, t, d.Q_q.valuePtr(), d.Q_v.valuePtr());
+}
+
+void add_jacobian_transpose_times(const Data& d, const double* w, double* y) {
+  const SpMat& J = d.Phi_q;
+  const int* outer = J.outerIndexPtr();
+  const int* inner = J.innerIndexPtr();
+  const double* val = J.valuePtr();
+  for (int c = 0; c < J.cols(); ++c) {
+    double s = 0.0;
+    for (int k = outer[c]; k < outer[c + 1]; ++k) s += val[k] * w[inner[k]];
+    y[c] += s;
+  }
+}
+
+void add_jacobian_times(const Data& d, const double* x, double* y) {
+  const SpMat& J = d.Phi_q;
+  const int* outer = J.outerIndexPtr();
+  const int* inner = J.innerIndexPtr();
+  const double* val = J.valuePtr();
+  for (int c = 0; c < J.cols(); ++c) {
+    const double xc = x[c];
+    for (int k = outer[c]; k < outer[c + 1]; ++k) y[inner[k]] += val[k] * xc;
+  }
+}
+
+double kinetic_energy(const Model& model, const double* v) {
+  const VecX& M = model.mass_diagonal();
+  double T = 0.0;
+  for (int i = 0; i < M.size(); ++i) T += M[i] * v[i] * v[i];
+  return 0.5 * T;
+}
+
+double potential_energy(const Model& model, const double* q, double t) {
+  double V = 0.0;
+  for (const auto& f : model.force_groups()) V += f->potential(q, t);
+  return V;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,155 @@
+#include "lagmb/augmented.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "lagmb/assembly.hpp"
+#include "lagmb/errors.hpp"
+
+namespace lagmb {
+
+AugmentedSystem::AugmentedSystem(const Model& model)
+    : n_(model.n_coordinates()),
+      m_(model.n_constraints()),
+      eps_(1e-9 / model.mass_scale()),
+      mass_(model.mass_diagonal()) {
+  const SpMat& J = model.jacobian_pattern();
+  SparsityPattern p(n_ + m_, n_ + m_);
+  for (int i = 0; i < n_ + m_; ++i) p.add(i, i);
+  for (int c = 0; c < J.outerSize(); ++c)
+    for (SpMat::InnerIterator it(J, c); it; ++it) {
+      p.add(n_ + int(it.row()), c);
+      p.add(c, n_ + int(it.row()));
+    }
+  K_ = p.build();
+  for (int i = 0; i < n_; ++i) mass_slots_.push_back(slot(K_, i, i));
+  for (int i = 0; i < m_; ++i) reg_slots_.push_back(slot(K_, n_ + i, n_ + i));
+  jac_slots_ = embed_slots(J, K_, n_, 0);
+  jact_slots_ = embed_slots(J, K_, 0, n_, true);
+  lu_.analyzePattern(K_);
+  rhs_.resize(n_ + m_);
+  x_.resize(n_ + m_);
+  r_.resize(n_ + m_);
+}
+
+bool AugmentedSystem::factorize(const Data& d) {
+  double* K = K_.valuePtr();
+  const double* J = d.Phi_q.valuePtr();
+  for (int i = 0; i < n_; ++i) K[mass_slots_[i]] = mass_[i];
+  for (int i = 0; i < m_; ++i) K[reg_slots_[i]] = -eps_;
+  for (size_t k = 0; k < jac_slots_.size(); ++k) K[jac_slots_[k]] = K[jact_slots_[k]] = J[k];
+  lu_.factorize(K_);
+  ++factorizations_;
+  return lu_.info() == Eigen::Success;
+}
+
+void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
+  rhs_ << b1, b2;
+  x_ = lu_.solve(rhs_);
+  // refine against eps = 0: K0 x = K x + eps [0; x2]
+  for (int it = 0; it < 3; ++it) {
+    r_.noalias() = rhs_ - K_ * x_;
+    r_.tail(m_) -= eps_ * x_.tail(m_);
+    if (r_.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + rhs_.lpNorm<Eigen::Infinity>())) break;
+    x_ += lu_.solve(r_);
+  }
+  x1 = x_.head(n_);
+  x2 = x_.tail(m_);
+}
+
+namespace {
+
+double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
+
+[[noreturn]] void fail_assembly(const Model& model, const Data& d, double t, double tol,
+                                const std::string& why) {
+  std::map<std::string, double> worst;
+  for (int r = 0; r < d.Phi.size(); ++r) {
+    const double e = std::abs(d.Phi[r]);
+    if (!(e <= tol)) {
+      double& w = worst[model.constraint_name_of_row(r)];
+      w = std::max(w, std::isfinite(e) ? e : INFINITY);
+    }
+  }
+  std::vector<std::pair<std::string, double>> v(worst.begin(), worst.end());
+  std::sort(v.begin(), v.end(), [](auto& a, auto& b) { return a.second > b.second; });
+  std::ostringstream s;
+  s << "the model cannot be assembled at t = " << t << " (" << why
+    << "); constraint equations still violated:";
+  for (const auto& [name, e] : v) s << " '" << name << "' (|Phi| = " << e << ")";
+  s << ". Check the joint points and the initial positions.";
+  throw AssemblyError(s.str(), t, std::move(v));
+}
+
+}  // namespace
+
+ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
+                                VecX v, double t) {
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  ConsistentState s;
+  VecX zero_n = VecX::Zero(n), dq(n), kappa(m), q_try(n);
+  const double scale = 1.0 + (n ? q.lpNorm<Eigen::Infinity>() : 0.0);
+  const double tol = 1e-12 * scale;
+
+  // 1. positions: Newton least-change, with backtracking on |Phi|
+  assemble_constraints(model, d, q.data(), t);
+  double err = max_abs(d.Phi);
+  const int max_iter = 50;
+  while (err > tol) {
+    if (s.position_iterations++ >= max_iter || !std::isfinite(err))
+      fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge");
+    assemble_jacobian(model, d, q.data(), t);
+    if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix");
+    kkt.solve(zero_n, -d.Phi, dq, kappa);
+    double step = 1.0, err_try = INFINITY;
+    for (int halving = 0; halving < 12; ++halving, step *= 0.5) {
+      q_try = q + step * dq;
+      assemble_constraints(model, d, q_try.data(), t);
+      err_try = max_abs(d.Phi);
+      if (err_try < err) break;
+    }
+    if (!(err_try < err)) {
+      assemble_constraints(model, d, q.data(), t);
+      // converged as far as rounding allows?
+      if (err <= 1e-9 * scale) break;
+      fail_assembly(model, d, t, 1e3 * tol, "no Newton step reduces |Phi|");
+    }
+    q = q_try;
+    err = err_try;
+  }
+
+  // 2. velocities: M-orthogonal projection onto Phi_q v = -Phi_t
+  assemble_jacobian(model, d, q.data(), t);
+  if (!kkt.factorize(d)) fail_assembly(model, d, t, INFINITY, "singular augmented matrix");
+  assemble_phi_t(model, d, q.data(), t);
+  const VecX Mv = model.mass_diagonal().cwiseProduct(v);
+  kkt.solve(Mv, -d.phi_t, v, kappa);
+
+  // 3. accelerations and multipliers
+  s.qdd.resize(n);
+  s.lam.resize(m);
+  assemble_forces(model, d, q.data(), v.data(), t);
+  assemble_gamma(model, d, q.data(), v.data(), t);
+  kkt.solve(d.Q, d.gamma, s.qdd, s.lam);
+  s.q = std::move(q);
+  s.v = std::move(v);
+  return s;
+}
+
+void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,
+                         const double* v, double t, double* qdd, double* lam) {
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  assemble_jacobian(model, d, q, t);
+  if (!kkt.factorize(d))
+    throw SimulationError("the augmented matrix is singular at t = " + std::to_string(t), t);
+  assemble_forces(model, d, q, v, t);
+  assemble_gamma(model, d, q, v, t);
+  VecX a(n), l(m);
+  kkt.solve(d.Q, d.gamma, a, l);
+  Eigen::Map<VecX>(qdd, n) = a;
+  Eigen::Map<VecX>(lam, m) = l;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,12 @@
+#include "lagmb/elements/gravity.hpp"
+
+#include "lagmb/model.hpp"
+
+namespace lagmb {
+
+void Gravity::place(const Model& model) {
+  bodies_.clear();
+  for (const auto& b : model.bodies()) bodies_.push_back({b.first_coord, b.mass});
+}
+
+}  // namespace lagmb

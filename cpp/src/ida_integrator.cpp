@@ -1,0 +1,162 @@
+// IDA (variable-order, variable-step BDF) on a DaeFormulation.
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <sstream>
+
+#include "dae.hpp"
+#include "integrators.hpp"
+#include "lagmb/simulate.hpp"
+#include "sparse_lu_solver.hpp"
+#include "sun_compat.hpp"
+
+namespace lagmb {
+
+namespace {
+
+struct Callbacks {
+  DaeFormulation* dae;
+  std::exception_ptr error;  // a C++ exception must not cross SUNDIALS' C frames
+};
+
+int residual_fn(sun::real t, N_Vector y, N_Vector yp, N_Vector F, void* data) {
+  auto* cb = static_cast<Callbacks*>(data);
+  try {
+    return cb->dae->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), N_VGetArrayPointer(F));
+  } catch (...) {
+    cb->error = std::current_exception();
+    return -1;
+  }
+}
+
+int jacobian_fn(sun::real t, sun::real cj, N_Vector y, N_Vector yp, N_Vector, SUNMatrix, void* data,
+                N_Vector, N_Vector, N_Vector) {
+  auto* cb = static_cast<Callbacks*>(data);
+  try {
+    cb->dae->newton_matrix(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp));
+    return 0;
+  } catch (...) {
+    cb->error = std::current_exception();
+    return -1;
+  }
+}
+
+/// Frees what IDA was given, in the right order, whatever happens.
+struct IdaSession {
+  sun::Context ctx;
+  void* mem = nullptr;
+  N_Vector y = nullptr, yp = nullptr, id = nullptr, abstol = nullptr, out = nullptr;
+  SUNMatrix A = nullptr;
+  SUNLinearSolver LS = nullptr;
+  sun::SparseLU lu;
+  ~IdaSession() {
+    if (mem) IDAFree(&mem);
+    if (LS) SUNLinSolFree(LS);
+    if (A) SUNMatDestroy(A);
+    for (N_Vector* v : {&y, &yp, &id, &abstol, &out})
+      if (*v) N_VDestroy(*v);
+  }
+};
+
+void check(int flag, const char* call, sun::Context& ctx) {
+  if (flag < 0)
+    throw std::runtime_error(std::string("lagmb: ") + call + " failed (" + std::to_string(flag) +
+                             "): " + ctx.sink().message);
+}
+
+}  // namespace
+
+std::string sundials_version() { return SUNDIALS_VERSION; }
+
+void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const IntegrationPlan& plan,
+                   const std::function<void(const double* q, const double* v)>& record,
+                   Stats& stats) {
+  IdaSession s;
+  const int N = dae.size();
+  s.y = N_VNew_Serial(N, s.ctx);
+  s.yp = N_VNew_Serial(N, s.ctx);
+  s.id = N_VNew_Serial(N, s.ctx);
+  s.abstol = N_VNew_Serial(N, s.ctx);
+  s.out = N_VNew_Serial(N, s.ctx);
+  dae.initial(start, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
+  dae.ids(N_VGetArrayPointer(s.id));
+  dae.tolerances(plan.atol, N_VGetArrayPointer(s.abstol));
+
+  Callbacks cb{&dae, nullptr};
+  s.mem = IDACreate(s.ctx);
+  if (!s.mem) throw std::runtime_error("lagmb: IDACreate failed");
+  s.ctx.attach_ida(s.mem);
+  check(IDAInit(s.mem, residual_fn, plan.t0, s.y, s.yp), "IDAInit", s.ctx);
+  check(IDASVtolerances(s.mem, plan.rtol, s.abstol), "IDASVtolerances", s.ctx);
+  check(IDASetUserData(s.mem, &cb), "IDASetUserData", s.ctx);
+  check(IDASetId(s.mem, s.id), "IDASetId", s.ctx);
+  check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
+  check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
+  if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
+  check(IDASetStopTime(s.mem, plan.t_end), "IDASetStopTime", s.ctx);
+
+  s.A = sun::make_matrix_view(s.ctx, &dae.matrix());
+  s.LS = sun::make_sparse_lu_solver(s.ctx, &s.lu);
+  if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the linear solver");
+  check(IDASetLinearSolver(s.mem, s.LS, s.A), "IDASetLinearSolver", s.ctx);
+  check(IDASetJacFn(s.mem, jacobian_fn), "IDASetJacFn", s.ctx);
+
+  auto fill_stats = [&] {
+    long v = 0;
+    IDAGetNumSteps(s.mem, &v), stats.steps = v;
+    IDAGetNumResEvals(s.mem, &v), stats.residual_evals = v;
+    IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = v;
+    IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = v;
+    IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = v;
+    IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = v;
+    int order = 0;
+    IDAGetLastOrder(s.mem, &order), stats.last_order = order;
+    sun::real h = 0;
+    IDAGetLastStep(s.mem, &h), stats.last_step = h;
+    stats.lu_factorizations = s.lu.factorizations;
+  };
+
+  const auto& t_out = plan.t_out;
+  size_t k = 0;
+  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
+
+  auto clock = std::chrono::steady_clock::now();
+  sun::real t = plan.t0;
+  while (k < t_out.size()) {
+    const int flag = IDASolve(s.mem, plan.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
+    if (cb.error) {
+      fill_stats();
+      std::rethrow_exception(cb.error);
+    }
+    if (flag < 0) {
+      fill_stats();
+      sun::real h = 0;
+      IDAGetCurrentStep(s.mem, &h);
+      std::ostringstream msg;
+      msg << "IDA failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
+          << IDAGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
+      throw IntegratorFailure(msg.str(), t);
+    }
+    for (; k < t_out.size() && t_out[k] <= t; ++k) {
+      check(IDAGetDky(s.mem, t_out[k], 0, s.out), "IDAGetDky", s.ctx);
+      const double* yo = N_VGetArrayPointer(s.out);
+      record(dae.q(yo), dae.v(yo));
+    }
+    if (flag == IDA_TSTOP_RETURN) break;
+    if (plan.progress) {
+      auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - clock).count() >= plan.progress_interval) {
+        clock = now;
+        fill_stats();
+        plan.progress(t);
+      }
+    }
+  }
+  fill_stats();
+}
+
+}  // namespace lagmb

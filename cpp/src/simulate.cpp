@@ -1,0 +1,133 @@
+#include "lagmb/simulate.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "integrators.hpp"
+#include "lagmb/assembly.hpp"
+
+namespace lagmb {
+
+namespace {
+
+void validate(const Model& model, const SimulationOptions& o) {
+  if (!model.finalized()) throw ModelError("simulate: the model is not finalized");
+  if (model.n_coordinates() == 0) throw ModelError("simulate: the model has no bodies");
+  auto positive = [](double x, const char* name) {
+    if (!(std::isfinite(x) && x > 0))
+      throw ModelError(std::string("simulate: ") + name + " must be positive and finite, got " +
+                       std::to_string(x));
+  };
+  if (!std::isfinite(o.t0)) throw ModelError("simulate: t0 is not finite");
+  if (!(std::isfinite(o.t_end) && o.t_end > o.t0))
+    throw ModelError("simulate: t_end must be finite and greater than t0 = " + std::to_string(o.t0) +
+                     ", got " + std::to_string(o.t_end));
+  positive(o.rtol, "rtol");
+  positive(o.atol, "atol");
+  if (o.max_step != 0.0) positive(o.max_step, "max_step");
+  if (o.max_order < 1 || o.max_order > 5)
+    throw ModelError("simulate: max_order must be in 1..5 for BDF, got " + std::to_string(o.max_order));
+  if (o.t_out.empty() && o.n_out < 2)
+    throw ModelError("simulate: n_out must be at least 2, got " + std::to_string(o.n_out));
+  for (size_t k = 0; k < o.t_out.size(); ++k) {
+    const double tk = o.t_out[k];
+    if (!std::isfinite(tk) || tk < o.t0 || tk > o.t_end)
+      throw ModelError("simulate: t_out[" + std::to_string(k) + "] = " + std::to_string(tk) +
+                       " is outside [t0, t_end]");
+    if (k && !(tk > o.t_out[k - 1]))
+      throw ModelError("simulate: t_out must be strictly increasing (t_out[" + std::to_string(k) +
+                       "] = " + std::to_string(tk) + ")");
+  }
+  if (o.formulation != "ggl")
+    throw ModelError("simulate: unknown formulation '" + o.formulation + "' (available: ggl)");
+  if (o.integrator != "bdf")
+    throw ModelError("simulate: unknown integrator '" + o.integrator + "' (available: bdf)");
+}
+
+std::vector<double> output_times(const SimulationOptions& o) {
+  if (!o.t_out.empty()) return o.t_out;
+  std::vector<double> t(o.n_out);
+  for (int k = 0; k < o.n_out; ++k) t[k] = o.t0 + (o.t_end - o.t0) * k / (o.n_out - 1);
+  t.back() = o.t_end;
+  return t;
+}
+
+/// a and lam at every recorded output, from the augmented system.
+void solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr) {
+  const int n = tr.n, m = tr.m, k = tr.size();
+  tr.a.resize(size_t(k) * n);
+  tr.lam.resize(size_t(k) * m);
+  for (int i = 0; i < k; ++i)
+    solve_accelerations(model, d, kkt, &tr.q[size_t(i) * n], &tr.v[size_t(i) * n], tr.t[i],
+                        &tr.a[size_t(i) * n], &tr.lam[size_t(i) * m]);
+}
+
+}  // namespace
+
+ConsistentState assemble(const Model& model, double t) {
+  if (!model.finalized()) throw ModelError("assemble: the model is not finalized");
+  Data d(model);
+  AugmentedSystem kkt(model);
+  return make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), t);
+}
+
+void solve_accelerations(const Model& model, const VecX& q, const VecX& v, double t, VecX& qdd,
+                         VecX& lam) {
+  if (!model.finalized()) throw ModelError("solve_accelerations: the model is not finalized");
+  const int n = model.n_coordinates();
+  if (q.size() != n || v.size() != n)
+    throw ModelError("solve_accelerations: q and v must have " + std::to_string(n) + " entries");
+  if (!q.allFinite() || !v.allFinite() || !std::isfinite(t))
+    throw ModelError("solve_accelerations: q, v and t must be finite");
+  Data d(model);
+  AugmentedSystem kkt(model);
+  qdd.resize(n);
+  lam.resize(model.n_constraints());
+  solve_accelerations(model, d, kkt, q.data(), v.data(), t, qdd.data(), lam.data());
+}
+
+Trajectory simulate(const Model& model, const SimulationOptions& o) {
+  validate(model, o);
+  const auto wall0 = std::chrono::steady_clock::now();
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  Data d(model);
+  AugmentedSystem kkt(model);
+  const ConsistentState start = make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), o.t0);
+
+  IntegrationPlan plan{o.t0, o.t_end, o.rtol, o.atol, o.max_step, o.max_order, output_times(o),
+                       o.progress, o.progress_interval};
+  Trajectory tr;
+  tr.n = n;
+  tr.m = m;
+  tr.t.reserve(plan.t_out.size());
+  tr.q.reserve(plan.t_out.size() * n);
+  tr.v.reserve(plan.t_out.size() * n);
+  auto record = [&](const double* q, const double* v) {
+    tr.t.push_back(plan.t_out[tr.t.size()]);
+    tr.q.insert(tr.q.end(), q, q + n);
+    tr.v.insert(tr.v.end(), v, v + n);
+  };
+  tr.stats.formulation = o.formulation;
+  tr.stats.integrator = o.integrator;
+  auto finish = [&] {
+    solve_outputs(model, d, kkt, tr);
+    tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+
+  GglFormulation dae(model);
+  try {
+    integrate_ida(dae, start, plan, record, tr.stats);
+  } catch (const IntegratorFailure& e) {
+    finish();
+    std::ostringstream msg;
+    msg << e.what() << " Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back())
+        << " are kept in the partial result.";
+    throw SimulationError(msg.str(), e.t, std::move(tr));
+  }
+  finish();
+  return tr;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,32 @@
+"""lagmb: planar multibody dynamics with Lagrange multipliers.
+
+Bodies keep Cartesian coordinates; joints add constraints Phi(q, t) = 0;
+the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
+
+    import lagmb as mb
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", mass=1.0, inertia=1/12, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    r = mb.simulate(m, t_end=2.0)
+"""
+
+from . import _core
+from .errors import AssemblyError, ModelError, SimulationError
+from .model import Body, Model
+from .result import BodyPath, Result
+from .simulation import simulate, solve_accelerations
+
+__version__ = "0.1.0"
+SUNDIALS_VERSION = _core.sundials_version
+
+__all__ = [
+    "AssemblyError",
+    "Body",
+    "BodyPath",
+    "Model",
+    "ModelError",
+    "Result",
+    "SimulationError",
+    "simulate",
+    "solve_accelerations",
+]

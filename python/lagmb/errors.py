@@ -1,0 +1,33 @@
+"""Exceptions raised by lagmb (DESIGN.md section 6)."""
+
+from . import _core
+
+#: Bad input: a value or name that cannot make a model. A ValueError.
+ModelError = _core.ModelError
+
+
+class SimulationError(RuntimeError):
+    """The solver could not go on.
+
+    Attributes:
+        t: time reached (s).
+        result: the outputs computed before the failure, as a Result (None
+            when nothing was computed, e.g. the model could not be assembled).
+    """
+
+    def __init__(self, message, t=float("nan"), result=None):
+        super().__init__(message)
+        self.t = t
+        self.result = result
+
+
+class AssemblyError(SimulationError):
+    """The initial positions cannot be made to satisfy the constraints.
+
+    Attributes:
+        violated: list of (element name, max |Phi|), largest first.
+    """
+
+    def __init__(self, message, t=float("nan"), violated=()):
+        super().__init__(message, t, None)
+        self.violated = list(violated)

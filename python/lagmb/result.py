@@ -1,0 +1,91 @@
+"""Results of a run as numpy arrays (DESIGN.md section 5)."""
+
+from functools import cached_property
+
+import numpy as np
+
+from .errors import ModelError
+
+
+class BodyPath:
+    """The motion of one body: position (k, 2) of its centre of mass, angle
+    (k,), velocity (k, 2), angular_velocity (k,), acceleration (k, 2),
+    angular_acceleration (k,). A particle has no angle (zeros)."""
+
+    def __init__(self, result, first, count):
+        def cols(x, a, b):
+            return x[:, first + a:first + b]
+
+        self.position = cols(result.q, 0, 2)
+        self.velocity = cols(result.v, 0, 2)
+        self.acceleration = cols(result.a, 0, 2)
+        k = len(result.t)
+        zero = np.zeros(k)
+        self.angle = result.q[:, first + 2] if count == 3 else zero
+        self.angular_velocity = result.v[:, first + 2] if count == 3 else zero
+        self.angular_acceleration = result.a[:, first + 2] if count == 3 else zero
+
+
+class Result:
+    """States at the output times of a run.
+
+    t (k,), q, v, a (k, n) and lam (k, m) in the sign of DESIGN.md section 1.
+    a and lam are solved from the augmented system at each output state, so
+    M a + Phi_q^T lam = Q holds for exactly the reported q and v. Derived
+    quantities (energy, residual, reactions) are computed when first asked.
+    """
+
+    def __init__(self, model, core_model, raw):
+        self.model = model
+        self._core = core_model
+        self.t = raw["t"]
+        self.q = raw["q"]
+        self.v = raw["v"]
+        self.a = raw["a"]
+        self.lam = raw["lam"]
+        self.stats = dict(raw["stats"])
+
+    def __len__(self):
+        return len(self.t)
+
+    def _name(self, item):
+        name = getattr(item, "name", item)
+        if not isinstance(name, str) or not self._core.has(name):
+            raise ModelError(f"no body or element named '{name}' in this model")
+        return name
+
+    def body(self, body):
+        """Motion of a body (handle or name): .position, .angle, ..."""
+        first, count = self._core.body_coordinates(self._name(body))
+        return BodyPath(self, first, count)
+
+    def point(self, body, local_point):
+        """(k, 2) global path of a point given in the body's own axes."""
+        b = self.body(body)
+        s = np.asarray(local_point, dtype=float).reshape(2)
+        c, sn = np.cos(b.angle), np.sin(b.angle)
+        return b.position + np.column_stack((c * s[0] - sn * s[1], sn * s[0] + c * s[1]))
+
+    def multipliers(self, element):
+        """(k, rows) columns of lam that belong to a joint or driver."""
+        row0, rows = self._core.constraint_rows(self._name(element))
+        return self.lam[:, row0:row0 + rows]
+
+    def reaction(self, element):
+        """(k, 3): force (x, y) in N on the element's second body, and the
+        torque in N m about that body's centre of mass, from the element."""
+        return self._core.reaction(self._name(element), self.t, self.q, self.lam)
+
+    @cached_property
+    def energy(self):
+        """(k,) kinetic + potential energy (J) of the conservative forces."""
+        return self._core.energy(self.t, self.q, self.v)
+
+    @cached_property
+    def residual(self):
+        """(k,) max |Phi| (position-level constraint violation)."""
+        return self._core.residual(self.t, self.q)
+
+    def __repr__(self):
+        return (f"<lagmb.Result: {len(self.t)} outputs, t = {self.t[0]:g}..{self.t[-1]:g} s, "
+                f"{self.stats.get('steps', 0)} steps>")

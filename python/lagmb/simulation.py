@@ -1,0 +1,85 @@
+"""Running a model: simulate() and one-instant solves."""
+
+import contextlib
+import math
+
+import numpy as np
+
+from . import _core
+from .errors import AssemblyError, ModelError, SimulationError
+from .result import Result
+
+
+@contextlib.contextmanager
+def _translate(model=None, core=None):
+    """Turn the core's solver errors into lagmb's, with the partial result."""
+    try:
+        yield
+    except _core.AssemblyError as e:
+        raise AssemblyError(str(e), e.t, e.violated) from None
+    except _core.SimulationError as e:
+        partial = Result(model, core, e.partial) if model is not None else None
+        if partial is not None and len(partial.t) == 0:
+            partial = None
+        raise SimulationError(str(e), e.t, partial) from None
+
+
+def _positive(value, name):
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise ModelError(f"{name} must be a number, got {value!r}")
+    if not (math.isfinite(value) and value > 0):
+        raise ModelError(f"{name} must be positive and finite, got {value!r}")
+    return float(value)
+
+
+def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
+             max_step=None, formulation="ggl", integrator="bdf", max_order=5, progress=None):
+    """Integrate a model from its initial state and return a Result.
+
+    The initial state is first made consistent (positions by least change,
+    velocities by projection); then IDA integrates the stabilized index-2
+    (GGL) equations. Outputs: ``n_out`` equally spaced times from t0 to
+    t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
+    last entry), interpolated by the integrator.
+
+    Raises ModelError for bad arguments, AssemblyError if the joints cannot
+    be assembled, SimulationError (with ``.t`` and the partial ``.result``)
+    if the integrator fails.
+    """
+    if t_out is not None:
+        t_out = np.asarray(t_out, dtype=float).reshape(-1)
+        if t_out.size == 0:
+            raise ModelError("t_out is empty")
+        if t_end is None:
+            t_end = float(t_out[-1])
+    if t_end is None:
+        raise ModelError("give t_end or t_out")
+    t_end = float(t_end)
+    if not (math.isfinite(t_end) and t_end > t0):
+        raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
+    rtol = _positive(rtol, "rtol")
+    atol = _positive(atol, "atol")
+    max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
+    if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
+        raise ModelError("t_out must be strictly increasing")
+    if t_out is None and (isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2):
+        raise ModelError(f"n_out must be an integer >= 2, got {n_out!r}")
+    core = model.compiled()
+    with _translate(model, core):
+        raw = _core.simulate(core, float(t0), t_end, [] if t_out is None else list(t_out),
+                             int(n_out), rtol, atol, max_step, int(max_order), str(formulation),
+                             str(integrator), progress)
+    return Result(model, core, raw)
+
+
+def solve_accelerations(model, q, v, t=0.0):
+    """Accelerations and multipliers (qdd, lam) at one instant: the augmented
+    system [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma]."""
+    core = model.compiled()
+    n = core.n_coordinates
+    q = np.asarray(q, dtype=float).reshape(-1)
+    v = np.asarray(v, dtype=float).reshape(-1)
+    if q.shape != (n,) or v.shape != (n,):
+        raise ModelError(f"q and v must have {n} entries, got {q.size} and {v.size}")
+    with _translate():
+        return _core.solve_accelerations(core, q, v, float(t))

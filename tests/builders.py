@@ -1,0 +1,33 @@
+"""lagmb models shared by several test files.
+
+Kept apart from references.py so that the references stay free of lagmb.
+"""
+
+import lagmb as mb
+
+
+def seed_pendulum(L=1.0, m=1.0, g=9.81):
+    """The seed pendulum: a uniform rod of length L, mass m, J = m L^2/12,
+    centre of mass at (L/2, 0), angle 0, pinned to the ground at the origin
+    by the revolute "pin" (which therefore sits at the rod's local point
+    (-L/2, 0)), gravity (0, -g), at rest."""
+    model = mb.Model(gravity=(0.0, -g))
+    rod = model.add_body("rod", mass=m, inertia=m * L**2 / 12.0,
+                         position=(0.5 * L, 0.0), angle=0.0)
+    model.add_revolute("pin", model.ground, rod, at=(0.0, 0.0))
+    return model
+
+
+def rod_chain(n, L=1.0, m=1.0, g=9.81):
+    """n uniform rods (length L, mass m, J = m L^2/12) lying along +x at rest:
+    body "rod{k}" has its centre at ((k + 1/2) L, 0) and angle 0; revolute
+    "pin0" joins the ground and rod0 at the origin, "pin{k}" joins rod{k-1}
+    and rod{k} at (k L, 0).  Gravity (0, -g)."""
+    model = mb.Model(gravity=(0.0, -g))
+    prev = model.ground
+    for k in range(n):
+        body = model.add_body(f"rod{k}", mass=m, inertia=m * L**2 / 12.0,
+                              position=((k + 0.5) * L, 0.0), angle=0.0)
+        model.add_revolute(f"pin{k}", prev, body, at=(k * L, 0.0))
+        prev = body
+    return model

@@ -1,0 +1,223 @@
+"""Bad input gets a clear exception that names the element and the value.
+
+DESIGN.md section 6.  Modelling errors raise mb.ModelError (a ValueError);
+bad simulation settings raise ValueError naming the setting; solver trouble
+raises mb.SimulationError (not a ValueError) carrying .t (time reached) and
+.result (partial Result or None); a model whose initial positions cannot be
+made consistent raises mb.AssemblyError (a SimulationError) whose message
+names the violated joints.  Every case checks the type and that the
+offending name (and, for numbers, the value) appears in the message.
+"""
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+from builders import seed_pendulum
+
+
+def _rod_kwargs(**over):
+    kw = dict(mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0), angle=0.0)
+    kw.update(over)
+    return kw
+
+
+def test_exception_hierarchy():
+    """ModelError is a ValueError; SimulationError is not (it is not the
+    caller's input that is wrong); AssemblyError is a SimulationError."""
+    assert issubclass(mb.ModelError, ValueError)
+    assert issubclass(mb.SimulationError, Exception)
+    assert not issubclass(mb.SimulationError, ValueError)
+    assert issubclass(mb.AssemblyError, mb.SimulationError)
+
+
+# --------------------------------------------------------------------------
+# Bodies
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize(
+    "over, words",
+    [
+        (dict(mass=0.0), ["mass"]),
+        (dict(mass=-2.5), ["mass", "-2.5"]),
+        (dict(mass=math.nan), ["mass", "nan"]),
+        (dict(inertia=-0.25), ["inertia", "-0.25"]),
+        (dict(position=(math.nan, 0.0)), ["position", "nan"]),
+        (dict(position=(0.0, math.inf)), ["position", "inf"]),
+        (dict(angle=-math.inf), ["angle", "inf"]),
+    ],
+    ids=["zero-mass", "negative-mass", "nan-mass", "negative-inertia",
+         "nan-position", "inf-position", "inf-angle"],
+)
+def test_bad_body_parameters(over, words):
+    """A body named "wheel" with a bad number: ModelError whose message
+    contains "wheel", the parameter name and the offending value
+    (case-insensitive for nan/inf)."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    with pytest.raises(mb.ModelError, match="wheel") as info:
+        m.add_body("wheel", **_rod_kwargs(**over))
+    msg = str(info.value).lower()
+    for w in words:
+        assert w.lower() in msg, f"{w!r} not in {msg!r}"
+
+
+def test_duplicate_body_name():
+    """Two bodies called "link": the second one is refused, naming "link"."""
+    m = mb.Model()
+    m.add_body("link", **_rod_kwargs())
+    with pytest.raises(mb.ModelError, match="link"):
+        m.add_body("link", **_rod_kwargs(position=(1.5, 0.0)))
+
+
+# --------------------------------------------------------------------------
+# Joints
+# --------------------------------------------------------------------------
+
+def test_duplicate_joint_name():
+    """Two revolutes called "hinge": the second is refused, naming "hinge"."""
+    m = mb.Model()
+    a = m.add_body("upper", **_rod_kwargs())
+    b = m.add_body("lower", **_rod_kwargs(position=(1.5, 0.0)))
+    m.add_revolute("hinge", m.ground, a, at=(0.0, 0.0))
+    with pytest.raises(mb.ModelError, match="hinge"):
+        m.add_revolute("hinge", a, b, at=(1.0, 0.0))
+
+
+def test_joint_name_clashes_with_body_name():
+    """Names are unique across all elements: a revolute may not be called
+    like an existing body ("arm")."""
+    m = mb.Model()
+    arm = m.add_body("arm", **_rod_kwargs())
+    with pytest.raises(mb.ModelError, match="arm"):
+        m.add_revolute("arm", m.ground, arm, at=(0.0, 0.0))
+
+
+def test_body_name_clashes_with_joint_name():
+    """... and a body may not take the name of an existing joint ("pivot")."""
+    m = mb.Model()
+    arm = m.add_body("arm", **_rod_kwargs())
+    m.add_revolute("pivot", m.ground, arm, at=(0.0, 0.0))
+    with pytest.raises(mb.ModelError, match="pivot"):
+        m.add_body("pivot", **_rod_kwargs(position=(1.5, 0.0)))
+
+
+def test_revolute_between_body_and_itself():
+    """A joint from "arm" to "arm" constrains nothing (Phi_q rows vanish) and
+    is refused, naming the joint "selfie"."""
+    m = mb.Model()
+    arm = m.add_body("arm", **_rod_kwargs())
+    with pytest.raises(mb.ModelError, match="selfie"):
+        m.add_revolute("selfie", arm, arm, at=(0.0, 0.0))
+
+
+def test_revolute_with_body_from_another_model():
+    """A body handle belongs to the model that created it: joining it in a
+    different model is refused, naming the joint "bridge"."""
+    other = mb.Model()
+    alien = other.add_body("alien", **_rod_kwargs())
+    m = mb.Model()
+    with pytest.raises(mb.ModelError, match="bridge"):
+        m.add_revolute("bridge", m.ground, alien, at=(0.0, 0.0))
+
+
+def test_revolute_with_unknown_body_name():
+    """Bodies may be given by name; an unknown one ("ghost") is refused,
+    naming it."""
+    m = mb.Model()
+    m.add_body("arm", **_rod_kwargs())
+    with pytest.raises(mb.ModelError, match="ghost"):
+        m.add_revolute("hinge", m.ground, "ghost", at=(0.0, 0.0))
+
+
+# --------------------------------------------------------------------------
+# Results
+# --------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def short_run():
+    return mb.simulate(seed_pendulum(), t_end=0.1, n_out=3, rtol=1e-8, atol=1e-10)
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda r: r.body("nosuchbody"), "nosuchbody"),
+        (lambda r: r.point("nosuchbody", (0.0, 0.0)), "nosuchbody"),
+        (lambda r: r.reaction("nosuchjoint"), "nosuchjoint"),
+    ],
+    ids=["body", "point", "reaction"],
+)
+def test_unknown_name_in_result(short_run, call, name):
+    """Asking a Result for an element that does not exist raises a KeyError
+    or ValueError (ModelError) whose message names it."""
+    with pytest.raises((KeyError, ValueError)) as info:
+        call(short_run)
+    assert name in str(info.value)
+
+
+# --------------------------------------------------------------------------
+# Simulation settings
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize(
+    "kwargs, word",
+    [
+        (dict(t_end=0.0), "t_end"),
+        (dict(t_end=-1.0), "t_end"),
+        (dict(t_end=1.0, rtol=0.0), "rtol"),
+        (dict(t_end=1.0, rtol=-1e-6), "rtol"),
+        (dict(t_end=1.0, atol=-1e-10), "atol"),
+        (dict(t_end=1.0, t_out=[0.0, 0.6, 0.3, 1.0]), "t_out"),
+        (dict(t_end=1.0, t_out=[0.0, 0.5, 0.5, 1.0]), "t_out"),
+        (dict(t_end=1.0, formulation="index7"), "index7"),
+    ],
+    ids=["t_end-zero", "t_end-negative", "rtol-zero", "rtol-negative",
+         "atol-negative", "t_out-decreasing", "t_out-repeated",
+         "unknown-formulation"],
+)
+def test_bad_simulation_settings(kwargs, word):
+    """Settings that make no sense are the caller's error: ValueError (not a
+    SimulationError) naming the setting or the bad value."""
+    with pytest.raises(ValueError, match=re.escape(word)):
+        mb.simulate(seed_pendulum(), **kwargs)
+
+
+# --------------------------------------------------------------------------
+# Assembly
+# --------------------------------------------------------------------------
+
+def _unassemblable():
+    """Two 1 m rods pinned to the ground 3 m apart: "left_pin" at (0, 0)
+    and "right_pin" at (3, 0), lying toward each other.  Their free tips
+    (at (1, 0) and (2, 0)) are tied by "tie_rod", a distance constraint of
+    length 6 m, but the tips can be at most 1 + 3 + 1 = 5 m apart: no
+    configuration satisfies all three joints.  (Revolutes alone, given by a
+    global point in the initial configuration, are always assemblable at
+    t = 0, so the impossible link is the distance constraint.)"""
+    m = mb.Model(gravity=(0.0, -9.81))
+    left = m.add_body("left", **_rod_kwargs(position=(0.5, 0.0), angle=0.0))
+    right = m.add_body("right", **_rod_kwargs(position=(2.5, 0.0), angle=math.pi))
+    m.add_revolute("left_pin", m.ground, left, at=(0.0, 0.0))
+    m.add_revolute("right_pin", m.ground, right, at=(3.0, 0.0))
+    m.add_distance("tie_rod", left, (1.0, 0.0), right, (2.0, 0.0), length=6.0)
+    return m
+
+
+def test_unassemblable_model_raises_assembly_error():
+    """The initial positions cannot be made consistent: AssemblyError (a
+    SimulationError, not a ValueError) raised at the start time t = 0 (so
+    .t == 0.0, to 1e-15), carrying .result, and naming at least one of the
+    violated joints in its message."""
+    with pytest.raises(mb.AssemblyError, match="left_pin|right_pin|tie_rod") as info:
+        mb.simulate(_unassemblable(), t_end=1.0, n_out=11, rtol=1e-8, atol=1e-10)
+    err = info.value
+    assert isinstance(err, mb.SimulationError)
+    assert not isinstance(err, ValueError)
+    assert isinstance(err.t, float)
+    assert abs(err.t - 0.0) <= 1e-15
+    assert hasattr(err, "result")
+    if err.result is not None:
+        assert np.asarray(err.result.t).size <= 1
