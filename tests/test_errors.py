@@ -190,19 +190,19 @@ def test_bad_simulation_settings(kwargs, word):
 # --------------------------------------------------------------------------
 
 def _unassemblable():
-    """Two 1 m rods pinned to the ground 3 m apart: "left_pin" at (0, 0)
-    and "right_pin" at (3, 0), lying toward each other.  Their free tips
-    (at (1, 0) and (2, 0)) are tied by "tie_rod", a distance constraint of
-    length 6 m, but the tips can be at most 1 + 3 + 1 = 5 m apart: no
-    configuration satisfies all three joints.  (Revolutes alone, given by a
-    global point in the initial configuration, are always assemblable at
-    t = 0, so the impossible link is the distance constraint.)"""
+    """Two 1 m rods pinned to the ground 3 m apart, "left_pin" at (0, 0) and
+    "right_pin" at (3, 0), lying toward each other, and pinned to each other
+    by "middle" at their free tips (local point (L/2, 0) on each).  The tips
+    stay within 1 m of their ground pins, so they are always at least
+    3 - 1 - 1 = 1 m apart: no configuration satisfies all three joints.
+    ("middle" is given by local points: a revolute given by one global point
+    in the initial configuration is satisfied there by construction.)"""
     m = mb.Model(gravity=(0.0, -9.81))
     left = m.add_body("left", **_rod_kwargs(position=(0.5, 0.0), angle=0.0))
     right = m.add_body("right", **_rod_kwargs(position=(2.5, 0.0), angle=math.pi))
     m.add_revolute("left_pin", m.ground, left, at=(0.0, 0.0))
     m.add_revolute("right_pin", m.ground, right, at=(3.0, 0.0))
-    m.add_distance("tie_rod", left, (1.0, 0.0), right, (2.0, 0.0), length=6.0)
+    m.add_revolute("middle", left, right, local_i=(0.5, 0.0), local_j=(0.5, 0.0))
     return m
 
 
@@ -211,7 +211,7 @@ def test_unassemblable_model_raises_assembly_error():
     SimulationError, not a ValueError) raised at the start time t = 0 (so
     .t == 0.0, to 1e-15), carrying .result, and naming at least one of the
     violated joints in its message."""
-    with pytest.raises(mb.AssemblyError, match="left_pin|right_pin|tie_rod") as info:
+    with pytest.raises(mb.AssemblyError, match="left_pin|right_pin|middle") as info:
         mb.simulate(_unassemblable(), t_end=1.0, n_out=11, rtol=1e-8, atol=1e-10)
     err = info.value
     assert isinstance(err, mb.SimulationError)

@@ -64,7 +64,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "lagmb C++ core (planar multibody dynamics, SUNDIALS IDA)";
   m.attr("sundials_version") = sundials_version();
 
-  static py::exception<ModelError> model_error(m, "ModelError", PyExc_ValueError);
+  py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError);
   g_simulation_error = PyErr_NewException("lagmb._core.SimulationError", PyExc_RuntimeError, nullptr);
   g_assembly_error = PyErr_NewException("lagmb._core.AssemblyError", g_simulation_error.ptr(), nullptr);
   m.attr("SimulationError") = g_simulation_error;

@@ -2,6 +2,7 @@
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -21,7 +22,31 @@ namespace {
 struct Callbacks {
   DaeFormulation* dae;
   std::exception_ptr error;  // a C++ exception must not cross SUNDIALS' C frames
+  void* mem = nullptr;
+  double rtol = 0.0, h_default = 0.0;
+  const double* abstol = nullptr;
+  const double* id = nullptr;
 };
+
+/// Error weights. The multipliers of the index-2 formulations are fixed by
+/// the constraints only to (roundoff in Phi) x cj, cj ~ 1/h, so their Newton
+/// corrections are measured against tolerances divided by h, as RADAU5 does
+/// for index-2 components (Hairer & Wanner, Solving ODEs II, VII.8).
+/// Differential components get the usual 1 / (rtol |y| + atol).
+int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
+  auto* cb = static_cast<Callbacks*>(data);
+  sun::real h = 0.0;
+  IDAGetCurrentStep(cb->mem, &h);
+  const double inv_h = 1.0 / (h > 0.0 ? h : cb->h_default);
+  const double* y = N_VGetArrayPointer(yv);
+  double* ewt = N_VGetArrayPointer(ewtv);
+  for (sun::index i = 0, N = N_VGetLength(yv); i < N; ++i) {
+    const double tol = cb->rtol * std::abs(y[i]) + (cb->id[i] > 0.0 ? cb->abstol[i] : cb->abstol[i] * inv_h);
+    if (!(tol > 0.0)) return -1;
+    ewt[i] = 1.0 / tol;
+  }
+  return 0;
+}
 
 int residual_fn(sun::real t, N_Vector y, N_Vector yp, N_Vector F, void* data) {
   auto* cb = static_cast<Callbacks*>(data);
@@ -68,6 +93,27 @@ void check(int flag, const char* call, sun::Context& ctx) {
                              "): " + ctx.sink().message);
 }
 
+/// IDA's own first-step rule, h0 = min(1e-3 (t_end - t0), 0.5 / |y'|_WRMS),
+/// over the differential components only; chosen here so that the weights
+/// of the algebraic components (scaled by 1/h) are set for the step that is
+/// actually tried first.
+double initial_step(const IntegrationPlan& plan, const double* y, const double* yp, const Callbacks& cb,
+                    int N) {
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < N; ++i) {
+    if (!(cb.id[i] > 0.0)) continue;
+    const double w = yp[i] / (plan.rtol * std::abs(y[i]) + cb.abstol[i]);
+    sum += w * w;
+    ++count;
+  }
+  double h = 1e-3 * (plan.t_end - plan.t0);
+  const double ypnorm = count ? std::sqrt(sum / count) : 0.0;
+  if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
+  if (plan.max_step > 0.0) h = std::min(h, plan.max_step);
+  return h;
+}
+
 }  // namespace
 
 std::string sundials_version() { return SUNDIALS_VERSION; }
@@ -89,16 +135,24 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   Callbacks cb{&dae, nullptr};
   s.mem = IDACreate(s.ctx);
   if (!s.mem) throw std::runtime_error("lagmb: IDACreate failed");
+  cb.mem = s.mem;
+  cb.rtol = plan.rtol;
+  cb.abstol = N_VGetArrayPointer(s.abstol);
+  cb.id = N_VGetArrayPointer(s.id);
+  cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, N);
   s.ctx.attach_ida(s.mem);
   check(IDAInit(s.mem, residual_fn, plan.t0, s.y, s.yp), "IDAInit", s.ctx);
-  check(IDASVtolerances(s.mem, plan.rtol, s.abstol), "IDASVtolerances", s.ctx);
+  check(IDAWFtolerances(s.mem, weights_fn), "IDAWFtolerances", s.ctx);
   check(IDASetUserData(s.mem, &cb), "IDASetUserData", s.ctx);
   check(IDASetId(s.mem, s.id), "IDASetId", s.ctx);
   check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
   check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
   if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
   check(IDASetStopTime(s.mem, plan.t_end), "IDASetStopTime", s.ctx);
+  check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
 
+  s.lu.row_scale = &dae.row_scale();
+  s.lu.col_scale = &dae.col_scale();
   s.A = sun::make_matrix_view(s.ctx, &dae.matrix());
   s.LS = sun::make_sparse_lu_solver(s.ctx, &s.lu);
   if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the linear solver");

@@ -53,7 +53,14 @@ SUNLinearSolver make_sparse_lu_solver(SUNContext ctx, SparseLU* st) {
     const Eigen::Index n = N_VGetLength(b);
     Eigen::Map<Eigen::VectorXd> xv(N_VGetArrayPointer(x), n);
     Eigen::Map<const Eigen::VectorXd> bv(N_VGetArrayPointer(b), n);
-    xv = state(S).lu.solve(bv);
+    SparseLU& s = state(S);
+    if (s.row_scale && s.row_scale->size() == n) {
+      s.scratch = s.row_scale->cwiseProduct(bv);
+      xv = s.lu.solve(s.scratch);
+    } else {
+      xv = s.lu.solve(bv);
+    }
+    if (s.col_scale && s.col_scale->size() == n) xv.array() *= s.col_scale->array();
     return 0;
   };
   S->ops->free = [](SUNLinearSolver S) -> int {

@@ -17,6 +17,11 @@ struct SparseLU {
   bool analyzed = false;  // the ordering is computed once per run
   long factorizations = 0;
   long failed_factorizations = 0;
+  /// Equilibration: the matrix holds R J C; solve returns x = C (R J C)^-1 R b.
+  /// Null or empty: no scaling.
+  const Eigen::VectorXd* row_scale = nullptr;
+  const Eigen::VectorXd* col_scale = nullptr;
+  Eigen::VectorXd scratch;
 };
 
 /// A SUNMatrix whose content is `A` (not owned). Only the ops IDA and CVODE

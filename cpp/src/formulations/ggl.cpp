@@ -49,6 +49,8 @@ GglFormulation::GglFormulation(const Model& model)
   hess_F2q_ = embed_slots(Hp, J_, V, 0);
   Qq_F2q_ = embed_slots(Qq, J_, V, 0);
   Qv_F2v_ = embed_slots(Qv, J_, V, V);
+  row_scale_ = VecX::Ones(size());
+  col_scale_ = VecX::Ones(size());
 }
 
 void GglFormulation::ids(double* id) const {
@@ -57,11 +59,10 @@ void GglFormulation::ids(double* id) const {
 }
 
 void GglFormulation::tolerances(double atol, double* abstol) const {
-  // lam and mu are outside the error test; their weights enter only the
-  // Newton convergence test, scaled to the size of a typical force
-  const double force = model_.mass_scale() * 10.0;
+  // lam in N s and mu in m: the integrator divides them by the step size
+  // (they are index-2 variables), giving a force and a velocity
   std::fill(abstol, abstol + 2 * n_, atol);
-  std::fill(abstol + 2 * n_, abstol + 2 * n_ + m_, atol * force);
+  std::fill(abstol + 2 * n_, abstol + 2 * n_ + m_, atol * model_.mass_scale());
   std::fill(abstol + 2 * n_ + m_, abstol + size(), atol);
 }
 
@@ -104,13 +105,17 @@ int GglFormulation::residual(double t, const double* y, const double* yp, double
 void GglFormulation::newton_matrix(double t, double cj, const double* y, const double*) {
   const double *q = y, *v = y + n_, *lam = y + 2 * n_, *mu = y + 2 * n_ + m_;
   const VecX& M = model_.mass_diagonal();
+  // R = diag(h, h, 1, 1) on rows F1..F4, C = diag(1, 1, cj, cj) on columns q, v, lam, mu
+  const double h = 1.0 / cj;
+  row_scale_.head(2 * n_).setConstant(h);
+  col_scale_.tail(2 * m_).setConstant(cj);
   double* J = J_.valuePtr();
   J_.coeffs().setZero();
 
   for (int i = 0; i < n_; ++i) {
-    J[q_diag_[i]] += cj;
-    J[qv_diag_[i]] = -1.0;
-    J[v_diag_[i]] += cj * M[i];
+    J[q_diag_[i]] += 1.0;
+    J[qv_diag_[i]] = -h;
+    J[v_diag_[i]] += M[i];
   }
 
   assemble_jacobian(model_, d_, q, t);
@@ -126,14 +131,14 @@ void GglFormulation::newton_matrix(double t, double cj, const double* y, const d
   for (size_t k = 0; k < vq_F4q_.size(); ++k) J[vq_F4q_[k]] = Vq[k];
 
   assemble_constraint_hessian(model_, d_, q, t, mu);
-  for (size_t k = 0; k < hess_F1q_.size(); ++k) J[hess_F1q_[k]] += d_.H.valuePtr()[k];
+  for (size_t k = 0; k < hess_F1q_.size(); ++k) J[hess_F1q_[k]] += h * d_.H.valuePtr()[k];
   assemble_constraint_hessian(model_, d_, q, t, lam);
-  for (size_t k = 0; k < hess_F2q_.size(); ++k) J[hess_F2q_[k]] += d_.H.valuePtr()[k];
+  for (size_t k = 0; k < hess_F2q_.size(); ++k) J[hess_F2q_[k]] += h * d_.H.valuePtr()[k];
 
   if (!model_.state_dependent_forces().empty()) {
     assemble_force_derivatives(model_, d_, q, v, t);
-    for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= d_.Q_q.valuePtr()[k];
-    for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= d_.Q_v.valuePtr()[k];
+    for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= h * d_.Q_q.valuePtr()[k];
+    for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= h * d_.Q_v.valuePtr()[k];
   }
 }
 
