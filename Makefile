@@ -1,0 +1,28 @@
+# make demo: install what is missing, build lagmb, run the seed pendulum.
+# make test: the same set-up, then the test suite.
+PYTHON ?= $(shell scripts/python.sh)
+SOURCES := $(shell find cpp python -type f -not -name '*.pyc') CMakeLists.txt pyproject.toml
+STAMP := build/.installed-$(subst /,_,$(PYTHON))
+
+.PHONY: demo test test-slow bench setup clean
+
+demo: $(STAMP)
+	$(PYTHON) -m lagmb demo --plot out/seed_pendulum.png
+
+test: $(STAMP)
+	$(PYTHON) -m pytest -q
+
+test-slow: $(STAMP)
+	$(PYTHON) -m pytest -q -m slow
+
+bench: $(STAMP)
+	$(PYTHON) bench/chain.py
+
+setup: $(STAMP)
+
+$(STAMP): $(SOURCES) scripts/setup.sh
+	scripts/setup.sh $(PYTHON)
+	@mkdir -p build && touch $@
+
+clean:
+	rm -rf build out

@@ -1,0 +1,35 @@
+#!/bin/sh
+# Installs what lagmb needs and is missing: Eigen 3.4 and SUNDIALS (apt, on
+# Debian/Ubuntu), then the Python build tools, and the package with its
+# test and plot extras. Usage: scripts/setup.sh PYTHON
+set -eu
+PYTHON=${1:-python3}
+
+need=""
+if command -v dpkg >/dev/null 2>&1; then
+  for pkg in libsundials-dev libeigen3-dev; do
+    dpkg -s "$pkg" >/dev/null 2>&1 || need="$need $pkg"
+  done
+  if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
+    python3 -c 'import ensurepip' >/dev/null 2>&1 || need="$need python3-venv"
+  fi
+  command -v c++ >/dev/null 2>&1 || need="$need g++"
+  command -v cmake >/dev/null 2>&1 || python3 -c 'import cmake' >/dev/null 2>&1 || need="$need cmake"
+fi
+if [ -n "$need" ]; then
+  echo "setup: installing$need with apt"
+  SUDO=""
+  [ "$(id -u)" = 0 ] || SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $need >/dev/null
+elif ! command -v dpkg >/dev/null 2>&1; then
+  echo "setup: not a Debian system; install SUNDIALS >= 6 and Eigen 3.4 yourself (see README.md)"
+fi
+
+if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
+  echo "setup: python3 is externally managed; creating .venv"
+  python3 -m venv .venv
+fi
+
+"$PYTHON" -m pip install -q --disable-pip-version-check "scikit-build-core>=0.10" "pybind11>=2.12" numpy
+"$PYTHON" -m pip install -q --disable-pip-version-check --no-build-isolation ".[test,plot]"
