@@ -1,0 +1,43 @@
+"""lagmb is a C++ library too: install it with CMake (no Python), build the
+example in examples/cpp against the installed package with
+find_package(lagmb), run it, and check the pin force of the seed pendulum
+at release: m g / 4 upward on the rod (closed form, see test_pendulum.py).
+"""
+
+import os
+import re
+import shutil
+import subprocess
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _run(cmd, cwd=None):
+    p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+    assert p.returncode == 0, f"{' '.join(cmd)} failed:\n{p.stdout}\n{p.stderr}"
+    return p.stdout
+
+
+@pytest.mark.skipif(shutil.which("cmake") is None, reason="needs cmake")
+def test_installed_cpp_library_runs_the_seed_pendulum(tmp_path):
+    prefix, lib_build, ex_build = tmp_path / "prefix", tmp_path / "lib", tmp_path / "example"
+    jobs = str(os.cpu_count() or 2)
+    _run(["cmake", "-S", ROOT, "-B", str(lib_build), "-DLAGMB_PYTHON=OFF",
+          f"-DCMAKE_INSTALL_PREFIX={prefix}"])
+    _run(["cmake", "--build", str(lib_build), "-j", jobs])
+    _run(["cmake", "--install", str(lib_build)])
+    assert (prefix / "include" / "lagmb" / "lagmb.hpp").exists()
+
+    _run(["cmake", "-S", os.path.join(ROOT, "examples", "cpp"), "-B", str(ex_build),
+          f"-DCMAKE_PREFIX_PATH={prefix}"])
+    _run(["cmake", "--build", str(ex_build), "-j", jobs])
+    out = _run([str(ex_build / "pendulum")])
+
+    first = out.splitlines()[0]
+    fx, fy = map(float, re.search(r"\(([-+\d.e]+), ([-+\d.e]+)\) N", first).groups())
+    mg = 1.0 * 9.81
+    assert abs(fx) < 1e-9 * mg
+    assert abs(fy - mg / 4) < 1e-9 * mg
+    assert re.search(r"\d+ steps", out)
