@@ -221,3 +221,46 @@ def test_unassemblable_model_raises_assembly_error():
     assert hasattr(err, "result")
     if err.result is not None:
         assert np.asarray(err.result.t).size <= 1
+
+
+# --------------------------------------------------------------------------
+# Solver trouble keeps what was computed
+# --------------------------------------------------------------------------
+
+def test_step_limit_raises_simulation_error_with_partial_result(capfd):
+    """A run stopped by max_steps raises SimulationError carrying the time
+    reached (0 < t < t_end) and a Result with the outputs before it, each of
+    which is a valid state (|Phi| < 1e-9); SUNDIALS prints nothing."""
+    m = seed_pendulum()
+    with pytest.raises(mb.SimulationError, match="max_steps") as info:
+        mb.simulate(m, t_end=2.0, n_out=201, rtol=1e-8, atol=1e-10, max_steps=200)
+    err = info.value
+    assert 0.0 < err.t < 2.0
+    partial = err.result
+    assert isinstance(partial, mb.Result)
+    assert 1 <= len(partial.t) < 201
+    assert partial.t[-1] <= err.t
+    assert partial.q.shape == (len(partial.t), 3)
+    assert partial.lam.shape == (len(partial.t), 2)
+    assert partial.residual.max() < 1e-9
+    assert partial.stats["steps"] == 200
+    out, errout = capfd.readouterr()
+    assert out == "" and errout == ""
+
+
+def test_integrator_failure_is_reported_with_time_and_diagnosis(capfd):
+    """rtol = 1e-14 asks for more than the corrector can deliver on the
+    pendulum: IDA gives up. The error names IDA, the time and the step size,
+    keeps the outputs reached, and nothing is printed to stderr."""
+    m = seed_pendulum()
+    with pytest.raises(mb.SimulationError, match=r"IDA failed at t = .*step size") as info:
+        mb.simulate(m, t_end=2.0, n_out=201, rtol=1e-14, atol=1e-20, max_steps=200000)
+    assert 0.0 < info.value.t < 2.0
+    assert info.value.result is not None and len(info.value.result.t) >= 1
+    assert capfd.readouterr().err == ""
+
+
+@pytest.mark.parametrize("rtol", [1e-15, 0.0, -1e-6])
+def test_rtol_beyond_double_precision_is_rejected(rtol):
+    with pytest.raises(mb.ModelError, match="rtol"):
+        mb.simulate(seed_pendulum(), t_end=1.0, rtol=rtol)

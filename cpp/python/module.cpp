@@ -211,8 +211,8 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "simulate",
       [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
-         double atol, double max_step, int max_order, std::string formulation, std::string integrator,
-         py::object progress) {
+         double atol, double max_step, long max_steps, int max_order, std::string formulation,
+         std::string integrator, py::object progress) {
         SimulationOptions o;
         o.t0 = t0;
         o.t_end = t_end;
@@ -221,6 +221,7 @@ PYBIND11_MODULE(_core, m) {
         o.rtol = rtol;
         o.atol = atol;
         o.max_step = max_step;
+        o.max_steps = max_steps;
         o.max_order = max_order;
         o.formulation = std::move(formulation);
         o.integrator = std::move(integrator);
@@ -240,6 +241,6 @@ PYBIND11_MODULE(_core, m) {
         return to_python(std::move(tr));
       },
       py::arg("model"), py::arg("t0"), py::arg("t_end"), py::arg("t_out"), py::arg("n_out"), py::arg("rtol"),
-      py::arg("atol"), py::arg("max_step"), py::arg("max_order"), py::arg("formulation"),
+      py::arg("atol"), py::arg("max_step"), py::arg("max_steps"), py::arg("max_order"), py::arg("formulation"),
       py::arg("integrator"), py::arg("progress"));
 }

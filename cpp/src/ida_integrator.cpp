@@ -180,6 +180,7 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
 
   auto clock = std::chrono::steady_clock::now();
   sun::real t = plan.t0;
+  long steps = 0;
   while (k < t_out.size()) {
     const int flag = IDASolve(s.mem, plan.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
     if (cb.error) {
@@ -201,6 +202,13 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
       record(dae.q(yo), dae.v(yo));
     }
     if (flag == IDA_TSTOP_RETURN) break;
+    if (plan.max_steps > 0 && ++steps >= plan.max_steps) {
+      fill_stats();
+      std::ostringstream msg;
+      msg << "IDA reached max_steps = " << plan.max_steps << " at t = " << t << " before t_end = "
+          << plan.t_end << ".";
+      throw IntegratorFailure(msg.str(), t);
+    }
     if (plan.progress) {
       auto now = std::chrono::steady_clock::now();
       if (std::chrono::duration<double>(now - clock).count() >= plan.progress_interval) {

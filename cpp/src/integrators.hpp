@@ -14,6 +14,7 @@ namespace lagmb {
 struct IntegrationPlan {
   double t0, t_end, rtol, atol, max_step;
   int max_order;
+  long max_steps;
   std::vector<double> t_out;
   std::function<void(double)> progress;
   double progress_interval;

@@ -25,8 +25,12 @@ void validate(const Model& model, const SimulationOptions& o) {
     throw ModelError("simulate: t_end must be finite and greater than t0 = " + std::to_string(o.t0) +
                      ", got " + std::to_string(o.t_end));
   positive(o.rtol, "rtol");
+  if (o.rtol < 1e-14)
+    throw ModelError("simulate: rtol = " + std::to_string(o.rtol) +
+                     " is below 1e-14, which double precision cannot deliver");
   positive(o.atol, "atol");
   if (o.max_step != 0.0) positive(o.max_step, "max_step");
+  if (o.max_steps < 0) throw ModelError("simulate: max_steps must be >= 0 (0: no limit)");
   if (o.max_order < 1 || o.max_order > 5)
     throw ModelError("simulate: max_order must be in 1..5 for BDF, got " + std::to_string(o.max_order));
   if (o.t_out.empty() && o.n_out < 2)
@@ -96,8 +100,9 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   AugmentedSystem kkt(model);
   const ConsistentState start = make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), o.t0);
 
-  IntegrationPlan plan{o.t0, o.t_end, o.rtol, o.atol, o.max_step, o.max_order, output_times(o),
-                       o.progress, o.progress_interval};
+  IntegrationPlan plan{o.t0,        o.t_end,           o.rtol,    o.atol,
+                       o.max_step,  o.max_order,       o.max_steps, output_times(o),
+                       o.progress,  o.progress_interval};
   Trajectory tr;
   tr.n = n;
   tr.m = m;

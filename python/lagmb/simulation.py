@@ -33,14 +33,18 @@ def _positive(value, name):
 
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
-             max_step=None, formulation="ggl", integrator="bdf", max_order=5, progress=None):
+             max_step=None, max_steps=None, formulation="ggl", integrator="bdf", max_order=5,
+             progress=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
     velocities by projection); then IDA integrates the stabilized index-2
     (GGL) equations. Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
-    last entry), interpolated by the integrator.
+    last entry), interpolated by the integrator. ``max_step`` bounds the step
+    size (s), ``max_steps`` the number of steps (None: no bound; reaching it
+    raises SimulationError with the outputs so far). ``progress``, if given,
+    is called with the time reached about every 0.2 s of wall time.
 
     Raises ModelError for bad arguments, AssemblyError if the joints cannot
     be assembled, SimulationError (with ``.t`` and the partial ``.result``)
@@ -60,6 +64,10 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     rtol = _positive(rtol, "rtol")
     atol = _positive(atol, "atol")
     max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
+    if max_steps is None:
+        max_steps = 0
+    elif isinstance(max_steps, bool) or int(max_steps) != max_steps or max_steps < 1:
+        raise ModelError(f"max_steps must be a positive integer or None, got {max_steps!r}")
     if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
         raise ModelError("t_out must be strictly increasing")
     if t_out is None and (isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2):
@@ -67,8 +75,8 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     core = model.compiled()
     with _translate(model, core):
         raw = _core.simulate(core, float(t0), t_end, [] if t_out is None else list(t_out),
-                             int(n_out), rtol, atol, max_step, int(max_order), str(formulation),
-                             str(integrator), progress)
+                             int(n_out), rtol, atol, max_step, int(max_steps), int(max_order),
+                             str(formulation), str(integrator), progress)
     return Result(model, core, raw)
 
 

@@ -22,6 +22,7 @@ struct SimulationOptions {
   double rtol = 1e-6;
   double atol = 1e-8;
   double max_step = 0.0;  // 0: no limit
+  long max_steps = 0;     // 0: no limit; else SimulationError when reached
   int max_order = 5;
   std::string formulation = "ggl";
   std::string integrator = "bdf";
