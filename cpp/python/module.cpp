@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 
 #include "lagmb/lagmb.hpp"
@@ -58,6 +59,59 @@ void require_rows(const Model& model, const RowMajor& x, int cols, const char* w
 
 py::handle g_simulation_error, g_assembly_error;
 
+/// A Python callable as a time function. Called with the GIL taken (the run
+/// releases it); a Python exception or a bad return value becomes a
+/// UserFunctionError naming the element, so nothing unwinds through
+/// SUNDIALS and the run stops with SimulationError.
+class PythonTimeFunction final : public TimeFunction {
+ public:
+  /// component: -1 for f(t) -> (y, dy, ddy) (derivatives) or f(t) -> y;
+  /// 0 or 1 for the x or y entry of f(t) -> (fx, fy).
+  PythonTimeFunction(py::object f, std::string where, bool derivatives, int component)
+      : f_(std::move(f)), where_(std::move(where)), derivatives_(derivatives), component_(component) {}
+  ~PythonTimeFunction() override {
+    py::gil_scoped_acquire gil;
+    f_ = py::object();
+  }
+  TimeValue eval(double t) const override {
+    py::gil_scoped_acquire gil;
+    TimeValue v;
+    try {
+      py::object r = f_(t);
+      if (derivatives_) {
+        auto seq = r.cast<std::vector<double>>();
+        if (seq.size() != 3) throw py::value_error("must return (y, dy, ddy)");
+        v = {seq[0], seq[1], seq[2]};
+      } else if (component_ >= 0) {
+        auto seq = r.cast<std::vector<double>>();
+        if (seq.size() != 2) throw py::value_error("must return (fx, fy)");
+        v.f = seq[component_];
+      } else {
+        v.f = r.cast<double>();
+      }
+    } catch (py::error_already_set& e) {
+      throw UserFunctionError(where_ + " raised " + e.what());
+    } catch (const std::exception& e) {
+      throw UserFunctionError(where_ + ": the function " + e.what() + " (at t = " + std::to_string(t) + ")");
+    }
+    if (!std::isfinite(v.f) || !std::isfinite(v.df) || !std::isfinite(v.ddf))
+      throw UserFunctionError(where_ + " returned a non-finite value at t = " + std::to_string(t));
+    return v;
+  }
+
+ private:
+  py::object f_;
+  std::string where_;
+  bool derivatives_;
+  int component_;
+};
+
+const ConstraintGroupBase& constraint_group(const Model& model, const std::string& name) {
+  const ElementRef& r = model.find(name);
+  if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
+  return *model.constraint_groups()[r.group];
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -97,6 +151,29 @@ PYBIND11_MODULE(_core, m) {
       .def("add_revolute_local", &Model::add_revolute_local, py::arg("name"), py::arg("body_i"),
            py::arg("body_j"), py::arg("s_i"), py::arg("s_j"))
       .def("set_gravity", &Model::set_gravity, py::arg("g"))
+      .def("add_translational", &Model::add_translational, py::arg("name"), py::arg("body_i"),
+           py::arg("body_j"), py::arg("at"), py::arg("axis"))
+      .def("add_weld", &Model::add_weld, py::arg("name"), py::arg("body_i"), py::arg("body_j"))
+      .def("add_distance", &Model::add_distance, py::arg("name"), py::arg("body_i"), py::arg("point_i"),
+           py::arg("body_j"), py::arg("point_j"), py::arg("length"))
+      .def("add_pin_in_slot", &Model::add_pin_in_slot, py::arg("name"), py::arg("body_i"), py::arg("body_j"),
+           py::arg("at"), py::arg("axis"))
+      .def("add_gear", &Model::add_gear, py::arg("name"), py::arg("body_i"), py::arg("body_j"),
+           py::arg("ratio"), py::arg("center_i"), py::arg("center_j"))
+      .def("add_rack_pinion", &Model::add_rack_pinion, py::arg("name"), py::arg("pinion"), py::arg("rack"),
+           py::arg("radius"), py::arg("axis"))
+      .def("drive_joint", &Model::drive_joint, py::arg("name"), py::arg("joint"), py::arg("f"))
+      .def("drive_body", &Model::drive_body, py::arg("name"), py::arg("body"), py::arg("coordinate"),
+           py::arg("f"))
+      .def("add_spring_damper", &Model::add_spring_damper, py::arg("name"), py::arg("body_i"),
+           py::arg("point_i"), py::arg("body_j"), py::arg("point_j"), py::arg("stiffness"), py::arg("damping"),
+           py::arg("free_length"), py::arg("actuator"))
+      .def("add_rotational_spring_damper", &Model::add_rotational_spring_damper, py::arg("name"),
+           py::arg("body_i"), py::arg("body_j"), py::arg("stiffness"), py::arg("damping"),
+           py::arg("free_angle"), py::arg("torque"))
+      .def("add_force", &Model::add_force, py::arg("name"), py::arg("body"), py::arg("fx"), py::arg("fy"),
+           py::arg("point"), py::arg("local"))
+      .def("add_torque", &Model::add_torque, py::arg("name"), py::arg("body"), py::arg("torque"))
       .def("finalize", &Model::finalize)
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
@@ -128,21 +205,23 @@ PYBIND11_MODULE(_core, m) {
       .def(
           "reaction",
           [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
-             const RowMajor& lam) {
+             const RowMajor& lam, bool joint_axes) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, lam, model.n_constraints(), "lam");
-            const ElementRef& r = model.find(name);
-            if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
-            const auto& g = *model.constraint_groups()[r.group];
+            const auto& g = constraint_group(model, name);
+            const int k = model.find(name).index;
             RowMajor out(q.rows(), 3);
-            for (Eigen::Index k = 0; k < q.rows(); ++k)
-              out.row(k) = g.generalized_reaction(r.index, q.row(k).data(), t[k], lam.row(k).data())
-                               .tail<3>()
-                               .transpose();
+            for (Eigen::Index s = 0; s < q.rows(); ++s) {
+              const Eigen::Vector3d w = g.generalized_reaction(k, q.row(s).data(), t[s], lam.row(s).data()).tail<3>();
+              out.row(s) = w.transpose();
+              if (joint_axes)
+                out.row(s).head<2>() = (g.axes(k, q.row(s).data(), t[s]).transpose() * w.head<2>()).transpose();
+            }
             return out;
           },
-          py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"),
-          "Force (x, y) and torque about the centre of mass that the joint applies to its second body.")
+          py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
+          "Force (x, y) and torque about the centre of mass that the element applies to its second body;\n"
+          "with joint_axes, the force in the element's own axes.")
       .def(
           "energy",
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
@@ -177,6 +256,48 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("q"), py::arg("t") = 0.0)
       .def(
+          "constraint_values",
+          [](const Model& model, const Eigen::VectorXd& q, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            Data d(model);
+            assemble_constraints(model, d, q.data(), t);
+            assemble_phi_t(model, d, q.data(), t);
+            return py::make_tuple(d.Phi, d.phi_t);
+          },
+          py::arg("q"), py::arg("t") = 0.0, "(Phi, Phi_t) at (q, t)")
+      .def(
+          "constraint_hessian",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& w, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, w.transpose(), model.n_constraints(), "w");
+            Data d(model);
+            assemble_constraint_hessian(model, d, q.data(), t, w.data());
+            return Eigen::MatrixXd(d.H);
+          },
+          py::arg("q"), py::arg("w"), py::arg("t") = 0.0, "sum_r w_r d2Phi_r/dq2")
+      .def(
+          "gamma",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            Data d(model);
+            assemble_gamma(model, d, q.data(), v.data(), t);
+            assemble_velocity_jacobian(model, d, q.data(), v.data(), t);
+            return py::make_tuple(d.gamma, Eigen::MatrixXd(d.Vq));
+          },
+          py::arg("q"), py::arg("v"), py::arg("t") = 0.0, "(gamma, d(Phi_q v + Phi_t)/dq)")
+      .def(
+          "forces",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            Data d(model);
+            assemble_forces(model, d, q.data(), v.data(), t);
+            assemble_force_derivatives(model, d, q.data(), v.data(), t);
+            return py::make_tuple(d.Q, Eigen::MatrixXd(d.Q_q), Eigen::MatrixXd(d.Q_v));
+          },
+          py::arg("q"), py::arg("v"), py::arg("t") = 0.0, "(Q, Q_q, Q_v)")
+      .def(
           "rank",
           [](const Model& model, const Eigen::VectorXd& q, double t) {
             const ConstraintRank r = constraint_rank(model, q, t);
@@ -189,6 +310,24 @@ PYBIND11_MODULE(_core, m) {
             return out;
           },
           py::arg("q"), py::arg("t") = 0.0);
+
+  py::class_<TimeFunction, TimeFunctionPtr>(m, "TimeFunction")
+      .def("__call__", [](const TimeFunction& f, double t) {
+        const TimeValue v = f.eval(t);
+        return py::make_tuple(v.f, v.df, v.ddf);
+      });
+  m.def("constant", &constant, py::arg("c"));
+  m.def("linear", &linear, py::arg("rate"), py::arg("start"));
+  m.def("polynomial", &polynomial, py::arg("coeffs"));
+  m.def("harmonic", &harmonic, py::arg("amplitude"), py::arg("omega"), py::arg("phase"), py::arg("offset"));
+  m.def("smooth_step", &smooth_step, py::arg("t0"), py::arg("t1"), py::arg("y0"), py::arg("y1"));
+  m.def("spline", &spline, py::arg("times"), py::arg("values"));
+  m.def(
+      "python_function",
+      [](py::function f, std::string where, bool derivatives, int component) -> TimeFunctionPtr {
+        return std::make_shared<PythonTimeFunction>(std::move(f), std::move(where), derivatives, component);
+      },
+      py::arg("f"), py::arg("where"), py::arg("derivatives"), py::arg("component") = -1);
 
   m.def(
       "assemble",

@@ -12,6 +12,7 @@
 #include "dae.hpp"
 #include "integrators.hpp"
 #include "lagmb/simulate.hpp"
+#include "lagmb/time_function.hpp"
 #include "sparse_lu_solver.hpp"
 #include "sun_compat.hpp"
 
@@ -185,7 +186,11 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
     const int flag = IDASolve(s.mem, plan.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
     if (cb.error) {
       fill_stats();
-      std::rethrow_exception(cb.error);
+      try {
+        std::rethrow_exception(cb.error);
+      } catch (const UserFunctionError& e) {
+        throw IntegratorFailure(e.what(), t);  // keeps the partial result
+      }
     }
     if (flag < 0) {
       fill_stats();

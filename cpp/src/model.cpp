@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace lagmb {
 
@@ -160,14 +161,7 @@ void Model::finalize() {
     ElementPlacement& p = group.placement(k);
     p.row0 = m_;
     const auto bodies = group.bodies(k);
-    for (int side = 0; side < 2; ++side) {
-      const int b = bodies[side];
-      if (b == kGround) continue;
-      const Body& body = bodies_[b];
-      p.coord[3 * side] = body.first_coord;
-      p.coord[3 * side + 1] = body.first_coord + 1;
-      p.coord[3 * side + 2] = body.angle_coord();
-    }
+    p.coord = local_coordinates(bodies[0], bodies[1]);
     m_ += group.rows(k);
     row_owner_.insert(row_owner_.end(), group.rows(k), int(e));
   }
@@ -234,3 +228,327 @@ const Body& Model::body_of_coordinate(int coord) const { return bodies_.at(coord
 
 }  // namespace lagmb
 
+
+// --- joints, drivers and forces beyond the revolute ------------------------
+
+namespace lagmb {
+
+namespace {
+
+std::string fmt2(Vec2 v) {
+  std::ostringstream s;
+  s << "(" << v.x() << ", " << v.y() << ")";
+  return s.str();
+}
+
+void require_finite(Vec2 v, const std::string& element, const char* what) {
+  if (!std::isfinite(v.x()) || !std::isfinite(v.y()))
+    throw ModelError("'" + element + "': " + what + " is not finite: " + fmt2(v));
+}
+
+void require_finite(double x, const std::string& element, const char* what) {
+  if (!std::isfinite(x))
+    throw ModelError("'" + element + "': " + what + " is not finite: " + std::to_string(x));
+}
+
+void require_function(const TimeFunctionPtr& f, const std::string& element, const char* what) {
+  if (!f) throw ModelError("'" + element + "': " + what + " is missing");
+}
+
+}  // namespace
+
+double Model::initial_angle(int body) const {
+  return body == kGround ? 0.0 : bodies_[body].angle;
+}
+
+Vec2 Model::initial_position(int body) const {
+  return body == kGround ? Vec2::Zero() : bodies_[body].position;
+}
+
+Vec2 Model::direction_to_local(int body, Vec2 axis, const std::string& element) const {
+  require_finite(axis, element, "axis");
+  const double n = axis.norm();
+  if (!(n > 0.0)) throw ModelError("'" + element + "': axis must be a non-zero vector, got " + fmt2(axis));
+  return rotation(initial_angle(body)).transpose() * (axis / n);
+}
+
+void Model::require_rigid(int body, const std::string& element, const char* why) const {
+  if (body != kGround && bodies_[body].particle)
+    throw ModelError("'" + element + "': particle '" + bodies_[body].name + "' " + why);
+}
+
+std::array<int, 6> Model::local_coordinates(int body_i, int body_j) const {
+  std::array<int, 6> c{-1, -1, -1, -1, -1, -1};
+  for (int side = 0; side < 2; ++side) {
+    const int b = side ? body_j : body_i;
+    if (b == kGround) continue;
+    const Body& body = bodies_[b];
+    c[3 * side] = body.first_coord;
+    c[3 * side + 1] = body.first_coord + 1;
+    c[3 * side + 2] = body.angle_coord();
+  }
+  return c;
+}
+
+void Model::add_translational(const std::string& name, int body_i, int body_j, Vec2 at, Vec2 axis) {
+  require_open("add translational '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  require_finite(at, name, "point 'at'");
+  for (int b : {body_i, body_j}) require_rigid(b, name, "cannot take a translational joint (it has no angle)");
+  TranslationalJoint j;
+  j.name = name;
+  j.body_i = body_i;
+  j.body_j = body_j;
+  j.axis = direction_to_local(body_i, axis, name);
+  j.across.w = Vec2(-j.axis.y(), j.axis.x());
+  j.across.s_i = to_local(body_i, at);
+  j.across.s_j = to_local(body_j, at);
+  j.phi0 = initial_angle(body_j) - initial_angle(body_i);
+  add_constraint(std::move(j));
+}
+
+void Model::add_weld(const std::string& name, int body_i, int body_j) {
+  require_open("add weld '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  for (int b : {body_i, body_j}) require_rigid(b, name, "cannot be welded (it has no angle)");
+  WeldJoint j;
+  j.name = name;
+  j.body_i = body_i;
+  j.body_j = body_j;
+  j.s_i = to_local(body_i, initial_position(body_j));
+  j.phi0 = initial_angle(body_j) - initial_angle(body_i);
+  add_constraint(std::move(j));
+}
+
+void Model::add_distance(const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
+                         std::optional<double> length) {
+  require_open("add distance '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  require_finite(point_i, name, "point_i");
+  require_finite(point_j, name, "point_j");
+  const double L = length ? *length : (point_j - point_i).norm();
+  if (!(std::isfinite(L) && L > 0))
+    throw ModelError("'" + name + "': length must be positive and finite, got " + std::to_string(L));
+  DistanceJoint j;
+  j.name = name;
+  j.body_i = body_i;
+  j.body_j = body_j;
+  j.s_i = to_local(body_i, point_i);
+  j.s_j = to_local(body_j, point_j);
+  for (auto [b, p] : {std::pair{body_i, point_i}, std::pair{body_j, point_j}})
+    if (b != kGround && bodies_[b].particle && (p - bodies_[b].position).norm() > 0)
+      throw ModelError("'" + name + "': the point on particle '" + bodies_[b].name + "' must be the particle itself");
+  j.length = L;
+  add_constraint(std::move(j));
+}
+
+void Model::add_pin_in_slot(const std::string& name, int body_i, int body_j, Vec2 at, Vec2 axis) {
+  require_open("add pin_in_slot '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  require_finite(at, name, "point 'at'");
+  require_rigid(body_i, name, "cannot carry a slot (it has no angle)");
+  if (body_j != kGround && bodies_[body_j].particle && (at - bodies_[body_j].position).norm() > 0)
+    throw ModelError("'" + name + "': the pin on particle '" + bodies_[body_j].name + "' must be the particle itself");
+  PinInSlotJoint j;
+  j.name = name;
+  j.body_i = body_i;
+  j.body_j = body_j;
+  j.axis = direction_to_local(body_i, axis, name);
+  j.across.w = Vec2(-j.axis.y(), j.axis.x());
+  j.across.s_i = to_local(body_i, at);
+  j.across.s_j = to_local(body_j, at);
+  add_constraint(std::move(j));
+}
+
+void Model::add_gear(const std::string& name, int body_i, int body_j, double ratio,
+                     std::optional<Vec2> center_i, std::optional<Vec2> center_j) {
+  require_open("add gear '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  for (int b : {body_i, body_j}) require_rigid(b, name, "cannot be a gear (it has no angle)");
+  if (!std::isfinite(ratio) || ratio == 0.0 || ratio == 1.0)
+    throw ModelError("'" + name + "': ratio must be finite, non-zero and not 1, got " + std::to_string(ratio));
+  for (auto [b, c, label] : {std::tuple{body_i, center_i, "center_i"}, std::tuple{body_j, center_j, "center_j"}}) {
+    if (b == kGround && !c)
+      throw ModelError("'" + name + "': a gear on the ground needs its centre (" + label + ")");
+    if (c) require_finite(*c, name, label);
+  }
+  const Vec2 ci = center_i ? *center_i : initial_position(body_i);
+  const Vec2 cj = center_j ? *center_j : initial_position(body_j);
+  const double D = (cj - ci).norm();
+  if (!(D > 0)) throw ModelError("'" + name + "': the gear centres coincide at " + fmt2(ci));
+  GearPair g;
+  g.name = name;
+  g.body_i = body_i;
+  g.body_j = body_j;
+  g.c_i = to_local(body_i, ci);
+  g.c_j = to_local(body_j, cj);
+  const double a = std::abs(ratio);
+  g.s = ratio < 0 ? 1.0 : -1.0;
+  g.r_j = ratio < 0 ? D / (a + 1.0) : D / std::abs(a - 1.0);
+  g.r_i = a * g.r_j;
+  g.d0 = (cj - ci) / D;
+  Local6 c0;
+  c0 << initial_position(body_i), initial_angle(body_i), initial_position(body_j), initial_angle(body_j);
+  g.c0 = g.raw(c0);
+  add_constraint(std::move(g));
+}
+
+void Model::add_rack_pinion(const std::string& name, int pinion, int rack, double radius, Vec2 axis) {
+  require_open("add rack_pinion '" + name + "'");
+  check_new_name(name);
+  check_pair(name, pinion, rack);
+  for (int b : {pinion, rack}) require_rigid(b, name, "cannot be a rack or pinion (it has no angle)");
+  if (pinion == kGround) throw ModelError("'" + name + "': the pinion cannot be the ground");
+  if (!(std::isfinite(radius) && radius > 0))
+    throw ModelError("'" + name + "': radius must be positive and finite, got " + std::to_string(radius));
+  RackPinion r;
+  r.name = name;
+  r.body_i = pinion;
+  r.body_j = rack;
+  r.radius = radius;
+  r.along.w = direction_to_local(rack, axis, name);
+  r.along.s_i = to_local(rack, initial_position(pinion));  // on swapped coordinates: the rack is "i"
+  r.along.s_j = Vec2::Zero();
+  r.c0 = radius * (initial_angle(pinion) - initial_angle(rack));
+  add_constraint(std::move(r));
+}
+
+void Model::drive_joint(const std::string& name, const std::string& joint, TimeFunctionPtr f) {
+  require_open("add driver '" + name + "'");
+  check_new_name(name);
+  require_function(f, name, "the time function");
+  if (const auto* rev = find_constraint<RevoluteJoint>(joint)) {
+    AngleDriver d;
+    d.name = name;
+    d.body_i = rev->body_i;
+    d.body_j = rev->body_j;
+    d.f = std::move(f);
+    add_constraint(std::move(d));
+  } else if (const auto* tr = find_constraint<TranslationalJoint>(joint)) {
+    SlideDriver d;
+    d.name = name;
+    d.body_i = tr->body_i;
+    d.body_j = tr->body_j;
+    d.along = tr->across;
+    d.along.w = tr->axis;
+    d.f = std::move(f);
+    add_constraint(std::move(d));
+  } else {
+    throw ModelError("driver '" + name + "': '" + joint +
+                     (names_.count(joint) ? "' is not a revolute or translational joint"
+                                          : "' is not a joint of this model"));
+  }
+}
+
+void Model::drive_body(const std::string& name, int body, const std::string& coordinate, TimeFunctionPtr f) {
+  require_open("add driver '" + name + "'");
+  check_new_name(name);
+  check_pair(name, kGround, body);
+  require_function(f, name, "the time function");
+  CoordinateDriver d;
+  if (coordinate == "x") d.coordinate = 0;
+  else if (coordinate == "y") d.coordinate = 1;
+  else if (coordinate == "angle") d.coordinate = 2;
+  else throw ModelError("driver '" + name + "': coordinate must be \"x\", \"y\" or \"angle\", got \"" + coordinate + "\"");
+  if (d.coordinate == 2) require_rigid(body, name, "has no angle to drive");
+  d.name = name;
+  d.body_i = kGround;
+  d.body_j = body;
+  d.f = std::move(f);
+  add_constraint(std::move(d));
+}
+
+void Model::add_spring_damper(const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
+                              double stiffness, double damping, std::optional<double> free_length,
+                              TimeFunctionPtr actuator) {
+  require_open("add spring_damper '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  require_finite(point_i, name, "point_i");
+  require_finite(point_j, name, "point_j");
+  require_finite(stiffness, name, "stiffness");
+  require_finite(damping, name, "damping");
+  if (stiffness < 0 || damping < 0)
+    throw ModelError("'" + name + "': stiffness and damping must not be negative, got " + std::to_string(stiffness) +
+                     " and " + std::to_string(damping));
+  const double l0 = free_length ? *free_length : (point_j - point_i).norm();
+  if (!(std::isfinite(l0) && l0 >= 0)) throw ModelError("'" + name + "': free_length must be finite and >= 0");
+  if (!((point_j - point_i).norm() > 0))
+    throw ModelError("'" + name + "': the two points coincide; the line of action is undefined");
+  for (auto [b, p] : {std::pair{body_i, point_i}, std::pair{body_j, point_j}})
+    if (b != kGround && bodies_[b].particle && (p - bodies_[b].position).norm() > 0)
+      throw ModelError("'" + name + "': the point on particle '" + bodies_[b].name + "' must be the particle itself");
+  SpringDamper e;
+  e.name = name;
+  e.body_i = body_i;
+  e.body_j = body_j;
+  e.s_i = to_local(body_i, point_i);
+  e.s_j = to_local(body_j, point_j);
+  e.stiffness = stiffness;
+  e.damping = damping;
+  e.free_length = l0;
+  e.actuator = std::move(actuator);
+  add_force_element(std::move(e));
+}
+
+void Model::add_rotational_spring_damper(const std::string& name, int body_i, int body_j, double stiffness,
+                                         double damping, std::optional<double> free_angle, TimeFunctionPtr torque) {
+  require_open("add rotational_spring_damper '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body_i, body_j);
+  for (int b : {body_i, body_j}) require_rigid(b, name, "has no angle");
+  require_finite(stiffness, name, "stiffness");
+  require_finite(damping, name, "damping");
+  if (stiffness < 0 || damping < 0)
+    throw ModelError("'" + name + "': stiffness and damping must not be negative");
+  RotationalSpringDamper e;
+  e.name = name;
+  e.body_i = body_i;
+  e.body_j = body_j;
+  e.stiffness = stiffness;
+  e.damping = damping;
+  e.free_angle = free_angle ? *free_angle : initial_angle(body_j) - initial_angle(body_i);
+  require_finite(e.free_angle, name, "free_angle");
+  e.actuator = std::move(torque);
+  add_force_element(std::move(e));
+}
+
+void Model::add_force(const std::string& name, int body, TimeFunctionPtr fx, TimeFunctionPtr fy,
+                      std::optional<Vec2> point, bool local) {
+  require_open("add force '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body, kGround);
+  require_function(fx, name, "fx");
+  require_function(fy, name, "fy");
+  if (point) require_finite(*point, name, "point");
+  if (body != kGround && bodies_[body].particle && point && (*point - bodies_[body].position).norm() > 0)
+    throw ModelError("'" + name + "': the point on particle '" + bodies_[body].name + "' must be the particle itself");
+  AppliedForce e;
+  e.name = name;
+  e.body_i = body;
+  e.s = point ? to_local(body, *point) : Vec2::Zero();
+  e.fx = std::move(fx);
+  e.fy = std::move(fy);
+  e.local = local;
+  add_force_element(std::move(e));
+}
+
+void Model::add_torque(const std::string& name, int body, TimeFunctionPtr torque) {
+  require_open("add torque '" + name + "'");
+  check_new_name(name);
+  check_pair(name, body, kGround);
+  require_rigid(body, name, "cannot take a torque");
+  require_function(torque, name, "the torque");
+  AppliedTorque e;
+  e.name = name;
+  e.body_i = body;
+  e.torque = std::move(torque);
+  add_force_element(std::move(e));
+}
+
+}  // namespace lagmb

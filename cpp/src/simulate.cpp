@@ -98,7 +98,12 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   Data d(model);
   AugmentedSystem kkt(model);
-  const ConsistentState start = make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), o.t0);
+  ConsistentState start;
+  try {
+    start = make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), o.t0);
+  } catch (const UserFunctionError& e) {
+    throw SimulationError(e.what(), o.t0);
+  }
 
   IntegrationPlan plan{o.t0,        o.t_end,           o.rtol,    o.atol,
                        o.max_step,  o.max_order,       o.max_steps, output_times(o),
@@ -117,7 +122,13 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   tr.stats.formulation = o.formulation;
   tr.stats.integrator = o.integrator;
   auto finish = [&] {
-    solve_outputs(model, d, kkt, tr);
+    try {
+      solve_outputs(model, d, kkt, tr);
+    } catch (const UserFunctionError&) {
+      // a user function failing again at an output: keep q, v; drop a, lam
+      tr.a.assign(tr.q.size(), NAN);
+      tr.lam.assign(size_t(tr.size()) * m, NAN);
+    }
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
 

@@ -12,6 +12,8 @@ the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
 
 from . import _core
 from .errors import AssemblyError, ModelError, SimulationError
+from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
+                        time_function_from_dict)
 from .model import Body, Model
 from .result import BodyPath, Result
 from .simulation import simulate, solve_accelerations
@@ -23,10 +25,18 @@ __all__ = [
     "AssemblyError",
     "Body",
     "BodyPath",
+    "Constant",
+    "Harmonic",
+    "Linear",
     "Model",
     "ModelError",
+    "Polynomial",
     "Result",
     "SimulationError",
+    "SmoothStep",
+    "Spline",
+    "TimeFunction",
     "simulate",
     "solve_accelerations",
+    "time_function_from_dict",
 ]

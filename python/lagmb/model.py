@@ -7,6 +7,7 @@ import numpy as np
 
 from . import _core
 from .errors import ModelError
+from .functions import TimeFunction, as_time_function
 
 
 class Body:
@@ -35,6 +36,10 @@ def _vec2(value, what):
     return x
 
 
+def _tuple(x):
+    return (float(x[0]), float(x[1]))
+
+
 def _number(value, what):
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ModelError(f"{what} must be a number, got {value!r}")
@@ -54,12 +59,18 @@ class Model:
     """
 
     def __init__(self, gravity=None):
-        self._calls = []  # the add_* calls, replayed when the model changes after a run
+        self._calls = []  # the core calls, replayed when the model changes after a run
         self._core = _core.Model()
         self._bodies = {}
+        self._elements = []  # (method, kwargs) in user terms: see elements()
+        self._pose = {"ground": (0.0, 0.0, 0.0)}  # initial (x, y, angle) of each body
+        self._outline = {}  # body name -> local attachment points
         self.ground = Body("ground", self, -1)
+        self.gravity = None
         if gravity is not None:
-            self._call("set_gravity", _vec2(gravity, "gravity"))
+            g = _vec2(gravity, "gravity")
+            self._call("set_gravity", g)
+            self.gravity = (float(g[0]), float(g[1]))
 
     # --- building --------------------------------------------------------
 
@@ -91,6 +102,28 @@ class Model:
             raise ModelError(f"names must be strings, got {name!r}")
         return name
 
+    def _body_name(self, body, element):
+        index = self._body_index(body, element)
+        return "ground" if index < 0 else self.bodies[index].name
+
+    def _record(self, method, **kwargs):
+        self._elements.append((method, kwargs))
+
+    def _local(self, body_name, point):
+        """A global point of the initial configuration in the body's axes."""
+        x, y, a = self._pose[body_name]
+        dx, dy = point[0] - x, point[1] - y
+        c, s = math.cos(a), math.sin(a)
+        return (c * dx + s * dy, -s * dx + c * dy)
+
+    def _attach(self, body_name, local_point):
+        if body_name == "ground":
+            return
+        pts = self._outline.setdefault(body_name, [])
+        p = (float(local_point[0]), float(local_point[1]))
+        if all(abs(p[0] - u) + abs(p[1] - v) > 1e-12 for u, v in pts):
+            pts.append(p)
+
     def add_body(self, name, mass, inertia, position=(0.0, 0.0), angle=0.0,
                  velocity=(0.0, 0.0), angular_velocity=0.0):
         """Add a rigid body: mass (kg), centroidal inertia (kg m^2), initial
@@ -98,20 +131,28 @@ class Model:
         angular velocity (rad/s). Returns its handle."""
         name = self._name(name)
         what = f"body '{name}'"
-        self._call("add_body", name, _number(mass, f"{what}: mass"),
-                   _number(inertia, f"{what}: inertia"), _vec2(position, f"{what}: position"),
-                   _number(angle, f"{what}: angle"), _vec2(velocity, f"{what}: velocity"),
-                   _number(angular_velocity, f"{what}: angular_velocity"))
+        args = (_number(mass, f"{what}: mass"), _number(inertia, f"{what}: inertia"),
+                _vec2(position, f"{what}: position"), _number(angle, f"{what}: angle"),
+                _vec2(velocity, f"{what}: velocity"),
+                _number(angular_velocity, f"{what}: angular_velocity"))
+        self._call("add_body", name, *args)
         self._bodies[name] = Body(name, self, len(self._bodies))
+        self._pose[name] = (float(args[2][0]), float(args[2][1]), args[3])
+        self._record("add_body", name=name, mass=args[0], inertia=args[1], position=_tuple(args[2]),
+                     angle=args[3], velocity=_tuple(args[4]), angular_velocity=args[5])
         return self._bodies[name]
 
     def add_particle(self, name, mass, position, velocity=(0.0, 0.0)):
         """Add a point mass with two coordinates (x, y). Returns its handle."""
         name = self._name(name)
         what = f"particle '{name}'"
-        self._call("add_particle", name, _number(mass, f"{what}: mass"),
-                   _vec2(position, f"{what}: position"), _vec2(velocity, f"{what}: velocity"))
+        mass, position = _number(mass, f"{what}: mass"), _vec2(position, f"{what}: position")
+        velocity = _vec2(velocity, f"{what}: velocity")
+        self._call("add_particle", name, mass, position, velocity)
         self._bodies[name] = Body(name, self, len(self._bodies))
+        self._pose[name] = (float(position[0]), float(position[1]), 0.0)
+        self._record("add_particle", name=name, mass=mass, position=_tuple(position),
+                     velocity=_tuple(velocity))
         return self._bodies[name]
 
     def add_revolute(self, name, body_i, body_j, at=None, *, local_i=None, local_j=None):
@@ -119,17 +160,192 @@ class Model:
         initial configuration), or at ``local_i`` on body_i and ``local_j`` on
         body_j (each in its body's own axes)."""
         name = self._name(name)
-        i, j = self._body_index(body_i, name), self._body_index(body_j, name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        i, j = self._body_index(bi, name), self._body_index(bj, name)
         if at is not None:
             if local_i is not None or local_j is not None:
                 raise ModelError(f"revolute '{name}': give either 'at' or 'local_i' and 'local_j'")
-            self._call("add_revolute", name, i, j, _vec2(at, f"revolute '{name}': at"))
+            at = _vec2(at, f"revolute '{name}': at")
+            self._call("add_revolute", name, i, j, at)
+            self._record("add_revolute", name=name, body_i=bi, body_j=bj, at=_tuple(at))
+            self._attach(bi, self._local(bi, at))
+            self._attach(bj, self._local(bj, at))
         elif local_i is not None and local_j is not None:
-            self._call("add_revolute_local", name, i, j, _vec2(local_i, f"revolute '{name}': local_i"),
-                       _vec2(local_j, f"revolute '{name}': local_j"))
+            li = _vec2(local_i, f"revolute '{name}': local_i")
+            lj = _vec2(local_j, f"revolute '{name}': local_j")
+            self._call("add_revolute_local", name, i, j, li, lj)
+            self._record("add_revolute", name=name, body_i=bi, body_j=bj, local_i=_tuple(li),
+                         local_j=_tuple(lj))
+            self._attach(bi, li)
+            self._attach(bj, lj)
         else:
             raise ModelError(f"revolute '{name}': give the joint point 'at' (global) "
                              "or both 'local_i' and 'local_j'")
+
+    def add_translational(self, name, body_i, body_j, at, axis):
+        """body_j slides relative to body_i along the line through ``at`` with
+        direction ``axis`` (global, initial configuration), without rotating."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        at, axis = _vec2(at, f"translational '{name}': at"), _vec2(axis, f"translational '{name}': axis")
+        self._call("add_translational", name, self._body_index(bi, name), self._body_index(bj, name),
+                   at, axis)
+        self._record("add_translational", name=name, body_i=bi, body_j=bj, at=_tuple(at),
+                     axis=_tuple(axis))
+        self._attach(bi, self._local(bi, at))
+        self._attach(bj, self._local(bj, at))
+
+    def add_weld(self, name, body_i, body_j):
+        """Fix body_j to body_i in their initial relative pose."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        self._call("add_weld", name, self._body_index(bi, name), self._body_index(bj, name))
+        self._record("add_weld", name=name, body_i=bi, body_j=bj)
+        self._attach(bi, self._local(bi, self._pose[bj][:2]))
+
+    def add_distance(self, name, body_i, point_i, body_j, point_j, length=None):
+        """A massless rigid link of ``length`` (default: the initial distance)
+        between point_i of body_i and point_j of body_j."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        pi, pj = _vec2(point_i, f"distance '{name}': point_i"), _vec2(point_j, f"distance '{name}': point_j")
+        length = None if length is None else _number(length, f"distance '{name}': length")
+        self._call("add_distance", name, self._body_index(bi, name), pi, self._body_index(bj, name), pj,
+                   length)
+        self._record("add_distance", name=name, body_i=bi, point_i=_tuple(pi), body_j=bj,
+                     point_j=_tuple(pj), length=length)
+        self._attach(bi, self._local(bi, pi))
+        self._attach(bj, self._local(bj, pj))
+
+    def add_pin_in_slot(self, name, body_i, body_j, at, axis):
+        """The pin of body_j at ``at`` moves along the slot of body_i through
+        ``at`` in direction ``axis``; rotation is free."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        at, axis = _vec2(at, f"pin_in_slot '{name}': at"), _vec2(axis, f"pin_in_slot '{name}': axis")
+        self._call("add_pin_in_slot", name, self._body_index(bi, name), self._body_index(bj, name),
+                   at, axis)
+        self._record("add_pin_in_slot", name=name, body_i=bi, body_j=bj, at=_tuple(at),
+                     axis=_tuple(axis))
+        self._attach(bi, self._local(bi, at))
+        self._attach(bj, self._local(bj, at))
+
+    def add_gear(self, name, body_i, body_j, ratio, center_i=None, center_j=None):
+        """Gear pair with omega_j / omega_i = ratio while the centres stay put
+        (negative: external, positive: internal). Centres default to the
+        bodies' centres of mass; a gear on the ground needs its centre."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        ratio = _number(ratio, f"gear '{name}': ratio")
+        ci = None if center_i is None else _vec2(center_i, f"gear '{name}': center_i")
+        cj = None if center_j is None else _vec2(center_j, f"gear '{name}': center_j")
+        self._call("add_gear", name, self._body_index(bi, name), self._body_index(bj, name), ratio, ci, cj)
+        self._record("add_gear", name=name, body_i=bi, body_j=bj, ratio=ratio,
+                     center_i=None if ci is None else _tuple(ci),
+                     center_j=None if cj is None else _tuple(cj))
+
+    def add_rack_pinion(self, name, pinion, rack, radius, axis):
+        """The pinion (centre at its centre of mass, pitch ``radius``) rolls
+        on the rack's pitch line along ``axis``; the pinion is on the left
+        of the axis (axis turned +90 deg points from the rack to it)."""
+        name = self._name(name)
+        bp, br = self._body_name(pinion, name), self._body_name(rack, name)
+        radius = _number(radius, f"rack_pinion '{name}': radius")
+        axis = _vec2(axis, f"rack_pinion '{name}': axis")
+        self._call("add_rack_pinion", name, self._body_index(bp, name), self._body_index(br, name),
+                   radius, axis)
+        self._record("add_rack_pinion", name=name, pinion=bp, rack=br, radius=radius, axis=_tuple(axis))
+
+    # --- drivers ---------------------------------------------------------
+
+    def drive_joint(self, name, joint, f):
+        """Prescribe a revolute's relative angle phi_j - phi_i, or a
+        translational's slide (0 in the initial configuration), as f(t):
+        a number, a time function or a callable t -> (y, dy, ddy)."""
+        name = self._name(name)
+        joint = getattr(joint, "name", joint)
+        if not isinstance(joint, str):
+            raise ModelError(f"driver '{name}': joint must be a joint name, got {joint!r}")
+        self._call("drive_joint", name, joint, as_time_function(f, f"driver '{name}'"))
+        self._record("drive_joint", name=name, joint=joint, f=f)
+
+    def drive_body(self, name, body, coordinate, f):
+        """Prescribe a body's "x", "y" or "angle" as f(t)."""
+        name = self._name(name)
+        b = self._body_name(body, name)
+        if coordinate not in ("x", "y", "angle"):
+            raise ModelError(f"driver '{name}': coordinate must be 'x', 'y' or 'angle', got {coordinate!r}")
+        self._call("drive_body", name, self._body_index(b, name), coordinate,
+                   as_time_function(f, f"driver '{name}'"))
+        self._record("drive_body", name=name, body=b, coordinate=coordinate, f=f)
+
+    # --- forces ----------------------------------------------------------
+
+    def add_spring_damper(self, name, body_i, point_i, body_j, point_j, stiffness=0.0, damping=0.0,
+                          free_length=None, force=None):
+        """Spring (N/m), damper (N s/m) and actuator ``force`` (N, positive
+        pushes the points apart; number, time function or callable t -> F)
+        between point_i of body_i and point_j of body_j."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        what = f"spring_damper '{name}'"
+        pi, pj = _vec2(point_i, f"{what}: point_i"), _vec2(point_j, f"{what}: point_j")
+        k, c = _number(stiffness, f"{what}: stiffness"), _number(damping, f"{what}: damping")
+        l0 = None if free_length is None else _number(free_length, f"{what}: free_length")
+        act = None if force is None else as_time_function(force, what, derivatives=False)
+        self._call("add_spring_damper", name, self._body_index(bi, name), pi, self._body_index(bj, name),
+                   pj, k, c, l0, act)
+        self._record("add_spring_damper", name=name, body_i=bi, point_i=_tuple(pi), body_j=bj,
+                     point_j=_tuple(pj), stiffness=k, damping=c, free_length=l0, force=force)
+        self._attach(bi, self._local(bi, pi))
+        self._attach(bj, self._local(bj, pj))
+
+    def add_rotational_spring_damper(self, name, body_i, body_j, stiffness=0.0, damping=0.0,
+                                     free_angle=None, torque=None):
+        """Torsion spring (N m/rad), damper (N m s/rad) and actuator
+        ``torque`` (N m, on body_j; body_i gets the opposite)."""
+        name = self._name(name)
+        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
+        what = f"rotational_spring_damper '{name}'"
+        k, c = _number(stiffness, f"{what}: stiffness"), _number(damping, f"{what}: damping")
+        a0 = None if free_angle is None else _number(free_angle, f"{what}: free_angle")
+        act = None if torque is None else as_time_function(torque, what, derivatives=False)
+        self._call("add_rotational_spring_damper", name, self._body_index(bi, name),
+                   self._body_index(bj, name), k, c, a0, act)
+        self._record("add_rotational_spring_damper", name=name, body_i=bi, body_j=bj, stiffness=k,
+                     damping=c, free_angle=a0, torque=torque)
+
+    def add_force(self, name, body, force, point=None, local=False):
+        """A force on a body: ``force`` = (fx, fy) of numbers or time
+        functions, or a callable t -> (fx, fy); at ``point`` (global,
+        initial; default: the centre of mass); ``local``: components in the
+        body's axes, turning with it."""
+        name = self._name(name)
+        b = self._body_name(body, name)
+        what = f"force '{name}'"
+        if callable(force) and not isinstance(force, TimeFunction):
+            fx = as_time_function(force, what, derivatives=False, component=0)
+            fy = as_time_function(force, what, derivatives=False, component=1)
+        else:
+            if isinstance(force, (str, bytes)) or not hasattr(force, "__len__") or len(force) != 2:
+                raise ModelError(f"{what}: force must be (fx, fy) or a callable t -> (fx, fy), got {force!r}")
+            fx = as_time_function(force[0], f"{what}: fx", derivatives=False)
+            fy = as_time_function(force[1], f"{what}: fy", derivatives=False)
+            force = tuple(float(f) if isinstance(f, numbers.Real) else f for f in force)
+        p = None if point is None else _vec2(point, f"{what}: point")
+        self._call("add_force", name, self._body_index(b, name), fx, fy, p, bool(local))
+        self._record("add_force", name=name, body=b, force=force, point=None if p is None else _tuple(p),
+                     local=bool(local))
+        if p is not None:
+            self._attach(b, self._local(b, p))
+
+    def add_torque(self, name, body, torque):
+        """A pure torque (N m) on a body: number, time function or callable t -> tau."""
+        name = self._name(name)
+        b = self._body_name(body, name)
+        tau = as_time_function(torque, f"torque '{name}'", derivatives=False)
+        self._call("add_torque", name, self._body_index(b, name), tau)
+        self._record("add_torque", name=name, body=b, torque=torque)
 
     # --- questions -------------------------------------------------------
 
@@ -138,6 +354,23 @@ class Model:
         if not self._core.finalized:
             self._core.finalize()
         return self._core
+
+    def elements(self):
+        """Everything added, in order: (method name, keyword arguments) with
+        bodies by name, points as tuples and time functions as given.
+        Replaying them on Model(gravity=self.gravity) rebuilds this model."""
+        return [(m, dict(kw)) for m, kw in self._elements]
+
+    def outline(self, body):
+        """Local points (body axes) where joints and forces attach to a body,
+        in the order added: what a drawing of the body joins."""
+        return list(self._outline.get(getattr(body, "name", body), []))
+
+    def to_scene(self, path, settings=None, output=None):
+        """Write the model (and optional simulation settings) as a TOML scene."""
+        from .scene import save_scene
+
+        save_scene(self, path, settings, output)
 
     @property
     def bodies(self):

@@ -71,10 +71,21 @@ class Result:
         row0, rows = self._core.constraint_rows(self._name(element))
         return self.lam[:, row0:row0 + rows]
 
-    def reaction(self, element):
+    def reaction(self, element, frame="global"):
         """(k, 3): force (x, y) in N on the element's second body, and the
-        torque in N m about that body's centre of mass, from the element."""
-        return self._core.reaction(self._name(element), self.t, self.q, self.lam)
+        torque in N m about that body's centre of mass, from the element.
+        frame="joint": the force in the element's own axes (docs/modelling.md)."""
+        if frame not in ("global", "joint"):
+            raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
+        return self._core.reaction(self._name(element), self.t, self.q, self.lam, frame == "joint")
+
+    def effort(self, driver):
+        """(k,) the force (N) or torque (N m) a driver applies to impose its
+        motion, positive along the driven coordinate."""
+        name = self._name(driver)
+        if not self._core.element_kind(name).endswith("_driver"):
+            raise ModelError(f"'{name}' is not a driver")
+        return -self.multipliers(name)[:, 0]
 
     @cached_property
     def energy(self):

@@ -9,6 +9,8 @@
 //   Rows phi(c, t)                             Phi
 //   Jac jacobian(c, t)                         Phi_c            (rows x 6)
 //   void hessians(c, t, Mat6 H[rows])          d2 Phi_r / dc2
+//   Mat2 axes(c, t)                            the joint's own axes (columns),
+//                                              for reactions in joint axes
 //   and, if time dependent: phi_t, phi_tc (rows x 6), phi_tt.
 // Everything the integrators need beyond that is derived here, once:
 //   gamma_r     = -v^T H_r v - 2 Phi_tc,r v - Phi_tt,r
@@ -68,6 +70,8 @@ class ConstraintGroupBase {
   /// in local coordinates (force x, y and torque about each centre of mass).
   virtual Local6 generalized_reaction(int k, const double* q, double t,
                                       const double* lam) const = 0;
+  /// The element's own axes (columns, global components) at state q.
+  virtual Mat2 axes(int k, const double* q, double t) const = 0;
 };
 
 template <class Kind>
@@ -180,6 +184,10 @@ class ConstraintGroup final : public ConstraintGroupBase {
     const Jac J = items[k].jacobian(gather(q, place_[k].coord), t);
     const Eigen::Map<const Rows> l(lam + place_[k].row0);
     return -J.transpose() * l;
+  }
+
+  Mat2 axes(int k, const double* q, double t) const override {
+    return items[k].axes(gather(q, place_[k].coord), t);
   }
 
  private:

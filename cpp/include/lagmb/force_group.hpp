@@ -1,8 +1,11 @@
 // One container per force kind and the loop that runs over it.
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
+#include "lagmb/constraint_group.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/types.hpp"
 
@@ -32,6 +35,85 @@ class ForceGroupBase {
                                double* Q_v_values) const = 0;
   /// Potential energy of the conservative part; 0 for dissipative kinds.
   virtual double potential(const double* q, double t) const = 0;
+};
+
+/// Forces acting on (at most) two bodies, one container per kind. A kind is a
+/// plain struct with, in the local coordinates c and velocities cd of its
+/// bodies (as in constraint_group.hpp):
+///   static constexpr bool state_dependent;   Q depends on c or cd
+///   static constexpr const char* kind;
+///   std::string name; int body_i, body_j;    (-1: ground / unused)
+///   Local6 force(c, cd, t)                   generalized force on c
+///   void derivatives(c, cd, t, Mat6& Q_c, Mat6& Q_cd)   if state_dependent
+///   double potential(c, t)                   0 for non-conservative kinds
+template <class Kind>
+class ForceGroup final : public ForceGroupBase {
+ public:
+  std::vector<Kind> items;
+
+  void add(Kind item) { items.push_back(std::move(item)); }
+  int size() const override { return static_cast<int>(items.size()); }
+  const std::string& name(int k) const override { return items[k].name; }
+  const char* kind() const override { return Kind::kind; }
+  bool has_derivatives() const override { return Kind::state_dependent; }
+
+  void place(const Model& model) override;
+
+  void declare(SparsityPattern& Q_q, SparsityPattern& Q_v) const override {
+    if constexpr (Kind::state_dependent)
+      for (const auto& p : coord_)
+        for (int a = 0; a < 6; ++a)
+          for (int b = 0; b < 6; ++b) {
+            if (p[a] < 0 || p[b] < 0) continue;
+            Q_q.add(p[b], p[a]);
+            Q_v.add(p[b], p[a]);
+          }
+  }
+
+  void bind(const SpMat& Q_q, const SpMat& Q_v) override {
+    if constexpr (Kind::state_dependent) {
+      slots_q_.resize(items.size());
+      slots_v_.resize(items.size());
+      for (size_t k = 0; k < items.size(); ++k)
+        for (int a = 0; a < 6; ++a)
+          for (int b = 0; b < 6; ++b) {
+            slots_q_[k][a * 6 + b] = slot(Q_q, coord_[k][b], coord_[k][a]);
+            slots_v_[k][a * 6 + b] = slot(Q_v, coord_[k][b], coord_[k][a]);
+          }
+    }
+  }
+
+  void add_forces(const double* q, const double* v, double t, double* Q) const override {
+    for (size_t k = 0; k < items.size(); ++k) {
+      const Local6 f = items[k].force(gather(q, coord_[k]), gather(v, coord_[k]), t);
+      for (int a = 0; a < 6; ++a)
+        if (coord_[k][a] >= 0) Q[coord_[k][a]] += f[a];
+    }
+  }
+
+  void add_derivatives(const double* q, const double* v, double t, double* Qq,
+                       double* Qv) const override {
+    if constexpr (Kind::state_dependent) {
+      Mat6 dq, dv;
+      for (size_t k = 0; k < items.size(); ++k) {
+        items[k].derivatives(gather(q, coord_[k]), gather(v, coord_[k]), t, dq, dv);
+        for (int a = 0; a < 36; ++a) {
+          if (slots_q_[k][a] >= 0) Qq[slots_q_[k][a]] += dq.data()[a];
+          if (slots_v_[k][a] >= 0) Qv[slots_v_[k][a]] += dv.data()[a];
+        }
+      }
+    }
+  }
+
+  double potential(const double* q, double t) const override {
+    double V = 0.0;
+    for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather(q, coord_[k]), t);
+    return V;
+  }
+
+ private:
+  std::vector<std::array<int, 6>> coord_;
+  std::vector<std::array<int, 36>> slots_q_, slots_v_;
 };
 
 }  // namespace lagmb

@@ -7,10 +7,23 @@
 #include <typeindex>
 #include <vector>
 
+#include <optional>
+
 #include "lagmb/constraint_group.hpp"
+#include "lagmb/elements/applied_force.hpp"
+#include "lagmb/elements/distance.hpp"
+#include "lagmb/elements/drivers.hpp"
+#include "lagmb/elements/gear.hpp"
 #include "lagmb/elements/gravity.hpp"
+#include "lagmb/elements/pin_in_slot.hpp"
+#include "lagmb/elements/rack_pinion.hpp"
 #include "lagmb/elements/revolute.hpp"
+#include "lagmb/elements/rotational_spring_damper.hpp"
+#include "lagmb/elements/spring_damper.hpp"
+#include "lagmb/elements/translational.hpp"
+#include "lagmb/elements/weld.hpp"
 #include "lagmb/force_group.hpp"
+#include "lagmb/time_function.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/types.hpp"
 
@@ -65,12 +78,55 @@ class Model {
   /// Revolute joint at local points s_i on body i and s_j on body j.
   void add_revolute_local(const std::string& name, int body_i, int body_j, Vec2 s_i, Vec2 s_j);
 
+  /// Translational joint: body j slides along the line through `at` with
+  /// direction `axis` (global, initial configuration), fixed in body i.
+  void add_translational(const std::string& name, int body_i, int body_j, Vec2 at, Vec2 axis);
+  /// Weld: body j keeps its initial pose relative to body i.
+  void add_weld(const std::string& name, int body_i, int body_j);
+  /// Massless link of length L (default: the initial distance) between two points.
+  void add_distance(const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
+                    std::optional<double> length = std::nullopt);
+  /// The point `at` of body j stays on the line through `at` along `axis`, fixed in body i.
+  void add_pin_in_slot(const std::string& name, int body_i, int body_j, Vec2 at, Vec2 axis);
+  /// Gear pair: omega_j / omega_i = ratio while the centres stay fixed
+  /// (negative: external, positive: internal). Centres default to the
+  /// bodies' centres of mass; a ground gear needs its centre.
+  void add_gear(const std::string& name, int body_i, int body_j, double ratio,
+                std::optional<Vec2> center_i = std::nullopt, std::optional<Vec2> center_j = std::nullopt);
+  /// Pinion (rolling on its centre of mass) on a rack whose pitch line runs along
+  /// `axis`; the pinion lies to the left of the axis.
+  void add_rack_pinion(const std::string& name, int pinion, int rack, double radius, Vec2 axis);
+
+  /// Prescribes a revolute's relative angle phi_j - phi_i, or a translational's
+  /// slide displacement (0 in the initial configuration), as f(t).
+  void drive_joint(const std::string& name, const std::string& joint, TimeFunctionPtr f);
+  /// Prescribes a body's coordinate "x", "y" or "angle" as f(t).
+  void drive_body(const std::string& name, int body, const std::string& coordinate, TimeFunctionPtr f);
+
   /// Uniform gravity acceleration g (m/s^2) on every body.
   void set_gravity(Vec2 g);
+  /// Spring-damper-actuator between two points (see spring_damper.hpp);
+  /// free length defaults to the initial distance; actuator may be null.
+  void add_spring_damper(const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
+                         double stiffness, double damping, std::optional<double> free_length = std::nullopt,
+                         TimeFunctionPtr actuator = nullptr);
+  /// Rotational spring-damper-actuator; free angle defaults to the initial relative angle.
+  void add_rotational_spring_damper(const std::string& name, int body_i, int body_j, double stiffness,
+                                    double damping, std::optional<double> free_angle = std::nullopt,
+                                    TimeFunctionPtr torque = nullptr);
+  /// Force (fx, fy) at `point` (global, initial; default: centre of mass),
+  /// in global axes or, if local, in the body's axes.
+  void add_force(const std::string& name, int body, TimeFunctionPtr fx, TimeFunctionPtr fy,
+                 std::optional<Vec2> point = std::nullopt, bool local = false);
+  /// Pure torque on a body.
+  void add_torque(const std::string& name, int body, TimeFunctionPtr torque);
 
   /// Adds a constraint element of any kind (see constraint_group.hpp).
   template <class Kind>
   void add_constraint(Kind element);
+  /// Adds a force element of any kind (see force_group.hpp).
+  template <class Kind>
+  void add_force_element(Kind element);
 
   /// Freezes the model: numbers coordinates and rows, builds patterns.
   void finalize();
@@ -115,6 +171,8 @@ class Model {
   std::string constraint_name_of_row(int row) const;
   /// Body owning coordinate `coord` of q.
   const Body& body_of_coordinate(int coord) const;
+  /// Positions in q of the local coordinates (x_i, y_i, phi_i, x_j, y_j, phi_j).
+  std::array<int, 6> local_coordinates(int body_i, int body_j) const;
 
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
@@ -125,11 +183,17 @@ class Model {
   void register_name(const std::string& name, ElementRef ref);
   void check_pair(const std::string& name, int body_i, int body_j) const;
   Vec2 to_local(int body, Vec2 global_point) const;
+  Vec2 direction_to_local(int body, Vec2 global_direction, const std::string& element) const;
+  double initial_angle(int body) const;
+  Vec2 initial_position(int body) const;
+  void require_rigid(int body, const std::string& element, const char* why) const;
+  template <class Kind>
+  const Kind* find_constraint(const std::string& name) const;
 
   bool finalized_ = false;
   std::vector<Body> bodies_;
   std::vector<std::unique_ptr<ConstraintGroupBase>> constraints_;
-  std::map<std::type_index, int> constraint_group_of_kind_;
+  std::map<std::type_index, int> constraint_group_of_kind_, force_group_of_kind_;
   std::vector<std::pair<int, int>> constraint_order_;  // (group, index) in insertion order
   std::vector<std::unique_ptr<ForceGroupBase>> forces_;
   std::vector<const ConstraintGroupBase*> time_dependent_;
@@ -156,6 +220,35 @@ void Model::add_constraint(Kind element) {
   register_name(element.name, {ElementRef::kConstraint, it->second, group.size()});
   constraint_order_.emplace_back(it->second, group.size());
   group.add(std::move(element));
+}
+
+template <class Kind>
+void Model::add_force_element(Kind element) {
+  require_open("add " + std::string(Kind::kind) + " '" + element.name + "'");
+  check_new_name(element.name);
+  check_pair(element.name, element.body_i, element.body_j);  // single-body forces: body_j = ground
+  auto [it, inserted] =
+      force_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(forces_.size()));
+  if (inserted) forces_.push_back(std::make_unique<ForceGroup<Kind>>());
+  auto& group = static_cast<ForceGroup<Kind>&>(*forces_[it->second]);
+  register_name(element.name, {ElementRef::kForce, it->second, group.size()});
+  group.add(std::move(element));
+}
+
+template <class Kind>
+const Kind* Model::find_constraint(const std::string& name) const {
+  auto named = names_.find(name);
+  auto group = constraint_group_of_kind_.find(std::type_index(typeid(Kind)));
+  if (named == names_.end() || group == constraint_group_of_kind_.end()) return nullptr;
+  const ElementRef& r = named->second;
+  if (r.type != ElementRef::kConstraint || r.group != group->second) return nullptr;
+  return &static_cast<const ConstraintGroup<Kind>&>(*constraints_[r.group]).items[r.index];
+}
+
+template <class Kind>
+void ForceGroup<Kind>::place(const Model& model) {
+  coord_.clear();
+  for (const auto& e : items) coord_.push_back(model.local_coordinates(e.body_i, e.body_j));
 }
 
 }  // namespace lagmb

@@ -15,6 +15,9 @@ namespace lagmb {
 /// so gamma = A_j s_j phid_j^2 - A_i s_i phid_i^2.
 /// The multipliers lam are the force the joint puts on body i, in global
 /// axes (the generalized force on the bodies is -Phi_q^T lam).
+/// Joint axes: radial, from the joint point to body j's centre of mass (or,
+/// if the joint sits there, from body i's centre to the joint point), and
+/// tangential (radial turned +90 deg).
 struct RevoluteJoint {
   static constexpr int rows = 2;
   static constexpr bool time_dependent = false;
@@ -44,6 +47,15 @@ struct RevoluteJoint {
       H[r](2, 2) = ai[r];
       H[r](5, 5) = -aj[r];
     }
+  }
+
+  Mat2 axes(const Local6& c, double) const {
+    Vec2 e = -(rotation(c[5]) * s_j);
+    if (e.norm() == 0.0) e = rotation(c[2]) * s_i;
+    e = e.norm() > 0.0 ? Vec2(e.normalized()) : Vec2::UnitX();
+    Mat2 E;
+    E << e, Vec2(-e.y(), e.x());
+    return E;
   }
 };
 

@@ -1,0 +1,165 @@
+"""Functions of time for drivers and actuators, evaluated in C++ with exact
+first and second derivatives (docs/modelling.md, "Time functions")."""
+
+import math
+import numbers
+
+from . import _core
+from .errors import ModelError
+
+
+class TimeFunction:
+    """Base of the built-in time functions. ``f(t)`` returns (y, dy, ddy)."""
+
+    _type = None
+    _fields = ()
+
+    def __init__(self, *args):
+        for name, value in zip(self._fields, args):
+            setattr(self, name, value)
+        self._impl = self._build()
+
+    def _build(self):
+        raise NotImplementedError
+
+    def __call__(self, t):
+        return self._impl(float(t))
+
+    def to_dict(self):
+        """Plain data, e.g. {"type": "linear", "rate": 1.0, "start": 0.0}."""
+        out = {"type": self._type}
+        for name in self._fields:
+            value = getattr(self, name)
+            out[name] = list(value) if isinstance(value, (list, tuple)) else value
+        return out
+
+    def __eq__(self, other):
+        return type(self) is type(other) and self.to_dict() == other.to_dict()
+
+    def __repr__(self):
+        args = ", ".join(f"{n}={getattr(self, n)!r}" for n in self._fields)
+        return f"{type(self).__name__}({args})"
+
+
+def _num(value, what):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise ModelError(f"{what} must be a finite number, got {value!r}")
+    return float(value)
+
+
+def _nums(values, what):
+    try:
+        values = list(values)
+    except TypeError:
+        raise ModelError(f"{what} must be a list of numbers, got {values!r}") from None
+    return [_num(v, what) for v in values]
+
+
+class Constant(TimeFunction):
+    """f(t) = c"""
+
+    _type, _fields = "constant", ("c",)
+
+    def __init__(self, c):
+        super().__init__(_num(c, "Constant: c"))
+
+    def _build(self):
+        return _core.constant(self.c)
+
+
+class Linear(TimeFunction):
+    """f(t) = start + rate t"""
+
+    _type, _fields = "linear", ("rate", "start")
+
+    def __init__(self, rate, start=0.0):
+        super().__init__(_num(rate, "Linear: rate"), _num(start, "Linear: start"))
+
+    def _build(self):
+        return _core.linear(self.rate, self.start)
+
+
+class Polynomial(TimeFunction):
+    """f(t) = c0 + c1 t + c2 t^2 + ..."""
+
+    _type, _fields = "polynomial", ("coeffs",)
+
+    def __init__(self, coeffs):
+        super().__init__(tuple(_nums(coeffs, "Polynomial: coeffs")))
+
+    def _build(self):
+        return _core.polynomial(list(self.coeffs))
+
+
+class Harmonic(TimeFunction):
+    """f(t) = offset + amplitude sin(omega t + phase)"""
+
+    _type, _fields = "harmonic", ("amplitude", "omega", "phase", "offset")
+
+    def __init__(self, amplitude, omega, phase=0.0, offset=0.0):
+        super().__init__(_num(amplitude, "Harmonic: amplitude"), _num(omega, "Harmonic: omega"),
+                         _num(phase, "Harmonic: phase"), _num(offset, "Harmonic: offset"))
+
+    def _build(self):
+        return _core.harmonic(self.amplitude, self.omega, self.phase, self.offset)
+
+
+class SmoothStep(TimeFunction):
+    """y0 before t0, y1 after t1, a quintic with zero velocity and
+    acceleration at both ends in between."""
+
+    _type, _fields = "smooth_step", ("t0", "t1", "y0", "y1")
+
+    def __init__(self, t0, t1, y0, y1):
+        super().__init__(_num(t0, "SmoothStep: t0"), _num(t1, "SmoothStep: t1"),
+                         _num(y0, "SmoothStep: y0"), _num(y1, "SmoothStep: y1"))
+
+    def _build(self):
+        return _core.smooth_step(self.t0, self.t1, self.y0, self.y1)
+
+
+class Spline(TimeFunction):
+    """Natural cubic spline through (times, values); linear beyond the ends."""
+
+    _type, _fields = "spline", ("times", "values")
+
+    def __init__(self, times, values):
+        super().__init__(tuple(_nums(times, "Spline: times")), tuple(_nums(values, "Spline: values")))
+
+    def _build(self):
+        return _core.spline(list(self.times), list(self.values))
+
+
+_TYPES = {cls._type: cls for cls in (Constant, Linear, Polynomial, Harmonic, SmoothStep, Spline)}
+
+
+def time_function_from_dict(d):
+    """Inverse of TimeFunction.to_dict()."""
+    if not isinstance(d, dict) or "type" not in d:
+        raise ModelError(f"a time function needs a 'type', got {d!r}")
+    kind = d["type"]
+    if kind not in _TYPES:
+        raise ModelError(f"unknown time function type '{kind}' (known: {', '.join(sorted(_TYPES))})")
+    cls = _TYPES[kind]
+    args = {k: v for k, v in d.items() if k != "type"}
+    unknown = set(args) - set(cls._fields)
+    if unknown:
+        raise ModelError(f"time function '{kind}': unknown key(s) {', '.join(sorted(unknown))}")
+    try:
+        return cls(**args)
+    except TypeError as e:
+        raise ModelError(f"time function '{kind}': {e}") from None
+
+
+def as_time_function(value, where, derivatives=True, component=-1):
+    """The C++ time function for a number, a TimeFunction or a callable.
+
+    A callable is f(t) -> (y, dy, ddy) when derivatives are needed (drivers),
+    else f(t) -> y, or f(t) -> (fx, fy) with component 0 or 1 (forces)."""
+    if isinstance(value, TimeFunction):
+        return value._impl
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return Constant(value)._impl
+    if callable(value):
+        return _core.python_function(value, where, derivatives, component)
+    raise ModelError(f"{where}: expected a number, a time function or a callable, got {value!r}")
