@@ -1,0 +1,657 @@
+"""Pictures of a run: time histories (plot_result) and a GIF of the mechanism (animate).
+
+matplotlib is an optional extra (``pip install 'lagmb[plot]'``); it is imported
+only when a function here is called, so ``import lagmb`` never needs it.
+Figures are drawn on matplotlib's Agg canvas without pyplot: nothing here
+changes the backend or the figure registry of the caller's session.
+
+    from lagmb.plotting import plot_result, animate
+    plot_result(r, "run.png")
+    animate(r, "run.gif", trace=[("coupler", (0.0, 0.5))])
+
+What the pictures show of the model comes from ``model.elements()`` (the
+add_* and drive_* calls with their arguments) and ``model.outline(body)``
+(the local points where joints and forces attach to a body). Models without
+these methods are read from the calls they recorded.
+"""
+
+import math
+import os
+
+import numpy as np
+
+_HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
+
+# the kinds of model calls, by what they add
+_BODIES = ("add_body", "add_particle")
+_FORCES = ("add_spring_damper", "add_rotational_spring_damper", "add_force", "add_torque")
+_NOT_JOINTS = _BODIES + _FORCES + ("set_gravity",)
+
+_MAX_LINES = 8    # lines (legend entries) per subplot
+_MAX_BODIES = 6   # bodies in the coordinate plots (their legend adds the x / y keys)
+_PANELS = ("coordinates", "reactions", "efforts", "energy", "residual")
+
+
+def _matplotlib():
+    """The matplotlib pieces used here, or an ImportError with the install hint."""
+    try:
+        import matplotlib  # noqa: F401
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+    except ImportError as e:
+        raise ImportError(_HINT) from e
+    return Figure, FigureCanvasAgg
+
+
+def _figure(figsize, **kwargs):
+    """A Figure on an Agg canvas, outside pyplot (closing it is dropping it)."""
+    Figure, FigureCanvasAgg = _matplotlib()
+    fig = Figure(figsize=figsize, **kwargs)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _save(fig, path, **kwargs):
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    fig.savefig(path, **kwargs)
+
+
+# --- what the model holds ------------------------------------------------
+
+
+def _name(body):
+    """A body handle or name -> its name (m.ground -> "ground")."""
+    return getattr(body, "name", body)
+
+
+def _elements(model):
+    """[(kind, kwargs)] of the model's calls, in the order made."""
+    if hasattr(model, "elements"):
+        return [(kind, dict(kwargs)) for kind, kwargs in model.elements()]
+    return _elements_from_calls(model)
+
+
+def _elements_from_calls(model):
+    """The same list read from the calls a model recorded (models that have
+    no elements() yet): bodies and revolutes."""
+    calls = getattr(model, "_calls", None)
+    if not calls:
+        return []
+    bodies = [b.name for b in getattr(model, "bodies", [])]
+
+    def body(index):
+        return "ground" if index < 0 else bodies[index]
+
+    def pair(x):
+        return tuple(float(v) for v in np.asarray(x, dtype=float).reshape(2))
+
+    out = []
+    try:
+        for method, args in calls:
+            if method == "add_body":
+                name, mass, inertia, pos, angle, vel, omega = args
+                out.append((method, {"name": name, "mass": mass, "inertia": inertia,
+                                     "position": pair(pos), "angle": angle,
+                                     "velocity": pair(vel), "angular_velocity": omega}))
+            elif method == "add_particle":
+                name, mass, pos, vel = args
+                out.append((method, {"name": name, "mass": mass, "position": pair(pos),
+                                     "velocity": pair(vel)}))
+            elif method == "add_revolute":
+                name, i, j, at = args
+                out.append((method, {"name": name, "body_i": body(i), "body_j": body(j),
+                                     "at": pair(at)}))
+            elif method == "add_revolute_local":
+                name, i, j, si, sj = args
+                out.append(("add_revolute", {"name": name, "body_i": body(i), "body_j": body(j),
+                                             "local_i": pair(si), "local_j": pair(sj)}))
+    except (ValueError, TypeError, IndexError):
+        return []
+    return out
+
+
+def _rot(angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+class _Scene:
+    """What the model says about a result, for drawing it: the bodies, the
+    joints, drivers and forces, and where each element attaches to its bodies
+    (as points in each body's own axes)."""
+
+    def __init__(self, result):
+        self.result = result
+        model = result.model
+        self.elements = _elements(model)
+        self.bodies = [b.name for b in model.bodies]
+        kinds = {}
+        for kind, kw in self.elements:
+            kinds.setdefault(kind, []).append(kw)
+        self.kind_of = {kw.get("name"): kind for kind, kw in self.elements}
+        self.particles = {kw["name"] for kw in kinds.get("add_particle", [])}
+        if not self.elements:  # nothing recorded: ask the core which bodies have no angle
+            for b in self.bodies:
+                try:
+                    if result._core.body_coordinates(b)[1] == 2:
+                        self.particles.add(b)
+                except Exception:  # noqa: BLE001 - a private helper; drawing goes on without
+                    pass
+        self.joints = [kw["name"] for kind, kw in self.elements
+                       if kind.startswith("add_") and kind not in _NOT_JOINTS]
+        self.drivers = [kw["name"] for kind, kw in self.elements if kind.startswith("drive_")]
+        self.forces = [kw["name"] for kind, kw in self.elements if kind in _FORCES]
+        self._pose0 = self._initial_poses()
+        self.outlines = {b: self._outline(model, b) for b in self.bodies}
+
+    # initial configuration: the one that global points of the model refer to
+    def _initial_poses(self):
+        poses = {}
+        for kind, kw in self.elements:
+            if kind in _BODIES:
+                pos = np.asarray(kw.get("position", (0.0, 0.0)), dtype=float).reshape(2)
+                poses[kw["name"]] = (pos, float(kw.get("angle", 0.0)))
+        r = self.result
+        for b in self.bodies:
+            if b not in poses and len(r.t):
+                path = r.body(b)
+                poses[b] = (path.position[0].copy(), float(path.angle[0]))
+        return poses
+
+    def local(self, body, point):
+        """A global point of the initial configuration in the body's own axes."""
+        p = np.asarray(point, dtype=float).reshape(2)
+        if body == "ground" or body not in self._pose0:
+            return p
+        r0, phi0 = self._pose0[body]
+        return _rot(phi0).T @ (p - r0)
+
+    def attachments(self, kind, kw):
+        """[(body, local point)] where one element attaches."""
+        out = []
+        bi, bj = _name(kw.get("body_i")), _name(kw.get("body_j"))
+        if kw.get("at") is not None:
+            out += [(b, self.local(b, kw["at"])) for b in (bi, bj) if b is not None]
+        if kw.get("local_i") is not None and bi is not None:
+            out.append((bi, np.asarray(kw["local_i"], dtype=float).reshape(2)))
+        if kw.get("local_j") is not None and bj is not None:
+            out.append((bj, np.asarray(kw["local_j"], dtype=float).reshape(2)))
+        if kw.get("point_i") is not None and bi is not None:
+            out.append((bi, self.local(bi, kw["point_i"])))
+        if kw.get("point_j") is not None and bj is not None:
+            out.append((bj, self.local(bj, kw["point_j"])))
+        if kind == "add_force" and kw.get("point") is not None:
+            b = _name(kw.get("body"))
+            out.append((b, self.local(b, kw["point"])))
+        if kind == "add_weld" and bi is not None and bj in self._pose0:
+            out += [(bi, self.local(bi, self._pose0[bj][0])), (bj, np.zeros(2))]
+        return out
+
+    def _outline(self, model, body):
+        if hasattr(model, "outline"):
+            pts = [np.asarray(p, dtype=float).reshape(2) for p in model.outline(body)]
+        else:
+            pts = [p for kind, kw in self.elements for b, p in self.attachments(kind, kw)
+                   if b == body]
+        unique = []
+        for p in pts:
+            if all(np.hypot(*(p - u)) > 1e-12 for u in unique):
+                unique.append(p)
+        return unique
+
+    def path(self, body, local, index=slice(None)):
+        """(k, 2) global path of a body's local point (fixed for the ground)."""
+        if body == "ground":
+            return np.broadcast_to(np.asarray(local, dtype=float), (len(self.result.t), 2))[index]
+        return self.result.point(body, local)[index]
+
+    def summary(self):
+        parts = [_count(len(self.bodies), "body", "bodies")]
+        for n, one in ((len(self.joints), "joint"), (len(self.drivers), "driver"),
+                       (len(self.forces), "force element")):
+            if n:
+                parts.append(_count(n, one))
+        return ", ".join(parts)
+
+    def effort_unit(self, name):
+        kind = self.kind_of.get(name)
+        kw = next((k for c, k in self.elements if k.get("name") == name), {})
+        if kind == "drive_body":
+            return "N m" if kw.get("coordinate") == "angle" else "N"
+        if kind == "drive_joint":
+            return "N" if self.kind_of.get(_name(kw.get("joint"))) == "add_translational" else "N m"
+        return "N or N m"
+
+
+def _count(n, one, many=None):
+    return f"{n} {one if n == 1 else (many or one + 's')}"
+
+
+def _stats_line(stats):
+    if not stats:
+        return ""
+    wall = stats.get("wall_time")
+    parts = []
+    if stats.get("formulation"):
+        parts.append(f"{stats['formulation']}/{stats.get('integrator', '?')}")
+    if "steps" in stats:
+        parts.append(f"{stats['steps']} steps")
+    if wall is not None:
+        parts.append(f"{wall * 1e3:.1f} ms wall" if wall < 1.0 else f"{wall:.2f} s wall")
+    return ", ".join(parts)
+
+
+def _colour(i):
+    return f"C{i % 10}"
+
+
+# --- time histories ------------------------------------------------------
+
+
+def plot_result(result, path=None, *, what=_PANELS, dpi=120):
+    """Time histories of a run, one subplot under the other on a shared time axis.
+
+    ``what`` picks among "coordinates" (centre-of-mass x, y in m, and the
+    angles in rad, on two subplots), "reactions" (magnitude of each joint's
+    reaction force, N), "efforts" (the drivers' forces or torques),
+    "energy" (change E - E(0) in J, with E(0) given) and "residual"
+    (max |Phi| on a log scale). Subplots with nothing to show are left out.
+    Up to 6 bodies and 8 joints or drivers are drawn; the legend says when
+    there are more.
+
+    Returns the matplotlib Figure (drawn on the Agg canvas, outside pyplot).
+    With ``path``, the figure is also written there, its format from the
+    extension (.png, .pdf, .svg, ...).
+    """
+    if isinstance(what, str):
+        what = (what,)
+    unknown = [w for w in what if w not in _PANELS]
+    if unknown:
+        raise ValueError(f"plot_result: unknown panel(s) {unknown}; choose from {list(_PANELS)}")
+    _matplotlib()
+    scene = _Scene(result)
+    t = np.asarray(result.t)
+
+    panels = []  # functions that draw one subplot each
+    if "coordinates" in what and scene.bodies:
+        panels.append(lambda ax: _positions(ax, result, scene))
+        if any(b not in scene.particles for b in scene.bodies):
+            panels.append(lambda ax: _angles(ax, result, scene))
+    if "reactions" in what:
+        reactions = _series(scene.joints, lambda n: np.hypot(*result.reaction(n)[:, :2].T))
+        if reactions:
+            panels.append(lambda ax: _lines(ax, t, reactions, len(scene.joints), "joints",
+                                            "reaction |F| (N)"))
+    if "efforts" in what and scene.drivers:
+        efforts = _series(scene.drivers, lambda n: _effort(result, n))
+        if efforts:
+            units = {scene.effort_unit(n) for n in efforts}
+            unit = units.pop() if len(units) == 1 else None
+            labelled = {n if unit else f"{n} ({scene.effort_unit(n)})": y
+                        for n, y in efforts.items()}
+            panels.append(lambda ax: _lines(ax, t, labelled, len(scene.drivers), "drivers",
+                                            f"effort ({unit or 'N, N m'})"))
+    if "energy" in what:
+        energy = _quiet(lambda: np.asarray(result.energy, dtype=float))
+        if energy is not None and len(energy) and np.isfinite(energy).any():
+            panels.append(lambda ax: _energy(ax, t, energy))
+    if "residual" in what:
+        residual = _quiet(lambda: np.asarray(result.residual, dtype=float))
+        if residual is not None and len(residual):
+            panels.append(lambda ax: _residual(ax, t, residual))
+    if not panels:
+        raise ValueError(f"plot_result: nothing to plot for what={tuple(what)}")
+
+    fig = _figure((8.5, 1.2 + 2.0 * len(panels)), constrained_layout=True)
+    if hasattr(fig, "get_layout_engine"):  # matplotlib >= 3.6: a little air at the edges
+        fig.get_layout_engine().set(w_pad=0.1, h_pad=0.06)
+    axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, draw in zip(axes, panels):
+        draw(ax)
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("time t (s)")
+    if len(t) > 1:
+        axes[-1].set_xlim(t[0], t[-1])
+    title = scene.summary()
+    stats = _stats_line(getattr(result, "stats", None))
+    fig.suptitle(f"lagmb: {title}" + (f"\n{stats}, {len(t)} outputs" if stats else ""),
+                 fontsize=11)
+    if path is not None:
+        _save(fig, path, dpi=dpi)
+    return fig
+
+
+def _quiet(f):
+    try:
+        return f()
+    except Exception:  # noqa: BLE001 - a quantity the model cannot give is left out
+        return None
+
+
+def _series(names, f):
+    """{name: f(name)} for the names where f works (up to the line limit)."""
+    out = {}
+    for n in names:
+        if len(out) == _MAX_LINES:
+            break
+        y = _quiet(lambda: np.asarray(f(n), dtype=float).reshape(-1))
+        if y is not None:
+            out[n] = y
+    return out
+
+
+def _effort(result, name):
+    if hasattr(result, "effort"):
+        return result.effort(name)
+    return -result.multipliers(name)[:, 0]
+
+
+def _legend(ax, title=None, handles=None, ncol=1):
+    kwargs = {"handles": handles} if handles is not None else {}
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8,
+              title=title, title_fontsize=8, frameon=False, ncol=ncol, **kwargs)
+
+
+def _shown(names, total, what):
+    """Legend title saying that only some are drawn."""
+    return f"first {len(names)} of {total} {what}" if total > len(names) else None
+
+
+def _positions(ax, result, scene):
+    from matplotlib.lines import Line2D
+
+    shown = scene.bodies[:_MAX_BODIES]
+    handles = []
+    for i, b in enumerate(shown):
+        pos = result.body(b).position
+        ax.plot(result.t, pos[:, 0], color=_colour(i), lw=1.4)
+        ax.plot(result.t, pos[:, 1], color=_colour(i), lw=1.4, ls="--")
+        handles.append(Line2D([], [], color=_colour(i), lw=2, label=b))
+    handles += [Line2D([], [], color="0.3", lw=1.4, label="x"),
+                Line2D([], [], color="0.3", lw=1.4, ls="--", label="y")]
+    ax.set_ylabel("centre of mass\nx, y (m)")
+    _legend(ax, _shown(shown, len(scene.bodies), "bodies"), handles)
+
+
+def _angles(ax, result, scene):
+    rigid = [(i, b) for i, b in enumerate(scene.bodies) if b not in scene.particles]
+    shown = rigid[:_MAX_BODIES]
+    for i, b in shown:
+        ax.plot(result.t, result.body(b).angle, color=_colour(i), lw=1.4, label=b)
+    ax.set_ylabel("angle φ (rad)")
+    _legend(ax, _shown(shown, len(rigid), "bodies"))
+
+
+def _lines(ax, t, series, total, what, ylabel):
+    for i, (name, y) in enumerate(series.items()):
+        ax.plot(t, y, color=_colour(i), lw=1.4, label=name)
+    ax.set_ylabel(ylabel)
+    _legend(ax, _shown(list(series), total, what))
+
+
+def _energy(ax, t, energy):
+    e0 = energy[0] if np.isfinite(energy[0]) else energy[np.isfinite(energy)][0]
+    ax.plot(t, energy - e0, color="C3", lw=1.4, label=f"E(0) = {e0:.6g} J")
+    ax.set_ylabel("energy change\nE − E(0) (J)")
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4), useOffset=False)
+    _legend(ax)
+
+
+def _residual(ax, t, residual):
+    positive = residual > 0
+    ax.set_ylabel("constraint residual\nmax |Φ| (m)")
+    if not positive.any():
+        ax.plot(t, residual, color="C7", lw=1.4)
+        ax.text(0.5, 0.5, "|Φ| = 0 at every output", transform=ax.transAxes,
+                ha="center", va="center", fontsize=9)
+        return
+    ax.semilogy(t, np.where(positive, residual, np.nan), color="C7", lw=1.2)
+
+
+# --- animation -----------------------------------------------------------
+
+
+def _hull(points):
+    """Convex hull of 2-D points, counter-clockwise (Andrew's monotone chain)."""
+    pts = sorted({(round(p[0], 12), round(p[1], 12)) for p in points})
+    if len(pts) <= 2:
+        return np.array(pts)
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower, upper = [], []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def _shape(outline):
+    """(local points to draw, closed?) for a body's outline: nothing (a dot at
+    the centre of mass), a segment from the centre to the one point, a
+    segment, or the convex polygon around three or more points."""
+    if all(np.hypot(*p) <= 1e-12 for p in outline):  # only the centre: no extent
+        return np.zeros((0, 2)), False
+    if len(outline) == 1:
+        return np.array([np.zeros(2), outline[0]]), False
+    if len(outline) == 2:
+        return np.array(outline), False
+    hull = _hull(outline)
+    if len(hull) >= 3:
+        area = 0.5 * abs(np.sum(hull[:, 0] * np.roll(hull[:, 1], -1)
+                                - np.roll(hull[:, 0], -1) * hull[:, 1]))
+        span = np.ptp(hull, axis=0).max()
+        if area > 1e-6 * span**2:
+            return hull, True
+    # collinear: the segment between the two points furthest apart
+    pts = np.array(outline)
+    d = np.linalg.norm(pts[:, None, :] - pts[None, :, :], axis=2)
+    a, b = np.unravel_index(np.argmax(d), d.shape)
+    return pts[[a, b]], False
+
+
+def _zigzag(p, q, width, coils=6):
+    """Points of a spring drawn from p to q."""
+    d = q - p
+    length = np.hypot(*d)
+    if length < 1e-12:
+        return np.array([p, q])
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    s = np.concatenate(([0.0, 0.15], 0.15 + 0.7 * (np.arange(2 * coils) + 0.5) / (2 * coils),
+                        [0.85, 1.0]))
+    offset = np.zeros_like(s)
+    offset[2:-2] = width * np.where(np.arange(2 * coils) % 2, -1.0, 1.0)
+    return p + np.outer(s * length, u) + np.outer(offset, n)
+
+
+def _frame_indices(k, max_frames):
+    """At most max_frames indices spread evenly over 0..k-1, both ends included."""
+    n = max(1, min(int(max_frames), k))
+    if n == 1:
+        return np.array([0])
+    return np.unique(np.round(np.linspace(0, k - 1, n)).astype(int))
+
+
+def _time_format(times):
+    dt = np.diff(times)
+    dt = dt[dt > 0]
+    digits = 2 if not len(dt) else int(np.clip(math.ceil(-math.log10(dt.min())) + 1, 2, 9))
+    return f"t = {{:.{digits}f}} s"
+
+
+def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480), dpi=100):
+    """Write a GIF of the mechanism moving.
+
+    Each body is drawn through the points where its joints and forces attach
+    (``model.outline(body)``): a line for two points, a shaded convex polygon
+    for three or more, a line from the centre of mass to a single point, a
+    disc for none (a square block if it slides in a translational joint); a
+    dot marks each centre of mass, white circles the revolute
+    joints, triangles the joints to the ground, zig-zags the spring-dampers,
+    dashed lines the slide axes fixed to the ground.
+    ``trace``: a list of (body, local point) pairs (or one pair) whose paths
+    are drawn as they are travelled (faint ahead); a traced point also joins
+    its body's shape (so a pendulum's free tip is drawn). The axes are fixed
+    to cover the whole motion, with equal scales, in m.
+
+    Frames are the output times of the result, evenly subsampled to at most
+    ``max_frames``; they play at ``fps`` frames per second. ``size`` is the
+    picture in pixels. Returns the path written.
+    """
+    _matplotlib()
+    try:
+        from matplotlib.animation import PillowWriter
+        from matplotlib.patches import Polygon
+    except ImportError as e:
+        raise ImportError(_HINT) from e
+    if fps <= 0 or max_frames < 1:
+        raise ValueError(f"animate: fps and max_frames must be positive, got {fps}, {max_frames}")
+    t = np.asarray(result.t)
+    if len(t) == 0:
+        raise ValueError("animate: the result has no outputs")
+    scene = _Scene(result)
+    frames = _frame_indices(len(t), max_frames)
+    if trace is not None and len(trace) == 2 and isinstance(_name(trace[0]), str) \
+            and np.ndim(trace[1]) == 1:
+        trace = [trace]  # one (body, point) pair
+    trace = [(_name(b), np.asarray(p, dtype=float).reshape(2)) for b, p in (trace or [])]
+
+    # global paths of everything drawn, over all outputs (for the limits);
+    # traced points belong to their bodies' shapes too (a pendulum's free tip)
+    outlines = {b: list(scene.outlines[b]) for b in scene.bodies}
+    for b, p in trace:
+        if b in outlines and all(np.hypot(*(p - u)) > 1e-12 for u in outlines[b]):
+            outlines[b].append(p)
+    shapes = {b: _shape(outlines[b]) for b in scene.bodies}
+    body_paths = {b: [scene.path(b, p) for p in shapes[b][0]] for b in scene.bodies}
+    centres = {b: result.body(b).position for b in scene.bodies}
+    traces = [scene.path(b, p) for b, p in trace]
+    pins, supports, guides, links, sliders = [], [], [], [], set()
+    for kind, kw in scene.elements:
+        if kind == "add_translational":
+            sliders.add(_name(kw.get("body_j")))
+        att = scene.attachments(kind, kw)
+        if kind == "add_revolute" and att:
+            moving = [(b, p) for b, p in att if b != "ground"]
+            fixed = [p for b, p in att if b == "ground"]
+            if moving:
+                pins.append(scene.path(*moving[-1]))
+            if fixed:
+                supports.append(fixed[0])
+        elif kind in ("add_translational", "add_pin_in_slot") and kw.get("axis") is not None:
+            if _name(kw.get("body_i")) == "ground" and kw.get("at") is not None:
+                guides.append((np.asarray(kw["at"], float), np.asarray(kw["axis"], float)))
+            moving = [(b, p) for b, p in att if b != "ground"]
+            if moving and kind == "add_pin_in_slot":
+                pins.append(scene.path(*moving[-1]))
+        elif kind in ("add_spring_damper", "add_distance") and len(att) == 2:
+            links.append((kind, scene.path(*att[0]), scene.path(*att[1])))
+    clouds = [c for paths in body_paths.values() for c in paths] + list(centres.values()) \
+        + traces + pins + [p[None, :] for p in supports] \
+        + [q for _, p, q in links] + [p for _, p, q in links]
+    pts = np.concatenate([np.asarray(c).reshape(-1, 2) for c in clouds]) if clouds \
+        else np.zeros((1, 2))
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    lo, hi = (pts.min(axis=0), pts.max(axis=0)) if len(pts) else (np.zeros(2), np.zeros(2))
+    span = max(float(np.max(hi - lo)), 1e-3)
+    mark = 0.035 * span  # size of supports, springs
+    lo, hi = lo - 0.08 * span - mark, hi + 0.08 * span
+    lo[1] -= mark  # room for the triangles under the supports
+    # widen the shorter side so that 1 m is as long across as up
+    rect = (0.13, 0.11, 0.83, 0.79)
+    box = np.array([rect[2] * size[0], rect[3] * size[1]])
+    scale = max((hi - lo) / box)
+    centre = 0.5 * (lo + hi)
+    lo, hi = centre - 0.5 * scale * box, centre + 0.5 * scale * box
+
+    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    ax = fig.add_axes(rect)
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.grid(alpha=0.25)
+    ax.set_title(f"lagmb: {scene.summary()}", fontsize=10)
+
+    # fixed things: slide guides, supports
+    for at, axis in guides:
+        u = axis / max(np.hypot(*axis), 1e-300)
+        ax.plot(*np.array([at - 4 * span * u, at + 4 * span * u]).T, color="0.5", lw=1,
+                ls=(0, (6, 3)), zorder=1)
+    for p in supports:
+        tri = np.array([p, p + (-0.6 * mark, -mark), p + (0.6 * mark, -mark)])
+        ax.add_patch(Polygon(tri, closed=True, facecolor="0.75", edgecolor="0.2", lw=1,
+                             zorder=2))
+        ax.plot([p[0] - mark, p[0] + mark], [p[1] - mark] * 2, color="0.2", lw=1.5, zorder=2)
+
+    # moving things, updated per frame
+    trace_full, trace_done = [], []
+    for n, ((b, _), path_) in enumerate(zip(trace, traces)):
+        c = _colour(scene.bodies.index(b)) if b in scene.bodies else "k"
+        trace_full.append(ax.plot(*path_.T, color=c, lw=1, alpha=0.2, zorder=1)[0])
+        trace_done.append(ax.plot([], [], color=c, lw=1.3, zorder=1)[0])
+    link_art = [ax.plot([], [], color="0.35", lw=1.0 if kind == "add_spring_damper" else 1.8,
+                        zorder=2)[0] for kind, _, _ in links]
+    body_art = []
+    for i, b in enumerate(scene.bodies):
+        local, closed = shapes[b]
+        c = _colour(i)
+        if closed:
+            art = Polygon(np.zeros((len(local), 2)), closed=True, facecolor=c, alpha=0.35,
+                          edgecolor=c, lw=2.5, zorder=3)
+            ax.add_patch(art)
+        elif len(local):
+            art = ax.plot([], [], color=c, lw=4, solid_capstyle="round", zorder=3)[0]
+        else:  # no extent: a block (on a slide) or a disc at the centre of mass
+            marker = "s" if b in sliders else "o"
+            art = ax.plot([], [], marker, color=c, ms=11, mec="0.2", zorder=3)[0]
+        body_art.append(art)
+    centre_art = ax.plot([], [], "o", ms=3.5, color="0.1", zorder=5)[0]
+    pin_art = ax.plot([], [], "o", ms=5.5, mfc="white", mec="0.15", mew=1.2, zorder=4)[0]
+    stamp = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
+                    family="monospace", zorder=6,
+                    bbox={"facecolor": "white", "edgecolor": "0.8", "alpha": 0.85})
+    stamp_format = _time_format(t[frames])
+
+    def draw(k):
+        for b, art in zip(scene.bodies, body_art):
+            if body_paths[b]:
+                xy = np.array([p[k] for p in body_paths[b]])
+            else:
+                xy = centres[b][k][None, :]
+            if hasattr(art, "set_xy"):
+                art.set_xy(xy)
+            else:
+                art.set_data(xy[:, 0], xy[:, 1])
+        if scene.bodies:
+            c = np.array([centres[b][k] for b in scene.bodies if body_paths[b]]).reshape(-1, 2)
+            centre_art.set_data(c[:, 0], c[:, 1])
+        if pins:
+            p = np.array([pin[k] for pin in pins])
+            pin_art.set_data(p[:, 0], p[:, 1])
+        for art, (kind, p, q) in zip(link_art, links):
+            xy = _zigzag(p[k], q[k], 0.4 * mark) if kind == "add_spring_damper" \
+                else np.array([p[k], q[k]])
+            art.set_data(xy[:, 0], xy[:, 1])
+        for art, path_ in zip(trace_done, traces):
+            art.set_data(path_[:k + 1, 0], path_[:k + 1, 1])
+        stamp.set_text(stamp_format.format(t[k]))
+
+    path = os.fspath(path)
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    writer = PillowWriter(fps=fps)
+    with writer.saving(fig, path, dpi):
+        for k in frames:
+            draw(k)
+            writer.grab_frame()
+    return path

@@ -1,0 +1,330 @@
+"""Pictures of a run: lagmb.plotting.plot_result and animate.
+
+The pictures are checked by what can be counted: file type (magic bytes),
+pixel size, number of subplots and GIF frames, axis labels with units,
+legends that stay short. The points a body is drawn through are checked
+against the joint positions of the four-bar (to 1e-12 m). Whether the
+pictures look right was judged by eye while writing them.
+
+The two models: a double pendulum (two uniform rods, L = 1 m, m = 1 kg,
+the upper one horizontal, the lower one hanging from its tip) and the
+four-bar of test_fourbar.py (crank 1 m, coupler 3.5 m, rocker 3 m, ground
+4 m, crank at 60 degrees).
+"""
+
+import math
+import os
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+from lagmb import plotting
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture
+def mpl():
+    """Skip where the plot extra is not installed."""
+    pytest.importorskip("PIL")
+    return pytest.importorskip("matplotlib")
+
+
+def double_pendulum():
+    """Rod "upper" from the origin to (1, 0), rod "lower" hanging from (1, 0)
+    to (1, -1); revolutes "shoulder" (ground-upper at the origin) and "elbow"
+    (upper-lower at (1, 0))."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    upper = m.add_body("upper", mass=1.0, inertia=1 / 12, position=(0.5, 0.0))
+    lower = m.add_body("lower", mass=1.0, inertia=1 / 12, position=(1.0, -0.5),
+                       angle=-math.pi / 2)
+    m.add_revolute("shoulder", m.ground, upper, at=(0.0, 0.0))
+    m.add_revolute("elbow", upper, lower, at=(1.0, 0.0))
+    return m
+
+
+FOURBAR_A, FOURBAR_D = np.array([0.0, 0.0]), np.array([4.0, 0.0])
+
+
+def fourbar(omega=5.0):
+    """The crank-rocker of test_fourbar.py; returns (model, joint points A, B, C, D)."""
+    A, D = FOURBAR_A, FOURBAR_D
+    B = A + np.array([math.cos(math.pi / 3), math.sin(math.pi / 3)])
+    b, c = 3.5, 3.0  # coupler and rocker: C is the upper intersection of two circles
+    d = float(np.hypot(*(D - B)))
+    along = (b * b - c * c + d * d) / (2 * d)
+    u = (D - B) / d
+    C = B + along * u + math.sqrt(b * b - along * along) * np.array([-u[1], u[0]])
+    m = mb.Model(gravity=(0.0, -9.81))
+    bars = []
+    for name, (p, q) in zip(("crank", "coupler", "rocker"), ((A, B), (B, C), (D, C))):
+        length = float(np.hypot(*(q - p)))
+        bars.append(m.add_body(name, mass=length, inertia=length**3 / 12, position=0.5 * (p + q),
+                               angle=math.atan2(q[1] - p[1], q[0] - p[0]),
+                               angular_velocity=omega if name == "crank" else 0.0))
+    m.add_revolute("A", m.ground, bars[0], at=A)
+    m.add_revolute("B", bars[0], bars[1], at=B)
+    m.add_revolute("C", bars[1], bars[2], at=C)
+    m.add_revolute("D", m.ground, bars[2], at=D)
+    return m, (A, B, C, D)
+
+
+@pytest.fixture(scope="module")
+def pendulum_run():
+    return mb.simulate(double_pendulum(), t_end=2.0, n_out=201)
+
+
+# --- plot_result ---------------------------------------------------------
+
+
+def test_plot_result_writes_a_png_with_one_labelled_subplot_per_quantity(mpl, pendulum_run,
+                                                                         tmp_path):
+    path = tmp_path / "sub" / "run.png"
+    fig = plotting.plot_result(pendulum_run, path)
+    # a real PNG of the figure's size (8.5 in wide at 120 dpi), a tall column
+    data = path.read_bytes()
+    assert data[:8] == PNG_MAGIC
+    assert 20_000 < len(data) < 2_000_000
+    from PIL import Image
+
+    with Image.open(path) as im:
+        width, height = im.size
+    assert width == 1020
+    assert height > width
+    # positions, angles, reactions, energy, residual (no drivers: no efforts)
+    axes = fig.axes
+    units = ["(m)", "(rad)", "(N)", "(J)", "(m)"]
+    assert len(axes) == len(units)
+    for ax, unit in zip(axes, units):
+        assert ax.get_ylabel().strip()
+        assert unit in ax.get_ylabel()
+    # one time axis, labelled under the bottom subplot
+    assert "time" in axes[-1].get_xlabel() and "(s)" in axes[-1].get_xlabel()
+    for ax in axes[:-1]:
+        assert ax.get_shared_x_axes().joined(ax, axes[-1])
+    assert axes[-1].get_xlim() == pytest.approx((0.0, 2.0))
+    assert axes[-1].get_yscale() == "log"
+    # title: model and solver
+    title = fig._suptitle.get_text()
+    assert "2 bodies" in title and "2 joints" in title
+    assert f"{pendulum_run.stats['steps']} steps" in title
+    # legends name the bodies and joints
+    legends = [[t.get_text() for t in ax.get_legend().get_texts()] for ax in axes[:3]]
+    assert legends[0] == ["upper", "lower", "x", "y"]
+    assert legends[1] == ["upper", "lower"]
+    assert legends[2] == ["shoulder", "elbow"]
+
+
+def test_plot_result_curves_are_the_result(mpl, pendulum_run):
+    """The lines drawn are the result's numbers: x of "upper", |F| of "elbow",
+    E - E(0) and max |Phi|."""
+    r = pendulum_run
+    fig = plotting.plot_result(r)
+    pos, _, reac, energy, residual = fig.axes
+    np.testing.assert_array_equal(pos.lines[0].get_ydata(), r.body("upper").position[:, 0])
+    elbow = np.hypot(*r.reaction("elbow")[:, :2].T)
+    np.testing.assert_array_equal(reac.lines[1].get_ydata(), elbow)
+    np.testing.assert_allclose(energy.lines[0].get_ydata(), r.energy - r.energy[0], atol=1e-15)
+    drawn = residual.lines[0].get_ydata()
+    positive = r.residual > 0
+    np.testing.assert_array_equal(drawn[positive], r.residual[positive])
+
+
+@pytest.mark.parametrize("ext, magic", [("pdf", b"%PDF"), ("svg", b"<?xml")])
+def test_plot_result_format_follows_the_extension(mpl, pendulum_run, tmp_path, ext, magic):
+    path = tmp_path / f"run.{ext}"
+    plotting.plot_result(pendulum_run, path, what=("energy",))
+    assert path.read_bytes()[:len(magic)] == magic
+
+
+def test_plot_result_limits_the_lines_and_says_so(mpl, rod_chain):
+    """A 10-rod chain: 6 bodies and 8 joints are drawn, and the legend titles
+    say how many there are."""
+    r = mb.simulate(rod_chain(10), t_end=0.2, n_out=21)
+    fig = plotting.plot_result(r, what=("coordinates", "reactions"))
+    pos, ang, reac = fig.axes
+    assert len(pos.lines) == 2 * 6 and len(ang.lines) == 6 and len(reac.lines) == 8
+    assert pos.get_legend().get_title().get_text() == "first 6 of 10 bodies"
+    assert ang.get_legend().get_title().get_text() == "first 6 of 10 bodies"
+    assert reac.get_legend().get_title().get_text() == "first 8 of 10 joints"
+    assert len(reac.get_legend().get_texts()) == 8
+    assert "10 bodies, 10 joints" in fig._suptitle.get_text()
+
+
+def test_plot_result_rejects_unknown_or_empty_selections(mpl, pendulum_run):
+    with pytest.raises(ValueError, match="unknown panel"):
+        plotting.plot_result(pendulum_run, what=("coordinates", "forces"))
+    with pytest.raises(ValueError, match="nothing to plot"):
+        plotting.plot_result(pendulum_run, what=("efforts",))  # no drivers in the model
+
+
+@pytest.mark.skipif(not (hasattr(mb.Model, "drive_joint") and hasattr(mb, "Linear")),
+                    reason="drivers are not in this build yet")
+def test_plot_result_shows_driver_efforts(mpl, tmp_path):
+    """The four-bar with its crank turned at 2 rad/s: an efforts subplot in N m."""
+    m, _ = fourbar(omega=2.0)
+    m.drive_joint("motor", "A", mb.Linear(2.0, start=math.pi / 3))
+    r = mb.simulate(m, t_end=0.5, n_out=51)
+    fig = plotting.plot_result(r, tmp_path / "driven.png")
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert len(fig.axes) == 6
+    effort = next(ax for ax in fig.axes if "effort" in ax.get_ylabel())
+    assert "(N m)" in effort.get_ylabel()
+    np.testing.assert_allclose(effort.lines[0].get_ydata(), r.effort("motor"))
+    assert labels.index(effort.get_ylabel()) == 3  # after the reactions
+    assert "1 driver" in fig._suptitle.get_text()
+
+
+# --- what the pictures know of the model ----------------------------------
+
+
+def test_bodies_are_drawn_through_their_joints():
+    """Four-bar: each bar's outline is its two joint points in its own axes
+    (-l/2 and +l/2 on its x axis, to 1e-12 m), in the order the joints were
+    added (the rocker: C, then D); along the run the drawn ends of
+    neighbouring bars meet at the joints (to the constraint residual) and the
+    ground joints stay at A and D."""
+    m, (A, B, C, D) = fourbar()
+    r = mb.simulate(m, t_end=0.5, n_out=11)
+    scene = plotting._Scene(r)
+    assert scene.joints == ["A", "B", "C", "D"] and scene.drivers == []
+    ends = {}
+    for name, (p, q) in zip(("crank", "coupler", "rocker"), ((A, B), (B, C), (D, C))):
+        half = 0.5 * float(np.hypot(*(q - p)))
+        sign = -1.0 if name == "rocker" else 1.0
+        np.testing.assert_allclose(scene.outlines[name], [[-sign * half, 0.0], [sign * half, 0.0]],
+                                   atol=1e-12)
+        ends[name] = [r.point(name, s) for s in scene.outlines[name]]
+    tol = 10 * r.residual.max() + 1e-12
+    np.testing.assert_allclose(ends["crank"][0], np.broadcast_to(A, (11, 2)), atol=tol)
+    np.testing.assert_allclose(ends["crank"][1], ends["coupler"][0], atol=tol)
+    np.testing.assert_allclose(ends["coupler"][1], ends["rocker"][0], atol=tol)
+    np.testing.assert_allclose(ends["rocker"][1], np.broadcast_to(D, (11, 2)), atol=tol)
+
+
+def test_drawing_uses_model_outline_and_elements_when_the_model_has_them():
+    """A model giving elements() and outline() is drawn from those: a coupler
+    outlined by three points becomes a triangle (closed polygon)."""
+    m, _ = fourbar()
+    r = mb.simulate(m, t_end=0.1, n_out=3)
+    triangle = [(-1.75, 0.0), (1.75, 0.0), (0.0, 0.8)]
+
+    class WithOutline:
+        bodies = m.bodies
+
+        def elements(self):
+            return [("add_revolute", {"name": "pin", "body_i": "ground", "body_j": "crank",
+                                      "at": (0.0, 0.0)}),
+                    ("drive_joint", {"name": "motor", "joint": "pin", "f": 1.0})]
+
+        def outline(self, body):
+            return triangle if body == "coupler" else []
+
+    r.model = WithOutline()
+    scene = plotting._Scene(r)
+    assert scene.joints == ["pin"] and scene.drivers == ["motor"]
+    assert scene.effort_unit("motor") == "N m"
+    np.testing.assert_array_equal(scene.outlines["coupler"], triangle)
+    assert scene.outlines["crank"] == []
+    local, closed = plotting._shape(scene.outlines["coupler"])
+    assert closed and len(local) == 3
+
+
+@pytest.mark.parametrize("outline, n, closed", [
+    ([], 0, False),                                        # a dot at the centre
+    ([(0.0, 0.0)], 0, False),                              # only the centre: a dot
+    ([(0.5, 0.0)], 2, False),                              # centre to the point
+    ([(-0.5, 0.0), (0.5, 0.0)], 2, False),                 # a bar
+    ([(-1.0, 0.0), (1.0, 0.0), (0.2, 0.0)], 2, False),     # collinear: the long segment
+    ([(0, 0), (1, 0), (1, 1), (0, 1), (0.5, 0.5)], 4, True),  # inner point left out
+])
+def test_body_shapes(outline, n, closed):
+    local, is_closed = plotting._shape([np.array(p, float) for p in outline])
+    assert len(local) == n and is_closed == closed
+    if outline and not closed and len(outline) == 3:
+        np.testing.assert_allclose(sorted(local[:, 0]), [-1.0, 1.0])
+
+
+def test_frames_are_spread_over_the_whole_run():
+    idx = plotting._frame_indices(1001, 300)
+    assert len(idx) == 300 and idx[0] == 0 and idx[-1] == 1000
+    assert np.all(np.diff(idx) >= 3)
+    np.testing.assert_array_equal(plotting._frame_indices(11, 300), np.arange(11))
+
+
+# --- animate -------------------------------------------------------------
+
+
+@pytest.mark.parametrize("n_out, max_frames", [(51, 20), (11, 300)])
+def test_animate_writes_a_gif_with_one_frame_per_sampled_output(mpl, tmp_path, n_out,
+                                                                 max_frames):
+    from PIL import Image, ImageChops
+
+    r = mb.simulate(double_pendulum(), t_end=1.0, n_out=n_out)
+    path = tmp_path / "pendulum.gif"
+    out = plotting.animate(r, path, fps=20, max_frames=max_frames, size=(320, 240),
+                           trace=[("lower", (0.5, 0.0))])
+    assert out == str(path)
+    with Image.open(path) as im:
+        assert im.format == "GIF"
+        assert im.size == (320, 240)
+        assert im.n_frames == min(max_frames, n_out)
+        assert im.info["duration"] == 50  # ms per frame at 20 fps
+        first = im.convert("RGB")
+        im.seek(im.n_frames - 1)
+        last = im.convert("RGB")
+    assert ImageChops.difference(first, last).getbbox() is not None  # it moves
+
+
+def test_animate_default_size_and_single_trace_pair(mpl, tmp_path):
+    from PIL import Image
+
+    m, (A, B, C, D) = fourbar()
+    r = mb.simulate(m, t_end=0.5, n_out=26)
+    path = tmp_path / "fourbar.gif"
+    plotting.animate(r, path, max_frames=5, trace=("coupler", (0.0, 0.5)))
+    with Image.open(path) as im:
+        assert im.size == (640, 480) and im.n_frames == 5
+
+
+def test_animate_rejects_bad_settings(mpl, pendulum_run, tmp_path):
+    with pytest.raises(ValueError, match="positive"):
+        plotting.animate(pendulum_run, tmp_path / "x.gif", fps=0)
+    with pytest.raises(ValueError, match="positive"):
+        plotting.animate(pendulum_run, tmp_path / "x.gif", max_frames=0)
+
+
+# --- matplotlib is optional ------------------------------------------------
+
+
+def test_lagmb_imports_without_matplotlib_and_plotting_says_what_to_install():
+    """In a fresh interpreter where matplotlib cannot be imported, lagmb and
+    lagmb.plotting import and run; plot_result and animate raise ImportError
+    with the pip command."""
+    script = textwrap.dedent("""
+        import sys
+        sys.modules["matplotlib"] = None   # import matplotlib now raises ImportError
+        import lagmb as mb
+        import lagmb.plotting as plotting
+        m = mb.Model(gravity=(0.0, -9.81))
+        rod = m.add_body("rod", mass=1.0, inertia=1 / 12, position=(0.5, 0.0))
+        m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+        r = mb.simulate(m, t_end=0.1, n_out=3)
+        for call in (lambda: plotting.plot_result(r), lambda: plotting.animate(r, "x.gif")):
+            try:
+                call()
+            except ImportError as e:
+                assert "pip install 'lagmb[plot]'" in str(e), str(e)
+            else:
+                raise SystemExit("no ImportError")
+        print("ok")
+    """)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "ok"
