@@ -277,6 +277,22 @@ void Model::require_rigid(int body, const std::string& element, const char* why)
     throw ModelError("'" + element + "': particle '" + bodies_[body].name + "' " + why);
 }
 
+ProjectedOffset Model::across_line(int body_i, int body_j, Vec2 at, Vec2 axis,
+                                   const std::string& element) const {
+  const Vec2 u = direction_to_local(body_i, axis, element);
+  ProjectedOffset f;
+  f.w = Vec2(-u.y(), u.x());
+  f.s_i = to_local(body_i, at);
+  f.s_j = to_local(body_j, at);
+  return f;
+}
+
+void Model::require_on_particle(int body, Vec2 point, const std::string& element) const {
+  if (body != kGround && bodies_[body].particle && (point - bodies_[body].position).norm() > 0)
+    throw ModelError("'" + element + "': the point on particle '" + bodies_[body].name +
+                     "' must be the particle itself");
+}
+
 std::array<int, 6> Model::local_coordinates(int body_i, int body_j) const {
   std::array<int, 6> c{-1, -1, -1, -1, -1, -1};
   for (int side = 0; side < 2; ++side) {
@@ -300,10 +316,7 @@ void Model::add_translational(const std::string& name, int body_i, int body_j, V
   j.name = name;
   j.body_i = body_i;
   j.body_j = body_j;
-  j.axis = direction_to_local(body_i, axis, name);
-  j.across.w = Vec2(-j.axis.y(), j.axis.x());
-  j.across.s_i = to_local(body_i, at);
-  j.across.s_j = to_local(body_j, at);
+  j.across = across_line(body_i, body_j, at, axis, name);
   j.phi0 = initial_angle(body_j) - initial_angle(body_i);
   add_constraint(std::move(j));
 }
@@ -338,9 +351,8 @@ void Model::add_distance(const std::string& name, int body_i, Vec2 point_i, int 
   j.body_j = body_j;
   j.s_i = to_local(body_i, point_i);
   j.s_j = to_local(body_j, point_j);
-  for (auto [b, p] : {std::pair{body_i, point_i}, std::pair{body_j, point_j}})
-    if (b != kGround && bodies_[b].particle && (p - bodies_[b].position).norm() > 0)
-      throw ModelError("'" + name + "': the point on particle '" + bodies_[b].name + "' must be the particle itself");
+  require_on_particle(body_i, point_i, name);
+  require_on_particle(body_j, point_j, name);
   j.length = L;
   add_constraint(std::move(j));
 }
@@ -351,16 +363,12 @@ void Model::add_pin_in_slot(const std::string& name, int body_i, int body_j, Vec
   check_pair(name, body_i, body_j);
   require_finite(at, name, "point 'at'");
   require_rigid(body_i, name, "cannot carry a slot (it has no angle)");
-  if (body_j != kGround && bodies_[body_j].particle && (at - bodies_[body_j].position).norm() > 0)
-    throw ModelError("'" + name + "': the pin on particle '" + bodies_[body_j].name + "' must be the particle itself");
+  require_on_particle(body_j, at, name);
   PinInSlotJoint j;
   j.name = name;
   j.body_i = body_i;
   j.body_j = body_j;
-  j.axis = direction_to_local(body_i, axis, name);
-  j.across.w = Vec2(-j.axis.y(), j.axis.x());
-  j.across.s_i = to_local(body_i, at);
-  j.across.s_j = to_local(body_j, at);
+  j.across = across_line(body_i, body_j, at, axis, name);
   add_constraint(std::move(j));
 }
 
@@ -435,7 +443,7 @@ void Model::drive_joint(const std::string& name, const std::string& joint, TimeF
     d.body_i = tr->body_i;
     d.body_j = tr->body_j;
     d.along = tr->across;
-    d.along.w = tr->axis;
+    d.along.w = tr->across.line_direction();
     d.f = std::move(f);
     add_constraint(std::move(d));
   } else {
@@ -480,9 +488,8 @@ void Model::add_spring_damper(const std::string& name, int body_i, Vec2 point_i,
   if (!(std::isfinite(l0) && l0 >= 0)) throw ModelError("'" + name + "': free_length must be finite and >= 0");
   if (!((point_j - point_i).norm() > 0))
     throw ModelError("'" + name + "': the two points coincide; the line of action is undefined");
-  for (auto [b, p] : {std::pair{body_i, point_i}, std::pair{body_j, point_j}})
-    if (b != kGround && bodies_[b].particle && (p - bodies_[b].position).norm() > 0)
-      throw ModelError("'" + name + "': the point on particle '" + bodies_[b].name + "' must be the particle itself");
+  require_on_particle(body_i, point_i, name);
+  require_on_particle(body_j, point_j, name);
   SpringDamper e;
   e.name = name;
   e.body_i = body_i;
@@ -526,8 +533,7 @@ void Model::add_force(const std::string& name, int body, TimeFunctionPtr fx, Tim
   require_function(fx, name, "fx");
   require_function(fy, name, "fy");
   if (point) require_finite(*point, name, "point");
-  if (body != kGround && bodies_[body].particle && point && (*point - bodies_[body].position).norm() > 0)
-    throw ModelError("'" + name + "': the point on particle '" + bodies_[body].name + "' must be the particle itself");
+  if (point) require_on_particle(body, *point, name);
   AppliedForce e;
   e.name = name;
   e.body_i = body;

@@ -185,15 +185,7 @@ class Model:
     def add_translational(self, name, body_i, body_j, at, axis):
         """body_j slides relative to body_i along the line through ``at`` with
         direction ``axis`` (global, initial configuration), without rotating."""
-        name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        at, axis = _vec2(at, f"translational '{name}': at"), _vec2(axis, f"translational '{name}': axis")
-        self._call("add_translational", name, self._body_index(bi, name), self._body_index(bj, name),
-                   at, axis)
-        self._record("add_translational", name=name, body_i=bi, body_j=bj, at=_tuple(at),
-                     axis=_tuple(axis))
-        self._attach(bi, self._local(bi, at))
-        self._attach(bj, self._local(bj, at))
+        self._line_joint("add_translational", "translational", name, body_i, body_j, at, axis)
 
     def add_weld(self, name, body_i, body_j):
         """Fix body_j to body_i in their initial relative pose."""
@@ -220,13 +212,14 @@ class Model:
     def add_pin_in_slot(self, name, body_i, body_j, at, axis):
         """The pin of body_j at ``at`` moves along the slot of body_i through
         ``at`` in direction ``axis``; rotation is free."""
+        self._line_joint("add_pin_in_slot", "pin_in_slot", name, body_i, body_j, at, axis)
+
+    def _line_joint(self, method, kind, name, body_i, body_j, at, axis):
         name = self._name(name)
         bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        at, axis = _vec2(at, f"pin_in_slot '{name}': at"), _vec2(axis, f"pin_in_slot '{name}': axis")
-        self._call("add_pin_in_slot", name, self._body_index(bi, name), self._body_index(bj, name),
-                   at, axis)
-        self._record("add_pin_in_slot", name=name, body_i=bi, body_j=bj, at=_tuple(at),
-                     axis=_tuple(axis))
+        at, axis = _vec2(at, f"{kind} '{name}': at"), _vec2(axis, f"{kind} '{name}': axis")
+        self._call(method, name, self._body_index(bi, name), self._body_index(bj, name), at, axis)
+        self._record(method, name=name, body_i=bi, body_j=bj, at=_tuple(at), axis=_tuple(axis))
         self._attach(bi, self._local(bi, at))
         self._attach(bj, self._local(bj, at))
 

@@ -187,6 +187,8 @@ class Model {
   double initial_angle(int body) const;
   Vec2 initial_position(int body) const;
   void require_rigid(int body, const std::string& element, const char* why) const;
+  void require_on_particle(int body, Vec2 point, const std::string& element) const;
+  ProjectedOffset across_line(int body_i, int body_j, Vec2 at, Vec2 axis, const std::string& element) const;
   template <class Kind>
   const Kind* find_constraint(const std::string& name) const;
 

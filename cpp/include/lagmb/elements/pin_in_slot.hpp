@@ -17,20 +17,14 @@ struct PinInSlotJoint {
 
   std::string name;
   int body_i = -1, body_j = -1;
-  ProjectedOffset across;  // w = n'
-  Vec2 axis = Vec2::UnitX();
+  ProjectedOffset across;  // w = n', the slot's normal in body i's axes
 
   Eigen::Matrix<double, 1, 1> phi(const Local6& c, double) const {
     return Eigen::Matrix<double, 1, 1>(across.value(c));
   }
   Eigen::Matrix<double, 1, 6> jacobian(const Local6& c, double) const { return across.gradient(c); }
   void hessians(const Local6& c, double, Mat6* H) const { H[0] = across.hessian(c); }
-  Mat2 axes(const Local6& c, double) const {
-    const Mat2 A = rotation(c[2]);
-    Mat2 E;
-    E << A * axis, A * across.w;
-    return E;
-  }
+  Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
 };
 
 }  // namespace lagmb

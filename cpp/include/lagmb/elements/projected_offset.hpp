@@ -39,6 +39,17 @@ struct ProjectedOffset {
     return H;
   }
 
+  /// For w the normal of a line (w = u' turned +90 deg): the line's axes
+  /// (u, n) = (A_i u', A_i w) as columns.
+  Mat2 line_axes(const Local6& c) const {
+    const Mat2 A = rotation(c[2]);
+    Mat2 E;
+    E << A * Vec2(w.y(), -w.x()), A * w;
+    return E;
+  }
+  /// The line's direction u' in body i's axes (w turned -90 deg).
+  Vec2 line_direction() const { return {w.y(), -w.x()}; }
+
   Vec2 offset(const Local6& c) const {
     return c.segment<2>(3) + rotation(c[5]) * s_j - c.segment<2>(0) - rotation(c[2]) * s_i;
   }

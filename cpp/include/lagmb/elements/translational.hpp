@@ -19,8 +19,7 @@ struct TranslationalJoint {
 
   std::string name;
   int body_i = -1, body_j = -1;
-  ProjectedOffset across;  // w = n'
-  Vec2 axis = Vec2::UnitX();  // u' in body i's axes
+  ProjectedOffset across;  // w = n', the normal of the axis in body i's axes
   double phi0 = 0.0;
 
   Eigen::Vector2d phi(const Local6& c, double) const {
@@ -36,12 +35,7 @@ struct TranslationalJoint {
     H[0] = across.hessian(c);
     H[1].setZero();
   }
-  Mat2 axes(const Local6& c, double) const {
-    const Mat2 A = rotation(c[2]);
-    Mat2 E;
-    E << A * axis, A * across.w;
-    return E;
-  }
+  Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
 };
 
 }  // namespace lagmb
