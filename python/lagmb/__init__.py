@@ -16,6 +16,7 @@ from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spli
                         time_function_from_dict)
 from .model import Body, Model
 from .result import BodyPath, Result
+from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import simulate, solve_accelerations
 
 __version__ = "0.1.0"
@@ -32,10 +33,14 @@ __all__ = [
     "ModelError",
     "Polynomial",
     "Result",
+    "Scene",
+    "SceneError",
     "SimulationError",
     "SmoothStep",
     "Spline",
     "TimeFunction",
+    "load_scene",
+    "save_scene",
     "simulate",
     "solve_accelerations",
     "time_function_from_dict",

@@ -1,29 +1,318 @@
-"""The lagmb command."""
+"""The lagmb command.
+
+    lagmb run SCENE [-o results.npz|results.csv] [--plot out.png] [--animate out.gif]
+                    [--t-end T] [--rtol R] [--n-out N] [--quiet]
+    lagmb info SCENE
+    lagmb demo [--plot out.png] [--quiet]
+
+Exit status: 0 done; 2 a usage or scene error (the message names the file,
+line, table and key); 1 the simulation failed (the results computed until
+then are still written to -o, if given).
+"""
 
 import argparse
+import csv
+import os
 import sys
 
 from . import __version__
+from .errors import ModelError, SimulationError
+
+OK, FAILED, USAGE = 0, 1, 2
 
 
-def main(argv=None):
+class _Exit(Exception):
+    def __init__(self, code, message):
+        super().__init__(message)
+        self.code = code
+
+
+def _parser():
     parser = argparse.ArgumentParser(prog="lagmb", description="Planar multibody dynamics")
     parser.add_argument("--version", action="version", version=f"lagmb {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
+
+    run = sub.add_parser("run", help="simulate a scene file and write its results",
+                         description="Simulate a scene file (TOML, see lagmb.scene) with its "
+                                     "[simulation] settings; write what -o and [output] ask for.")
+    run.add_argument("scene", help="the scene file (.toml)")
+    run.add_argument("-o", "--output", metavar="FILE",
+                     help="results file: .npz (all arrays) or .csv (t, coordinates, listed "
+                          "reactions); default: [output] file")
+    run.add_argument("--plot", metavar="PNG", help="plot the results (default: [output] plot)")
+    run.add_argument("--animate", metavar="GIF",
+                     help="animate the mechanism (default: [output] animate)")
+    run.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
+    run.add_argument("--rtol", type=float, metavar="R", help="relative tolerance, instead of the scene's")
+    run.add_argument("--n-out", type=int, metavar="N", help="number of output times, instead of the scene's")
+    run.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+
+    info = sub.add_parser("info", help="bodies, coordinates, constraints and degrees of freedom",
+                          description="Load a scene and report its size, the rank of its "
+                                      "constraint Jacobian at the assembled initial position, "
+                                      "its degrees of freedom and any redundant equations.")
+    info.add_argument("scene", help="the scene file (.toml)")
+
     demo = sub.add_parser("demo", help="simulate the seed pendulum and check it against closed forms")
     demo.add_argument("--plot", metavar="PNG", help="write a plot of angle and pin force")
-    args = parser.parse_args(argv)
+    demo.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    return parser
 
-    if args.command == "demo":
-        from . import demo as d
 
-        if args.plot:
-            try:
-                import matplotlib  # noqa: F401
-            except ImportError:
-                parser.error("--plot needs matplotlib: pip install 'lagmb[plot]'")
-        d.run(plot=args.plot)
-    return 0
+def main(argv=None):
+    parser = _parser()
+    args = parser.parse_args(argv)  # usage errors exit 2 here
+    try:
+        if args.command == "demo":
+            return _demo(args)
+        if args.command == "info":
+            return _info(args)
+        return _run(args)
+    except _Exit as e:
+        print(f"lagmb {args.command}: {e}", file=sys.stderr)
+        return e.code
+    except KeyboardInterrupt:
+        print(f"lagmb {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+def _need_matplotlib(what):
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise _Exit(USAGE, f"{what} needs matplotlib: pip install 'lagmb[plot]'") from None
+
+
+def _demo(args):
+    from . import demo as d
+
+    if args.plot:
+        _need_matplotlib("--plot")
+    d.run(plot=args.plot, out=(lambda *a, **k: None) if args.quiet else print)
+    return OK
+
+
+def _load(path):
+    from .scene import load_scene
+
+    try:
+        return load_scene(path)
+    except ModelError as e:
+        raise _Exit(USAGE, str(e)) from None
+    except OSError as e:
+        raise _Exit(USAGE, f"cannot read {path}: {e.strerror or e}") from None
+
+
+# --- run ------------------------------------------------------------------------
+
+def _run(args):
+    from .progress import Progress
+
+    scene = _load(args.scene)
+    output = scene.output
+    out = args.output or output.get("file")
+    plot = args.plot or output.get("plot")
+    animate = args.animate or output.get("animate")
+    if out and os.path.splitext(out)[1].lower() not in (".npz", ".csv"):
+        raise _Exit(USAGE, f"-o {out}: the results file must end in .npz or .csv")
+    if plot:
+        _need_matplotlib("plotting")
+    if animate:
+        _need_matplotlib("animating")
+
+    overrides = {}
+    if args.t_end is not None:
+        overrides["t_end"] = args.t_end
+    if args.rtol is not None:
+        overrides["rtol"] = args.rtol
+    if args.n_out is not None:
+        overrides["n_out"] = args.n_out
+    settings = {**scene.settings, **overrides}
+    if "t_end" not in settings and "t_out" not in settings:
+        raise _Exit(USAGE, f"{args.scene}: no end time: give t_end in [simulation] or --t-end")
+    t_end = settings.get("t_end")
+    if t_end is None:
+        t_end = settings["t_out"][-1]
+
+    progress = Progress(settings.get("t0", 0.0), t_end, enabled=not args.quiet)
+    try:
+        result = scene.run(progress=progress, **overrides)
+    except ModelError as e:
+        raise _Exit(USAGE, str(e)) from None
+    except SimulationError as e:
+        progress.close()
+        message = f"{args.scene}: simulation failed at t = {e.t:.6g} s: {e}"
+        partial = e.result
+        if out:
+            if partial is not None and len(partial.t):
+                try:
+                    _write(out, partial, scene)
+                    message += (f"\npartial results ({len(partial.t)} outputs, t = "
+                                f"{partial.t[0]:.6g} .. {partial.t[-1]:.6g} s) written to {out}")
+                except Exception as w:  # noqa: BLE001 - report, keep the exit status
+                    message += f"\nthe partial results could not be written to {out}: {w}"
+            else:
+                message += f"\nno outputs were computed; {out} not written"
+        raise _Exit(FAILED, message) from None
+    finally:
+        progress.close()
+
+    say = (lambda *a: None) if args.quiet else print
+    _summary(scene, result, say)
+    try:
+        if out:
+            _write(out, result, scene)
+            say(f"  results written to {out}")
+        if plot:
+            _plotting().plot_result(result, plot)
+            say(f"  plot written to {plot}")
+        if animate:
+            _plotting().animate(result, animate)
+            say(f"  animation written to {animate}")
+    except OSError as e:
+        raise _Exit(USAGE, f"cannot write {e.filename or ''}: {e.strerror or e}") from None
+    return OK
+
+
+def _plotting():
+    from . import plotting
+
+    return plotting
+
+
+def _summary(scene, r, say):
+    s = r.stats
+    say(f"{scene.path}: {len(r.t)} outputs, t = {r.t[0]:.6g} .. {r.t[-1]:.6g} s")
+    parts = [f"{s[k]} {label}" for k, label in (
+        ("steps", "steps"), ("residual_evals", "residual evaluations"),
+        ("jacobian_evals", "Jacobians"), ("lu_factorizations", "LU factorizations")) if k in s]
+    if "wall_time" in s:
+        parts.append(f"{1e3 * s['wall_time']:.1f} ms")
+    say(f"  solver ({s.get('formulation', '?')}, {s.get('integrator', '?')}): " + ", ".join(parts))
+    say(f"  max |Phi| {r.residual.max():.2e}")
+
+
+def coordinate_names(model):
+    """Names of the coordinates in order: body.x, body.y, body.angle (a
+    particle has .x, .y)."""
+    core = model.compiled()
+    names = [f"q{i}" for i in range(core.n_coordinates)]
+    for body in model.bodies:
+        first, count = core.body_coordinates(body.name)
+        for k, suffix in enumerate(("x", "y", "angle")[:count]):
+            names[first + k] = f"{body.name}.{suffix}"
+    return names
+
+
+def _selection(scene):
+    """(reactions, efforts) for npz and csv files, from [output]."""
+    output = scene.output
+    joints = scene.names("joints")
+    drivers = scene.names("drivers")
+    npz = (output.get("reactions", joints), output.get("efforts", drivers))
+    csv_ = (output.get("reactions", []), output.get("efforts", []))
+    return npz, csv_
+
+
+def _reaction(r, name, frame):
+    return r.reaction(name, frame="joint") if frame == "joint" else r.reaction(name)
+
+
+def _write(path, r, scene):
+    import numpy as np
+
+    frame = scene.output.get("reaction_frame", "global")
+    (npz_reactions, npz_efforts), (csv_reactions, csv_efforts) = _selection(scene)
+    parent = os.path.dirname(os.path.abspath(path))
+    os.makedirs(parent, exist_ok=True)
+    if path.lower().endswith(".npz"):
+        arrays = dict(t=r.t, q=r.q, v=r.v, a=r.a, lam=r.lam, energy=r.energy,
+                      residual=r.residual, coordinates=np.array(coordinate_names(r.model)))
+        for name in npz_reactions:
+            arrays[f"reaction_{name}"] = _reaction(r, name, frame)
+        for name in npz_efforts:
+            arrays[f"effort_{name}"] = r.effort(name)
+        with open(path, "wb") as fh:
+            np.savez(fh, **arrays)
+        return
+    columns = ["t"] + coordinate_names(r.model)
+    blocks = [r.t[:, None], r.q]
+    force = ("f1", "f2") if frame == "joint" else ("fx", "fy")
+    for name in csv_reactions:
+        columns += [f"{name}.{force[0]}", f"{name}.{force[1]}", f"{name}.torque"]
+        blocks.append(_reaction(r, name, frame))
+    for name in csv_efforts:
+        columns.append(f"{name}.effort")
+        blocks.append(np.asarray(r.effort(name))[:, None])
+    if scene.output.get("energy", False):
+        columns.append("energy")
+        blocks.append(r.energy[:, None])
+    data = np.hstack([np.asarray(b, dtype=float).reshape(len(r.t), -1) for b in blocks])
+    with open(path, "w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(columns)
+        w.writerows(data.tolist())  # floats as repr: they read back exactly
+
+
+# --- info -----------------------------------------------------------------------
+
+def _info(args):
+    scene = _load(args.scene)
+    model = scene.model
+    say = print
+
+    def listing(table):
+        names = scene.names(table)
+        return f"{len(names)}" + (f" ({', '.join(names)})" if names else "")
+
+    def kinds(table):
+        els = [e for e in scene.elements if e.table == table]
+        counts = {}
+        for e in els:
+            counts[e.type] = counts.get(e.type, 0) + 1
+        return f"{len(els)}" + (" (" + ", ".join(f"{k} {n}" for k, n in counts.items()) + ")"
+                                if els else "")
+
+    gravity = getattr(model, "gravity", None)
+    say(f"scene: {scene.path}")
+    say(f"gravity: {'none' if gravity is None else tuple(float(g) for g in gravity)}")
+    say(f"bodies: {listing('bodies')}")
+    say(f"particles: {listing('particles')}")
+    say(f"joints: {kinds('joints')}")
+    say(f"drivers: {kinds('drivers')}")
+    say(f"forces: {kinds('forces')}")
+    try:
+        core = model.compiled()
+        say(f"coordinates: {core.n_coordinates}")
+        say(f"constraint equations: {core.n_constraints}")
+        rank = model.rank()
+    except ModelError as e:
+        raise _Exit(USAGE, f"{scene.path}: {e}") from None
+    except SimulationError as e:
+        raise _Exit(FAILED, f"{scene.path}: the initial position cannot be assembled: {e}") from None
+    say(f"rank of the constraint Jacobian: {rank['rank']}")
+    say(f"degrees of freedom: {rank['degrees_of_freedom']}")
+    dependent = list(rank.get("dependent_rows", []))
+    if not dependent:
+        say("redundant equations: none")
+    else:
+        say(f"redundant equations: {len(dependent)}")
+        owners = []
+        for e in scene.elements:
+            if e.table in ("joints", "drivers"):
+                row0, rows = core.constraint_rows(e.name)
+                owners.append((row0, rows, e))
+        for row in dependent:
+            for row0, rows, e in owners:
+                if row0 <= row < row0 + rows:
+                    say(f"  row {row}: {e.table[:-1]} {e.name!r} ({e.type}, equation "
+                        f"{row - row0 + 1} of {rows}" + (f"; line {e.line})" if e.line else ")"))
+                    break
+            else:
+                say(f"  row {row}")
+    if scene.settings:
+        say("simulation: " + ", ".join(f"{k} = {v!r}" for k, v in scene.settings.items()))
+    return OK
 
 
 if __name__ == "__main__":

@@ -1,0 +1,79 @@
+"""A progress bar for long runs: pass ``Progress(t0, t_end)`` as
+``simulate(..., progress=...)``.
+
+Nothing shows for the first second of wall time, so short runs stay quiet;
+after that, a tqdm bar if tqdm is installed, or else one stderr line that
+rewrites itself. Off when ``enabled`` is False or stderr is not a terminal.
+"""
+
+import shutil
+import sys
+import time
+
+
+class Progress:
+    """Callable progress(t) for simulate; close() when the run ends."""
+
+    def __init__(self, t0, t_end, enabled=True, delay=1.0, stream=None):
+        self.stream = sys.stderr if stream is None else stream
+        isatty = getattr(self.stream, "isatty", None)
+        self.enabled = bool(enabled) and isatty is not None and isatty()
+        self.t0, self.t_end = float(t0), float(t_end)
+        self.delay = delay
+        self.start = time.monotonic()
+        self._bar = None
+        self._line = False
+        self._shown = 0.0
+
+    def __call__(self, t):
+        if not self.enabled:
+            return
+        try:
+            self._show(t)
+        except Exception:  # noqa: BLE001 - a broken bar must not stop the run
+            self.enabled = False
+
+    def _show(self, t):
+        elapsed = time.monotonic() - self.start
+        if elapsed < self.delay:
+            return
+        span = max(self.t_end - self.t0, 1e-300)
+        done = min(max(float(t) - self.t0, 0.0), span)
+        if self._bar is None and not self._line:
+            try:
+                from tqdm import tqdm
+            except ImportError:
+                self._line = True
+            else:
+                self._shown = done
+                # a size, for terminals that do not tell theirs (tqdm shows nothing in 0 x 0)
+                size = shutil.get_terminal_size((80, 24))
+                self._bar = tqdm(total=span, unit="s", unit_scale=False, file=self.stream,
+                                 desc="simulated", leave=False, mininterval=0.0,
+                                 ncols=size.columns, nrows=size.lines, initial=done,
+                                 bar_format="{desc} {n:.4g}/{total:.4g} s |{bar}| "
+                                            "{percentage:3.0f}% [{elapsed}<{remaining}]")
+        if self._bar is not None:
+            self._bar.update(done - self._shown)
+            self._shown = done
+        else:
+            self.stream.write(f"\r  t = {self.t0 + done:.6g} of {self.t_end:.6g} s "
+                              f"({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed ")
+            self.stream.flush()
+
+    def close(self):
+        """Clear the bar (the summary that follows says how the run went)."""
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+        elif self._line:
+            self.stream.write("\r" + " " * 70 + "\r")
+            self.stream.flush()
+            self._line = False
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False

@@ -1,0 +1,942 @@
+"""Scene files: a whole model and how to run it, in TOML.
+
+``mb.load_scene(path)`` reads one and returns a :class:`Scene` with
+``.model`` (an ``mb.Model``), ``.settings`` (the keyword arguments of
+``mb.simulate``) and ``.output`` (what ``lagmb run`` writes); ``scene.run()``
+simulates it, and ``model, settings = mb.load_scene(path)`` unpacks it where
+only the model and its settings are wanted (DESIGN.md section 5).
+``mb.save_scene(model, path, settings=None, output=None)`` (also
+``model.to_scene(path, ...)``) writes one that loads back into a model giving
+the same results to the last bit.
+
+A scene, with every table (all keys in SI units, angles in radians)::
+
+    [model]
+    gravity = [0.0, -9.81]          # optional: no gravity unless given
+
+    [[bodies]]                      # one table per add_body call
+    name = "crank"
+    mass = 1.0
+    inertia = 0.01
+    position = [0.05, 0.0]          # optional, like the add_body defaults:
+    angle = 0.0                     # angle, velocity, angular_velocity
+    # velocity = [0.0, 0.0]
+    # angular_velocity = 0.0
+
+    [[particles]]                   # add_particle: name, mass, position, velocity
+    name = "bob"
+    mass = 0.5
+    position = [1.0, 0.0]
+
+    [[joints]]                      # type: revolute, translational, weld, distance,
+    type = "revolute"               # pin_in_slot, gear or rack_pinion; the other
+    name = "pivot"                  # keys are that add_<type> call's arguments
+    body_i = "ground"
+    body_j = "crank"
+    at = [0.0, 0.0]
+
+    [[drivers]]                     # type "joint": drive_joint(name, joint, f)
+    type = "joint"                  # type "body": drive_body(name, body, coordinate, f)
+    name = "motor"
+    joint = "pivot"
+    function = { type = "linear", rate = 10.0, start = 0.0 }   # or a number
+
+    [[forces]]                      # type: spring_damper, rotational_spring_damper,
+    type = "force"                  # force or torque; the add_<type> arguments
+    name = "push"
+    body = "crank"
+    force = [0.0, { type = "harmonic", amplitude = 2.0, omega = 3.0 }]
+
+    [simulation]                    # the keyword arguments of mb.simulate
+    t_end = 2.0                     # t0, rtol, atol, n_out or t_out, max_step,
+    rtol = 1e-8                     # max_steps, formulation, integrator, max_order
+    n_out = 401
+
+    [output]                        # what `lagmb run` writes (all optional)
+    file = "results.npz"            # default for -o: .npz or .csv
+    reactions = ["pivot"]           # joints (or drivers) whose r.reaction goes out
+    reaction_frame = "global"       # or "joint": r.reaction(name, frame="joint")
+    efforts = ["motor"]             # drivers whose r.effort goes out
+    energy = true                   # an energy column in the csv file
+    plot = "crank.png"              # default for --plot
+    animate = "crank.gif"           # default for --animate
+
+Conventions:
+
+- Bodies are referred to by name; ``"ground"`` is the ground. Points and
+  vectors are ``[x, y]`` arrays; a time-function value (a driver's
+  ``function``, a spring's ``force``, a ``torque``, each component of
+  ``force = [fx, fy]``) is a number (a constant) or an inline table whose
+  ``type`` is constant, linear, polynomial, harmonic, smooth_step or spline and
+  whose other keys are that function's arguments (``mb.TimeFunction.to_dict``).
+- Elements are added to the model in the order they appear in the file, so
+  a body (or joint) must come before the elements that refer to it; that
+  order also numbers the coordinates and constraint rows.
+- Strict: an unknown table or key, a missing required key, a value of the
+  wrong type or one the model rejects raises :class:`SceneError` (a
+  ``ModelError``, so a ``ValueError``) naming the file, the line, the table
+  (``joints[2] 'pin'``: the third ``[[joints]]``, counted from 0) and the key.
+- ``[output]``: relative paths are relative to the current directory. In an
+  ``.npz`` file, ``reactions`` / ``efforts`` default to every joint / every
+  driver (``reactions = []`` writes none); a ``.csv`` file has the columns
+  ``t``, the coordinates (``crank.x, crank.y, crank.angle``, a particle's
+  ``.x, .y``), then ``<name>.fx, <name>.fy, <name>.torque`` for each listed
+  reaction (``.f1, .f2, .torque`` with ``reaction_frame = "joint"``),
+  ``<name>.effort`` for each listed effort, and ``energy`` if ``energy =
+  true``; it has no reactions or efforts unless listed. Numbers are written
+  in full (repr), so they read back exactly.
+- Writing: ``save_scene`` writes every element with all its arguments (the
+  defaults too), floats by repr, and reads the text back before writing it;
+  a Python callable (as a time function or force) cannot be written.
+"""
+
+import inspect
+import json
+import math
+import numbers
+import os
+import re
+
+try:  # Python 3.11+
+    import tomllib as _toml
+except ImportError:  # pragma: no cover - older Pythons
+    import tomli as _toml
+
+import numpy as np
+
+from .errors import ModelError
+from .model import Model
+
+__all__ = ["Scene", "SceneError", "load_scene", "save_scene"]
+
+
+class SceneError(ModelError):
+    """A scene file that cannot make a model (a ModelError, so a ValueError).
+
+    Attributes: path (the file), line (1-based, or None), table (e.g.
+    ``"joints[2] 'pin'"``), key (or None); the message names all of them.
+    """
+
+    def __init__(self, message, path=None, line=None, table=None, key=None):
+        where = []
+        if path is not None:
+            where.append(str(path))
+        if line is not None:
+            where.append(f"line {line}")
+        what = table or ""
+        if key is not None:
+            what = f"{what}, key '{key}'" if what else f"key '{key}'"
+        text = ", ".join(where)
+        if what:
+            text = f"{text}: {what}" if text else what
+        super().__init__(f"{text}: {message}" if text else message)
+        self.path, self.line, self.table, self.key = path, line, table, key
+        self.reason = message
+
+
+# --- the format ---------------------------------------------------------------
+
+_ELEMENT_TABLES = ("bodies", "particles", "joints", "drivers", "forces")
+_TABLES = ("model",) + _ELEMENT_TABLES + ("simulation", "output")
+
+# table -> {type: Model method}; None: the table has no `type` key
+_METHODS = {
+    "bodies": {None: "add_body"},
+    "particles": {None: "add_particle"},
+    "joints": {t: "add_" + t for t in ("revolute", "translational", "weld", "distance",
+                                        "pin_in_slot", "gear", "rack_pinion")},
+    "drivers": {"joint": "drive_joint", "body": "drive_body"},
+    "forces": {t: "add_" + t for t in ("spring_damper", "rotational_spring_damper",
+                                        "force", "torque")},
+}
+_SINGULAR = {"bodies": "body", "particles": "particle", "joints": "joint", "drivers": "driver",
+             "forces": "force"}
+_TABLE_OF = {m: (table, typ) for table, types in _METHODS.items() for typ, m in types.items()}
+
+# a method's keyword -> the scene key, where they differ
+_RENAMED = {("drive_joint", "f"): "function", ("drive_body", "f"): "function"}
+
+# what the value of a key is (by key name; (method, key) where it depends on the method)
+_BODY_REF = {"body", "body_i", "body_j", "pinion", "rack"}
+_VEC2 = {"position", "velocity", "at", "axis", "point", "point_i", "point_j",
+         "local_i", "local_j", "center_i", "center_j"}
+_NUMBER = {"mass", "inertia", "angle", "angular_velocity", "length", "ratio", "radius",
+           "stiffness", "damping", "free_length", "free_angle"}
+_FUNCTION = {"f", "torque", ("add_spring_damper", "force")}
+_FUNCTION_PAIR = {("add_force", "force")}
+_STRING = {"name", "coordinate"}
+_BOOL = {"local"}
+
+_SIMULATION = {  # key -> kind
+    "t_end": "number", "t0": "number", "rtol": "number", "atol": "number",
+    "n_out": "integer", "t_out": "numbers", "max_step": "number", "max_steps": "integer",
+    "formulation": "string", "integrator": "string", "max_order": "integer",
+}
+_OUTPUT = {
+    "file": "string", "reactions": "strings", "efforts": "strings",
+    "reaction_frame": "string", "energy": "bool", "plot": "string", "animate": "string",
+}
+_OUTPUT_FILE_TYPES = (".npz", ".csv")
+
+
+def _toml_type(value):
+    if isinstance(value, bool):
+        return "a boolean"
+    if isinstance(value, int):
+        return "an integer"
+    if isinstance(value, float):
+        return "a float"
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return "an array"
+    return type(value).__name__
+
+
+def _show(value):
+    """A value as it looks in TOML, short."""
+    try:
+        text = _value(value)
+    except Exception:  # noqa: BLE001 - only for messages
+        text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+# --- line numbers -------------------------------------------------------------
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def _read_key(s, pos):
+    """The dotted key starting at s[pos]: (list of parts, position after it)."""
+    parts = []
+    n = len(s)
+    while True:
+        while pos < n and s[pos] in " \t":
+            pos += 1
+        if pos >= n:
+            return parts, pos
+        if s[pos] == '"':
+            j = pos + 1
+            while j < n and s[j] != '"':
+                j += 2 if s[j] == "\\" else 1
+            try:
+                parts.append(json.loads(s[pos:j + 1]))
+            except ValueError:
+                parts.append(s[pos + 1:j])
+            pos = j + 1
+        elif s[pos] == "'":
+            j = s.find("'", pos + 1)
+            j = n if j < 0 else j
+            parts.append(s[pos + 1:j])
+            pos = j + 1
+        else:
+            m = _BARE_KEY.match(s, pos)
+            if m is None:
+                return parts, pos
+            parts.append(m.group())
+            pos = m.end()
+        while pos < n and s[pos] in " \t":
+            pos += 1
+        if pos < n and s[pos] == ".":
+            pos += 1
+            continue
+        return parts, pos
+
+
+class _Lines:
+    """Line numbers of the tables and keys of a TOML text (which tomllib has
+    already accepted): ``line(path)`` for a path of keys and array indices as
+    in the parsed data, e.g. ("joints", 2, "at"), or of its nearest parent."""
+
+    def __init__(self, text):
+        self.at = {}
+        self._arrays = {}  # path of an array of tables -> entries so far
+        self._table = ()
+        self._depth = 0  # open [ and { of a value spanning lines
+        self._string = None  # delimiter of an open multi-line string
+        try:
+            self._scan(text)
+        except Exception:  # noqa: BLE001 - line numbers are a help, never a failure
+            pass
+
+    def line(self, path):
+        path = tuple(path)
+        while path:
+            if path in self.at:
+                return self.at[path]
+            path = path[:-1]
+        return None
+
+    def _resolve(self, parts):
+        out = ()
+        for p in parts:
+            out += (p,)
+            if out in self._arrays:
+                out += (self._arrays[out] - 1,)
+        return out
+
+    def _scan(self, text):
+        for number, line in enumerate(text.split("\n"), 1):
+            if line.endswith("\r"):
+                line = line[:-1]
+            if self._string is not None or self._depth > 0:
+                self._scan_value(line, 0)
+                continue
+            s = line.lstrip(" \t")
+            if not s or s[0] == "#":
+                continue
+            if s.startswith("[["):
+                parts, _ = _read_key(s, 2)
+                array = self._resolve(parts[:-1]) + (parts[-1],)
+                self.at.setdefault(array, number)
+                self._arrays[array] = self._arrays.get(array, 0) + 1
+                self._table = array + (self._arrays[array] - 1,)
+                self.at[self._table] = number
+            elif s[0] == "[":
+                parts, _ = _read_key(s, 1)
+                self._table = self._resolve(parts)
+                for k in range(1, len(self._table) + 1):
+                    self.at.setdefault(self._table[:k], number)
+            else:
+                parts, pos = _read_key(s, 0)
+                for k in range(1, len(parts) + 1):
+                    self.at.setdefault(self._table + tuple(parts[:k]), number)
+                eq = s.find("=", pos)
+                self._scan_value(s, eq + 1 if eq >= 0 else len(s))
+
+    def _scan_value(self, s, i):
+        """Follow strings, comments and brackets to the end of the line."""
+        n = len(s)
+        while i < n:
+            if self._string is not None:
+                if self._string == '"""' and s[i] == "\\":
+                    i += 2
+                elif s.startswith(self._string, i):
+                    i += 3
+                    while i < n and s[i] == self._string[0]:
+                        i += 1
+                    self._string = None
+                else:
+                    i += 1
+                continue
+            c = s[i]
+            if c == "#":
+                return
+            if s.startswith('"""', i) or s.startswith("'''", i):
+                self._string = s[i:i + 3]
+                i += 3
+            elif c == '"':
+                i += 1
+                while i < n and s[i] != '"':
+                    i += 2 if s[i] == "\\" else 1
+                i += 1
+            elif c == "'":
+                j = s.find("'", i + 1)
+                i = n if j < 0 else j + 1
+            else:
+                if c in "[{":
+                    self._depth += 1
+                elif c in "]}":
+                    self._depth -= 1
+                i += 1
+
+
+# --- reading ------------------------------------------------------------------
+
+class _Where:
+    """Where a table is, to name it in errors."""
+
+    def __init__(self, path, lines, table_path, label):
+        self.path, self.lines, self.table_path, self.label = path, lines, tuple(table_path), label
+
+    def line(self, key=None):
+        return self.lines.line(self.table_path + ((key,) if key is not None else ()))
+
+    def error(self, message, key=None):
+        return SceneError(message, self.path, self.line(key), self.label, key)
+
+
+def _number(where, key, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise where.error(f"must be a number, got {_toml_type(value)} ({_show(value)})", key)
+    return float(value)
+
+
+def _integer(where, key, value):
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise where.error(f"must be an integer, got {_toml_type(value)} ({_show(value)})", key)
+    return value
+
+
+def _string(where, key, value):
+    if not isinstance(value, str):
+        raise where.error(f"must be a string, got {_toml_type(value)} ({_show(value)})", key)
+    return value
+
+
+def _bool(where, key, value):
+    if not isinstance(value, bool):
+        raise where.error(f"must be true or false, got {_toml_type(value)} ({_show(value)})", key)
+    return value
+
+
+def _vec2(where, key, value):
+    if (not isinstance(value, list) or len(value) != 2
+            or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in value)):
+        raise where.error(f"must be a pair of numbers [x, y], got {_toml_type(value)} "
+                          f"({_show(value)})", key)
+    return (float(value[0]), float(value[1]))
+
+
+def _list_of(where, key, value, check, what):
+    if not isinstance(value, list):
+        raise where.error(f"must be an array of {what}, got {_toml_type(value)} "
+                          f"({_show(value)})", key)
+    return [check(where, key, x) for x in value]
+
+
+def _time_function(where, key, value):
+    """A number (kept as a number: the model reads it as a Constant) or an
+    inline table {type = ..., ...} made into a TimeFunction."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, dict)):
+        raise where.error("must be a number or a time function "
+                          "{ type = \"linear\", rate = ..., ... }, got "
+                          f"{_toml_type(value)} ({_show(value)})", key)
+    if not isinstance(value, dict):
+        return float(value)
+    if "type" not in value:
+        raise where.error("a time function needs a 'type' (constant, linear, polynomial, "
+                          "harmonic, smooth_step or spline)", key)
+    try:
+        from .functions import time_function_from_dict
+    except ImportError:
+        raise where.error("this lagmb has no time functions (lagmb.functions)", key) from None
+    try:
+        f = time_function_from_dict(dict(value))
+    except (ValueError, TypeError, KeyError) as e:
+        raise where.error(f"{_message(e)} (in {_show(value)})", key) from None
+    unknown = sorted(set(value) - set(f.to_dict()))
+    if unknown:
+        raise where.error(f"unknown key '{unknown[0]}' in a {value['type']!r} time function; "
+                          f"its keys: {', '.join(f.to_dict())}", key)
+    return f
+
+
+def _message(e):
+    text = str(e)
+    if isinstance(e, KeyError) and e.args:
+        text = f"missing {e.args[0]!r}"
+    return text
+
+
+def _parameters(method_name):
+    """(all keyword names, required names) of a Model method, or None."""
+    method = getattr(Model, method_name, None)
+    if method is None:
+        return None
+    params = list(inspect.signature(method).parameters.values())[1:]  # without self
+    names = [p.name for p in params if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+    required = [p.name for p in params
+                if p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
+    return names, required
+
+
+def _kind(method, arg):
+    if arg in _BODY_REF:
+        return "body"
+    if arg == "joint":
+        return "joint"
+    if (method, arg) in _FUNCTION_PAIR:
+        return "function_pair"
+    if arg in _FUNCTION or (method, arg) in _FUNCTION:
+        return "function"
+    if arg in _VEC2:
+        return "vec2"
+    if arg in _NUMBER:
+        return "number"
+    if arg in _STRING:
+        return "string"
+    if arg in _BOOL:
+        return "bool"
+    return None
+
+
+def _words(text):
+    return set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", text))
+
+
+class _Reader:
+    def __init__(self, path, text):
+        self.path = path
+        try:
+            self.data = _toml.loads(text)
+        except _toml.TOMLDecodeError as e:
+            m = re.search(r"\(at line (\d+), column (\d+)\)", str(e))
+            line = int(m.group(1)) if m else None
+            reason = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(e)) if m else str(e)
+            raise SceneError(f"not valid TOML: {reason}" + (f" (column {m.group(2)})" if m else ""),
+                             path, line) from None
+        self.lines = _Lines(text)
+        self.names = {}  # element or body name -> (label, line)
+        self.bodies = {"ground"}
+        self.joints = set()
+        self.elements = []
+
+    def where(self, table_path, label):
+        return _Where(self.path, self.lines, table_path, label)
+
+    def read(self):
+        data = self.data
+        for key, value in data.items():
+            if key not in _TABLES:
+                w = self.where((key,), None)
+                if isinstance(value, dict):
+                    msg = f"unknown table [{key}]"
+                elif isinstance(value, list) and value and all(isinstance(x, dict) for x in value):
+                    msg = f"unknown table [[{key}]]"
+                else:
+                    msg = f"unknown top-level key '{key}'"
+                raise SceneError(f"{msg}; a scene has the tables [model], [[bodies]], "
+                                 "[[particles]], [[joints]], [[drivers]], [[forces]], "
+                                 "[simulation] and [output]", self.path, w.line(), None, key)
+        for key in ("model", "simulation", "output"):
+            if key in data and not isinstance(data[key], dict):
+                raise SceneError(f"'{key}' must be a table [{key}], got {_toml_type(data[key])}",
+                                 self.path, self.lines.line((key,)), None, key)
+        for key in _ELEMENT_TABLES:
+            value = data.get(key, [])
+            if not isinstance(value, list) or not all(isinstance(x, dict) for x in value):
+                raise SceneError(f"'{key}' must be an array of tables [[{key}]], got "
+                                 f"{_toml_type(value)}", self.path, self.lines.line((key,)),
+                                 None, key)
+
+        model = self.read_model(data.get("model", {}))
+        order = []
+        for table in _ELEMENT_TABLES:
+            for i, entry in enumerate(data.get(table, [])):
+                line = self.lines.line((table, i)) or 0
+                order.append((line, _ELEMENT_TABLES.index(table), i, table, entry))
+        order.sort(key=lambda x: x[:3])
+        for _, _, i, table, entry in order:
+            self.add(model, table, i, entry)
+        settings = self.read_settings(data.get("simulation", {}))
+        output = self.read_output(data.get("output", {}))
+        return Scene(model, settings, output, self.path, self.elements, self.lines)
+
+    def read_model(self, table):
+        w = self.where(("model",), "[model]")
+        gravity = None
+        for key, value in table.items():
+            if key == "gravity":
+                gravity = _vec2(w, key, value)
+            else:
+                raise w.error("unknown key; [model] has: gravity", key)
+        try:
+            return Model(gravity=gravity)
+        except ModelError as e:
+            raise w.error(str(e), "gravity") from None
+
+    def label(self, table, i, entry):
+        name = entry.get("name")
+        return f"{table}[{i}]" + (f" {name!r}" if isinstance(name, str) else "")
+
+    def add(self, model, table, i, entry):
+        w = self.where((table, i), self.label(table, i, entry))
+        types = _METHODS[table]
+        if None in types:
+            typ, method_name = None, types[None]
+            if "type" in entry:
+                raise w.error(f"unknown key: [[{table}]] has no type", "type")
+        else:
+            if "type" not in entry:
+                raise w.error(f"missing required key ({', '.join(types)})", "type")
+            typ = _string(w, "type", entry["type"])
+            if typ not in types:
+                raise w.error(f"unknown {_SINGULAR[table]} type {typ!r}; known: {', '.join(types)}",
+                              "type")
+            method_name = types[typ]
+        params = _parameters(method_name)
+        if params is None:
+            raise w.error(f"this lagmb has no Model.{method_name}", "type" if typ else None)
+        names, required = params
+        what = f"a {typ.replace('_', ' ')} {_SINGULAR[table]}" if typ else f"[[{table}]]"
+        scene_key = {arg: _RENAMED.get((method_name, arg), arg) for arg in names}
+        arg_of = {k: a for a, k in scene_key.items()}
+        for key in entry:
+            if key != "type" and key not in arg_of:
+                raise w.error(f"unknown key for {what}; its keys: "
+                              + ", ".join(scene_key[a] for a in names), key)
+        for arg in required:
+            if scene_key[arg] not in entry:
+                raise w.error(f"missing required key for {what}", scene_key[arg])
+
+        kwargs = {}
+        for key, value in entry.items():
+            if key == "type":
+                continue
+            arg = arg_of[key]
+            kwargs[arg] = self.convert(w, method_name, arg, key, value)
+
+        name = kwargs["name"]
+        if name in self.names:
+            other, line = self.names[name]
+            raise w.error(f"duplicate name {name!r}: already used by {other}"
+                          + (f" (line {line})" if line else ""), "name")
+        try:
+            getattr(model, method_name)(**kwargs)
+        except (ValueError, TypeError) as e:
+            raise w.error(str(e), self.blame(entry, str(e))) from None
+        self.names[name] = (w.label, w.line())
+        if table in ("bodies", "particles"):
+            self.bodies.add(name)
+        elif table == "joints":
+            self.joints.add(name)
+        self.elements.append(SceneElement(table, typ, name, w.line()))
+
+    def blame(self, entry, message):
+        """The key a model error is about: the first (other than name and
+        type) whose name the message mentions, besides as the element's name."""
+        name = entry.get("name")
+        if isinstance(name, str):
+            message = message.replace(f"'{name}'", "")
+        words = _words(message)
+        for key in entry:
+            if key not in ("name", "type") and key in words:
+                return key
+        return None
+
+    def later(self, table_names, name):
+        """Where a name is defined further down the file, if it is."""
+        for table in table_names:
+            for i, entry in enumerate(self.data.get(table, [])):
+                if entry.get("name") == name:
+                    return f"{table}[{i}]", self.lines.line((table, i))
+        return None
+
+    def convert(self, w, method, arg, key, value):
+        kind = _kind(method, arg)
+        if kind == "body":
+            name = _string(w, key, value)
+            if name not in self.bodies:
+                found = self.later(("bodies", "particles"), name)
+                if found:
+                    raise w.error(f"body {name!r} is defined later ({found[0]}, line {found[1]}); "
+                                  "define bodies before the elements that use them", key)
+                raise w.error(f"no body named {name!r} (bodies: "
+                              f"{', '.join(sorted(self.bodies))})", key)
+            return name
+        if kind == "joint":
+            name = _string(w, key, value)
+            if name not in self.joints:
+                found = self.later(("joints",), name)
+                if found:
+                    raise w.error(f"joint {name!r} is defined later ({found[0]}, line {found[1]}); "
+                                  "define joints before the drivers that use them", key)
+                known = ", ".join(sorted(self.joints)) or "none"
+                raise w.error(f"no joint named {name!r} (joints: {known})", key)
+            return name
+        if kind == "vec2":
+            return _vec2(w, key, value)
+        if kind == "number":
+            return _number(w, key, value)
+        if kind == "string":
+            return _string(w, key, value)
+        if kind == "bool":
+            return _bool(w, key, value)
+        if kind == "function":
+            return _time_function(w, key, value)
+        if kind == "function_pair":
+            if not isinstance(value, list) or len(value) != 2:
+                raise w.error("must be a pair [fx, fy] of numbers or time functions, got "
+                              f"{_toml_type(value)} ({_show(value)})", key)
+            return tuple(_time_function(w, key, x) for x in value)
+        return value  # an argument this reader does not know: the model checks it
+
+    def read_settings(self, table):
+        w = self.where(("simulation",), "[simulation]")
+        out = {}
+        for key, value in table.items():
+            kind = _SIMULATION.get(key)
+            if kind is None:
+                raise w.error("unknown key; [simulation] has: " + ", ".join(_SIMULATION), key)
+            out[key] = _setting(w, key, value, kind)
+        if "t_out" in out and "n_out" in out:
+            raise w.error("give n_out or t_out, not both", "t_out")
+        if "t_end" in out:
+            if not math.isfinite(out["t_end"]) or out["t_end"] <= out.get("t0", 0.0):
+                raise w.error(f"must be finite and greater than t0 = {out.get('t0', 0.0)!r}, "
+                              f"got {out['t_end']!r}", "t_end")
+        for key in ("rtol", "atol", "max_step"):
+            if key in out and not (math.isfinite(out[key]) and out[key] > 0):
+                raise w.error(f"must be positive and finite, got {out[key]!r}", key)
+        if "n_out" in out and out["n_out"] < 2:
+            raise w.error(f"must be at least 2, got {out['n_out']}", "n_out")
+        if "max_steps" in out and out["max_steps"] < 1:
+            raise w.error(f"must be at least 1, got {out['max_steps']}", "max_steps")
+        if "t_out" in out:
+            t = out["t_out"]
+            if not t or not all(math.isfinite(x) for x in t) or any(
+                    b <= a for a, b in zip(t, t[1:])):
+                raise w.error("must be a non-empty, strictly increasing array of finite times",
+                              "t_out")
+        return out
+
+    def read_output(self, table):
+        w = self.where(("output",), "[output]")
+        out = {}
+        for key, value in table.items():
+            kind = _OUTPUT.get(key)
+            if kind is None:
+                raise w.error("unknown key; [output] has: " + ", ".join(_OUTPUT), key)
+            out[key] = _setting(w, key, value, kind)
+        if "file" in out and os.path.splitext(out["file"])[1].lower() not in _OUTPUT_FILE_TYPES:
+            raise w.error(f"must end in .npz or .csv, got {out['file']!r}", "file")
+        if out.get("reaction_frame", "global") not in ("global", "joint"):
+            raise w.error(f"must be \"global\" or \"joint\", got {out['reaction_frame']!r}",
+                          "reaction_frame")
+        joints = [e.name for e in self.elements if e.table in ("joints", "drivers")]
+        drivers = [e.name for e in self.elements if e.table == "drivers"]
+        for key, known, what in (("reactions", joints, "joint or driver"),
+                                 ("efforts", drivers, "driver")):
+            for name in out.get(key, []):
+                if name not in known:
+                    raise w.error(f"no {what} named {name!r} (known: "
+                                  f"{', '.join(known) or 'none'})", key)
+        return out
+
+
+def _setting(w, key, value, kind):
+    if kind == "number":
+        return _number(w, key, value)
+    if kind == "integer":
+        return _integer(w, key, value)
+    if kind == "string":
+        return _string(w, key, value)
+    if kind == "bool":
+        return _bool(w, key, value)
+    if kind == "numbers":
+        return _list_of(w, key, value, _number, "numbers")
+    if kind == "strings":
+        return _list_of(w, key, value, _string, "strings")
+    raise AssertionError(kind)
+
+
+class SceneElement:
+    """One element of a scene: its table, type (None for bodies and
+    particles), name and line in the file."""
+
+    __slots__ = ("table", "type", "name", "line")
+
+    def __init__(self, table, type, name, line):  # noqa: A002 - the scene key
+        self.table, self.type, self.name, self.line = table, type, name, line
+
+    def __repr__(self):
+        return f"SceneElement({self.table!r}, {self.type!r}, {self.name!r}, line={self.line})"
+
+
+class Scene:
+    """A model read from a scene file, with its settings.
+
+    Attributes:
+        model: the mb.Model.
+        settings: dict of mb.simulate keyword arguments from [simulation].
+        output: dict from [output] (only the keys the file gives).
+        path: the file.
+        elements: list of SceneElement (table, type, name, line), in file order.
+
+    ``model, settings = scene`` unpacks the two.
+    """
+
+    def __init__(self, model, settings=None, output=None, path=None, elements=(), lines=None):
+        self.model = model
+        self.settings = dict(settings or {})
+        self.output = dict(output or {})
+        self.path = path
+        self.elements = list(elements)
+        self._lines = lines
+
+    def __iter__(self):
+        yield self.model
+        yield self.settings
+
+    def names(self, table):
+        """Names of the elements of one table ("joints", "drivers", ...)."""
+        return [e.name for e in self.elements if e.table == table]
+
+    def run(self, **overrides):
+        """mb.simulate(model, **(settings | overrides)). Overriding t_end
+        keeps the file's t_out times up to the new t_end; giving n_out drops
+        its t_out. A bad setting from the file raises SceneError at its line."""
+        from .simulation import simulate
+
+        kwargs = dict(self.settings)
+        if "n_out" in overrides and "t_out" not in overrides:
+            kwargs.pop("t_out", None)
+        if "t_out" in overrides and "n_out" not in overrides:
+            kwargs.pop("n_out", None)
+        if "t_end" in overrides and "t_out" in kwargs and "t_out" not in overrides:
+            t_end = overrides["t_end"]
+            kept = [t for t in kwargs["t_out"] if t <= t_end]
+            if kept:
+                kwargs["t_out"] = kept
+            else:
+                kwargs.pop("t_out")
+        kwargs.update(overrides)
+        try:
+            return simulate(self.model, **kwargs)
+        except ModelError as e:
+            if isinstance(e, SceneError):
+                raise
+            # a setting from the file that the message names, the first named
+            message, words = str(e), _words(str(e))
+            named = [k for k in self.settings if k in words]
+            if not named or any(k in words for k in overrides):
+                raise
+            key = min(named, key=message.find)
+            w = _Where(self.path, self._lines or _Lines(""), ("simulation",), "[simulation]")
+            raise w.error(message, key) from None
+
+    def __repr__(self):
+        return f"<lagmb.Scene {self.path!r}: {self.model!r}, settings={self.settings}>"
+
+
+def load_scene(path):
+    """Read a scene file: returns a Scene (.model, .settings, .output, .run()).
+
+    Raises SceneError (a ModelError) naming the file, line, table and key for
+    anything the file gets wrong, and OSError if it cannot be read.
+    """
+    path = os.fspath(path)
+    with open(path, "rb") as fh:
+        raw = fh.read()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = raw[:e.start].count(b"\n") + 1
+        raise SceneError("not UTF-8 text", path, line) from None
+    return _Reader(path, text).read()
+
+
+# --- writing --------------------------------------------------------------------
+
+_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f",
+            "\r": "\\r"}
+
+
+def _string_value(s):
+    out = []
+    for ch in s:
+        if ch in _ESCAPES:
+            out.append(_ESCAPES[ch])
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04x}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
+def _key(k):
+    return k if _BARE_KEY.fullmatch(k) else _string_value(k)
+
+
+class _NotWritable(Exception):
+    pass
+
+
+def _value(v):
+    """A Python value as TOML text; floats by repr, so they read back exactly."""
+    if isinstance(v, (bool, np.bool_)):
+        return "true" if v else "false"
+    if isinstance(v, numbers.Integral):
+        return str(int(v))
+    if isinstance(v, numbers.Real):
+        return repr(float(v))  # inf, -inf and nan are TOML too
+    if isinstance(v, str):
+        return _string_value(v)
+    if hasattr(v, "to_dict") and callable(v.to_dict):  # a TimeFunction
+        return _value(v.to_dict())
+    if hasattr(v, "name") and hasattr(v, "model") and isinstance(v.name, str):  # a Body
+        return _string_value(v.name)
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{_key(str(k))} = {_value(x)}" for k, x in v.items()) + " }"
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    if callable(v):
+        raise _NotWritable("a Python callable")
+    raise _NotWritable(f"a {type(v).__name__}")
+
+
+def _table_lines(header, table):
+    lines = [header]
+    for key, value in table.items():
+        if value is None:
+            continue
+        try:
+            lines.append(f"{_key(str(key))} = {_value(value)}")
+        except _NotWritable as e:
+            raise SceneError(f"{_show(value)} is {e}, which a scene file cannot hold",
+                             table=header, key=key) from None
+    return lines
+
+
+def scene_text(model, settings=None, output=None):
+    """The scene file of a model (and settings, output) as a string."""
+    from . import __version__
+
+    out = [f"# lagmb {__version__} scene", ""]
+    gravity = getattr(model, "gravity", None)
+    if gravity is not None:
+        out += ["[model]", f"gravity = {_value(tuple(gravity))}", ""]
+    for method, kwargs in model.elements():
+        name = kwargs.get("name")
+        if method not in _TABLE_OF:
+            raise SceneError(f"cannot write element {name!r}: {method} has no scene table")
+        table, typ = _TABLE_OF[method]
+        out.append(f"[[{table}]]")
+        if typ is not None:
+            out.append(f"type = {_string_value(typ)}")
+        items = sorted(kwargs.items(), key=lambda kv: kv[0] != "name")
+        for arg, value in items:
+            if value is None:
+                continue
+            key = _RENAMED.get((method, arg), arg)
+            try:
+                text = _value(value)
+            except _NotWritable as e:
+                raise SceneError(
+                    f"{method}: {e} cannot go in a scene file, which holds numbers and time "
+                    "functions (mb.Constant, mb.Linear, mb.Polynomial, mb.Harmonic, "
+                    "mb.SmoothStep, mb.Spline)", table=f"{table} {name!r}", key=key) from None
+            out.append(f"{key} = {text}")
+        out.append("")
+    if settings:
+        settings = {k: (list(np.asarray(v, dtype=float).reshape(-1)) if k == "t_out" else v)
+                    for k, v in settings.items() if k != "progress"}
+        if settings.get("t_out") is not None:
+            settings.pop("n_out", None)  # simulate ignores it when t_out is given
+        out += _table_lines("[simulation]", settings) + [""]
+    if output:
+        out += _table_lines("[output]", output) + [""]
+    return "\n".join(out)
+
+
+def save_scene(model, path, settings=None, output=None):
+    """Write a model as a scene file that load_scene reads back into a model
+    giving the same results. ``settings``: mb.simulate keyword arguments for
+    [simulation]; ``output``: the [output] table. Raises SceneError (a
+    ModelError) naming the element if something cannot be written, e.g. a
+    Python callable as a time function; nothing is written then."""
+    path = os.fspath(path)
+    try:
+        text = scene_text(model, settings, output)
+        _Reader(path, text).read()  # what is written must read back
+    except SceneError as e:
+        where = ", ".join(x for x in (e.table, e.key and f"key '{e.key}'") if x)
+        error = SceneError(f"cannot write {path}: {where + ': ' if where else ''}{e.reason}")
+        error.path, error.table, error.key = path, e.table, e.key
+        raise error from None
+    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+        fh.write(text)

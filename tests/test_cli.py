@@ -1,0 +1,317 @@
+"""The lagmb command, run as `python -m lagmb` in a subprocess.
+
+- `run -o x.npz` writes t, q, v, a, lam, energy, residual, the coordinate
+  names and reaction_<name> for the joints listed in [output] (all joints
+  when none are listed), with the scene's output times.
+- `run -o x.csv` writes a header (t, crank.x, ..., A.fx, A.fy, A.torque,
+  energy) and one row per output time.
+- `info` on the four-bar: 9 coordinates, 8 equations, rank 8, 1 degree of
+  freedom; with a redundant fifth bar it names the redundant rows' joint.
+- Exit 2 with the file and line on stderr (no traceback) for a bad scene;
+  exit 1 for a failed run, with the partial results still written.
+- `demo --quiet` exits 0 and prints nothing; --plot / --animate write files.
+"""
+
+import csv
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from lagmb.progress import Progress
+from lagmb.scene import load_scene
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
+FOUR_BAR_NAMES = ["crank", "coupler", "rocker"]
+
+
+def lagmb(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "lagmb", *map(str, args)], cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture
+def four_bar(tmp_path):
+    """examples/four_bar.toml (reactions = ["A", "D"], energy = true), in tmp_path."""
+    path = tmp_path / "four_bar.toml"
+    shutil.copy(os.path.join(EXAMPLES, "four_bar.toml"), path)
+    return path
+
+
+def test_run_npz(four_bar, tmp_path):
+    out = tmp_path / "x.npz"
+    p = lagmb("run", four_bar, "-o", out, "--t-end", "0.5", "--quiet")
+    assert p.returncode == 0, p.stderr
+    assert p.stdout == "" and p.stderr == ""
+    with np.load(out) as d:
+        assert sorted(d.files) == sorted(["t", "q", "v", "a", "lam", "energy", "residual",
+                                          "coordinates", "reaction_A", "reaction_D"])
+        # n_out = 401 from the scene, t_end from the command line
+        assert d["t"][0] == 0.0 and d["t"][-1] == 0.5
+        assert np.allclose(d["t"], np.linspace(0.0, 0.5, 401), rtol=0, atol=1e-15)
+        for name in ("q", "v", "a"):
+            assert d[name].shape == (401, 9)
+        assert d["lam"].shape == (401, 8)
+        assert d["energy"].shape == d["residual"].shape == (401,)
+        assert d["reaction_A"].shape == (401, 3)
+        assert list(d["coordinates"]) == [f"{b}.{c}" for b in FOUR_BAR_NAMES
+                                          for c in ("x", "y", "angle")]
+        assert d["residual"].max() < 1e-8
+        assert d["q"][0, 2] == pytest.approx(np.radians(60.0), abs=1e-12)
+        # the same numbers as the Python API gives
+        r = load_scene(str(four_bar)).run(t_end=0.5)
+        assert np.array_equal(d["t"], r.t) and np.array_equal(d["q"], r.q)
+        assert np.array_equal(d["reaction_D"], r.reaction("D"))
+
+
+def test_run_npz_all_joints_by_default(four_bar, tmp_path):
+    text = four_bar.read_text().replace('reactions = ["A", "D"]\n', "")
+    four_bar.write_text(text)
+    out = tmp_path / "all.npz"
+    p = lagmb("run", four_bar, "-o", out, "--t-end", "0.1", "--quiet")
+    assert p.returncode == 0, p.stderr
+    with np.load(out) as d:
+        assert {f for f in d.files if f.startswith("reaction_")} == {
+            "reaction_A", "reaction_B", "reaction_C", "reaction_D"}
+        assert d["t"].shape == (401,) and d["t"][-1] == 0.1
+
+
+def test_run_csv(four_bar, tmp_path):
+    out = tmp_path / "x.csv"
+    p = lagmb("run", four_bar, "-o", out, "--t-end", "0.2", "--n-out", "21")
+    assert p.returncode == 0, p.stderr
+    assert f"results written to {out}" in p.stdout
+    with open(out, newline="") as fh:
+        rows = list(csv.reader(fh))
+    header = ["t"] + [f"{b}.{c}" for b in FOUR_BAR_NAMES for c in ("x", "y", "angle")] + [
+        "A.fx", "A.fy", "A.torque", "D.fx", "D.fy", "D.torque", "energy"]
+    assert rows[0] == header
+    assert len(rows) == 1 + 21
+    data = np.array(rows[1:], dtype=float)
+    assert np.allclose(data[:, 0], np.linspace(0.0, 0.2, 21), rtol=0, atol=1e-15)
+    assert data[0, 3] == pytest.approx(np.radians(60.0), abs=1e-12)  # crank.angle
+    with np.load(_npz_of(four_bar, tmp_path)) as d:  # the csv carries the same bits
+        assert np.array_equal(data[:, 0], d["t"]) and np.array_equal(data[:, 1:10], d["q"])
+        assert np.array_equal(data[:, 10:13], d["reaction_A"])
+        assert np.array_equal(data[:, -1], d["energy"])
+
+
+def _npz_of(scene, tmp_path):
+    out = tmp_path / "same.npz"
+    p = lagmb("run", scene, "-o", out, "--t-end", "0.2", "--n-out", "21", "-q")
+    assert p.returncode == 0, p.stderr
+    return out
+
+
+def test_output_file_from_scene(four_bar, tmp_path):
+    four_bar.write_text(four_bar.read_text().replace("[output]", '[output]\nfile = "from_scene.csv"'))
+    p = lagmb("run", four_bar, "--t-end", "0.05", "-q", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "from_scene.csv").exists()
+
+
+def test_info_four_bar(four_bar):
+    p = lagmb("info", four_bar)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert "bodies: 3 (crank, coupler, rocker)" in lines
+    assert "joints: 4 (revolute 4)" in lines
+    assert "coordinates: 9" in lines
+    assert "constraint equations: 8" in lines
+    assert "rank of the constraint Jacobian: 8" in lines
+    assert "degrees of freedom: 1" in lines
+    assert "redundant equations: none" in lines
+
+
+PARALLELOGRAM = """\
+# a parallelogram linkage with a third, parallel bar: one redundant equation
+[[bodies]]
+name = "left"
+mass = 1.0
+inertia = 0.1
+position = [0.0, 0.5]
+angle = 1.5707963267948966
+
+[[bodies]]
+name = "top"
+mass = 2.0
+inertia = 0.7
+position = [1.0, 1.0]
+
+[[bodies]]
+name = "right"
+mass = 1.0
+inertia = 0.1
+position = [2.0, 0.5]
+angle = 1.5707963267948966
+
+[[bodies]]
+name = "middle"
+mass = 1.0
+inertia = 0.1
+position = [1.0, 0.5]
+angle = 1.5707963267948966
+
+[[joints]]
+type = "revolute"
+name = "L0"
+body_i = "ground"
+body_j = "left"
+at = [0.0, 0.0]
+
+[[joints]]
+type = "revolute"
+name = "L1"
+body_i = "left"
+body_j = "top"
+at = [0.0, 1.0]
+
+[[joints]]
+type = "revolute"
+name = "R1"
+body_i = "top"
+body_j = "right"
+at = [2.0, 1.0]
+
+[[joints]]
+type = "revolute"
+name = "R0"
+body_i = "right"
+body_j = "ground"
+at = [2.0, 0.0]
+
+[[joints]]
+type = "revolute"
+name = "M1"
+body_i = "top"
+body_j = "middle"
+at = [1.0, 1.0]
+
+[[joints]]
+type = "revolute"
+name = "M0"
+body_i = "middle"
+body_j = "ground"
+at = [1.0, 0.0]
+"""
+
+
+def test_info_redundant(tmp_path):
+    path = tmp_path / "parallelogram.toml"
+    path.write_text(PARALLELOGRAM)
+    p = lagmb("info", path)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    # 4 bodies: 12 coordinates; 6 revolutes: 12 equations of rank 11: 1 DOF
+    assert "coordinates: 12" in lines
+    assert "constraint equations: 12" in lines
+    assert "rank of the constraint Jacobian: 11" in lines
+    assert "degrees of freedom: 1" in lines
+    assert "redundant equations: 1" in lines
+    row = [l for l in lines if l.startswith("  row ")]
+    assert len(row) == 1 and "joint '" in row[0] and "(revolute, equation" in row[0]
+
+
+def test_bad_scene_exits_2_naming_the_line(four_bar):
+    text = four_bar.read_text()
+    lines = text.splitlines()
+    k = next(i for i, l in enumerate(lines) if l.startswith("inertia = 3.57"))
+    lines[k] = "inertia = -3.57"
+    four_bar.write_text("\n".join(lines) + "\n")
+    p = lagmb("run", four_bar)
+    assert p.returncode == 2
+    assert f"{four_bar}, line {k + 1}: bodies[1] 'coupler', key 'inertia'" in p.stderr
+    assert "Traceback" not in p.stderr and p.stdout == ""
+    p = lagmb("info", four_bar)
+    assert p.returncode == 2 and f"line {k + 1}" in p.stderr
+
+
+def test_usage_errors_exit_2(four_bar, tmp_path):
+    p = lagmb("run")
+    assert p.returncode == 2 and "usage" in p.stderr
+    p = lagmb("run", tmp_path / "nowhere.toml")
+    assert p.returncode == 2 and "cannot read" in p.stderr and "Traceback" not in p.stderr
+    p = lagmb("run", four_bar, "-o", tmp_path / "x.txt")
+    assert p.returncode == 2 and ".npz or .csv" in p.stderr
+    p = lagmb("run", four_bar, "--rtol", "1e-20")
+    assert p.returncode == 2 and "rtol" in p.stderr and "Traceback" not in p.stderr
+    four_bar.write_text(four_bar.read_text().replace("t_end = 2.0", ""))
+    p = lagmb("run", four_bar)
+    assert p.returncode == 2 and "--t-end" in p.stderr
+
+
+def test_failed_run_exits_1_and_writes_partial_results(four_bar, tmp_path):
+    four_bar.write_text(four_bar.read_text().replace("n_out = 401", "n_out = 2001\nmax_steps = 60"))
+    out = tmp_path / "partial.npz"
+    p = lagmb("run", four_bar, "-o", out)
+    assert p.returncode == 1, p.stderr
+    assert "simulation failed" in p.stderr and "partial results" in p.stderr
+    assert str(out) in p.stderr and "Traceback" not in p.stderr
+    with np.load(out) as d:
+        k = len(d["t"])
+        assert 1 <= k < 2001 and d["t"][-1] < 2.0
+        assert d["q"].shape == (k, 9) and d["reaction_A"].shape == (k, 3)
+        assert np.allclose(d["t"], np.linspace(0.0, 2.0, 2001)[:k], rtol=0, atol=1e-15)
+
+
+def test_run_summary(four_bar):
+    p = lagmb("run", four_bar, "--t-end", "0.1")
+    assert p.returncode == 0, p.stderr
+    assert "401 outputs, t = 0 .. 0.1 s" in p.stdout
+    assert "steps" in p.stdout and "max |Phi|" in p.stdout
+
+
+def test_demo_quiet():
+    p = lagmb("demo", "--quiet")
+    assert p.returncode == 0, p.stderr
+    assert p.stdout == ""
+
+
+def test_plot_and_animate(four_bar, tmp_path):
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("lagmb.plotting")
+    png, gif = tmp_path / "out" / "fb.png", tmp_path / "fb.gif"
+    p = lagmb("run", four_bar, "--t-end", "0.2", "--n-out", "6", "--plot", png,
+              "--animate", gif, "-q")
+    assert p.returncode == 0, p.stderr
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+
+
+# --- the progress bar --------------------------------------------------------------
+
+class _Stream:
+    def __init__(self, tty):
+        self.tty, self.text = tty, ""
+
+    def isatty(self):
+        return self.tty
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+
+def test_progress_shows_after_the_delay_on_a_terminal_only():
+    tty = _Stream(True)
+    p = Progress(0.0, 2.0, delay=0.0, stream=tty)
+    p(0.5)
+    p(1.0)
+    p.close()
+    assert "50%" in tty.text or "1/2" in tty.text or "25%" in tty.text
+    quiet = _Stream(True)
+    with Progress(0.0, 2.0, enabled=False, delay=0.0, stream=quiet) as p:
+        p(1.0)
+    pipe = _Stream(False)
+    with Progress(0.0, 2.0, delay=0.0, stream=pipe) as p:
+        p(1.0)
+    late = _Stream(True)
+    with Progress(0.0, 2.0, delay=60.0, stream=late) as p:
+        p(1.0)
+    assert quiet.text == pipe.text == late.text == ""
