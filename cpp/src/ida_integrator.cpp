@@ -149,7 +149,10 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
   check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
   if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
-  check(IDASetStopTime(s.mem, plan.t_end), "IDASetStopTime", s.ctx);
+  // stop at each breakpoint of the time functions, then at t_end
+  size_t next_break = 0;
+  auto stop_time = [&] { return next_break < plan.breakpoints.size() ? plan.breakpoints[next_break] : plan.t_end; };
+  check(IDASetStopTime(s.mem, stop_time()), "IDASetStopTime", s.ctx);
   check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
 
   s.lu.row_scale = &dae.row_scale();
@@ -160,14 +163,16 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   check(IDASetLinearSolver(s.mem, s.LS, s.A), "IDASetLinearSolver", s.ctx);
   check(IDASetJacFn(s.mem, jacobian_fn), "IDASetJacFn", s.ctx);
 
+  Stats before;  // counts of the segments before the last IDAReInit
   auto fill_stats = [&] {
     long v = 0;
-    IDAGetNumSteps(s.mem, &v), stats.steps = v;
-    IDAGetNumResEvals(s.mem, &v), stats.residual_evals = v;
-    IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = v;
-    IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = v;
-    IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = v;
-    IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = v;
+    // IDAReInit zeroes IDA's counters: add what earlier segments counted
+    IDAGetNumSteps(s.mem, &v), stats.steps = before.steps + v;
+    IDAGetNumResEvals(s.mem, &v), stats.residual_evals = before.residual_evals + v;
+    IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = before.jacobian_evals + v;
+    IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = before.newton_iterations + v;
+    IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = before.error_test_failures + v;
+    IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = before.convergence_failures + v;
     int order = 0;
     IDAGetLastOrder(s.mem, &order), stats.last_order = order;
     sun::real h = 0;
@@ -206,13 +211,23 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
       const double* yo = N_VGetArrayPointer(s.out);
       record(dae.q(yo), dae.v(yo));
     }
-    if (flag == IDA_TSTOP_RETURN) break;
-    if (plan.max_steps > 0 && ++steps >= plan.max_steps) {
+    if (plan.max_steps > 0 && ++steps >= plan.max_steps && t < plan.t_end) {
       fill_stats();
       std::ostringstream msg;
       msg << "IDA reached max_steps = " << plan.max_steps << " at t = " << t << " before t_end = "
           << plan.t_end << ".";
       throw IntegratorFailure(msg.str(), t);
+    }
+    if (flag == IDA_TSTOP_RETURN) {
+      if (next_break >= plan.breakpoints.size()) break;  // t_end
+      // a derivative of a time function jumps here: restart at order 1 from
+      // the (continuous, consistent) state instead of stepping across
+      ++next_break;
+      fill_stats();
+      before = stats;
+      check(IDAReInit(s.mem, t, s.y, s.yp), "IDAReInit", s.ctx);
+      check(IDASetStopTime(s.mem, stop_time()), "IDASetStopTime", s.ctx);
+      continue;
     }
     if (plan.progress) {
       auto now = std::chrono::steady_clock::now();

@@ -16,6 +16,7 @@ struct IntegrationPlan {
   int max_order;
   long max_steps;
   std::vector<double> t_out;
+  std::vector<double> breakpoints;  // inside (t0, t_end): stop and restart there
   std::function<void(double)> progress;
   double progress_interval;
 };

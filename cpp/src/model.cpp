@@ -224,6 +224,17 @@ std::string Model::constraint_name_of_row(int row) const {
   return constraints_[g]->name(k);
 }
 
+std::vector<double> Model::breakpoints() const {
+  std::vector<double> t;
+  for (const auto& f : time_functions_) {
+    const auto b = f->breakpoints();
+    t.insert(t.end(), b.begin(), b.end());
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
 const Body& Model::body_of_coordinate(int coord) const { return bodies_.at(coord_owner_.at(coord)); }
 
 }  // namespace lagmb
@@ -399,10 +410,9 @@ void Model::add_gear(const std::string& name, int body_i, int body_j, double rat
   g.s = ratio < 0 ? 1.0 : -1.0;
   g.r_j = ratio < 0 ? D / (a + 1.0) : D / std::abs(a - 1.0);
   g.r_i = a * g.r_j;
-  g.d0 = (cj - ci) / D;
   Local6 c0;
   c0 << initial_position(body_i), initial_angle(body_i), initial_position(body_j), initial_angle(body_j);
-  g.c0 = g.raw(c0);
+  g.c0 = g.rolled(c0);
   add_constraint(std::move(g));
 }
 
@@ -436,6 +446,7 @@ void Model::drive_joint(const std::string& name, const std::string& joint, TimeF
     d.body_i = rev->body_i;
     d.body_j = rev->body_j;
     d.f = std::move(f);
+    note(d.f);
     add_constraint(std::move(d));
   } else if (const auto* tr = find_constraint<TranslationalJoint>(joint)) {
     SlideDriver d;
@@ -445,6 +456,7 @@ void Model::drive_joint(const std::string& name, const std::string& joint, TimeF
     d.along = tr->across;
     d.along.w = tr->across.line_direction();
     d.f = std::move(f);
+    note(d.f);
     add_constraint(std::move(d));
   } else {
     throw ModelError("driver '" + name + "': '" + joint +
@@ -468,6 +480,7 @@ void Model::drive_body(const std::string& name, int body, const std::string& coo
   d.body_i = kGround;
   d.body_j = body;
   d.f = std::move(f);
+  note(d.f);
   add_constraint(std::move(d));
 }
 
@@ -500,6 +513,7 @@ void Model::add_spring_damper(const std::string& name, int body_i, Vec2 point_i,
   e.damping = damping;
   e.free_length = l0;
   e.actuator = std::move(actuator);
+  note(e.actuator);
   add_force_element(std::move(e));
 }
 
@@ -522,6 +536,7 @@ void Model::add_rotational_spring_damper(const std::string& name, int body_i, in
   e.free_angle = free_angle ? *free_angle : initial_angle(body_j) - initial_angle(body_i);
   require_finite(e.free_angle, name, "free_angle");
   e.actuator = std::move(torque);
+  note(e.actuator);
   add_force_element(std::move(e));
 }
 
@@ -541,6 +556,8 @@ void Model::add_force(const std::string& name, int body, TimeFunctionPtr fx, Tim
   e.fx = std::move(fx);
   e.fy = std::move(fy);
   e.local = local;
+  note(e.fx);
+  note(e.fy);
   add_force_element(std::move(e));
 }
 
@@ -554,6 +571,7 @@ void Model::add_torque(const std::string& name, int body, TimeFunctionPtr torque
   e.name = name;
   e.body_i = body;
   e.torque = std::move(torque);
+  note(e.torque);
   add_force_element(std::move(e));
 }
 

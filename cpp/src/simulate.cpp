@@ -105,9 +105,11 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     throw SimulationError(e.what(), o.t0);
   }
 
-  IntegrationPlan plan{o.t0,        o.t_end,           o.rtol,    o.atol,
-                       o.max_step,  o.max_order,       o.max_steps, output_times(o),
-                       o.progress,  o.progress_interval};
+  IntegrationPlan plan{o.t0,        o.t_end,     o.rtol,      o.atol,
+                       o.max_step,  o.max_order, o.max_steps, output_times(o),
+                       {},          o.progress,  o.progress_interval};
+  for (double b : model.breakpoints())
+    if (b > o.t0 && b < o.t_end) plan.breakpoints.push_back(b);
   Trajectory tr;
   tr.n = n;
   tr.m = m;

@@ -46,6 +46,7 @@ struct Harmonic final : TimeFunction {
 struct SmoothStep final : TimeFunction {
   double t0, t1, y0, y1;
   SmoothStep(double a, double b, double c, double d) : t0(a), t1(b), y0(c), y1(d) {}
+  std::vector<double> breakpoints() const override { return {t0, t1}; }
   TimeValue eval(double t) const override {
     if (t <= t0) return {y0, 0.0, 0.0};
     if (t >= t1) return {y1, 0.0, 0.0};
@@ -74,6 +75,7 @@ struct Spline final : TimeFunction {
     }
     for (size_t i = n - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
   }
+  std::vector<double> breakpoints() const override { return x; }
   TimeValue eval(double t) const override {
     const size_t n = x.size();
     if (n == 1) return {y[0], 0.0, 0.0};

@@ -174,6 +174,9 @@ class Model {
   /// Positions in q of the local coordinates (x_i, y_i, phi_i, x_j, y_j, phi_j).
   std::array<int, 6> local_coordinates(int body_i, int body_j) const;
 
+  /// Sorted times where a time function of the model has a breakpoint.
+  std::vector<double> breakpoints() const;
+
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
 
@@ -200,6 +203,10 @@ class Model {
   std::vector<std::unique_ptr<ForceGroupBase>> forces_;
   std::vector<const ConstraintGroupBase*> time_dependent_;
   std::vector<const ForceGroupBase*> state_dependent_;
+  std::vector<TimeFunctionPtr> time_functions_;  // of drivers and forces, for breakpoints
+  void note(const TimeFunctionPtr& f) {
+    if (f) time_functions_.push_back(f);
+  }
   std::map<std::string, ElementRef> names_;
 
   int n_ = 0, m_ = 0;

@@ -17,6 +17,9 @@ class TimeFunction {
  public:
   virtual ~TimeFunction() = default;
   virtual TimeValue eval(double t) const = 0;
+  /// Times where a derivative of f jumps (smooth-step ends, spline knots).
+  /// The integrator stops and restarts there instead of stepping across.
+  virtual std::vector<double> breakpoints() const { return {}; }
 };
 using TimeFunctionPtr = std::shared_ptr<TimeFunction>;
 
