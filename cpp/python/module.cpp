@@ -90,7 +90,10 @@ class PythonTimeFunction final : public TimeFunction {
         v.f = r.cast<double>();
       }
     } catch (py::error_already_set& e) {
-      throw UserFunctionError(where_ + " raised " + e.what());
+      // type and message only: the run's error should read as one line
+      const std::string type = py::str(e.type().attr("__name__"));
+      const std::string text = py::str(e.value());
+      throw UserFunctionError(where_ + " raised " + type + ": " + text + " (at t = " + std::to_string(t) + ")");
     } catch (const std::exception& e) {
       throw UserFunctionError(where_ + ": the function " + e.what() + " (at t = " + std::to_string(t) + ")");
     }

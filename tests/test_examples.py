@@ -1,0 +1,230 @@
+"""The example scripts and scenes a new user starts from.
+
+Each examples/*.py script runs in a fresh interpreter (sys.executable), must
+exit 0, and prints lines "label = number ...": the numbers are parsed here
+and compared with closed forms derived in each test's docstring (the scripts
+print their own closed forms too; the tests recompute them independently).
+The examples/*.toml scenes run through mb.load_scene(path).run() when the
+scene reader is available.
+"""
+
+import math
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.special import ellipk
+
+import lagmb as mb
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
+G = 9.81
+
+SCRIPTS = ["seed_pendulum", "double_pendulum", "slider_crank", "four_bar", "quick_return",
+           "gear_train", "spring_damper"]
+
+_LINE = re.compile(r"^\s*(?P<label>[^=]+?)\s*=\s*(?P<value>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")
+
+
+def run_script(name, *args, timeout=60):
+    """Run examples/<name>.py; returns (stdout, {label: first number})."""
+    path = os.path.join(EXAMPLES, name + ".py")
+    proc = subprocess.run([sys.executable, path, *args], capture_output=True, text=True,
+                          timeout=timeout, cwd=os.path.dirname(EXAMPLES))
+    assert proc.returncode == 0, f"{name}.py failed:\n{proc.stdout}\n{proc.stderr}"
+    values = {}
+    for line in proc.stdout.splitlines():
+        m = _LINE.match(line)
+        if m:
+            values.setdefault(m["label"], float(m["value"]))
+    return proc.stdout, values
+
+
+@pytest.fixture(scope="module")
+def outputs():
+    """Each script run once (lazily), shared by the tests below."""
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            cache[name] = run_script(name)
+        return cache[name]
+    return get
+
+
+def test_every_example_script_exists():
+    """The seven scripts the README's users are pointed to are there."""
+    for name in SCRIPTS:
+        assert os.path.isfile(os.path.join(EXAMPLES, name + ".py")), name
+
+
+def test_seed_pendulum(outputs):
+    """Uniform rod released from horizontal: period 4 sqrt(2L/(3g)) K(m=1/2)
+    = 1.9333348544 s (SciPy's ellipk here) to 1e-8 s (printed with 10
+    decimals); pin force m g/4 at release and 5 m g/2 at the bottom, to 1e-6
+    of m g; energy drift below 1e-6 J."""
+    _, v = outputs("seed_pendulum")
+    T = 4.0 * math.sqrt(2.0 / (3.0 * G)) * float(ellipk(0.5))
+    assert abs(v["period closed form"] - T) <= 1e-9
+    assert abs(v["period simulated"] - T) <= 1e-8
+    assert abs(v["pin force at release"] - 0.25) <= 1e-6
+    assert abs(v["max pin force"] - 2.5) <= 1e-6
+    assert 0.0 <= v["energy drift"] <= 1e-6
+
+
+def test_double_pendulum(outputs):
+    """Released from horizontal at rest, the mass matrix in absolute angles
+    is [[4/3, 1/2], [1/2, 1/3]] m L^2 and the gravity moments -(3/2, 1/2)
+    m g L, so (theta1'', theta2'') = (-9 g / 7, 3 g / 7) / L (recomputed
+    here with numpy), to 1e-8 rad/s^2.  The lower rod's tip never goes below
+    2 m under the pivot; energy drift below 1e-6 J."""
+    _, v = outputs("double_pendulum")
+    acc = np.linalg.solve([[4 / 3, 1 / 2], [1 / 2, 1 / 3]], [-1.5 * G, -0.5 * G])
+    assert np.allclose(acc, [-9 * G / 7, 3 * G / 7], rtol=1e-14)
+    assert abs(v["initial angular acceleration upper"] - acc[0]) <= 1e-8
+    assert abs(v["initial angular acceleration lower"] - acc[1]) <= 1e-8
+    assert -2.0 - 1e-8 <= v["lowest tip height"] < -1.0
+    assert 0.0 <= v["energy drift"] <= 1e-6
+
+
+def test_slider_crank(outputs):
+    """r = 0.1, l = 0.3, 10 rad/s: the slider is at r + l = 0.4 m and
+    l - r = 0.2 m at the dead centres (1e-9 m), the stroke is 2r (1e-6 m,
+    sampled extremes); the maximum slider speed is max |omega dx/dtheta|
+    with dx/dtheta = -r sin th (1 + r cos th / sqrt(l^2 - r^2 sin^2 th)),
+    evaluated here on a fine grid (1e-4 relative: the script samples 2001
+    points per turn); over a whole turn the motor does no net work (below
+    1e-6 J, against a peak torque of 2.4 N m)."""
+    _, v = outputs("slider_crank")
+    r, l, w = 0.1, 0.3, 10.0
+    th = np.linspace(0.0, 2 * np.pi, 200001)
+    dx = -r * np.sin(th) * (1 + r * np.cos(th) / np.sqrt(l**2 - r**2 * np.sin(th)**2))
+    assert v["degrees of freedom"] == 0
+    assert abs(v["slider at outer dead centre"] - (r + l)) <= 1e-9
+    assert abs(v["slider at inner dead centre"] - (l - r)) <= 1e-9
+    assert abs(v["stroke"] - 2 * r) <= 1e-6
+    assert abs(v["max slider speed"] - w * np.abs(dx).max()) <= 1e-4 * w * np.abs(dx).max()
+    assert 2.0 < v["max motor torque"] < 3.0
+    assert abs(v["motor work over one turn"]) <= 1e-6
+
+
+def test_four_bar(outputs):
+    """Crank-rocker (1, 3.5, 3, ground 4): one degree of freedom; the crank
+    keeps its given 12 rad/s at the start (the script's velocities are
+    consistent, 1e-8) and turns fully, so the rocker swings between the two
+    in-line positions of crank and coupler, AC = 2.5 and 4.5:
+    angle ADC = acos((16 + 9 - AC^2) / 24), swing 39.960 deg (to 0.01 deg,
+    sampled); the coupler keeps its length (1e-9 m); energy conserved to
+    1e-7 relative."""
+    _, v = outputs("four_bar")
+    swing = math.degrees(math.acos((25 - 4.5**2) / 24) - math.acos((25 - 2.5**2) / 24))
+    assert v["degrees of freedom"] == 1
+    assert abs(v["crank speed at start"] - 12.0) <= 1e-8
+    assert abs(v["crank turns"]) >= 1.0
+    assert abs(v["rocker swing"] - swing) <= 0.01
+    assert v["max coupler length error"] <= 1e-9
+    assert v["energy drift"] <= 1e-7 * v["energy"]
+
+
+def test_quick_return(outputs):
+    """Whitworth: the ram turns where the lever is horizontal, i.e. where
+    the crank pin is level with the lever pivot: r sin(theta) = 0.04, at
+    theta = pi - asin(0.4) and 2 pi + asin(0.4), reached from pi/2 at 2 pi
+    rad/s at t = (pi/2 - asin 0.4)/(2 pi) and (3 pi/2 + asin 0.4)/(2 pi)
+    (1e-8 s); stroke 2 x 0.15 m (1e-7 m); time ratio
+    (pi + 2 asin 0.4)/(pi - 2 asin 0.4) = 1.70995 (1e-7)."""
+    _, v = outputs("quick_return")
+    a = math.asin(0.4)
+    assert v["degrees of freedom"] == 0
+    assert abs(v["ram turns at t1"] - (math.pi / 2 - a) / (2 * math.pi)) <= 1e-8
+    assert abs(v["ram turns at t2"] - (1.5 * math.pi + a) / (2 * math.pi)) <= 1e-8
+    assert abs(v["stroke"] - 0.3) <= 1e-7
+    assert abs(v["time ratio"] - (math.pi + 2 * a) / (math.pi - 2 * a)) <= 1e-7
+    assert abs(v["working stroke time"] + v["return stroke time"] - 1.0) <= 1e-9
+    assert v["max motor torque"] > 0.0
+
+
+def test_gear_train(outputs):
+    """Two external meshes of ratio -2: omega3/omega1 = 4 (1e-10); at
+    constant speed the motor balances the load by power, tau1 = -tau3
+    omega3/omega1 = 4 N m (1e-8); tooth force = load / r3 = 1 / 0.05 =
+    20 N in both meshes (1e-8)."""
+    _, v = outputs("gear_train")
+    assert abs(v["omega2 / omega1"] + 2.0) <= 1e-10
+    assert abs(v["omega3 / omega1"] - 4.0) <= 1e-10
+    assert abs(v["motor torque"] - 4.0) <= 1e-8
+    assert abs(v["tooth force mesh12"] - 20.0) <= 1e-8
+    assert abs(v["tooth force mesh23"] - 20.0) <= 1e-8
+
+
+def test_spring_damper(outputs):
+    """k = 100, c = 2, m = 1: omega_n = 10, zeta = 0.1; damped period
+    2 pi / (omega_n sqrt(1 - zeta^2)) = 0.631484 s (1e-6 relative, the
+    script refines the turning points by one Newton step); successive
+    swings shrink by exp(-zeta omega_n T_d) (1e-6 relative); the static
+    deflection is m g / k; the energy lost equals the damper's integral of
+    c ldot^2 (trapezoid over 3001 outputs, 1e-5 relative)."""
+    _, v = outputs("spring_damper")
+    Td = 2 * math.pi / (10.0 * math.sqrt(1 - 0.01))
+    assert abs(v["static deflection"] - G / 100.0) <= 1e-12
+    assert abs(v["damped period"] - Td) <= 1e-6 * Td
+    assert abs(v["decay per period"] - math.exp(-1.0 * Td)) <= 1e-6
+    lost, damper = v["energy lost"], v["energy dissipated by the damper"]
+    assert lost > 0.4
+    assert abs(lost - damper) <= 1e-5 * lost
+
+
+def test_plot_option(tmp_path):
+    """--plot PATH writes a PNG through lagmb.plotting (skipped without
+    matplotlib): the file exists and starts with the PNG signature."""
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "pendulum.png"
+    stdout, _ = run_script("seed_pendulum", "--plot", str(out))
+    assert out.is_file()
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert str(out) in stdout
+
+
+# --------------------------------------------------------------------------
+# Scenes
+# --------------------------------------------------------------------------
+
+SCENES = sorted(f[:-5] for f in os.listdir(EXAMPLES) if f.endswith(".toml"))
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_scene_runs(name):
+    """Every examples/*.toml loads and runs with its own settings: outputs
+    cover [0, t_end] and the constraints hold (max |Phi| below 1e-6 m)."""
+    if not hasattr(mb, "load_scene"):
+        pytest.skip("mb.load_scene not available yet")
+    scene = mb.load_scene(os.path.join(EXAMPLES, name + ".toml"))
+    r = scene.run()
+    assert len(r.t) >= 2 and r.t[0] == 0.0
+    assert r.residual.max() <= 1e-6
+
+
+def test_scene_slider_crank_matches_closed_form():
+    """The slider-crank scene (crank 0.1 m from 90 deg at 10 rad/s, rod
+    0.3 m): slider x = r cos th + sqrt(l^2 - r^2 sin^2 th) at every output,
+    to 1e-6 m at the scene's own tolerances (rtol 1e-8)."""
+    if not hasattr(mb, "load_scene"):
+        pytest.skip("mb.load_scene not available yet")
+    r = mb.load_scene(os.path.join(EXAMPLES, "slider_crank.toml")).run()
+    th = math.pi / 2 + 10.0 * r.t
+    x = 0.1 * np.cos(th) + np.sqrt(0.09 - 0.01 * np.sin(th)**2)
+    assert np.abs(r.body("slider").position[:, 0] - x).max() <= 1e-6
+
+
+def test_scene_gear_train_motor_torque():
+    """The gear-train scene: motor torque 4 N m and omega3 = 4 omega1 (as
+    the Python example), to 1e-6."""
+    if not hasattr(mb, "load_scene"):
+        pytest.skip("mb.load_scene not available yet")
+    r = mb.load_scene(os.path.join(EXAMPLES, "gear_train.toml")).run()
+    assert np.abs(r.effort("motor") - 4.0).max() <= 1e-6
+    assert np.abs(r.body("g3").angular_velocity - 20.0).max() <= 1e-6
