@@ -36,6 +36,8 @@ py::dict to_python(Trajectory&& tr) {
   stats["residual_evals"] = s.residual_evals;
   stats["jacobian_evals"] = s.jacobian_evals;
   stats["lu_factorizations"] = s.lu_factorizations;
+  stats["augmented_factorizations"] = s.augmented_factorizations;
+  stats["projections"] = s.projections;
   stats["newton_iterations"] = s.newton_iterations;
   stats["error_test_failures"] = s.error_test_failures;
   stats["convergence_failures"] = s.convergence_failures;
@@ -354,7 +356,7 @@ PYBIND11_MODULE(_core, m) {
       "simulate",
       [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
          double atol, double max_step, long max_steps, int max_order, std::string formulation,
-         std::string integrator, py::object progress) {
+         std::string integrator, double baumgarte_alpha, double baumgarte_beta, py::object progress) {
         SimulationOptions o;
         o.t0 = t0;
         o.t_end = t_end;
@@ -367,6 +369,8 @@ PYBIND11_MODULE(_core, m) {
         o.max_order = max_order;
         o.formulation = std::move(formulation);
         o.integrator = std::move(integrator);
+        o.baumgarte_alpha = baumgarte_alpha;
+        o.baumgarte_beta = baumgarte_beta;
         // between steps: let Ctrl-C through, and report progress if asked
         // (a borrowed pointer: the std::function is copied without the GIL)
         PyObject* report = progress.ptr();
@@ -384,5 +388,5 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("model"), py::arg("t0"), py::arg("t_end"), py::arg("t_out"), py::arg("n_out"), py::arg("rtol"),
       py::arg("atol"), py::arg("max_step"), py::arg("max_steps"), py::arg("max_order"), py::arg("formulation"),
-      py::arg("integrator"), py::arg("progress"));
+      py::arg("integrator"), py::arg("baumgarte_alpha"), py::arg("baumgarte_beta"), py::arg("progress"));
 }

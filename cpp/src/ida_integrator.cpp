@@ -21,19 +21,24 @@ namespace lagmb {
 namespace {
 
 struct Callbacks {
-  DaeFormulation* dae;
+  DaeFormulation* dae = nullptr;
   std::exception_ptr error;  // a C++ exception must not cross SUNDIALS' C frames
   void* mem = nullptr;
   double rtol = 0.0, h_default = 0.0;
   const double* abstol = nullptr;
   const double* id = nullptr;
+  std::vector<int> level;  // index of each component (DaeFormulation::index_levels)
+  bool scale_relative = false;
 };
 
-/// Error weights. The multipliers of the index-2 formulations are fixed by
-/// the constraints only to (roundoff in Phi) x cj, cj ~ 1/h, so their Newton
-/// corrections are measured against tolerances divided by h, as RADAU5 does
-/// for index-2 components (Hairer & Wanner, Solving ODEs II, VII.8).
-/// Differential components get the usual 1 / (rtol |y| + atol).
+/// Error weights. An index-k component (k = 2, 3: multipliers and, in the
+/// index-3 form, velocities) is fixed by the constraints only to (roundoff
+/// in Phi) x cj^(k-1), cj ~ 1/h, so its absolute tolerance is divided by
+/// h^(k-1), as RADAU5 does (Hairer & Wanner, Solving ODEs II, VII.8); that
+/// governs both the Newton convergence test and, for components in the error
+/// test, the error test; forms that keep such components in the error test
+/// scale the relative part as well (RADAU5 scales the whole error). Index-1
+/// components get 1 / (rtol |y| + atol).
 int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
   auto* cb = static_cast<Callbacks*>(data);
   sun::real h = 0.0;
@@ -42,7 +47,12 @@ int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
   const double* y = N_VGetArrayPointer(yv);
   double* ewt = N_VGetArrayPointer(ewtv);
   for (sun::index i = 0, N = N_VGetLength(yv); i < N; ++i) {
-    const double tol = cb->rtol * std::abs(y[i]) + (cb->id[i] > 0.0 ? cb->abstol[i] : cb->abstol[i] * inv_h);
+    double a = cb->abstol[i], r = cb->rtol * std::abs(y[i]);
+    for (int k = 1; k < cb->level[i]; ++k) {
+      a *= inv_h;
+      if (cb->scale_relative) r *= inv_h;
+    }
+    const double tol = r + a;
     if (!(tol > 0.0)) return -1;
     ewt[i] = 1.0 / tol;
   }
@@ -95,7 +105,7 @@ void check(int flag, const char* call, sun::Context& ctx) {
 }
 
 /// IDA's own first-step rule, h0 = min(1e-3 (t_end - t0), 0.5 / |y'|_WRMS),
-/// over the differential components only; chosen here so that the weights
+/// over the index-1 differential components only; chosen here so that the weights
 /// of the algebraic components (scaled by 1/h) are set for the step that is
 /// actually tried first.
 double initial_step(const IntegrationPlan& plan, const double* y, const double* yp, const Callbacks& cb,
@@ -103,7 +113,7 @@ double initial_step(const IntegrationPlan& plan, const double* y, const double* 
   double sum = 0.0;
   int count = 0;
   for (int i = 0; i < N; ++i) {
-    if (!(cb.id[i] > 0.0)) continue;
+    if (!(cb.id[i] > 0.0) || cb.level[i] > 1) continue;
     const double w = yp[i] / (plan.rtol * std::abs(y[i]) + cb.abstol[i]);
     sum += w * w;
     ++count;
@@ -133,13 +143,17 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   dae.ids(N_VGetArrayPointer(s.id));
   dae.tolerances(plan.atol, N_VGetArrayPointer(s.abstol));
 
-  Callbacks cb{&dae, nullptr};
+  Callbacks cb;
+  cb.dae = &dae;
   s.mem = IDACreate(s.ctx);
   if (!s.mem) throw std::runtime_error("lagmb: IDACreate failed");
   cb.mem = s.mem;
   cb.rtol = plan.rtol;
   cb.abstol = N_VGetArrayPointer(s.abstol);
   cb.id = N_VGetArrayPointer(s.id);
+  cb.level.resize(N);
+  dae.index_levels(cb.level.data());
+  cb.scale_relative = dae.scale_relative_tolerance();
   cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, N);
   s.ctx.attach_ida(s.mem);
   check(IDAInit(s.mem, residual_fn, plan.t0, s.y, s.yp), "IDAInit", s.ctx);

@@ -34,4 +34,12 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
                    const std::function<void(const double* q, const double* v)>& record,
                    Stats& stats);
 
+/// Integrates the ODE in accelerations (qdd, lam from the augmented system at
+/// every right-hand side) with CVODE. BDF: q and v are projected onto Phi = 0
+/// and Phi_q v + Phi_t = 0 after every step. Adams-Moulton: CVODE cannot
+/// project, so only Baumgarte terms (alpha, beta) hold the constraints.
+void integrate_cvode(const Model& model, bool adams, double alpha, double beta, const ConsistentState& start,
+                     const IntegrationPlan& plan,
+                     const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+
 }  // namespace lagmb

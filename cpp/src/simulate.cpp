@@ -31,8 +31,6 @@ void validate(const Model& model, const SimulationOptions& o) {
   positive(o.atol, "atol");
   if (o.max_step != 0.0) positive(o.max_step, "max_step");
   if (o.max_steps < 0) throw ModelError("simulate: max_steps must be >= 0 (0: no limit)");
-  if (o.max_order < 1 || o.max_order > 5)
-    throw ModelError("simulate: max_order must be in 1..5 for BDF, got " + std::to_string(o.max_order));
   if (o.t_out.empty() && o.n_out < 2)
     throw ModelError("simulate: n_out must be at least 2, got " + std::to_string(o.n_out));
   for (size_t k = 0; k < o.t_out.size(); ++k) {
@@ -44,10 +42,25 @@ void validate(const Model& model, const SimulationOptions& o) {
       throw ModelError("simulate: t_out must be strictly increasing (t_out[" + std::to_string(k) +
                        "] = " + std::to_string(tk) + ")");
   }
-  if (o.formulation != "ggl")
-    throw ModelError("simulate: unknown formulation '" + o.formulation + "' (available: ggl)");
-  if (o.integrator != "bdf")
-    throw ModelError("simulate: unknown integrator '" + o.integrator + "' (available: bdf)");
+  const bool ida_form = o.formulation == "ggl" || o.formulation == "index3" || o.formulation == "index1";
+  if (!ida_form && o.formulation != "projection")
+    throw ModelError("simulate: unknown formulation '" + o.formulation +
+                     "' (available: ggl, index3, index1, projection)");
+  if (o.integrator != "bdf" && o.integrator != "adams")
+    throw ModelError("simulate: unknown integrator '" + o.integrator + "' (available: bdf, adams)");
+  if (o.integrator == "adams" && ida_form)
+    throw ModelError("simulate: integrator 'adams' (CVODE) needs formulation 'projection'; '" + o.formulation +
+                     "' is integrated by IDA (BDF)");
+  const int top = o.integrator == "adams" ? 12 : 5;
+  if (o.max_order < 1 || o.max_order > top)
+    throw ModelError("simulate: max_order must be in 1.." + std::to_string(top) + " for " + o.integrator +
+                     ", got " + std::to_string(o.max_order));
+  if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && o.formulation != "index1" &&
+      o.integrator != "adams")
+    throw ModelError("simulate: Baumgarte terms apply to formulation 'index1' and to the Adams integrator only");
+  if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
+      o.baumgarte_beta < 0)
+    throw ModelError("simulate: Baumgarte alpha and beta must be finite and >= 0");
 }
 
 std::vector<double> output_times(const SimulationOptions& o) {
@@ -134,9 +147,17 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
 
-  GglFormulation dae(model);
   try {
-    integrate_ida(dae, start, plan, record, tr.stats);
+    if (o.formulation == "projection") {
+      integrate_cvode(model, o.integrator == "adams", o.baumgarte_alpha, o.baumgarte_beta, start, plan, record,
+                      tr.stats);
+    } else {
+      std::unique_ptr<DaeFormulation> dae;
+      if (o.formulation == "ggl") dae = std::make_unique<GglFormulation>(model);
+      else if (o.formulation == "index3") dae = std::make_unique<Index3Formulation>(model);
+      else dae = std::make_unique<Index1Formulation>(model, o.baumgarte_alpha, o.baumgarte_beta);
+      integrate_ida(*dae, start, plan, record, tr.stats);
+    }
   } catch (const IntegratorFailure& e) {
     finish();
     std::ostringstream msg;

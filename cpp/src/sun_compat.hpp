@@ -5,6 +5,7 @@
 // how errors are reported. Errors are captured here, never printed.
 #pragma once
 
+#include <cvode/cvode.h>
 #include <ida/ida.h>
 #include <sundials/sundials_config.h>
 #include <sundials/sundials_context.h>
@@ -53,6 +54,13 @@ class Context {
     IDASetErrHandlerFn(ida_mem, &Context::handler6, &sink_);
 #else
     (void)ida_mem;
+#endif
+  }
+  void attach_cvode(void* cvode_mem) {
+#if SUNDIALS_VERSION_MAJOR < 7
+    CVodeSetErrHandlerFn(cvode_mem, &Context::handler6, &sink_);
+#else
+    (void)cvode_mem;
 #endif
   }
 

@@ -33,13 +33,26 @@ def _positive(value, name):
 
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
-             max_step=None, max_steps=None, formulation="ggl", integrator="bdf", max_order=5,
-             progress=None):
+             max_step=None, max_steps=None, formulation="ggl", integrator="bdf", max_order=None,
+             baumgarte=None, progress=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
-    velocities by projection); then IDA integrates the stabilized index-2
-    (GGL) equations. Outputs: ``n_out`` equally spaced times from t0 to
+    velocities by projection); then it is integrated in one of these forms:
+
+    - ``formulation="ggl"`` (default): stabilized index 2 (Gear, Gupta,
+      Leimkuhler), IDA; positions and velocities stay on the constraints.
+    - ``"index3"``: position constraints only, IDA with the multipliers and
+      velocities weighted as index-3 and index-2 variables.
+    - ``"index1"``: acceleration constraints, IDA; drifts unless
+      ``baumgarte=(alpha, beta)`` adds 2 alpha Phi' + beta^2 Phi.
+    - ``"projection"``: the ODE in accelerations (augmented system solved at
+      every right-hand side), CVODE, q and v projected onto the constraints
+      after every step with ``integrator="bdf"`` (CVODE BDF, orders 1-5);
+      with ``"adams"`` (Adams-Moulton, orders 1-12) CVODE cannot project,
+      so the constraints drift unless ``baumgarte=(alpha, beta)`` is given.
+
+    ``max_order`` defaults to 5 (BDF) or 12 (Adams). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
     last entry), interpolated by the integrator. ``max_step`` bounds the step
     size (s), ``max_steps`` the number of steps (None: no bound; reaching it
@@ -64,6 +77,9 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     rtol = _positive(rtol, "rtol")
     atol = _positive(atol, "atol")
     max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
+    if max_order is None:
+        max_order = 12 if integrator == "adams" else 5
+    alpha, beta = (0.0, 0.0) if baumgarte is None else baumgarte
     if max_steps is None:
         max_steps = 0
     elif isinstance(max_steps, bool) or int(max_steps) != max_steps or max_steps < 1:
@@ -76,7 +92,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     with _translate(model, core):
         raw = _core.simulate(core, float(t0), t_end, [] if t_out is None else list(t_out),
                              int(n_out), rtol, atol, max_step, int(max_steps), int(max_order),
-                             str(formulation), str(integrator), progress)
+                             str(formulation), str(integrator), float(alpha), float(beta), progress)
     return Result(model, core, raw)
 
 

@@ -23,9 +23,14 @@ struct SimulationOptions {
   double atol = 1e-8;
   double max_step = 0.0;  // 0: no limit
   long max_steps = 0;     // 0: no limit; else SimulationError when reached
-  int max_order = 5;
+  int max_order = 5;  // BDF: 1..5, Adams: 1..12
+  /// "ggl" (stabilized index 2, IDA), "index3" (IDA), "index1" (IDA, with
+  /// optional Baumgarte terms), "projection" (ODE in accelerations, CVODE,
+  /// coordinate projection after each step).
   std::string formulation = "ggl";
+  /// "bdf" (IDA, or CVODE BDF for projection) or "adams" (CVODE Adams-Moulton).
   std::string integrator = "bdf";
+  double baumgarte_alpha = 0.0, baumgarte_beta = 0.0;  // index1, and projection with adams
   /// Called between steps with the time reached, at most every
   /// progress_interval seconds of wall time; may throw to stop the run.
   std::function<void(double t)> progress;

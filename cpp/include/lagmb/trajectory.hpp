@@ -12,7 +12,9 @@ struct Stats {
   long steps = 0;
   long residual_evals = 0;
   long jacobian_evals = 0;
-  long lu_factorizations = 0;
+  long lu_factorizations = 0;         // of the Newton matrix
+  long augmented_factorizations = 0;  // of the augmented matrix (projection formulation)
+  long projections = 0;               // coordinate projections (projection formulation)
   long newton_iterations = 0;
   long error_test_failures = 0;
   long convergence_failures = 0;
