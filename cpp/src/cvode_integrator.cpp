@@ -340,6 +340,7 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
   check(CVodeSetUserData(s.mem, &p), "CVodeSetUserData", s.ctx);
   check(CVodeSetMaxOrd(s.mem, plan.max_order), "CVodeSetMaxOrd", s.ctx);
   if (plan.max_step > 0) check(CVodeSetMaxStep(s.mem, plan.max_step), "CVodeSetMaxStep", s.ctx);
+  check(CVodeSetMinStep(s.mem, minimum_step(plan)), "CVodeSetMinStep", s.ctx);
   s.A = make_implicit_matrix(s.ctx);
   s.LS = make_saddle_solver(s.ctx, &p);
   if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the CVODE linear solver");

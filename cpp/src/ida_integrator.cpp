@@ -168,6 +168,9 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   auto stop_time = [&] { return next_break < plan.breakpoints.size() ? plan.breakpoints[next_break] : plan.t_end; };
   check(IDASetStopTime(s.mem, stop_time()), "IDASetStopTime", s.ctx);
   check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
+  // a step shorter than a few ulps of t cannot make progress: fail there
+  // (a lock-up or a singular passage) instead of shrinking h for ever
+  check(IDASetMinStep(s.mem, minimum_step(plan)), "IDASetMinStep", s.ctx);
 
   s.lu.row_scale = &dae.row_scale();
   s.lu.col_scale = &dae.col_scale();

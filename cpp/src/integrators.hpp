@@ -1,7 +1,10 @@
 // The time integrators lagmb drives, behind one call each.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -20,6 +23,13 @@ struct IntegrationPlan {
   std::function<void(double)> progress;
   double progress_interval;
 };
+
+/// Smallest step an integrator may take: 100 ulps of the largest |t| of the
+/// run. Below it the step cannot advance t.
+inline double minimum_step(const IntegrationPlan& plan) {
+  const double T = std::max({std::abs(plan.t0), std::abs(plan.t_end), 1.0});
+  return 100.0 * std::numeric_limits<double>::epsilon() * T;
+}
 
 /// The integrator gave up at time t; what() carries its diagnosis.
 struct IntegratorFailure : std::runtime_error {
