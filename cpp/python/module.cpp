@@ -252,6 +252,22 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("t"), py::arg("q"), "max |Phi| at each state")
       .def(
+          "velocity_residual",
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            Data d(model);
+            Eigen::VectorXd r(q.rows());
+            for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              assemble_jacobian(model, d, q.row(k).data(), t[k]);
+              assemble_phi_t(model, d, q.row(k).data(), t[k]);
+              add_jacobian_times(d, v.row(k).data(), d.phi_t.data());
+              r[k] = d.phi_t.size() ? d.phi_t.lpNorm<Eigen::Infinity>() : 0.0;
+            }
+            return r;
+          },
+          py::arg("t"), py::arg("q"), py::arg("v"), "max |Phi_q v + Phi_t| at each state")
+      .def(
           "constraint_jacobian",
           [](const Model& model, const Eigen::VectorXd& q, double t) {
             require_rows(model, q.transpose(), model.n_coordinates(), "q");

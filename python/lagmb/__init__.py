@@ -11,6 +11,7 @@ the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
 """
 
 from . import _core
+from .accuracy import METHODS, WorkPrecision, work_precision
 from .errors import AssemblyError, ModelError, SimulationError
 from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
                         time_function_from_dict)
@@ -29,6 +30,7 @@ __all__ = [
     "Constant",
     "Harmonic",
     "Linear",
+    "METHODS",
     "Model",
     "ModelError",
     "Polynomial",
@@ -39,9 +41,11 @@ __all__ = [
     "SmoothStep",
     "Spline",
     "TimeFunction",
+    "WorkPrecision",
     "load_scene",
     "save_scene",
     "simulate",
     "solve_accelerations",
     "time_function_from_dict",
+    "work_precision",
 ]

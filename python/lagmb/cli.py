@@ -53,6 +53,20 @@ def _parser():
                                       "its degrees of freedom and any redundant equations.")
     info.add_argument("scene", help="the scene file (.toml)")
 
+    acc = sub.add_parser("accuracy", help="work-precision study of a scene: error against CPU time",
+                         description="Run the scene with each method at each tolerance, measure the "
+                                     "error against a tight reference run, the CPU time and the "
+                                     "constraint drift; print the table and draw the diagram.")
+    acc.add_argument("scene", help="the scene file (.toml)")
+    acc.add_argument("--methods", nargs="+", metavar="M",
+                     help="methods (default: all): " + ", ".join(_method_names()))
+    acc.add_argument("--tolerances", nargs="+", type=float, metavar="RTOL",
+                     help="relative tolerances (default: 1e-3 .. 1e-11)")
+    acc.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
+    acc.add_argument("-o", "--output", metavar="JSON", help="write the table as JSON")
+    acc.add_argument("--plot", metavar="PNG", help="draw error vs CPU time and drift vs time")
+    acc.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+
     demo = sub.add_parser("demo", help="simulate the seed pendulum and check it against closed forms")
     demo.add_argument("--plot", metavar="PNG", help="write a plot of angle and pin force")
     demo.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
@@ -67,6 +81,8 @@ def main(argv=None):
             return _demo(args)
         if args.command == "info":
             return _info(args)
+        if args.command == "accuracy":
+            return _accuracy(args)
         return _run(args)
     except _Exit as e:
         print(f"lagmb {args.command}: {e}", file=sys.stderr)
@@ -74,6 +90,47 @@ def main(argv=None):
     except KeyboardInterrupt:
         print(f"lagmb {args.command}: interrupted", file=sys.stderr)
         return 130
+
+
+def _method_names():
+    from .accuracy import METHODS
+
+    return list(METHODS)
+
+
+def _accuracy(args):
+    from .accuracy import work_precision
+
+    scene = _load(args.scene)
+    if args.plot:
+        _need_matplotlib("--plot")
+    t_end = args.t_end or scene.settings.get("t_end")
+    if not t_end:
+        raise _Exit(USAGE, f"{args.scene}: no t_end in [simulation]; give --t-end")
+    say = (lambda *a, **k: None) if args.quiet else print
+
+    def progress(i, n, row):
+        if not args.quiet:
+            print(f"  [{i}/{n}] {row['method']} rtol {row['rtol']:.0e}: {row['status']}",
+                  file=sys.stderr)
+
+    try:
+        wp = work_precision(scene.model, t_end, methods=args.methods, tolerances=args.tolerances,
+                            t0=scene.settings.get("t0", 0.0), progress=progress)
+    except ModelError as e:
+        raise _Exit(USAGE, str(e)) from None
+    except SimulationError as e:
+        raise _Exit(FAILED, str(e)) from None
+    say(wp.table())
+    ref = wp.reference_info
+    say(f"reference: {ref.get('method')} at rtol {ref.get('rtol', float('nan')):.0e}")
+    if args.output:
+        wp.save(args.output)
+        say(f"table written to {args.output}")
+    if args.plot:
+        wp.plot(args.plot, title=f"{args.scene}: t = 0 .. {t_end:g} s")
+        say(f"diagram written to {args.plot}")
+    return OK
 
 
 def _need_matplotlib(what):

@@ -97,6 +97,11 @@ class Result:
         """(k,) max |Phi| (position-level constraint violation)."""
         return self._core.residual(self.t, self.q)
 
+    @cached_property
+    def velocity_residual(self):
+        """(k,) max |Phi_q v + Phi_t| (velocity-level constraint violation)."""
+        return self._core.velocity_residual(self.t, self.q, self.v)
+
     def __repr__(self):
         return (f"<lagmb.Result: {len(self.t)} outputs, t = {self.t[0]:g}..{self.t[-1]:g} s, "
                 f"{self.stats.get('steps', 0)} steps>")
