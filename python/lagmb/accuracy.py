@@ -151,15 +151,16 @@ class WorkPrecision:
 
 
 def work_precision(model, t_end, methods=None, tolerances=None, reference=None, n_out=101,
-                   atol_ratio=1e-2, reference_rtol=None, t0=0.0, progress=None):
+                   atol_ratio=1e-2, reference_rtol=None, t0=0.0, max_steps=500_000, progress=None):
     """Run each method at each tolerance and measure it; returns WorkPrecision.
 
     methods: names from METHODS (default: all) or dicts with a "name" and
     simulate() options. tolerances: rtol values (atol = atol_ratio * rtol),
     default 1e-3 .. 1e-11. reference: a Result at the output times to compare
     with; default: the projection method (CVODE BDF) at reference_rtol
-    (default: 1e-3 x the tightest tolerance, at least 1e-13), or GGL if that
-    fails. progress(i, n, row) is called after each run.
+    (default: 1e-2 x the tightest tolerance, at least 1e-13; atol at least
+    1e-13), or GGL if that fails. A run stopped by max_steps is a failed row. progress(i, n, row)
+    is called after each run.
     """
     methods = [_method(m) for m in (methods or list(METHODS))]
     tolerances = sorted((float(t) for t in (tolerances or DEFAULT_TOLERANCES)), reverse=True)
@@ -168,17 +169,20 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
     t_out = np.linspace(t0, t_end, n_out)
     info = {}
     if reference is None:
-        rtol_ref = reference_rtol or max(1e-13, 1e-3 * min(tolerances))
+        rtol_ref = reference_rtol or max(1e-13, 1e-2 * min(tolerances))
+        atol_ref = max(atol_ratio * rtol_ref, 1e-13)  # below that, roundoff in q decides
+        why = []
         for name in ("projection-bdf", "ggl"):
             try:
-                reference = simulate(model, t_out=t_out, t0=t0, rtol=rtol_ref,
-                                     atol=atol_ratio * rtol_ref, **METHODS[name])
-                info = {"method": name, "rtol": rtol_ref, "atol": atol_ratio * rtol_ref}
+                reference = simulate(model, t_out=t_out, t0=t0, rtol=rtol_ref, atol=atol_ref,
+                                     **METHODS[name])
+                info = {"method": name, "rtol": rtol_ref, "atol": atol_ref}
                 break
-            except SimulationError:
-                continue
+            except SimulationError as e:
+                why.append(f"{name}: {e}")
         if reference is None:
-            raise SimulationError("no reference run succeeded")
+            raise SimulationError("no reference run succeeded at rtol "
+                                  f"{rtol_ref:g}, atol {atol_ref:g}: " + "; ".join(why))
     else:
         t_out = reference.t
         info = {"method": "given"}
@@ -194,7 +198,8 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
                        status="ok", message="")
             c0 = time.process_time()
             try:
-                r = simulate(model, t_out=t_out, t0=t0, rtol=rtol, atol=atol_ratio * rtol, **opts)
+                r = simulate(model, t_out=t_out, t0=t0, rtol=rtol, atol=atol_ratio * rtol,
+                             max_steps=max_steps, **opts)
             except SimulationError as e:
                 row.update(status="failed", message=str(e), cpu_time=time.process_time() - c0)
                 rows.append(row)
