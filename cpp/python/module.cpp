@@ -371,7 +371,7 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "simulate",
       [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
-         double atol, double max_step, long max_steps, int max_order, std::string formulation,
+         double atol, std::vector<double> atol_coordinates, double max_step, long max_steps, int max_order, std::string formulation,
          std::string integrator, double baumgarte_alpha, double baumgarte_beta, py::object progress) {
         SimulationOptions o;
         o.t0 = t0;
@@ -380,6 +380,7 @@ PYBIND11_MODULE(_core, m) {
         o.n_out = n_out;
         o.rtol = rtol;
         o.atol = atol;
+        o.atol_coordinates = std::move(atol_coordinates);
         o.max_step = max_step;
         o.max_steps = max_steps;
         o.max_order = max_order;
@@ -403,6 +404,6 @@ PYBIND11_MODULE(_core, m) {
         return to_python(std::move(tr));
       },
       py::arg("model"), py::arg("t0"), py::arg("t_end"), py::arg("t_out"), py::arg("n_out"), py::arg("rtol"),
-      py::arg("atol"), py::arg("max_step"), py::arg("max_steps"), py::arg("max_order"), py::arg("formulation"),
+      py::arg("atol"), py::arg("atol_coordinates"), py::arg("max_step"), py::arg("max_steps"), py::arg("max_order"), py::arg("formulation"),
       py::arg("integrator"), py::arg("baumgarte_alpha"), py::arg("baumgarte_beta"), py::arg("progress"));
 }

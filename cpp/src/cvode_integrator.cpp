@@ -330,7 +330,8 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
   s.out = N_VNew_Serial(2 * n, s.ctx);
   Eigen::Map<VecX>(N_VGetArrayPointer(s.y), n) = start.q;
   Eigen::Map<VecX>(N_VGetArrayPointer(s.y) + n, n) = start.v;
-  N_VConst(plan.atol, s.abstol);
+  Eigen::Map<VecX>(N_VGetArrayPointer(s.abstol), n) = plan.atol;
+  Eigen::Map<VecX>(N_VGetArrayPointer(s.abstol) + n, n) = plan.atol;
 
   s.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, s.ctx);
   if (!s.mem) throw std::runtime_error("lagmb: CVodeCreate failed");

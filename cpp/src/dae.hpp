@@ -24,10 +24,11 @@ class DaeFormulation {
   /// Whether the relative tolerance of index-k components is divided by
   /// h^(k-1) too (needed where they stay in the error test).
   virtual bool scale_relative_tolerance() const { return false; }
-  /// Per-component absolute tolerances from the user's atol. For index-k
+  /// Per-component absolute tolerances from the user's per-coordinate atol
+  /// (for q_i and v_i; multipliers get the mean, scaled). For index-k
   /// components these are in the units of (variable x time^(k-1)): the
   /// integrator divides them by h^(k-1) (see ida_integrator).
-  virtual void tolerances(double atol, double* abstol) const = 0;
+  virtual void tolerances(const VecX& atol, double* abstol) const = 0;
   virtual void initial(const ConsistentState& s, double* y, double* yp) const = 0;
   virtual int residual(double t, const double* y, const double* yp, double* F) = 0;
   virtual void newton_matrix(double t, double cj, const double* y, const double* yp) = 0;
@@ -72,6 +73,11 @@ class MultiplierDae : public DaeFormulation {
   /// Writes Phi_q (from d_) into the block at (row0, col0), transposed if asked, times `scale`.
   void put_jacobian(const std::vector<int>& slots, double scale);
   std::vector<int> jacobian_slots(int row0, int col0, bool transpose = false) const;
+  /// abstol of q_i and v_i = atol_i.
+  void coordinate_tolerances(const VecX& atol, double* abstol) const {
+    std::copy(atol.data(), atol.data() + n_, abstol);
+    std::copy(atol.data(), atol.data() + n_, abstol + n_);
+  }
   /// 0 if every residual entry is finite, else 1 (recoverable: IDA cuts the step).
   static int check_finite(const double* F, int n);
 
@@ -109,7 +115,7 @@ class GglFormulation final : public MultiplierDae {
   const char* name() const override { return "ggl"; }
   void ids(double* id) const override;
   void index_levels(int* level) const override;
-  void tolerances(double atol, double* abstol) const override;
+  void tolerances(const VecX& atol, double* abstol) const override;
   void initial(const ConsistentState& s, double* y, double* yp) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;
@@ -136,7 +142,7 @@ class Index3Formulation final : public MultiplierDae {
   bool scale_relative_tolerance() const override { return true; }
   void ids(double* id) const override;
   void index_levels(int* level) const override;
-  void tolerances(double atol, double* abstol) const override;
+  void tolerances(const VecX& atol, double* abstol) const override;
   void initial(const ConsistentState& s, double* y, double* yp) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;
@@ -160,7 +166,7 @@ class Index1Formulation final : public MultiplierDae {
   const char* name() const override { return "index1"; }
   void ids(double* id) const override;
   void index_levels(int* level) const override;
-  void tolerances(double atol, double* abstol) const override;
+  void tolerances(const VecX& atol, double* abstol) const override;
   void initial(const ConsistentState& s, double* y, double* yp) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;

@@ -15,7 +15,9 @@ namespace lagmb {
 
 /// What every integrator is asked to do.
 struct IntegrationPlan {
-  double t0, t_end, rtol, atol, max_step;
+  double t0, t_end, rtol;
+  VecX atol;  // per coordinate
+  double max_step;
   int max_order;
   long max_steps;
   std::vector<double> t_out;

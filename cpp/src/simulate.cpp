@@ -29,6 +29,12 @@ void validate(const Model& model, const SimulationOptions& o) {
     throw ModelError("simulate: rtol = " + std::to_string(o.rtol) +
                      " is below 1e-14, which double precision cannot deliver");
   positive(o.atol, "atol");
+  if (!o.atol_coordinates.empty()) {
+    if (int(o.atol_coordinates.size()) != model.n_coordinates())
+      throw ModelError("simulate: atol needs one entry per coordinate (" + std::to_string(model.n_coordinates()) +
+                       "), got " + std::to_string(o.atol_coordinates.size()));
+    for (double a : o.atol_coordinates) positive(a, "every atol entry");
+  }
   if (o.max_step != 0.0) positive(o.max_step, "max_step");
   if (o.max_steps < 0) throw ModelError("simulate: max_steps must be >= 0 (0: no limit)");
   if (o.t_out.empty() && o.n_out < 2)
@@ -118,7 +124,9 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     throw SimulationError(e.what(), o.t0);
   }
 
-  IntegrationPlan plan{o.t0,        o.t_end,     o.rtol,      o.atol,
+  VecX atol = VecX::Constant(n, o.atol);
+  if (!o.atol_coordinates.empty()) atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
+  IntegrationPlan plan{o.t0,        o.t_end,     o.rtol,      atol,
                        o.max_step,  o.max_order, o.max_steps, output_times(o),
                        {},          o.progress,  o.progress_interval};
   for (double b : model.breakpoints())

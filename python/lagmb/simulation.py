@@ -52,7 +52,9 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       with ``"adams"`` (Adams-Moulton, orders 1-12) CVODE cannot project,
       so the constraints drift unless ``baumgarte=(alpha, beta)`` is given.
 
-    ``max_order`` defaults to 5 (BDF) or 12 (Adams). Outputs: ``n_out`` equally spaced times from t0 to
+    ``max_order`` defaults to 5 (BDF) or 12 (Adams). ``atol`` is one number
+    or one per coordinate (applied to q_i and v_i; e.g. smaller for angles
+    than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
     last entry), interpolated by the integrator. ``max_step`` bounds the step
     size (s), ``max_steps`` the number of steps (None: no bound; reaching it
@@ -75,6 +77,10 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     if not (math.isfinite(t_end) and t_end > t0):
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
     rtol = _positive(rtol, "rtol")
+    atol_coordinates = []
+    if np.ndim(atol) > 0:  # one per coordinate (for q_i and v_i)
+        atol_coordinates = [_positive(float(a), "atol entry") for a in np.asarray(atol).reshape(-1)]
+        atol = float(np.mean(atol_coordinates)) if atol_coordinates else 1e-8
     atol = _positive(atol, "atol")
     max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
     if max_order is None:
@@ -91,7 +97,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     core = model.compiled()
     with _translate(model, core):
         raw = _core.simulate(core, float(t0), t_end, [] if t_out is None else list(t_out),
-                             int(n_out), rtol, atol, max_step, int(max_steps), int(max_order),
+                             int(n_out), rtol, atol, atol_coordinates, max_step, int(max_steps), int(max_order),
                              str(formulation), str(integrator), float(alpha), float(beta), progress)
     return Result(model, core, raw)
 

@@ -21,6 +21,9 @@ struct SimulationOptions {
   int n_out = 101;
   double rtol = 1e-6;
   double atol = 1e-8;
+  /// Per-coordinate absolute tolerances (n entries, for q_i and v_i); empty:
+  /// atol for every coordinate.
+  std::vector<double> atol_coordinates;
   double max_step = 0.0;  // 0: no limit
   long max_steps = 0;     // 0: no limit; else SimulationError when reached
   int max_order = 5;  // BDF: 1..5, Adams: 1..12

@@ -40,11 +40,11 @@ void GglFormulation::index_levels(int* level) const {
   std::fill(level + 2 * n_, level + size_, 2);
 }
 
-void GglFormulation::tolerances(double atol, double* abstol) const {
+void GglFormulation::tolerances(const VecX& atol, double* abstol) const {
   // lam in N s and mu in m: divided by h they are a force and a velocity
-  std::fill(abstol, abstol + 2 * n_, atol);
-  std::fill(abstol + 2 * n_, abstol + 2 * n_ + m_, atol * model_.mass_scale());
-  std::fill(abstol + 2 * n_ + m_, abstol + size_, atol);
+  coordinate_tolerances(atol, abstol);
+  std::fill(abstol + 2 * n_, abstol + 2 * n_ + m_, atol.mean() * model_.mass_scale());
+  std::fill(abstol + 2 * n_ + m_, abstol + size_, atol.mean());
 }
 
 void GglFormulation::initial(const ConsistentState& s, double* y, double* yp) const {

@@ -28,9 +28,9 @@ void Index1Formulation::ids(double* id) const {
 
 void Index1Formulation::index_levels(int* level) const { std::fill(level, level + size_, 1); }
 
-void Index1Formulation::tolerances(double atol, double* abstol) const {
-  std::fill(abstol, abstol + 2 * n_, atol);
-  std::fill(abstol + 2 * n_, abstol + size_, atol * model_.mass_scale());
+void Index1Formulation::tolerances(const VecX& atol, double* abstol) const {
+  coordinate_tolerances(atol, abstol);
+  std::fill(abstol + 2 * n_, abstol + size_, atol.mean() * model_.mass_scale());
 }
 
 void Index1Formulation::initial(const ConsistentState& s, double* y, double* yp) const {

@@ -27,10 +27,10 @@ void Index3Formulation::index_levels(int* level) const {
   std::fill(level + 2 * n_, level + size_, 3);
 }
 
-void Index3Formulation::tolerances(double atol, double* abstol) const {
+void Index3Formulation::tolerances(const VecX& atol, double* abstol) const {
   // v in m (divided by h: m/s); lam in N s^2 (divided by h^2: N)
-  std::fill(abstol, abstol + 2 * n_, atol);
-  std::fill(abstol + 2 * n_, abstol + size_, atol * model_.mass_scale());
+  coordinate_tolerances(atol, abstol);
+  std::fill(abstol + 2 * n_, abstol + size_, atol.mean() * model_.mass_scale());
 }
 
 void Index3Formulation::initial(const ConsistentState& s, double* y, double* yp) const {
