@@ -127,8 +127,11 @@ class GglFormulation final : public MultiplierDae {
 /// Index-3 form, y = (q, v, lam): F1 = q' - v, F2 as above, F3 = Phi(q, t).
 /// lam is index 3, v index 2: their tolerances (relative and absolute) are
 /// divided by h^2 and h (RADAU5's strategy); lam is outside the error test,
-/// v stays in it. Reliable, but the velocity error is then only O(tol / h):
-/// accuracy improves slowly as rtol falls (docs/formulations).
+/// v stays in it. The velocity error is then only O(tol / h): accuracy
+/// improves slowly as rtol falls. Known limit: IDA does not recompute the
+/// weights when an error-test failure shrinks h, so a run can spiral into
+/// repeated failures (the seed pendulum at rtol 1e-6 over 100 s stops at
+/// t = 0.92 s). Kept to show what index 3 costs with BDF (work_precision).
 /// Equilibration r1 = h, r2 = h^2, cv = cj, cl = cj^2:
 ///   [ I                          -I              0     ]
 ///   [ ((Phi_q^T lam)_q - Q_q)/cj^2   M - Q_v/cj   Phi_q^T ]

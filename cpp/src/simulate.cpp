@@ -63,7 +63,8 @@ void validate(const Model& model, const SimulationOptions& o) {
                      ", got " + std::to_string(o.max_order));
   if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && o.formulation != "index1" &&
       o.integrator != "adams")
-    throw ModelError("simulate: Baumgarte terms apply to formulation 'index1' and to the Adams integrator only");
+    throw ModelError("simulate: Baumgarte terms apply to formulation 'index1' and to the Adams integrator only, "
+                     "not to formulation '" + o.formulation + "' with integrator '" + o.integrator + "'");
   if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
       o.baumgarte_beta < 0)
     throw ModelError("simulate: Baumgarte alpha and beta must be finite and >= 0");

@@ -1,10 +1,12 @@
 """What accuracy costs: work-precision tables and diagrams.
 
 ``work_precision(model, t_end)`` runs every method at every tolerance and
-measures each run against a reference: a much tighter run of a different
-method (or one you pass). One row per method x tolerance:
+measures each run against a reference: a much tighter run of a method of
+the other family (CVODE projection for the IDA forms, IDA GGL for the
+projection forms), or one you pass. One row per method x tolerance:
 
-    method, formulation, integrator, rtol, atol, status, message,
+    method, formulation, integrator, rtol, atol, reference (the method of
+    the reference run), status, message,
     error (max over outputs of max |q - q_ref|, m or rad),
     error_final (the same at t_end), cpu_time (s, process time of the run),
     wall_time (s, the solver's own), steps, residual_evals, jacobian_evals,
@@ -35,7 +37,7 @@ METHODS = {
     "projection-adams": dict(formulation="projection", integrator="adams"),
 }
 
-COLUMNS = ["method", "formulation", "integrator", "rtol", "atol", "status", "message", "error",
+COLUMNS = ["method", "formulation", "integrator", "rtol", "atol", "reference", "status", "message", "error",
            "error_final", "cpu_time", "wall_time", "steps", "residual_evals", "jacobian_evals",
            "lu_factorizations", "augmented_factorizations", "error_test_failures",
            "convergence_failures", "drift_position", "drift_velocity", "energy_error"]
@@ -59,13 +61,20 @@ class WorkPrecision:
 
     def __init__(self, rows, reference, reference_info, drifts, middle_tolerance, t_end):
         self.rows = rows
-        self.reference = reference
-        self.reference_info = reference_info
+        self.reference = reference  # {method: Result}, or the Result given
+        self.reference_info = reference_info  # {method: {"rtol", "atol"}}
         self.drifts = drifts  # method -> (t, |Phi|) of its run at the middle tolerance
         self.middle_tolerance = middle_tolerance
         self.t_end = t_end
 
     columns = COLUMNS
+
+    def reference_for(self, method):
+        """The reference Result the rows of `method` were measured against."""
+        rows = self.method_rows(method)
+        if not rows:
+            raise ModelError(f"no rows for method '{method}'")
+        return self.reference if rows[0]["reference"] == "given" else self.reference[rows[0]["reference"]]
 
     def method_rows(self, method):
         return [r for r in self.rows if r["method"] == method]
@@ -157,9 +166,10 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
     methods: names from METHODS (default: all) or dicts with a "name" and
     simulate() options. tolerances: rtol values (atol = atol_ratio * rtol),
     default 1e-3 .. 1e-11. reference: a Result at the output times to compare
-    with; default: the projection method (CVODE BDF) at reference_rtol
-    (default: 1e-2 x the tightest tolerance, at least 1e-13; atol at least
-    1e-13), or GGL if that fails. A run stopped by max_steps is a failed row. progress(i, n, row)
+    with; default: a tight run of the other family of methods, at
+    reference_rtol (default: 1e-2 x the tightest tolerance, at least 1e-13;
+    atol at least 1e-13): the projection form (CVODE BDF) for the IDA forms,
+    GGL (IDA) for the projection forms. A run stopped by max_steps is a failed row. progress(i, n, row)
     is called after each run.
     """
     methods = [_method(m) for m in (methods or list(METHODS))]
@@ -167,26 +177,35 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
     if not tolerances or min(tolerances) <= 0:
         raise ModelError("tolerances must be positive numbers")
     t_out = np.linspace(t0, t_end, n_out)
-    info = {}
-    if reference is None:
-        rtol_ref = reference_rtol or max(1e-13, 1e-2 * min(tolerances))
-        atol_ref = max(atol_ratio * rtol_ref, 1e-13)  # below that, roundoff in q decides
-        why = []
-        for name in ("projection-bdf", "ggl"):
+    rtol_ref = reference_rtol or max(1e-13, 1e-2 * min(tolerances))
+    atol_ref = max(atol_ratio * rtol_ref, 1e-13)  # below that, roundoff in q decides
+    references, info = {}, {}
+
+    def reference_for(opts):
+        """A tight run of a method of the other family: the CVODE projection
+        form checks the IDA forms and GGL checks the projection form."""
+        if given is not None:
+            return given.q
+        family = reference_name(opts)
+        if family not in references:
             try:
-                reference = simulate(model, t_out=t_out, t0=t0, rtol=rtol_ref, atol=atol_ref,
-                                     **METHODS[name])
-                info = {"method": name, "rtol": rtol_ref, "atol": atol_ref}
-                break
+                references[family] = simulate(model, t_out=t_out, t0=t0, rtol=rtol_ref, atol=atol_ref,
+                                              **METHODS[family])
             except SimulationError as e:
-                why.append(f"{name}: {e}")
-        if reference is None:
-            raise SimulationError("no reference run succeeded at rtol "
-                                  f"{rtol_ref:g}, atol {atol_ref:g}: " + "; ".join(why))
-    else:
-        t_out = reference.t
-        info = {"method": "given"}
-    q_ref = reference.q
+                raise SimulationError(f"the reference run ({family} at rtol {rtol_ref:g}, atol "
+                                      f"{atol_ref:g}) failed: {e}") from None
+            info[family] = {"rtol": rtol_ref, "atol": atol_ref}
+        return references[family].q
+
+    def reference_name(opts):
+        if given is not None:
+            return "given"
+        return "ggl" if opts.get("formulation") == "projection" else "projection-bdf"
+
+    given = reference
+    if given is not None:
+        t_out = given.t
+        info = {"given": True}
     rows, drifts = [], {}
     mid = tolerances[len(tolerances) // 2]
     total = len(methods) * len(tolerances)
@@ -195,7 +214,7 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
             row = dict.fromkeys(COLUMNS, float("nan"))
             row.update(method=name, formulation=opts.get("formulation"),
                        integrator=opts.get("integrator", "bdf"), rtol=rtol, atol=atol_ratio * rtol,
-                       status="ok", message="")
+                       reference=reference_name(opts), status="ok", message="")
             c0 = time.process_time()
             try:
                 r = simulate(model, t_out=t_out, t0=t0, rtol=rtol, atol=atol_ratio * rtol,
@@ -207,7 +226,7 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
                     progress(len(rows), total, row)
                 continue
             cpu = time.process_time() - c0
-            err = np.abs(r.q - q_ref).max(axis=1)
+            err = np.abs(r.q - reference_for(opts)).max(axis=1)
             s = r.stats
             E = r.energy
             row.update(
@@ -224,5 +243,5 @@ def work_precision(model, t_end, methods=None, tolerances=None, reference=None, 
                 drifts[name] = (r.t, r.residual)
             if progress:
                 progress(len(rows), total, row)
-    return WorkPrecision(rows, reference, info, drifts, mid, t_end)
+    return WorkPrecision(rows, given if given is not None else references, info, drifts, mid, t_end)
 

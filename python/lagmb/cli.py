@@ -122,8 +122,9 @@ def _accuracy(args):
     except SimulationError as e:
         raise _Exit(FAILED, str(e)) from None
     say(wp.table())
-    ref = wp.reference_info
-    say(f"reference: {ref.get('method')} at rtol {ref.get('rtol', float('nan')):.0e}")
+    for name, ref in wp.reference_info.items():
+        say(f"reference for the other family's methods: {name} at rtol {ref['rtol']:.0e}, "
+            f"atol {ref['atol']:.0e}")
     if args.output:
         wp.save(args.output)
         say(f"table written to {args.output}")

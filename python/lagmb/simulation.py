@@ -85,7 +85,15 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
     if max_order is None:
         max_order = 12 if integrator == "adams" else 5
-    alpha, beta = (0.0, 0.0) if baumgarte is None else baumgarte
+    elif isinstance(max_order, bool) or int(max_order) != max_order:
+        raise ModelError(f"max_order must be an integer, got {max_order!r}")
+    if baumgarte is None:
+        alpha, beta = 0.0, 0.0
+    else:
+        try:
+            alpha, beta = (float(x) for x in baumgarte)
+        except (TypeError, ValueError):
+            raise ModelError(f"baumgarte must be a pair (alpha, beta) of numbers, got {baumgarte!r}") from None
     if max_steps is None:
         max_steps = 0
     elif isinstance(max_steps, bool) or int(max_steps) != max_steps or max_steps < 1:
