@@ -122,9 +122,8 @@ def _accuracy(args):
     except SimulationError as e:
         raise _Exit(FAILED, str(e)) from None
     say(wp.table())
-    for name, ref in wp.reference_info.items():
-        say(f"reference for the other family's methods: {name} at rtol {ref['rtol']:.0e}, "
-            f"atol {ref['atol']:.0e}")
+    for ref in wp.reference_info.values():
+        say(f"reference run: {ref['method']} at rtol {ref['rtol']:.0e}, atol {ref['atol']:.0e}")
     if args.output:
         wp.save(args.output)
         say(f"table written to {args.output}")
