@@ -6,7 +6,6 @@
 #include <nvector/nvector_serial.h>
 
 #include <Eigen/SparseLU>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <sstream>
@@ -354,84 +353,64 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
     check(CVodeSetProjErrEst(s.mem, SUNFALSE), "CVodeSetProjErrEst", s.ctx);
   }
 
-  size_t next_break = 0;
-  auto stop_time = [&] { return next_break < plan.breakpoints.size() ? plan.breakpoints[next_break] : plan.t_end; };
-  check(CVodeSetStopTime(s.mem, stop_time()), "CVodeSetStopTime", s.ctx);
-
-  Stats before;
-  auto fill_stats = [&] {
-    long v = 0;
-    CVodeGetNumSteps(s.mem, &v), stats.steps = before.steps + v;
-    CVodeGetNumRhsEvals(s.mem, &v), stats.residual_evals = before.residual_evals + v;
-    CVodeGetNumJacEvals(s.mem, &v), stats.jacobian_evals = before.jacobian_evals + v;
-    CVodeGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = before.newton_iterations + v;
-    CVodeGetNumErrTestFails(s.mem, &v), stats.error_test_failures = before.error_test_failures + v;
-    CVodeGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = before.convergence_failures + v;
-    int order = 0;
-    CVodeGetLastOrder(s.mem, &order), stats.last_order = order;
-    sunrealtype h = 0;
-    CVodeGetLastStep(s.mem, &h), stats.last_step = h;
-    stats.lu_factorizations = p.factorizations;
-    stats.augmented_factorizations = p.kkt.factorizations();
-    stats.projections = p.projections;
-  };
-
-  const auto& t_out = plan.t_out;
-  size_t k = 0;
-  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
-  auto clock = std::chrono::steady_clock::now();
-  sunrealtype t = plan.t0;
-  long steps = 0;
-  while (k < t_out.size()) {
-    const int flag = CVode(s.mem, plan.t_end, s.y, &t, CV_ONE_STEP);
-    if (p.error) {
-      fill_stats();
-      try {
-        std::rethrow_exception(p.error);
-      } catch (const UserFunctionError& e) {
-        throw IntegratorFailure(e.what(), t);
+  /// CVODE behind the shared stepping loop.
+  struct CvodeStepper final : Stepper {
+    CvodeSession& s;
+    OdeProblem& p;
+    double t_end;
+    Stats before;  // counts of the segments before the last CVodeReInit (which zeroes them)
+    CvodeStepper(CvodeSession& s_, OdeProblem& p_, double t_end_) : s(s_), p(p_), t_end(t_end_) {}
+    const char* name() const override { return "CVODE"; }
+    void set_stop(double stop) override { check(CVodeSetStopTime(s.mem, stop), "CVodeSetStopTime", s.ctx); }
+    double step(bool& at_stop) override {
+      sunrealtype t = 0.0;
+      const int flag = CVode(s.mem, t_end, s.y, &t, CV_ONE_STEP);
+      if (p.error) {
+        try {
+          std::rethrow_exception(p.error);
+        } catch (const UserFunctionError& e) {
+          throw IntegratorFailure(e.what(), t);  // keeps the partial result
+        }
       }
+      if (flag < 0) {
+        sunrealtype h = 0;
+        CVodeGetCurrentStep(s.mem, &h);
+        std::ostringstream msg;
+        msg << "CVODE failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
+            << CVodeGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
+        throw IntegratorFailure(msg.str(), t);
+      }
+      at_stop = flag == CV_TSTOP_RETURN;
+      return t;
     }
-    if (flag < 0) {
-      fill_stats();
-      sunrealtype h = 0;
-      CVodeGetCurrentStep(s.mem, &h);
-      std::ostringstream msg;
-      msg << "CVODE failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
-          << CVodeGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
-      throw IntegratorFailure(msg.str(), t);
+    void interpolate(double t, const double*& q, const double*& v) override {
+      check(CVodeGetDky(s.mem, t, 0, s.out), "CVodeGetDky", s.ctx);
+      q = N_VGetArrayPointer(s.out);
+      v = q + p.n;
     }
-    for (; k < t_out.size() && t_out[k] <= t; ++k) {
-      check(CVodeGetDky(s.mem, t_out[k], 0, s.out), "CVodeGetDky", s.ctx);
-      const double* yo = N_VGetArrayPointer(s.out);
-      record(yo, yo + n);
-    }
-    if (plan.max_steps > 0 && ++steps >= plan.max_steps && t < plan.t_end) {
-      fill_stats();
-      std::ostringstream msg;
-      msg << "CVODE reached max_steps = " << plan.max_steps << " at t = " << t << " before t_end = "
-          << plan.t_end << ".";
-      throw IntegratorFailure(msg.str(), t);
-    }
-    if (flag == CV_TSTOP_RETURN) {
-      if (next_break >= plan.breakpoints.size()) break;
-      ++next_break;
-      fill_stats();
-      before = stats;
+    void restart(double t) override {
+      fill_stats(before);
       check(CVodeReInit(s.mem, t, s.y), "CVodeReInit", s.ctx);
-      check(CVodeSetStopTime(s.mem, stop_time()), "CVodeSetStopTime", s.ctx);
-      continue;
     }
-    if (plan.progress) {
-      auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - clock).count() >= plan.progress_interval) {
-        clock = now;
-        fill_stats();
-        plan.progress(t);
-      }
+    void fill_stats(Stats& stats) override {
+      const Stats b = before;
+      long v = 0;
+      CVodeGetNumSteps(s.mem, &v), stats.steps = b.steps + v;
+      CVodeGetNumRhsEvals(s.mem, &v), stats.residual_evals = b.residual_evals + v;
+      CVodeGetNumJacEvals(s.mem, &v), stats.jacobian_evals = b.jacobian_evals + v;
+      CVodeGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = b.newton_iterations + v;
+      CVodeGetNumErrTestFails(s.mem, &v), stats.error_test_failures = b.error_test_failures + v;
+      CVodeGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = b.convergence_failures + v;
+      int order = 0;
+      CVodeGetLastOrder(s.mem, &order), stats.last_order = order;
+      sunrealtype h = 0;
+      CVodeGetLastStep(s.mem, &h), stats.last_step = h;
+      stats.lu_factorizations = p.factorizations;
+      stats.augmented_factorizations = p.kkt.factorizations();
+      stats.projections = p.projections;
     }
-  }
-  fill_stats();
+  } stepper(s, p, plan.t_end);
+  run_steps(stepper, plan, start, record, stats);
 }
 
 }  // namespace lagmb

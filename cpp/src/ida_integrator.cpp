@@ -3,7 +3,6 @@
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -89,6 +88,7 @@ struct IdaSession {
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
   sun::SparseLU lu;
+  double t_end = 0.0;
   ~IdaSession() {
     if (mem) IDAFree(&mem);
     if (LS) SUNLinSolFree(LS);
@@ -163,10 +163,6 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
   check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
   if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
-  // stop at each breakpoint of the time functions, then at t_end
-  size_t next_break = 0;
-  auto stop_time = [&] { return next_break < plan.breakpoints.size() ? plan.breakpoints[next_break] : plan.t_end; };
-  check(IDASetStopTime(s.mem, stop_time()), "IDASetStopTime", s.ctx);
   check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
   // a step shorter than a few ulps of t cannot make progress: fail there
   // (a lock-up or a singular passage) instead of shrinking h for ever
@@ -180,82 +176,64 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   check(IDASetLinearSolver(s.mem, s.LS, s.A), "IDASetLinearSolver", s.ctx);
   check(IDASetJacFn(s.mem, jacobian_fn), "IDASetJacFn", s.ctx);
 
-  Stats before;  // counts of the segments before the last IDAReInit
-  auto fill_stats = [&] {
-    long v = 0;
-    // IDAReInit zeroes IDA's counters: add what earlier segments counted
-    IDAGetNumSteps(s.mem, &v), stats.steps = before.steps + v;
-    IDAGetNumResEvals(s.mem, &v), stats.residual_evals = before.residual_evals + v;
-    IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = before.jacobian_evals + v;
-    IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = before.newton_iterations + v;
-    IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = before.error_test_failures + v;
-    IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = before.convergence_failures + v;
-    int order = 0;
-    IDAGetLastOrder(s.mem, &order), stats.last_order = order;
-    sun::real h = 0;
-    IDAGetLastStep(s.mem, &h), stats.last_step = h;
-    stats.lu_factorizations = s.lu.factorizations;
-  };
-
-  const auto& t_out = plan.t_out;
-  size_t k = 0;
-  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
-
-  auto clock = std::chrono::steady_clock::now();
-  sun::real t = plan.t0;
-  long steps = 0;
-  while (k < t_out.size()) {
-    const int flag = IDASolve(s.mem, plan.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
-    if (cb.error) {
-      fill_stats();
-      try {
-        std::rethrow_exception(cb.error);
-      } catch (const UserFunctionError& e) {
-        throw IntegratorFailure(e.what(), t);  // keeps the partial result
+  /// IDA behind the shared stepping loop.
+  struct IdaStepper final : Stepper {
+    IdaSession& s;
+    Callbacks& cb;
+    DaeFormulation& dae;
+    Stats before;  // counts of the segments before the last IDAReInit (which zeroes them)
+    IdaStepper(IdaSession& s_, Callbacks& cb_, DaeFormulation& dae_) : s(s_), cb(cb_), dae(dae_) {}
+    const char* name() const override { return "IDA"; }
+    void set_stop(double stop) override { check(IDASetStopTime(s.mem, stop), "IDASetStopTime", s.ctx); }
+    double step(bool& at_stop) override {
+      sun::real t = 0.0;
+      const int flag = IDASolve(s.mem, s.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
+      if (cb.error) {
+        try {
+          std::rethrow_exception(cb.error);
+        } catch (const UserFunctionError& e) {
+          throw IntegratorFailure(e.what(), t);  // keeps the partial result
+        }
       }
+      if (flag < 0) {
+        sun::real h = 0;
+        IDAGetCurrentStep(s.mem, &h);
+        std::ostringstream msg;
+        msg << "IDA failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
+            << IDAGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
+        throw IntegratorFailure(msg.str(), t);
+      }
+      at_stop = flag == IDA_TSTOP_RETURN;
+      return t;
     }
-    if (flag < 0) {
-      fill_stats();
-      sun::real h = 0;
-      IDAGetCurrentStep(s.mem, &h);
-      std::ostringstream msg;
-      msg << "IDA failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
-          << IDAGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
-      throw IntegratorFailure(msg.str(), t);
-    }
-    for (; k < t_out.size() && t_out[k] <= t; ++k) {
-      check(IDAGetDky(s.mem, t_out[k], 0, s.out), "IDAGetDky", s.ctx);
+    void interpolate(double t, const double*& q, const double*& v) override {
+      check(IDAGetDky(s.mem, t, 0, s.out), "IDAGetDky", s.ctx);
       const double* yo = N_VGetArrayPointer(s.out);
-      record(dae.q(yo), dae.v(yo));
+      q = dae.q(yo);
+      v = dae.v(yo);
     }
-    if (plan.max_steps > 0 && ++steps >= plan.max_steps && t < plan.t_end) {
-      fill_stats();
-      std::ostringstream msg;
-      msg << "IDA reached max_steps = " << plan.max_steps << " at t = " << t << " before t_end = "
-          << plan.t_end << ".";
-      throw IntegratorFailure(msg.str(), t);
-    }
-    if (flag == IDA_TSTOP_RETURN) {
-      if (next_break >= plan.breakpoints.size()) break;  // t_end
-      // a derivative of a time function jumps here: restart at order 1 from
-      // the (continuous, consistent) state instead of stepping across
-      ++next_break;
-      fill_stats();
-      before = stats;
+    void restart(double t) override {
+      fill_stats(before);
       check(IDAReInit(s.mem, t, s.y, s.yp), "IDAReInit", s.ctx);
-      check(IDASetStopTime(s.mem, stop_time()), "IDASetStopTime", s.ctx);
-      continue;
     }
-    if (plan.progress) {
-      auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - clock).count() >= plan.progress_interval) {
-        clock = now;
-        fill_stats();
-        plan.progress(t);
-      }
+    void fill_stats(Stats& stats) override {
+      const Stats b = before;
+      long v = 0;
+      IDAGetNumSteps(s.mem, &v), stats.steps = b.steps + v;
+      IDAGetNumResEvals(s.mem, &v), stats.residual_evals = b.residual_evals + v;
+      IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = b.jacobian_evals + v;
+      IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = b.newton_iterations + v;
+      IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = b.error_test_failures + v;
+      IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = b.convergence_failures + v;
+      int order = 0;
+      IDAGetLastOrder(s.mem, &order), stats.last_order = order;
+      sun::real h = 0;
+      IDAGetLastStep(s.mem, &h), stats.last_step = h;
+      stats.lu_factorizations = s.lu.factorizations;
     }
-  }
-  fill_stats();
+  } stepper(s, cb, dae);
+  s.t_end = plan.t_end;
+  run_steps(stepper, plan, start, record, stats);
 }
 
 }  // namespace lagmb

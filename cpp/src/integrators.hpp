@@ -40,6 +40,30 @@ struct IntegratorFailure : std::runtime_error {
   double t;
 };
 
+/// One integrator as the shared stepping loop sees it.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// Sets the time the next steps must not pass (a breakpoint or t_end).
+  virtual void set_stop(double stop) = 0;
+  /// One step; returns the time reached and sets at_stop when that is the
+  /// stop time. Throws IntegratorFailure (with the solver's diagnosis).
+  virtual double step(bool& at_stop) = 0;
+  /// q and v at time t inside the last step (interpolated).
+  virtual void interpolate(double t, const double*& q, const double*& v) = 0;
+  /// Restarts at order 1 from the current state at time t.
+  virtual void restart(double t) = 0;
+  /// Counts so far, summed over restarts.
+  virtual void fill_stats(Stats& stats) = 0;
+  virtual const char* name() const = 0;
+};
+
+/// The loop both drivers share: outputs interpolated at plan.t_out (the
+/// steps are not stopped there), a stop and restart at every breakpoint of
+/// the time functions, the max_steps bound and progress reports.
+void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start,
+               const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+
 /// Integrates `dae` with IDA from `start`; calls record(q, v) at each output
 /// time, interpolated by IDA (the steps are not stopped at outputs).
 void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const IntegrationPlan& plan,

@@ -1,0 +1,62 @@
+#include <chrono>
+#include <sstream>
+
+#include "integrators.hpp"
+
+namespace lagmb {
+
+void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start,
+               const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
+  size_t next_break = 0;
+  auto stop_time = [&] {
+    return next_break < plan.breakpoints.size() ? plan.breakpoints[next_break] : plan.t_end;
+  };
+  stepper.set_stop(stop_time());
+
+  const auto& t_out = plan.t_out;
+  size_t k = 0;
+  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
+
+  auto clock = std::chrono::steady_clock::now();
+  long steps = 0;
+  try {
+    while (k < t_out.size()) {
+      bool at_stop = false;
+      const double t = stepper.step(at_stop);
+      for (; k < t_out.size() && t_out[k] <= t; ++k) {
+        const double *q = nullptr, *v = nullptr;
+        stepper.interpolate(t_out[k], q, v);
+        record(q, v);
+      }
+      if (plan.max_steps > 0 && ++steps >= plan.max_steps && t < plan.t_end) {
+        std::ostringstream msg;
+        msg << stepper.name() << " reached max_steps = " << plan.max_steps << " at t = " << t
+            << " before t_end = " << plan.t_end << ".";
+        throw IntegratorFailure(msg.str(), t);
+      }
+      if (at_stop) {
+        if (next_break >= plan.breakpoints.size()) break;  // t_end
+        // a derivative of a time function jumps here: restart at order 1
+        // from the (continuous, consistent) state instead of stepping across
+        ++next_break;
+        stepper.restart(t);
+        stepper.set_stop(stop_time());
+        continue;
+      }
+      if (plan.progress) {
+        auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - clock).count() >= plan.progress_interval) {
+          clock = now;
+          stepper.fill_stats(stats);
+          plan.progress(t);
+        }
+      }
+    }
+  } catch (...) {
+    stepper.fill_stats(stats);
+    throw;
+  }
+  stepper.fill_stats(stats);
+}
+
+}  // namespace lagmb
