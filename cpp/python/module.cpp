@@ -183,6 +183,8 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)
+      .def_property_readonly("redundant_rows", &Model::redundant_rows)
+      .def("constraint_name_of_row", &Model::constraint_name_of_row, py::arg("row"))
       .def("has", &Model::has)
       .def("body_coordinates",
            [](const Model& model, const std::string& name) {
@@ -354,7 +356,7 @@ PYBIND11_MODULE(_core, m) {
       "assemble",
       [](const Model& model, double t) {
         ConsistentState s = assemble(model, t);
-        return py::make_tuple(s.q, s.v, s.qdd, s.lam, s.position_iterations);
+        return py::make_tuple(s.q, s.v, s.qdd, s.lam);
       },
       py::arg("model"), py::arg("t") = 0.0,
       "Consistent (q, v, qdd, lam) at time t from the model's initial values.");

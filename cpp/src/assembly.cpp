@@ -15,30 +15,48 @@ Data::Data(const Model& model)
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
 }
 
+namespace {
+
+// redundant rows found at finalize read 0 = 0 (a no-op for most models)
+void drop_rows(const Model& model, VecX& x) {
+  for (int r : model.redundant_rows()) x[r] = 0.0;
+}
+void drop_rows(const Model& model, SpMat& A) {
+  for (int s : model.dropped_jacobian_slots()) A.valuePtr()[s] = 0.0;
+}
+
+}  // namespace
+
 void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
   for (const auto& g : model.constraint_groups()) g->phi(q, t, d.Phi.data());
+  drop_rows(model, d.Phi);
 }
 
 void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
   for (const auto& g : model.constraint_groups()) g->jacobian(q, t, d.Phi_q.valuePtr());
+  drop_rows(model, d.Phi_q);
 }
 
 void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
   d.phi_t.setZero();
   for (const auto* g : model.time_dependent_groups()) g->add_phi_t(q, t, d.phi_t.data());
+  drop_rows(model, d.phi_t);
 }
 
 void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
   for (const auto& g : model.constraint_groups()) g->gamma(q, v, t, d.gamma.data());
+  drop_rows(model, d.gamma);
 }
 
 void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
                                 double t) {
   for (const auto& g : model.constraint_groups()) g->velocity_jacobian(q, v, t, d.Vq.valuePtr());
+  drop_rows(model, d.Vq);
 }
 
 void assemble_constraint_hessian(const Model& model, Data& d, const double* q, double t,
                                  const double* w) {
+  // (the weights of dropped rows are their multipliers: zero)
   d.H.coeffs().setZero();
   for (const auto& g : model.constraint_groups()) g->add_hessian(q, t, w, d.H.valuePtr());
 }

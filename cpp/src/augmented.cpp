@@ -85,20 +85,19 @@ double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 
 
 }  // namespace
 
-ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
-                                VecX v, double t) {
+VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, double t) {
   const int n = model.n_coordinates(), m = model.n_constraints();
-  ConsistentState s;
   VecX zero_n = VecX::Zero(n), dq(n), kappa(m), q_try(n);
   const double scale = 1.0 + (n ? q.lpNorm<Eigen::Infinity>() : 0.0);
   const double tol = 1e-12 * scale;
 
-  // 1. positions: Newton least-change, with backtracking on |Phi|
+  // Newton least-change, with backtracking on |Phi|
   assemble_constraints(model, d, q.data(), t);
   double err = max_abs(d.Phi);
   const int max_iter = 50;
+  int iterations = 0;
   while (err > tol) {
-    if (s.position_iterations++ >= max_iter || !std::isfinite(err))
+    if (iterations++ >= max_iter || !std::isfinite(err))
       fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge");
     assemble_jacobian(model, d, q.data(), t);
     if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix");
@@ -119,6 +118,17 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
     q = q_try;
     err = err_try;
   }
+  return q;
+}
+
+ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
+                                VecX v, double t) {
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  ConsistentState s;
+  VecX kappa(m);
+
+  // 1. positions
+  q = assemble_positions(model, d, kkt, std::move(q), t);
 
   // 2. velocities: M-orthogonal projection onto Phi_q v = -Phi_t
   assemble_jacobian(model, d, q.data(), t);

@@ -70,6 +70,10 @@ class MultiplierDae : public DaeFormulation {
   /// Zeroes J_, writes the F1, F2 blocks with the given equilibration and
   /// sets the row and column scalings; leaves Phi_q at q in d_.
   void momentum_jacobian(double t, double cj, const double* y, double r1, double r2, double cv, double cl);
+  /// The multipliers of redundant rows dropped at finalize (their equations
+  /// read 0 = 0 and their Jacobian rows are zero) get a unit diagonal, so the
+  /// Newton matrix stays invertible and their corrections are zero.
+  void pin_dropped_multipliers();
   /// Writes Phi_q (from d_) into the block at (row0, col0), transposed if asked, times `scale`.
   void put_jacobian(const std::vector<int>& slots, double scale);
   std::vector<int> jacobian_slots(int row0, int col0, bool transpose = false) const;
@@ -88,7 +92,7 @@ class MultiplierDae : public DaeFormulation {
   VecX row_scale_, col_scale_;
 
  private:
-  std::vector<int> q_diag_, qv_diag_, v_diag_, jac_F2lam_, hess_F2q_, Qq_F2q_, Qv_F2v_;
+  std::vector<int> q_diag_, qv_diag_, v_diag_, jac_F2lam_, hess_F2q_, Qq_F2q_, Qv_F2v_, alg_diag_;
 };
 
 /// Stabilized index-2 form of Gear, Gupta and Leimkuhler, y = (q, v, lam, mu):

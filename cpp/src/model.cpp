@@ -1,5 +1,9 @@
 #include "lagmb/model.hpp"
 
+#include "lagmb/analysis.hpp"
+#include "lagmb/assembly.hpp"
+#include "lagmb/augmented.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -193,6 +197,27 @@ void Model::finalize() {
     mass_scale_ = msum / double(bodies_.size());
   }
   finalized_ = true;
+  // redundancy is judged where the joints are closed: at the assembled
+  // position (if assembly fails here, simulate reports it, naming the joints)
+  VecX q = initial_q();
+  try {
+    Data d(*this);
+    AugmentedSystem kkt(*this);
+    q = assemble_positions(*this, d, kkt, q, 0.0);
+  } catch (const std::exception&) {
+    q = initial_q();
+  }
+  redundant_rows_.clear();
+  for (int r : constraint_rank(*this, q, 0.0).dependent_rows) {
+    Data d(*this);
+    assemble_constraints(*this, d, q.data(), 0.0);
+    if (std::abs(d.Phi[r]) <= 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>())) redundant_rows_.push_back(r);
+  }
+  dropped_slots_.clear();
+  for (int c = 0; c < jacobian_pattern_.outerSize(); ++c)
+    for (int k = jacobian_pattern_.outerIndexPtr()[c]; k < jacobian_pattern_.outerIndexPtr()[c + 1]; ++k)
+      if (std::binary_search(redundant_rows_.begin(), redundant_rows_.end(), jacobian_pattern_.innerIndexPtr()[k]))
+        dropped_slots_.push_back(k);
 }
 
 VecX Model::initial_q() const {

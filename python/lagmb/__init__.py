@@ -12,7 +12,7 @@ the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
 
 from . import _core
 from .accuracy import METHODS, WorkPrecision, work_precision
-from .errors import AssemblyError, ModelError, SimulationError
+from .errors import AssemblyError, ModelError, RedundantConstraintWarning, SimulationError
 from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
                         time_function_from_dict)
 from .model import Body, Model
@@ -34,6 +34,7 @@ __all__ = [
     "Model",
     "ModelError",
     "Polynomial",
+    "RedundantConstraintWarning",
     "Result",
     "Scene",
     "SceneError",

@@ -6,6 +6,14 @@ from . import _core
 ModelError = _core.ModelError
 
 
+class RedundantConstraintWarning(UserWarning):
+    """Some constraint equations depend on the others (e.g. a parallelogram
+    with a third crank). lagmb drops them (they read 0 = 0, their multipliers
+    are 0) and simulates the unique motion; the reaction of a redundant set is
+    carried by its remaining equations. Only sums over the set are physically
+    determined."""
+
+
 class SimulationError(RuntimeError):
     """The solver could not go on.
 

@@ -346,6 +346,18 @@ class Model:
         """The finalized C++ model (built once, rebuilt after changes)."""
         if not self._core.finalized:
             self._core.finalize()
+            rows = self._core.redundant_rows
+            if rows:
+                import warnings
+
+                from .errors import RedundantConstraintWarning
+
+                named = ", ".join(f"'{self._core.constraint_name_of_row(r)}' (row {r})" for r in rows)
+                warnings.warn(RedundantConstraintWarning(
+                    f"{len(rows)} constraint equation(s) are redundant at the initial configuration: "
+                    f"{named}. They are dropped: the motion is unique and is simulated, and the "
+                    "rest of each redundant set carries its reaction (the split among redundant "
+                    "joints is not unique)."), stacklevel=3)
         return self._core
 
     def elements(self):
@@ -380,7 +392,7 @@ class Model:
 
     def assemble(self, t=0.0):
         """Consistent initial state: (q, v, qdd, lam) at time t."""
-        q, v, qdd, lam, _ = _core.assemble(self.compiled(), t)
+        q, v, qdd, lam = _core.assemble(self.compiled(), t)
         return q, v, qdd, lam
 
     def degrees_of_freedom(self):

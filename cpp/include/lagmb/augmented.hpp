@@ -44,7 +44,6 @@ class AugmentedSystem {
 /// augmented system at time t.
 struct ConsistentState {
   VecX q, v, qdd, lam;
-  int position_iterations = 0;
 };
 
 /// Makes (q, v) consistent at time t:
@@ -56,6 +55,9 @@ struct ConsistentState {
 /// Throws AssemblyError naming the constraint elements still violated.
 ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
                                 VecX v, double t);
+
+/// Step 1 alone: positions satisfying Phi(q, t) = 0, by least change from q.
+VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, double t);
 
 /// Step 3 alone: qdd and lam at the state (q, v, t).
 void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,

@@ -174,6 +174,16 @@ class Model {
   /// Positions in q of the local coordinates (x_i, y_i, phi_i, x_j, y_j, phi_j).
   std::array<int, 6> local_coordinates(int body_i, int body_j) const;
 
+  /// Rows of Phi found dependent on the others at the initial configuration
+  /// (rank-revealing sparse QR of Phi_q^T at finalize). They are dropped: the
+  /// assembly kernels write them as 0 = 0 with a zero Jacobian row, so their
+  /// multipliers are 0 and the other rows of the redundant set carry the
+  /// reaction. The motion is unique either way; the split of a redundant
+  /// set's reaction is not, and this is lagmb's documented choice.
+  const std::vector<int>& redundant_rows() const { return redundant_rows_; }
+  /// Slots of Phi_q's values in the dropped rows.
+  const std::vector<int>& dropped_jacobian_slots() const { return dropped_slots_; }
+
   /// Sorted times where a time function of the model has a breakpoint.
   std::vector<double> breakpoints() const;
 
@@ -213,6 +223,7 @@ class Model {
   VecX mass_diag_;
   SpMat jacobian_pattern_, hessian_pattern_, force_q_pattern_, force_v_pattern_;
   std::vector<int> row_owner_;  // row -> index into constraint_order_
+  std::vector<int> redundant_rows_, dropped_slots_;
   std::vector<int> coord_owner_;
   double mass_scale_ = 1.0;
 };

@@ -83,6 +83,7 @@ void GglFormulation::newton_matrix(double t, double cj, const double* y, const d
   for (size_t k = 0; k < vq_F4q_.size(); ++k) J[vq_F4q_[k]] += d_.Vq.valuePtr()[k];
   assemble_constraint_hessian(model_, d_, q, t, mu);
   for (size_t k = 0; k < hess_F1q_.size(); ++k) J[hess_F1q_[k]] += h * d_.H.valuePtr()[k];
+  pin_dropped_multipliers();
 }
 
 }  // namespace lagmb

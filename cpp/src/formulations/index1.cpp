@@ -81,6 +81,7 @@ void Index1Formulation::newton_matrix(double t, double cj, const double* y, cons
   }
   put_jacobian(F3v_, 1.0 + 2.0 * alpha_ * h);
   put_jacobian(F3q_, h * beta_ * beta_);
+  pin_dropped_multipliers();
 }
 
 }  // namespace lagmb

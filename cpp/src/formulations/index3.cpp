@@ -54,6 +54,7 @@ void Index3Formulation::newton_matrix(double t, double cj, const double* y, cons
   const double h = 1.0 / cj;
   momentum_jacobian(t, cj, y, h, h * h, cj, cj * cj);
   put_jacobian(jac_F3q_, 1.0);
+  pin_dropped_multipliers();
 }
 
 }  // namespace lagmb

@@ -42,6 +42,7 @@ void MultiplierDae::bind_common(const SparsityPattern& p) {
     v_diag_.push_back(slot(J_, V + i, V + i));
   }
   jac_F2lam_ = jacobian_slots(V, L, true);
+  for (int i = 2 * n_; i < size_; ++i) alg_diag_.push_back(slot(J_, i, i));
   hess_F2q_ = embed_slots(model_.hessian_pattern(), J_, V, 0);
   Qq_F2q_ = embed_slots(model_.force_q_pattern(), J_, V, 0);
   Qv_F2v_ = embed_slots(model_.force_v_pattern(), J_, V, V);
@@ -90,6 +91,13 @@ void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, doub
     for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= r2 * d_.Q_q.valuePtr()[k];
     for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= r2 * cv * d_.Q_v.valuePtr()[k];
   }
+}
+
+void MultiplierDae::pin_dropped_multipliers() {
+  // alg_diag_[k] is the diagonal of unknown 2n + k: lam rows first, then mu (GGL)
+  double* J = J_.valuePtr();
+  for (int r : model_.redundant_rows())
+    for (size_t k = r; k < alg_diag_.size(); k += m_) J[alg_diag_[k]] = 1.0;
 }
 
 int MultiplierDae::check_finite(const double* F, int n) {
