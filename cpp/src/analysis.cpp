@@ -1,8 +1,11 @@
 #include "lagmb/analysis.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
 #include <algorithm>
+#include <set>
+#include <sstream>
 
 #include "lagmb/assembly.hpp"
 
@@ -31,6 +34,47 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
   for (int k = r.rank; k < r.equations; ++k) r.dependent_rows.push_back(perm[k]);
   std::sort(r.dependent_rows.begin(), r.dependent_rows.end());
   return r;
+}
+
+std::string diagnose_failure(const Model& model, const VecX& q, double t) {
+  const int m = model.n_constraints();
+  if (m == 0 || m > 1000 || q.size() != model.n_coordinates() || !q.allFinite()) return "";
+  Data d(model);
+  assemble_jacobian(model, d, q.data(), t);
+  std::vector<int> rows;
+  for (int r = 0; r < m; ++r)
+    if (!std::binary_search(model.redundant_rows().begin(), model.redundant_rows().end(), r)) rows.push_back(r);
+  const Eigen::MatrixXd full = Eigen::MatrixXd(d.Phi_q);
+  Eigen::MatrixXd J(rows.size(), full.cols());
+  for (size_t k = 0; k < rows.size(); ++k) J.row(k) = full.row(rows[k]);
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU);
+  const auto& s = svd.singularValues();
+  std::ostringstream out;
+  if (s.size() == 0) return "";
+  const double smallest = s.size() < long(rows.size()) ? 0.0 : s[s.size() - 1];
+  if (smallest > 1e-3 * s[0]) {
+    out << " The constraint Jacobian is well conditioned there (smallest singular value " << smallest << " of "
+        << s[0] << "): look for fast or stiff dynamics (stiff springs, very light bodies; try max_step) or a "
+        << "force or driver that changes abruptly.";
+    return out.str();
+  }
+  // the equations that take part: large entries of the left singular vector
+  const Eigen::VectorXd u = svd.matrixU().col(svd.matrixU().cols() - 1);
+  const double umax = u.cwiseAbs().maxCoeff();
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  for (size_t k = 0; k < rows.size(); ++k)
+    if (std::abs(u[k]) > 0.1 * umax) {
+      const std::string name = model.constraint_name_of_row(rows[k]);
+      if (seen.insert(name).second) names.push_back(name);
+    }
+  out << " At t = " << t << " the constraint Jacobian is (nearly) singular (smallest singular value " << smallest
+      << " of " << s[0] << "): the equations of";
+  for (size_t k = 0; k < names.size(); ++k) out << (k ? ", '" : " '") << names[k] << "'";
+  out << " become dependent. The mechanism is at a dead point, toggle or lock-up: a driver among them cannot "
+      << "push it further, and a free mechanism would have to pass a bifurcation. Check the drivers' range of "
+      << "motion and the geometry near this position.";
+  return out.str();
 }
 
 }  // namespace lagmb

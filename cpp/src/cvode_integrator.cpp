@@ -388,6 +388,7 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
       q = N_VGetArrayPointer(s.out);
       v = q + p.n;
     }
+    const double* positions() const override { return N_VGetArrayPointer(s.y); }
     void restart(double t) override {
       fill_stats(before);
       check(CVodeReInit(s.mem, t, s.y), "CVodeReInit", s.ctx);

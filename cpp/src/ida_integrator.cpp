@@ -212,6 +212,7 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
       q = dae.q(yo);
       v = dae.v(yo);
     }
+    const double* positions() const override { return dae.q(N_VGetArrayPointer(s.y)); }
     void restart(double t) override {
       fill_stats(before);
       check(IDAReInit(s.mem, t, s.y, s.yp), "IDAReInit", s.ctx);

@@ -38,6 +38,7 @@ struct IntegratorFailure : std::runtime_error {
   IntegratorFailure(const std::string& what, double t_reached)
       : std::runtime_error(what), t(t_reached) {}
   double t;
+  VecX q;  // positions at t (the last accepted step), for the diagnosis
 };
 
 /// One integrator as the shared stepping loop sees it.
@@ -53,6 +54,8 @@ class Stepper {
   virtual void interpolate(double t, const double*& q, const double*& v) = 0;
   /// Restarts at order 1 from the current state at time t.
   virtual void restart(double t) = 0;
+  /// Positions of the last accepted step.
+  virtual const double* positions() const = 0;
   /// Counts so far, summed over restarts.
   virtual void fill_stats(Stats& stats) = 0;
   virtual const char* name() const = 0;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "integrators.hpp"
+#include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
 
 namespace lagmb {
@@ -170,7 +171,9 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   } catch (const IntegratorFailure& e) {
     finish();
     std::ostringstream msg;
-    msg << e.what() << " Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back())
+    msg << e.what();
+    if (e.q.size()) msg << diagnose_failure(model, e.q, e.t);
+    msg << " Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back())
         << " are kept in the partial result.";
     throw SimulationError(msg.str(), e.t, std::move(tr));
   }

@@ -52,6 +52,10 @@ void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentSt
         }
       }
     }
+  } catch (IntegratorFailure& e) {
+    stepper.fill_stats(stats);
+    e.q = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
+    throw;
   } catch (...) {
     stepper.fill_stats(stats);
     throw;

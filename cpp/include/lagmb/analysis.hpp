@@ -23,4 +23,12 @@ struct ConstraintRank {
 /// tol * (largest column norm) counts as dependent.
 ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol = 1e-9);
 
+/// Why a run may have stopped at (q, t), in terms of the model: if Phi_q is
+/// (nearly) singular there (smallest singular value below 1e-3 of the
+/// largest, redundant rows dropped at finalize left out), the elements whose
+/// equations take part in the dependency (the left singular vector) are
+/// named: a dead point, toggle or lock-up. Otherwise a hint about stiffness
+/// or time resolution. Dense SVD: models up to 1000 equations.
+std::string diagnose_failure(const Model& model, const VecX& q, double t);
+
 }  // namespace lagmb
