@@ -52,7 +52,7 @@ std::string diagnose_failure(const Model& model, const VecX& q, double t) {
   std::ostringstream out;
   if (s.size() == 0) return "";
   const double smallest = s.size() < long(rows.size()) ? 0.0 : s[s.size() - 1];
-  if (smallest > 1e-3 * s[0]) {
+  if (smallest > 1e-2 * s[0]) {
     out << " The constraint Jacobian is well conditioned there (smallest singular value " << smallest << " of "
         << s[0] << "): look for fast or stiff dynamics (stiff springs, very light bodies; try max_step) or a "
         << "force or driver that changes abruptly.";

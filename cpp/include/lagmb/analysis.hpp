@@ -24,7 +24,7 @@ struct ConstraintRank {
 ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol = 1e-9);
 
 /// Why a run may have stopped at (q, t), in terms of the model: if Phi_q is
-/// (nearly) singular there (smallest singular value below 1e-3 of the
+/// (nearly) singular there (smallest singular value below 1e-2 of the
 /// largest, redundant rows dropped at finalize left out), the elements whose
 /// equations take part in the dependency (the left singular vector) are
 /// named: a dead point, toggle or lock-up. Otherwise a hint about stiffness
