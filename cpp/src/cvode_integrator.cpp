@@ -65,6 +65,12 @@ struct OdeProblem {
     lu.analyzePattern(N);
     rhs.resize(n + nc);
     sol.resize(n + nc);
+    Kb.resize(n);
+    q0.resize(n);
+    v0.resize(n);
+    vnew.resize(n);
+    Mv.resize(n);
+    w.resize(nc);
   }
 
   /// qdd and lam at (t, q, v); false if the augmented matrix is singular.
@@ -76,7 +82,7 @@ struct OdeProblem {
     assemble_gamma(model, d, q, v, t);
     if (alpha != 0.0) {
       assemble_phi_t(model, d, q, t);
-      VecX w = d.phi_t;
+      w = d.phi_t;
       add_jacobian_times(d, v, w.data());
       d.gamma -= 2.0 * alpha * w;
     }
@@ -119,8 +125,8 @@ struct OdeProblem {
     Eigen::Map<const VecX> bq(b, n), bv(b + n, n);
     Eigen::Map<VecX> xq(x, n), xv(x + n, n);
     // K b_q = (Q_q - H) b_q, from the values still in d (same linearization)
-    VecX Kb = -(d.H * bq);
-    if (!model.state_dependent_forces().empty()) Kb += d.Q_q * bq;
+    Kb.noalias() = -(d.H * bq);
+    if (!model.state_dependent_forces().empty()) Kb.noalias() += d.Q_q * bq;
     rhs.head(n) = M.cwiseProduct(bv) + g * Kb;
     rhs.tail(nc).setZero();
     add_jacobian_times(d, bv.data(), rhs.data() + n);
@@ -133,31 +139,34 @@ struct OdeProblem {
   /// the M-metric), and the error estimate onto the tangent space.
   int project(double t, double* q, double* v, double* corr, double* err) {
     Eigen::Map<VecX> Q(q, n), V(v, n);
-    const VecX q0 = Q, v0 = V;
+    q0 = Q;
+    v0 = V;
     for (int it = 0; it < 3; ++it) {
       assemble_constraints(model, d, q, t);
       const double e = nc ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
       if (e <= 1e-14 * (1.0 + Q.lpNorm<Eigen::Infinity>())) break;
       assemble_jacobian(model, d, q, t);
       if (!kkt.factorize(d)) return 1;
-      kkt.solve(zero_n, -d.Phi, dq, kappa);
+      d.Phi = -d.Phi;  // in place: no temporary
+      kkt.solve(zero_n, d.Phi, dq, kappa);
       Q += dq;
     }
     assemble_jacobian(model, d, q, t);
     if (!kkt.factorize(d)) return 1;
     assemble_phi_t(model, d, q, t);
-    const VecX Mv = model.mass_diagonal().cwiseProduct(V);
-    VecX vnew(n);
-    kkt.solve(Mv, -d.phi_t, vnew, kappa);
+    Mv = model.mass_diagonal().cwiseProduct(V);
+    d.phi_t = -d.phi_t;
+    kkt.solve(Mv, d.phi_t, vnew, kappa);
     V = vnew;
     Eigen::Map<VecX>(corr, n) = Q - q0;
     Eigen::Map<VecX>(corr + n, n) = V - v0;
     if (err) {
       for (int part = 0; part < 2; ++part) {
         Eigen::Map<VecX> e(err + part * n, n);
-        VecX Ge = VecX::Zero(nc);
-        add_jacobian_times(d, e.data(), Ge.data());
-        kkt.solve(zero_n, -Ge, dq, kappa);
+        w.setZero();
+        add_jacobian_times(d, e.data(), w.data());
+        w = -w;
+        kkt.solve(zero_n, w, dq, kappa);
         e += dq;
       }
     }
@@ -170,6 +179,7 @@ struct OdeProblem {
   AugmentedSystem kkt;
   int n, nc;
   VecX qdd, lam, lam_lin, q_lin, v_lin, kappa, dq, zero_n, rhs, sol;
+  VecX Kb, q0, v0, vnew, Mv, w;  // scratch, sized once: no allocation per solve or projection
   double t_lin = 0.0, gamma_setup = 0.0;
   double alpha = 0.0, beta = 0.0;  // Baumgarte (Adams: CVODE projects only for BDF)
   SpMat N;
