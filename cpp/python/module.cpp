@@ -41,6 +41,7 @@ py::dict to_python(Trajectory&& tr) {
   stats["newton_iterations"] = s.newton_iterations;
   stats["error_test_failures"] = s.error_test_failures;
   stats["convergence_failures"] = s.convergence_failures;
+  stats["element_evaluations"] = s.element_evaluations;
   stats["last_order"] = s.last_order;
   stats["last_step"] = s.last_step;
   stats["wall_time"] = s.wall_time;
@@ -179,6 +180,23 @@ PYBIND11_MODULE(_core, m) {
       .def("add_force", &Model::add_force, py::arg("name"), py::arg("body"), py::arg("fx"), py::arg("fy"),
            py::arg("point"), py::arg("local"))
       .def("add_torque", &Model::add_torque, py::arg("name"), py::arg("body"), py::arg("torque"))
+      .def(
+          "add_joint_friction",
+          [](Model& model, const std::string& name, const std::string& joint, double mu, double viscous,
+             double preload, double pin_radius, double bearing_length, double slip_velocity,
+             double load_smoothing) {
+            JointFrictionParameters p;
+            p.mu = mu;
+            p.viscous = viscous;
+            p.preload = preload;
+            p.pin_radius = pin_radius;
+            p.bearing_length = bearing_length;
+            p.slip_velocity = slip_velocity;
+            p.load_smoothing = load_smoothing;
+            model.add_joint_friction(name, joint, p);
+          },
+          py::arg("name"), py::arg("joint"), py::arg("mu"), py::arg("viscous"), py::arg("preload"),
+          py::arg("pin_radius"), py::arg("bearing_length"), py::arg("slip_velocity"), py::arg("load_smoothing"))
       .def("finalize", &Model::finalize)
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
@@ -205,6 +223,7 @@ PYBIND11_MODULE(_core, m) {
              const ElementRef& r = model.find(name);
              if (r.type == ElementRef::kBody) return "body";
              if (r.type == ElementRef::kConstraint) return model.constraint_groups()[r.group]->kind();
+             if (r.type == ElementRef::kFriction) return model.friction_groups()[r.group]->kind();
              return model.force_groups()[r.group]->kind();
            })
       .def("initial_state",
@@ -229,6 +248,46 @@ PYBIND11_MODULE(_core, m) {
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
           "Force (x, y) and torque about the centre of mass that the element applies to its second body;\n"
           "with joint_axes, the force in the element's own axes.")
+      .def(
+          "friction",
+          [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,
+             const RowMajor& lam) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_rows(model, lam, model.n_constraints(), "lam");
+            const ElementRef& r = model.find(name);
+            if (r.type != ElementRef::kFriction) throw ModelError("'" + name + "' is not a joint friction");
+            const auto& g = *model.friction_groups()[r.group];
+            RowMajor out(q.rows(), 2);
+            for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              const auto f = g.friction(r.index, q.row(k).data(), v.row(k).data(), lam.row(k).data());
+              out(k, 0) = f[0];
+              out(k, 1) = f[1];
+            }
+            return out;
+          },
+          py::arg("name"), py::arg("q"), py::arg("v"), py::arg("lam"),
+          "(friction torque or force on the joint's second body, slip rate) at each state")
+      .def(
+          "friction_forces",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& lam) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            require_rows(model, lam.transpose(), model.n_constraints(), "lam");
+            Data d(model);
+            d.Q.setZero();
+            add_friction_forces(model, d, q.data(), v.data(), lam.data());
+            assemble_friction_derivatives(model, d, q.data(), v.data(), lam.data());
+            const Eigen::Index n = q.size(), m = lam.size();
+            Eigen::MatrixXd Qq = Eigen::MatrixXd::Zero(n, n), Qv = Qq, Ql = Eigen::MatrixXd::Zero(n, m);
+            if (!model.friction_groups().empty()) {
+              Qq = Eigen::MatrixXd(d.friction_Q_q);
+              Qv = Eigen::MatrixXd(d.friction_Q_v);
+              Ql = Eigen::MatrixXd(d.friction_Q_lam).transpose();
+            }
+            return py::make_tuple(d.Q, Qq, Qv, Ql);
+          },
+          py::arg("q"), py::arg("v"), py::arg("lam"), "(Q_f, dQ_f/dq, dQ_f/dv, dQ_f/dlam) of joint friction")
       .def(
           "energy",
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {

@@ -13,6 +13,13 @@ Data::Data(const Model& model)
       Q_q(model.force_q_pattern()),
       Q_v(model.force_v_pattern()) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
+  if (!model.friction_groups().empty()) {
+    friction_Q_q = model.force_q_pattern();
+    friction_Q_v = model.force_v_pattern();
+    friction_Q_lam = model.jacobian_pattern();
+    friction_Q0.resize(model.n_coordinates());
+    friction_lam.resize(model.n_constraints());
+  }
 }
 
 namespace {
@@ -28,29 +35,44 @@ void drop_rows(const Model& model, SpMat& A) {
 }  // namespace
 
 void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
-  for (const auto& g : model.constraint_groups()) g->phi(q, t, d.Phi.data());
+  for (const auto& g : model.constraint_groups()) {
+    g->phi(q, t, d.Phi.data());
+    d.element_evaluations += g->size();
+  }
   drop_rows(model, d.Phi);
 }
 
 void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
-  for (const auto& g : model.constraint_groups()) g->jacobian(q, t, d.Phi_q.valuePtr());
+  for (const auto& g : model.constraint_groups()) {
+    g->jacobian(q, t, d.Phi_q.valuePtr());
+    d.element_evaluations += g->size();
+  }
   drop_rows(model, d.Phi_q);
 }
 
 void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
   d.phi_t.setZero();
-  for (const auto* g : model.time_dependent_groups()) g->add_phi_t(q, t, d.phi_t.data());
+  for (const auto* g : model.time_dependent_groups()) {
+    g->add_phi_t(q, t, d.phi_t.data());
+    d.element_evaluations += g->size();
+  }
   drop_rows(model, d.phi_t);
 }
 
 void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
-  for (const auto& g : model.constraint_groups()) g->gamma(q, v, t, d.gamma.data());
+  for (const auto& g : model.constraint_groups()) {
+    g->gamma(q, v, t, d.gamma.data());
+    d.element_evaluations += g->size();
+  }
   drop_rows(model, d.gamma);
 }
 
 void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
                                 double t) {
-  for (const auto& g : model.constraint_groups()) g->velocity_jacobian(q, v, t, d.Vq.valuePtr());
+  for (const auto& g : model.constraint_groups()) {
+    g->velocity_jacobian(q, v, t, d.Vq.valuePtr());
+    d.element_evaluations += g->size();
+  }
   drop_rows(model, d.Vq);
 }
 
@@ -58,12 +80,18 @@ void assemble_constraint_hessian(const Model& model, Data& d, const double* q, d
                                  const double* w) {
   // (the weights of dropped rows are their multipliers: zero)
   d.H.coeffs().setZero();
-  for (const auto& g : model.constraint_groups()) g->add_hessian(q, t, w, d.H.valuePtr());
+  for (const auto& g : model.constraint_groups()) {
+    g->add_hessian(q, t, w, d.H.valuePtr());
+    d.element_evaluations += g->size();
+  }
 }
 
 void assemble_forces(const Model& model, Data& d, const double* q, const double* v, double t) {
   d.Q.setZero();
-  for (const auto& f : model.force_groups()) f->add_forces(q, v, t, d.Q.data());
+  for (const auto& f : model.force_groups()) {
+    f->add_forces(q, v, t, d.Q.data());
+    d.element_evaluations += f->size();
+  }
 }
 
 void assemble_force_derivatives(const Model& model, Data& d, const double* q, const double* v,
@@ -71,8 +99,31 @@ void assemble_force_derivatives(const Model& model, Data& d, const double* q, co
   if (model.state_dependent_forces().empty()) return;
   d.Q_q.coeffs().setZero();
   d.Q_v.coeffs().setZero();
-  for (const auto* f : model.state_dependent_forces())
+  for (const auto* f : model.state_dependent_forces()) {
     f->add_derivatives(q, v, t, d.Q_q.valuePtr(), d.Q_v.valuePtr());
+    d.element_evaluations += f->size();
+  }
+}
+
+void add_friction_forces(const Model& model, Data& d, const double* q, const double* v,
+                         const double* lam) {
+  for (const auto& f : model.friction_groups()) {
+    f->add_forces(q, v, lam, d.Q.data());
+    d.element_evaluations += f->size();
+  }
+}
+
+void assemble_friction_derivatives(const Model& model, Data& d, const double* q, const double* v,
+                                   const double* lam) {
+  if (model.friction_groups().empty()) return;
+  d.friction_Q_q.coeffs().setZero();
+  d.friction_Q_v.coeffs().setZero();
+  d.friction_Q_lam.coeffs().setZero();
+  for (const auto& f : model.friction_groups()) {
+    f->add_derivatives(q, v, lam, d.friction_Q_q.valuePtr(), d.friction_Q_v.valuePtr(),
+                       d.friction_Q_lam.valuePtr());
+    d.element_evaluations += f->size();
+  }
 }
 
 void add_jacobian_transpose_times(const Data& d, const double* w, double* y) {

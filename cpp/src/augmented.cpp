@@ -143,6 +143,7 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
   assemble_forces(model, d, q.data(), v.data(), t);
   assemble_gamma(model, d, q.data(), v.data(), t);
   kkt.solve(d.Q, d.gamma, s.qdd, s.lam);
+  if (!model.friction_groups().empty()) solve_friction(model, d, kkt, q.data(), v.data(), t, s.qdd, s.lam);
   s.q = std::move(q);
   s.v = std::move(v);
   return s;
@@ -158,8 +159,36 @@ void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, cons
   assemble_gamma(model, d, q, v, t);
   VecX a(n), l(m);
   kkt.solve(d.Q, d.gamma, a, l);
+  if (!model.friction_groups().empty()) solve_friction(model, d, kkt, q, v, t, a, l);
   Eigen::Map<VecX>(qdd, n) = a;
   Eigen::Map<VecX>(lam, m) = l;
+}
+
+void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
+                    double t, VecX& qdd, VecX& lam) {
+  // fixed point lam -> Q + Q_f(q, v, lam) -> (qdd, lam) on the factorization
+  // already done: the matrix does not depend on lam, only the right side
+  const int max_iterations = 100;
+  VecX& Q0 = d.friction_Q0;
+  VecX& previous = d.friction_lam;
+  Q0 = d.Q;
+  double change = 0.0;
+  for (int it = 0; it < max_iterations; ++it) {
+    previous = lam;
+    d.Q = Q0;
+    add_friction_forces(model, d, q, v, previous.data());
+    kkt.solve(d.Q, d.gamma, qdd, lam);
+    change = lam.size() ? (lam - previous).lpNorm<Eigen::Infinity>() : 0.0;
+    if (!std::isfinite(change)) break;
+    if (change <= 1e-12 * (lam.lpNorm<Eigen::Infinity>() + model.mass_scale())) return;
+  }
+  std::ostringstream s;
+  s << "joint friction: the multipliers of the augmented system do not converge at t = " << t
+    << " (fixed-point iteration: change " << change << " after " << max_iterations
+    << " iterations). The friction load comes from the joint reactions, which the friction itself "
+       "changes; with friction coefficients this large (mu times pin radius or moment arm) that loop "
+       "locks. Reduce mu or pin_radius.";
+  throw SimulationError(s.str(), t);
 }
 
 }  // namespace lagmb

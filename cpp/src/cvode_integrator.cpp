@@ -91,6 +91,7 @@ struct OdeProblem {
       d.gamma -= beta * beta * d.Phi;
     }
     kkt.solve(d.Q, d.gamma, qdd, lam);
+    if (!model.friction_groups().empty()) solve_friction(model, d, kkt, q, v, t, qdd, lam);
     return qdd.allFinite();
   }
 
@@ -112,6 +113,13 @@ struct OdeProblem {
       for (size_t k = 0; k < Kq.size(); ++k) x[Kq[k]] -= gamma * gamma * d.Q_q.valuePtr()[k];
       for (size_t k = 0; k < Cv.size(); ++k) x[Cv[k]] -= gamma * d.Q_v.valuePtr()[k];
     }
+    if (!model.friction_groups().empty()) {
+      // joint friction at the linearization multipliers; its dependence on
+      // lam (through the reactions) is left out of this Newton matrix
+      assemble_friction_derivatives(model, d, q, v, lam_lin.data());
+      for (size_t k = 0; k < Kq.size(); ++k) x[Kq[k]] -= gamma * gamma * d.friction_Q_q.valuePtr()[k];
+      for (size_t k = 0; k < Cv.size(); ++k) x[Cv[k]] -= gamma * d.friction_Q_v.valuePtr()[k];
+    }
     lu.factorize(N);
     ++factorizations;
     gamma_setup = gamma;
@@ -127,6 +135,7 @@ struct OdeProblem {
     // K b_q = (Q_q - H) b_q, from the values still in d (same linearization)
     Kb.noalias() = -(d.H * bq);
     if (!model.state_dependent_forces().empty()) Kb.noalias() += d.Q_q * bq;
+    if (!model.friction_groups().empty()) Kb.noalias() += d.friction_Q_q * bq;
     rhs.head(n) = M.cwiseProduct(bv) + g * Kb;
     rhs.tail(nc).setZero();
     add_jacobian_times(d, bv.data(), rhs.data() + n);
@@ -419,6 +428,7 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
       stats.lu_factorizations = p.factorizations;
       stats.augmented_factorizations = p.kkt.factorizations();
       stats.projections = p.projections;
+      stats.element_evaluations = p.d.element_evaluations;
     }
   } stepper(s, p, plan.t_end);
   run_steps(stepper, plan, start, record, stats);

@@ -41,6 +41,8 @@ class DaeFormulation {
   /// Positions and velocities inside y.
   virtual const double* q(const double* y) const = 0;
   virtual const double* v(const double* y) const = 0;
+  /// Elements the formulation's assembly kernels evaluated so far.
+  virtual long element_evaluations() const { return 0; }
 };
 
 /// What the DAE forms of lagmb share: y starts with (q, v, lam), and
@@ -50,6 +52,9 @@ class DaeFormulation {
 /// cj M - Q_v, Phi_q^T] on (q, v, lam). Each form adds its constraint rows
 /// and picks the equilibration: rows F1, F2 scaled by r1, r2, columns v, lam
 /// by cv, cl (see each form), so that every block is O(1) at any step size.
+/// Joint friction Q_f(q, v, lam), where present, joins Q, and its exact
+/// derivatives join the F2 blocks: -Q_f,q, -Q_f,v, and -Q_f,lam next to
+/// Phi_q^T (same pattern: a joint's friction reads only its own multipliers).
 class MultiplierDae : public DaeFormulation {
  public:
   int size() const override { return size_; }
@@ -58,6 +63,7 @@ class MultiplierDae : public DaeFormulation {
   const VecX& col_scale() const override { return col_scale_; }
   const double* q(const double* y) const override { return y; }
   const double* v(const double* y) const override { return y + n_; }
+  long element_evaluations() const override { return d_.element_evaluations; }
 
  protected:
   MultiplierDae(const Model& model, int size);

@@ -231,6 +231,7 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
       sun::real h = 0;
       IDAGetLastStep(s.mem, &h), stats.last_step = h;
       stats.lu_factorizations = s.lu.factorizations;
+      stats.element_evaluations = dae.element_evaluations();
     }
   } stepper(s, cb, dae);
   s.t_end = plan.t_end;

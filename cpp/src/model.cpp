@@ -176,12 +176,17 @@ void Model::finalize() {
     f->place(*this);
     f->declare(fq, fv);
   }
+  for (auto& f : frictions_) {  // friction's Q_q, Q_v join the force patterns
+    f->place(*this);
+    f->declare(fq, fv);
+  }
   jacobian_pattern_ = jac.build();
   hessian_pattern_ = hess.build();
   force_q_pattern_ = fq.build();
   force_v_pattern_ = fv.build();
   for (auto& g : constraints_) g->bind(jacobian_pattern_, hessian_pattern_);
   for (auto& f : forces_) f->bind(force_q_pattern_, force_v_pattern_);
+  for (auto& f : frictions_) f->bind(force_q_pattern_, force_v_pattern_, jacobian_pattern_);
 
   time_dependent_.clear();
   for (auto& g : constraints_)
@@ -598,6 +603,65 @@ void Model::add_torque(const std::string& name, int body, TimeFunctionPtr torque
   e.torque = std::move(torque);
   note(e.torque);
   add_force_element(std::move(e));
+}
+
+void Model::add_joint_friction(const std::string& name, const std::string& joint,
+                               const JointFrictionParameters& p) {
+  require_open("add joint friction '" + name + "'");
+  check_new_name(name);
+  const std::string what = "joint friction '" + name + "': ";
+  auto nonnegative = [&](double x, const char* key) {
+    if (!(std::isfinite(x) && x >= 0))
+      throw ModelError(what + key + " must be finite and >= 0, got " + fmt(x));
+  };
+  nonnegative(p.mu, "mu");
+  nonnegative(p.viscous, "viscous");
+  nonnegative(p.preload, "preload");
+  nonnegative(p.pin_radius, "pin_radius");
+  nonnegative(p.bearing_length, "bearing_length");
+  for (auto [x, key] : {std::pair{p.slip_velocity, "slip_velocity"}, std::pair{p.load_smoothing, "load_smoothing"}})
+    if (!(std::isfinite(x) && x > 0)) throw ModelError(what + key + " must be positive and finite, got " + fmt(x));
+  auto named = names_.find(joint);
+  if (named == names_.end()) throw ModelError(what + "'" + joint + "' is not a joint of this model");
+  const ElementRef ref = named->second;
+  if (const auto* rev = find_constraint<RevoluteJoint>(joint)) {
+    if (p.bearing_length != 0.0)
+      throw ModelError(what + "bearing_length applies to translational joints; '" + joint + "' is revolute");
+    if (p.mu > 0.0 && !(p.pin_radius > 0.0))
+      throw ModelError(what + "mu = " + fmt(p.mu) + " needs the pin radius (pin_radius > 0) of revolute '" +
+                       joint + "'");
+    for (int b : {rev->body_i, rev->body_j}) require_rigid(b, name, "cannot take revolute friction (it has no angle)");
+    RevoluteFriction f;
+    f.name = name;
+    f.body_i = rev->body_i;
+    f.body_j = rev->body_j;
+    f.joint_group = ref.group;
+    f.joint_index = ref.index;
+    f.law.p = p;
+    f.law.arm = p.pin_radius;
+    add_friction(std::move(f));
+  } else if (const auto* tr = find_constraint<TranslationalJoint>(joint)) {
+    if (p.pin_radius != 0.0)
+      throw ModelError(what + "pin_radius applies to revolute joints; '" + joint + "' is translational");
+    TranslationalFriction f;
+    f.name = name;
+    f.body_i = tr->body_i;
+    f.body_j = tr->body_j;
+    f.joint_group = ref.group;
+    f.joint_index = ref.index;
+    f.law.p = p;
+    f.law.arm = 1.0;
+    f.along = tr->across;
+    f.along.w = tr->across.line_direction();
+    add_friction(std::move(f));
+  } else {
+    const char* kind = ref.type == ElementRef::kConstraint ? constraints_[ref.group]->kind()
+                       : ref.type == ElementRef::kBody     ? "body"
+                       : ref.type == ElementRef::kForce    ? "force element"
+                                                           : "joint friction";
+    throw ModelError(what + "'" + joint + "' is a " + kind +
+                     "; friction needs a revolute or translational joint");
+  }
 }
 
 }  // namespace lagmb

@@ -154,6 +154,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       tr.a.assign(tr.q.size(), NAN);
       tr.lam.assign(size_t(tr.size()) * m, NAN);
     }
+    tr.stats.element_evaluations += d.element_evaluations;  // start and outputs
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
 

@@ -340,6 +340,41 @@ class Model:
         self._call("add_torque", name, self._body_index(b, name), tau)
         self._record("add_torque", name=name, body=b, torque=torque)
 
+    def add_joint_friction(self, name, joint, mu=0.0, viscous=0.0, pin_radius=None,
+                           bearing_length=None, preload=0.0, slip_velocity=1e-3,
+                           load_smoothing=1e-6):
+        """Friction in a revolute or translational joint (docs/modelling.md,
+        "Joint friction"): Coulomb with the load taken from the joint's own
+        reaction, plus viscous. With sd the joint's relative rate (rad/s or
+        m/s), F = -(mu rho N + preload) sd / sqrt(sd^2 + slip_velocity^2)
+        - viscous sd, a torque (revolute: rho = pin_radius, N = |joint force|)
+        or a force along the axis (translational: rho = 1, N = |normal force|
+        + |reaction moment| / bearing_length, the moment only if
+        bearing_length is given) on the joint's second body; the first gets
+        the opposite. ``load_smoothing`` (N) rounds |.| of the load near 0."""
+        name = self._name(name)
+        joint = getattr(joint, "name", joint)
+        what = f"joint friction '{name}'"
+        if not isinstance(joint, str):
+            raise ModelError(f"{what}: joint must be a joint name, got {joint!r}")
+        values = {
+            "mu": _number(mu, f"{what}: mu"),
+            "viscous": _number(viscous, f"{what}: viscous"),
+            "preload": _number(preload, f"{what}: preload"),
+            "pin_radius": None if pin_radius is None else _number(pin_radius, f"{what}: pin_radius"),
+            "bearing_length": (None if bearing_length is None
+                               else _number(bearing_length, f"{what}: bearing_length")),
+            "slip_velocity": _number(slip_velocity, f"{what}: slip_velocity"),
+            "load_smoothing": _number(load_smoothing, f"{what}: load_smoothing"),
+        }
+        for key in ("pin_radius", "bearing_length"):
+            if values[key] is not None and not values[key] > 0:
+                raise ModelError(f"{what}: {key} must be positive, got {values[key]!r}")
+        self._call("add_joint_friction", name, joint, values["mu"], values["viscous"], values["preload"],
+                   values["pin_radius"] or 0.0, values["bearing_length"] or 0.0, values["slip_velocity"],
+                   values["load_smoothing"])
+        self._record("add_joint_friction", name=name, joint=joint, **values)
+
     # --- questions -------------------------------------------------------
 
     def compiled(self):

@@ -87,6 +87,21 @@ class Result:
             raise ModelError(f"'{name}' is not a driver")
         return -self.multipliers(name)[:, 0]
 
+    def friction(self, element):
+        """(k,) the friction torque (N m) or force (N) of a joint friction on
+        the joint's second body (docs/modelling.md, "Joint friction"),
+        evaluated from the run's own states and reactions."""
+        name = self._name(element)
+        return self._core.friction(name, self.q, self.v, self.lam)[:, 0]
+
+    def friction_power(self, element):
+        """(k,) power (W, <= 0) of a joint friction: its torque or force
+        times the joint's relative rate. Its time integral is the work
+        friction did, the energy it took out of the system."""
+        name = self._name(element)
+        f = self._core.friction(name, self.q, self.v, self.lam)
+        return f[:, 0] * f[:, 1]
+
     @cached_property
     def energy(self):
         """(k,) kinetic + potential energy (J) of the conservative forces."""

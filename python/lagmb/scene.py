@@ -47,6 +47,14 @@ A scene, with every table (all keys in SI units, angles in radians)::
     body = "crank"
     force = [0.0, { type = "harmonic", amplitude = 2.0, omega = 3.0 }]
 
+    [[forces]]                      # joint friction: add_joint_friction arguments
+    type = "joint_friction"
+    name = "pivot_friction"
+    joint = "pivot"
+    mu = 0.2
+    pin_radius = 0.01
+    enabled = false                 # any element table: read and checked, not added
+
     [simulation]                    # the keyword arguments of mb.simulate
     t_end = 2.0                     # t0, rtol, atol, n_out or t_out, max_step,
     rtol = 1e-8                     # max_steps, formulation, integrator, max_order
@@ -147,7 +155,7 @@ _METHODS = {
                                         "pin_in_slot", "gear", "rack_pinion")},
     "drivers": {"joint": "drive_joint", "body": "drive_body"},
     "forces": {t: "add_" + t for t in ("spring_damper", "rotational_spring_damper",
-                                        "force", "torque")},
+                                        "force", "torque", "joint_friction")},
 }
 _SINGULAR = {"bodies": "body", "particles": "particle", "joints": "joint", "drivers": "driver",
              "forces": "force"}
@@ -161,7 +169,9 @@ _BODY_REF = {"body", "body_i", "body_j", "pinion", "rack"}
 _VEC2 = {"position", "velocity", "at", "axis", "point", "point_i", "point_j",
          "local_i", "local_j", "center_i", "center_j"}
 _NUMBER = {"mass", "inertia", "angle", "angular_velocity", "length", "ratio", "radius",
-           "stiffness", "damping", "free_length", "free_angle"}
+           "stiffness", "damping", "free_length", "free_angle",
+           "mu", "viscous", "preload", "pin_radius", "bearing_length", "slip_velocity",
+           "load_smoothing"}
 _FUNCTION = {"f", "torque", ("add_spring_damper", "force")}
 _FUNCTION_PAIR = {("add_force", "force")}
 _STRING = {"name", "coordinate"}
@@ -545,6 +555,10 @@ class _Reader:
 
     def add(self, model, table, i, entry):
         w = self.where((table, i), self.label(table, i, entry))
+        enabled = True
+        if "enabled" in entry:  # any element table: false reads and checks it, adds nothing
+            enabled = _bool(w, "enabled", entry["enabled"])
+            entry = {k: v for k, v in entry.items() if k != "enabled"}
         types = _METHODS[table]
         if None in types:
             typ, method_name = None, types[None]
@@ -585,6 +599,8 @@ class _Reader:
             other, line = self.names[name]
             raise w.error(f"duplicate name {name!r}: already used by {other}"
                           + (f" (line {line})" if line else ""), "name")
+        if not enabled:
+            return  # not in the model at all: a disabled element costs nothing
         try:
             getattr(model, method_name)(**kwargs)
         except (ValueError, TypeError) as e:

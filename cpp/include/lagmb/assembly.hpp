@@ -28,6 +28,15 @@ void assemble_forces(const Model& model, Data& d, const double* q, const double*
 void assemble_force_derivatives(const Model& model, Data& d, const double* q, const double* v,
                                 double t);
 
+/// d.Q += Q_f(q, v, lam): joint friction, which depends on the multipliers
+/// (friction_group.hpp). Nothing runs for a model without friction.
+void add_friction_forces(const Model& model, Data& d, const double* q, const double* v,
+                         const double* lam);
+/// d.friction_Q_q, d.friction_Q_v and d.friction_Q_lam (= (dQ_f/dlam)^T, in
+/// the pattern of Phi_q): exact derivatives of the friction forces.
+void assemble_friction_derivatives(const Model& model, Data& d, const double* q, const double* v,
+                                   const double* lam);
+
 /// y += Phi_q^T w (Phi_q from d).
 void add_jacobian_transpose_times(const Data& d, const double* w, double* y);
 /// y += Phi_q x.

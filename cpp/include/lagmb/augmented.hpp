@@ -63,4 +63,13 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
 void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,
                          const double* v, double t, double* qdd, double* lam);
 
+/// With joint friction Q_f(q, v, lam), the augmented system is nonlinear in
+/// lam. Given kkt factorized at q, d.Q (without friction), d.gamma and the
+/// frictionless solution (qdd, lam), iterates lam_{k+1} = solve(Q + Q_f(lam_k))
+/// until |lam_{k+1} - lam_k|_inf <= 1e-12 (|lam|_inf + mass scale), at most
+/// 100 times; throws SimulationError if it does not converge (friction so
+/// large that the load-friction loop locks). Leaves d.Q with friction.
+void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
+                    double t, VecX& qdd, VecX& lam);
+
 }  // namespace lagmb

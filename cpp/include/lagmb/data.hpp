@@ -20,6 +20,15 @@ struct Data {
   SpMat H;      // sum_r w_r d2Phi_r/dq2 for a weight vector w    (n x n)
   SpMat Q_q;    // dQ/dq                                          (n x n)
   SpMat Q_v;    // dQ/dv                                          (n x n)
+
+  // joint friction Q_f(q, v, lam) (sized only if the model has friction)
+  SpMat friction_Q_q;    // dQ_f/dq, pattern of Q_q                 (n x n)
+  SpMat friction_Q_v;    // dQ_f/dv, pattern of Q_v                 (n x n)
+  SpMat friction_Q_lam;  // (dQ_f/dlam)^T, pattern of Phi_q         (m x n)
+  VecX friction_Q0, friction_lam;  // scratch of the augmented fixed-point solve
+
+  /// Elements evaluated by the assembly kernels (added per group call).
+  long element_evaluations = 0;
 };
 
 }  // namespace lagmb

@@ -15,6 +15,7 @@
 #include "lagmb/elements/drivers.hpp"
 #include "lagmb/elements/gear.hpp"
 #include "lagmb/elements/gravity.hpp"
+#include "lagmb/elements/joint_friction.hpp"
 #include "lagmb/elements/pin_in_slot.hpp"
 #include "lagmb/elements/rack_pinion.hpp"
 #include "lagmb/elements/revolute.hpp"
@@ -23,6 +24,7 @@
 #include "lagmb/elements/translational.hpp"
 #include "lagmb/elements/weld.hpp"
 #include "lagmb/force_group.hpp"
+#include "lagmb/friction_group.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/types.hpp"
@@ -52,7 +54,7 @@ constexpr int kGround = -1;
 
 /// What a name refers to.
 struct ElementRef {
-  enum Type { kBody, kConstraint, kForce } type;
+  enum Type { kBody, kConstraint, kForce, kFriction } type;
   int group;  // constraint or force group; body index for kBody
   int index;  // element within its group
 };
@@ -121,6 +123,11 @@ class Model {
   /// Pure torque on a body.
   void add_torque(const std::string& name, int body, TimeFunctionPtr torque);
 
+  /// Friction in a revolute or translational joint (elements/joint_friction.hpp):
+  /// Coulomb with the load from the joint's own reaction, plus viscous.
+  void add_joint_friction(const std::string& name, const std::string& joint,
+                          const JointFrictionParameters& parameters);
+
   /// Adds a constraint element of any kind (see constraint_group.hpp).
   template <class Kind>
   void add_constraint(Kind element);
@@ -155,6 +162,10 @@ class Model {
   const std::vector<const ForceGroupBase*>& state_dependent_forces() const {
     return state_dependent_;
   }
+
+  /// Joint-friction groups (forces that depend on the multipliers); empty
+  /// for a model without friction.
+  const std::vector<std::unique_ptr<FrictionGroupBase>>& friction_groups() const { return frictions_; }
 
   /// Pattern of Phi_q (m x n).
   const SpMat& jacobian_pattern() const { return jacobian_pattern_; }
@@ -218,6 +229,10 @@ class Model {
     if (f) time_functions_.push_back(f);
   }
   std::map<std::string, ElementRef> names_;
+  std::vector<std::unique_ptr<FrictionGroupBase>> frictions_;
+  std::map<std::type_index, int> friction_group_of_kind_;
+  template <class Kind>
+  void add_friction(Kind element);
 
   int n_ = 0, m_ = 0;
   VecX mass_diag_;
@@ -269,6 +284,23 @@ template <class Kind>
 void ForceGroup<Kind>::place(const Model& model) {
   coord_.clear();
   for (const auto& e : items) coord_.push_back(model.local_coordinates(e.body_i, e.body_j));
+}
+
+template <class Kind>
+void Model::add_friction(Kind element) {
+  auto [it, inserted] =
+      friction_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(frictions_.size()));
+  if (inserted) frictions_.push_back(std::make_unique<FrictionGroup<Kind>>());
+  auto& group = static_cast<FrictionGroup<Kind>&>(*frictions_[it->second]);
+  register_name(element.name, {ElementRef::kFriction, it->second, group.size()});
+  group.add(std::move(element));
+}
+
+template <class Kind>
+void FrictionGroup<Kind>::place(const Model& model) {
+  place_.clear();
+  for (const auto& e : items)
+    place_.push_back(model.constraint_groups()[e.joint_group]->placement(e.joint_index));
 }
 
 }  // namespace lagmb

@@ -18,6 +18,9 @@ struct Stats {
   long newton_iterations = 0;
   long error_test_failures = 0;
   long convergence_failures = 0;
+  /// Elements evaluated by the assembly kernels (added per kind group and
+  /// call: the cost of the scene's effects, 0 for kinds it does not have).
+  long element_evaluations = 0;
   int last_order = 0;
   double last_step = 0.0;
   double wall_time = 0.0;  // s

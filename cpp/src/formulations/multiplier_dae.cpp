@@ -60,6 +60,7 @@ void MultiplierDae::momentum_residual(double t, const double* y, const double* y
   const VecX& M = model_.mass_diagonal();
   assemble_jacobian(model_, d_, q, t);
   assemble_forces(model_, d_, q, v, t);
+  if (!model_.friction_groups().empty()) add_friction_forces(model_, d_, q, v, lam);  // Q_f(q, v, lam)
   for (int i = 0; i < n_; ++i) {
     F1[i] = qp[i] - v[i];
     F2[i] = M[i] * vp[i] - d_.Q[i];
@@ -90,6 +91,14 @@ void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, doub
     assemble_force_derivatives(model_, d_, q, v, t);
     for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= r2 * d_.Q_q.valuePtr()[k];
     for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= r2 * cv * d_.Q_v.valuePtr()[k];
+  }
+  if (!model_.friction_groups().empty()) {
+    // joint friction Q_f(q, v, lam): -Q_f,q, -Q_f,v, and -Q_f,lam beside
+    // Phi_q^T (a joint's friction depends only on that joint's multipliers)
+    assemble_friction_derivatives(model_, d_, q, v, lam);
+    for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= r2 * d_.friction_Q_q.valuePtr()[k];
+    for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= r2 * cv * d_.friction_Q_v.valuePtr()[k];
+    for (size_t k = 0; k < jac_F2lam_.size(); ++k) J[jac_F2lam_[k]] -= r2 * cl * d_.friction_Q_lam.valuePtr()[k];
   }
 }
 
