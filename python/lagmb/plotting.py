@@ -24,7 +24,8 @@ _HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
 
 # the kinds of model calls, by what they add
 _BODIES = ("add_body", "add_particle")
-_FORCES = ("add_spring_damper", "add_rotational_spring_damper", "add_force", "add_torque")
+_FORCES = ("add_spring_damper", "add_rotational_spring_damper", "add_force", "add_torque",
+           "add_joint_friction")
 _NOT_JOINTS = _BODIES + _FORCES + ("set_gravity",)
 
 _MAX_LINES = 8    # lines (legend entries) per subplot
