@@ -37,15 +37,17 @@ def dynamic_run():
 
 def test_auto_picks_inverse_dynamics_without_integrating(auto_run, dynamic_run):
     """0 DOF and all masses > 0: "auto" runs the kinematic analysis with
-    inverse dynamics; no DAE step is taken (steps == 0), and every output
-    took at least one Newton iteration, each one factorization of the
-    augmented matrix. The dynamic run did integrate."""
+    inverse dynamics; no DAE step is taken (steps == 0), every output took
+    at least one Newton iteration, and the augmented matrix was factorized
+    fewer times than there were solves (reused). The dynamic run did
+    integrate."""
     s = auto_run.stats
     assert s["analysis"] == "inverse_dynamics"
     assert s["steps"] == 0
     assert s["kinematic_solves"] >= N_OUT
     assert s["newton_iterations"] >= N_OUT
-    assert s["augmented_factorizations"] == s["newton_iterations"]
+    # the augmented matrix is factorized now and then and reused in between
+    assert 1 <= s["augmented_factorizations"] < s["kinematic_solves"]
     assert dynamic_run.stats["analysis"] == "dynamic" and dynamic_run.stats["steps"] > 0
 
 

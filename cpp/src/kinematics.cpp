@@ -98,56 +98,127 @@ class KinematicSolver {
 
   /// Newton on Phi(q, t) = 0 from q (in place). Returns false if it does not
   /// converge in max_iter iterations or (guard) its first correction exceeds
-  /// max_first; on success Phi_q at (nearly) q is factorized in kkt_.
+  /// max_first. The factorization of an earlier Phi_q is reused (chord
+  /// iterations) while it contracts well; it is refreshed at the current q
+  /// when the contraction slows (ratio > 0.25), the guard trips or |Phi|
+  /// stalls above rounding level.
   bool positions(VecX& q, double t, int max_iter, double max_first) {
+    bool fresh = false;  // factorized at an iterate of this solve
+    double previous = INFINITY;
     for (int it = 0; it < max_iter; ++it) {
       assemble_constraints(model_, d_, q.data(), t);
-      assemble_jacobian(model_, d_, q.data(), t);
       ++stats_.residual_evals;
-      ++stats_.jacobian_evals;
       ++stats_.newton_iterations;
-      if (!d_.Phi.allFinite() || !kkt_.factorize(d_)) return false;
-      ++stats_.augmented_factorizations;
+      if (!d_.Phi.allFinite()) return false;
+      if (!factorized_ && !refactor(q, t, fresh)) return false;
       kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
-      if (!dq_.allFinite()) return false;
-      const double step = max_abs(dq_);
-      if (it == 0 && step > max_first) return false;
+      double step = dq_.allFinite() ? max_abs(dq_) : INFINITY;
+      const bool slow = (it == 0 && step > max_first) || (it > 0 && step > 0.25 * previous) || !std::isfinite(step);
+      if (slow && !fresh) {  // the old factorization is not good enough here: a Newton step
+        if (!refactor(q, t, fresh)) return false;
+        kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
+        step = dq_.allFinite() ? max_abs(dq_) : INFINITY;
+      }
+      if (!std::isfinite(step) || (it == 0 && step > max_first)) return false;
       q += dq_;
-      if (step <= 1e-12 * (1.0 + max_abs(q))) {
+      // converged when the step, or the error left after it (estimated from the
+      // contraction ratio, as in BDF codes), is at the tolerance
+      const double ratio = it > 0 ? step / previous : 1.0;
+      const double left = ratio < 0.5 ? step * ratio / (1.0 - ratio) : step;
+      previous = step;
+      if (step <= 1e-12 * (1.0 + max_abs(q)) || left <= 1e-13 * (1.0 + max_abs(q))) {
         // |Phi| must be at rounding level too: near a singular Phi_q the regularized
         // solve takes tiny least-squares steps toward a point that does not solve it
         assemble_constraints(model_, d_, q.data(), t);
         ++stats_.residual_evals;
-        return max_abs(d_.Phi) <= 1e-12 * (1.0 + max_abs(q));
+        if (max_abs(d_.Phi) <= 1e-12 * (1.0 + max_abs(q))) return true;
+        if (fresh) return false;
+        factorized_ = false;  // stalled on an old factorization: refresh and go on
       }
     }
     return false;
   }
 
-  /// v, then a (and lam with forces) at (q, t), with Phi_q factorized by positions().
+  /// v, then a (and lam with forces) at the solution (q, t) of positions().
   void rates(const VecX& q, double t, bool with_forces, VecX& v, VecX& a, VecX& lam) {
+    assemble_jacobian(model_, d_, q.data(), t);  // exact Phi_q at q for the refinement
+    ++stats_.jacobian_evals;
     assemble_phi_t(model_, d_, q.data(), t);
     const VecX Mv = model_.mass_diagonal().cwiseProduct(v);  // v: the prediction (irrelevant at 0 DOF)
-    kkt_.solve(Mv, -d_.phi_t, v, kappa_);
+    solve_exact(t, Mv, -d_.phi_t, v, kappa_, false);
     assemble_gamma(model_, d_, q.data(), v.data(), t);
     if (with_forces) {
       assemble_forces(model_, d_, q.data(), v.data(), t);
-      kkt_.solve(d_.Q, d_.gamma, a, lam);
+      solve_exact(t, d_.Q, d_.gamma, a, lam, true);
     } else {
-      kkt_.solve(zero_n_, d_.gamma, a, kappa_);
+      solve_exact(t, zero_n_, d_.gamma, a, kappa_, false);
     }
   }
 
   /// Least-change assembly at t0 (as the dynamic runs do).
-  VecX assemble(const VecX& q0, double t) { return assemble_positions(model_, d_, kkt_, q0, t); }
+  VecX assemble(const VecX& q0, double t) {
+    VecX q = assemble_positions(model_, d_, kkt_, q0, t);
+    factorized_ = kkt_.factorizations() > 0;
+    return q;
+  }
+
+  int factorizations() const { return kkt_.factorizations(); }
 
  private:
+  bool refactor(const VecX& q, double t, bool& fresh) {
+    assemble_jacobian(model_, d_, q.data(), t);
+    ++stats_.jacobian_evals;
+    factorized_ = kkt_.factorize(d_);
+    fresh = factorized_;
+    return factorized_;
+  }
+
+  /// [M Phi_q^T; Phi_q 0] [x1; x2] = [b1; b2] with Phi_q = d_.Phi_q (exact at
+  /// q), by iterative refinement on the factorization of an earlier Phi_q;
+  /// refactorized at q if that does not converge quickly.
+  /// Without need_x2 only x1 is wanted: at 0 DOF it follows from the second
+  /// block row alone (Phi_q x1 = b2), so only that residual is refined.
+  void solve_exact(double t, const VecX& b1, const VecX& b2, VecX& x1, VecX& x2, bool need_x2) {
+    const VecX& M = model_.mass_diagonal();
+    const double jmax = d_.Phi_q.nonZeros() ? Eigen::Map<const VecX>(d_.Phi_q.valuePtr(), d_.Phi_q.nonZeros())
+                                                  .lpNorm<Eigen::Infinity>()
+                                            : 0.0;
+    kkt_.solve(b1, b2, x1, x2);
+    double previous = INFINITY;
+    bool refreshed = false;
+    for (int it = 0; it < 16; ++it) {
+      r1_ = b1 - M.cwiseProduct(x1);
+      add_jacobian_transpose_times(d_, (-x2).eval().data(), r1_.data());
+      r2_ = b2;
+      add_jacobian_times(d_, (-x1).eval().data(), r2_.data());
+      // rounding level of the residual: sizes of the terms it is computed from
+      const double size = max_abs(b1) + max_abs(b2) + max_abs(M.cwiseProduct(x1)) + jmax * (max_abs(x1) + max_abs(x2));
+      const double res = need_x2 ? std::max(max_abs(r1_), max_abs(r2_)) : max_abs(r2_);
+      if (!(res > 1e-14 * size)) return;
+      if (res > 0.25 * previous || it == 8) {
+        if (res <= 1e-12 * size || refreshed) return;  // stalled at the rounding floor
+        // the old factorization is too far off: a fresh one, and refine on it
+        factorized_ = kkt_.factorize(d_);  // d_.Phi_q is at q already
+        if (!factorized_) throw SimulationError("the augmented matrix is singular at t = " + std::to_string(t), t);
+        refreshed = true;
+        kkt_.solve(b1, b2, x1, x2);
+        previous = INFINITY;
+        continue;
+      }
+      previous = res;
+      kkt_.solve(r1_, r2_, c1_, c2_);
+      x1 += c1_;
+      x2 += c2_;
+    }
+  }
+
   const Model& model_;
   Data d_;
   AugmentedSystem kkt_;
   Stats& stats_;
   int n_, m_;
-  VecX zero_n_, kappa_, dq_;
+  bool factorized_ = false;
+  VecX zero_n_, kappa_, dq_, r1_, r2_, c1_, c2_;
 };
 
 }  // namespace
@@ -169,11 +240,14 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   tr.v.reserve(t_out.size() * n);
   tr.a.reserve(t_out.size() * n);
   tr.lam.reserve(t_out.size() * m);
+  KinematicSolver* solver_ptr = nullptr;
   auto finish = [&] {
+    if (solver_ptr) tr.stats.augmented_factorizations = solver_ptr->factorizations();
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
 
   KinematicSolver solver(model, tr.stats);
+  solver_ptr = &solver;
   VecX q(n), v = VecX::Zero(n), a = VecX::Zero(n), lam = VecX::Zero(m);
   VecX lam_nan = VecX::Constant(m, NAN);
   size_t k = 0;  // next output
