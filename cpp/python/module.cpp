@@ -47,6 +47,8 @@ py::dict to_python(Trajectory&& tr) {
   stats["wall_time"] = s.wall_time;
   stats["formulation"] = s.formulation;
   stats["integrator"] = s.integrator;
+  stats["analysis"] = s.analysis;
+  stats["kinematic_solves"] = s.kinematic_solves;
   out["stats"] = stats;
   return out;
 }
@@ -145,6 +147,8 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetObject(g_simulation_error.ptr(), err.ptr());
     }
   });
+
+  py::register_exception<EquilibriumError>(m, "EquilibriumError", m.attr("ModelError"));
 
   py::class_<Model>(m, "Model")
       .def(py::init<>())
@@ -433,7 +437,8 @@ PYBIND11_MODULE(_core, m) {
       "simulate",
       [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
          double atol, std::vector<double> atol_coordinates, double max_step, long max_steps, int max_order, std::string formulation,
-         std::string integrator, double baumgarte_alpha, double baumgarte_beta, py::object progress) {
+         std::string integrator, double baumgarte_alpha, double baumgarte_beta, py::object progress,
+         std::string analysis, std::string start) {
         SimulationOptions o;
         o.t0 = t0;
         o.t_end = t_end;
@@ -449,6 +454,8 @@ PYBIND11_MODULE(_core, m) {
         o.integrator = std::move(integrator);
         o.baumgarte_alpha = baumgarte_alpha;
         o.baumgarte_beta = baumgarte_beta;
+        o.analysis = std::move(analysis);
+        o.start = std::move(start);
         // between steps: let Ctrl-C through, and report progress if asked
         // (a borrowed pointer: the std::function is copied without the GIL)
         PyObject* report = progress.ptr();
@@ -466,5 +473,37 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("model"), py::arg("t0"), py::arg("t_end"), py::arg("t_out"), py::arg("n_out"), py::arg("rtol"),
       py::arg("atol"), py::arg("atol_coordinates"), py::arg("max_step"), py::arg("max_steps"), py::arg("max_order"), py::arg("formulation"),
-      py::arg("integrator"), py::arg("baumgarte_alpha"), py::arg("baumgarte_beta"), py::arg("progress"));
+      py::arg("integrator"), py::arg("baumgarte_alpha"), py::arg("baumgarte_beta"), py::arg("progress"),
+      py::arg("analysis") = "auto", py::arg("start") = "given");
+
+  m.def(
+      "equilibrium",
+      [](const Model& model, double t, double tol, int max_iterations, bool allow_unstable) {
+        EquilibriumOptions o;
+        o.t = t;
+        o.tol = tol;
+        o.max_iterations = max_iterations;
+        o.allow_unstable = allow_unstable;
+        Equilibrium e;
+        {
+          py::gil_scoped_release release;
+          e = find_equilibrium(model, o);
+        }
+        py::dict out;
+        out["q"] = e.q;
+        out["lam"] = e.lam;
+        out["iterations"] = e.iterations;
+        out["stable"] = e.stable;
+        out["stiffness_eigenvalues"] = e.stiffness_eigenvalues;
+        out["softest_mode"] = e.softest_mode;
+        out["force_residual"] = e.force_residual;
+        out["constraint_residual"] = e.constraint_residual;
+        return out;
+      },
+      py::arg("model"), py::arg("t") = 0.0, py::arg("tol") = 1e-12, py::arg("max_iterations") = 100,
+      py::arg("allow_unstable") = false, "Static equilibrium (see equilibrium.hpp) as a dict.");
+
+  m.def(
+      "degrees_of_freedom", [](const Model& model, double t) { return degrees_of_freedom(model, t); },
+      py::arg("model"), py::arg("t") = 0.0);
 }

@@ -55,10 +55,13 @@ int Model::add_body(const std::string& name, double mass, double inertia, Vec2 p
                     double angle, Vec2 velocity, double angular_velocity) {
   require_open("add body '" + name + "'");
   check_new_name(name);
-  if (!(std::isfinite(mass) && mass > 0))
-    throw ModelError("body '" + name + "': mass must be positive and finite, got " + fmt(mass));
-  if (!(std::isfinite(inertia) && inertia > 0))
-    throw ModelError("body '" + name + "': inertia must be positive and finite, got " + fmt(inertia));
+  // 0 is allowed (a massless body, for kinematic analysis); simulate refuses it in a dynamic run
+  if (!(std::isfinite(mass) && mass >= 0))
+    throw ModelError("body '" + name + "': mass must be positive (or 0: massless, kinematics only) and finite, got " +
+                     fmt(mass));
+  if (!(std::isfinite(inertia) && inertia >= 0))
+    throw ModelError("body '" + name + "': inertia must be positive (or 0: massless, kinematics only) and finite, got " +
+                     fmt(inertia));
   if (!finite(position)) throw ModelError("body '" + name + "': position is not finite: " + fmt(position));
   if (!std::isfinite(angle)) throw ModelError("body '" + name + "': angle is not finite: " + fmt(angle));
   if (!finite(velocity)) throw ModelError("body '" + name + "': velocity is not finite: " + fmt(velocity));
@@ -81,8 +84,9 @@ int Model::add_body(const std::string& name, double mass, double inertia, Vec2 p
 int Model::add_particle(const std::string& name, double mass, Vec2 position, Vec2 velocity) {
   require_open("add particle '" + name + "'");
   check_new_name(name);
-  if (!(std::isfinite(mass) && mass > 0))
-    throw ModelError("particle '" + name + "': mass must be positive and finite, got " + fmt(mass));
+  if (!(std::isfinite(mass) && mass >= 0))
+    throw ModelError("particle '" + name + "': mass must be positive (or 0: massless, kinematics only) and finite, got " +
+                     fmt(mass));
   if (!finite(position)) throw ModelError("particle '" + name + "': position is not finite: " + fmt(position));
   if (!finite(velocity)) throw ModelError("particle '" + name + "': velocity is not finite: " + fmt(velocity));
   Body b;
@@ -200,6 +204,7 @@ void Model::finalize() {
     double msum = 0.0;
     for (const auto& b : bodies_) msum += b.mass;
     mass_scale_ = msum / double(bodies_.size());
+    if (!(mass_scale_ > 0)) mass_scale_ = 1.0;  // all bodies massless (kinematics only)
   }
   finalized_ = true;
   // redundancy is judged where the joints are closed: at the assembled

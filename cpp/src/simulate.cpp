@@ -8,6 +8,8 @@
 #include "integrators.hpp"
 #include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
+#include "lagmb/equilibrium.hpp"
+#include "lagmb/kinematics.hpp"
 
 namespace lagmb {
 
@@ -69,6 +71,8 @@ void validate(const Model& model, const SimulationOptions& o) {
   if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
       o.baumgarte_beta < 0)
     throw ModelError("simulate: Baumgarte alpha and beta must be finite and >= 0");
+  if (o.start != "given" && o.start != "equilibrium")
+    throw ModelError("simulate: unknown start '" + o.start + "' (available: given, equilibrium)");
 }
 
 std::vector<double> output_times(const SimulationOptions& o) {
@@ -116,12 +120,28 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
 Trajectory simulate(const Model& model, const SimulationOptions& o) {
   validate(model, o);
   const auto wall0 = std::chrono::steady_clock::now();
+  // what the scene needs: a fully driven model is solved from its constraints alone
+  const std::string analysis = resolve_analysis(model, o);
+  if (analysis != "dynamic") {
+    if (o.start != "given")
+      throw ModelError("simulate: start '" + o.start + "' applies to a dynamic analysis; the positions of this " +
+                       "fully driven model (0 degrees of freedom) follow from its drivers (" + analysis + ")");
+    return kinematic_analysis(model, o.t0, output_times(o), analysis == "inverse_dynamics", o.progress,
+                              o.progress_interval);
+  }
   const int n = model.n_coordinates(), m = model.n_constraints();
   Data d(model);
   AugmentedSystem kkt(model);
   ConsistentState start;
+  VecX q_start = model.initial_q(), v_start = model.initial_v();
+  if (o.start == "equilibrium") {  // at rest in the static equilibrium at t0
+    EquilibriumOptions eo;
+    eo.t = o.t0;
+    q_start = find_equilibrium(model, eo).q;
+    v_start.setZero();
+  }
   try {
-    start = make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), o.t0);
+    start = make_consistent(model, d, kkt, q_start, v_start, o.t0);
   } catch (const UserFunctionError& e) {
     throw SimulationError(e.what(), o.t0);
   }
@@ -146,6 +166,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   };
   tr.stats.formulation = o.formulation;
   tr.stats.integrator = o.integrator;
+  tr.stats.analysis = "dynamic";
   auto finish = [&] {
     try {
       solve_outputs(model, d, kkt, tr);

@@ -19,6 +19,8 @@ from .model import Body, Model
 from .result import BodyPath, Result
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import simulate, solve_accelerations
+from .errors import EquilibriumError, KinematicOnlyError
+from .statics import Equilibrium, equilibrium
 
 __version__ = "0.1.0"
 SUNDIALS_VERSION = _core.sundials_version
@@ -49,4 +51,8 @@ __all__ = [
     "solve_accelerations",
     "time_function_from_dict",
     "work_precision",
+    "Equilibrium",
+    "EquilibriumError",
+    "KinematicOnlyError",
+    "equilibrium",
 ]

@@ -282,9 +282,14 @@ def _write(path, r, scene):
     (npz_reactions, npz_efforts), (csv_reactions, csv_efforts) = _selection(scene)
     parent = os.path.dirname(os.path.abspath(path))
     os.makedirs(parent, exist_ok=True)
+    if r.stats.get("analysis") == "kinematic":  # no multipliers: only what was listed is asked for
+        npz_reactions = scene.output.get("reactions", [])
+        npz_efforts = scene.output.get("efforts", [])
     if path.lower().endswith(".npz"):
-        arrays = dict(t=r.t, q=r.q, v=r.v, a=r.a, lam=r.lam, energy=r.energy,
+        arrays = dict(t=r.t, q=r.q, v=r.v, a=r.a, energy=r.energy,
                       residual=r.residual, coordinates=np.array(coordinate_names(r.model)))
+        if r.stats.get("analysis") != "kinematic":
+            arrays["lam"] = r.lam
         for name in npz_reactions:
             arrays[f"reaction_{name}"] = _reaction(r, name, frame)
         for name in npz_efforts:

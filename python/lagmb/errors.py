@@ -39,3 +39,14 @@ class AssemblyError(SimulationError):
     def __init__(self, message, t=float("nan"), violated=()):
         super().__init__(message, t, None)
         self.violated = list(violated)
+
+
+#: No static equilibrium, or an unstable one not allowed (mb.equilibrium).
+#: A ModelError, so a ValueError.
+EquilibriumError = _core.EquilibriumError
+
+
+class KinematicOnlyError(ModelError):
+    """A quantity a kinematic-only analysis does not compute (the multipliers
+    and everything derived from them: reactions, driver efforts) was asked
+    for. Run with analysis="inverse_dynamics" (all masses > 0) to get them."""

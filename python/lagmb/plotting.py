@@ -268,6 +268,8 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     """
     if isinstance(what, str):
         what = (what,)
+    if getattr(result, "stats", {}).get("analysis") == "kinematic":  # no multipliers computed
+        what = tuple(w for w in what if w not in ("reactions", "efforts"))
     unknown = [w for w in what if w not in _PANELS]
     if unknown:
         raise ValueError(f"plot_result: unknown panel(s) {unknown}; choose from {list(_PANELS)}")

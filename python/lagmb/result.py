@@ -4,7 +4,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .errors import ModelError
+from .errors import KinematicOnlyError, ModelError
 
 
 class BodyPath:
@@ -47,6 +47,21 @@ class Result:
 
     def __len__(self):
         return len(self.t)
+
+    @property
+    def lam(self):
+        """(k, m) multipliers. A kinematic-only run (stats["analysis"] ==
+        "kinematic") has none: asking raises KinematicOnlyError."""
+        if getattr(self, "stats", {}).get("analysis") == "kinematic":
+            raise KinematicOnlyError(
+                "this run was a kinematic analysis only (analysis='kinematic'): positions, "
+                "velocities and accelerations; the multipliers, reactions and driver efforts "
+                "were not computed. Run with analysis='inverse_dynamics' (every mass > 0) for them.")
+        return self._lam
+
+    @lam.setter
+    def lam(self, value):
+        self._lam = value
 
     def _name(self, item):
         name = getattr(item, "name", item)

@@ -58,7 +58,8 @@ A scene, with every table (all keys in SI units, angles in radians)::
     [simulation]                    # the keyword arguments of mb.simulate
     t_end = 2.0                     # t0, rtol, atol, n_out or t_out, max_step,
     rtol = 1e-8                     # max_steps, formulation, integrator, max_order
-    n_out = 401
+    n_out = 401                     # analysis ("auto", "dynamic", "kinematic",
+                                    # "inverse_dynamics"), start ("given", "equilibrium")
 
     [output]                        # what `lagmb run` writes (all optional)
     file = "results.npz"            # default for -o: .npz or .csv
@@ -182,6 +183,7 @@ _SIMULATION = {  # key -> kind
     "n_out": "integer", "t_out": "numbers", "max_step": "number", "max_steps": "integer",
     "formulation": "string", "integrator": "string", "max_order": "integer",
 }
+_SIMULATION.update({"analysis": "string", "start": "string"})  # what to compute, where to start
 _OUTPUT = {
     "file": "string", "reactions": "strings", "efforts": "strings",
     "reaction_frame": "string", "energy": "bool", "plot": "string", "animate": "string",
@@ -681,6 +683,10 @@ class _Reader:
             out[key] = _setting(w, key, value, kind)
         if "t_out" in out and "n_out" in out:
             raise w.error("give n_out or t_out, not both", "t_out")
+        for key, allowed in (("analysis", ("auto", "dynamic", "kinematic", "inverse_dynamics")),
+                             ("start", ("given", "equilibrium"))):
+            if key in out and out[key] not in allowed:
+                raise w.error(f"must be one of {', '.join(map(repr, allowed))}, got {out[key]!r}", key)
         if "t_end" in out:
             if not math.isfinite(out["t_end"]) or out["t_end"] <= out.get("t0", 0.0):
                 raise w.error(f"must be finite and greater than t0 = {out.get('t0', 0.0)!r}, "

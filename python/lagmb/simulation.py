@@ -34,7 +34,7 @@ def _positive(value, name):
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
              max_step=None, max_steps=None, formulation="ggl", integrator="bdf", max_order=None,
-             baumgarte=None, progress=None):
+             baumgarte=None, progress=None, analysis="auto", start="given"):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
@@ -61,9 +61,33 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     raises SimulationError with the outputs so far). ``progress``, if given,
     is called with the time reached about every 0.2 s of wall time.
 
+    ``analysis`` says what is computed (``r.stats["analysis"]`` tells what was):
+
+    - ``"auto"`` (default): a model whose motion is fully prescribed by its
+      drivers (0 degrees of freedom) gets a kinematic analysis with inverse
+      dynamics (``"inverse_dynamics"``; ``"kinematic"`` if a body is
+      massless), any other model a ``"dynamic"`` run;
+    - ``"dynamic"``: integrate the DAE even at 0 degrees of freedom;
+    - ``"kinematic"``: positions from Newton on Phi(q, t) = 0 at each output,
+      velocities from Phi_q v = -Phi_t, accelerations from Phi_q a = gamma;
+      no DAE is integrated (``stats["steps"] == 0``) and the multipliers are
+      not computed (``r.lam``, ``r.reaction`` raise KinematicOnlyError);
+    - ``"inverse_dynamics"``: kinematic, plus the multipliers (reactions,
+      driver efforts) from M a + Phi_q^T lam = Q.
+
+    The last two need 0 degrees of freedom (ModelError naming the count
+    otherwise). ``rtol``/``atol`` do not apply to them: positions are solved
+    to rounding level (|dq| <= 1e-12 (1 + |q|)). Bodies with mass (or
+    inertia) 0 are allowed in kinematic analyses only.
+
+    ``start="equilibrium"`` starts a dynamic run at rest in the static
+    equilibrium at t0 (``mb.equilibrium``) instead of the given initial
+    state (``"given"``).
+
     Raises ModelError for bad arguments, AssemblyError if the joints cannot
     be assembled, SimulationError (with ``.t`` and the partial ``.result``)
-    if the integrator fails.
+    if the integrator (or the kinematic Newton solve) fails, EquilibriumError
+    if ``start="equilibrium"`` finds none.
     """
     if t_out is not None:
         t_out = np.asarray(t_out, dtype=float).reshape(-1)
@@ -106,8 +130,19 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     with _translate(model, core):
         raw = _core.simulate(core, float(t0), t_end, [] if t_out is None else list(t_out),
                              int(n_out), rtol, atol, atol_coordinates, max_step, int(max_steps), int(max_order),
-                             str(formulation), str(integrator), float(alpha), float(beta), progress)
+                             str(formulation), str(integrator), float(alpha), float(beta), progress,
+                             analysis=_choice(analysis, "analysis", _ANALYSES),
+                             start=_choice(start, "start", ("given", "equilibrium")))
     return Result(model, core, raw)
+
+
+_ANALYSES = ("auto", "dynamic", "kinematic", "inverse_dynamics")
+
+
+def _choice(value, name, allowed):
+    if value not in allowed:
+        raise ModelError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
+    return value
 
 
 def solve_accelerations(model, q, v, t=0.0):

@@ -11,3 +11,5 @@
 #include "lagmb/simulate.hpp"
 #include "lagmb/trajectory.hpp"
 #include "lagmb/types.hpp"
+#include "lagmb/kinematics.hpp"
+#include "lagmb/equilibrium.hpp"

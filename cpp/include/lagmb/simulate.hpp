@@ -38,6 +38,16 @@ struct SimulationOptions {
   /// progress_interval seconds of wall time; may throw to stop the run.
   std::function<void(double t)> progress;
   double progress_interval = 0.2;
+  /// "auto": kinematic analysis + inverse dynamics when the model has 0
+  /// degrees of freedom (kinematic only if a body is massless), else
+  /// dynamic; "dynamic": integrate the DAE even at 0 DOF; "kinematic":
+  /// q, v, a only (lam NaN); "inverse_dynamics": also lam. The last two need
+  /// 0 DOF (see kinematics.hpp).
+  std::string analysis = "auto";
+  /// "given": start from the model's initial positions and velocities;
+  /// "equilibrium": from the static equilibrium at t0 (equilibrium.hpp),
+  /// at rest. A dynamic analysis only.
+  std::string start = "given";
 };
 
 /// Makes the initial state consistent, integrates, and returns the states at

@@ -26,6 +26,10 @@ struct Stats {
   double wall_time = 0.0;  // s
   std::string formulation;
   std::string integrator;
+  /// "dynamic" (the DAE integrated), "kinematic" or "inverse_dynamics" (a
+  /// fully driven model solved from its constraints alone: steps = 0).
+  std::string analysis = "dynamic";
+  long kinematic_solves = 0;  // position solves of a kinematic analysis (outputs + sub-steps)
 };
 
 /// States at the output times, row-major: q[k * n + i] is coordinate i at

@@ -1,0 +1,361 @@
+#include "lagmb/kinematics.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "lagmb/analysis.hpp"
+#include "lagmb/assembly.hpp"
+#include "lagmb/augmented.hpp"
+#include "lagmb/errors.hpp"
+
+namespace lagmb {
+
+std::vector<int> massless_bodies(const Model& model) {
+  std::vector<int> out;
+  for (size_t i = 0; i < model.bodies().size(); ++i) {
+    const Body& b = model.bodies()[i];
+    if (!(b.mass > 0) || (!b.particle && !(b.inertia > 0))) out.push_back(int(i));
+  }
+  return out;
+}
+
+int degrees_of_freedom(const Model& model, double t) {
+  if (!model.finalized()) throw ModelError("degrees_of_freedom: the model is not finalized");
+  const int n = model.n_coordinates();
+  const int independent = model.n_constraints() - int(model.redundant_rows().size());
+  if (independent < n) return n - independent;  // rank <= independent: no need to ask
+  VecX q = model.initial_q();
+  try {
+    Data d(model);
+    AugmentedSystem kkt(model);
+    q = assemble_positions(model, d, kkt, q, t);
+  } catch (const std::exception&) {
+    q = model.initial_q();  // the analysis itself will report the assembly
+  }
+  return constraint_rank(model, q, t).degrees_of_freedom();
+}
+
+std::string resolve_analysis(const Model& model, const SimulationOptions& o) {
+  const std::string& a = o.analysis;
+  if (a != "auto" && a != "dynamic" && a != "kinematic" && a != "inverse_dynamics")
+    throw ModelError("simulate: unknown analysis '" + a + "' (available: auto, dynamic, kinematic, inverse_dynamics)");
+  const std::vector<int> massless = massless_bodies(model);
+  auto refuse_massless = [&] {
+    const Body& b = model.body(massless.front());
+    std::ostringstream s;
+    s << "simulate: body '" << b.name << "' is massless (mass " << b.mass;
+    if (!b.particle) s << ", inertia " << b.inertia;
+    s << "), so its accelerations are not determined by forces: a dynamic analysis needs every mass and "
+      << "inertia > 0. For a mechanism whose motion is fully prescribed by drivers use analysis=\"kinematic\".";
+    throw ModelError(s.str());
+  };
+  if (a == "dynamic") {
+    if (!massless.empty()) refuse_massless();
+    return a;
+  }
+  const int dof = degrees_of_freedom(model, o.t0);
+  if (a == "auto") {
+    if (dof > 0) {
+      if (!massless.empty()) refuse_massless();
+      return "dynamic";
+    }
+    return massless.empty() ? "inverse_dynamics" : "kinematic";
+  }
+  if (dof > 0)
+    throw ModelError("simulate: analysis \"" + a + "\" needs a mechanism whose motion is fully prescribed " +
+                     "(0 degrees of freedom), but this model has " + std::to_string(dof) +
+                     " degree(s) of freedom: drive them, or use analysis=\"dynamic\"");
+  return a;  // massless bodies are fine for inverse dynamics too: they carry no inertia force
+}
+
+namespace {
+
+double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
+
+/// The solve times: t0, the breakpoints inside (t0, t_end) and the outputs.
+std::vector<double> solve_times(const Model& model, double t0, const std::vector<double>& t_out) {
+  std::vector<double> t{t0};
+  const double t_end = t_out.empty() ? t0 : t_out.back();
+  for (double b : model.breakpoints())
+    if (b > t0 && b < t_end) t.push_back(b);
+  t.insert(t.end(), t_out.begin(), t_out.end());
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+/// One kinematic state and the work done to get it.
+class KinematicSolver {
+ public:
+  KinematicSolver(const Model& model, Stats& stats)
+      : model_(model), d_(model), kkt_(model), stats_(stats), n_(model.n_coordinates()), m_(model.n_constraints()) {
+    zero_n_ = VecX::Zero(n_);
+    kappa_.resize(m_);
+    dq_.resize(n_);
+  }
+
+  /// Newton on Phi(q, t) = 0 from q (in place). Returns false if it does not
+  /// converge in max_iter iterations or (guard) its first correction exceeds
+  /// max_first. The factorization of an earlier Phi_q is reused (chord
+  /// iterations) while it contracts well; it is refreshed at the current q
+  /// when the contraction slows (ratio > 0.25), the guard trips or |Phi|
+  /// stalls above rounding level.
+  bool positions(VecX& q, double t, int max_iter, double max_first) {
+    bool fresh = false;  // factorized at an iterate of this solve
+    double previous = INFINITY;
+    for (int it = 0; it < max_iter; ++it) {
+      assemble_constraints(model_, d_, q.data(), t);
+      ++stats_.residual_evals;
+      ++stats_.newton_iterations;
+      if (!d_.Phi.allFinite()) return false;
+      if (!factorized_ && !refactor(q, t, fresh)) return false;
+      kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
+      double step = dq_.allFinite() ? max_abs(dq_) : INFINITY;
+      const bool slow = (it == 0 && step > max_first) || (it > 0 && step > 0.25 * previous) || !std::isfinite(step);
+      if (slow && !fresh) {  // the old factorization is not good enough here: a Newton step
+        if (!refactor(q, t, fresh)) return false;
+        kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
+        step = dq_.allFinite() ? max_abs(dq_) : INFINITY;
+      }
+      if (!std::isfinite(step) || (it == 0 && step > max_first)) return false;
+      q += dq_;
+      // converged when the step, or the error left after it (estimated from the
+      // contraction ratio, as in BDF codes), is at the tolerance
+      const double ratio = it > 0 ? step / previous : 1.0;
+      const double left = ratio < 0.5 ? step * ratio / (1.0 - ratio) : step;
+      previous = step;
+      if (step <= 1e-12 * (1.0 + max_abs(q)) || left <= 1e-13 * (1.0 + max_abs(q))) {
+        // |Phi| must be at rounding level too: near a singular Phi_q the regularized
+        // solve takes tiny least-squares steps toward a point that does not solve it
+        assemble_constraints(model_, d_, q.data(), t);
+        ++stats_.residual_evals;
+        if (max_abs(d_.Phi) <= 1e-12 * (1.0 + max_abs(q))) return true;
+        if (fresh) return false;
+        factorized_ = false;  // stalled on an old factorization: refresh and go on
+      }
+    }
+    return false;
+  }
+
+  /// v, then a (and lam with forces) at the solution (q, t) of positions().
+  void rates(const VecX& q, double t, bool with_forces, VecX& v, VecX& a, VecX& lam) {
+    assemble_jacobian(model_, d_, q.data(), t);  // exact Phi_q at q for the refinement
+    ++stats_.jacobian_evals;
+    assemble_phi_t(model_, d_, q.data(), t);
+    const VecX Mv = model_.mass_diagonal().cwiseProduct(v);  // v: the prediction (irrelevant at 0 DOF)
+    solve_exact(t, Mv, -d_.phi_t, v, kappa_, false);
+    assemble_gamma(model_, d_, q.data(), v.data(), t);
+    if (with_forces) {
+      assemble_forces(model_, d_, q.data(), v.data(), t);
+      solve_exact(t, d_.Q, d_.gamma, a, lam, true);
+    } else {
+      solve_exact(t, zero_n_, d_.gamma, a, kappa_, false);
+    }
+  }
+
+  /// Least-change assembly at t0 (as the dynamic runs do).
+  VecX assemble(const VecX& q0, double t) {
+    VecX q = assemble_positions(model_, d_, kkt_, q0, t);
+    factorized_ = kkt_.factorizations() > 0;
+    return q;
+  }
+
+  int factorizations() const { return kkt_.factorizations(); }
+
+ private:
+  bool refactor(const VecX& q, double t, bool& fresh) {
+    assemble_jacobian(model_, d_, q.data(), t);
+    ++stats_.jacobian_evals;
+    factorized_ = kkt_.factorize(d_);
+    fresh = factorized_;
+    return factorized_;
+  }
+
+  /// [M Phi_q^T; Phi_q 0] [x1; x2] = [b1; b2] with Phi_q = d_.Phi_q (exact at
+  /// q), by iterative refinement on the factorization of an earlier Phi_q;
+  /// refactorized at q if that does not converge quickly.
+  /// Without need_x2 only x1 is wanted: at 0 DOF it follows from the second
+  /// block row alone (Phi_q x1 = b2), so only that residual is refined.
+  void solve_exact(double t, const VecX& b1, const VecX& b2, VecX& x1, VecX& x2, bool need_x2) {
+    const VecX& M = model_.mass_diagonal();
+    const double jmax = d_.Phi_q.nonZeros() ? Eigen::Map<const VecX>(d_.Phi_q.valuePtr(), d_.Phi_q.nonZeros())
+                                                  .lpNorm<Eigen::Infinity>()
+                                            : 0.0;
+    kkt_.solve(b1, b2, x1, x2);
+    double previous = INFINITY;
+    bool refreshed = false;
+    for (int it = 0; it < 16; ++it) {
+      r1_ = b1 - M.cwiseProduct(x1);
+      add_jacobian_transpose_times(d_, (-x2).eval().data(), r1_.data());
+      r2_ = b2;
+      add_jacobian_times(d_, (-x1).eval().data(), r2_.data());
+      // rounding level of the residual: sizes of the terms it is computed from
+      const double size = max_abs(b1) + max_abs(b2) + max_abs(M.cwiseProduct(x1)) + jmax * (max_abs(x1) + max_abs(x2));
+      const double res = need_x2 ? std::max(max_abs(r1_), max_abs(r2_)) : max_abs(r2_);
+      if (!(res > 1e-14 * size)) return;
+      if (res > 0.25 * previous || it == 8) {
+        if (res <= 1e-12 * size || refreshed) return;  // stalled at the rounding floor
+        // the old factorization is too far off: a fresh one, and refine on it
+        factorized_ = kkt_.factorize(d_);  // d_.Phi_q is at q already
+        if (!factorized_) throw SimulationError("the augmented matrix is singular at t = " + std::to_string(t), t);
+        refreshed = true;
+        kkt_.solve(b1, b2, x1, x2);
+        previous = INFINITY;
+        continue;
+      }
+      previous = res;
+      kkt_.solve(r1_, r2_, c1_, c2_);
+      x1 += c1_;
+      x2 += c2_;
+    }
+  }
+
+  const Model& model_;
+  Data d_;
+  AugmentedSystem kkt_;
+  Stats& stats_;
+  int n_, m_;
+  bool factorized_ = false;
+  VecX zero_n_, kappa_, dq_, r1_, r2_, c1_, c2_;
+};
+
+}  // namespace
+
+Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<double>& t_out,
+                              bool inverse_dynamics, const std::function<void(double)>& progress,
+                              double progress_interval) {
+  if (!model.finalized()) throw ModelError("kinematic_analysis: the model is not finalized");
+  const auto wall0 = std::chrono::steady_clock::now();
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  Trajectory tr;
+  tr.n = n;
+  tr.m = m;
+  tr.stats.analysis = inverse_dynamics ? "inverse_dynamics" : "kinematic";
+  tr.stats.formulation = "kinematic";
+  tr.stats.integrator = "newton";
+  tr.t.reserve(t_out.size());
+  tr.q.reserve(t_out.size() * n);
+  tr.v.reserve(t_out.size() * n);
+  tr.a.reserve(t_out.size() * n);
+  tr.lam.reserve(t_out.size() * m);
+  KinematicSolver* solver_ptr = nullptr;
+  auto finish = [&] {
+    if (solver_ptr) tr.stats.augmented_factorizations = solver_ptr->factorizations();
+    tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+
+  KinematicSolver solver(model, tr.stats);
+  solver_ptr = &solver;
+  VecX q(n), v = VecX::Zero(n), a = VecX::Zero(n), lam = VecX::Zero(m);
+  VecX lam_nan = VecX::Constant(m, NAN);
+  size_t k = 0;  // next output
+  auto record = [&](double t) {
+    tr.t.push_back(t);
+    tr.q.insert(tr.q.end(), q.data(), q.data() + n);
+    tr.v.insert(tr.v.end(), v.data(), v.data() + n);
+    tr.a.insert(tr.a.end(), a.data(), a.data() + n);
+    const VecX& l = inverse_dynamics ? lam : lam_nan;
+    tr.lam.insert(tr.lam.end(), l.data(), l.data() + m);
+  };
+  auto is_output = [&](double t) { return k < t_out.size() && t_out[k] == t; };
+
+  // t0: least-change assembly from the given positions, as the dynamic runs start
+  try {
+    q = solver.assemble(model.initial_q(), t0);
+  } catch (const UserFunctionError& e) {
+    throw SimulationError(e.what(), t0);
+  }
+  double t = t0;
+  auto fail = [&](const std::string& why) {
+    finish();
+    std::ostringstream msg;
+    msg << "kinematic analysis: " << why << diagnose_failure(model, q, t)
+        << " Outputs up to t = " << (tr.t.empty() ? t0 : tr.t.back()) << " are kept in the partial result.";
+    throw SimulationError(msg.str(), t, std::move(tr));
+  };
+
+  // a sub-step turns no body by more than 0.25 rad (predicted): the Newton
+  // start then stays near the branch it came from, and angles stay continuous
+  std::vector<int> angles;
+  for (const Body& b : model.bodies())
+    if (!b.particle) angles.push_back(b.angle_coord());
+  auto angle_step = [&](const VecX& vel, const VecX& acc) {
+    double w = 0.0, al = 0.0;
+    for (int i : angles) {
+      w = std::max(w, std::abs(vel[i]));
+      al = std::max(al, std::abs(acc[i]));
+    }
+    const double root = w + std::sqrt(w * w + 0.5 * al);  // w h + al h^2 / 2 = 0.25
+    return root > 0 ? 0.5 / root : INFINITY;
+  };
+  const std::vector<double> times = solve_times(model, t0, t_out);
+  auto clock = std::chrono::steady_clock::now();
+  try {
+    if (!solver.positions(q, t0, 10, INFINITY)) fail("Newton on Phi(q, t0) = 0 did not converge.");
+    ++tr.stats.kinematic_solves;
+    solver.rates(q, t0, inverse_dynamics && is_output(t0), v, a, lam);
+    if (is_output(t0)) {
+      record(t0);
+      ++k;
+    }
+    VecX q_try(n), v_try(n), a_try(n), lam_try(m);
+    for (size_t s = 1; s < times.size(); ++s) {
+      const double target = times[s];
+      const double h_min = 1e-12 * (1.0 + std::abs(target));
+      double h = target - t;
+      while (t < target) {
+        h = std::min(h, angle_step(v, a));
+        const bool last = t + h >= target;
+        const double t_next = last ? target : t + h;
+        const double dt = t_next - t;
+        const VecX motion = v * dt + 0.5 * dt * dt * a;
+        q_try = q + motion;
+        const double guard = 0.5 * max_abs(motion) + 1e-8 * (1.0 + max_abs(q));
+        if (!solver.positions(q_try, t_next, 10, guard)) {
+          h = 0.5 * dt;
+          if (h < h_min) {
+            std::ostringstream why;
+            why << "no configuration satisfies the constraints just after t = " << t
+                << " (Newton on Phi(q, t) = 0 fails for every step down to " << h_min << " s)."
+                << " The last configuration found is at t = " << t << ".";
+            fail(why.str());
+          }
+          continue;
+        }
+        ++tr.stats.kinematic_solves;
+        const bool out = last && is_output(t_next);
+        v_try = v;
+        solver.rates(q_try, t_next, inverse_dynamics && out, v_try, a_try, lam_try);
+        q.swap(q_try);
+        v.swap(v_try);
+        a.swap(a_try);
+        if (out) lam.swap(lam_try);
+        t = t_next;
+        h = std::min(2.0 * h, target - t);  // grow back after a halving
+        if (last) t = target;
+      }
+      if (is_output(t)) {
+        record(t);
+        ++k;
+      }
+      if (progress) {
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - clock).count() >= progress_interval) {
+          clock = now;
+          progress(t);
+        }
+      }
+    }
+  } catch (const UserFunctionError& e) {
+    finish();
+    throw SimulationError(std::string(e.what()) + " Outputs up to t = " +
+                              std::to_string(tr.t.empty() ? t0 : tr.t.back()) + " are kept in the partial result.",
+                          t, std::move(tr));
+  }
+  finish();
+  return tr;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,107 @@
+"""Static equilibrium: mb.equilibrium(model) (cpp/include/lagmb/equilibrium.hpp)."""
+
+import math
+
+import numpy as np
+
+from . import _core
+from .errors import ModelError
+
+
+class EquilibriumBody:
+    """Pose of one body in equilibrium: position (2,) of its centre of mass
+    and angle (0 for a particle)."""
+
+    __slots__ = ("position", "angle")
+
+    def __init__(self, position, angle):
+        self.position, self.angle = position, angle
+
+    def __repr__(self):
+        return f"EquilibriumBody(position={self.position.tolist()}, angle={self.angle!r})"
+
+
+class Equilibrium:
+    """A static equilibrium found by mb.equilibrium.
+
+    Attributes:
+        q (n,), lam (m,): coordinates and multipliers (sign of DESIGN.md
+            section 1: Q(q, 0, t) = Phi_q^T lam).
+        t: the time it holds at.
+        stable: the tangent stiffness reduced to the motions the joints
+            allow is positive definite (a strict minimum of the potential).
+        stiffness_eigenvalues: its eigenvalues, ascending (N/m, N m/rad
+            mixed; empty when nothing can move), and softest_mode (n,) the
+            motion of the smallest.
+        iterations: Newton iterations; force_residual (max |Q - Phi_q^T
+            lam|, N or N m) and constraint_residual (max |Phi|).
+    """
+
+    def __init__(self, model, core, raw, t):
+        self.model = model
+        self._core = core
+        self.t = float(t)
+        self.q = np.asarray(raw["q"], dtype=float)
+        self.lam = np.asarray(raw["lam"], dtype=float)
+        self.stable = bool(raw["stable"])
+        self.iterations = int(raw["iterations"])
+        self.stiffness_eigenvalues = np.asarray(raw["stiffness_eigenvalues"], dtype=float)
+        self.softest_mode = np.asarray(raw["softest_mode"], dtype=float)
+        self.force_residual = float(raw["force_residual"])
+        self.constraint_residual = float(raw["constraint_residual"])
+
+    def _name(self, item):
+        name = getattr(item, "name", item)
+        if not isinstance(name, str) or not self._core.has(name):
+            raise ModelError(f"no body or element named '{name}' in this model")
+        return name
+
+    def body(self, body):
+        """Pose of a body (handle or name): .position (2,), .angle."""
+        first, count = self._core.body_coordinates(self._name(body))
+        x = self.q[first:first + count]
+        return EquilibriumBody(x[:2].copy(), float(x[2]) if count == 3 else 0.0)
+
+    def reaction(self, element, frame="global"):
+        """(3,): force (x, y) in N on the element's second body and the torque
+        in N m about its centre of mass, as Result.reaction."""
+        if frame not in ("global", "joint"):
+            raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
+        out = self._core.reaction(self._name(element), np.array([self.t]), self.q[None, :],
+                                  self.lam[None, :], frame == "joint")
+        return np.asarray(out)[0]
+
+    def __repr__(self):
+        return (f"<lagmb.Equilibrium at t = {self.t:g}: {'stable' if self.stable else 'not stable'}, "
+                f"{self.iterations} Newton iterations>")
+
+
+def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=False):
+    """Static equilibrium of a model at time t (at rest: v = 0).
+
+    Solves Q(q, 0, t) = Phi_q^T lam, Phi(q, t) = 0 by Newton with exact
+    derivatives (step-limited, with a line search) from the assembled initial
+    configuration, then checks stability: the tangent stiffness H(lam) - Q_q
+    reduced to the null space of Phi_q must be positive definite (dense
+    check). ``tol`` is relative (forces to tol |Q|, constraints to
+    tol (1 + |q|)). Returns an :class:`Equilibrium`.
+
+    Raises EquilibriumError (a ValueError) if there is none nearby (naming
+    the coordinates with the largest unbalanced force, e.g. a free body
+    under gravity) or if the one found is unstable (naming the mode), unless
+    ``allow_unstable=True``; AssemblyError if the joints cannot be closed.
+    """
+    from .simulation import _translate
+
+    t = float(t)
+    if not math.isfinite(t):
+        raise ModelError(f"t must be finite, got {t!r}")
+    tol = float(tol)
+    if not (math.isfinite(tol) and 0 < tol < 1):
+        raise ModelError(f"tol must be in (0, 1), got {tol!r}")
+    if isinstance(max_iterations, bool) or int(max_iterations) != max_iterations or max_iterations < 1:
+        raise ModelError(f"max_iterations must be a positive integer, got {max_iterations!r}")
+    core = model.compiled()
+    with _translate():
+        raw = _core.equilibrium(core, t, tol, int(max_iterations), bool(allow_unstable))
+    return Equilibrium(model, core, raw, t)
