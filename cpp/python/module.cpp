@@ -46,7 +46,22 @@ py::dict to_python(Trajectory&& tr) {
   stats["wall_time"] = s.wall_time;
   stats["formulation"] = s.formulation;
   stats["integrator"] = s.integrator;
+  stats["events"] = s.events;
+  stats["impacts"] = s.impacts;
+  stats["root_evals"] = s.root_evals;
   out["stats"] = stats;
+  py::list events;
+  for (const EventRecord& e : tr.events) {
+    py::dict ev;
+    ev["t"] = e.t;
+    ev["element"] = e.element;
+    ev["kind"] = e.kind;
+    ev["label"] = e.label;
+    ev["speed_before"] = e.speed_before;
+    ev["speed_after"] = e.speed_after;
+    events.append(ev);
+  }
+  out["events"] = events;
   return out;
 }
 
@@ -179,6 +194,8 @@ PYBIND11_MODULE(_core, m) {
       .def("add_force", &Model::add_force, py::arg("name"), py::arg("body"), py::arg("fx"), py::arg("fy"),
            py::arg("point"), py::arg("local"))
       .def("add_torque", &Model::add_torque, py::arg("name"), py::arg("body"), py::arg("torque"))
+      .def("add_stop", &Model::add_stop, py::arg("name"), py::arg("joint"), py::arg("lower"), py::arg("upper"),
+           py::arg("restitution"), py::arg("rest_speed"))
       .def("finalize", &Model::finalize)
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
@@ -205,6 +222,7 @@ PYBIND11_MODULE(_core, m) {
              const ElementRef& r = model.find(name);
              if (r.type == ElementRef::kBody) return "body";
              if (r.type == ElementRef::kConstraint) return model.constraint_groups()[r.group]->kind();
+             if (r.type == ElementRef::kEvent) return model.event_groups()[r.group]->kind();
              return model.force_groups()[r.group]->kind();
            })
       .def("initial_state",

@@ -181,6 +181,7 @@ void Model::finalize() {
   force_q_pattern_ = fq.build();
   force_v_pattern_ = fv.build();
   for (auto& g : constraints_) g->bind(jacobian_pattern_, hessian_pattern_);
+  for (auto& e : events_) e->place(*this);
   for (auto& f : forces_) f->bind(force_q_pattern_, force_v_pattern_);
 
   time_dependent_.clear();
@@ -598,6 +599,51 @@ void Model::add_torque(const std::string& name, int body, TimeFunctionPtr torque
   e.torque = std::move(torque);
   note(e.torque);
   add_force_element(std::move(e));
+}
+
+}  // namespace lagmb
+
+
+// --- stops (event elements) --------------------------------------------------
+
+namespace lagmb {
+
+void Model::add_stop(const std::string& name, const std::string& joint, std::optional<double> lower,
+                     std::optional<double> upper, double restitution, double rest_speed) {
+  require_open("add stop '" + name + "'");
+  check_new_name(name);
+  JointStop s;
+  s.name = name;
+  if (const auto* rev = find_constraint<RevoluteJoint>(joint)) {
+    s.body_i = rev->body_i;
+    s.body_j = rev->body_j;
+  } else if (const auto* tr = find_constraint<TranslationalJoint>(joint)) {
+    s.body_i = tr->body_i;
+    s.body_j = tr->body_j;
+    s.slide = true;
+    s.along = tr->across;
+    s.along.w = tr->across.line_direction();
+  } else {
+    throw ModelError("stop '" + name + "': '" + joint +
+                     (names_.count(joint) ? "' is not a revolute or translational joint"
+                                          : "' is not a joint of this model"));
+  }
+  if (!lower && !upper) throw ModelError("stop '" + name + "': give a lower or an upper limit (or both)");
+  if (lower && !std::isfinite(*lower)) throw ModelError("stop '" + name + "': lower is not finite: " + fmt(*lower));
+  if (upper && !std::isfinite(*upper)) throw ModelError("stop '" + name + "': upper is not finite: " + fmt(*upper));
+  if (lower && upper && !(*lower < *upper))
+    throw ModelError("stop '" + name + "': lower = " + fmt(*lower) + " must be below upper = " + fmt(*upper));
+  if (!(std::isfinite(restitution) && restitution >= 0.0 && restitution <= 1.0))
+    throw ModelError("stop '" + name + "': restitution must be in [0, 1], got " + fmt(restitution));
+  if (!(std::isfinite(rest_speed) && rest_speed >= 0.0))
+    throw ModelError("stop '" + name + "': rest_speed must be finite and >= 0, got " + fmt(rest_speed));
+  s.has_lower = bool(lower);
+  s.has_upper = bool(upper);
+  s.lower = lower.value_or(0.0);
+  s.upper = upper.value_or(0.0);
+  s.restitution = restitution;
+  s.rest_speed = rest_speed;
+  add_event_element(std::move(s));
 }
 
 }  // namespace lagmb

@@ -272,6 +272,32 @@ class Model:
                    as_time_function(f, f"driver '{name}'"))
         self._record("drive_body", name=name, body=b, coordinate=coordinate, f=f)
 
+    # --- stops (joint limits with impacts) --------------------------------
+
+    def add_stop(self, name, joint, lower=None, upper=None, restitution=0.0, rest_speed=1e-3):
+        """Limit a joint coordinate s to lower <= s <= upper (either may be
+        None): a revolute's relative angle phi_j - phi_i (rad) or a
+        translational's slide displacement (m, 0 in the initial
+        configuration), as for drive_joint. Reaching a limit with approaching
+        speed is an impact: the relative velocity along s reverses with
+        Newton's ``restitution`` e in [0, 1] (s'+ = -e s'-), the joints are
+        kept, and the integrator restarts. A rebound slower than
+        ``rest_speed`` (rad/s or m/s) while the motion presses on the limit
+        stops the run with SimulationError naming the stop (resting contact
+        is not modelled). Impacts are listed in ``Result.events``."""
+        name = self._name(name)
+        joint = getattr(joint, "name", joint)
+        what = f"stop '{name}'"
+        if not isinstance(joint, str):
+            raise ModelError(f"{what}: joint must be a joint name, got {joint!r}")
+        lo = None if lower is None else _number(lower, f"{what}: lower")
+        up = None if upper is None else _number(upper, f"{what}: upper")
+        e = _number(restitution, f"{what}: restitution")
+        vr = _number(rest_speed, f"{what}: rest_speed")
+        self._call("add_stop", name, joint, lo, up, e, vr)
+        self._record("add_stop", name=name, joint=joint, lower=lo, upper=up, restitution=e,
+                     rest_speed=vr)
+
     # --- forces ----------------------------------------------------------
 
     def add_spring_damper(self, name, body_i, point_i, body_j, point_j, stiffness=0.0, damping=0.0,

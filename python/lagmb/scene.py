@@ -47,6 +47,12 @@ A scene, with every table (all keys in SI units, angles in radians)::
     body = "crank"
     force = [0.0, { type = "harmonic", amplitude = 2.0, omega = 3.0 }]
 
+    [[stops]]                       # add_stop(name, joint, lower, upper, restitution,
+    name = "limit"                  #          rest_speed): a joint limit with impacts
+    joint = "pivot"
+    lower = -1.0
+    restitution = 0.5
+
     [simulation]                    # the keyword arguments of mb.simulate
     t_end = 2.0                     # t0, rtol, atol, n_out or t_out, max_step,
     rtol = 1e-8                     # max_steps, formulation, integrator, max_order
@@ -136,7 +142,7 @@ class SceneError(ModelError):
 
 # --- the format ---------------------------------------------------------------
 
-_ELEMENT_TABLES = ("bodies", "particles", "joints", "drivers", "forces")
+_ELEMENT_TABLES = ("bodies", "particles", "joints", "drivers", "forces", "stops")
 _TABLES = ("model",) + _ELEMENT_TABLES + ("simulation", "output")
 
 # table -> {type: Model method}; None: the table has no `type` key
@@ -148,9 +154,10 @@ _METHODS = {
     "drivers": {"joint": "drive_joint", "body": "drive_body"},
     "forces": {t: "add_" + t for t in ("spring_damper", "rotational_spring_damper",
                                         "force", "torque")},
+    "stops": {None: "add_stop"},
 }
 _SINGULAR = {"bodies": "body", "particles": "particle", "joints": "joint", "drivers": "driver",
-             "forces": "force"}
+             "forces": "force", "stops": "stop"}
 _TABLE_OF = {m: (table, typ) for table, types in _METHODS.items() for typ, m in types.items()}
 
 # a method's keyword -> the scene key, where they differ
@@ -161,7 +168,8 @@ _BODY_REF = {"body", "body_i", "body_j", "pinion", "rack"}
 _VEC2 = {"position", "velocity", "at", "axis", "point", "point_i", "point_j",
          "local_i", "local_j", "center_i", "center_j"}
 _NUMBER = {"mass", "inertia", "angle", "angular_velocity", "length", "ratio", "radius",
-           "stiffness", "damping", "free_length", "free_angle"}
+           "stiffness", "damping", "free_length", "free_angle",
+           "lower", "upper", "restitution", "rest_speed"}
 _FUNCTION = {"f", "torque", ("add_spring_damper", "force")}
 _FUNCTION_PAIR = {("add_force", "force")}
 _STRING = {"name", "coordinate"}
@@ -501,7 +509,7 @@ class _Reader:
                     msg = f"unknown top-level key '{key}'"
                 raise SceneError(f"{msg}; a scene has the tables [model], [[bodies]], "
                                  "[[particles]], [[joints]], [[drivers]], [[forces]], "
-                                 "[simulation] and [output]", self.path, w.line(), None, key)
+                                 "[[stops]], [simulation] and [output]", self.path, w.line(), None, key)
         for key in ("model", "simulation", "output"):
             if key in data and not isinstance(data[key], dict):
                 raise SceneError(f"'{key}' must be a table [{key}], got {_toml_type(data[key])}",
@@ -634,7 +642,7 @@ class _Reader:
                 found = self.later(("joints",), name)
                 if found:
                     raise w.error(f"joint {name!r} is defined later ({found[0]}, line {found[1]}); "
-                                  "define joints before the drivers that use them", key)
+                                  "define joints before the drivers and stops that use them", key)
                 known = ", ".join(sorted(self.joints)) or "none"
                 raise w.error(f"no joint named {name!r} (joints: {known})", key)
             return name
