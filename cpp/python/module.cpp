@@ -196,6 +196,9 @@ PYBIND11_MODULE(_core, m) {
       .def("add_torque", &Model::add_torque, py::arg("name"), py::arg("body"), py::arg("torque"))
       .def("add_stop", &Model::add_stop, py::arg("name"), py::arg("joint"), py::arg("lower"), py::arg("upper"),
            py::arg("restitution"), py::arg("rest_speed"))
+      .def("add_contact", &Model::add_contact, py::arg("name"), py::arg("circle_body"), py::arg("center"),
+           py::arg("radius"), py::arg("line_body"), py::arg("point"), py::arg("direction"), py::arg("stiffness"),
+           py::arg("restitution"), py::arg("friction"), py::arg("slip_velocity"))
       .def("finalize", &Model::finalize)
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)

@@ -110,7 +110,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       throw f;
     }
     if (a.type == EventAction::kRestart) {
-      records.push_back({t, group.name(roots_[i].element), "restart", a.label, 0.0, 0.0});
+      records.push_back({t, group.name(roots_[i].element), "restart", a.label, a.speed, a.speed});
       continue;
     }
     C.push_back(global_row(a.gradient, group.coordinates(roots_[i].element), n));

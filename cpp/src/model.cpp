@@ -647,3 +647,47 @@ void Model::add_stop(const std::string& name, const std::string& joint, std::opt
 }
 
 }  // namespace lagmb
+
+
+// --- circle-line contact (a force and an event element) ------------------------
+
+namespace lagmb {
+
+void Model::add_contact(const std::string& name, int circle_body, Vec2 center, double radius, int line_body,
+                        Vec2 point, Vec2 direction, double stiffness, double restitution, double friction,
+                        double slip_velocity) {
+  require_open("add contact '" + name + "'");
+  check_new_name(name);
+  check_pair(name, circle_body, line_body);
+  require_finite(center, name, "center");
+  require_finite(point, name, "point");
+  auto positive = [&](double x, const char* what) {
+    if (!(std::isfinite(x) && x > 0))
+      throw ModelError("contact '" + name + "': " + what + " must be positive and finite, got " + fmt(x));
+  };
+  positive(radius, "radius");
+  positive(stiffness, "stiffness");
+  positive(slip_velocity, "slip_velocity");
+  if (!(std::isfinite(restitution) && restitution > 0.0 && restitution <= 1.0))
+    throw ModelError("contact '" + name + "': restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
+                     fmt(restitution));
+  if (!(std::isfinite(friction) && friction >= 0.0))
+    throw ModelError("contact '" + name + "': friction must be finite and >= 0, got " + fmt(friction));
+  require_on_particle(circle_body, center, name);
+  CircleLineContact c;
+  c.name = name;
+  c.body_i = circle_body;
+  c.body_j = line_body;
+  c.s_c = to_local(circle_body, center);
+  c.s_p = to_local(line_body, point);
+  c.u = direction_to_local(line_body, direction, name);
+  c.radius = radius;
+  c.stiffness = stiffness;
+  c.restitution = restitution;
+  c.friction = friction;
+  c.slip_velocity = slip_velocity;
+  add_event_element(c, false);
+  add_force_element(std::move(c));
+}
+
+}  // namespace lagmb

@@ -298,6 +298,39 @@ class Model:
         self._record("add_stop", name=name, joint=joint, lower=lo, upper=up, restitution=e,
                      rest_speed=vr)
 
+    # --- contact -----------------------------------------------------------
+
+    def add_contact(self, name, circle_body, center, radius, line_body, point, direction, stiffness,
+                    restitution, friction=0.0, slip_velocity=1e-4):
+        """Contact between a circle on ``circle_body`` (``center``, global in
+        the initial configuration, and ``radius``, m) and the line through
+        ``point`` along ``direction`` on ``line_body`` (or the ground); the
+        circle belongs on the left of the direction (direction turned +90 deg
+        points to it). With penetration d > 0 the normal force is
+        k d^1.5 (1 + 8 (1 - e) / (5 e) d' / v_impact) (Hunt-Crossley damping
+        calibrated to the restitution e in (0, 1], Flores et al. 2011;
+        ``stiffness`` k in N/m^1.5), v_impact the approach speed at contact
+        onset; Coulomb friction -mu F_n v_t / sqrt(v_t^2 + v_s^2) with
+        ``friction`` mu and the ``slip_velocity`` v_s (m/s) below which it is
+        smoothed. Onset and release are events (r.events) where the
+        integrator restarts."""
+        name = self._name(name)
+        bc, bl = self._body_name(circle_body, name), self._body_name(line_body, name)
+        what = f"contact '{name}'"
+        c = _vec2(center, f"{what}: center")
+        p = _vec2(point, f"{what}: point")
+        u = _vec2(direction, f"{what}: direction")
+        args = [_number(x, f"{what}: {label}") for x, label in
+                ((radius, "radius"), (stiffness, "stiffness"), (restitution, "restitution"),
+                 (friction, "friction"), (slip_velocity, "slip_velocity"))]
+        R, k, e, mu, vs = args
+        self._call("add_contact", name, self._body_index(bc, name), c, R, self._body_index(bl, name), p, u,
+                   k, e, mu, vs)
+        self._record("add_contact", name=name, circle_body=bc, center=_tuple(c), radius=R, line_body=bl,
+                     point=_tuple(p), direction=_tuple(u), stiffness=k, restitution=e, friction=mu,
+                     slip_velocity=vs)
+        self._attach(bc, self._local(bc, c))
+
     # --- forces ----------------------------------------------------------
 
     def add_spring_damper(self, name, body_i, point_i, body_j, point_j, stiffness=0.0, damping=0.0,

@@ -42,7 +42,7 @@ A scene, with every table (all keys in SI units, angles in radians)::
     function = { type = "linear", rate = 10.0, start = 0.0 }   # or a number
 
     [[forces]]                      # type: spring_damper, rotational_spring_damper,
-    type = "force"                  # force or torque; the add_<type> arguments
+    type = "force"                  # force, torque or contact; the add_<type> arguments
     name = "push"
     body = "crank"
     force = [0.0, { type = "harmonic", amplitude = 2.0, omega = 3.0 }]
@@ -153,7 +153,7 @@ _METHODS = {
                                         "pin_in_slot", "gear", "rack_pinion")},
     "drivers": {"joint": "drive_joint", "body": "drive_body"},
     "forces": {t: "add_" + t for t in ("spring_damper", "rotational_spring_damper",
-                                        "force", "torque")},
+                                        "force", "torque", "contact")},
     "stops": {None: "add_stop"},
 }
 _SINGULAR = {"bodies": "body", "particles": "particle", "joints": "joint", "drivers": "driver",
@@ -164,12 +164,12 @@ _TABLE_OF = {m: (table, typ) for table, types in _METHODS.items() for typ, m in 
 _RENAMED = {("drive_joint", "f"): "function", ("drive_body", "f"): "function"}
 
 # what the value of a key is (by key name; (method, key) where it depends on the method)
-_BODY_REF = {"body", "body_i", "body_j", "pinion", "rack"}
+_BODY_REF = {"body", "body_i", "body_j", "pinion", "rack", "circle_body", "line_body"}
 _VEC2 = {"position", "velocity", "at", "axis", "point", "point_i", "point_j",
-         "local_i", "local_j", "center_i", "center_j"}
+         "local_i", "local_j", "center_i", "center_j", "center", "direction"}
 _NUMBER = {"mass", "inertia", "angle", "angular_velocity", "length", "ratio", "radius",
            "stiffness", "damping", "free_length", "free_angle",
-           "lower", "upper", "restitution", "rest_speed"}
+           "lower", "upper", "restitution", "rest_speed", "friction", "slip_velocity"}
 _FUNCTION = {"f", "torque", ("add_spring_damper", "force")}
 _FUNCTION_PAIR = {("add_force", "force")}
 _STRING = {"name", "coordinate"}

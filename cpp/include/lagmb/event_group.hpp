@@ -50,6 +50,8 @@ struct EventAction {
   /// Impact: d2g/dc2, for the acceleration g'' = gradient . cdd + cd^T H cd
   /// that tells resting from leaving.
   Mat6 hessian = Mat6::Zero();
+  /// Restart: the event function's rate g' at the crossing, for the record.
+  double speed = 0.0;
   /// Which limit or contact, for the record ("lower", "upper", "onset", ...).
   const char* label = "";
 };

@@ -11,6 +11,7 @@
 
 #include "lagmb/constraint_group.hpp"
 #include "lagmb/elements/applied_force.hpp"
+#include "lagmb/elements/contact.hpp"
 #include "lagmb/elements/distance.hpp"
 #include "lagmb/elements/drivers.hpp"
 #include "lagmb/elements/gear.hpp"
@@ -132,6 +133,15 @@ class Model {
   void add_stop(const std::string& name, const std::string& joint, std::optional<double> lower,
                 std::optional<double> upper, double restitution, double rest_speed = 1e-3);
 
+  /// Contact between a circle (centre `center`, global, initial; `radius`) on
+  /// circle_body and the line through `point` along `direction` (global,
+  /// initial) on line_body: Hunt-Crossley normal force k d^1.5 (1 + 8 (1 - e)
+  /// / (5 e) d' / v_impact), Coulomb friction mu regularized below
+  /// slip_velocity (m/s). See elements/contact.hpp.
+  void add_contact(const std::string& name, int circle_body, Vec2 center, double radius, int line_body,
+                   Vec2 point, Vec2 direction, double stiffness, double restitution, double friction = 0.0,
+                   double slip_velocity = 1e-4);
+
   /// Adds a constraint element of any kind (see constraint_group.hpp).
   template <class Kind>
   void add_constraint(Kind element);
@@ -140,7 +150,7 @@ class Model {
   void add_force_element(Kind element);
   /// Adds an event element of any kind (see event_group.hpp).
   template <class Kind>
-  void add_event_element(Kind element);
+  void add_event_element(Kind element, bool named = true);
 
   /// Freezes the model: numbers coordinates and rows, builds patterns.
   void finalize();
@@ -275,15 +285,16 @@ void Model::add_force_element(Kind element) {
 }
 
 template <class Kind>
-void Model::add_event_element(Kind element) {
+void Model::add_event_element(Kind element, bool named) {
   require_open("add " + std::string(Kind::kind) + " '" + element.name + "'");
-  check_new_name(element.name);
+  if (named) check_new_name(element.name);
   check_pair(element.name, element.body_i, element.body_j);
   auto [it, inserted] =
       event_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(events_.size()));
   if (inserted) events_.push_back(std::make_unique<EventGroup<Kind>>());
   auto& group = static_cast<EventGroup<Kind>&>(*events_[it->second]);
-  register_name(element.name, {ElementRef::kEvent, it->second, group.size()});
+  // (an element that is also a force keeps the name of its force entry)
+  if (named) register_name(element.name, {ElementRef::kEvent, it->second, group.size()});
   group.add(std::move(element));
 }
 
