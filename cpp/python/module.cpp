@@ -49,7 +49,22 @@ py::dict to_python(Trajectory&& tr) {
   stats["integrator"] = s.integrator;
   stats["analysis"] = s.analysis;
   stats["kinematic_solves"] = s.kinematic_solves;
+  stats["events"] = s.events;
+  stats["impacts"] = s.impacts;
+  stats["root_evals"] = s.root_evals;
   out["stats"] = stats;
+  py::list events;
+  for (const EventRecord& e : tr.events) {
+    py::dict ev;
+    ev["t"] = e.t;
+    ev["element"] = e.element;
+    ev["kind"] = e.kind;
+    ev["label"] = e.label;
+    ev["speed_before"] = e.speed_before;
+    ev["speed_after"] = e.speed_after;
+    events.append(ev);
+  }
+  out["events"] = events;
   return out;
 }
 
@@ -201,6 +216,11 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("name"), py::arg("joint"), py::arg("mu"), py::arg("viscous"), py::arg("preload"),
           py::arg("pin_radius"), py::arg("bearing_length"), py::arg("slip_velocity"), py::arg("load_smoothing"))
+      .def("add_stop", &Model::add_stop, py::arg("name"), py::arg("joint"), py::arg("lower"), py::arg("upper"),
+           py::arg("restitution"), py::arg("rest_speed"))
+      .def("add_contact", &Model::add_contact, py::arg("name"), py::arg("circle_body"), py::arg("center"),
+           py::arg("radius"), py::arg("line_body"), py::arg("point"), py::arg("direction"), py::arg("stiffness"),
+           py::arg("restitution"), py::arg("friction"), py::arg("slip_velocity"))
       .def("finalize", &Model::finalize)
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
@@ -228,6 +248,7 @@ PYBIND11_MODULE(_core, m) {
              if (r.type == ElementRef::kBody) return "body";
              if (r.type == ElementRef::kConstraint) return model.constraint_groups()[r.group]->kind();
              if (r.type == ElementRef::kFriction) return model.friction_groups()[r.group]->kind();
+             if (r.type == ElementRef::kEvent) return model.event_groups()[r.group]->kind();
              return model.force_groups()[r.group]->kind();
            })
       .def("initial_state",

@@ -10,6 +10,7 @@
 #include <exception>
 #include <sstream>
 
+#include "events.hpp"
 #include "integrators.hpp"
 #include "lagmb/assembly.hpp"
 #include "lagmb/time_function.hpp"
@@ -196,6 +197,7 @@ struct OdeProblem {
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
   long factorizations = 0, projections = 0;
   std::exception_ptr error;
+  EventRunner* events = nullptr;
 };
 
 /// The Newton "matrix" I + c J, held implicitly: CVODE only scales it
@@ -312,6 +314,18 @@ int proj_fn(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype, N_Vector err,
   }
 }
 
+int root_fn(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
+  auto* p = static_cast<OdeProblem*>(data);
+  try {
+    const double* yy = N_VGetArrayPointer(y);
+    p->events->values(t, yy, yy + p->n, g);
+    return 0;
+  } catch (...) {
+    p->error = std::current_exception();
+    return -1;
+  }
+}
+
 struct CvodeSession {
   sun::Context ctx;
   void* mem = nullptr;
@@ -371,6 +385,11 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
     // vanishes for a fully driven mechanism and the steps run away
     check(CVodeSetProjErrEst(s.mem, SUNFALSE), "CVodeSetProjErrEst", s.ctx);
   }
+  if (plan.events && plan.events->size() > 0) {  // only models with event elements
+    p.events = plan.events;
+    check(CVodeRootInit(s.mem, plan.events->size(), root_fn), "CVodeRootInit", s.ctx);
+    check(CVodeSetRootDirection(s.mem, plan.events->directions()), "CVodeSetRootDirection", s.ctx);
+  }
 
   /// CVODE behind the shared stepping loop.
   struct CvodeStepper final : Stepper {
@@ -400,7 +419,21 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
         throw IntegratorFailure(msg.str(), t);
       }
       at_stop = flag == CV_TSTOP_RETURN;
+      at_root = flag == CV_ROOT_RETURN;
       return t;
+    }
+    bool at_root = false;
+    bool root_found(std::vector<int>& fired) override {
+      if (!at_root) return false;
+      fired.assign(p.events->size(), 0);
+      check(CVodeGetRootInfo(s.mem, fired.data()), "CVodeGetRootInfo", s.ctx);
+      return true;
+    }
+    const double* velocities() const override { return N_VGetArrayPointer(s.y) + p.n; }
+    void reset(double t, const ConsistentState& state) override {
+      Eigen::Map<VecX>(N_VGetArrayPointer(s.y), p.n) = state.q;
+      Eigen::Map<VecX>(N_VGetArrayPointer(s.y) + p.n, p.n) = state.v;
+      restart(t);
     }
     void interpolate(double t, const double*& q, const double*& v) override {
       check(CVodeGetDky(s.mem, t, 0, s.out), "CVodeGetDky", s.ctx);

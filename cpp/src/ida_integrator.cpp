@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "dae.hpp"
+#include "events.hpp"
 #include "integrators.hpp"
 #include "lagmb/simulate.hpp"
 #include "lagmb/time_function.hpp"
@@ -28,6 +29,8 @@ struct Callbacks {
   const double* id = nullptr;
   std::vector<int> level;  // index of each component (DaeFormulation::index_levels)
   bool scale_relative = false;
+  EventRunner* events = nullptr;
+  bool fresh = false;  // restarted from a new state: weights for h_default until a step is taken
 };
 
 /// Error weights. An index-k component (k = 2, 3: multipliers and, in the
@@ -42,7 +45,7 @@ int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
   auto* cb = static_cast<Callbacks*>(data);
   sun::real h = 0.0;
   IDAGetCurrentStep(cb->mem, &h);
-  const double inv_h = 1.0 / (h > 0.0 ? h : cb->h_default);
+  const double inv_h = 1.0 / (h > 0.0 && !cb->fresh ? h : cb->h_default);
   const double* y = N_VGetArrayPointer(yv);
   double* ewt = N_VGetArrayPointer(ewtv);
   for (sun::index i = 0, N = N_VGetLength(yv); i < N; ++i) {
@@ -73,6 +76,18 @@ int jacobian_fn(sun::real t, sun::real cj, N_Vector y, N_Vector yp, N_Vector, SU
   auto* cb = static_cast<Callbacks*>(data);
   try {
     cb->dae->newton_matrix(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp));
+    return 0;
+  } catch (...) {
+    cb->error = std::current_exception();
+    return -1;
+  }
+}
+
+int root_fn(sun::real t, N_Vector y, N_Vector, sun::real* g, void* data) {
+  auto* cb = static_cast<Callbacks*>(data);
+  try {
+    const double* yy = N_VGetArrayPointer(y);
+    cb->events->values(t, cb->dae->q(yy), cb->dae->v(yy), g);
     return 0;
   } catch (...) {
     cb->error = std::current_exception();
@@ -175,6 +190,11 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the linear solver");
   check(IDASetLinearSolver(s.mem, s.LS, s.A), "IDASetLinearSolver", s.ctx);
   check(IDASetJacFn(s.mem, jacobian_fn), "IDASetJacFn", s.ctx);
+  if (plan.events && plan.events->size() > 0) {  // only models with event elements
+    cb.events = plan.events;
+    check(IDARootInit(s.mem, plan.events->size(), root_fn), "IDARootInit", s.ctx);
+    check(IDASetRootDirection(s.mem, plan.events->directions()), "IDASetRootDirection", s.ctx);
+  }
 
   /// IDA behind the shared stepping loop.
   struct IdaStepper final : Stepper {
@@ -182,7 +202,9 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
     Callbacks& cb;
     DaeFormulation& dae;
     Stats before;  // counts of the segments before the last IDAReInit (which zeroes them)
-    IdaStepper(IdaSession& s_, Callbacks& cb_, DaeFormulation& dae_) : s(s_), cb(cb_), dae(dae_) {}
+    const IntegrationPlan& plan;
+    IdaStepper(IdaSession& s_, Callbacks& cb_, DaeFormulation& dae_, const IntegrationPlan& plan_)
+        : s(s_), cb(cb_), dae(dae_), plan(plan_) {}
     const char* name() const override { return "IDA"; }
     void set_stop(double stop) override { check(IDASetStopTime(s.mem, stop), "IDASetStopTime", s.ctx); }
     double step(bool& at_stop) override {
@@ -204,7 +226,29 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
         throw IntegratorFailure(msg.str(), t);
       }
       at_stop = flag == IDA_TSTOP_RETURN;
+      at_root = flag == IDA_ROOT_RETURN;
+      cb.fresh = false;
       return t;
+    }
+    bool at_root = false;
+    bool root_found(std::vector<int>& fired) override {
+      if (!at_root) return false;
+      fired.assign(cb.events->size(), 0);
+      check(IDAGetRootInfo(s.mem, fired.data()), "IDAGetRootInfo", s.ctx);
+      return true;
+    }
+    const double* velocities() const override { return dae.v(N_VGetArrayPointer(s.y)); }
+    void reset(double t, const ConsistentState& state) override {
+      dae.initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
+      // a new first step, and weights for it (as at the start): the index-2
+      // and index-3 weights scale with 1/h, and the last step before the
+      // event says nothing about the step the new state needs
+      IntegrationPlan from_here = plan;
+      from_here.t0 = t;
+      cb.h_default = initial_step(from_here, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae.size());
+      cb.fresh = true;
+      check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
+      restart(t);
     }
     void interpolate(double t, const double*& q, const double*& v) override {
       check(IDAGetDky(s.mem, t, 0, s.out), "IDAGetDky", s.ctx);
@@ -233,7 +277,7 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
       stats.lu_factorizations = s.lu.factorizations;
       stats.element_evaluations = dae.element_evaluations();
     }
-  } stepper(s, cb, dae);
+  } stepper(s, cb, dae, plan);
   s.t_end = plan.t_end;
   run_steps(stepper, plan, start, record, stats);
 }

@@ -24,6 +24,7 @@ struct IntegrationPlan {
   std::vector<double> breakpoints;  // inside (t0, t_end): stop and restart there
   std::function<void(double)> progress;
   double progress_interval;
+  class EventRunner* events = nullptr;  // the model's event functions; null: none
 };
 
 /// Smallest step an integrator may take: 100 ulps of the largest |t| of the
@@ -39,6 +40,7 @@ struct IntegratorFailure : std::runtime_error {
       : std::runtime_error(what), t(t_reached) {}
   double t;
   VecX q;  // positions at t (the last accepted step), for the diagnosis
+  bool diagnose = true;  // false: the message is complete (no Jacobian diagnosis)
 };
 
 /// One integrator as the shared stepping loop sees it.
@@ -59,6 +61,16 @@ class Stepper {
   /// Counts so far, summed over restarts.
   virtual void fill_stats(Stats& stats) = 0;
   virtual const char* name() const = 0;
+
+  // events (a stepper of a model without event elements never reports roots)
+  /// Whether the last step stopped at a root of the event functions; then
+  /// fired[i] != 0 for the event functions that crossed.
+  virtual bool root_found(std::vector<int>& fired) { (void)fired; return false; }
+  /// Velocities of the last accepted step (or of the root).
+  virtual const double* velocities() const { return nullptr; }
+  /// Restarts at order 1 from a new consistent state at time t (after a
+  /// velocity jump or a change of the equations).
+  virtual void reset(double t, const ConsistentState& s) { (void)s; restart(t); }
 };
 
 /// The loop both drivers share: outputs interpolated at plan.t_out (the

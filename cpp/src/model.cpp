@@ -189,6 +189,7 @@ void Model::finalize() {
   force_q_pattern_ = fq.build();
   force_v_pattern_ = fv.build();
   for (auto& g : constraints_) g->bind(jacobian_pattern_, hessian_pattern_);
+  for (auto& e : events_) e->place(*this);
   for (auto& f : forces_) f->bind(force_q_pattern_, force_v_pattern_);
   for (auto& f : frictions_) f->bind(force_q_pattern_, force_v_pattern_, jacobian_pattern_);
 
@@ -667,6 +668,95 @@ void Model::add_joint_friction(const std::string& name, const std::string& joint
     throw ModelError(what + "'" + joint + "' is a " + kind +
                      "; friction needs a revolute or translational joint");
   }
+}
+
+}  // namespace lagmb
+
+
+// --- stops (event elements) --------------------------------------------------
+
+namespace lagmb {
+
+void Model::add_stop(const std::string& name, const std::string& joint, std::optional<double> lower,
+                     std::optional<double> upper, double restitution, double rest_speed) {
+  require_open("add stop '" + name + "'");
+  check_new_name(name);
+  JointStop s;
+  s.name = name;
+  if (const auto* rev = find_constraint<RevoluteJoint>(joint)) {
+    s.body_i = rev->body_i;
+    s.body_j = rev->body_j;
+  } else if (const auto* tr = find_constraint<TranslationalJoint>(joint)) {
+    s.body_i = tr->body_i;
+    s.body_j = tr->body_j;
+    s.slide = true;
+    s.along = tr->across;
+    s.along.w = tr->across.line_direction();
+  } else {
+    throw ModelError("stop '" + name + "': '" + joint +
+                     (names_.count(joint) ? "' is not a revolute or translational joint"
+                                          : "' is not a joint of this model"));
+  }
+  if (!lower && !upper) throw ModelError("stop '" + name + "': give a lower or an upper limit (or both)");
+  if (lower && !std::isfinite(*lower)) throw ModelError("stop '" + name + "': lower is not finite: " + fmt(*lower));
+  if (upper && !std::isfinite(*upper)) throw ModelError("stop '" + name + "': upper is not finite: " + fmt(*upper));
+  if (lower && upper && !(*lower < *upper))
+    throw ModelError("stop '" + name + "': lower = " + fmt(*lower) + " must be below upper = " + fmt(*upper));
+  if (!(std::isfinite(restitution) && restitution >= 0.0 && restitution <= 1.0))
+    throw ModelError("stop '" + name + "': restitution must be in [0, 1], got " + fmt(restitution));
+  if (!(std::isfinite(rest_speed) && rest_speed >= 0.0))
+    throw ModelError("stop '" + name + "': rest_speed must be finite and >= 0, got " + fmt(rest_speed));
+  s.has_lower = bool(lower);
+  s.has_upper = bool(upper);
+  s.lower = lower.value_or(0.0);
+  s.upper = upper.value_or(0.0);
+  s.restitution = restitution;
+  s.rest_speed = rest_speed;
+  add_event_element(std::move(s));
+}
+
+}  // namespace lagmb
+
+
+// --- circle-line contact (a force and an event element) ------------------------
+
+namespace lagmb {
+
+void Model::add_contact(const std::string& name, int circle_body, Vec2 center, double radius, int line_body,
+                        Vec2 point, Vec2 direction, double stiffness, double restitution, double friction,
+                        double slip_velocity) {
+  require_open("add contact '" + name + "'");
+  check_new_name(name);
+  check_pair(name, circle_body, line_body);
+  require_finite(center, name, "center");
+  require_finite(point, name, "point");
+  auto positive = [&](double x, const char* what) {
+    if (!(std::isfinite(x) && x > 0))
+      throw ModelError("contact '" + name + "': " + what + " must be positive and finite, got " + fmt(x));
+  };
+  positive(radius, "radius");
+  positive(stiffness, "stiffness");
+  positive(slip_velocity, "slip_velocity");
+  if (!(std::isfinite(restitution) && restitution > 0.0 && restitution <= 1.0))
+    throw ModelError("contact '" + name + "': restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
+                     fmt(restitution));
+  if (!(std::isfinite(friction) && friction >= 0.0))
+    throw ModelError("contact '" + name + "': friction must be finite and >= 0, got " + fmt(friction));
+  require_on_particle(circle_body, center, name);
+  CircleLineContact c;
+  c.name = name;
+  c.body_i = circle_body;
+  c.body_j = line_body;
+  c.s_c = to_local(circle_body, center);
+  c.s_p = to_local(line_body, point);
+  c.u = direction_to_local(line_body, direction, name);
+  c.radius = radius;
+  c.stiffness = stiffness;
+  c.restitution = restitution;
+  c.friction = friction;
+  c.slip_velocity = slip_velocity;
+  add_event_element(c, false);
+  add_force_element(std::move(c));
 }
 
 }  // namespace lagmb

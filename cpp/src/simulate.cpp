@@ -5,6 +5,7 @@
 #include <memory>
 #include <sstream>
 
+#include "events.hpp"
 #include "integrators.hpp"
 #include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
@@ -153,6 +154,18 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
                        {},          o.progress,  o.progress_interval};
   for (double b : model.breakpoints())
     if (b > o.t0 && b < o.t_end) plan.breakpoints.push_back(b);
+  // event elements (stops, contacts): root functions for the integrators
+  std::unique_ptr<EventRunner> events;
+  if (!model.event_groups().empty()) {
+    events = std::make_unique<EventRunner>(model);
+    plan.events = events.get();
+    // a joint that starts at a limit, moving into it, gets its impact at t0
+    try {
+      if (events->start(o.t0, start.q, start.v)) start = events->consistent(o.t0, start.q, start.v);
+    } catch (const IntegratorFailure& e) {
+      throw SimulationError(e.what(), e.t);
+    }
+  }
   Trajectory tr;
   tr.n = n;
   tr.m = m;
@@ -176,6 +189,12 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       tr.lam.assign(size_t(tr.size()) * m, NAN);
     }
     tr.stats.element_evaluations += d.element_evaluations;  // start and outputs
+    if (events) {
+      tr.events = events->records;
+      tr.stats.events = events->events;
+      tr.stats.impacts = events->impacts;
+      tr.stats.root_evals = events->root_evals;
+    }
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
 
@@ -194,7 +213,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     finish();
     std::ostringstream msg;
     msg << e.what();
-    if (e.q.size()) msg << diagnose_failure(model, e.q, e.t);
+    if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t);
     msg << " Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back())
         << " are kept in the partial result.";
     throw SimulationError(msg.str(), e.t, std::move(tr));

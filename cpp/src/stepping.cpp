@@ -1,6 +1,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "events.hpp"
 #include "integrators.hpp"
 
 namespace lagmb {
@@ -19,6 +20,8 @@ void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentSt
 
   auto clock = std::chrono::steady_clock::now();
   long steps = 0;
+  std::vector<int> fired;
+  VecX q_event, v_event;
   try {
     while (k < t_out.size()) {
       bool at_stop = false;
@@ -33,6 +36,21 @@ void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentSt
         msg << stepper.name() << " reached max_steps = " << plan.max_steps << " at t = " << t
             << " before t_end = " << plan.t_end << ".";
         throw IntegratorFailure(msg.str(), t);
+      }
+      if (plan.events) {
+        // a root of the event functions (or a crossing the integrator
+        // stepped over): the elements act, and the run restarts from the
+        // state they leave, at order 1
+        const bool root = stepper.root_found(fired);
+        if (root || plan.events->missed(t, stepper.positions(), stepper.velocities(), fired)) {
+          q_event = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
+          v_event = Eigen::Map<const VecX>(stepper.velocities(), start.v.size());
+          if (plan.events->handle(t, q_event, v_event, fired)) {
+            stepper.reset(t, plan.events->consistent(t, q_event, v_event));
+            stepper.set_stop(stop_time());
+            continue;
+          }
+        }
       }
       if (at_stop) {
         if (next_break >= plan.breakpoints.size()) break;  // t_end

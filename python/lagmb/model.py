@@ -272,6 +272,65 @@ class Model:
                    as_time_function(f, f"driver '{name}'"))
         self._record("drive_body", name=name, body=b, coordinate=coordinate, f=f)
 
+    # --- stops (joint limits with impacts) --------------------------------
+
+    def add_stop(self, name, joint, lower=None, upper=None, restitution=0.0, rest_speed=1e-3):
+        """Limit a joint coordinate s to lower <= s <= upper (either may be
+        None): a revolute's relative angle phi_j - phi_i (rad) or a
+        translational's slide displacement (m, 0 in the initial
+        configuration), as for drive_joint. Reaching a limit with approaching
+        speed is an impact: the relative velocity along s reverses with
+        Newton's ``restitution`` e in [0, 1] (s'+ = -e s'-), the joints are
+        kept, and the integrator restarts. A rebound slower than
+        ``rest_speed`` (rad/s or m/s) while the motion presses on the limit
+        stops the run with SimulationError naming the stop (resting contact
+        is not modelled). Impacts are listed in ``Result.events``."""
+        name = self._name(name)
+        joint = getattr(joint, "name", joint)
+        what = f"stop '{name}'"
+        if not isinstance(joint, str):
+            raise ModelError(f"{what}: joint must be a joint name, got {joint!r}")
+        lo = None if lower is None else _number(lower, f"{what}: lower")
+        up = None if upper is None else _number(upper, f"{what}: upper")
+        e = _number(restitution, f"{what}: restitution")
+        vr = _number(rest_speed, f"{what}: rest_speed")
+        self._call("add_stop", name, joint, lo, up, e, vr)
+        self._record("add_stop", name=name, joint=joint, lower=lo, upper=up, restitution=e,
+                     rest_speed=vr)
+
+    # --- contact -----------------------------------------------------------
+
+    def add_contact(self, name, circle_body, center, radius, line_body, point, direction, stiffness,
+                    restitution, friction=0.0, slip_velocity=1e-4):
+        """Contact between a circle on ``circle_body`` (``center``, global in
+        the initial configuration, and ``radius``, m) and the line through
+        ``point`` along ``direction`` on ``line_body`` (or the ground); the
+        circle belongs on the left of the direction (direction turned +90 deg
+        points to it). With penetration d > 0 the normal force is
+        k d^1.5 (1 + 8 (1 - e) / (5 e) d' / v_impact) (Hunt-Crossley damping
+        calibrated to the restitution e in (0, 1], Flores et al. 2011;
+        ``stiffness`` k in N/m^1.5), v_impact the approach speed at contact
+        onset; Coulomb friction -mu F_n v_t / sqrt(v_t^2 + v_s^2) with
+        ``friction`` mu and the ``slip_velocity`` v_s (m/s) below which it is
+        smoothed. Onset and release are events (r.events) where the
+        integrator restarts."""
+        name = self._name(name)
+        bc, bl = self._body_name(circle_body, name), self._body_name(line_body, name)
+        what = f"contact '{name}'"
+        c = _vec2(center, f"{what}: center")
+        p = _vec2(point, f"{what}: point")
+        u = _vec2(direction, f"{what}: direction")
+        args = [_number(x, f"{what}: {label}") for x, label in
+                ((radius, "radius"), (stiffness, "stiffness"), (restitution, "restitution"),
+                 (friction, "friction"), (slip_velocity, "slip_velocity"))]
+        R, k, e, mu, vs = args
+        self._call("add_contact", name, self._body_index(bc, name), c, R, self._body_index(bl, name), p, u,
+                   k, e, mu, vs)
+        self._record("add_contact", name=name, circle_body=bc, center=_tuple(c), radius=R, line_body=bl,
+                     point=_tuple(p), direction=_tuple(u), stiffness=k, restitution=e, friction=mu,
+                     slip_velocity=vs)
+        self._attach(bc, self._local(bc, c))
+
     # --- forces ----------------------------------------------------------
 
     def add_spring_damper(self, name, body_i, point_i, body_j, point_j, stiffness=0.0, damping=0.0,

@@ -30,6 +30,10 @@ class Result:
     """States at the output times of a run.
 
     t (k,), q, v, a (k, n) and lam (k, m) in the sign of DESIGN.md section 1.
+    events: the events handled during the run (impacts at stops, contact
+    switches), in time order, each a dict with t, element, kind ("impact",
+    "restart", "rest"), label ("lower", "upper", "onset", ...),
+    speed_before and speed_after (the element's g' around the jump).
     a and lam are solved from the augmented system at each output state, so
     M a + Phi_q^T lam = Q holds for exactly the reported q and v. Derived
     quantities (energy, residual, reactions) are computed when first asked.
@@ -44,6 +48,7 @@ class Result:
         self.a = raw["a"]
         self.lam = raw["lam"]
         self.stats = dict(raw["stats"])
+        self.events = [dict(e) for e in raw.get("events", [])]
 
     def __len__(self):
         return len(self.t)

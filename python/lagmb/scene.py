@@ -42,7 +42,7 @@ A scene, with every table (all keys in SI units, angles in radians)::
     function = { type = "linear", rate = 10.0, start = 0.0 }   # or a number
 
     [[forces]]                      # type: spring_damper, rotational_spring_damper,
-    type = "force"                  # force or torque; the add_<type> arguments
+    type = "force"                  # force, torque, contact, joint_friction: add_<type>
     name = "push"
     body = "crank"
     force = [0.0, { type = "harmonic", amplitude = 2.0, omega = 3.0 }]
@@ -54,6 +54,12 @@ A scene, with every table (all keys in SI units, angles in radians)::
     mu = 0.2
     pin_radius = 0.01
     enabled = false                 # any element table: read and checked, not added
+
+    [[stops]]                       # add_stop(name, joint, lower, upper, restitution,
+    name = "limit"                  #          rest_speed): a joint limit with impacts
+    joint = "pivot"
+    lower = -1.0
+    restitution = 0.5
 
     [simulation]                    # the keyword arguments of mb.simulate
     t_end = 2.0                     # t0, rtol, atol, n_out or t_out, max_step,
@@ -145,7 +151,7 @@ class SceneError(ModelError):
 
 # --- the format ---------------------------------------------------------------
 
-_ELEMENT_TABLES = ("bodies", "particles", "joints", "drivers", "forces")
+_ELEMENT_TABLES = ("bodies", "particles", "joints", "drivers", "forces", "stops")
 _TABLES = ("model",) + _ELEMENT_TABLES + ("simulation", "output")
 
 # table -> {type: Model method}; None: the table has no `type` key
@@ -156,23 +162,24 @@ _METHODS = {
                                         "pin_in_slot", "gear", "rack_pinion")},
     "drivers": {"joint": "drive_joint", "body": "drive_body"},
     "forces": {t: "add_" + t for t in ("spring_damper", "rotational_spring_damper",
-                                        "force", "torque", "joint_friction")},
+                                        "force", "torque", "joint_friction", "contact")},
+    "stops": {None: "add_stop"},
 }
 _SINGULAR = {"bodies": "body", "particles": "particle", "joints": "joint", "drivers": "driver",
-             "forces": "force"}
+             "forces": "force", "stops": "stop"}
 _TABLE_OF = {m: (table, typ) for table, types in _METHODS.items() for typ, m in types.items()}
 
 # a method's keyword -> the scene key, where they differ
 _RENAMED = {("drive_joint", "f"): "function", ("drive_body", "f"): "function"}
 
 # what the value of a key is (by key name; (method, key) where it depends on the method)
-_BODY_REF = {"body", "body_i", "body_j", "pinion", "rack"}
+_BODY_REF = {"body", "body_i", "body_j", "pinion", "rack", "circle_body", "line_body"}
 _VEC2 = {"position", "velocity", "at", "axis", "point", "point_i", "point_j",
-         "local_i", "local_j", "center_i", "center_j"}
+         "local_i", "local_j", "center_i", "center_j", "center", "direction"}
 _NUMBER = {"mass", "inertia", "angle", "angular_velocity", "length", "ratio", "radius",
            "stiffness", "damping", "free_length", "free_angle",
            "mu", "viscous", "preload", "pin_radius", "bearing_length", "slip_velocity",
-           "load_smoothing"}
+           "load_smoothing", "lower", "upper", "restitution", "rest_speed", "friction"}
 _FUNCTION = {"f", "torque", ("add_spring_damper", "force")}
 _FUNCTION_PAIR = {("add_force", "force")}
 _STRING = {"name", "coordinate"}
@@ -513,7 +520,7 @@ class _Reader:
                     msg = f"unknown top-level key '{key}'"
                 raise SceneError(f"{msg}; a scene has the tables [model], [[bodies]], "
                                  "[[particles]], [[joints]], [[drivers]], [[forces]], "
-                                 "[simulation] and [output]", self.path, w.line(), None, key)
+                                 "[[stops]], [simulation] and [output]", self.path, w.line(), None, key)
         for key in ("model", "simulation", "output"):
             if key in data and not isinstance(data[key], dict):
                 raise SceneError(f"'{key}' must be a table [{key}], got {_toml_type(data[key])}",
@@ -652,7 +659,7 @@ class _Reader:
                 found = self.later(("joints",), name)
                 if found:
                     raise w.error(f"joint {name!r} is defined later ({found[0]}, line {found[1]}); "
-                                  "define joints before the drivers that use them", key)
+                                  "define joints before the drivers and stops that use them", key)
                 known = ", ".join(sorted(self.joints)) or "none"
                 raise w.error(f"no joint named {name!r} (joints: {known})", key)
             return name

@@ -11,6 +11,7 @@
 
 #include "lagmb/constraint_group.hpp"
 #include "lagmb/elements/applied_force.hpp"
+#include "lagmb/elements/contact.hpp"
 #include "lagmb/elements/distance.hpp"
 #include "lagmb/elements/drivers.hpp"
 #include "lagmb/elements/gear.hpp"
@@ -21,8 +22,10 @@
 #include "lagmb/elements/revolute.hpp"
 #include "lagmb/elements/rotational_spring_damper.hpp"
 #include "lagmb/elements/spring_damper.hpp"
+#include "lagmb/elements/stop.hpp"
 #include "lagmb/elements/translational.hpp"
 #include "lagmb/elements/weld.hpp"
+#include "lagmb/event_group.hpp"
 #include "lagmb/force_group.hpp"
 #include "lagmb/friction_group.hpp"
 #include "lagmb/time_function.hpp"
@@ -54,8 +57,8 @@ constexpr int kGround = -1;
 
 /// What a name refers to.
 struct ElementRef {
-  enum Type { kBody, kConstraint, kForce, kFriction } type;
-  int group;  // constraint or force group; body index for kBody
+  enum Type { kBody, kConstraint, kForce, kFriction, kEvent } type;
+  int group;  // constraint, force, friction or event group; body index for kBody
   int index;  // element within its group
 };
 
@@ -128,12 +131,33 @@ class Model {
   void add_joint_friction(const std::string& name, const std::string& joint,
                           const JointFrictionParameters& parameters);
 
+  /// Stop (limit) on a revolute's relative angle phi_j - phi_i or a
+  /// translational's slide displacement (0 in the initial configuration), as
+  /// for drive_joint: lower <= s <= upper (either may be absent), impacts with
+  /// Newton's restitution e in [0, 1]; rebounds slower than rest_speed (rad/s
+  /// or m/s) while the motion presses on the limit stop the run (resting
+  /// contact is not modelled). See elements/stop.hpp.
+  void add_stop(const std::string& name, const std::string& joint, std::optional<double> lower,
+                std::optional<double> upper, double restitution, double rest_speed = 1e-3);
+
+  /// Contact between a circle (centre `center`, global, initial; `radius`) on
+  /// circle_body and the line through `point` along `direction` (global,
+  /// initial) on line_body: Hunt-Crossley normal force k d^1.5 (1 + 8 (1 - e)
+  /// / (5 e) d' / v_impact), Coulomb friction mu regularized below
+  /// slip_velocity (m/s). See elements/contact.hpp.
+  void add_contact(const std::string& name, int circle_body, Vec2 center, double radius, int line_body,
+                   Vec2 point, Vec2 direction, double stiffness, double restitution, double friction = 0.0,
+                   double slip_velocity = 1e-4);
+
   /// Adds a constraint element of any kind (see constraint_group.hpp).
   template <class Kind>
   void add_constraint(Kind element);
   /// Adds a force element of any kind (see force_group.hpp).
   template <class Kind>
   void add_force_element(Kind element);
+  /// Adds an event element of any kind (see event_group.hpp).
+  template <class Kind>
+  void add_event_element(Kind element, bool named = true);
 
   /// Freezes the model: numbers coordinates and rows, builds patterns.
   void finalize();
@@ -158,6 +182,9 @@ class Model {
     return time_dependent_;
   }
   const std::vector<std::unique_ptr<ForceGroupBase>>& force_groups() const { return forces_; }
+  /// Event groups (stops, contact switches). Their elements may keep per-run
+  /// state (reset at the start of each simulate): one run at a time per Model.
+  const std::vector<std::unique_ptr<EventGroupBase>>& event_groups() const { return events_; }
   /// Force groups whose Q depends on q or v.
   const std::vector<const ForceGroupBase*>& state_dependent_forces() const {
     return state_dependent_;
@@ -222,6 +249,8 @@ class Model {
   std::map<std::type_index, int> constraint_group_of_kind_, force_group_of_kind_;
   std::vector<std::pair<int, int>> constraint_order_;  // (group, index) in insertion order
   std::vector<std::unique_ptr<ForceGroupBase>> forces_;
+  std::vector<std::unique_ptr<EventGroupBase>> events_;
+  std::map<std::type_index, int> event_group_of_kind_;
   std::vector<const ConstraintGroupBase*> time_dependent_;
   std::vector<const ForceGroupBase*> state_dependent_;
   std::vector<TimeFunctionPtr> time_functions_;  // of drivers and forces, for breakpoints
@@ -271,6 +300,20 @@ void Model::add_force_element(Kind element) {
 }
 
 template <class Kind>
+void Model::add_event_element(Kind element, bool named) {
+  require_open("add " + std::string(Kind::kind) + " '" + element.name + "'");
+  if (named) check_new_name(element.name);
+  check_pair(element.name, element.body_i, element.body_j);
+  auto [it, inserted] =
+      event_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(events_.size()));
+  if (inserted) events_.push_back(std::make_unique<EventGroup<Kind>>());
+  auto& group = static_cast<EventGroup<Kind>&>(*events_[it->second]);
+  // (an element that is also a force keeps the name of its force entry)
+  if (named) register_name(element.name, {ElementRef::kEvent, it->second, group.size()});
+  group.add(std::move(element));
+}
+
+template <class Kind>
 const Kind* Model::find_constraint(const std::string& name) const {
   auto named = names_.find(name);
   auto group = constraint_group_of_kind_.find(std::type_index(typeid(Kind)));
@@ -301,6 +344,12 @@ void FrictionGroup<Kind>::place(const Model& model) {
   place_.clear();
   for (const auto& e : items)
     place_.push_back(model.constraint_groups()[e.joint_group]->placement(e.joint_index));
+}
+
+template <class Kind>
+void EventGroup<Kind>::place(const Model& model) {
+  coord_.clear();
+  for (const auto& e : items) coord_.push_back(model.local_coordinates(e.body_i, e.body_j));
 }
 
 }  // namespace lagmb

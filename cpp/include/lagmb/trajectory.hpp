@@ -30,6 +30,19 @@ struct Stats {
   /// fully driven model solved from its constraints alone: steps = 0).
   std::string analysis = "dynamic";
   long kinematic_solves = 0;  // position solves of a kinematic analysis (outputs + sub-steps)
+  long events = 0;    // event-function crossings handled (stops, contact switches)
+  long impacts = 0;   // of which velocity jumps
+  long root_evals = 0;  // evaluations of the event functions
+};
+
+/// One handled event: an impact at a stop, or a switch of a contact force.
+struct EventRecord {
+  double t = 0.0;
+  std::string element;
+  std::string kind;   // "impact", "restart" (a force switches), "rest"
+  std::string label;  // "lower", "upper", "onset", "release", ...
+  double speed_before = 0.0;  // g' before (negative: approaching), rad/s or m/s
+  double speed_after = 0.0;   // g' after the jump
 };
 
 /// States at the output times, row-major: q[k * n + i] is coordinate i at
@@ -40,6 +53,7 @@ struct Trajectory {
   int n = 0, m = 0;
   std::vector<double> t, q, v, a, lam;
   Stats stats;
+  std::vector<EventRecord> events;
   int size() const { return static_cast<int>(t.size()); }
 };
 

@@ -1,0 +1,211 @@
+// Planar contact between a circle (on body i) and a line (on body j or the
+// ground): a compliant normal force with Hunt-Crossley damping calibrated to
+// a restitution coefficient, and regularized Coulomb friction.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "lagmb/event_group.hpp"
+#include "lagmb/types.hpp"
+
+namespace lagmb {
+
+/// A number with its first derivatives with respect to N inputs (forward
+/// mode): the contact force is written once, as a template, and evaluated
+/// with doubles for Q and with Dual<12> over (c, cd) for Q_c and Q_cd, which
+/// are then exact to rounding.
+template <int N>
+struct Dual {
+  double v = 0.0;
+  Eigen::Matrix<double, N, 1> d = Eigen::Matrix<double, N, 1>::Zero();
+  Dual() = default;
+  Dual(double x) : v(x) {}  // NOLINT: constants convert
+  friend Dual operator+(Dual a, const Dual& b) { a.v += b.v; a.d += b.d; return a; }
+  friend Dual operator-(Dual a, const Dual& b) { a.v -= b.v; a.d -= b.d; return a; }
+  friend Dual operator-(Dual a) { a.v = -a.v; a.d = -a.d; return a; }
+  friend Dual operator*(const Dual& a, const Dual& b) {
+    Dual r;
+    r.v = a.v * b.v;
+    r.d = a.d * b.v + b.d * a.v;
+    return r;
+  }
+  friend Dual operator/(const Dual& a, const Dual& b) {
+    Dual r;
+    r.v = a.v / b.v;
+    r.d = (a.d - b.d * r.v) / b.v;
+    return r;
+  }
+  friend Dual sqrt(const Dual& a) {
+    Dual r;
+    r.v = std::sqrt(a.v);
+    r.d = a.d / (2.0 * r.v);
+    return r;
+  }
+  friend Dual pow(const Dual& a, double p) {
+    Dual r;
+    r.v = std::pow(a.v, p);
+    r.d = a.d * (p * std::pow(a.v, p - 1.0));
+    return r;
+  }
+  friend Dual cos(const Dual& a) {
+    Dual r;
+    r.v = std::cos(a.v);
+    r.d = -std::sin(a.v) * a.d;
+    return r;
+  }
+  friend Dual sin(const Dual& a) {
+    Dual r;
+    r.v = std::sin(a.v);
+    r.d = std::cos(a.v) * a.d;
+    return r;
+  }
+};
+inline double value_of(double x) { return x; }
+template <int N>
+double value_of(const Dual<N>& x) { return x.v; }
+
+/// Per-run state of a contact: the approach speed of the current contact.
+struct ContactState {
+  double impact_speed = 0.0;
+};
+
+/// Circle: centre C = r_i + A_i s_c, radius R, on body i. Line: through
+/// P0 = r_j + A_j s_p with direction u = A_j u' (unit) on body j; the circle
+/// belongs on the side of n = u turned +90 deg. Signed distance of the centre
+/// h = n . (C - P0), penetration d = R - h, its rate d' = -h'
+/// (h' = n . (C' - P0') + omega_j (R90 n) . (C - P0)). The contact point is the
+/// centre's projection on the line, P = C - h n; v_t = u . (v_i(P) - v_j(P))
+/// is the slip velocity of the circle's material point there over the line's.
+/// For d > 0 (Flores, Machado, Silva, Martins 2011, Multibody Syst Dyn 25):
+///   F_n = k d^1.5 (1 + 8 (1 - e) / (5 e) d' / v_impact)   (clamped at >= 0)
+///   F_t = -mu F_n v_t / sqrt(v_t^2 + v_s^2)
+/// F = F_n n + F_t u acts on body i at P and -F on body j at P:
+///   Q_i = (F, (P - r_i) x F),  Q_j = (-F, -(P - r_j) x F).
+/// v_impact is the approach speed -g' recorded by the onset event (at least
+/// kMinImpactSpeed; a contact present at the start uses kMinImpactSpeed).
+/// Potential (the elastic part): k d^2.5 / 2.5. Q_c and Q_cd are exact
+/// (forward-mode derivatives of this same code, Dual<12>); where the clamp is
+/// active they are those of F_n = 0.
+/// Event function: the gap g = h - R, both directions: onset (g' < 0: records
+/// v_impact) and release restart the integrator (the force is not smooth there).
+struct CircleLineContact {
+  static constexpr bool state_dependent = true;
+  static constexpr int roots = 1;
+  static constexpr const char* kind = "contact";
+  static constexpr double kExponent = 1.5;
+  static constexpr double kMinImpactSpeed = 1e-3;  // m/s
+
+  std::string name;
+  int body_i = -1, body_j = -1;
+  Vec2 s_c = Vec2::Zero(), s_p = Vec2::Zero(), u = Vec2::UnitX();  // local
+  double radius = 0.0, stiffness = 0.0, restitution = 1.0, friction = 0.0, slip_velocity = 1e-4;
+  std::shared_ptr<ContactState> state = std::make_shared<ContactState>();
+
+  template <class T>
+  struct Geometry {
+    T Cx, Cy, nx, ny, ux, uy, h, hd, vt, Px, Py;
+  };
+
+  template <class T>
+  Geometry<T> geometry(const T* c, const T* cd) const {
+    using std::cos;
+    using std::sin;
+    Geometry<T> G;
+    const T ci = cos(c[2]), si = sin(c[2]), cj = cos(c[5]), sj = sin(c[5]);
+    // A s = (cos s_x - sin s_y, sin s_x + cos s_y)
+    const T ax = ci * s_c.x() - si * s_c.y(), ay = si * s_c.x() + ci * s_c.y();  // A_i s_c
+    const T bx = cj * s_p.x() - sj * s_p.y(), by = sj * s_p.x() + cj * s_p.y();  // A_j s_p
+    G.ux = cj * u.x() - sj * u.y();
+    G.uy = sj * u.x() + cj * u.y();
+    G.nx = -G.uy;
+    G.ny = G.ux;
+    G.Cx = c[0] + ax;
+    G.Cy = c[1] + ay;
+    const T dx = G.Cx - c[3] - bx, dy = G.Cy - c[4] - by;  // C - P0
+    G.h = G.nx * dx + G.ny * dy;
+    // C' = rd_i + w_i R90 A_i s_c, P0' = rd_j + w_j R90 A_j s_p, n' = w_j R90 n
+    const T Cdx = cd[0] - cd[2] * ay, Cdy = cd[1] + cd[2] * ax;
+    const T Pdx = cd[3] - cd[5] * by, Pdy = cd[4] + cd[5] * bx;
+    G.hd = G.nx * (Cdx - Pdx) + G.ny * (Cdy - Pdy) + cd[5] * (-G.ny * dx + G.nx * dy);
+    G.Px = G.Cx - G.h * G.nx;
+    G.Py = G.Cy - G.h * G.ny;
+    // v_i(P) - v_j(P), material points of each body at P
+    const T vx = cd[0] - cd[2] * (G.Py - c[1]) - (cd[3] - cd[5] * (G.Py - c[4]));
+    const T vy = cd[1] + cd[2] * (G.Px - c[0]) - (cd[4] + cd[5] * (G.Px - c[3]));
+    G.vt = G.ux * vx + G.uy * vy;
+    return G;
+  }
+
+  template <class T>
+  void evaluate(const T* c, const T* cd, T* Q) const {
+    using std::pow;
+    using std::sqrt;
+    for (int a = 0; a < 6; ++a) Q[a] = T(0.0);
+    const Geometry<T> G = geometry(c, cd);
+    const T d = T(radius) - G.h;
+    if (!(value_of(d) > 0.0)) return;
+    const double v_imp = std::max(state->impact_speed, kMinImpactSpeed);
+    const double chi = 8.0 * (1.0 - restitution) / (5.0 * restitution * v_imp);
+    T Fn = stiffness * pow(d, kExponent) * (T(1.0) - chi * G.hd);
+    if (!(value_of(Fn) > 0.0)) return;  // the damping would pull: no force
+    T Ft = T(0.0);
+    if (friction > 0.0) Ft = -friction * Fn * G.vt / sqrt(G.vt * G.vt + T(slip_velocity * slip_velocity));
+    const T Fx = Fn * G.nx + Ft * G.ux, Fy = Fn * G.ny + Ft * G.uy;
+    Q[0] = Fx;
+    Q[1] = Fy;
+    Q[2] = (G.Px - c[0]) * Fy - (G.Py - c[1]) * Fx;
+    Q[3] = -Fx;
+    Q[4] = -Fy;
+    Q[5] = -((G.Px - c[3]) * Fy - (G.Py - c[4]) * Fx);
+  }
+
+  Local6 force(const Local6& c, const Local6& cd, double) const {
+    double Q[6];
+    evaluate(c.data(), cd.data(), Q);
+    return Eigen::Map<const Local6>(Q);
+  }
+  void derivatives(const Local6& c, const Local6& cd, double, Mat6& Q_c, Mat6& Q_cd) const {
+    using D = Dual<12>;
+    D x[6], xd[6], Q[6];
+    for (int a = 0; a < 6; ++a) {
+      x[a] = D(c[a]);
+      x[a].d[a] = 1.0;
+      xd[a] = D(cd[a]);
+      xd[a].d[6 + a] = 1.0;
+    }
+    evaluate(x, xd, Q);
+    for (int b = 0; b < 6; ++b) {
+      Q_c.row(b) = Q[b].d.head<6>().transpose();
+      Q_cd.row(b) = Q[b].d.tail<6>().transpose();
+    }
+  }
+  double potential(const Local6& c, double) const {
+    const Local6 zero = Local6::Zero();
+    const double d = radius - geometry(c.data(), zero.data()).h;
+    return d > 0.0 ? stiffness * std::pow(d, kExponent + 1.0) / (kExponent + 1.0) : 0.0;
+  }
+
+  // event: the gap
+  double root(int, const Local6& c, const Local6& cd, double) const {
+    const double g = geometry(c.data(), cd.data()).h - radius;
+    return g != 0.0 ? g : -1e-300;
+  }
+  int direction(int) const { return 0; }
+  EventAction crossing(int, const Local6& c, const Local6& cd, double) const {
+    EventAction a;
+    a.type = EventAction::kRestart;
+    a.speed = geometry(c.data(), cd.data()).hd;
+    if (a.speed < 0.0) {
+      state->impact_speed = -a.speed;
+      a.label = "onset";
+    } else {
+      a.label = "release";
+    }
+    return a;
+  }
+  void reset() { state->impact_speed = 0.0; }
+};
+
+}  // namespace lagmb

@@ -1,0 +1,252 @@
+"""Joint stops: impacts found by the integrators' root finding.
+
+References (all closed form, none from lagmb):
+- pendulum: a uniform rod (L = 1, m = 1, J_O = m L^2 / 3) released at rest
+  from the horizontal reaches the vertical after a quarter of its period,
+  t* = sqrt(2 L / (3 g)) K(1/2) (K: the complete elliptic integral of the
+  first kind, scipy.special.ellipk with parameter m = 1/2), with angular
+  speed sqrt(3 g / L) (energy: J_O w^2 / 2 = m g L / 2);
+- slider: a block on a frictionless incline at angle a under gravity has the
+  constant acceleration g sin(a) along it; from rest it slides d in
+  t* = sqrt(2 d / (g sin a)) and hits at v* = g sin(a) t*; a rebound at
+  e v* returns after 2 e v* / (g sin a).
+Each formulation gets the same checks: IDA (ggl, index3, index1) and CVODE
+(projection).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.special import ellipk
+
+import lagmb as mb
+
+G = 9.81
+FORMULATIONS = ["ggl", "index3", "index1", "projection"]
+# index-3 BDF resolves the event time only to O(tol / h) (see dae.hpp): looser
+TIME_TOL = {"ggl": 1e-8, "index3": 1e-6, "index1": 1e-8, "projection": 1e-8}
+
+
+def pendulum(restitution, lower=-math.pi / 2, angle=0.0, angular_velocity=0.0, **stop):
+    m = mb.Model(gravity=(0.0, -G))
+    c, s = math.cos(angle), math.sin(angle)
+    rod = m.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5 * c, 0.5 * s), angle=angle,
+                     velocity=(-0.5 * s * angular_velocity, 0.5 * c * angular_velocity),
+                     angular_velocity=angular_velocity)
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m.add_stop("stop", "pin", lower=lower, restitution=restitution, **stop)
+    return m
+
+
+def incline(restitution, a=math.radians(30.0), d=0.3, **stop):
+    m = mb.Model(gravity=(0.0, -G))
+    block = m.add_body("block", mass=2.0, inertia=0.1, position=(0.0, 0.0))
+    m.add_translational("rail", m.ground, block, at=(0.0, 0.0), axis=(math.cos(a), math.sin(a)))
+    m.add_stop("end", "rail", lower=-d, restitution=restitution, **stop)
+    return m
+
+
+@pytest.mark.parametrize("formulation", FORMULATIONS)
+def test_pendulum_hits_stop_at_quarter_period(formulation):
+    """Impact time = the closed-form quarter period (to 1e-8 s; index3 1e-6),
+    impact speed sqrt(3 g) (1e-6 relative), rebound e times it (1e-6), and
+    after the impact the energy is J_O (e w)^2 / 2 - m g L / 2 (1e-6 J;
+    index3, whose velocities are only index-2 accurate, 1e-5 J)."""
+    e = 0.5
+    r = mb.simulate(pendulum(e), t_end=0.9, rtol=1e-10, atol=1e-12, formulation=formulation, n_out=91)
+    t_star = math.sqrt(2.0 / (3.0 * G)) * float(ellipk(0.5))
+    w = math.sqrt(3.0 * G)
+    first = r.events[0]
+    assert first["element"] == "stop" and first["kind"] == "impact" and first["label"] == "lower"
+    assert abs(first["t"] - t_star) <= TIME_TOL[formulation]
+    assert abs(first["speed_before"] + w) <= 1e-6 * w
+    assert abs(first["speed_after"] - e * w) <= 1e-6 * w
+    assert r.stats["impacts"] == len(r.events) == 1
+    after = r.t > t_star
+    energy = 0.5 * (1.0 / 3.0) * r.v[after, 2] ** 2 + G * r.q[after, 1]
+    energy_tol = 1e-5 if formulation == "index3" else 1e-6
+    assert np.max(np.abs(energy - (0.5 * (1.0 / 3.0) * (e * w) ** 2 - 0.5 * G))) <= energy_tol
+    # the joint never goes through the stop
+    assert np.min(r.q[:, 2]) >= -math.pi / 2 - 1e-9
+
+
+@pytest.mark.parametrize("formulation", FORMULATIONS)
+def test_slider_hits_translational_stop(formulation):
+    """Block on a 30 deg incline, stop 0.3 m down the rail, e = 0.6: first
+    impact at sqrt(2 d / (g sin a)) (1e-8 s; index3 1e-6), speed g sin(a) t*
+    (1e-6 relative), rebound e v*, second impact 2 e v* / (g sin a) later."""
+    e, a, d = 0.6, math.radians(30.0), 0.3
+    acc = G * math.sin(a)
+    t1 = math.sqrt(2.0 * d / acc)
+    v1 = acc * t1
+    t2 = t1 + 2.0 * e * v1 / acc
+    r = mb.simulate(incline(e), t_end=t2 + 0.05, rtol=1e-10, atol=1e-12, formulation=formulation)
+    ev = r.events
+    assert [x["kind"] for x in ev] == ["impact", "impact"]
+    assert abs(ev[0]["t"] - t1) <= TIME_TOL[formulation]
+    assert abs(ev[0]["speed_before"] + v1) <= 1e-6 * v1
+    assert abs(ev[0]["speed_after"] - e * v1) <= 1e-6 * v1
+    assert abs(ev[1]["t"] - t2) <= 10 * TIME_TOL[formulation]
+    assert abs(ev[1]["speed_before"] + e * v1) <= 1e-6 * v1
+    # the rail keeps its joint through the jumps
+    assert np.max(r.residual) <= 1e-9
+    assert np.max(r.velocity_residual) <= 1e-7
+
+
+@pytest.mark.parametrize("formulation", ["ggl", "projection"])
+def test_bouncing_to_rest_stops_with_a_clear_error(formulation):
+    """e = 0.5 on the incline: the bounce speeds are e^k v* at the closed-form
+    times t1 + sum_{i<k} 2 e^(i+1) v* / (g sin a) (1e-6 s); once a rebound is
+    slower than rest_speed = 1e-2 m/s while gravity presses the block on the
+    stop, the run ends with SimulationError naming the stop (no hang: the
+    impacts would otherwise pile up towards the Zeno time)."""
+    e, a, d, rest = 0.5, math.radians(30.0), 0.3, 1e-2
+    acc = G * math.sin(a)
+    t1 = math.sqrt(2.0 * d / acc)
+    v1 = acc * t1
+    times, speeds, t, v = [], [], t1, v1
+    while True:
+        times.append(t)
+        speeds.append(v)
+        if e * v < rest:
+            break
+        t += 2.0 * e * v / acc
+        v *= e
+    with pytest.raises(mb.SimulationError, match="stop 'end' came to rest against its lower limit") as info:
+        mb.simulate(incline(e, rest_speed=rest), t_end=3.0, rtol=1e-10, atol=1e-12, formulation=formulation,
+                    n_out=301)
+    assert abs(info.value.t - times[-1]) <= 1e-6
+    ev = info.value.result.events
+    assert len(ev) == len(times)
+    assert ev[-1]["kind"] == "rest" and all(x["kind"] == "impact" for x in ev[:-1])
+    for x, tk, vk in zip(ev, times, speeds):
+        assert abs(x["t"] - tk) <= 1e-6
+        assert abs(x["speed_before"] + vk) <= 1e-6 * v1
+
+
+def test_plastic_impact_pressed_on_the_stop_is_resting():
+    """e = 0 with gravity pressing the block down the incline: it comes to
+    rest at the first impact (t1 closed form, 1e-8 s): SimulationError."""
+    acc = G * math.sin(math.radians(30.0))
+    t1 = math.sqrt(2.0 * 0.3 / acc)
+    with pytest.raises(mb.SimulationError, match="'end' came to rest") as info:
+        mb.simulate(incline(0.0), t_end=1.0, rtol=1e-10, atol=1e-12)
+    assert abs(info.value.t - t1) <= 1e-8
+    assert info.value.result.events[0]["speed_after"] == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("formulation", ["ggl", "projection"])
+def test_plastic_impact_then_falling_back(formulation):
+    """e = 0 where gravity pulls away from the limit: the hanging rod swung
+    up at w0 = 4 rad/s hits the upper stop at -pi/4 (speed from energy:
+    w^2 = w0^2 - 3 g sin(pi/4) ... closed form below, 1e-6), stops dead there
+    and falls back: afterwards its energy is that of rest at -pi/4, i.e.
+    -m g (L/2) cos(pi/4) (1e-6 J), and it swings down to -3 pi/4 at most."""
+    m = mb.Model(gravity=(0.0, -G))
+    w0 = 4.0
+    rod = m.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.0, -0.5), angle=-math.pi / 2,
+                     velocity=(0.5 * w0, 0.0), angular_velocity=w0)
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m.add_stop("stop", "pin", upper=-math.pi / 4, restitution=0.0)
+    r = mb.simulate(m, t_end=0.8, rtol=1e-10, atol=1e-12, formulation=formulation, n_out=801)
+    # J_O w^2 / 2 = J_O w0^2 / 2 - m g (L/2) (cos(pi/4) ... height gain of the centre)
+    w_hit = math.sqrt(w0**2 - 2.0 * G * 0.5 * (1.0 - math.cos(math.pi / 4)) / (1.0 / 3.0))
+    ev = r.events
+    assert ev[0]["label"] == "upper"
+    assert abs(ev[0]["speed_before"] + w_hit) <= 1e-6 * w_hit
+    assert ev[0]["speed_after"] == pytest.approx(0.0, abs=1e-12)
+    after = r.t > ev[0]["t"] + 1e-9
+    energy = 0.5 * (1.0 / 3.0) * r.v[after, 2] ** 2 + G * r.q[after, 1]
+    assert np.max(np.abs(energy + G * 0.5 * math.cos(math.pi / 4))) <= 1e-6
+    assert np.min(r.q[after, 2]) >= -3 * math.pi / 4 - 1e-6
+    assert np.max(r.q[:, 2]) <= -math.pi / 4 + 1e-9
+
+
+def test_starting_at_the_limit():
+    """At the limit and moving into it: the impact happens at t0 (speed
+    2 rad/s, rebound e * 2); at the limit and moving away: no event; beyond
+    the limit: ValueError naming the stop."""
+    r = mb.simulate(pendulum(0.5, lower=0.0, angular_velocity=-2.0), t_end=0.05, rtol=1e-10, atol=1e-12)
+    assert r.events[0]["t"] == 0.0
+    assert abs(r.events[0]["speed_before"] + 2.0) <= 1e-9
+    assert abs(r.v[0, 2] - 1.0) <= 1e-9  # the recorded initial state is after the jump
+    r = mb.simulate(pendulum(0.5, lower=0.0, angular_velocity=2.0), t_end=0.05, rtol=1e-10, atol=1e-12)
+    assert r.events == []
+    with pytest.raises(ValueError, match="stop 'stop'.*beyond its lower limit"):
+        mb.simulate(pendulum(0.5, lower=0.1), t_end=0.05)
+
+
+def test_bad_stops_are_rejected():
+    """Unknown joint, a joint that is not a revolute or translational,
+    lower >= upper, restitution outside [0, 1], no limit: ValueError naming
+    the stop."""
+    m = mb.Model(gravity=(0.0, -G))
+    a = m.add_body("a", mass=1.0, inertia=0.1, position=(0.5, 0.0))
+    b = m.add_body("b", mass=1.0, inertia=0.1, position=(1.5, 0.0))
+    m.add_revolute("pin", m.ground, a, at=(0.0, 0.0))
+    m.add_weld("glue", a, b)
+    with pytest.raises(ValueError, match="stop 's1'.*'nope' is not a joint of this model"):
+        m.add_stop("s1", "nope", lower=0.0)
+    with pytest.raises(ValueError, match="stop 's2'.*not a revolute or translational"):
+        m.add_stop("s2", "glue", lower=0.0)
+    with pytest.raises(ValueError, match="stop 's3'.*lower = 1 must be below upper = -1"):
+        m.add_stop("s3", "pin", lower=1.0, upper=-1.0)
+    with pytest.raises(ValueError, match="stop 's4'.*restitution must be in \\[0, 1\\]"):
+        m.add_stop("s4", "pin", lower=-1.0, restitution=1.5)
+    with pytest.raises(ValueError, match="stop 's5'.*lower or an upper"):
+        m.add_stop("s5", "pin")
+
+
+@pytest.mark.parametrize("formulation", ["ggl", "projection"])
+def test_stops_cost_nothing_until_they_act(formulation):
+    """A stop that is never reached leaves the steps, residual evaluations
+    and factorizations exactly as without it (root functions do not change
+    the step sequence); a model without stops evaluates no root function."""
+    plain = mb.Model(gravity=(0.0, -G))
+    rod = plain.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
+    plain.add_revolute("pin", plain.ground, rod, at=(0.0, 0.0))
+    r0 = mb.simulate(plain, t_end=2.0, rtol=1e-8, formulation=formulation)
+    r1 = mb.simulate(pendulum(0.5, lower=-3.5), t_end=2.0, rtol=1e-8, formulation=formulation)
+    assert r0.stats["root_evals"] == 0 and r0.events == []
+    assert r1.stats["root_evals"] > 0 and r1.events == []
+    for key in ("steps", "residual_evals", "jacobian_evals", "lu_factorizations"):
+        assert r0.stats[key] == r1.stats[key], key
+    assert np.array_equal(r0.q, r1.q)
+
+
+def test_stop_in_a_scene_file(tmp_path):
+    """A [[stops]] table reads into the same model: the same impact to the bit."""
+    m = pendulum(0.5)
+    path = tmp_path / "stop.toml"
+    m.to_scene(path, settings={"t_end": 0.6, "rtol": 1e-9})
+    scene = mb.load_scene(path)
+    assert "[[stops]]" in path.read_text()
+    r1, r2 = scene.run(), mb.simulate(m, t_end=0.6, rtol=1e-9)
+    assert r1.events == r2.events and len(r1.events) == 1
+    bad = path.read_text().replace("restitution = 0.5", "restitution = 0.5\nbounce = 1")
+    path.write_text(bad)
+    with pytest.raises(mb.SceneError, match="stops\\[0\\] 'stop', key 'bounce'"):
+        mb.load_scene(path)
+
+
+@pytest.mark.parametrize("formulation", ["ggl", "projection"])
+def test_elastic_elbow_stop_conserves_energy(formulation):
+    """Double pendulum (two uniform rods from the horizontal) with an elbow
+    stop |phi_b - phi_a| <= 0.5 and e = 1: the impulses act on both moving
+    bodies; perfectly elastic impacts keep the energy (conservation law:
+    spread below 1e-6 J over 3 s and at least 3 impacts), the joints hold
+    (|Phi| < 1e-9) and the elbow stays within its limits (1e-9 rad)."""
+    m = mb.Model(gravity=(0.0, -G))
+    a = m.add_body("a", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
+    b = m.add_body("b", mass=1.0, inertia=1.0 / 12.0, position=(1.5, 0.0))
+    m.add_revolute("p0", m.ground, a, at=(0.0, 0.0))
+    m.add_revolute("p1", a, b, at=(1.0, 0.0))
+    m.add_stop("elbow", "p1", lower=-0.5, upper=0.5, restitution=1.0)
+    r = mb.simulate(m, t_end=3.0, rtol=1e-10, atol=1e-12, n_out=301, formulation=formulation)
+    assert r.stats["impacts"] >= 3
+    assert all(abs(x["speed_after"] + x["speed_before"]) <= 1e-9 * abs(x["speed_before"]) for x in r.events)
+    assert np.ptp(r.energy) <= 1e-6
+    assert np.max(r.residual) <= 1e-9
+    rel = r.q[:, 5] - r.q[:, 2]
+    assert rel.min() >= -0.5 - 1e-9 and rel.max() <= 0.5 + 1e-9
