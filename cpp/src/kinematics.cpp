@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "lagmb/analysis.hpp"
@@ -86,11 +87,84 @@ std::vector<double> solve_times(const Model& model, double t0, const std::vector
   return t;
 }
 
+/// Phi_q restricted to its independent rows (the rows not dropped as
+/// redundant at finalize). At 0 DOF it is square (n x n) and invertible, so
+/// positions, velocities and accelerations are solves with it and the
+/// multipliers one solve with its transpose, lam = Phi_q^-T (Q - M a): half
+/// the size of the augmented matrix [M Phi_q^T; Phi_q 0] and with no
+/// regularization to refine away. The pattern and the ordering are fixed
+/// once; factorize() is numeric only.
+class SquareJacobian {
+ public:
+  /// Usable when the independent rows number exactly n.
+  static bool applies(const Model& model) {
+    return model.n_constraints() - int(model.redundant_rows().size()) == model.n_coordinates();
+  }
+
+  explicit SquareJacobian(const Model& model) : n_(model.n_coordinates()), m_(model.n_constraints()) {
+    std::vector<int> compact(m_, 0);
+    for (int r : model.redundant_rows()) compact[r] = -1;
+    for (int r = 0; r < m_; ++r)
+      if (compact[r] == 0) {
+        compact[r] = int(row_of_.size());
+        row_of_.push_back(r);
+      }
+    const SpMat& J = model.jacobian_pattern();
+    SparsityPattern p(n_, n_);
+    for (int c = 0; c < J.outerSize(); ++c)
+      for (SpMat::InnerIterator it(J, c); it; ++it)
+        if (compact[it.row()] >= 0) p.add(compact[it.row()], c);
+    S_ = p.build();
+    for (int c = 0; c < J.outerSize(); ++c)
+      for (SpMat::InnerIterator it(J, c); it; ++it)
+        slots_.push_back(compact[it.row()] >= 0 ? slot(S_, compact[it.row()], c) : -1);
+    lu_.analyzePattern(S_);
+    b_.resize(n_);
+    x_.resize(n_);
+  }
+
+  /// Factorizes the independent rows of Phi_q (pattern of the model's Jacobian).
+  bool factorize(const SpMat& Phi_q) {
+    double* s = S_.valuePtr();
+    const double* j = Phi_q.valuePtr();
+    for (size_t k = 0; k < slots_.size(); ++k)
+      if (slots_[k] >= 0) s[slots_[k]] = j[k];
+    lu_.factorize(S_);
+    ++factorizations_;
+    return lu_.info() == Eigen::Success;
+  }
+
+  /// x (n) solving the independent rows of Phi_q x = b (b: m rows).
+  void solve(const VecX& b, VecX& x) {
+    for (int i = 0; i < n_; ++i) b_[i] = b[row_of_[i]];
+    x = lu_.solve(b_);
+  }
+
+  /// lam (m) solving Phi_q^T lam = c with lam = 0 in the dropped rows.
+  void solve_transpose(const VecX& c, VecX& lam) {
+    x_ = lu_.transpose().solve(c);
+    lam.setZero(m_);
+    for (int i = 0; i < n_; ++i) lam[row_of_[i]] = x_[i];
+  }
+
+  int factorizations() const { return factorizations_; }
+
+ private:
+  int n_, m_;
+  std::vector<int> row_of_;  // compact row -> row of Phi
+  std::vector<int> slots_;   // value k of Phi_q -> value of S_, -1 in dropped rows
+  SpMat S_;
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  VecX b_, x_;
+  int factorizations_ = 0;
+};
+
 /// One kinematic state and the work done to get it.
 class KinematicSolver {
  public:
   KinematicSolver(const Model& model, Stats& stats)
       : model_(model), d_(model), kkt_(model), stats_(stats), n_(model.n_coordinates()), m_(model.n_constraints()) {
+    if (SquareJacobian::applies(model)) square_ = std::make_unique<SquareJacobian>(model);
     zero_n_ = VecX::Zero(n_);
     kappa_.resize(m_);
     dq_.resize(n_);
@@ -111,12 +185,12 @@ class KinematicSolver {
       ++stats_.newton_iterations;
       if (!d_.Phi.allFinite()) return false;
       if (!factorized_ && !refactor(q, t, fresh)) return false;
-      kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
+      correction();
       double step = dq_.allFinite() ? max_abs(dq_) : INFINITY;
       const bool slow = (it == 0 && step > max_first) || (it > 0 && step > 0.25 * previous) || !std::isfinite(step);
       if (slow && !fresh) {  // the old factorization is not good enough here: a Newton step
         if (!refactor(q, t, fresh)) return false;
-        kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
+        correction();
         step = dq_.allFinite() ? max_abs(dq_) : INFINITY;
       }
       if (!std::isfinite(step) || (it == 0 && step > max_first)) return false;
@@ -144,6 +218,13 @@ class KinematicSolver {
     assemble_jacobian(model_, d_, q.data(), t);  // exact Phi_q at q for the refinement
     ++stats_.jacobian_evals;
     assemble_phi_t(model_, d_, q.data(), t);
+    if (square_) {
+      solve_square(t, -d_.phi_t, v);
+      assemble_gamma(model_, d_, q.data(), v.data(), t);
+      solve_square(t, d_.gamma, a);
+      if (with_forces) multipliers(q, v, t, a, lam);
+      return;
+    }
     const VecX Mv = model_.mass_diagonal().cwiseProduct(v);  // v: the prediction (irrelevant at 0 DOF)
     solve_exact(t, Mv, -d_.phi_t, v, kappa_, false);
     assemble_gamma(model_, d_, q.data(), v.data(), t);
@@ -158,19 +239,105 @@ class KinematicSolver {
   /// Least-change assembly at t0 (as the dynamic runs do).
   VecX assemble(const VecX& q0, double t) {
     VecX q = assemble_positions(model_, d_, kkt_, q0, t);
-    factorized_ = kkt_.factorizations() > 0;
+    factorized_ = !square_ && kkt_.factorizations() > 0;
     return q;
   }
 
-  int factorizations() const { return kkt_.factorizations(); }
+  /// Factorizations of the square Jacobian and of the augmented matrix.
+  int jacobian_factorizations() const { return square_ ? square_->factorizations() : 0; }
+  int augmented_factorizations() const { return kkt_.factorizations(); }
 
  private:
   bool refactor(const VecX& q, double t, bool& fresh) {
     assemble_jacobian(model_, d_, q.data(), t);
     ++stats_.jacobian_evals;
-    factorized_ = kkt_.factorize(d_);
+    factorized_ = square_ ? square_->factorize(d_.Phi_q) : kkt_.factorize(d_);
     fresh = factorized_;
     return factorized_;
+  }
+
+  /// dq_ = the Newton correction for d_.Phi with the current factorization.
+  void correction() {
+    if (square_) {
+      d_.Phi = -d_.Phi;
+      square_->solve(d_.Phi, dq_);
+    } else {
+      kkt_.solve(zero_n_, -d_.Phi, dq_, kappa_);
+    }
+  }
+
+  /// Iterative refinement of x toward the exact solution of a linear system
+  /// whose residual is residual(x) (m or n entries): corrections solve(r, c)
+  /// with the current factorization, a fresh factorization at the exact
+  /// Phi_q (in d_) when they stop contracting, until the residual is at the
+  /// rounding level of `size`.
+  template <class Solve, class Residual>
+  void refine(double t, VecX& x, double size_b, const Solve& solve, const Residual& residual) {
+    const double jmax = d_.Phi_q.nonZeros() ? Eigen::Map<const VecX>(d_.Phi_q.valuePtr(), d_.Phi_q.nonZeros())
+                                                  .lpNorm<Eigen::Infinity>()
+                                            : 0.0;
+    double previous = INFINITY;
+    bool refreshed = false;
+    for (int it = 0; it < 16; ++it) {
+      const VecX& r = residual(x);
+      const double size = size_b + jmax * max_abs(x);
+      const double res = max_abs(r);
+      if (!(res > 1e-14 * size)) return;
+      if (res > 0.25 * previous || it == 8) {
+        if (res <= 1e-12 * size || refreshed) return;  // at the rounding floor
+        if (!square_->factorize(d_.Phi_q))
+          throw SimulationError("the constraint Jacobian is singular at t = " + std::to_string(t), t);
+        factorized_ = refreshed = true;
+        previous = INFINITY;
+        solve(r, c1_);
+        x += c1_;
+        continue;
+      }
+      previous = res;
+      solve(r, c1_);
+      x += c1_;
+    }
+  }
+
+  /// x solving Phi_q x = b (independent rows), Phi_q exact in d_.
+  void solve_square(double t, const VecX& b, VecX& x) {
+    square_->solve(b, x);
+    refine(t, x, max_abs(b), [&](const VecX& r, VecX& c) { square_->solve(r, c); },
+           [&](const VecX& y) -> const VecX& {
+             r2_ = b;
+             add_jacobian_times(d_, (-y).eval().data(), r2_.data());
+             return r2_;
+           });
+  }
+
+  /// Inverse dynamics: lam solving Phi_q^T lam = Q + Q_f(lam) - M a (joint
+  /// friction, if any, by fixed point on the load it takes from lam).
+  void multipliers(const VecX& q, const VecX& v, double t, const VecX& a, VecX& lam) {
+    assemble_forces(model_, d_, q.data(), v.data(), t);
+    const VecX base = d_.Q - model_.mass_diagonal().cwiseProduct(a);
+    auto solve_for = [&](const VecX& c) {
+      square_->solve_transpose(c, lam);
+      refine(t, lam, max_abs(c), [&](const VecX& r, VecX& x) { square_->solve_transpose(r, x); },
+             [&](const VecX& y) -> const VecX& {
+               r1_ = c;
+               add_jacobian_transpose_times(d_, (-y).eval().data(), r1_.data());
+               return r1_;
+             });
+    };
+    solve_for(base);
+    if (model_.friction_groups().empty()) return;
+    VecX previous(m_), c(n_);
+    for (int it = 0; it < 100; ++it) {
+      previous = lam;
+      d_.Q.setZero();
+      add_friction_forces(model_, d_, q.data(), v.data(), previous.data());
+      c = base + d_.Q;
+      solve_for(c);
+      if (max_abs(lam - previous) <= 1e-12 * (max_abs(lam) + model_.mass_scale())) return;
+    }
+    throw SimulationError("joint friction: the inverse-dynamic multipliers do not converge at t = " +
+                              std::to_string(t) + "; reduce mu or pin_radius",
+                          t);
   }
 
   /// [M Phi_q^T; Phi_q 0] [x1; x2] = [b1; b2] with Phi_q = d_.Phi_q (exact at
@@ -218,6 +385,7 @@ class KinematicSolver {
   Stats& stats_;
   int n_, m_;
   bool factorized_ = false;
+  std::unique_ptr<SquareJacobian> square_;  // at 0 DOF without undetected redundancy
   VecX zero_n_, kappa_, dq_, r1_, r2_, c1_, c2_;
 };
 
@@ -242,7 +410,10 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   tr.lam.reserve(t_out.size() * m);
   KinematicSolver* solver_ptr = nullptr;
   auto finish = [&] {
-    if (solver_ptr) tr.stats.augmented_factorizations = solver_ptr->factorizations();
+    if (solver_ptr) {
+      tr.stats.lu_factorizations = solver_ptr->jacobian_factorizations();
+      tr.stats.augmented_factorizations = solver_ptr->augmented_factorizations();
+    }
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
 

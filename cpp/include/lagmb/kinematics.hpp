@@ -18,12 +18,15 @@
 //   4. inverse dynamics (at output times): the multipliers (joint reactions,
 //      driver efforts) from M a + Phi_q^T lam = Q(q, v, t).
 //
-// Steps 2-4 are solves with the augmented matrix [M Phi_q^T; Phi_q 0]
-// (AugmentedSystem) factorized for the last Newton iterate (it differs from
-// the converged q by at most the 1e-12 tolerance): for a square, invertible
-// Phi_q its second block row gives v and a alone, and the first then gives
-// lam = Phi_q^-T (Q - M a), so 3 and 4 are one solve, as in
-// solve_accelerations. Redundant rows (dropped at finalize) read 0 = 0 and
+// At 0 DOF the independent rows of Phi_q (the rows not dropped as redundant
+// at finalize) form a square, invertible n x n matrix: every solve above is
+// one with its sparse LU (Newton reuses the factorization while it contracts
+// well), and step 4 one with its transpose, lam = Phi_q^-T (Q - M a),
+// refined against the exact Phi_q at the converged q. That is half the size
+// of the augmented matrix [M Phi_q^T; Phi_q 0] a dynamic run factorizes, and
+// needs no regularization (AugmentedSystem remains the fallback when
+// dependent rows appear that finalize did not find). Joint friction, whose
+// load is lam itself, is solved by fixed point in step 4. Redundant rows read 0 = 0 and
 // get lam = 0. Masses may be 0 for a kinematic-only analysis.
 #pragma once
 
@@ -57,7 +60,8 @@ std::string resolve_analysis(const Model& model, const SimulationOptions& option
 /// Kinematic analysis (steps 1-3 above) at the times t_out from t0; with
 /// inverse_dynamics also step 4, else lam is NaN (not computed). The model
 /// must have 0 DOF (see resolve_analysis). Stats: analysis, newton_iterations,
-/// residual_evals (Phi), jacobian_evals (Phi_q), augmented_factorizations,
+/// residual_evals (Phi), jacobian_evals (Phi_q), lu_factorizations (of the
+/// square Jacobian), augmented_factorizations (assembly at t0, fallback),
 /// kinematic_solves; steps stays 0. Throws SimulationError naming the time and
 /// the joints (diagnose_failure) with the outputs reached so far if Newton
 /// fails (e.g. a driver pushes the mechanism through a toggle position).
