@@ -1,6 +1,7 @@
 """What an absent effect costs: a 100-link chain with gravity only, against
 the same chain whose scene file also holds one element of every other kind
-(joints, drivers, springs, forces, joint friction), each `enabled = false`.
+(joints, drivers, springs, forces, joint friction, contact, stops), each
+`enabled = false`.
 
 DESIGN.md section 3: an effect the scene does not call for costs nothing.
 Measured three ways, for the simulate call only:
@@ -68,6 +69,10 @@ def chain_scene(n, disabled_kinds):
             ("forces", 'type = "torque"\nname = "x_twist"\nbody = "rod4"\ntorque = 1.0'),
             ("forces", 'type = "joint_friction"\nname = "x_friction"\njoint = "pin0"\nmu = 0.2\n'
                        "pin_radius = 0.01\nviscous = 0.1"),
+            ("forces", 'type = "contact"\nname = "x_contact"\ncircle_body = "rod9"\ncenter = [9.5, 0.0]\n'
+                       'radius = 0.1\nline_body = "ground"\npoint = [0.0, -20.0]\ndirection = [1.0, 0.0]\n'
+                       "stiffness = 1e6\nrestitution = 0.8"),
+            ("stops", 'name = "x_limit"\njoint = "pin1"\nlower = -1.0\nupper = 1.0\nrestitution = 0.5'),
         ]
         for table, body in tables:
             out += [f"[[{table}]]", body, "enabled = false", ""]

@@ -23,7 +23,7 @@ def chain_scene(n, disabled_kinds=False):
     """TOML of an n-link chain of uniform rods (L = 1 m, m = 1 kg) pinned
     end to end, released horizontal under gravity; with disabled_kinds,
     one element of every other kind (joints, drivers, forces, joint
-    friction), each with enabled = false."""
+    friction, contact, stops), each with enabled = false."""
     out = ["[model]", "gravity = [0.0, -9.81]", ""]
     for k in range(n):
         out += ["[[bodies]]", f'name = "rod{k}"', "mass = 1.0", f"inertia = {1 / 12!r}",
@@ -58,6 +58,11 @@ def chain_scene(n, disabled_kinds=False):
             "[[forces]]", 'type = "torque"', 'name = "x_twist"', 'body = "rod4"', "torque = 1.0", off, "",
             "[[forces]]", 'type = "joint_friction"', 'name = "x_friction"', 'joint = "pin0"', "mu = 0.2",
             "pin_radius = 0.01", "viscous = 0.1", off, "",
+            "[[forces]]", 'type = "contact"', 'name = "x_contact"', 'circle_body = "rod9"',
+            "center = [9.5, 0.0]", "radius = 0.1", 'line_body = "ground"', "point = [0.0, -20.0]",
+            "direction = [1.0, 0.0]", "stiffness = 1e6", "restitution = 0.8", off, "",
+            "[[stops]]", 'name = "x_limit"', 'joint = "pin1"', "lower = -1.0", "upper = 1.0",
+            "restitution = 0.5", off, "",
         ]
     return "\n".join(out) + "\n"
 
@@ -78,7 +83,7 @@ def test_disabled_kinds_cost_nothing(tmp_path, formulation):
     m2, r2 = run(full, formulation=formulation)
     assert m1.elements() == m2.elements()  # the disabled ones were checked, not added
     keys = ["steps", "residual_evals", "jacobian_evals", "lu_factorizations", "newton_iterations",
-            "augmented_factorizations", "projections", "element_evaluations"]
+            "augmented_factorizations", "projections", "element_evaluations", "root_evals", "events"]
     assert r1.stats["steps"] > 5 and r1.stats["element_evaluations"] > 0
     assert {k: r1.stats[k] for k in keys} == {k: r2.stats[k] for k in keys}
     per_step = r1.stats["element_evaluations"] / r1.stats["steps"]
