@@ -50,9 +50,16 @@ void validate(const Model& model, const SimulationOptions& o) {
                        "] = " + std::to_string(tk) + ")");
   }
   const bool ida_form = o.formulation == "ggl" || o.formulation == "index3" || o.formulation == "index1";
-  if (!ida_form && o.formulation != "projection")
+  if (!ida_form && o.formulation != "projection" && o.formulation != "ali3p")
     throw ModelError("simulate: unknown formulation '" + o.formulation +
-                     "' (available: ggl, index3, index1, projection)");
+                     "' (available: ggl, index3, index1, projection, ali3p)");
+  if (o.formulation == "ali3p") {
+    if (o.max_step == 0.0)
+      throw ModelError("simulate: formulation 'ali3p' takes fixed steps: give the step as max_step (step= in Python)");
+    if (o.integrator != "bdf")
+      throw ModelError("simulate: formulation 'ali3p' has its own integrator (trapezoidal rule), not '" +
+                       o.integrator + "'");
+  }
   if (o.integrator != "bdf" && o.integrator != "adams")
     throw ModelError("simulate: unknown integrator '" + o.integrator + "' (available: bdf, adams)");
   if (o.integrator == "adams" && ida_form)
@@ -158,7 +165,10 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   };
 
   try {
-    if (o.formulation == "projection") {
+    if (o.formulation == "ali3p") {
+      tr.stats.integrator = "trapezoidal";
+      integrate_ali3p(model, o.max_step, start, plan, record, tr.stats);
+    } else if (o.formulation == "projection") {
       integrate_cvode(model, o.integrator == "adams", o.baumgarte_alpha, o.baumgarte_beta, start, plan, record,
                       tr.stats);
     } else {
