@@ -89,7 +89,9 @@ class Ali3pStepper final : public Stepper {
   double step(bool& at_stop) override {
     double h = h_;
     at_stop = false;
-    if (stop_ - t_ <= h * (1.0 + 1e-9)) {  // the last step lands on the stop time
+    // the last step lands on the stop time, stretched by up to 1 % rather
+    // than followed by a sliver (t accumulates rounding over many steps)
+    if (stop_ - t_ <= 1.01 * h) {
       h = stop_ - t_;
       at_stop = true;
     }
