@@ -53,12 +53,16 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       so the constraints drift unless ``baumgarte=(alpha, beta)`` is given.
     - ``"ali3p"``: index-3 augmented Lagrangian with mass-orthogonal
       projections of velocities and accelerations, trapezoidal rule with the
-      fixed ``step`` (s) (Bayo & Ledesma 1996; Cuadrado et al. 2000). Its
-      Newton matrix stays positive definite when the constraint Jacobian
-      loses rank, so it runs through singular positions (a parallelogram
-      passing its horizontal) and redundant constraints. rtol/atol bound the
-      Newton corrections of q; the step alone sets the truncation error
-      (energy error O((omega step)^2), no drift).
+      fixed ``step`` (s; ``max_step`` is taken as the step if ``step`` is
+      not given) (Bayo & Ledesma 1996; Cuadrado et al. 2000). Its Newton
+      matrix (multiplier block regularized) stays invertible when the
+      constraint Jacobian loses rank, so it runs through singular positions
+      (a parallelogram passing its horizontal); a step that lands within
+      roundoff of one is retried with another length
+      (``stats["convergence_failures"]``). rtol/atol bound the Newton
+      corrections of q (1e-10 / 1e-12 recommended there); the step alone
+      sets the truncation error (second order; energy error
+      O((omega step)^2), no drift).
 
     ``max_order`` defaults to 5 (BDF) or 12 (Adams). ``atol`` is one number
     or one per coordinate (applied to q_i and v_i; e.g. smaller for angles
