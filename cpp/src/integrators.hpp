@@ -93,4 +93,11 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
                      const IntegrationPlan& plan,
                      const std::function<void(const double* q, const double* v)>& record, Stats& stats);
 
+/// Integrates with ALI3-P (ali3p_integrator.cpp): index-3 equations,
+/// trapezoidal rule with the fixed step `step`, Newton on (q, lam) with a
+/// regularized multiplier block, mass-orthogonal projections of v and a.
+void integrate_ali3p(const Model& model, double step, const ConsistentState& start,
+                     const IntegrationPlan& plan,
+                     const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+
 }  // namespace lagmb

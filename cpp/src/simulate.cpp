@@ -53,9 +53,25 @@ void validate(const Model& model, const SimulationOptions& o) {
                        "] = " + std::to_string(tk) + ")");
   }
   const bool ida_form = o.formulation == "ggl" || o.formulation == "index3" || o.formulation == "index1";
-  if (!ida_form && o.formulation != "projection")
+  if (!ida_form && o.formulation != "projection" && o.formulation != "ali3p")
     throw ModelError("simulate: unknown formulation '" + o.formulation +
-                     "' (available: ggl, index3, index1, projection)");
+                     "' (available: ggl, index3, index1, projection, ali3p)");
+  if (o.formulation == "ali3p") {
+    if (o.max_step == 0.0)
+      throw ModelError("simulate: formulation 'ali3p' takes fixed steps: give the step as max_step (step= in Python)");
+    if (o.integrator != "bdf")
+      throw ModelError("simulate: formulation 'ali3p' has its own integrator (trapezoidal rule), not '" +
+                       o.integrator + "'");
+    // its fixed-step loop neither finds roots (stops, contact onset) nor
+    // takes friction loads from the multipliers: refuse rather than ignore
+    if (!model.friction_groups().empty())
+      throw ModelError("simulate: formulation 'ali3p' does not include joint friction ('" +
+                       model.friction_groups().front()->name(0) +
+                       "'); use ggl, index3, index1 or projection");
+    if (!model.event_groups().empty())
+      throw ModelError("simulate: formulation 'ali3p' has no root finding for stops or contact events ('" +
+                       model.event_groups().front()->name(0) + "'); use ggl, index3, index1 or projection");
+  }
   if (o.integrator != "bdf" && o.integrator != "adams")
     throw ModelError("simulate: unknown integrator '" + o.integrator + "' (available: bdf, adams)");
   if (o.integrator == "adams" && ida_form)
@@ -199,7 +215,10 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   };
 
   try {
-    if (o.formulation == "projection") {
+    if (o.formulation == "ali3p") {
+      tr.stats.integrator = "trapezoidal";
+      integrate_ali3p(model, o.max_step, start, plan, record, tr.stats);
+    } else if (o.formulation == "projection") {
       integrate_cvode(model, o.integrator == "adams", o.baumgarte_alpha, o.baumgarte_beta, start, plan, record,
                       tr.stats);
     } else {

@@ -189,6 +189,7 @@ _SIMULATION = {  # key -> kind
     "t_end": "number", "t0": "number", "rtol": "number", "atol": "number",
     "n_out": "integer", "t_out": "numbers", "max_step": "number", "max_steps": "integer",
     "formulation": "string", "integrator": "string", "max_order": "integer",
+    "step": "number",  # the fixed step of formulation "ali3p"
 }
 _SIMULATION.update({"analysis": "string", "start": "string"})  # what to compute, where to start
 _OUTPUT = {
@@ -705,6 +706,8 @@ class _Reader:
             raise w.error(f"must be at least 2, got {out['n_out']}", "n_out")
         if "max_steps" in out and out["max_steps"] < 1:
             raise w.error(f"must be at least 1, got {out['max_steps']}", "max_steps")
+        if "step" in out and not (math.isfinite(out["step"]) and out["step"] > 0):
+            raise w.error(f"must be positive and finite, got {out['step']!r}", "step")
         if "t_out" in out:
             t = out["t_out"]
             if not t or not all(math.isfinite(x) for x in t) or any(

@@ -34,7 +34,7 @@ def _positive(value, name):
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
              max_step=None, max_steps=None, formulation="ggl", integrator="bdf", max_order=None,
-             baumgarte=None, progress=None, analysis="auto", start="given"):
+             baumgarte=None, progress=None, analysis="auto", start="given", step=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
@@ -51,6 +51,18 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       after every step with ``integrator="bdf"`` (CVODE BDF, orders 1-5);
       with ``"adams"`` (Adams-Moulton, orders 1-12) CVODE cannot project,
       so the constraints drift unless ``baumgarte=(alpha, beta)`` is given.
+    - ``"ali3p"``: index-3 augmented Lagrangian with mass-orthogonal
+      projections of velocities and accelerations, trapezoidal rule with the
+      fixed ``step`` (s; ``max_step`` is taken as the step if ``step`` is
+      not given) (Bayo & Ledesma 1996; Cuadrado et al. 2000). Its Newton
+      matrix (multiplier block regularized) stays invertible when the
+      constraint Jacobian loses rank, so it runs through singular positions
+      (a parallelogram passing its horizontal); a step that lands within
+      roundoff of one is retried with another length
+      (``stats["convergence_failures"]``). rtol/atol bound the Newton
+      corrections of q (1e-10 / 1e-12 recommended there); the step alone
+      sets the truncation error (second order; energy error
+      O((omega step)^2), no drift).
 
     ``max_order`` defaults to 5 (BDF) or 12 (Adams). ``atol`` is one number
     or one per coordinate (applied to q_i and v_i; e.g. smaller for angles
@@ -107,6 +119,11 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
         atol = float(np.mean(atol_coordinates)) if atol_coordinates else 1e-8
     atol = _positive(atol, "atol")
     max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
+    if step is not None:  # the fixed step of ali3p travels as max_step
+        if formulation != "ali3p":
+            raise ModelError(f"step applies to formulation 'ali3p' (fixed step); "
+                             f"for {formulation!r} bound the step with max_step")
+        max_step = _positive(step, "step")
     if max_order is None:
         max_order = 12 if integrator == "adams" else 5
     elif isinstance(max_order, bool) or int(max_order) != max_order:

@@ -29,7 +29,9 @@ struct SimulationOptions {
   int max_order = 5;  // BDF: 1..5, Adams: 1..12
   /// "ggl" (stabilized index 2, IDA), "index3" (IDA), "index1" (IDA, with
   /// optional Baumgarte terms), "projection" (ODE in accelerations, CVODE,
-  /// coordinate projection after each step).
+  /// coordinate projection after each step), "ali3p" (index-3 augmented
+  /// Lagrangian with mass-orthogonal projections, trapezoidal rule, fixed
+  /// step = max_step, which it needs; runs through singular positions).
   std::string formulation = "ggl";
   /// "bdf" (IDA, or CVODE BDF for projection) or "adams" (CVODE Adams-Moulton).
   std::string integrator = "bdf";

@@ -1,0 +1,58 @@
+"""Cost of the singular passages of the N-four-bar (IFToMM A02) per method.
+
+    python bench/singular.py [N] [t_end]        (defaults 2, 10)
+
+For each method: whether it reaches t_end, the time reached, steps, Newton
+iterations, LU factorizations, wall time, the relative energy error, max
+|Phi| and the B0 error against the one-coordinate SciPy reference
+(examples/n_four_bar.py). Printed as a table; nothing is asserted.
+"""
+
+import os
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "examples"))
+from n_four_bar import build, reference_b0  # noqa: E402
+
+import lagmb as mb  # noqa: E402
+
+METHODS = [
+    ("ggl rtol 1e-6", dict(rtol=1e-6, atol=1e-8)),
+    ("ggl rtol 1e-8", dict(rtol=1e-8, atol=1e-10)),
+    ("projection rtol 1e-8", dict(formulation="projection", rtol=1e-8, atol=1e-10)),
+    ("ali3p step 1e-3", dict(formulation="ali3p", step=1e-3, rtol=1e-10, atol=1e-12)),
+    ("ali3p step 2e-4", dict(formulation="ali3p", step=2e-4, rtol=1e-10, atol=1e-12)),
+    ("ali3p step 1e-4", dict(formulation="ali3p", step=1e-4, rtol=1e-10, atol=1e-12)),
+]
+
+
+def main():
+    n = int(sys.argv[1]) if len(sys.argv) > 1 else 2
+    t_end = float(sys.argv[2]) if len(sys.argv) > 2 else 10.0
+    print(f"N-four-bar (A02), N = {n}, t_end = {t_end} s")
+    print(f"{'method':<22} {'t reached':>9} {'steps':>7} {'Newton':>7} {'LU':>7} {'wall s':>7} "
+          f"{'dE/E':>9} {'max|Phi|':>9} {'B0 err':>9}")
+    for label, kw in METHODS:
+        t0 = time.perf_counter()
+        try:
+            r = mb.simulate(build(n), t_end=t_end, n_out=int(100 * t_end) + 1, **kw)
+        except mb.SimulationError as e:
+            r = e.result
+        wall = time.perf_counter() - t0
+        if r is None or len(r.t) < 2:
+            print(f"{label:<22} failed at the start")
+            continue
+        b0 = r.point("crank0", (0.5, 0.0))
+        de = np.abs(r.energy - r.energy[0]).max() / abs(r.energy[0])
+        err = np.abs(b0 - reference_b0(n, r.t)).max()
+        s = r.stats
+        print(f"{label:<22} {r.t[-1]:>9.3f} {s['steps']:>7d} {s['newton_iterations']:>7d} "
+              f"{s['lu_factorizations']:>7d} {wall:>7.2f} {de:>9.2e} {r.residual.max():>9.2e} {err:>9.2e}")
+
+
+if __name__ == "__main__":
+    main()
