@@ -5,10 +5,13 @@
 For each method: whether it reaches t_end, the time reached, steps, Newton
 iterations, LU factorizations, wall time, the relative energy error, max
 |Phi| and the B0 error against the one-coordinate SciPy reference
-(examples/n_four_bar.py). Printed as a table; nothing is asserted.
+(examples/n_four_bar.py). Printed as a table and written to
+bench/results/singular_N<N>.json; nothing is asserted.
 """
 
+import json
 import os
+import platform
 import sys
 import time
 
@@ -36,6 +39,7 @@ def main():
     print(f"N-four-bar (A02), N = {n}, t_end = {t_end} s")
     print(f"{'method':<22} {'t reached':>9} {'steps':>7} {'Newton':>7} {'LU':>7} {'wall s':>7} "
           f"{'dE/E':>9} {'max|Phi|':>9} {'B0 err':>9}")
+    rows = []
     for label, kw in METHODS:
         t0 = time.perf_counter()
         try:
@@ -45,6 +49,7 @@ def main():
         wall = time.perf_counter() - t0
         if r is None or len(r.t) < 2:
             print(f"{label:<22} failed at the start")
+            rows.append({"method": label, "settings": kw, "t_reached": 0.0})
             continue
         b0 = r.point("crank0", (0.5, 0.0))
         de = np.abs(r.energy - r.energy[0]).max() / abs(r.energy[0])
@@ -52,6 +57,15 @@ def main():
         s = r.stats
         print(f"{label:<22} {r.t[-1]:>9.3f} {s['steps']:>7d} {s['newton_iterations']:>7d} "
               f"{s['lu_factorizations']:>7d} {wall:>7.2f} {de:>9.2e} {r.residual.max():>9.2e} {err:>9.2e}")
+        rows.append({"method": label, "settings": kw, "t_reached": float(r.t[-1]), "steps": s["steps"],
+                     "newton_iterations": s["newton_iterations"], "lu_factorizations": s["lu_factorizations"],
+                     "wall_time_s": wall, "energy_error_relative": float(de),
+                     "max_residual": float(r.residual.max()), "b0_error": float(err)})
+    out = os.path.join(HERE, "results", f"singular_N{n}.json")
+    with open(out, "w") as f:
+        json.dump({"problem": "IFToMM A02 N-four-bar", "N": n, "t_end": t_end, "rows": rows,
+                   "machine": platform.machine(), "python": platform.python_version()}, f, indent=2)
+    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

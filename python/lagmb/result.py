@@ -7,6 +7,15 @@ import numpy as np
 from .errors import KinematicOnlyError, ModelError
 
 
+
+def element_name(core, item):
+    """The name of a body or element (a handle or a name) of the compiled
+    model `core`; ModelError if there is none."""
+    name = getattr(item, "name", item)
+    if not isinstance(name, str) or not core.has(name):
+        raise ModelError(f"no body or element named '{name}' in this model")
+    return name
+
 class BodyPath:
     """The motion of one body: position (k, 2) of its centre of mass, angle
     (k,), velocity (k, 2), angular_velocity (k,), acceleration (k, 2),
@@ -69,10 +78,7 @@ class Result:
         self._lam = value
 
     def _name(self, item):
-        name = getattr(item, "name", item)
-        if not isinstance(name, str) or not self._core.has(name):
-            raise ModelError(f"no body or element named '{name}' in this model")
-        return name
+        return element_name(self._core, item)
 
     def body(self, body):
         """Motion of a body (handle or name): .position, .angle, ..."""

@@ -6,6 +6,7 @@ import numpy as np
 
 from . import _core
 from .errors import ModelError
+from .result import element_name
 
 
 class EquilibriumBody:
@@ -51,10 +52,7 @@ class Equilibrium:
         self.constraint_residual = float(raw["constraint_residual"])
 
     def _name(self, item):
-        name = getattr(item, "name", item)
-        if not isinstance(name, str) or not self._core.has(name):
-            raise ModelError(f"no body or element named '{name}' in this model")
-        return name
+        return element_name(self._core, item)
 
     def body(self, body):
         """Pose of a body (handle or name): .position (2,), .angle."""
