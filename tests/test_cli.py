@@ -315,3 +315,54 @@ def test_progress_shows_after_the_delay_on_a_terminal_only():
     with Progress(0.0, 2.0, delay=60.0, stream=late) as p:
         p(1.0)
     assert quiet.text == pipe.text == late.text == ""
+
+
+KINEMATIC_SCENE = """[model]
+gravity = [0.0, -9.81]
+[[bodies]]
+name = "rod"
+mass = 0.0
+inertia = 0.0
+position = [0.5, 0.0]
+[[joints]]
+type = "revolute"
+name = "pin"
+body_i = "ground"
+body_j = "rod"
+at = [0.0, 0.0]
+[[drivers]]
+type = "joint"
+name = "motor"
+joint = "pin"
+function = { type = "linear", rate = 1.0 }
+[simulation]
+t_end = 0.5
+n_out = 6
+[output]
+reactions = ["pin"]
+efforts = ["motor"]
+"""
+
+
+@pytest.mark.parametrize("suffix", [".npz", ".csv"])
+def test_run_kinematic_scene_writes_what_it_computed(tmp_path, suffix):
+    """A massless driven rod runs as a kinematic analysis: no reactions or
+    efforts exist, so the listed ones are skipped with a note on stderr and
+    the motion is written (angle = t, to rounding)."""
+    import numpy as np
+
+    scene = tmp_path / "kin.toml"
+    scene.write_text(KINEMATIC_SCENE)
+    out = tmp_path / f"kin{suffix}"
+    p = lagmb("run", scene, "-o", out)
+    assert p.returncode == 0, p.stderr
+    assert "computes no reactions" in p.stderr and "pin" in p.stderr
+    if suffix == ".npz":
+        data = np.load(out)
+        assert "lam" not in data and "reaction_pin" not in data
+        np.testing.assert_allclose(data["q"][:, 2], data["t"], atol=1e-12)
+    else:
+        rows = out.read_text().splitlines()
+        assert rows[0] == "t,rod.x,rod.y,rod.angle"
+        t, angle = (float(x) for x in rows[-1].split(",")[::3])
+        assert abs(angle - t) < 1e-12

@@ -162,3 +162,15 @@ def test_outputs_are_computed_only_when_asked(core_calls):
     r.reaction("pin", frame="joint")
     r.friction_power("pin_friction")
     assert core_calls == {"energy": 1, "residual": 1, "reaction": 1, "friction": 1}
+
+
+def test_an_element_using_a_disabled_one_is_told_so(tmp_path):
+    """A stop on a disabled joint: the error says the joint is disabled (not
+    'defined later'), names where, and asks to disable its users too."""
+    text = chain_scene(2) + ('[[joints]]\ntype = "revolute"\nname = "extra"\nbody_i = "rod0"\n'
+                             'body_j = "rod1"\nat = [1.0, 0.0]\nenabled = false\n\n'
+                             '[[stops]]\nname = "limit"\njoint = "extra"\nlower = -1.0\n')
+    path = tmp_path / "uses_disabled.toml"
+    path.write_text(text)
+    with pytest.raises(mb.ModelError, match=r"joint 'extra' is disabled .*enabled = false.*disable"):
+        mb.load_scene(path)

@@ -199,7 +199,9 @@ def test_inverse_dynamics_with_joint_friction():
     own reaction, so the inverse-dynamic multipliers solve a fixed point.
     The motor torque must agree with the dynamic run of the same driven
     model (DAE with the friction in its residual, rtol 1e-10) to 1e-6 of its
-    peak, and differ from the frictionless torque (the friction is felt)."""
+    peak, differ from the frictionless torque (the friction is felt), and
+    close the power balance on the closed-form motion with the friction law
+    written out in the test to 1e-9 of its peak."""
     def model():
         m = slider_crank()
         m.add_joint_friction("B_friction", "B", mu=0.3, pin_radius=0.02)
@@ -212,3 +214,13 @@ def test_inverse_dynamics_with_joint_friction():
     assert np.max(np.abs(tau - tau_dyn)) < 1e-6 * peak
     frictionless = mb.simulate(slider_crank(), t_end=T_END, n_out=N_OUT).effort("motor")
     assert np.max(np.abs(tau - frictionless)) > 1e-3 * peak
+    # independent of lagmb's friction code: the power balance on the closed-form
+    # motion, tau omega = (power without friction) - T_f (omega_rod - omega_crank),
+    # with the law written out here, T_f = -mu r N sd / sqrt(sd^2 + v_s^2),
+    # N = sqrt(|R_B|^2 + F_s^2) - F_s from the run's own pin reaction
+    k = slider_crank_kinematics(THETA0 + OMEGA * kin.t, OMEGA)
+    sd = k["psid"] - OMEGA
+    load = np.sqrt(np.sum(kin.reaction("B")[:, :2] ** 2, axis=1) + 1e-12) - 1e-6
+    friction_torque = -0.3 * 0.02 * load * sd / np.sqrt(sd**2 + 1e-6)
+    balance = (_motor_torque_reference(kin.t) * OMEGA - friction_torque * sd) / OMEGA
+    assert np.max(np.abs(tau - balance)) < 1e-9 * peak

@@ -250,3 +250,43 @@ def test_elastic_elbow_stop_conserves_energy(formulation):
     assert np.max(r.residual) <= 1e-9
     rel = r.q[:, 5] - r.q[:, 2]
     assert rel.min() >= -0.5 - 1e-9 and rel.max() <= 0.5 + 1e-9
+
+
+def test_a_driver_pushing_through_its_own_stop_is_refused():
+    """A pendulum whose pin angle is driven at -1 rad/s against a stop at
+    -0.5 rad: no impulse can change a prescribed motion (the joints leave no
+    mobility along the limit), so the run stops at the limit, t = 0.5 s,
+    naming the stop, instead of recording impacts that never happen. The
+    kinematic analysis, which cannot see events, is not chosen."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", mass=1.0, inertia=1 / 12, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m.add_stop("st", "pin", lower=-0.5, restitution=0.5)
+    m.drive_joint("d", "pin", mb.Linear(-1.0))
+    with pytest.raises(mb.SimulationError, match="'st'.*prescribe") as info:
+        mb.simulate(m, 1.0)
+    assert abs(info.value.t - 0.5) < 1e-8
+    assert info.value.result.stats["analysis"] == "dynamic"
+    assert len(info.value.result.t) >= 50
+
+
+def test_rest_speed_must_be_positive():
+    """rest_speed = 0 would let rebounds shrink to rounding level before the
+    rest test fires."""
+    m = mb.Model()
+    rod = m.add_body("rod", mass=1.0, inertia=1 / 12, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    with pytest.raises(ValueError, match="rest_speed"):
+        m.add_stop("st", "pin", lower=-0.5, restitution=0.5, rest_speed=0.0)
+
+
+def test_equilibrium_beyond_a_stop_is_refused():
+    """A pendulum hanging at -pi/2 with a stop at -1 rad: the unconstrained
+    equilibrium lies beyond the limit and resting on a stop is not
+    modelled, so mb.equilibrium says so, naming the stop (by 0.5708 rad)."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", mass=1.0, inertia=1 / 12, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m.add_stop("st", "pin", lower=-1.0, restitution=0.5)
+    with pytest.raises(mb.EquilibriumError, match=r"'st' \(by 0\.5707") :
+        mb.equilibrium(m)

@@ -229,6 +229,7 @@ class Ali3pStepper final : public Stepper {
     s.convergence_failures = retries_;
     s.last_order = 2;
     s.last_step = t_ - t_prev_;
+    s.element_evaluations = d_.element_evaluations;
   }
 
  private:

@@ -168,7 +168,7 @@ void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const dou
                     double t, VecX& qdd, VecX& lam) {
   // fixed point lam -> Q + Q_f(q, v, lam) -> (qdd, lam) on the factorization
   // already done: the matrix does not depend on lam, only the right side
-  const int max_iterations = 100;
+  const int max_iterations = 2000;  // linear convergence; a gain near 1 needs many
   VecX& Q0 = d.friction_Q0;
   VecX& previous = d.friction_lam;
   Q0 = d.Q;

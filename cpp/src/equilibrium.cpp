@@ -283,6 +283,24 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
   e.force_residual = max_abs(r.f1);
   e.constraint_residual = max_abs(r.f2);
   stability(model, solver.data(), o.t, e);
+  // resting against a stop is not modelled: an equilibrium beyond a limit is
+  // not one the mechanism can reach
+  const VecX zero_v = VecX::Zero(model.n_coordinates());
+  for (const auto& g : model.event_groups()) {
+    if (!g->bounds_motion() || g->size() == 0) continue;
+    std::vector<double> values;
+    for (int k = 0; k < g->size(); ++k) values.resize(values.size() + g->roots(k));
+    g->values(q.data(), zero_v.data(), o.t, values.data());
+    for (int k = 0, i = 0; k < g->size(); ++k)
+      for (int r = 0; r < g->roots(k); ++r, ++i)
+        if (values[i] < 0.0) {
+          std::ostringstream s;
+          s << "the static equilibrium found at t = " << o.t << " lies beyond the limit of '" << g->name(k)
+            << "' (by " << -values[i] << "): resting against a stop is not modelled, so this mechanism has no "
+            << "equilibrium lagmb can represent within its limits.";
+          throw EquilibriumError(s.str());
+        }
+  }
   if (!e.stable && !o.allow_unstable && e.stiffness_eigenvalues.size() && e.stiffness_eigenvalues[0] < 0 &&
       e.stiffness_eigenvalues[0] < -1e-9 * e.stiffness_eigenvalues.cwiseAbs().maxCoeff()) {
     std::ostringstream s;

@@ -130,9 +130,23 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     kkt_.solve(C[j], zero_m, x, y);
     X.col(j) = x;
   }
+  const VecX& M = model_.mass_diagonal();
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
     b[i] = -(1.0 + act[i].restitution) * C[i].dot(v);
+    // A(i, i) is the mobility along the limit left by the joints; next to the
+    // free body's C M^-1 C^T it is 0 when drivers prescribe that motion, and
+    // no impulse can change it: a driver pushing through its own stop
+    const double free_mobility = C[i].cwiseAbs2().cwiseQuotient(M).sum();
+    if (!(A(i, i) > 1e-10 * free_mobility)) {
+      auto& group = *model_.event_groups()[roots_[which[i]].group];
+      IntegratorFailure f(std::string(group.kind()) + " '" + group.name(roots_[which[i]].element) +
+                              "' is reached at t = " + fmt(t) + " along a motion the joints and drivers prescribe: " +
+                              "no impact can change it (a driver pushing through the limit); the run stops here.",
+                          t);
+      f.diagnose = false;
+      throw f;
+    }
   }
   const VecX before = v;
   v += X * A.fullPivLu().solve(b);

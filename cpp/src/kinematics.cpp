@@ -56,9 +56,15 @@ std::string resolve_analysis(const Model& model, const SimulationOptions& o) {
     if (!massless.empty()) refuse_massless();
     return a;
   }
+  // stops and contact switch on events, which only the integrators find
+  const bool events = !model.event_groups().empty();
+  if (events && a != "auto")
+    throw ModelError("simulate: analysis \"" + a + "\" solves the constraints at the output times only and " +
+                     "would miss the events of '" + model.event_groups().front()->name(0) +
+                     "' (stops, contact): use analysis=\"dynamic\"");
   const int dof = degrees_of_freedom(model, o.t0);
   if (a == "auto") {
-    if (dof > 0) {
+    if (dof > 0 || events) {
       if (!massless.empty()) refuse_massless();
       return "dynamic";
     }
@@ -244,6 +250,7 @@ class KinematicSolver {
   }
 
   /// Factorizations of the square Jacobian and of the augmented matrix.
+  long element_evaluations() const { return d_.element_evaluations; }
   int jacobian_factorizations() const { return square_ ? square_->factorizations() : 0; }
   int augmented_factorizations() const { return kkt_.factorizations(); }
 
@@ -327,7 +334,7 @@ class KinematicSolver {
     solve_for(base);
     if (model_.friction_groups().empty()) return;
     VecX previous(m_), c(n_);
-    for (int it = 0; it < 100; ++it) {
+    for (int it = 0; it < 2000; ++it) {  // as solve_friction: linear convergence
       previous = lam;
       d_.Q.setZero();
       add_friction_forces(model_, d_, q.data(), v.data(), previous.data());
@@ -412,6 +419,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   auto finish = [&] {
     if (solver_ptr) {
       tr.stats.lu_factorizations = solver_ptr->jacobian_factorizations();
+      tr.stats.element_evaluations = solver_ptr->element_evaluations();
       tr.stats.augmented_factorizations = solver_ptr->augmented_factorizations();
     }
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -704,8 +704,9 @@ void Model::add_stop(const std::string& name, const std::string& joint, std::opt
     throw ModelError("stop '" + name + "': lower = " + fmt(*lower) + " must be below upper = " + fmt(*upper));
   if (!(std::isfinite(restitution) && restitution >= 0.0 && restitution <= 1.0))
     throw ModelError("stop '" + name + "': restitution must be in [0, 1], got " + fmt(restitution));
-  if (!(std::isfinite(rest_speed) && rest_speed >= 0.0))
-    throw ModelError("stop '" + name + "': rest_speed must be finite and >= 0, got " + fmt(rest_speed));
+  // 0 would let rebounds shrink to rounding level (Zeno) before the rest test fires
+  if (!(std::isfinite(rest_speed) && rest_speed > 0.0))
+    throw ModelError("stop '" + name + "': rest_speed must be finite and > 0, got " + fmt(rest_speed));
   s.has_lower = bool(lower);
   s.has_upper = bool(upper);
   s.lower = lower.value_or(0.0);

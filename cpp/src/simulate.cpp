@@ -100,14 +100,23 @@ std::vector<double> output_times(const SimulationOptions& o) {
   return t;
 }
 
-/// a and lam at every recorded output, from the augmented system.
-void solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr) {
+/// a and lam at the recorded outputs from `first` on, from the augmented
+/// system. An output where that solve fails (a user function throwing again,
+/// joint friction whose load does not converge) gets NaN there; q and v stay.
+void solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first = 0) {
   const int n = tr.n, m = tr.m, k = tr.size();
   tr.a.resize(size_t(k) * n);
   tr.lam.resize(size_t(k) * m);
-  for (int i = 0; i < k; ++i)
-    solve_accelerations(model, d, kkt, &tr.q[size_t(i) * n], &tr.v[size_t(i) * n], tr.t[i],
-                        &tr.a[size_t(i) * n], &tr.lam[size_t(i) * m]);
+  for (int i = first; i < k; ++i) {
+    double *a = &tr.a[size_t(i) * n], *lam = &tr.lam[size_t(i) * m];
+    try {
+      solve_accelerations(model, d, kkt, &tr.q[size_t(i) * n], &tr.v[size_t(i) * n], tr.t[i], a, lam);
+    } catch (const UserFunctionError&) {
+      std::fill(a, a + n, NAN), std::fill(lam, lam + m, NAN);
+    } catch (const SimulationError&) {
+      std::fill(a, a + n, NAN), std::fill(lam, lam + m, NAN);
+    }
+  }
 }
 
 }  // namespace
@@ -127,6 +136,9 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
     throw ModelError("solve_accelerations: q and v must have " + std::to_string(n) + " entries");
   if (!q.allFinite() || !v.allFinite() || !std::isfinite(t))
     throw ModelError("solve_accelerations: q, v and t must be finite");
+  if (const auto massless = massless_bodies(model); !massless.empty())
+    throw ModelError("solve_accelerations: body '" + model.body(massless.front()).name +
+                     "' is massless, so its accelerations are not determined by forces");
   Data d(model);
   AugmentedSystem kkt(model);
   qdd.resize(n);
@@ -188,22 +200,21 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   tr.t.reserve(plan.t_out.size());
   tr.q.reserve(plan.t_out.size() * n);
   tr.v.reserve(plan.t_out.size() * n);
+  // a contact's damping depends on the impact speed of the contact in
+  // progress (event state): with event elements, a and lam are solved when
+  // an output is recorded, not from the final state after the run
+  const bool solve_when_recorded = !model.event_groups().empty();
   auto record = [&](const double* q, const double* v) {
     tr.t.push_back(plan.t_out[tr.t.size()]);
     tr.q.insert(tr.q.end(), q, q + n);
     tr.v.insert(tr.v.end(), v, v + n);
+    if (solve_when_recorded) solve_outputs(model, d, kkt, tr, tr.size() - 1);
   };
   tr.stats.formulation = o.formulation;
   tr.stats.integrator = o.integrator;
   tr.stats.analysis = "dynamic";
   auto finish = [&] {
-    try {
-      solve_outputs(model, d, kkt, tr);
-    } catch (const UserFunctionError&) {
-      // a user function failing again at an output: keep q, v; drop a, lam
-      tr.a.assign(tr.q.size(), NAN);
-      tr.lam.assign(size_t(tr.size()) * m, NAN);
-    }
+    if (!solve_when_recorded) solve_outputs(model, d, kkt, tr);
     tr.stats.element_evaluations += d.element_evaluations;  // start and outputs
     if (events) {
       tr.events = events->records;

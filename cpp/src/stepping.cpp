@@ -3,6 +3,8 @@
 
 #include "events.hpp"
 #include "integrators.hpp"
+#include "lagmb/errors.hpp"
+#include "lagmb/time_function.hpp"
 
 namespace lagmb {
 
@@ -45,8 +47,20 @@ void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentSt
         if (root || plan.events->missed(t, stepper.positions(), stepper.velocities(), fired)) {
           q_event = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
           v_event = Eigen::Map<const VecX>(stepper.velocities(), start.v.size());
-          if (plan.events->handle(t, q_event, v_event, fired)) {
-            stepper.reset(t, plan.events->consistent(t, q_event, v_event));
+          bool acted = false;
+          try {
+            acted = plan.events->handle(t, q_event, v_event, fired);
+            if (acted) stepper.reset(t, plan.events->consistent(t, q_event, v_event));
+          } catch (const SimulationError& e) {  // keep the outputs so far
+            throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
+          } catch (const UserFunctionError& e) {
+            throw IntegratorFailure(e.what(), t);
+          }
+          if (acted) {
+            if (at_stop) {  // the event fell on a breakpoint or t_end: pass it
+              if (next_break >= plan.breakpoints.size()) break;
+              ++next_break;
+            }
             stepper.set_stop(stop_time());
             continue;
           }

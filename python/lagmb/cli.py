@@ -282,9 +282,12 @@ def _write(path, r, scene):
     (npz_reactions, npz_efforts), (csv_reactions, csv_efforts) = _selection(scene)
     parent = os.path.dirname(os.path.abspath(path))
     os.makedirs(parent, exist_ok=True)
-    if r.stats.get("analysis") == "kinematic":  # no multipliers: only what was listed is asked for
-        npz_reactions = scene.output.get("reactions", [])
-        npz_efforts = scene.output.get("efforts", [])
+    if r.stats.get("analysis") == "kinematic":  # no multipliers: no reactions, no efforts
+        listed = list(scene.output.get("reactions", [])) + list(scene.output.get("efforts", []))
+        if listed:
+            print(f"lagmb: a kinematic analysis computes no reactions or driver efforts; "
+                  f"{', '.join(listed)} not written", file=sys.stderr)
+        npz_reactions = npz_efforts = csv_reactions = csv_efforts = []
     if path.lower().endswith(".npz"):
         arrays = dict(t=r.t, q=r.q, v=r.v, a=r.a, energy=r.energy,
                       residual=r.residual, coordinates=np.array(coordinate_names(r.model)))

@@ -635,12 +635,21 @@ class _Reader:
         return None
 
     def later(self, table_names, name):
-        """Where a name is defined further down the file, if it is."""
+        """Where a name that is not (yet) in the model is defined in the file,
+        if it is: (table[i], line, why), why saying it is disabled or later."""
         for table in table_names:
             for i, entry in enumerate(self.data.get(table, [])):
                 if entry.get("name") == name:
-                    return f"{table}[{i}]", self.lines.line((table, i))
+                    why = "disabled" if entry.get("enabled", True) is False else "later"
+                    return f"{table}[{i}]", self.lines.line((table, i)), why
         return None
+
+    @staticmethod
+    def unavailable(what, name, found, hint):
+        if found[2] == "disabled":
+            return (f"{what} {name!r} is disabled ({found[0]}, line {found[1]}: enabled = false); "
+                    f"disable the elements that use it too")
+        return f"{what} {name!r} is defined later ({found[0]}, line {found[1]}); {hint}"
 
     def convert(self, w, method, arg, key, value):
         kind = _kind(method, arg)
@@ -649,8 +658,8 @@ class _Reader:
             if name not in self.bodies:
                 found = self.later(("bodies", "particles"), name)
                 if found:
-                    raise w.error(f"body {name!r} is defined later ({found[0]}, line {found[1]}); "
-                                  "define bodies before the elements that use them", key)
+                    raise w.error(self.unavailable("body", name, found,
+                                                   "define bodies before the elements that use them"), key)
                 raise w.error(f"no body named {name!r} (bodies: "
                               f"{', '.join(sorted(self.bodies))})", key)
             return name
@@ -659,8 +668,8 @@ class _Reader:
             if name not in self.joints:
                 found = self.later(("joints",), name)
                 if found:
-                    raise w.error(f"joint {name!r} is defined later ({found[0]}, line {found[1]}); "
-                                  "define joints before the drivers and stops that use them", key)
+                    raise w.error(self.unavailable("joint", name, found,
+                                                   "define joints before the drivers and stops that use them"), key)
                 known = ", ".join(sorted(self.joints)) or "none"
                 raise w.error(f"no joint named {name!r} (joints: {known})", key)
             return name

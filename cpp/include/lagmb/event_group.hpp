@@ -63,6 +63,9 @@ class EventGroupBase {
   virtual const std::string& name(int k) const = 0;
   virtual const char* kind() const = 0;
   virtual int roots(int k) const = 0;
+  /// Whether a negative event function marks a forbidden place (a limit)
+  /// rather than a switch of a force law (contact).
+  virtual bool bounds_motion() const = 0;
   virtual void place(const Model& model) = 0;
   /// Position of element k's coordinates in q (-1: ground / missing angle).
   virtual const std::array<int, 6>& coordinates(int k) const = 0;
@@ -82,6 +85,7 @@ class EventGroup final : public EventGroupBase {
   int size() const override { return static_cast<int>(items.size()); }
   const std::string& name(int k) const override { return items[k].name; }
   const char* kind() const override { return Kind::kind; }
+  bool bounds_motion() const override { return Kind::bounds_motion; }
   int roots(int) const override { return Kind::roots; }
   void place(const Model& model) override;
   const std::array<int, 6>& coordinates(int k) const override { return coord_[k]; }

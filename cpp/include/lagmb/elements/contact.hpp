@@ -93,6 +93,7 @@ struct ContactState {
 struct CircleLineContact {
   static constexpr bool state_dependent = true;
   static constexpr int roots = 1;
+  static constexpr bool bounds_motion = false;  // g < 0 is contact, not a violation
   static constexpr const char* kind = "contact";
   static constexpr double kExponent = 1.5;
   static constexpr double kMinImpactSpeed = 1e-3;  // m/s

@@ -21,6 +21,8 @@ namespace lagmb {
 /// root function at exactly zero (SUNDIALS would warn).
 struct JointStop {
   static constexpr int roots = 2;
+  /// Its event functions bound the motion: g < 0 is a place the body may not be.
+  static constexpr bool bounds_motion = true;
   static constexpr const char* kind = "stop";
 
   std::string name;
