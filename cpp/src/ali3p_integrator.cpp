@@ -123,6 +123,10 @@ class Ali3pStepper final : public Stepper {
       ++retries_;
       h = h_ * retry_factors[attempt];
       at_stop = false;
+      if (t_prev_ + h >= stop_) {  // a longer retry must not pass a breakpoint or t_end
+        h = stop_ - t_prev_;
+        at_stop = true;
+      }
     }
     const double t1 = at_stop ? stop_ : t_prev_ + h;
     const double c1 = 2.0 / h, c2 = 4.0 / (h * h);

@@ -54,6 +54,7 @@ A scene, with every table (all keys in SI units, angles in radians)::
     mu = 0.2
     pin_radius = 0.01
     enabled = false                 # any element table: read and checked, not added
+                                    # (so to_scene does not write it back)
 
     [[stops]]                       # add_stop(name, joint, lower, upper, restitution,
     name = "limit"                  #          rest_speed): a joint limit with impacts
