@@ -242,10 +242,10 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
       dae.initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
       // a new first step, and weights for it (as at the start): the index-2
       // and index-3 weights scale with 1/h, and the last step before the
-      // event says nothing about the step the new state needs
-      IntegrationPlan from_here = plan;
-      from_here.t0 = t;
-      cb.h_default = initial_step(from_here, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae.size());
+      // event says nothing about the step the new state needs. The rule's
+      // 1e-3 of the whole run, not of the time left: events on every step
+      // would otherwise creep toward t_end in ever smaller steps
+      cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae.size());
       cb.fresh = true;
       check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
       restart(t);
