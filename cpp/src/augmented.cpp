@@ -164,10 +164,8 @@ void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, cons
   Eigen::Map<VecX>(lam, m) = l;
 }
 
-void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
-                    double t, VecX& qdd, VecX& lam) {
-  // fixed point lam -> Q + Q_f(q, v, lam) -> (qdd, lam) on the factorization
-  // already done: the matrix does not depend on lam, only the right side
+void iterate_friction_load(const Model& model, Data& d, const double* q, const double* v, double t, VecX& lam,
+                           const std::function<void(VecX& lam)>& solve) {
   const int max_iterations = 2000;  // linear convergence; a gain near 1 needs many
   VecX& Q0 = d.friction_Q0;
   VecX& previous = d.friction_lam;
@@ -177,18 +175,24 @@ void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const dou
     previous = lam;
     d.Q = Q0;
     add_friction_forces(model, d, q, v, previous.data());
-    kkt.solve(d.Q, d.gamma, qdd, lam);
+    solve(lam);
     change = lam.size() ? (lam - previous).lpNorm<Eigen::Infinity>() : 0.0;
     if (!std::isfinite(change)) break;
     if (change <= 1e-12 * (lam.lpNorm<Eigen::Infinity>() + model.mass_scale())) return;
   }
   std::ostringstream s;
-  s << "joint friction: the multipliers of the augmented system do not converge at t = " << t
-    << " (fixed-point iteration: change " << change << " after " << max_iterations
+  s << "joint friction: the multipliers do not converge at t = " << t << " (fixed-point iteration: change "
+    << change << " after " << max_iterations
     << " iterations). The friction load comes from the joint reactions, which the friction itself "
        "changes; with friction coefficients this large (mu times pin radius or moment arm) that loop "
        "locks. Reduce mu or pin_radius.";
   throw SimulationError(s.str(), t);
+}
+
+void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
+                    double t, VecX& qdd, VecX& lam) {
+  // the matrix does not depend on lam, only the right side: one factorization
+  iterate_friction_load(model, d, q, v, t, lam, [&](VecX& l) { kkt.solve(d.Q, d.gamma, qdd, l); });
 }
 
 }  // namespace lagmb

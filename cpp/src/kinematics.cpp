@@ -333,18 +333,8 @@ class KinematicSolver {
     };
     solve_for(base);
     if (model_.friction_groups().empty()) return;
-    VecX previous(m_), c(n_);
-    for (int it = 0; it < 2000; ++it) {  // as solve_friction: linear convergence
-      previous = lam;
-      d_.Q.setZero();
-      add_friction_forces(model_, d_, q.data(), v.data(), previous.data());
-      c = base + d_.Q;
-      solve_for(c);
-      if (max_abs(lam - previous) <= 1e-12 * (max_abs(lam) + model_.mass_scale())) return;
-    }
-    throw SimulationError("joint friction: the inverse-dynamic multipliers do not converge at t = " +
-                              std::to_string(t) + "; reduce mu or pin_radius",
-                          t);
+    const VecX inertia = model_.mass_diagonal().cwiseProduct(a);
+    iterate_friction_load(model_, d_, q.data(), v.data(), t, lam, [&](VecX&) { solve_for(d_.Q - inertia); });
   }
 
   /// [M Phi_q^T; Phi_q 0] [x1; x2] = [b1; b2] with Phi_q = d_.Phi_q (exact at

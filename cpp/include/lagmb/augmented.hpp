@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/SparseLU>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,12 +64,18 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
 void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,
                          const double* v, double t, double* qdd, double* lam);
 
-/// With joint friction Q_f(q, v, lam), the augmented system is nonlinear in
-/// lam. Given kkt factorized at q, d.Q (without friction), d.gamma and the
-/// frictionless solution (qdd, lam), iterates lam_{k+1} = solve(Q + Q_f(lam_k))
-/// until |lam_{k+1} - lam_k|_inf <= 1e-12 (|lam|_inf + mass scale), at most
-/// 100 times; throws SimulationError if it does not converge (friction so
-/// large that the load-friction loop locks). Leaves d.Q with friction.
+/// Joint friction Q_f(q, v, lam) takes its load from the multipliers, so the
+/// equations that give lam become nonlinear in it. From d.Q (forces without
+/// friction) and the frictionless lam, iterates: d.Q = Q + Q_f(lam_k), then
+/// solve(lam) gives lam_{k+1} from that d.Q, until |lam_{k+1} - lam_k|_inf
+/// <= 1e-12 (|lam|_inf + mass scale), at most 2000 times (the convergence is
+/// linear); throws SimulationError if it does not converge (friction so large
+/// that the load-friction loop locks). Leaves d.Q with friction.
+void iterate_friction_load(const Model& model, Data& d, const double* q, const double* v, double t, VecX& lam,
+                           const std::function<void(VecX& lam)>& solve);
+
+/// iterate_friction_load on the augmented system: kkt factorized at q,
+/// d.gamma, and the frictionless (qdd, lam) in; both updated.
 void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
                     double t, VecX& qdd, VecX& lam);
 
