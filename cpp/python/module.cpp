@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 
+#include "lagmb/interrupt.hpp"
 #include "lagmb/lagmb.hpp"
 
 namespace py = pybind11;
@@ -65,6 +66,7 @@ py::dict to_python(Trajectory&& tr) {
     events.append(ev);
   }
   out["events"] = events;
+  out["dropped_rows"] = tr.dropped_rows;
   return out;
 }
 
@@ -77,12 +79,58 @@ void require_rows(const Model& model, const RowMajor& x, int cols, const char* w
                      std::to_string(x.cols()));
 }
 
-py::handle g_simulation_error, g_assembly_error;
+/// Per-output arrays must all have one row per output time.
+void require_outputs(const Eigen::VectorXd& t, std::initializer_list<std::pair<const RowMajor*, const char*>> arrays) {
+  for (const auto& [x, what] : arrays)
+    if (x->rows() != t.size())
+      throw ModelError(std::string(what) + " has " + std::to_string(x->rows()) + " rows but t has " +
+                       std::to_string(t.size()) + " entries: one row per output time");
+}
+
+py::handle g_simulation_error, g_assembly_error, g_user_function_error;
+
+/// A Python exception kept across C++ frames; released with the GIL.
+std::shared_ptr<void> hold(py::object value) {
+  return std::shared_ptr<void>(new py::object(std::move(value)), [](void* p) {
+    py::gil_scoped_acquire gil;
+    delete static_cast<py::object*>(p);
+  });
+}
+
+/// The exception a user function raised in this thread's current call: the
+/// cause of the SimulationError it leads to (chained as __cause__).
+thread_local std::shared_ptr<void> t_pending_cause;
+
+/// For one call from Python into the core: Ctrl-C is honoured at the core's
+/// poll points (as Interrupted, which carries the KeyboardInterrupt back),
+/// and a cause left by an earlier call is forgotten.
+struct PythonCall {
+  PythonCall()
+      : interrupts([] {
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) {
+            py::error_already_set e;
+            Interrupted stop;
+            stop.cause = hold(e.value());
+            throw stop;
+          }
+        }) {
+    t_pending_cause.reset();
+  }
+  InterruptScope interrupts;
+};
 
 /// A Python callable as a time function. Called with the GIL taken (the run
 /// releases it); a Python exception or a bad return value becomes a
-/// UserFunctionError naming the element, so nothing unwinds through
-/// SUNDIALS and the run stops with SimulationError.
+/// UserFunctionError naming the element (the exception kept as its cause),
+/// so nothing unwinds through SUNDIALS and the run stops with
+/// SimulationError. KeyboardInterrupt and SystemExit are the user's: they
+/// stop the run as Interrupted and come back unchanged.
+///
+/// Each instance owns one reference to its callable, and each instance has
+/// one owner that Python's garbage collector can see (a TimeFunction
+/// object, or the Model it was cloned into), so a callable that refers to
+/// its own model forms a cycle the collector can break.
 class PythonTimeFunction final : public TimeFunction {
  public:
   /// component: -1 for f(t) -> (y, dy, ddy) (derivatives) or f(t) -> y;
@@ -93,6 +141,15 @@ class PythonTimeFunction final : public TimeFunction {
     py::gil_scoped_acquire gil;
     f_ = py::object();
   }
+  /// Another instance with its own reference (for a new owner).
+  std::shared_ptr<PythonTimeFunction> clone() const {
+    py::gil_scoped_acquire gil;
+    return std::make_shared<PythonTimeFunction>(f_, where_, derivatives_, component_);
+  }
+  PyObject* callable() const { return f_.ptr(); }
+  /// Drops the reference (the garbage collector breaking a cycle).
+  void clear() { f_ = py::none(); }
+
   TimeValue eval(double t) const override {
     py::gil_scoped_acquire gil;
     TimeValue v;
@@ -110,6 +167,13 @@ class PythonTimeFunction final : public TimeFunction {
         v.f = r.cast<double>();
       }
     } catch (py::error_already_set& e) {
+      if (!e.matches(PyExc_Exception)) {  // KeyboardInterrupt, SystemExit: pass them on
+        Interrupted stop;
+        stop.cause = hold(e.value());
+        stop.t = t;
+        throw stop;
+      }
+      t_pending_cause = hold(e.value());
       // type and message only: the run's error should read as one line
       const std::string type = py::str(e.type().attr("__name__"));
       const std::string text = py::str(e.value());
@@ -129,6 +193,50 @@ class PythonTimeFunction final : public TimeFunction {
   int component_;
 };
 
+/// The function a Model keeps: a Python function is cloned, so that the
+/// Model owns its reference alone (see PythonTimeFunction).
+TimeFunctionPtr own(const TimeFunctionPtr& f) {
+  if (auto* p = dynamic_cast<PythonTimeFunction*>(f.get())) return p->clone();
+  return f;
+}
+
+/// tp_traverse / tp_clear for a class whose C++ object owns Python
+/// functions: `each(self, visit)` calls visit(PythonTimeFunction&) for each.
+template <class T, class Each>
+void collectable(PyHeapTypeObject* heap_type) {
+  auto* type = &heap_type->ht_type;
+  type->tp_flags |= Py_TPFLAGS_HAVE_GC;
+  type->tp_traverse = [](PyObject* self, visitproc visit, void* arg) -> int {
+    Py_VISIT(Py_TYPE(self));
+    if (!py::detail::is_holder_constructed(self)) return 0;
+    int out = 0;
+    Each::each(py::cast<T&>(py::handle(self)), [&](PythonTimeFunction& f) {
+      if (!out && f.callable()) out = visit(f.callable(), arg);
+    });
+    return out;
+  };
+  type->tp_clear = [](PyObject* self) -> int {
+    if (py::detail::is_holder_constructed(self))
+      Each::each(py::cast<T&>(py::handle(self)), [](PythonTimeFunction& f) { f.clear(); });
+    return 0;
+  };
+}
+
+struct ModelFunctions {
+  template <class Visit>
+  static void each(const Model& model, Visit&& visit) {
+    for (const auto& f : model.time_functions())
+      if (auto* p = dynamic_cast<PythonTimeFunction*>(f.get())) visit(*p);
+  }
+};
+
+struct OwnFunction {
+  template <class Visit>
+  static void each(TimeFunction& f, Visit&& visit) {
+    if (auto* p = dynamic_cast<PythonTimeFunction*>(&f)) visit(*p);
+  }
+};
+
 const ConstraintGroupBase& constraint_group(const Model& model, const std::string& name) {
   const ElementRef& r = model.find(name);
   if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
@@ -144,28 +252,53 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError);
   g_simulation_error = PyErr_NewException("lagmb._core.SimulationError", PyExc_RuntimeError, nullptr);
   g_assembly_error = PyErr_NewException("lagmb._core.AssemblyError", g_simulation_error.ptr(), nullptr);
+  // a user function failed outside a dynamic run (equilibrium, a one-instant solve)
+  g_user_function_error = PyErr_NewException("lagmb._core.UserFunctionError", g_simulation_error.ptr(), nullptr);
   m.attr("SimulationError") = g_simulation_error;
   m.attr("AssemblyError") = g_assembly_error;
+  m.attr("UserFunctionError") = g_user_function_error;
   py::register_exception_translator([](std::exception_ptr p) {
+    // the exception a user function raised, if it led here
+    auto raise = [](py::handle type, py::object err) {
+      if (t_pending_cause) {
+        PyException_SetCause(err.ptr(), static_cast<py::object*>(t_pending_cause.get())->inc_ref().ptr());
+        t_pending_cause.reset();
+      }
+      PyErr_SetObject(type.ptr(), err.ptr());
+    };
     try {
       if (p) std::rethrow_exception(p);
+    } catch (Interrupted& e) {
+      // the user's KeyboardInterrupt (or SystemExit) itself, with the outputs so far
+      py::object err = e.cause ? *static_cast<py::object*>(e.cause.get())
+                               : py::reinterpret_borrow<py::object>(PyExc_KeyboardInterrupt)();
+      if (e.partial.size() > 0) {
+        err.attr("partial") = to_python(std::move(e.partial));
+        err.attr("t") = e.t;
+      }
+      PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(err.ptr())), err.ptr());
     } catch (const AssemblyError& e) {
       py::object err = py::reinterpret_borrow<py::object>(g_assembly_error)(e.what());
       err.attr("t") = e.t;
       err.attr("violated") = e.violated;
       err.attr("partial") = py::none();
-      PyErr_SetObject(g_assembly_error.ptr(), err.ptr());
+      raise(g_assembly_error, err);
     } catch (const SimulationError& e) {
       py::object err = py::reinterpret_borrow<py::object>(g_simulation_error)(e.what());
       err.attr("t") = e.t;
       err.attr("partial") = to_python(Trajectory(e.partial));
-      PyErr_SetObject(g_simulation_error.ptr(), err.ptr());
+      raise(g_simulation_error, err);
+    } catch (const UserFunctionError& e) {
+      py::object err = py::reinterpret_borrow<py::object>(g_user_function_error)(e.what());
+      err.attr("t") = NAN;
+      err.attr("partial") = py::none();
+      raise(g_user_function_error, err);
     }
   });
 
   py::register_exception<EquilibriumError>(m, "EquilibriumError", m.attr("ModelError"));
 
-  py::class_<Model>(m, "Model")
+  py::class_<Model>(m, "Model", py::custom_type_setup(collectable<Model, ModelFunctions>))
       .def(py::init<>())
       .def("add_body", &Model::add_body, py::arg("name"), py::arg("mass"), py::arg("inertia"),
            py::arg("position"), py::arg("angle"), py::arg("velocity"), py::arg("angular_velocity"))
@@ -187,18 +320,45 @@ PYBIND11_MODULE(_core, m) {
            py::arg("ratio"), py::arg("center_i"), py::arg("center_j"))
       .def("add_rack_pinion", &Model::add_rack_pinion, py::arg("name"), py::arg("pinion"), py::arg("rack"),
            py::arg("radius"), py::arg("axis"))
-      .def("drive_joint", &Model::drive_joint, py::arg("name"), py::arg("joint"), py::arg("f"))
-      .def("drive_body", &Model::drive_body, py::arg("name"), py::arg("body"), py::arg("coordinate"),
-           py::arg("f"))
-      .def("add_spring_damper", &Model::add_spring_damper, py::arg("name"), py::arg("body_i"),
-           py::arg("point_i"), py::arg("body_j"), py::arg("point_j"), py::arg("stiffness"), py::arg("damping"),
-           py::arg("free_length"), py::arg("actuator"))
-      .def("add_rotational_spring_damper", &Model::add_rotational_spring_damper, py::arg("name"),
-           py::arg("body_i"), py::arg("body_j"), py::arg("stiffness"), py::arg("damping"),
-           py::arg("free_angle"), py::arg("torque"))
-      .def("add_force", &Model::add_force, py::arg("name"), py::arg("body"), py::arg("fx"), py::arg("fy"),
-           py::arg("point"), py::arg("local"))
-      .def("add_torque", &Model::add_torque, py::arg("name"), py::arg("body"), py::arg("torque"))
+      .def(
+          "drive_joint",
+          [](Model& model, const std::string& name, const std::string& joint, const TimeFunctionPtr& f) {
+            model.drive_joint(name, joint, own(f));
+          },
+          py::arg("name"), py::arg("joint"), py::arg("f"))
+      .def(
+          "drive_body",
+          [](Model& model, const std::string& name, int body, const std::string& coordinate,
+             const TimeFunctionPtr& f) { model.drive_body(name, body, coordinate, own(f)); },
+          py::arg("name"), py::arg("body"), py::arg("coordinate"), py::arg("f"))
+      .def(
+          "add_spring_damper",
+          [](Model& model, const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
+             double stiffness, double damping, std::optional<double> free_length, const TimeFunctionPtr& actuator) {
+            model.add_spring_damper(name, body_i, point_i, body_j, point_j, stiffness, damping, free_length,
+                                    own(actuator));
+          },
+          py::arg("name"), py::arg("body_i"), py::arg("point_i"), py::arg("body_j"), py::arg("point_j"),
+          py::arg("stiffness"), py::arg("damping"), py::arg("free_length"), py::arg("actuator"))
+      .def(
+          "add_rotational_spring_damper",
+          [](Model& model, const std::string& name, int body_i, int body_j, double stiffness, double damping,
+             std::optional<double> free_angle, const TimeFunctionPtr& torque) {
+            model.add_rotational_spring_damper(name, body_i, body_j, stiffness, damping, free_angle, own(torque));
+          },
+          py::arg("name"), py::arg("body_i"), py::arg("body_j"), py::arg("stiffness"), py::arg("damping"),
+          py::arg("free_angle"), py::arg("torque"))
+      .def(
+          "add_force",
+          [](Model& model, const std::string& name, int body, const TimeFunctionPtr& fx, const TimeFunctionPtr& fy,
+             std::optional<Vec2> point, bool local) { model.add_force(name, body, own(fx), own(fy), point, local); },
+          py::arg("name"), py::arg("body"), py::arg("fx"), py::arg("fy"), py::arg("point"), py::arg("local"))
+      .def(
+          "add_torque",
+          [](Model& model, const std::string& name, int body, const TimeFunctionPtr& torque) {
+            model.add_torque(name, body, own(torque));
+          },
+          py::arg("name"), py::arg("body"), py::arg("torque"))
       .def(
           "add_joint_friction",
           [](Model& model, const std::string& name, const std::string& joint, double mu, double viscous,
@@ -225,7 +385,6 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)
-      .def_property_readonly("redundant_rows", &Model::redundant_rows)
       .def("constraint_name_of_row", &Model::constraint_name_of_row, py::arg("row"))
       .def("has", &Model::has)
       .def("body_coordinates",
@@ -259,6 +418,7 @@ PYBIND11_MODULE(_core, m) {
              const RowMajor& lam, bool joint_axes) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, lam, model.n_constraints(), "lam");
+            require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
             const auto& g = constraint_group(model, name);
             const int k = model.find(name).index;
             RowMajor out(q.rows(), 3);
@@ -280,6 +440,9 @@ PYBIND11_MODULE(_core, m) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             require_rows(model, lam, model.n_constraints(), "lam");
+            if (v.rows() != q.rows() || lam.rows() != q.rows())
+              throw ModelError("q, v and lam must have one row per output (got " + std::to_string(q.rows()) + ", " +
+                               std::to_string(v.rows()) + " and " + std::to_string(lam.rows()) + ")");
             const ElementRef& r = model.find(name);
             if (r.type != ElementRef::kFriction) throw ModelError("'" + name + "' is not a joint friction");
             const auto& g = *model.friction_groups()[r.group];
@@ -318,6 +481,7 @@ PYBIND11_MODULE(_core, m) {
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}});
             Eigen::VectorXd E(q.rows());
             for (Eigen::Index k = 0; k < q.rows(); ++k)
               E[k] = kinetic_energy(model, v.row(k).data()) + potential_energy(model, q.row(k).data(), t[k]);
@@ -328,7 +492,8 @@ PYBIND11_MODULE(_core, m) {
           "residual",
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q) {
             require_rows(model, q, model.n_coordinates(), "q");
-            Data d(model);
+            require_outputs(t, {{&q, "q"}});
+            Data d(model);  // every row, including those a run dropped as redundant
             Eigen::VectorXd r(q.rows());
             for (Eigen::Index k = 0; k < q.rows(); ++k) {
               assemble_constraints(model, d, q.row(k).data(), t[k]);
@@ -342,6 +507,7 @@ PYBIND11_MODULE(_core, m) {
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}});
             Data d(model);
             Eigen::VectorXd r(q.rows());
             for (Eigen::Index k = 0; k < q.rows(); ++k) {
@@ -407,6 +573,7 @@ PYBIND11_MODULE(_core, m) {
       .def(
           "rank",
           [](const Model& model, const Eigen::VectorXd& q, double t) {
+            PythonCall call;
             const ConstraintRank r = constraint_rank(model, q, t);
             py::dict out;
             out["rank"] = r.rank;
@@ -418,7 +585,8 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("q"), py::arg("t") = 0.0);
 
-  py::class_<TimeFunction, TimeFunctionPtr>(m, "TimeFunction")
+  py::class_<TimeFunction, TimeFunctionPtr>(m, "TimeFunction",
+                                           py::custom_type_setup(collectable<TimeFunction, OwnFunction>))
       .def("__call__", [](const TimeFunction& f, double t) {
         const TimeValue v = f.eval(t);
         return py::make_tuple(v.f, v.df, v.ddf);
@@ -439,15 +607,17 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "assemble",
       [](const Model& model, double t) {
+        PythonCall call;
         ConsistentState s = assemble(model, t);
-        return py::make_tuple(s.q, s.v, s.qdd, s.lam);
+        return py::make_tuple(s.q, s.v, s.qdd, s.lam, s.dropped_rows);
       },
       py::arg("model"), py::arg("t") = 0.0,
-      "Consistent (q, v, qdd, lam) at time t from the model's initial values.");
+      "Consistent (q, v, qdd, lam, dropped rows) at time t from the model's initial values.");
 
   m.def(
       "solve_accelerations",
       [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) {
+        PythonCall call;
         Eigen::VectorXd qdd, lam;
         solve_accelerations(model, q, v, t, qdd, lam);
         return py::make_tuple(qdd, lam);
@@ -480,11 +650,23 @@ PYBIND11_MODULE(_core, m) {
         // between steps: let Ctrl-C through, and report progress if asked
         // (a borrowed pointer: the std::function is copied without the GIL)
         PyObject* report = progress.ptr();
-        o.progress = [report](double t) {
-          py::gil_scoped_acquire gil;
-          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-          if (report != Py_None) py::handle{report}(t);
-        };
+        if (report != Py_None)
+          o.progress = [report](double t) {
+            py::gil_scoped_acquire gil;
+            try {
+              py::handle{report}(t);
+            } catch (py::error_already_set& e) {
+              if (!e.matches(PyExc_Exception)) {  // KeyboardInterrupt, SystemExit: the user's
+                Interrupted stop;
+                stop.cause = hold(e.value());
+                throw stop;
+              }
+              t_pending_cause = hold(e.value());
+              throw UserFunctionError("progress raised " + std::string(py::str(e.type().attr("__name__"))) + ": " +
+                                      std::string(py::str(e.value())) + " (at t = " + std::to_string(t) + ")");
+            }
+          };
+        PythonCall call;
         Trajectory tr;
         {
           py::gil_scoped_release release;
@@ -505,6 +687,7 @@ PYBIND11_MODULE(_core, m) {
         o.tol = tol;
         o.max_iterations = max_iterations;
         o.allow_unstable = allow_unstable;
+        PythonCall call;
         Equilibrium e;
         {
           py::gil_scoped_release release;
@@ -525,6 +708,10 @@ PYBIND11_MODULE(_core, m) {
       py::arg("allow_unstable") = false, "Static equilibrium (see equilibrium.hpp) as a dict.");
 
   m.def(
-      "degrees_of_freedom", [](const Model& model, double t) { return degrees_of_freedom(model, t); },
+      "degrees_of_freedom",
+      [](const Model& model, double t) {
+        PythonCall call;
+        return degrees_of_freedom(model, t);
+      },
       py::arg("model"), py::arg("t") = 0.0);
 }

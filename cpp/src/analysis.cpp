@@ -4,6 +4,7 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <sstream>
 
@@ -15,6 +16,7 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
   if (!model.finalized()) throw ModelError("constraint_rank: the model is not finalized");
   if (q.size() != model.n_coordinates())
     throw ModelError("constraint_rank: q must have " + std::to_string(model.n_coordinates()) + " entries");
+  if (!q.allFinite() || !std::isfinite(t)) throw ModelError("constraint_rank: q and t must be finite");
   ConstraintRank r;
   r.equations = model.n_constraints();
   r.coordinates = model.n_coordinates();
@@ -57,25 +59,25 @@ double smallest_ratio(const Eigen::VectorXd& s, size_t rows) {
 
 }  // namespace
 
-std::string diagnose_failure(const Model& model, const VecX& q, double t) {
+std::string diagnose_failure(const Model& model, const VecX& q, double t, const std::vector<int>& dropped_rows) {
   const int m = model.n_constraints();
   if (m == 0 || m > 1000 || q.size() != model.n_coordinates() || !q.allFinite()) return "";
   std::vector<int> rows;
   for (int r = 0; r < m; ++r)
-    if (!std::binary_search(model.redundant_rows().begin(), model.redundant_rows().end(), r)) rows.push_back(r);
+    if (!std::binary_search(dropped_rows.begin(), dropped_rows.end(), r)) rows.push_back(r);
   const auto svd = jacobian_svd(model, rows, q, t);
   const auto& s = svd.singularValues();
   std::ostringstream out;
   if (s.size() == 0) return "";
   const double smallest = s.size() < long(rows.size()) ? 0.0 : s[s.size() - 1];
   // Long chains are ill conditioned everywhere (sigma_min / sigma_max ~ 1/N):
-  // call it a singular position only if the ratio is small and has dropped
-  // well below its value in the initial configuration.
+  // call it a singular position only if the ratio has dropped tenfold below
+  // its value in the initial configuration (or to rounding level).
   const double ratio = smallest_ratio(s, rows.size());
   const VecX q0 = model.initial_q();
   const double ratio0 = q0.allFinite() ? smallest_ratio(jacobian_svd(model, rows, q0, t).singularValues(), rows.size())
                                        : 1.0;
-  if (ratio > 1e-2 || (ratio > 1e-6 && ratio > 0.1 * ratio0)) {
+  if (ratio > 1e-6 && ratio > 0.1 * ratio0) {
     out << " The constraint Jacobian is no worse conditioned there than in the initial configuration "
         << "(smallest singular value " << smallest << " of " << s[0] << "; ratio " << ratio0
         << " at the start): look for fast or stiff dynamics (stiff springs, very light bodies; try max_step), "
@@ -99,7 +101,9 @@ std::string diagnose_failure(const Model& model, const VecX& q, double t) {
   for (size_t k = 0; k < names.size(); ++k) out << (k ? ", '" : " '") << names[k] << "'";
   out << " become dependent. The mechanism is at a dead point, toggle or lock-up: a driver among them cannot "
       << "push it further, and a free mechanism would have to pass a bifurcation. Check the drivers' range of "
-      << "motion and the geometry near this position.";
+      << "motion and the geometry near this position. If the mechanism should pass through it (a free loop "
+      << "such as a parallelogram crossing its flat position), run it with formulation=\"ali3p\" and a fixed "
+      << "step (e.g. step=1e-4), which runs through singular positions.";
   return out.str();
 }
 

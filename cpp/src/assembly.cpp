@@ -1,5 +1,8 @@
 #include "lagmb/assembly.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace lagmb {
 
 Data::Data(const Model& model)
@@ -22,14 +25,28 @@ Data::Data(const Model& model)
   }
 }
 
+void Data::drop_rows(const Model& model, std::vector<int> rows) {
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (int r : rows)
+    if (r < 0 || r >= model.n_constraints()) throw std::logic_error("lagmb: dropped row out of range");
+  dropped_rows = std::move(rows);
+  dropped_slots.clear();
+  const SpMat& J = model.jacobian_pattern();
+  for (int c = 0; c < J.outerSize(); ++c)
+    for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
+      if (std::binary_search(dropped_rows.begin(), dropped_rows.end(), J.innerIndexPtr()[k]))
+        dropped_slots.push_back(k);
+}
+
 namespace {
 
-// redundant rows found at finalize read 0 = 0 (a no-op for most models)
-void drop_rows(const Model& model, VecX& x) {
-  for (int r : model.redundant_rows()) x[r] = 0.0;
+// rows dropped for the run read 0 = 0 (a no-op for most models)
+void drop_rows(const Data& d, VecX& x) {
+  for (int r : d.dropped_rows) x[r] = 0.0;
 }
-void drop_rows(const Model& model, SpMat& A) {
-  for (int s : model.dropped_jacobian_slots()) A.valuePtr()[s] = 0.0;
+void drop_rows(const Data& d, SpMat& A) {
+  for (int s : d.dropped_slots) A.valuePtr()[s] = 0.0;
 }
 
 }  // namespace
@@ -39,7 +56,7 @@ void assemble_constraints(const Model& model, Data& d, const double* q, double t
     g->phi(q, t, d.Phi.data());
     d.element_evaluations += g->size();
   }
-  drop_rows(model, d.Phi);
+  drop_rows(d, d.Phi);
 }
 
 void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
@@ -47,7 +64,7 @@ void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
     g->jacobian(q, t, d.Phi_q.valuePtr());
     d.element_evaluations += g->size();
   }
-  drop_rows(model, d.Phi_q);
+  drop_rows(d, d.Phi_q);
 }
 
 void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
@@ -56,7 +73,7 @@ void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
     g->add_phi_t(q, t, d.phi_t.data());
     d.element_evaluations += g->size();
   }
-  drop_rows(model, d.phi_t);
+  drop_rows(d, d.phi_t);
 }
 
 void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
@@ -64,7 +81,7 @@ void assemble_gamma(const Model& model, Data& d, const double* q, const double* 
     g->gamma(q, v, t, d.gamma.data());
     d.element_evaluations += g->size();
   }
-  drop_rows(model, d.gamma);
+  drop_rows(d, d.gamma);
 }
 
 void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
@@ -73,7 +90,7 @@ void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, co
     g->velocity_jacobian(q, v, t, d.Vq.valuePtr());
     d.element_evaluations += g->size();
   }
-  drop_rows(model, d.Vq);
+  drop_rows(d, d.Vq);
 }
 
 void assemble_constraint_hessian(const Model& model, Data& d, const double* q, double t,

@@ -7,6 +7,8 @@
 
 #include "lagmb/assembly.hpp"
 #include "lagmb/errors.hpp"
+#include "lagmb/interrupt.hpp"
+#include "lagmb/redundancy.hpp"
 
 namespace lagmb {
 
@@ -97,6 +99,7 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
   const int max_iter = 50;
   int iterations = 0;
   while (err > tol) {
+    poll_interrupt();
     if (iterations++ >= max_iter || !std::isfinite(err))
       fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge");
     assemble_jacobian(model, d, q.data(), t);
@@ -146,6 +149,58 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
   if (!model.friction_groups().empty()) solve_friction(model, d, kkt, q.data(), v.data(), t, s.qdd, s.lam);
   s.q = std::move(q);
   s.v = std::move(v);
+  s.dropped_rows = d.dropped_rows;
+  return s;
+}
+
+namespace {
+
+/// AssemblyError if a dropped row's equation at velocity or acceleration
+/// level, residual[row], exceeds tol: its dependent set conflicts.
+void check_dropped(const Model& model, const Redundancy& r, const VecX& residual, double tol, double t,
+                   const char* level) {
+  for (size_t k = 0; k < r.rows.size(); ++k) {
+    const double e = std::abs(residual[r.rows[k]]);
+    if (e <= tol) continue;
+    std::ostringstream s;
+    s << "the model cannot start at t = " << t << ": the equation of '" << r.partners[k][0]
+      << "' depends on " << quoted_names({r.partners[k].begin() + 1, r.partners[k].end()})
+      << " at the initial position, but its " << level << " constraint conflicts with them (residual " << e
+      << "). Two elements prescribe the same motion differently (e.g. a joint and a body driven at "
+         "different rates): remove or reconcile one.";
+    std::vector<std::pair<std::string, double>> violated;
+    for (const auto& name : r.partners[k]) violated.emplace_back(name, e);
+    throw AssemblyError(s.str(), t, std::move(violated));
+  }
+}
+
+}  // namespace
+
+ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, VecX v, double t,
+                            Redundancy* redundancy) {
+  d.drop_rows(model, {});
+  q = assemble_positions(model, d, kkt, std::move(q), t);
+  Redundancy r = find_redundancy(model, d, kkt, q, t);
+  d.drop_rows(model, r.rows);
+  ConsistentState s = make_consistent(model, d, kkt, std::move(q), std::move(v), t);
+  if (!r.rows.empty()) {
+    // kkt holds the kept rows at s.q; the dropped ones from a full evaluation
+    Data full(model);
+    assemble_jacobian(model, full, s.q.data(), t);
+    name_partners(model, full, kkt, r);
+    assemble_phi_t(model, full, s.q.data(), t);
+    VecX rv = full.phi_t;
+    add_jacobian_times(full, s.v.data(), rv.data());
+    const double tol_v = 1e-8 * (1.0 + max_abs(s.v) + max_abs(full.phi_t));
+    check_dropped(model, r, rv, tol_v, t, "velocity");
+    assemble_gamma(model, full, s.q.data(), s.v.data(), t);
+    VecX ra = -full.gamma;
+    add_jacobian_times(full, s.qdd.data(), ra.data());
+    const double tol_a = 1e-8 * (1.0 + max_abs(s.qdd) + max_abs(full.gamma));
+    check_dropped(model, r, ra, tol_a, t, "acceleration");
+    d.element_evaluations += full.element_evaluations;
+  }
+  if (redundancy) *redundancy = std::move(r);
   return s;
 }
 
@@ -172,6 +227,7 @@ void iterate_friction_load(const Model& model, Data& d, const double* q, const d
   Q0 = d.Q;
   double change = 0.0;
   for (int it = 0; it < max_iterations; ++it) {
+    poll_interrupt();
     previous = lam;
     d.Q = Q0;
     add_friction_forces(model, d, q, v, previous.data());

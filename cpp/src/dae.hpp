@@ -43,6 +43,8 @@ class DaeFormulation {
   virtual const double* v(const double* y) const = 0;
   /// Elements the formulation's assembly kernels evaluated so far.
   virtual long element_evaluations() const { return 0; }
+  /// The rows of Phi the run leaves out (Data::dropped_rows).
+  virtual void drop_rows(const std::vector<int>& rows) = 0;
 };
 
 /// What the DAE forms of lagmb share: y starts with (q, v, lam), and
@@ -64,6 +66,7 @@ class MultiplierDae : public DaeFormulation {
   const double* q(const double* y) const override { return y; }
   const double* v(const double* y) const override { return y + n_; }
   long element_evaluations() const override { return d_.element_evaluations; }
+  void drop_rows(const std::vector<int>& rows) override { d_.drop_rows(model_, rows); }
 
  protected:
   MultiplierDae(const Model& model, int size);
@@ -76,7 +79,7 @@ class MultiplierDae : public DaeFormulation {
   /// Zeroes J_, writes the F1, F2 blocks with the given equilibration and
   /// sets the row and column scalings; leaves Phi_q at q in d_.
   void momentum_jacobian(double t, double cj, const double* y, double r1, double r2, double cv, double cl);
-  /// The multipliers of redundant rows dropped at finalize (their equations
+  /// The multipliers of the rows the run dropped as redundant (their equations
   /// read 0 = 0 and their Jacobian rows are zero) get a unit diagonal, so the
   /// Newton matrix stays invertible and their corrections are zero.
   void pin_dropped_multipliers();

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "lagmb/assembly.hpp"
+#include "lagmb/interrupt.hpp"
+#include "lagmb/redundancy.hpp"
 #include "lagmb/augmented.hpp"
 #include "lagmb/errors.hpp"
 
@@ -24,8 +26,8 @@ namespace {
 
 double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
 
-bool is_redundant(const Model& model, int row) {
-  return std::binary_search(model.redundant_rows().begin(), model.redundant_rows().end(), row);
+bool is_dropped(const Data& d, int row) {
+  return std::binary_search(d.dropped_rows.begin(), d.dropped_rows.end(), row);
 }
 
 /// The state of the Newton iteration at (q, lam).
@@ -93,7 +95,7 @@ class EquilibriumSolver {
         trip.emplace_back(it.col(), n_ + it.row(), it.value());
       }
     for (int r = 0; r < m_; ++r)
-      trip.emplace_back(n_ + r, n_ + r, is_redundant(model_, r) ? 1.0 : 0.0);  // dropped rows: dlam = 0
+      trip.emplace_back(n_ + r, n_ + r, is_dropped(d_, r) ? 1.0 : 0.0);  // dropped rows: dlam = 0
     for (int i = 0; i < n_; ++i) trip.emplace_back(i, i, mu);
     stiffness_size = 0.0;
     for (int c = 0; c < d_.H.outerSize(); ++c)
@@ -206,8 +208,10 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
   EquilibriumSolver solver(model, o.t);
   VecX q;
   {
+    // every row assembled, then the rows redundant there left out (redundancy.hpp)
     AugmentedSystem kkt(model);
     q = assemble_positions(model, solver.data(), kkt, model.initial_q(), o.t);
+    solver.data().drop_rows(model, find_redundancy(model, solver.data(), kkt, q, o.t).rows);
   }
   VecX unbalanced;
   VecX lam = solver.balance(q, unbalanced);
@@ -231,6 +235,7 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
     return max_abs(x.f2) <= o.tol * (1.0 + max_abs(qx)) && max_abs(x.f1) <= o.tol * solver.force_scale;
   };
   while (!converged(r, q)) {
+    poll_interrupt();
     if (it >= o.max_iterations) no_equilibrium(model, solver, q, o.t, it, "Newton did not converge");
     ++it;
     if (!solver.newton_step(q, lam, r, 0.0, dq, dlam)) {

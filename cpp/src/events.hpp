@@ -34,6 +34,8 @@ class EventRunner {
   bool handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
   /// q, v with accelerations and multipliers: the state to restart from.
   ConsistentState consistent(double t, const VecX& q, const VecX& v);
+  /// The rows the run leaves out (Data::dropped_rows).
+  void drop_rows(const std::vector<int>& rows) { d_.drop_rows(model_, rows); }
 
   std::vector<EventRecord> records;
   long events = 0, impacts = 0, root_evals = 0;

@@ -10,6 +10,8 @@
 #include "lagmb/assembly.hpp"
 #include "lagmb/augmented.hpp"
 #include "lagmb/errors.hpp"
+#include "lagmb/interrupt.hpp"
+#include "lagmb/redundancy.hpp"
 
 namespace lagmb {
 
@@ -24,18 +26,21 @@ std::vector<int> massless_bodies(const Model& model) {
 
 int degrees_of_freedom(const Model& model, double t) {
   if (!model.finalized()) throw ModelError("degrees_of_freedom: the model is not finalized");
-  const int n = model.n_coordinates();
-  const int independent = model.n_constraints() - int(model.redundant_rows().size());
-  if (independent < n) return n - independent;  // rank <= independent: no need to ask
+  if (model.n_coordinates() == 0) throw ModelError("degrees_of_freedom: the model has no bodies");
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  if (m == 0) return n;
+  Data d(model);
+  AugmentedSystem kkt(model);
   VecX q = model.initial_q();
   try {
-    Data d(model);
-    AugmentedSystem kkt(model);
     q = assemble_positions(model, d, kkt, q, t);
-  } catch (const std::exception&) {
-    q = model.initial_q();  // the analysis itself will report the assembly
+  } catch (const SimulationError&) {
+    return constraint_rank(model, q, t).degrees_of_freedom();  // the run itself will report the assembly
+  } catch (const UserFunctionError&) {
+    return constraint_rank(model, q, t).degrees_of_freedom();
   }
-  return constraint_rank(model, q, t).degrees_of_freedom();
+  // the generic rank near the assembled position (a singular start counts as its neighbours)
+  return n - (m - int(find_redundancy(model, d, kkt, q, t).rows.size()));
 }
 
 std::string resolve_analysis(const Model& model, const SimulationOptions& o) {
@@ -93,8 +98,8 @@ std::vector<double> solve_times(const Model& model, double t0, const std::vector
   return t;
 }
 
-/// Phi_q restricted to its independent rows (the rows not dropped as
-/// redundant at finalize). At 0 DOF it is square (n x n) and invertible, so
+/// Phi_q restricted to its independent rows (the rows the run does not drop
+/// as redundant). At 0 DOF it is square (n x n) and invertible, so
 /// positions, velocities and accelerations are solves with it and the
 /// multipliers one solve with its transpose, lam = Phi_q^-T (Q - M a): half
 /// the size of the augmented matrix [M Phi_q^T; Phi_q 0] and with no
@@ -103,13 +108,14 @@ std::vector<double> solve_times(const Model& model, double t0, const std::vector
 class SquareJacobian {
  public:
   /// Usable when the independent rows number exactly n.
-  static bool applies(const Model& model) {
-    return model.n_constraints() - int(model.redundant_rows().size()) == model.n_coordinates();
+  static bool applies(const Model& model, const std::vector<int>& dropped) {
+    return model.n_constraints() - int(dropped.size()) == model.n_coordinates();
   }
 
-  explicit SquareJacobian(const Model& model) : n_(model.n_coordinates()), m_(model.n_constraints()) {
+  SquareJacobian(const Model& model, const std::vector<int>& dropped)
+      : n_(model.n_coordinates()), m_(model.n_constraints()) {
     std::vector<int> compact(m_, 0);
-    for (int r : model.redundant_rows()) compact[r] = -1;
+    for (int r : dropped) compact[r] = -1;
     for (int r = 0; r < m_; ++r)
       if (compact[r] == 0) {
         compact[r] = int(row_of_.size());
@@ -170,7 +176,6 @@ class KinematicSolver {
  public:
   KinematicSolver(const Model& model, Stats& stats)
       : model_(model), d_(model), kkt_(model), stats_(stats), n_(model.n_coordinates()), m_(model.n_constraints()) {
-    if (SquareJacobian::applies(model)) square_ = std::make_unique<SquareJacobian>(model);
     zero_n_ = VecX::Zero(n_);
     kappa_.resize(m_);
     dq_.resize(n_);
@@ -186,6 +191,7 @@ class KinematicSolver {
     bool fresh = false;  // factorized at an iterate of this solve
     double previous = INFINITY;
     for (int it = 0; it < max_iter; ++it) {
+      poll_interrupt();
       assemble_constraints(model_, d_, q.data(), t);
       ++stats_.residual_evals;
       ++stats_.newton_iterations;
@@ -242,12 +248,28 @@ class KinematicSolver {
     }
   }
 
-  /// Least-change assembly at t0 (as the dynamic runs do).
+  /// Least-change assembly at t0 with every row, as the dynamic runs start;
+  /// then the rows redundant there are dropped (redundancy.hpp), and at 0
+  /// DOF the kept rows make the square Jacobian.
   VecX assemble(const VecX& q0, double t) {
+    d_.drop_rows(model_, {});
     VecX q = assemble_positions(model_, d_, kkt_, q0, t);
-    factorized_ = !square_ && kkt_.factorizations() > 0;
+    redundancy = find_redundancy(model_, d_, kkt_, q, t);
+    d_.drop_rows(model_, redundancy.rows);
+    if (SquareJacobian::applies(model_, d_.dropped_rows))
+      square_ = std::make_unique<SquareJacobian>(model_, d_.dropped_rows);
+    factorized_ = false;
+    if (!redundancy.rows.empty()) {
+      Data full(model_);
+      assemble_jacobian(model_, full, q.data(), t);
+      assemble_jacobian(model_, d_, q.data(), t);
+      if (kkt_.factorize(d_)) name_partners(model_, full, kkt_, redundancy);
+      else redundancy.partners.assign(redundancy.rows.size(), {model_.constraint_name_of_row(redundancy.rows[0])});
+    }
     return q;
   }
+
+  Redundancy redundancy;  // decided by assemble()
 
   /// Factorizations of the square Jacobian and of the augmented matrix.
   long element_evaluations() const { return d_.element_evaluations; }
@@ -382,7 +404,7 @@ class KinematicSolver {
   Stats& stats_;
   int n_, m_;
   bool factorized_ = false;
-  std::unique_ptr<SquareJacobian> square_;  // at 0 DOF without undetected redundancy
+  std::unique_ptr<SquareJacobian> square_;  // at 0 DOF (kept rows: n)
   VecX zero_n_, kappa_, dq_, r1_, r2_, c1_, c2_;
 };
 
@@ -420,7 +442,10 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   VecX q(n), v = VecX::Zero(n), a = VecX::Zero(n), lam = VecX::Zero(m);
   VecX lam_nan = VecX::Constant(m, NAN);
   size_t k = 0;  // next output
+  std::unique_ptr<RedundancyWatch> watch;
+  std::string violated;
   auto record = [&](double t) {
+    if (watch && !(violated = watch->violation(q.data(), t)).empty()) return;  // fail() reports it
     tr.t.push_back(t);
     tr.q.insert(tr.q.end(), q.data(), q.data() + n);
     tr.v.insert(tr.v.end(), v.data(), v.data() + n);
@@ -436,11 +461,13 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   } catch (const UserFunctionError& e) {
     throw SimulationError(e.what(), t0);
   }
+  tr.dropped_rows = solver.redundancy.rows;
+  if (!tr.dropped_rows.empty()) watch = std::make_unique<RedundancyWatch>(model, solver.redundancy);
   double t = t0;
   auto fail = [&](const std::string& why) {
     finish();
     std::ostringstream msg;
-    msg << "kinematic analysis: " << why << diagnose_failure(model, q, t)
+    msg << "kinematic analysis: " << why << (violated.empty() ? diagnose_failure(model, q, t, tr.dropped_rows) : "")
         << " Outputs up to t = " << (tr.t.empty() ? t0 : tr.t.back()) << " are kept in the partial result.";
     throw SimulationError(msg.str(), t, std::move(tr));
   };
@@ -467,6 +494,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
     solver.rates(q, t0, inverse_dynamics && is_output(t0), v, a, lam);
     if (is_output(t0)) {
       record(t0);
+      if (!violated.empty()) fail(violated);
       ++k;
     }
     VecX q_try(n), v_try(n), a_try(n), lam_try(m);
@@ -507,6 +535,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
       }
       if (is_output(t)) {
         record(t);
+        if (!violated.empty()) fail(violated);
         ++k;
       }
       if (progress) {
@@ -517,6 +546,11 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
         }
       }
     }
+  } catch (Interrupted& e) {
+    finish();
+    e.t = t;
+    e.partial = std::move(tr);
+    throw;
   } catch (const UserFunctionError& e) {
     finish();
     throw SimulationError(std::string(e.what()) + " Outputs up to t = " +

@@ -1,8 +1,5 @@
 #include "lagmb/model.hpp"
 
-#include "lagmb/analysis.hpp"
-#include "lagmb/assembly.hpp"
-#include "lagmb/augmented.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -208,27 +205,6 @@ void Model::finalize() {
     if (!(mass_scale_ > 0)) mass_scale_ = 1.0;  // all bodies massless (kinematics only)
   }
   finalized_ = true;
-  // redundancy is judged where the joints are closed: at the assembled
-  // position (if assembly fails here, simulate reports it, naming the joints)
-  VecX q = initial_q();
-  try {
-    Data d(*this);
-    AugmentedSystem kkt(*this);
-    q = assemble_positions(*this, d, kkt, q, 0.0);
-  } catch (const std::exception&) {
-    q = initial_q();
-  }
-  redundant_rows_.clear();
-  for (int r : constraint_rank(*this, q, 0.0).dependent_rows) {
-    Data d(*this);
-    assemble_constraints(*this, d, q.data(), 0.0);
-    if (std::abs(d.Phi[r]) <= 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>())) redundant_rows_.push_back(r);
-  }
-  dropped_slots_.clear();
-  for (int c = 0; c < jacobian_pattern_.outerSize(); ++c)
-    for (int k = jacobian_pattern_.outerIndexPtr()[c]; k < jacobian_pattern_.outerIndexPtr()[c + 1]; ++k)
-      if (std::binary_search(redundant_rows_.begin(), redundant_rows_.end(), jacobian_pattern_.innerIndexPtr()[k]))
-        dropped_slots_.push_back(k);
 }
 
 VecX Model::initial_q() const {
@@ -256,7 +232,11 @@ const ElementRef& Model::find(const std::string& name) const {
 }
 
 std::string Model::constraint_name_of_row(int row) const {
-  auto [g, k] = constraint_order_.at(row_owner_.at(row));
+  if (!finalized_) throw ModelError("constraint_name_of_row: the model is not finalized");
+  if (row < 0 || row >= m_)
+    throw ModelError("row " + std::to_string(row) + " is not a constraint row (the model has " + std::to_string(m_) +
+                     ")");
+  auto [g, k] = constraint_order_[row_owner_[row]];
   return constraints_[g]->name(k);
 }
 
@@ -271,7 +251,12 @@ std::vector<double> Model::breakpoints() const {
   return t;
 }
 
-const Body& Model::body_of_coordinate(int coord) const { return bodies_.at(coord_owner_.at(coord)); }
+const Body& Model::body_of_coordinate(int coord) const {
+  if (!finalized_ || coord < 0 || coord >= n_)
+    throw ModelError("coordinate " + std::to_string(coord) + " is not a coordinate of the model (it has " +
+                     std::to_string(n_) + ")");
+  return bodies_[coord_owner_[coord]];
+}
 
 }  // namespace lagmb
 

@@ -11,6 +11,8 @@
 #include "lagmb/assembly.hpp"
 #include "lagmb/equilibrium.hpp"
 #include "lagmb/kinematics.hpp"
+#include "lagmb/interrupt.hpp"
+#include "lagmb/redundancy.hpp"
 
 namespace lagmb {
 
@@ -41,8 +43,24 @@ void validate(const Model& model, const SimulationOptions& o) {
   }
   if (o.max_step != 0.0) positive(o.max_step, "max_step");
   if (o.max_steps < 0) throw ModelError("simulate: max_steps must be >= 0 (0: no limit)");
+  // a step bound that needs more steps than allowed would run for hours: refuse it now
+  if (o.max_step > 0 && o.max_steps > 0 && (o.t_end - o.t0) / o.max_step > double(o.max_steps)) {
+    std::ostringstream s;
+    s << "simulate: " << (o.formulation == "ali3p" ? "step" : "max_step") << " = " << o.max_step
+      << " s needs at least " << (o.t_end - o.t0) / o.max_step << " steps from t0 = " << o.t0
+      << " to t_end = " << o.t_end << ", more than max_steps = " << o.max_steps
+      << ": take a longer step or raise max_steps";
+    throw ModelError(s.str());
+  }
   if (o.t_out.empty() && o.n_out < 2)
     throw ModelError("simulate: n_out must be at least 2, got " + std::to_string(o.n_out));
+  // outputs are kept in memory: refuse what cannot fit rather than fail half way
+  const double outputs = o.t_out.empty() ? double(o.n_out) : double(o.t_out.size());
+  const double values = outputs * (3.0 * model.n_coordinates() + model.n_constraints());
+  if (values > 2e9)
+    throw ModelError("simulate: " + std::to_string(long(outputs)) + " outputs of this model would hold " +
+                     std::to_string(long(values)) + " numbers (" + std::to_string(long(values * 8e-9)) +
+                     " GB): ask for fewer outputs (n_out or t_out)");
   for (size_t k = 0; k < o.t_out.size(); ++k) {
     const double tk = o.t_out[k];
     if (!std::isfinite(tk) || tk < o.t0 || tk > o.t_end)
@@ -100,38 +118,90 @@ std::vector<double> output_times(const SimulationOptions& o) {
   return t;
 }
 
+/// What makes (q, v, t) give non-finite accelerations: a non-finite state,
+/// applied force (naming the body and coordinate) or constraint term gamma
+/// (naming the element).
+std::string non_finite_source(const Model& model, const double* q, const double* v, double t) {
+  const int n = model.n_coordinates();
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(q[i]) || !std::isfinite(v[i]))
+      return "the state is not finite at " + coordinate_label(model, i);
+  Data d(model);
+  try {
+    assemble_forces(model, d, q, v, t);
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(d.Q[i])) {
+        std::string kinds;
+        for (const auto& g : model.force_groups()) {
+          VecX Q = VecX::Zero(n);
+          g->add_forces(q, v, t, Q.data());
+          if (!std::isfinite(Q[i])) kinds += std::string(kinds.empty() ? "" : ", ") + g->kind();
+        }
+        return "the applied force on " + coordinate_label(model, i) + " is not finite (from the " + kinds +
+               " elements)";
+      }
+    assemble_gamma(model, d, q, v, t);
+    for (int r = 0; r < d.gamma.size(); ++r)
+      if (!std::isfinite(d.gamma[r]))
+        return "the acceleration equation of '" + model.constraint_name_of_row(r) + "' is not finite";
+  } catch (const UserFunctionError& e) {
+    return e.what();
+  }
+  return "the augmented system gave non-finite values (forces or masses out of the range of double precision)";
+}
+
 /// a and lam at the recorded outputs from `first` on, from the augmented
-/// system. An output where that solve fails (a user function throwing again,
-/// joint friction whose load does not converge) gets NaN there; q and v stay.
-void solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first = 0) {
+/// system, appended output by output (tr.a holds size_t(k) * n values once k
+/// are solved). Returns "" or why an output could not be solved (a user
+/// function failing there, joint friction whose load does not converge, a
+/// non-finite result); the outputs from that one on are then unsolved.
+std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first = 0) {
   const int n = tr.n, m = tr.m, k = tr.size();
-  tr.a.resize(size_t(k) * n);
-  tr.lam.resize(size_t(k) * m);
   for (int i = first; i < k; ++i) {
-    double *a = &tr.a[size_t(i) * n], *lam = &tr.lam[size_t(i) * m];
+    tr.a.resize(size_t(i + 1) * n);
+    tr.lam.resize(size_t(i + 1) * m);
+    double *a = tr.a.data() + size_t(i) * n, *lam = tr.lam.data() + size_t(i) * m;
+    const double *q = tr.q.data() + size_t(i) * n, *v = tr.v.data() + size_t(i) * n;
+    std::string why;
     try {
-      solve_accelerations(model, d, kkt, &tr.q[size_t(i) * n], &tr.v[size_t(i) * n], tr.t[i], a, lam);
-    } catch (const UserFunctionError&) {
-      std::fill(a, a + n, NAN), std::fill(lam, lam + m, NAN);
-    } catch (const SimulationError&) {
-      std::fill(a, a + n, NAN), std::fill(lam, lam + m, NAN);
+      solve_accelerations(model, d, kkt, q, v, tr.t[i], a, lam);
+      if (!Eigen::Map<const VecX>(a, n).allFinite() || !Eigen::Map<const VecX>(lam, m).allFinite())
+        why = non_finite_source(model, q, v, tr.t[i]);
+    } catch (const UserFunctionError& e) {
+      why = e.what();
+    } catch (const SimulationError& e) {
+      why = e.what();
+    }
+    if (!why.empty()) {
+      tr.a.resize(size_t(i) * n);
+      tr.lam.resize(size_t(i) * m);
+      std::ostringstream s;
+      s << "at the output t = " << tr.t[i] << " the accelerations and multipliers cannot be solved: " << why;
+      return s.str();
     }
   }
+  return "";
 }
+
+/// Outputs whose a and lam were solved.
+int solved_outputs(const Trajectory& tr) { return tr.n > 0 ? int(tr.a.size() / size_t(tr.n)) : tr.size(); }
 
 }  // namespace
 
 ConsistentState assemble(const Model& model, double t) {
   if (!model.finalized()) throw ModelError("assemble: the model is not finalized");
+  if (model.n_coordinates() == 0) throw ModelError("assemble: the model has no bodies");
+  if (!std::isfinite(t)) throw ModelError("assemble: t is not finite");
   Data d(model);
   AugmentedSystem kkt(model);
-  return make_consistent(model, d, kkt, model.initial_q(), model.initial_v(), t);
+  return start_state(model, d, kkt, model.initial_q(), model.initial_v(), t);
 }
 
 void solve_accelerations(const Model& model, const VecX& q, const VecX& v, double t, VecX& qdd,
                          VecX& lam) {
   if (!model.finalized()) throw ModelError("solve_accelerations: the model is not finalized");
   const int n = model.n_coordinates();
+  if (n == 0) throw ModelError("solve_accelerations: the model has no bodies");
   if (q.size() != n || v.size() != n)
     throw ModelError("solve_accelerations: q and v must have " + std::to_string(n) + " entries");
   if (!q.allFinite() || !v.allFinite() || !std::isfinite(t))
@@ -140,10 +210,14 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
     throw ModelError("solve_accelerations: body '" + model.body(massless.front()).name +
                      "' is massless, so its accelerations are not determined by forces");
   Data d(model);
+  // one instant: the rows dependent here are left out (their multipliers 0)
+  d.drop_rows(model, constraint_rank(model, q, t).dependent_rows);
   AugmentedSystem kkt(model);
   qdd.resize(n);
   lam.resize(model.n_constraints());
   solve_accelerations(model, d, kkt, q.data(), v.data(), t, qdd.data(), lam.data());
+  if (!qdd.allFinite() || !lam.allFinite())
+    throw SimulationError("solve_accelerations: " + non_finite_source(model, q.data(), v.data(), t), t);
 }
 
 Trajectory simulate(const Model& model, const SimulationOptions& o) {
@@ -155,22 +229,41 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     if (o.start != "given")
       throw ModelError("simulate: start '" + o.start + "' applies to a dynamic analysis; the positions of this " +
                        "fully driven model (0 degrees of freedom) follow from its drivers (" + analysis + ")");
-    return kinematic_analysis(model, o.t0, output_times(o), analysis == "inverse_dynamics", o.progress,
-                              o.progress_interval);
+    Trajectory tr = kinematic_analysis(model, o.t0, output_times(o), analysis == "inverse_dynamics", o.progress,
+                                       o.progress_interval);
+    // a result holds finite numbers (a kinematic-only run has no multipliers: NaN, never read)
+    const bool with_lam = analysis == "inverse_dynamics";
+    for (int i = 0; i < tr.size(); ++i) {
+      const size_t n = size_t(tr.n), m = size_t(tr.m);
+      const bool finite = Eigen::Map<const VecX>(&tr.q[i * n], tr.n).allFinite() &&
+                          Eigen::Map<const VecX>(&tr.v[i * n], tr.n).allFinite() &&
+                          Eigen::Map<const VecX>(&tr.a[i * n], tr.n).allFinite() &&
+                          (!with_lam || Eigen::Map<const VecX>(tr.lam.data() + i * m, tr.m).allFinite());
+      if (finite) continue;
+      const std::string why = non_finite_source(model, &tr.q[i * n], &tr.v[i * n], tr.t[i]);
+      const double t = tr.t[i];
+      tr.truncate(i);
+      std::ostringstream s;
+      s << "kinematic analysis: at the output t = " << t << " the solution is not finite: " << why
+        << ". Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back()) << " are kept in the partial result.";
+      throw SimulationError(s.str(), t, std::move(tr));
+    }
+    return tr;
   }
   const int n = model.n_coordinates(), m = model.n_constraints();
   Data d(model);
   AugmentedSystem kkt(model);
   ConsistentState start;
+  Redundancy redundancy;
   VecX q_start = model.initial_q(), v_start = model.initial_v();
-  if (o.start == "equilibrium") {  // at rest in the static equilibrium at t0
-    EquilibriumOptions eo;
-    eo.t = o.t0;
-    q_start = find_equilibrium(model, eo).q;
-    v_start.setZero();
-  }
   try {
-    start = make_consistent(model, d, kkt, q_start, v_start, o.t0);
+    if (o.start == "equilibrium") {  // at rest in the static equilibrium at t0
+      EquilibriumOptions eo;
+      eo.t = o.t0;
+      q_start = find_equilibrium(model, eo).q;
+      v_start.setZero();
+    }
+    start = start_state(model, d, kkt, q_start, v_start, o.t0, &redundancy);
   } catch (const UserFunctionError& e) {
     throw SimulationError(e.what(), o.t0);
   }
@@ -186,6 +279,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   std::unique_ptr<EventRunner> events;
   if (!model.event_groups().empty()) {
     events = std::make_unique<EventRunner>(model);
+    events->drop_rows(start.dropped_rows);
     plan.events = events.get();
     // a joint that starts at a limit, moving into it, gets its impact at t0
     try {
@@ -197,25 +291,54 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   Trajectory tr;
   tr.n = n;
   tr.m = m;
+  tr.dropped_rows = start.dropped_rows;
   tr.t.reserve(plan.t_out.size());
   tr.q.reserve(plan.t_out.size() * n);
   tr.v.reserve(plan.t_out.size() * n);
+  // the rows left out as redundant are checked at every output
+  RedundancyWatch watch(model, redundancy);
   // a contact's damping depends on the impact speed of the contact in
   // progress (event state): with event elements, a and lam are solved when
   // an output is recorded, not from the final state after the run
   const bool solve_when_recorded = !model.event_groups().empty();
   auto record = [&](const double* q, const double* v) {
-    tr.t.push_back(plan.t_out[tr.t.size()]);
+    const double t = plan.t_out[tr.t.size()];
+    if (watch.active()) {
+      const std::string why = watch.violation(q, t);
+      if (!why.empty()) {
+        IntegratorFailure f(why, t);
+        f.diagnose = false;
+        throw f;
+      }
+    }
+    tr.t.push_back(t);
     tr.q.insert(tr.q.end(), q, q + n);
     tr.v.insert(tr.v.end(), v, v + n);
-    if (solve_when_recorded) solve_outputs(model, d, kkt, tr, tr.size() - 1);
+    if (solve_when_recorded) {
+      const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1);
+      if (!why.empty()) {
+        tr.truncate(solved_outputs(tr));
+        IntegratorFailure f(why, t);
+        f.diagnose = false;
+        throw f;
+      }
+    }
   };
   tr.stats.formulation = o.formulation;
   tr.stats.integrator = o.integrator;
   tr.stats.analysis = "dynamic";
-  auto finish = [&] {
-    if (!solve_when_recorded) solve_outputs(model, d, kkt, tr);
-    tr.stats.element_evaluations += d.element_evaluations;  // start and outputs
+  // solves the outputs not yet solved; returns why one failed ("" if none)
+  // and keeps only the solved ones
+  auto finish = [&]() -> std::string {
+    std::string why;
+    if (!solve_when_recorded) {
+      try {
+        why = solve_outputs(model, d, kkt, tr);
+      } catch (Interrupted&) {  // interrupted again: keep what was solved
+      }
+    }
+    tr.truncate(solved_outputs(tr));
+    tr.stats.element_evaluations += d.element_evaluations + watch.element_evaluations();  // start, outputs, checks
     if (events) {
       tr.events = events->records;
       tr.stats.events = events->events;
@@ -223,6 +346,12 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       tr.stats.root_evals = events->root_evals;
     }
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    return why;
+  };
+  auto kept = [&] {
+    std::ostringstream s;
+    s << " Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back()) << " are kept in the partial result.";
+    return s.str();
   };
 
   try {
@@ -240,15 +369,28 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       integrate_ida(*dae, start, plan, record, tr.stats);
     }
   } catch (const IntegratorFailure& e) {
-    finish();
+    const std::string output_failure = finish();
     std::ostringstream msg;
     msg << e.what();
-    if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t);
-    msg << " Outputs up to t = " << (tr.t.empty() ? o.t0 : tr.t.back())
-        << " are kept in the partial result.";
+    if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t, start.dropped_rows);
+    if (!output_failure.empty()) msg << " Also, " << output_failure << ".";
+    msg << kept();
     throw SimulationError(msg.str(), e.t, std::move(tr));
+  } catch (const UserFunctionError& e) {  // the progress report failed
+    finish();
+    const double t = tr.t.empty() ? o.t0 : tr.t.back();
+    throw SimulationError(e.what() + kept(), t, std::move(tr));
+  } catch (Interrupted& e) {
+    finish();
+    e.t = tr.t.empty() ? o.t0 : tr.t.back();
+    e.partial = std::move(tr);
+    throw;
   }
-  finish();
+  const std::string output_failure = finish();
+  if (!output_failure.empty()) {
+    const double t = tr.size() < int(plan.t_out.size()) ? plan.t_out[tr.size()] : o.t_end;
+    throw SimulationError(output_failure + "." + kept(), t, std::move(tr));
+  }
   return tr;
 }
 

@@ -4,6 +4,7 @@
 #include "events.hpp"
 #include "integrators.hpp"
 #include "lagmb/errors.hpp"
+#include "lagmb/interrupt.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {
@@ -26,6 +27,7 @@ void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentSt
   VecX q_event, v_event;
   try {
     while (k < t_out.size()) {
+      poll_interrupt();
       bool at_stop = false;
       const double t = stepper.step(at_stop);
       for (; k < t_out.size() && t_out[k] <= t; ++k) {

@@ -24,11 +24,12 @@ struct ConstraintRank {
 ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol = 1e-9);
 
 /// Why a run may have stopped at (q, t), in terms of the model: if Phi_q is
-/// (nearly) singular there (smallest singular value below 1e-2 of the
-/// largest, redundant rows dropped at finalize left out), the elements whose
-/// equations take part in the dependency (the left singular vector) are
-/// named: a dead point, toggle or lock-up. Otherwise a hint about stiffness
-/// or time resolution. Dense SVD: models up to 1000 equations.
-std::string diagnose_failure(const Model& model, const VecX& q, double t);
+/// (nearly) singular there (the ratio of its smallest to largest singular
+/// value tenfold below that ratio at the start, or below 1e-6; the rows the run dropped as redundant left out), the elements
+/// whose equations take part in the dependency (the left singular vector)
+/// are named: a dead point, toggle or lock-up, and formulation "ali3p" is
+/// suggested for a mechanism that should pass through it. Otherwise a hint
+/// about stiffness or time resolution. Dense SVD: models up to 1000 equations.
+std::string diagnose_failure(const Model& model, const VecX& q, double t, const std::vector<int>& dropped_rows);
 
 }  // namespace lagmb

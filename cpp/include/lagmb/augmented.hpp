@@ -45,6 +45,7 @@ class AugmentedSystem {
 /// augmented system at time t.
 struct ConsistentState {
   VecX q, v, qdd, lam;
+  std::vector<int> dropped_rows;  // the rows left out (Data::dropped_rows)
 };
 
 /// Makes (q, v) consistent at time t:
@@ -53,9 +54,20 @@ struct ConsistentState {
 ///  2. velocities by M-orthogonal projection:
 ///       [M Phi_q^T; Phi_q 0] [v; kappa] = [M v0; -Phi_t];
 ///  3. accelerations and multipliers: [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma].
-/// Throws AssemblyError naming the constraint elements still violated.
+/// The rows d drops stay dropped (see start_state). Throws AssemblyError
+/// naming the constraint elements still violated.
 ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
                                 VecX v, double t);
+
+/// The consistent state a run starts from: positions assembled with every
+/// row of Phi, then the rows found redundant there (find_redundancy) dropped
+/// in d, then make_consistent. The dropped rows must hold at velocity and
+/// acceleration level too (a consistent redundancy does: its equations are
+/// combinations of the kept ones); otherwise the equations conflict, e.g.
+/// two drivers prescribing one angle at different rates, and AssemblyError
+/// names them. `redundancy`, if given, receives what was decided.
+ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, VecX v, double t,
+                            struct Redundancy* redundancy = nullptr);
 
 /// Step 1 alone: positions satisfying Phi(q, t) = 0, by least change from q.
 VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, double t);

@@ -29,6 +29,15 @@ struct Data {
 
   /// Elements evaluated by the assembly kernels (added per group call).
   long element_evaluations = 0;
+
+  /// Rows of Phi this run leaves out, found consistently redundant where it
+  /// started (redundancy.hpp). The kernels write them as 0 = 0 with a zero
+  /// Jacobian row, so their multipliers are 0 and the other rows of each
+  /// redundant set carry its reaction. Empty (the default): every row counts.
+  std::vector<int> dropped_rows;
+  std::vector<int> dropped_slots;  // their entries in the values of Phi_q
+  /// Sets dropped_rows (sorted) and their Jacobian slots.
+  void drop_rows(const Model& model, std::vector<int> rows);
 };
 
 }  // namespace lagmb

@@ -1,6 +1,7 @@
 // The model: bodies and elements grouped by kind, frozen by finalize().
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -159,7 +160,10 @@ class Model {
   template <class Kind>
   void add_event_element(Kind element, bool named = true);
 
-  /// Freezes the model: numbers coordinates and rows, builds patterns.
+  /// Freezes the model: numbers coordinates and rows, builds patterns and
+  /// slots. Linear in the model's size, and no solver runs here: which
+  /// equations are redundant depends on where a run starts, so each run
+  /// decides it (redundancy.hpp) and keeps it in its Data.
   void finalize();
   bool finalized() const { return finalized_; }
 
@@ -212,18 +216,10 @@ class Model {
   /// Positions in q of the local coordinates (x_i, y_i, phi_i, x_j, y_j, phi_j).
   std::array<int, 6> local_coordinates(int body_i, int body_j) const;
 
-  /// Rows of Phi found dependent on the others at the initial configuration
-  /// (rank-revealing sparse QR of Phi_q^T at finalize). They are dropped: the
-  /// assembly kernels write them as 0 = 0 with a zero Jacobian row, so their
-  /// multipliers are 0 and the other rows of the redundant set carry the
-  /// reaction. The motion is unique either way; the split of a redundant
-  /// set's reaction is not, and this is lagmb's documented choice.
-  const std::vector<int>& redundant_rows() const { return redundant_rows_; }
-  /// Slots of Phi_q's values in the dropped rows.
-  const std::vector<int>& dropped_jacobian_slots() const { return dropped_slots_; }
-
   /// Sorted times where a time function of the model has a breakpoint.
   std::vector<double> breakpoints() const;
+  /// The time functions of drivers and forces, each once.
+  const std::vector<TimeFunctionPtr>& time_functions() const { return time_functions_; }
 
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
@@ -255,7 +251,8 @@ class Model {
   std::vector<const ForceGroupBase*> state_dependent_;
   std::vector<TimeFunctionPtr> time_functions_;  // of drivers and forces, for breakpoints
   void note(const TimeFunctionPtr& f) {
-    if (f) time_functions_.push_back(f);
+    if (f && std::find(time_functions_.begin(), time_functions_.end(), f) == time_functions_.end())
+      time_functions_.push_back(f);
   }
   std::map<std::string, ElementRef> names_;
   std::vector<std::unique_ptr<FrictionGroupBase>> frictions_;
@@ -267,7 +264,6 @@ class Model {
   VecX mass_diag_;
   SpMat jacobian_pattern_, hessian_pattern_, force_q_pattern_, force_v_pattern_;
   std::vector<int> row_owner_;  // row -> index into constraint_order_
-  std::vector<int> redundant_rows_, dropped_slots_;
   std::vector<int> coord_owner_;
   double mass_scale_ = 1.0;
 };

@@ -25,7 +25,9 @@ struct SimulationOptions {
   /// atol for every coordinate.
   std::vector<double> atol_coordinates;
   double max_step = 0.0;  // 0: no limit
-  long max_steps = 0;     // 0: no limit; else SimulationError when reached
+  /// 0: no limit; else SimulationError when reached, and a max_step that
+  /// needs more steps than this over [t0, t_end] is refused up front.
+  long max_steps = 500000;
   int max_order = 5;  // BDF: 1..5, Adams: 1..12
   /// "ggl" (stabilized index 2, IDA), "index3" (IDA), "index1" (IDA, with
   /// optional Baumgarte terms), "projection" (ODE in accelerations, CVODE,

@@ -1,6 +1,7 @@
 // What a simulation returns: states at the output times, and solver counts.
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -54,7 +55,19 @@ struct Trajectory {
   std::vector<double> t, q, v, a, lam;
   Stats stats;
   std::vector<EventRecord> events;
+  /// Rows of Phi left out as redundant (found where the run started); they
+  /// were checked at every output.
+  std::vector<int> dropped_rows;
   int size() const { return static_cast<int>(t.size()); }
+  /// Keeps the first k outputs (a, lam only as far as they were solved).
+  void truncate(int k) {
+    const size_t kk = size_t(std::max(0, std::min(k, size())));
+    t.resize(kk);
+    q.resize(std::min(q.size(), kk * size_t(n)));
+    v.resize(std::min(v.size(), kk * size_t(n)));
+    a.resize(std::min(a.size(), kk * size_t(n)));
+    lam.resize(std::min(lam.size(), kk * size_t(m)));
+  }
 };
 
 }  // namespace lagmb
