@@ -437,22 +437,28 @@ class Model:
     # --- questions -------------------------------------------------------
 
     def compiled(self):
-        """The finalized C++ model (built once, rebuilt after changes)."""
+        """The finalized C++ model (built once, rebuilt after changes).
+        Compiling numbers coordinates and rows and builds patterns; it runs
+        no solver (redundant equations are found where a run starts)."""
         if not self._core.finalized:
             self._core.finalize()
-            rows = self._core.redundant_rows
-            if rows:
-                import warnings
-
-                from .errors import RedundantConstraintWarning
-
-                named = ", ".join(f"'{self._core.constraint_name_of_row(r)}' (row {r})" for r in rows)
-                warnings.warn(RedundantConstraintWarning(
-                    f"{len(rows)} constraint equation(s) are redundant at the initial configuration: "
-                    f"{named}. They are dropped: the motion is unique and is simulated, and the "
-                    "rest of each redundant set carries its reaction (the split among redundant "
-                    "joints is not unique)."), stacklevel=3)
         return self._core
+
+    def _warn_redundant(self, rows, stacklevel=3):
+        """RedundantConstraintWarning for the rows a run left out."""
+        if not rows:
+            return
+        import warnings
+
+        from .errors import RedundantConstraintWarning
+
+        named = ", ".join(f"'{self._core.constraint_name_of_row(r)}' (row {r})" for r in rows)
+        warnings.warn(RedundantConstraintWarning(
+            f"{len(rows)} constraint equation(s) are redundant at the initial configuration: "
+            f"{named}. They are dropped: the motion is unique and is simulated, and the "
+            "rest of each redundant set carries its reaction (the split among redundant "
+            "joints is not unique). The dropped equations are checked at every output."),
+            stacklevel=stacklevel + 1)
 
     def elements(self):
         """Everything added, in order: (method name, keyword arguments) with
@@ -485,23 +491,41 @@ class Model:
         return self.compiled().n_constraints
 
     def assemble(self, t=0.0):
-        """Consistent initial state: (q, v, qdd, lam) at time t."""
-        q, v, qdd, lam = _core.assemble(self.compiled(), t)
+        """Consistent initial state: (q, v, qdd, lam) at time t. Redundant
+        equations found there are named in a RedundantConstraintWarning."""
+        from .simulation import _real, _translate
+
+        t = _real(t, "t")
+        core = self.compiled()
+        with _translate(self, core):
+            q, v, qdd, lam, dropped = _core.assemble(core, t)
+        self._warn_redundant(dropped)
         return q, v, qdd, lam
 
     def degrees_of_freedom(self):
-        """Coordinates minus the rank of Phi_q at the assembled initial position."""
-        return self.rank()["degrees_of_freedom"]
+        """Coordinates minus the number of independent constraint equations,
+        counted near the assembled initial position (at a singular position,
+        such as a flat parallelogram, as at its regular neighbours)."""
+        from .simulation import _translate
+
+        core = self.compiled()
+        with _translate(self, core):
+            return _core.degrees_of_freedom(core, 0.0)
 
     def rank(self):
         """Rank of the constraint Jacobian at the assembled initial position:
         dict with rank, equations, coordinates, degrees_of_freedom and the
         dependent (redundant) rows."""
+        import warnings
+
+        from .errors import RedundantConstraintWarning
         from .simulation import _translate
 
-        with _translate():
+        with warnings.catch_warnings():  # the dependent rows are what this returns
+            warnings.simplefilter("ignore", RedundantConstraintWarning)
             q = self.assemble()[0]
-        return self.compiled().rank(q, 0.0)
+        with _translate(self):
+            return self.compiled().rank(q, 0.0)
 
     def __repr__(self):
         n_elements = len(self._calls) - len(self._bodies)

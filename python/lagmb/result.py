@@ -8,6 +8,12 @@ from .errors import KinematicOnlyError, ModelError
 
 
 
+def _frozen(x):
+    x = np.asarray(x, dtype=float)
+    x.flags.writeable = False
+    return x
+
+
 def element_name(core, item):
     """The name of a body or element (a handle or a name) of the compiled
     model `core`; ModelError if there is none."""
@@ -51,31 +57,32 @@ class Result:
     def __init__(self, model, core_model, raw):
         self.model = model
         self._core = core_model
-        self.t = raw["t"]
-        self.q = raw["q"]
-        self.v = raw["v"]
-        self.a = raw["a"]
-        self.lam = raw["lam"]
+        # read-only: the derived quantities rely on t, q, v, a and lam being
+        # the run's own, with one row per output
+        self._t, self._q, self._v, self._a, self._lam = (
+            _frozen(raw[key]) for key in ("t", "q", "v", "a", "lam"))
         self.stats = dict(raw["stats"])
         self.events = [dict(e) for e in raw.get("events", [])]
+        self.redundant_rows = list(raw.get("dropped_rows", []))
 
     def __len__(self):
-        return len(self.t)
+        return len(self._t)
+
+    t = property(lambda self: self._t, doc="(k,) output times (s).")
+    q = property(lambda self: self._q, doc="(k, n) coordinates.")
+    v = property(lambda self: self._v, doc="(k, n) velocities.")
+    a = property(lambda self: self._a, doc="(k, n) accelerations.")
 
     @property
     def lam(self):
         """(k, m) multipliers. A kinematic-only run (stats["analysis"] ==
         "kinematic") has none: asking raises KinematicOnlyError."""
-        if getattr(self, "stats", {}).get("analysis") == "kinematic":
+        if self.stats.get("analysis") == "kinematic":
             raise KinematicOnlyError(
                 "this run was a kinematic analysis only (analysis='kinematic'): positions, "
                 "velocities and accelerations; the multipliers, reactions and driver efforts "
                 "were not computed. Run with analysis='inverse_dynamics' (every mass > 0) for them.")
         return self._lam
-
-    @lam.setter
-    def lam(self, value):
-        self._lam = value
 
     def _name(self, item):
         return element_name(self._core, item)
@@ -88,7 +95,12 @@ class Result:
     def point(self, body, local_point):
         """(k, 2) global path of a point given in the body's own axes."""
         b = self.body(body)
-        s = np.asarray(local_point, dtype=float).reshape(2)
+        try:
+            s = np.asarray(local_point, dtype=float).reshape(2)
+        except (TypeError, ValueError, OverflowError):
+            raise ModelError(f"local_point must be a pair of numbers, got {local_point!r}") from None
+        if not np.all(np.isfinite(s)):
+            raise ModelError(f"local_point must be finite, got {local_point!r}")
         c, sn = np.cos(b.angle), np.sin(b.angle)
         return b.position + np.column_stack((c * s[0] - sn * s[1], sn * s[0] + c * s[1]))
 

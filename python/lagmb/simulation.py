@@ -2,6 +2,7 @@
 
 import contextlib
 import math
+import numbers
 
 import numpy as np
 
@@ -12,28 +13,82 @@ from .result import Result
 
 @contextlib.contextmanager
 def _translate(model=None, core=None):
-    """Turn the core's solver errors into lagmb's, with the partial result."""
+    """Turn the core's solver errors into lagmb's, with the partial result
+    and the exception a user function raised as their cause. An interrupt
+    (KeyboardInterrupt, SystemExit) passes unchanged, carrying the outputs
+    so far as ``.result`` (None if there were none)."""
+    def partial_result(raw):
+        if model is None or raw is None:
+            return None
+        partial = Result(model, core, raw)
+        return partial if len(partial.t) else None
+
     try:
         yield
     except _core.AssemblyError as e:
-        raise AssemblyError(str(e), e.t, e.violated) from None
+        raise AssemblyError(str(e), e.t, e.violated) from e.__cause__
     except _core.SimulationError as e:
-        partial = Result(model, core, e.partial) if model is not None else None
-        if partial is not None and len(partial.t) == 0:
-            partial = None
-        raise SimulationError(str(e), e.t, partial) from None
+        raise SimulationError(str(e), e.t, partial_result(e.partial)) from e.__cause__
+    except (KeyboardInterrupt, SystemExit) as e:
+        e.result = partial_result(getattr(e, "partial", None))
+        raise
+
+
+def _real(value, name):
+    """A finite number given as `name`, as a float; ModelError naming it otherwise."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ModelError(f"{name} must be a number, got {value!r}")
+    try:
+        value = float(value)
+    except OverflowError:
+        raise ModelError(f"{name} is too large for a float: {value!r}") from None
+    if not math.isfinite(value):
+        raise ModelError(f"{name} must be finite, got {value!r}")
+    return value
 
 
 def _positive(value, name):
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-        raise ModelError(f"{name} must be a number, got {value!r}")
-    if not (math.isfinite(value) and value > 0):
+    value = _real(value, name)
+    if not value > 0:
         raise ModelError(f"{name} must be positive and finite, got {value!r}")
-    return float(value)
+    return value
 
+
+def _integer(value, name, low, high):
+    """An integer in [low, high] (an integral float is accepted)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ModelError(f"{name} must be an integer, got {value!r}")
+    if not isinstance(value, numbers.Integral):
+        if not (math.isfinite(value) and float(value).is_integer()):
+            raise ModelError(f"{name} must be an integer, got {value!r}")
+        value = int(value)
+    value = int(value)
+    if not low <= value <= high:
+        raise ModelError(f"{name} must be in {low}..{high}, got {value!r}")
+    return value
+
+
+def _array(value, name):
+    """A 1-D array of finite floats."""
+    try:
+        x = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        raise ModelError(f"{name} must be a sequence of numbers, got {value!r}") from None
+    if not np.all(np.isfinite(x)):
+        raise ModelError(f"{name} must hold finite numbers, got {value!r}")
+    return x
+
+
+def _text(value, name):
+    if not isinstance(value, str):
+        raise ModelError(f"{name} must be a string, got {value!r}")
+    return value
+
+
+_INT_MAX = 2**31 - 1  # outputs, orders: C int in the core
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
-             max_step=None, max_steps=None, formulation="ggl", integrator="bdf", max_order=None,
+             max_step=None, max_steps=500_000, formulation="ggl", integrator="bdf", max_order=None,
              baumgarte=None, progress=None, analysis="auto", start="given", step=None):
     """Integrate a model from its initial state and return a Result.
 
@@ -69,9 +124,14 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
     last entry), interpolated by the integrator. ``max_step`` bounds the step
-    size (s), ``max_steps`` the number of steps (None: no bound; reaching it
-    raises SimulationError with the outputs so far). ``progress``, if given,
+    size (s), ``max_steps`` the number of steps (default 500,000; None: no
+    bound; reaching it raises SimulationError with the outputs so far, and a
+    ``max_step`` or ``step`` that would need more steps than that over
+    [t0, t_end] is refused up front with ModelError). ``progress``, if given,
     is called with the time reached about every 0.2 s of wall time.
+    Ctrl-C stops a run within a second: the KeyboardInterrupt comes through
+    unchanged and carries the outputs so far as ``.result`` (also when a
+    time function or ``progress`` raises it, or SystemExit).
 
     ``analysis`` says what is computed (``r.stats["analysis"]`` tells what was):
 
@@ -98,24 +158,31 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
 
     Raises ModelError for bad arguments, AssemblyError if the joints cannot
     be assembled, SimulationError (with ``.t`` and the partial ``.result``)
-    if the integrator (or the kinematic Newton solve) fails, EquilibriumError
+    if the integrator (or the kinematic Newton solve) fails, or a user
+    function (time function, progress) raises (chained as its cause), or an
+    output cannot be solved to finite accelerations and multipliers (naming
+    the source), or an equation left out as redundant at the start is
+    violated later (naming the conflicting elements); EquilibriumError
     if ``start="equilibrium"`` finds none.
     """
+    t0 = _real(t0, "t0")
     if t_out is not None:
-        t_out = np.asarray(t_out, dtype=float).reshape(-1)
+        t_out = _array(t_out, "t_out")
         if t_out.size == 0:
             raise ModelError("t_out is empty")
         if t_end is None:
             t_end = float(t_out[-1])
     if t_end is None:
         raise ModelError("give t_end or t_out")
-    t_end = float(t_end)
-    if not (math.isfinite(t_end) and t_end > t0):
+    t_end = _real(t_end, "t_end")
+    if not t_end > t0:
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
     rtol = _positive(rtol, "rtol")
+    formulation = _text(formulation, "formulation")
+    integrator = _text(integrator, "integrator")
     atol_coordinates = []
     if np.ndim(atol) > 0:  # one per coordinate (for q_i and v_i)
-        atol_coordinates = [_positive(float(a), "atol entry") for a in np.asarray(atol).reshape(-1)]
+        atol_coordinates = [_positive(float(a), "atol entry") for a in _array(atol, "atol")]
         atol = float(np.mean(atol_coordinates)) if atol_coordinates else 1e-8
     atol = _positive(atol, "atol")
     max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
@@ -126,30 +193,37 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
         max_step = _positive(step, "step")
     if max_order is None:
         max_order = 12 if integrator == "adams" else 5
-    elif isinstance(max_order, bool) or int(max_order) != max_order:
-        raise ModelError(f"max_order must be an integer, got {max_order!r}")
+    else:
+        max_order = _integer(max_order, "max_order", 1, _INT_MAX)  # the core checks the integrator's range
     if baumgarte is None:
         alpha, beta = 0.0, 0.0
     else:
         try:
-            alpha, beta = (float(x) for x in baumgarte)
+            alpha, beta = baumgarte
         except (TypeError, ValueError):
             raise ModelError(f"baumgarte must be a pair (alpha, beta) of numbers, got {baumgarte!r}") from None
-    if max_steps is None:
-        max_steps = 0
-    elif isinstance(max_steps, bool) or int(max_steps) != max_steps or max_steps < 1:
-        raise ModelError(f"max_steps must be a positive integer or None, got {max_steps!r}")
+        alpha, beta = _real(alpha, "baumgarte alpha"), _real(beta, "baumgarte beta")
+    # None: no bound (Ctrl-C still stops the run)
+    max_steps = 0 if max_steps is None else _integer(max_steps, "max_steps", 1, 2**62)
     if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
         raise ModelError("t_out must be strictly increasing")
-    if t_out is None and (isinstance(n_out, bool) or int(n_out) != n_out or n_out < 2):
-        raise ModelError(f"n_out must be an integer >= 2, got {n_out!r}")
+    if t_out is not None and t_out.size > _INT_MAX:
+        raise ModelError(f"t_out has {t_out.size} entries, more than {_INT_MAX}")
+    if t_out is None:
+        n_out = _integer(n_out, "n_out", 2, _INT_MAX)
+    else:
+        n_out = 2  # unused
+    if progress is not None and not callable(progress):
+        raise ModelError(f"progress must be a callable t -> None, got {progress!r}")
+    analysis = _choice(analysis, "analysis", _ANALYSES)
+    start = _choice(start, "start", ("given", "equilibrium"))
     core = model.compiled()
     with _translate(model, core):
-        raw = _core.simulate(core, float(t0), t_end, [] if t_out is None else list(t_out),
-                             int(n_out), rtol, atol, atol_coordinates, max_step, int(max_steps), int(max_order),
-                             str(formulation), str(integrator), float(alpha), float(beta), progress,
-                             analysis=_choice(analysis, "analysis", _ANALYSES),
-                             start=_choice(start, "start", ("given", "equilibrium")))
+        raw = _core.simulate(core, t0, t_end, [] if t_out is None else list(t_out),
+                             n_out, rtol, atol, atol_coordinates, max_step, max_steps, max_order,
+                             formulation, integrator, alpha, beta, progress,
+                             analysis=analysis, start=start)
+    model._warn_redundant(raw.get("dropped_rows", []), stacklevel=3)
     return Result(model, core, raw)
 
 
@@ -157,19 +231,21 @@ _ANALYSES = ("auto", "dynamic", "kinematic", "inverse_dynamics")
 
 
 def _choice(value, name, allowed):
-    if value not in allowed:
+    if not isinstance(value, str) or value not in allowed:
         raise ModelError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
     return value
 
 
 def solve_accelerations(model, q, v, t=0.0):
     """Accelerations and multipliers (qdd, lam) at one instant: the augmented
-    system [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma]."""
+    system [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma]. Rows dependent at
+    that instant are left out (their multipliers 0)."""
     core = model.compiled()
     n = core.n_coordinates
-    q = np.asarray(q, dtype=float).reshape(-1)
-    v = np.asarray(v, dtype=float).reshape(-1)
+    q = _array(q, "q")
+    v = _array(v, "v")
+    t = _real(t, "t")
     if q.shape != (n,) or v.shape != (n,):
         raise ModelError(f"q and v must have {n} entries, got {q.size} and {v.size}")
-    with _translate():
-        return _core.solve_accelerations(core, q, v, float(t))
+    with _translate(model, core):
+        return _core.solve_accelerations(core, q, v, t)

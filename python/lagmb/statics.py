@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from . import _core
-from .errors import ModelError
+from .errors import EquilibriumError, ModelError
 from .result import element_name
 
 
@@ -84,22 +84,25 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     check). ``tol`` is relative (forces to tol |Q|, constraints to
     tol (1 + |q|)). Returns an :class:`Equilibrium`.
 
-    Raises EquilibriumError (a ValueError) if there is none nearby (naming
+    Raises EquilibriumError (a ValueError) if a force or driver function
+    raises (chained as its cause), if there is none nearby (naming
     the coordinates with the largest unbalanced force, e.g. a free body
     under gravity) or if the one found is unstable (naming the mode), unless
     ``allow_unstable=True``; AssemblyError if the joints cannot be closed.
     """
     from .simulation import _translate
 
-    t = float(t)
-    if not math.isfinite(t):
-        raise ModelError(f"t must be finite, got {t!r}")
-    tol = float(tol)
-    if not (math.isfinite(tol) and 0 < tol < 1):
+    from .simulation import _integer, _real
+
+    t = _real(t, "t")
+    tol = _real(tol, "tol")
+    if not 0 < tol < 1:
         raise ModelError(f"tol must be in (0, 1), got {tol!r}")
-    if isinstance(max_iterations, bool) or int(max_iterations) != max_iterations or max_iterations < 1:
-        raise ModelError(f"max_iterations must be a positive integer, got {max_iterations!r}")
+    max_iterations = _integer(max_iterations, "max_iterations", 1, 2**31 - 1)
     core = model.compiled()
-    with _translate():
-        raw = _core.equilibrium(core, t, tol, int(max_iterations), bool(allow_unstable))
+    with _translate(model, core):
+        try:
+            raw = _core.equilibrium(core, t, tol, max_iterations, bool(allow_unstable))
+        except _core.UserFunctionError as e:  # a force or driver function failed
+            raise EquilibriumError(f"equilibrium: {e}") from e.__cause__
     return Equilibrium(model, core, raw, t)
