@@ -4,7 +4,7 @@ PYTHON ?= $(shell scripts/python.sh)
 SOURCES := $(shell find cpp python -type f -not -name '*.pyc') CMakeLists.txt pyproject.toml
 STAMP := build/.installed-$(subst /,_,$(PYTHON))
 
-.PHONY: demo test test-slow bench setup clean
+.PHONY: demo test test-slow test-fuzz bench setup clean
 
 demo: $(STAMP)
 	$(PYTHON) -m lagmb demo --plot out/seed_pendulum.png
@@ -14,6 +14,9 @@ test: $(STAMP)
 
 test-slow: $(STAMP)
 	$(PYTHON) -m pytest -q -m slow
+
+test-fuzz: $(STAMP)
+	$(PYTHON) -m pytest -q -m fuzz
 
 bench: $(STAMP)
 	$(PYTHON) bench/chain.py
