@@ -516,3 +516,25 @@ def test_the_failure_at_a_singular_passage_points_to_ali3p():
     m = mb.load_scene(scene).model
     with pytest.raises(mb.SimulationError, match='formulation="ali3p"'):
         mb.simulate(m, t_end=10.0, rtol=1e-10, atol=1e-12)
+
+
+def driven_crank(rate):
+    """The pendulum turned by a motor at `rate` rad/s: 0 degrees of freedom,
+    a kinematic analysis."""
+    m = pendulum()
+    m.drive_joint("motor", "pin", mb.Linear(rate))
+    return m
+
+
+def test_a_driver_too_fast_to_follow_is_refused_not_followed_for_ever():
+    """A motor at 9.2e18 rad/s (a fuzzed scene) made the kinematic analysis
+    halve its sub-step below 1e-19 s and run for ever. A sub-step shorter
+    than the time resolution fails at once, naming the drivers' rates; a fast
+    but followable motor meets max_steps, with the outputs kept."""
+    with pytest.raises(mb.SimulationError, match="drivers' rates"):
+        mb.simulate(driven_crank(9223372036854775808.0), t_end=2.0)
+    with pytest.raises(mb.SimulationError, match="max_steps = 1000") as failure:
+        mb.simulate(driven_crank(1e5), t_end=2.0, n_out=201, max_steps=1000)
+    partial = failure.value.result
+    assert partial is not None and 1 <= len(partial.t) < 201
+    assert np.all(np.isfinite(partial.q))

@@ -412,7 +412,7 @@ class KinematicSolver {
 
 Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<double>& t_out,
                               bool inverse_dynamics, const std::function<void(double)>& progress,
-                              double progress_interval) {
+                              double progress_interval, long max_steps) {
   if (!model.finalized()) throw ModelError("kinematic_analysis: the model is not finalized");
   const auto wall0 = std::chrono::steady_clock::now();
   const int n = model.n_coordinates(), m = model.n_constraints();
@@ -464,10 +464,12 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   tr.dropped_rows = solver.redundancy.rows;
   if (!tr.dropped_rows.empty()) watch = std::make_unique<RedundancyWatch>(model, solver.redundancy);
   double t = t0;
-  auto fail = [&](const std::string& why) {
+  // diagnose: ask the Jacobian why Newton failed (not when the cause is known)
+  auto fail = [&](const std::string& why, bool diagnose = true) {
     finish();
     std::ostringstream msg;
-    msg << "kinematic analysis: " << why << (violated.empty() ? diagnose_failure(model, q, t, tr.dropped_rows) : "")
+    msg << "kinematic analysis: " << why
+        << (diagnose && violated.empty() ? diagnose_failure(model, q, t, tr.dropped_rows) : "")
         << " Outputs up to t = " << (tr.t.empty() ? t0 : tr.t.back()) << " are kept in the partial result.";
     throw SimulationError(msg.str(), t, std::move(tr));
   };
@@ -487,6 +489,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
     return root > 0 ? 0.5 / root : INFINITY;
   };
   const std::vector<double> times = solve_times(model, t0, t_out);
+  long sub_steps = 0;
   auto clock = std::chrono::steady_clock::now();
   try {
     if (!solver.positions(q, t0, 10, INFINITY)) fail("Newton on Phi(q, t0) = 0 did not converge.");
@@ -507,6 +510,19 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
         const bool last = t + h >= target;
         const double t_next = last ? target : t + h;
         const double dt = t_next - t;
+        if (dt < h_min && !last) {  // the drivers turn a body faster than time can be resolved
+          std::ostringstream why;
+          why << "a body turns by more than 0.25 rad in " << dt << " s after t = " << t
+              << ", less than the shortest sub-step " << h_min << " s: check the drivers' rates.";
+          fail(why.str(), false);
+        }
+        if (max_steps > 0 && ++sub_steps > max_steps) {
+          std::ostringstream why;
+          why << "following the drivers from t = " << t0 << " to t = " << target << " takes more than max_steps = "
+              << max_steps << " sub-steps (each turns no body by more than 0.25 rad; the sub-step is now " << dt
+              << " s): check the drivers' rates, or raise max_steps.";
+          fail(why.str(), false);
+        }
         const VecX motion = v * dt + 0.5 * dt * dt * a;
         q_try = q + motion;
         const double guard = 0.5 * max_abs(motion) + 1e-8 * (1.0 + max_abs(q));

@@ -230,7 +230,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       throw ModelError("simulate: start '" + o.start + "' applies to a dynamic analysis; the positions of this " +
                        "fully driven model (0 degrees of freedom) follow from its drivers (" + analysis + ")");
     Trajectory tr = kinematic_analysis(model, o.t0, output_times(o), analysis == "inverse_dynamics", o.progress,
-                                       o.progress_interval);
+                                       o.progress_interval, o.max_steps);
     // a result holds finite numbers (a kinematic-only run has no multipliers: NaN, never read)
     const bool with_lam = analysis == "inverse_dynamics";
     for (int i = 0; i < tr.size(); ++i) {

@@ -124,7 +124,8 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
     last entry), interpolated by the integrator. ``max_step`` bounds the step
-    size (s), ``max_steps`` the number of steps (default 500,000; None: no
+    size (s), ``max_steps`` the number of steps (in a kinematic analysis, of
+    the sub-steps that follow the drivers; default 500,000; None: no
     bound; reaching it raises SimulationError with the outputs so far, and a
     ``max_step`` or ``step`` that would need more steps than that over
     [t0, t_end] is refused up front with ModelError). ``progress``, if given,

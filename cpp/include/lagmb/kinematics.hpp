@@ -64,10 +64,13 @@ std::string resolve_analysis(const Model& model, const SimulationOptions& option
 /// square Jacobian), augmented_factorizations (assembly at t0, fallback),
 /// kinematic_solves; steps stays 0. Throws SimulationError naming the time and
 /// the joints (diagnose_failure) with the outputs reached so far if Newton
-/// fails (e.g. a driver pushes the mechanism through a toggle position).
+/// fails (e.g. a driver pushes the mechanism through a toggle position), or
+/// if following the drivers takes more than max_steps sub-steps (0: no bound;
+/// a sub-step turns no body by more than 0.25 rad, so a driver turning at
+/// 1e18 rad/s is refused rather than followed for ever).
 Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<double>& t_out,
                               bool inverse_dynamics,
                               const std::function<void(double)>& progress = {},
-                              double progress_interval = 0.2);
+                              double progress_interval = 0.2, long max_steps = 0);
 
 }  // namespace lagmb
