@@ -5,20 +5,24 @@
     lagmb info SCENE
     lagmb demo [--plot out.png] [--quiet]
 
-Exit status: 0 done; 2 a usage or scene error (the message names the file,
-line, table and key); 1 the simulation failed (the results computed until
-then are still written to -o, if given).
+Exit status: 0 done; 2 a usage or scene error (one line naming the file,
+line, table and key, or the option); 1 the simulation failed (the results
+computed until then are still written to -o, if given); 3 an internal error,
+a bug in lagmb (one line; LAGMB_TRACEBACK=1 shows the traceback).
 """
 
 import argparse
 import csv
+import math
 import os
+import re
 import sys
+import warnings
 
 from . import __version__
 from .errors import ModelError, SimulationError
 
-OK, FAILED, USAGE = 0, 1, 2
+OK, FAILED, USAGE, INTERNAL = 0, 1, 2, 3
 
 
 class _Exit(Exception):
@@ -76,6 +80,20 @@ def _parser():
 def main(argv=None):
     parser = _parser()
     args = parser.parse_args(argv)  # usage errors exit 2 here
+    with warnings.catch_warnings():  # restores showwarning for callers of main()
+        warnings.showwarning = _one_line_warning(args.command)
+        return _main(args)
+
+
+def _one_line_warning(command):
+    """A warning as one line, without the source line Python shows."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = " ".join(str(message).split())
+        print(f"lagmb {command}: {category.__name__}: {text}", file=file or sys.stderr)
+    return show
+
+
+def _main(args):
     try:
         if args.command == "demo":
             return _demo(args)
@@ -85,11 +103,19 @@ def main(argv=None):
             return _accuracy(args)
         return _run(args)
     except _Exit as e:
-        print(f"lagmb {args.command}: {e}", file=sys.stderr)
+        print(f"lagmb {args.command}: " + " ".join(str(e).splitlines()), file=sys.stderr)
         return e.code
     except KeyboardInterrupt:
         print(f"lagmb {args.command}: interrupted", file=sys.stderr)
         return 130
+    except Exception as e:  # noqa: BLE001 - a bug: one line, not a traceback, unless asked
+        if os.environ.get("LAGMB_TRACEBACK"):
+            raise
+        text = " ".join(str(e).split())
+        print(f"lagmb {args.command}: internal error: {type(e).__name__}"
+              + (f": {text[:300]}" if text else "")
+              + " (a bug in lagmb; LAGMB_TRACEBACK=1 shows where)", file=sys.stderr)
+        return INTERNAL
 
 
 def _method_names():
@@ -153,29 +179,78 @@ def _load(path):
     from .scene import load_scene
 
     try:
-        return load_scene(path)
+        scene = load_scene(path)
     except ModelError as e:
         raise _Exit(USAGE, str(e)) from None
     except OSError as e:
         raise _Exit(USAGE, f"cannot read {path}: {e.strerror or e}") from None
+    if not scene.names("bodies") and not scene.names("particles"):
+        # nothing moves, and the core is not asked about an empty model
+        raise _Exit(USAGE, f"{path}: no bodies: a scene needs at least one [[bodies]] or "
+                           "[[particles]] table (enabled)")
+    return scene
+
+
+def _option_number(option, value, above):
+    """A command-line number, if given, must be finite and greater than above."""
+    if value is not None and not (math.isfinite(value) and value > above):
+        raise _Exit(USAGE, f"{option} {value:g}: must be finite and greater than {above:g}")
+
+
+def _output(scene, given, option, key, problem):
+    """The path of an output: the option's (given) or else the scene's [output]
+    key. Checked before the run that fills it: its format (problem(path) says
+    why not, or None) and that its folder can take it."""
+    path = given or scene.output.get(key)
+    if not path:
+        return None
+
+    def refuse(reason):
+        if given:
+            raise _Exit(USAGE, f"{option} {path}: {reason}")
+        raise _Exit(USAGE, str(scene.output_error(key, f"{path!r}: {reason}")))
+
+    reason = problem(path)
+    if reason:
+        refuse(reason)
+    if os.path.isdir(path):
+        refuse("is a directory")
+    folder = os.path.dirname(os.path.abspath(path))
+    while not os.path.lexists(folder):  # missing folders are made when writing
+        folder = os.path.dirname(folder)
+    if not os.path.isdir(folder):
+        refuse(f"{folder} is not a folder")
+    target = path if os.path.exists(path) else folder
+    if not os.access(target, os.W_OK):
+        refuse(f"{target} is not writable")
+    return path
+
+
+def _results_format_problem(path):
+    if os.path.splitext(path)[1].lower() not in (".npz", ".csv"):
+        return "the results file must end in .npz or .csv"
+    return None
 
 
 # --- run ------------------------------------------------------------------------
 
 def _run(args):
     from .progress import Progress
+    from .scene import MAX_OUTPUTS, SceneError, _animation_format_problem, _plot_format_problem
 
     scene = _load(args.scene)
-    output = scene.output
-    out = args.output or output.get("file")
-    plot = args.plot or output.get("plot")
-    animate = args.animate or output.get("animate")
-    if out and os.path.splitext(out)[1].lower() not in (".npz", ".csv"):
-        raise _Exit(USAGE, f"-o {out}: the results file must end in .npz or .csv")
-    if plot:
+    # the options, outputs and formats first: a mistake there costs no run
+    _option_number("--t-end", args.t_end, above=scene.settings.get("t0", 0.0))
+    _option_number("--rtol", args.rtol, above=0.0)
+    if args.n_out is not None and not 2 <= args.n_out <= MAX_OUTPUTS:
+        raise _Exit(USAGE, f"--n-out {args.n_out}: must be at least 2 and at most {MAX_OUTPUTS:,}")
+    out = _output(scene, args.output, "-o", "file", _results_format_problem)
+    if args.plot or scene.output.get("plot"):
         _need_matplotlib("plotting")
-    if animate:
+    plot = _output(scene, args.plot, "--plot", "plot", _plot_format_problem)
+    if args.animate or scene.output.get("animate"):
         _need_matplotlib("animating")
+    animate = _output(scene, args.animate, "--animate", "animate", _animation_format_problem)
 
     overrides = {}
     if args.t_end is not None:
@@ -194,22 +269,32 @@ def _run(args):
     progress = Progress(settings.get("t0", 0.0), t_end, enabled=not args.quiet)
     try:
         result = scene.run(progress=progress, **overrides)
-    except ModelError as e:
+    except SceneError as e:  # names the file, line and key
         raise _Exit(USAGE, str(e)) from None
+    except ModelError as e:  # about an option it names, or else the scene as a whole
+        words = set(re.findall(r"\w+", str(e)))
+        option = next((f"--{k.replace('_', '-')} {v:g}: " for k, v in overrides.items()
+                       if k in words), "")
+        raise _Exit(USAGE, f"{args.scene}: {option}{e}") from None
+    except MemoryError:  # e.g. millions of outputs of a large model
+        n = overrides.get("n_out") or len(settings.get("t_out") or ()) or settings.get("n_out", 101)
+        raise _Exit(FAILED, f"{args.scene}: out of memory in the run ({n} outputs); "
+                            "ask for fewer outputs (n_out, --n-out)") from None
     except SimulationError as e:
         progress.close()
-        message = f"{args.scene}: simulation failed at t = {e.t:.6g} s: {e}"
+        reason = " ".join(str(e).split()).rstrip(".")
+        message = f"{args.scene}: simulation failed at t = {e.t:.6g} s: {reason}"
         partial = e.result
-        if out:
+        if out:  # on the same line: one line per failure
             if partial is not None and len(partial.t):
                 try:
                     _write(out, partial, scene)
-                    message += (f"\npartial results ({len(partial.t)} outputs, t = "
+                    message += (f"; partial results ({len(partial.t)} outputs, t = "
                                 f"{partial.t[0]:.6g} .. {partial.t[-1]:.6g} s) written to {out}")
                 except Exception as w:  # noqa: BLE001 - report, keep the exit status
-                    message += f"\nthe partial results could not be written to {out}: {w}"
+                    message += f"; the partial results could not be written to {out}: {w}"
             else:
-                message += f"\nno outputs were computed; {out} not written"
+                message += f"; no outputs were computed, {out} not written"
         raise _Exit(FAILED, message) from None
     finally:
         progress.close()

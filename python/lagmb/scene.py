@@ -92,6 +92,12 @@ Conventions:
   wrong type or one the model rejects raises :class:`SceneError` (a
   ``ModelError``, so a ``ValueError``) naming the file, the line, the table
   (``joints[2] 'pin'``: the third ``[[joints]]``, counted from 0) and the key.
+- Limits (to refuse what no scene means, before it costs a run): a file of
+  at most 16 MiB of UTF-8, arrays and inline tables nested at most 32 deep,
+  numbers within a float's range, at most 10,000,000 outputs (``n_out`` or
+  ``t_out``), ``max_order`` 1..5 (bdf) or 1..12 (adams); ``[output]`` plot
+  and animate paths end in a format matplotlib (plot) or Pillow (animation,
+  several frames: .gif, .webp, .png, ...) writes.
 - ``[output]``: relative paths are relative to the current directory. In an
   ``.npz`` file, ``reactions`` / ``efforts`` default to every joint / every
   driver (``reactions = []`` writes none); a ``.csv`` file has the columns
@@ -112,6 +118,8 @@ import math
 import numbers
 import os
 import re
+import shutil
+import sys
 
 try:  # Python 3.11+
     import tomllib as _toml
@@ -199,6 +207,15 @@ _OUTPUT = {
 }
 _OUTPUT_FILE_TYPES = (".npz", ".csv")
 
+# simulate's choices (simulate.cpp checks them too, but only when a run starts)
+_FORMULATIONS = ("ggl", "index3", "index1", "projection", "ali3p")
+_INTEGRATORS = ("bdf", "adams")
+_MAX_ORDER = {"bdf": 5, "adams": 12}
+MAX_OUTPUTS = 10_000_000  # n_out, len(t_out): each output holds q, v, a and lam
+_MAX_STEPS = 10**12  # max_steps travels as a C long; a bound this high is no bound
+MAX_SCENE_BYTES = 16 << 20  # larger is no hand-written scene (and /dev/zero never ends)
+_MAX_NESTING = 32  # arrays and inline tables; a scene needs 3 (tomllib recurses per level)
+
 
 def _toml_type(value):
     if isinstance(value, bool):
@@ -218,11 +235,27 @@ def _toml_type(value):
 
 def _show(value):
     """A value as it looks in TOML, short."""
+    if _huge(value):  # str() of it is slow, or refused past 4300 digits
+        return f"an integer of {_digits(value)} digits"
     try:
         text = _value(value)
     except Exception:  # noqa: BLE001 - only for messages
-        text = repr(value)
+        try:
+            text = repr(value)
+        except Exception:  # noqa: BLE001 - e.g. a list holding a huge integer
+            text = _toml_type(value)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _huge(value):
+    return isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 200
+
+
+def _digits(value):
+    """Decimal digits of an integer, without converting it to a string."""
+    n = abs(value)
+    digits = max(1, int(n.bit_length() * math.log10(2)))
+    return digits + (n >= 10 ** digits)
 
 
 # --- line numbers -------------------------------------------------------------
@@ -278,6 +311,9 @@ class _Lines:
         self._table = ()
         self._depth = 0  # open [ and { of a value spanning lines
         self._string = None  # delimiter of an open multi-line string
+        self._number = 0  # the line being scanned
+        self._key = ()  # the path of the key whose value is being scanned
+        self.too_deep = None  # (line, key path) where values nest deeper than _MAX_NESTING
         try:
             self._scan(text)
         except Exception:  # noqa: BLE001 - line numbers are a help, never a failure
@@ -291,6 +327,15 @@ class _Lines:
             path = path[:-1]
         return None
 
+    def key_at(self, line):
+        """The path of the key (or table) given last on or before a line, for
+        errors found before the data exists (tomllib's, the nesting check)."""
+        best = ()
+        for path, number in self.at.items():
+            if number <= line and (not best or (number, len(path)) >= (self.at[best], len(best))):
+                best = path
+        return best
+
     def _resolve(self, parts):
         out = ()
         for p in parts:
@@ -301,6 +346,7 @@ class _Lines:
 
     def _scan(self, text):
         for number, line in enumerate(text.split("\n"), 1):
+            self._number = number
             if line.endswith("\r"):
                 line = line[:-1]
             if self._string is not None or self._depth > 0:
@@ -325,6 +371,7 @@ class _Lines:
                 parts, pos = _read_key(s, 0)
                 for k in range(1, len(parts) + 1):
                     self.at.setdefault(self._table + tuple(parts[:k]), number)
+                self._key = self._table + tuple(parts)
                 eq = s.find("=", pos)
                 self._scan_value(s, eq + 1 if eq >= 0 else len(s))
 
@@ -360,6 +407,8 @@ class _Lines:
             else:
                 if c in "[{":
                     self._depth += 1
+                    if self._depth > _MAX_NESTING and self.too_deep is None:
+                        self.too_deep = (self._number, self._key)
                 elif c in "]}":
                     self._depth -= 1
                 i += 1
@@ -383,7 +432,15 @@ class _Where:
 def _number(where, key, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise where.error(f"must be a number, got {_toml_type(value)} ({_show(value)})", key)
-    return float(value)
+    return _float(where, key, value)
+
+
+def _float(where, key, value):
+    try:
+        return float(value)
+    except OverflowError:
+        raise where.error(f"{_show(value)} is too large for a float (at most about 1.8e308)",
+                          key) from None
 
 
 def _integer(where, key, value):
@@ -409,7 +466,7 @@ def _vec2(where, key, value):
             or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in value)):
         raise where.error(f"must be a pair of numbers [x, y], got {_toml_type(value)} "
                           f"({_show(value)})", key)
-    return (float(value[0]), float(value[1]))
+    return (_float(where, key, value[0]), _float(where, key, value[1]))
 
 
 def _list_of(where, key, value, check, what):
@@ -427,7 +484,10 @@ def _time_function(where, key, value):
                           "{ type = \"linear\", rate = ..., ... }, got "
                           f"{_toml_type(value)} ({_show(value)})", key)
     if not isinstance(value, dict):
-        return float(value)
+        number = _float(where, key, value)
+        if not math.isfinite(number):  # a constant force or motion of inf has no meaning
+            raise where.error(f"must be finite, got {number!r}", key)
+        return number
     if "type" not in value:
         raise where.error("a time function needs a 'type' (constant, linear, polynomial, "
                           "harmonic, smooth_step or spline)", key)
@@ -437,7 +497,7 @@ def _time_function(where, key, value):
         raise where.error("this lagmb has no time functions (lagmb.functions)", key) from None
     try:
         f = time_function_from_dict(dict(value))
-    except (ValueError, TypeError, KeyError) as e:
+    except (ValueError, TypeError, KeyError, OverflowError) as e:
         raise where.error(f"{_message(e)} (in {_show(value)})", key) from None
     unknown = sorted(set(value) - set(f.to_dict()))
     if unknown:
@@ -485,6 +545,33 @@ def _kind(method, arg):
     return None
 
 
+def _place(path):
+    """(table label, key) of a path of keys and indices as _Lines records it."""
+    path = tuple(path)
+    if not path:
+        return None, None
+    if path[0] not in _TABLES:
+        return None, ".".join(map(str, path))
+    if len(path) > 1 and isinstance(path[1], int):
+        table, rest = f"{path[0]}[{path[1]}]", path[2:]
+    else:
+        table, rest = f"[{path[0]}]", path[1:]
+    return table, ".".join(map(str, rest)) or None
+
+
+def _long_integer(text):
+    """(line, digits) of the first integer longer than Python converts, or None."""
+    limit = getattr(sys, "get_int_max_str_digits", lambda: 0)()
+    if not limit:
+        return None
+    for number, line in enumerate(text.split("\n"), 1):
+        for m in re.finditer(r"[0-9][0-9_]*", line):
+            digits = len(m.group().replace("_", ""))
+            if digits > limit:
+                return number, digits
+    return None
+
+
 def _words(text):
     return set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", text))
 
@@ -492,6 +579,11 @@ def _words(text):
 class _Reader:
     def __init__(self, path, text):
         self.path = path
+        self.lines = _Lines(text)  # first: it finds the nesting that tomllib recurses into
+        if self.lines.too_deep is not None:
+            line, key = self.lines.too_deep
+            raise self.located(f"arrays or inline tables nested more than {_MAX_NESTING} deep",
+                               line, key)
         try:
             self.data = _toml.loads(text)
         except _toml.TOMLDecodeError as e:
@@ -500,11 +592,25 @@ class _Reader:
             reason = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(e)) if m else str(e)
             raise SceneError(f"not valid TOML: {reason}" + (f" (column {m.group(2)})" if m else ""),
                              path, line) from None
-        self.lines = _Lines(text)
+        except ValueError as e:  # tomllib's int() past Python's limit on decimal digits
+            found = _long_integer(text)
+            if found is None:
+                raise SceneError(f"not valid TOML: {e}", path) from None
+            line, digits = found
+            raise self.located(f"an integer of {digits} digits (Python reads at most "
+                               f"{sys.get_int_max_str_digits()}; a float has 309)",
+                               line, self.lines.key_at(line)) from None
+        except RecursionError:  # nesting the check above did not see
+            raise SceneError("values nested too deeply to read", path) from None
         self.names = {}  # element or body name -> (label, line)
         self.bodies = {"ground"}
         self.joints = set()
         self.elements = []
+
+    def located(self, message, line, key_path):
+        """A SceneError at a line, before there is data to name the table by."""
+        table, key = _place(key_path)
+        return SceneError(message, self.path, line, table, key)
 
     def where(self, table_path, label):
         return _Where(self.path, self.lines, table_path, label)
@@ -614,14 +720,14 @@ class _Reader:
             return  # not in the model at all: a disabled element costs nothing
         try:
             getattr(model, method_name)(**kwargs)
-        except (ValueError, TypeError) as e:
+        except (ValueError, TypeError, OverflowError) as e:
             raise w.error(str(e), self.blame(entry, str(e))) from None
         self.names[name] = (w.label, w.line())
         if table in ("bodies", "particles"):
             self.bodies.add(name)
         elif table == "joints":
             self.joints.add(name)
-        self.elements.append(SceneElement(table, typ, name, w.line()))
+        self.elements.append(SceneElement(table, typ, name, w.line(), i))
 
     def blame(self, entry, message):
         """The key a model error is about: the first (other than name and
@@ -633,7 +739,7 @@ class _Reader:
         for key in entry:
             if key not in ("name", "type") and key in words:
                 return key
-        return None
+        return "name" if "name" in words else None  # e.g. an empty or reserved name
 
     def later(self, table_names, name):
         """Where a name that is not (yet) in the model is defined in the file,
@@ -702,28 +808,44 @@ class _Reader:
         if "t_out" in out and "n_out" in out:
             raise w.error("give n_out or t_out, not both", "t_out")
         for key, allowed in (("analysis", ("auto", "dynamic", "kinematic", "inverse_dynamics")),
-                             ("start", ("given", "equilibrium"))):
+                             ("start", ("given", "equilibrium")),
+                             ("formulation", _FORMULATIONS), ("integrator", _INTEGRATORS)):
             if key in out and out[key] not in allowed:
                 raise w.error(f"must be one of {', '.join(map(repr, allowed))}, got {out[key]!r}", key)
+        t0 = out.get("t0", 0.0)
+        if not math.isfinite(t0):
+            raise w.error(f"must be finite, got {t0!r}", "t0")
         if "t_end" in out:
-            if not math.isfinite(out["t_end"]) or out["t_end"] <= out.get("t0", 0.0):
-                raise w.error(f"must be finite and greater than t0 = {out.get('t0', 0.0)!r}, "
+            if not math.isfinite(out["t_end"]) or out["t_end"] <= t0:
+                raise w.error(f"must be finite and greater than t0 = {t0!r}, "
                               f"got {out['t_end']!r}", "t_end")
-        for key in ("rtol", "atol", "max_step"):
+        for key in ("rtol", "atol", "max_step", "step"):
             if key in out and not (math.isfinite(out[key]) and out[key] > 0):
                 raise w.error(f"must be positive and finite, got {out[key]!r}", key)
-        if "n_out" in out and out["n_out"] < 2:
-            raise w.error(f"must be at least 2, got {out['n_out']}", "n_out")
-        if "max_steps" in out and out["max_steps"] < 1:
-            raise w.error(f"must be at least 1, got {out['max_steps']}", "max_steps")
-        if "step" in out and not (math.isfinite(out["step"]) and out["step"] > 0):
-            raise w.error(f"must be positive and finite, got {out['step']!r}", "step")
+        # integers travel to C as int (n_out, max_order) or long (max_steps)
+        if "n_out" in out and not 2 <= out["n_out"] <= MAX_OUTPUTS:
+            raise w.error(f"must be at least 2 and at most {MAX_OUTPUTS:,}, got "
+                          f"{_show(out['n_out'])}", "n_out")
+        if "max_steps" in out and not 1 <= out["max_steps"] <= _MAX_STEPS:
+            raise w.error(f"must be at least 1 and at most {_MAX_STEPS:.0e}, got "
+                          f"{_show(out['max_steps'])}", "max_steps")
+        if "max_order" in out:
+            integrator = out.get("integrator", "bdf")
+            top = _MAX_ORDER[integrator]
+            if not 1 <= out["max_order"] <= top:
+                raise w.error(f"must be in 1..{top} for integrator {integrator!r}, got "
+                              f"{_show(out['max_order'])}", "max_order")
         if "t_out" in out:
             t = out["t_out"]
             if not t or not all(math.isfinite(x) for x in t) or any(
                     b <= a for a, b in zip(t, t[1:])):
                 raise w.error("must be a non-empty, strictly increasing array of finite times",
                               "t_out")
+            if len(t) > MAX_OUTPUTS:
+                raise w.error(f"has {len(t):,} times, more than {MAX_OUTPUTS:,}", "t_out")
+            if t[0] < t0 or t[-1] > out.get("t_end", t[-1]):
+                raise w.error(f"must lie in t0 .. t_end = {t0!r} .. {out.get('t_end', t[-1])!r}, "
+                              f"got {t[0]!r} .. {t[-1]!r}", "t_out")
         return out
 
     def read_output(self, table):
@@ -734,8 +856,16 @@ class _Reader:
             if kind is None:
                 raise w.error("unknown key; [output] has: " + ", ".join(_OUTPUT), key)
             out[key] = _setting(w, key, value, kind)
+        for key in ("file", "plot", "animate"):
+            if "\0" in out.get(key, ""):  # no file system takes it (open raises ValueError)
+                raise w.error("a file name cannot contain a NUL character", key)
         if "file" in out and os.path.splitext(out["file"])[1].lower() not in _OUTPUT_FILE_TYPES:
             raise w.error(f"must end in .npz or .csv, got {out['file']!r}", "file")
+        for key, problem in (("plot", _plot_format_problem),
+                             ("animate", _animation_format_problem)):
+            reason = problem(out[key]) if key in out else None
+            if reason:
+                raise w.error(f"{out[key]!r} {reason}", key)
         if out.get("reaction_frame", "global") not in ("global", "joint"):
             raise w.error(f"must be \"global\" or \"joint\", got {out['reaction_frame']!r}",
                           "reaction_frame")
@@ -748,6 +878,42 @@ class _Reader:
                     raise w.error(f"no {what} named {name!r} (known: "
                                   f"{', '.join(known) or 'none'})", key)
         return out
+
+
+def _plot_format_problem(path):
+    """Why matplotlib would refuse to save a plot to path (by its extension, as
+    savefig decides), or None; None too without matplotlib (the CLI says so)."""
+    try:
+        import matplotlib
+        from matplotlib.backend_bases import FigureCanvasBase
+    except ImportError:
+        return None
+    formats = sorted(FigureCanvasBase.get_supported_filetypes())
+    ext = os.path.splitext(path)[1].lower()[1:]
+    if ext not in formats:
+        return ("must end in one of the formats matplotlib writes: "
+                + ", ".join("." + f for f in formats))
+    if ext == "pgf":  # typeset by a TeX system, which savefig only looks for at the end
+        tex = matplotlib.rcParams["pgf.texsystem"]
+        if shutil.which(tex) is None:
+            return f"needs {tex} (matplotlib's pgf output is typeset by it), which is not installed"
+    return None
+
+
+def _animation_format_problem(path):
+    """Why the animation (matplotlib's PillowWriter: the formats Pillow saves
+    with several frames) cannot go to path, by its extension, or None."""
+    try:
+        from PIL import Image
+    except ImportError:
+        return None
+    Image.init()
+    several = getattr(Image, "SAVE_ALL", {"GIF": None})
+    exts = sorted(e for e, f in Image.registered_extensions().items() if f in several)
+    if os.path.splitext(path)[1].lower() not in exts:
+        return ("must end in one of the animation formats Pillow writes: " + ", ".join(exts)
+                + " (video formats such as .mp4 are not written)")
+    return None
 
 
 def _setting(w, key, value, kind):
@@ -768,12 +934,13 @@ def _setting(w, key, value, kind):
 
 class SceneElement:
     """One element of a scene: its table, type (None for bodies and
-    particles), name and line in the file."""
+    particles), name, line in the file and index in its table."""
 
-    __slots__ = ("table", "type", "name", "line")
+    __slots__ = ("table", "type", "name", "line", "index")
 
-    def __init__(self, table, type, name, line):  # noqa: A002 - the scene key
+    def __init__(self, table, type, name, line, index=None):  # noqa: A002 - the scene key
         self.table, self.type, self.name, self.line = table, type, name, line
+        self.index = index
 
     def __repr__(self):
         return f"SceneElement({self.table!r}, {self.type!r}, {self.name!r}, line={self.line})"
@@ -808,6 +975,11 @@ class Scene:
         """Names of the elements of one table ("joints", "drivers", ...)."""
         return [e.name for e in self.elements if e.table == table]
 
+    def output_error(self, key, message):
+        """A SceneError about a key of [output], at its line."""
+        w = _Where(self.path, self._lines or _Lines(""), ("output",), "[output]")
+        return w.error(message, key)
+
     def run(self, **overrides):
         """mb.simulate(model, **(settings | overrides)). Overriding t_end
         keeps the file's t_out times up to the new t_end; giving n_out drops
@@ -834,11 +1006,26 @@ class Scene:
                 raise
             # a setting from the file that the message names, the first named
             message, words = str(e), _words(str(e))
-            named = [k for k in self.settings if k in words]
-            if not named or any(k in words for k in overrides):
+            if any(k in words for k in overrides):
                 raise
-            key = min(named, key=message.find)
-            w = _Where(self.path, self._lines or _Lines(""), ("simulation",), "[simulation]")
+            lines = self._lines or _Lines("")
+            named = [k for k in self.settings if k in words]
+            if named:
+                key = min(named, key=message.find)
+                w = _Where(self.path, lines, ("simulation",), "[simulation]")
+                raise w.error(message, key) from None
+            # else an element of the file that it names (e.g. a massless body)
+            element = next((x for x in self.elements if x.index is not None
+                            and f"'{x.name}'" in message), None)
+            if element is None:
+                raise
+            where = (element.table, element.index)
+            keys = sorted((line, path[2]) for path, line in lines.at.items()
+                          if len(path) == 3 and path[:2] == where)
+            words = _words(message.replace(f"'{element.name}'", ""))
+            key = next((k for _, k in keys if k not in ("name", "type") and k in words), None)
+            w = _Where(self.path, lines, where, f"{element.table}[{element.index}] "
+                                                f"{element.name!r}")
             raise w.error(message, key) from None
 
     def __repr__(self):
@@ -849,11 +1036,15 @@ def load_scene(path):
     """Read a scene file: returns a Scene (.model, .settings, .output, .run()).
 
     Raises SceneError (a ModelError) naming the file, line, table and key for
-    anything the file gets wrong, and OSError if it cannot be read.
+    anything the file gets wrong (also for a file over MAX_SCENE_BYTES), and
+    OSError if it cannot be read.
     """
     path = os.fspath(path)
     with open(path, "rb") as fh:
-        raw = fh.read()
+        raw = fh.read(MAX_SCENE_BYTES + 1)  # a pipe or device may never end
+    if len(raw) > MAX_SCENE_BYTES:
+        raise SceneError(f"more than {MAX_SCENE_BYTES >> 20} MiB: too large for a scene file",
+                         path)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as e:
