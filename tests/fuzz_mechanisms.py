@@ -83,6 +83,8 @@ def lit(v):
         return f"({inner},)" if len(v) == 1 else f"({inner})"
     if isinstance(v, list):
         return "[" + ", ".join(lit(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{lit(k)}: {lit(x)}" for k, x in v.items()) + "}"
     raise TypeError(f"cannot render {v!r}")
 
 
@@ -403,7 +405,14 @@ def _build(ctx):
             ctx.add(call("m.add_rack_pinion", name, bi, bj, ctx.num(_log_uniform(d, 0.01, 1.0)), ctx.unit()),
                     "add_rack_pinion")
             ctx.joints.append((name, "rack_pinion", 0.0))
-    # drivers
+    # drivers: sometimes every revolute and slider of the chain (a fully driven model:
+    # kinematic analysis, inverse dynamics), else a few
+    if d(st.integers(0, 3)) == 3:
+        for joint, kind, base in list(ctx.joints):
+            if kind in ("revolute", "translational"):
+                name = ctx.name("d")
+                ctx.add(call("m.drive_joint", name, joint, ctx.time_function(base=base)), "drive_joint")
+                ctx.drivers.append(name)
     for _ in range(d(st.integers(0, 2))):
         name = ctx.name("d")
         if d(st.booleans()):
@@ -496,16 +505,18 @@ def _element(ctx, kind):
                 kw[key] = ctx.num(nominal)
         code = call("m.add_joint_friction", name, ctx.joint_ref(("revolute", "translational")), **kw)
     elif kind == "stop":
+        # limits close to the joint's initial coordinate, so that impacts happen in a short run
+        joint, base = ctx.joint_ref(("revolute", "translational"), base=True)
         kw = {}
         if d(st.booleans()):
-            kw["lower"] = ctx.num(d(st.sampled_from([-0.1, -1.0, 0.0, 0.5])))
+            kw["lower"] = ctx.num(_round(base - d(st.sampled_from([0.003, 0.03, 0.3, 0.0, -0.1]))))
         if d(st.booleans()) or not kw:
-            kw["upper"] = ctx.num(d(st.sampled_from([0.1, 1.0, 0.0, -0.5])))
+            kw["upper"] = ctx.num(_round(base + d(st.sampled_from([0.003, 0.03, 0.3, 0.0, -0.1]))))
         if d(st.booleans()):
             kw["restitution"] = ctx.num(d(st.sampled_from([0.0, 0.5, 1.0, 1.5])))
         if d(st.booleans()):
             kw["rest_speed"] = ctx.num(1e-3)
-        code = call("m.add_stop", name, ctx.joint_ref(("revolute", "translational")), **kw)
+        code = call("m.add_stop", name, joint, **kw)
     elif kind == "contact":
         k = d(st.integers(0, len(ctx.bodies) - 1))
         _, var, _, pos, _ = ctx.bodies[k]
@@ -631,6 +642,23 @@ def _runs(ctx):
                         check="finite:x")
 
 
+def _scene(ctx):
+    """Write the model as a scene file, load it back and run it."""
+    ctx.add("import os, tempfile\nscene_path = os.path.join(tempfile.mkdtemp(), 'fuzz.toml')", "setup")
+    settings = None
+    if ctx.draw(st.booleans()):
+        settings = ctx.draw(st.sampled_from([{"t_end": 0.05}, {"t_end": 0.05, "formulation": "index1"},
+                                             {"t_end": 0.02, "n_out": 5, "rtol": 1e-8}]))
+        if ctx.hostile():
+            settings = ctx.draw(st.sampled_from([{"t_end": nan}, {"t_end": "x"}, {"nonsense": 1}, {"t_end": BIG},
+                                                 {"t_end": 0.05, "n_out": 2 ** 40}, {"t_end": None}]))
+    ctx.add(f"m.to_scene(scene_path{'' if settings is None else ', settings=' + lit(settings)})\n"
+            "written = scene_path", "to_scene")
+    ctx.add("scene = mb.load_scene(written)", "load_scene")  # only if it was written
+    ctx.add("r9 = scene.run()" if settings is not None else "r9 = mb.simulate(scene.model, t_end=0.05)",
+            "scene.run", check="result:r9")
+
+
 def _accessor(ctx, var, bodies):
     d = ctx.draw
     what = d(st.sampled_from(["reaction", "reaction_joint", "energy", "residual", "point", "body", "effort",
@@ -671,6 +699,14 @@ if st is not None:
         ctx = Ctx(draw, hostility, extremity, coin)
         _build(ctx)
         _runs(ctx)
+        if draw(st.integers(0, 3)) == 3:
+            # change the model after a run (it is rebuilt), then run again
+            for _ in range(draw(st.integers(1, 2))):
+                _element(ctx, draw(st.sampled_from(["spring_damper", "force", "torque", "stop", "joint_friction",
+                                                    "contact", "rotational_spring_damper"])))
+            _runs(ctx)
+        if draw(st.integers(0, 4)) == 4:
+            _scene(ctx)
         return ctx.ops
 
 
@@ -721,34 +757,32 @@ def _finite_problems(value, path="value", out=None):
     return out
 
 
-def _result_problems(mb, np, r, m):
-    """Non-finite arrays or a silently violated constraint in a Result."""
+def _result_problems(mb, np, r, m, allowed):
+    """Non-finite arrays or a silently violated constraint in a Result. A
+    quantity lagmb refuses to give (e.g. r.lam of a kinematic-only run) is
+    skipped; any other exception propagates (a finding)."""
     bad = []
-    arrays = {"t": r.t, "q": r.q, "v": r.v, "a": r.a}
-    try:
-        arrays["lam"] = r.lam
-    except mb.KinematicOnlyError:
-        pass
-    arrays["energy"] = r.energy
-    arrays["residual"] = r.residual
-    kinematic_only = "lam" not in arrays
+
+    def get(f):
+        try:
+            return np.asarray(f(), dtype=float)
+        except allowed:
+            return None
+
+    arrays = {"t": get(lambda: r.t), "q": get(lambda: r.q), "v": get(lambda: r.v), "a": get(lambda: r.a),
+              "lam": get(lambda: r.lam), "energy": get(lambda: r.energy), "residual": get(lambda: r.residual)}
+    for method, kw in m.elements():
+        if method.startswith(("add_revolute", "add_translational", "add_weld", "add_distance",
+                              "add_pin_in_slot", "add_gear", "add_rack_pinion", "drive_")):
+            for frame in ("global", "joint"):
+                arrays[f"reaction(frame={frame!r})"] = get(lambda: r.reaction(kw["name"], frame=frame))
     for name, a in arrays.items():
-        a = np.asarray(a, dtype=float)
-        if not np.all(np.isfinite(a)):
-            bad.append(("nonfinite", name))
-    if len(r.t) == 0:
+        if a is not None and not np.all(np.isfinite(a)):
+            bad.append(("nonfinite", "." + name))
+    if arrays["t"] is not None and len(arrays["t"]) == 0:
         bad.append(("empty", "t"))
-    if not kinematic_only:
-        for method, kw in m.elements():
-            if method.startswith(("add_revolute", "add_translational", "add_weld", "add_distance",
-                                  "add_pin_in_slot", "add_gear", "add_rack_pinion", "drive_")):
-                for frame in ("global", "joint"):
-                    x = np.asarray(r.reaction(kw["name"], frame=frame), dtype=float)
-                    if not np.all(np.isfinite(x)):
-                        bad.append(("nonfinite", f"reaction(frame={frame!r})"))
-    res = np.asarray(r.residual, dtype=float)
-    q = np.asarray(r.q, dtype=float)
-    if res.size and np.all(np.isfinite(res)) and np.all(np.isfinite(q)):
+    res, q = arrays["residual"], arrays["q"]
+    if res is not None and q is not None and res.size and np.all(np.isfinite(res)) and np.all(np.isfinite(q)):
         bound = RESIDUAL_BOUND * (1.0 + (np.max(np.abs(q)) if q.size else 0.0))
         worst = float(np.max(res))
         if worst > bound:
@@ -761,10 +795,10 @@ def _equilibrium_problems(np, eq):
     bad = []
     for name in ("q", "lam", "stiffness_eigenvalues", "softest_mode"):
         if not np.all(np.isfinite(getattr(eq, name))):
-            bad.append(("nonfinite", name))
+            bad.append(("nonfinite", "." + name))
     for name in ("force_residual", "constraint_residual"):
         if not math.isfinite(getattr(eq, name)):
-            bad.append(("nonfinite", name))
+            bad.append(("nonfinite", "." + name))
     q = eq.q
     if np.all(np.isfinite(q)) and math.isfinite(eq.constraint_residual):
         bound = RESIDUAL_BOUND * (1.0 + (float(np.max(np.abs(q))) if q.size else 0.0))
@@ -853,7 +887,7 @@ def worker_main():
                     if what == "finite":
                         found = [("nonfinite", p) for p in _finite_problems(value, "")]
                     elif what == "result":
-                        found = _result_problems(mb, np, value, ns["m"])
+                        found = _result_problems(mb, np, value, value.model, allowed)
                         form = re.search(r"formulation='(\w+)'", op["code"])
                         kind = f"simulate[{form.group(1) if form else 'ggl'}]"
                     else:
