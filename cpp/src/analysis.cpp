@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "lagmb/assembly.hpp"
+#include "lagmb/equilibrium.hpp"
 
 namespace lagmb {
 
@@ -105,6 +106,35 @@ std::string diagnose_failure(const Model& model, const VecX& q, double t, const 
       << "such as a parallelogram crossing its flat position), run it with formulation=\"ali3p\" and a fixed "
       << "step (e.g. step=1e-4), which runs through singular positions.";
   return out.str();
+}
+
+std::string non_finite_source(const Model& model, const double* q, const double* v, double t) {
+  const int n = model.n_coordinates();
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(q[i]) || !std::isfinite(v[i]))
+      return "the state is not finite at " + coordinate_label(model, i);
+  Data d(model);
+  try {
+    assemble_forces(model, d, q, v, t);
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(d.Q[i])) {
+        std::string kinds;
+        for (const auto& g : model.force_groups()) {
+          VecX Q = VecX::Zero(n);
+          g->add_forces(q, v, t, Q.data());
+          if (!std::isfinite(Q[i])) kinds += std::string(kinds.empty() ? "" : ", ") + g->kind();
+        }
+        return "the applied force on " + coordinate_label(model, i) + " is not finite (from the " + kinds +
+               " elements)";
+      }
+    assemble_gamma(model, d, q, v, t);
+    for (int r = 0; r < d.gamma.size(); ++r)
+      if (!std::isfinite(d.gamma[r]))
+        return "the acceleration equation of '" + model.constraint_name_of_row(r) + "' is not finite";
+  } catch (const UserFunctionError& e) {
+    return e.what();
+  }
+  return "the augmented system gave non-finite values (forces or masses out of the range of double precision)";
 }
 
 }  // namespace lagmb

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/interrupt.hpp"
@@ -183,6 +184,12 @@ ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, V
   Redundancy r = find_redundancy(model, d, kkt, q, t);
   d.drop_rows(model, r.rows);
   ConsistentState s = make_consistent(model, d, kkt, std::move(q), std::move(v), t);
+  if (!(s.q.allFinite() && s.v.allFinite() && s.qdd.allFinite() && s.lam.allFinite()))
+  {
+    std::ostringstream why;
+    why << "the consistent start at t = " << t << " is not finite: " << non_finite_source(model, s.q.data(), s.v.data(), t);
+    throw AssemblyError(why.str(), t, {});
+  }
   if (!r.rows.empty()) {
     // kkt holds the kept rows at s.q; the dropped ones from a full evaluation
     Data full(model);

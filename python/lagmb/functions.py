@@ -1,10 +1,10 @@
 """Functions of time for drivers and actuators, evaluated in C++ with exact
 first and second derivatives (docs/modelling.md, "Time functions")."""
 
-import math
 import numbers
 
 from . import _core
+from ._checks import real
 from .errors import ModelError
 
 
@@ -42,9 +42,7 @@ class TimeFunction:
 
 
 def _num(value, what):
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
-        raise ModelError(f"{what} must be a finite number, got {value!r}")
-    return float(value)
+    return real(value, what)
 
 
 def _nums(values, what):

@@ -3,9 +3,8 @@
 import math
 import numbers
 
-import numpy as np
-
 from . import _core
+from ._checks import real as _number, vec2 as _vec2
 from .errors import ModelError
 from .functions import TimeFunction, as_time_function
 
@@ -24,29 +23,8 @@ class Body:
         return f"Body({self.name!r})"
 
 
-def _vec2(value, what):
-    try:
-        x = np.asarray(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise ModelError(f"{what} must be a pair of numbers, got {value!r}") from None
-    if x.shape != (2,):
-        raise ModelError(f"{what} must be a pair of numbers, got {value!r}")
-    if not np.all(np.isfinite(x)):
-        raise ModelError(f"{what} is not finite: {value!r}")
-    return x
-
-
 def _tuple(x):
     return (float(x[0]), float(x[1]))
-
-
-def _number(value, what):
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ModelError(f"{what} must be a number, got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ModelError(f"{what} is not finite: {value!r}")
-    return value
 
 
 class Model:

@@ -1,12 +1,12 @@
 """Running a model: simulate() and one-instant solves."""
 
 import contextlib
-import math
-import numbers
 
 import numpy as np
 
 from . import _core
+from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
+from ._checks import positive as _positive, real as _real, text as _text
 from .errors import AssemblyError, ModelError, SimulationError
 from .result import Result
 
@@ -34,58 +34,6 @@ def _translate(model=None, core=None):
         raise
 
 
-def _real(value, name):
-    """A finite number given as `name`, as a float; ModelError naming it otherwise."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ModelError(f"{name} must be a number, got {value!r}")
-    try:
-        value = float(value)
-    except OverflowError:
-        raise ModelError(f"{name} is too large for a float: {value!r}") from None
-    if not math.isfinite(value):
-        raise ModelError(f"{name} must be finite, got {value!r}")
-    return value
-
-
-def _positive(value, name):
-    value = _real(value, name)
-    if not value > 0:
-        raise ModelError(f"{name} must be positive and finite, got {value!r}")
-    return value
-
-
-def _integer(value, name, low, high):
-    """An integer in [low, high] (an integral float is accepted)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ModelError(f"{name} must be an integer, got {value!r}")
-    if not isinstance(value, numbers.Integral):
-        if not (math.isfinite(value) and float(value).is_integer()):
-            raise ModelError(f"{name} must be an integer, got {value!r}")
-        value = int(value)
-    value = int(value)
-    if not low <= value <= high:
-        raise ModelError(f"{name} must be in {low}..{high}, got {value!r}")
-    return value
-
-
-def _array(value, name):
-    """A 1-D array of finite floats."""
-    try:
-        x = np.asarray(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError, OverflowError):
-        raise ModelError(f"{name} must be a sequence of numbers, got {value!r}") from None
-    if not np.all(np.isfinite(x)):
-        raise ModelError(f"{name} must hold finite numbers, got {value!r}")
-    return x
-
-
-def _text(value, name):
-    if not isinstance(value, str):
-        raise ModelError(f"{name} must be a string, got {value!r}")
-    return value
-
-
-_INT_MAX = 2**31 - 1  # outputs, orders: C int in the core
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
              max_step=None, max_steps=500_000, formulation="ggl", integrator="bdf", max_order=None,

@@ -1,6 +1,5 @@
 """Static equilibrium: mb.equilibrium(model) (cpp/include/lagmb/equilibrium.hpp)."""
 
-import math
 
 import numpy as np
 
@@ -92,7 +91,7 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     """
     from .simulation import _translate
 
-    from .simulation import _integer, _real
+    from ._checks import integer as _integer, real as _real
 
     t = _real(t, "t")
     tol = _real(tol, "tol")

@@ -32,4 +32,9 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
 /// about stiffness or time resolution. Dense SVD: models up to 1000 equations.
 std::string diagnose_failure(const Model& model, const VecX& q, double t, const std::vector<int>& dropped_rows);
 
+/// What makes (q, v, t) give non-finite accelerations: a non-finite state,
+/// applied force (naming the body and coordinate and the force kinds) or
+/// constraint term gamma (naming the element).
+std::string non_finite_source(const Model& model, const double* q, const double* v, double t);
+
 }  // namespace lagmb

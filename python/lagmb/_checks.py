@@ -1,0 +1,88 @@
+"""Argument checks shared by the Python API: each returns the value in the
+form the core takes, or raises ModelError naming the argument. Python's
+numbers reach past a double (10**400) and past what repr() prints (an int
+of 5,000 digits); neither may escape as OverflowError or ValueError."""
+
+import math
+import numbers
+
+import numpy as np
+
+from .errors import ModelError
+
+INT_MAX = 2**31 - 1  # outputs, orders: C int in the core
+
+
+def show(value):
+    """repr(value), short, and safe for any value (a huge int has no repr)."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool) and abs(int(value)).bit_length() > 200:
+        digits = max(1, int(abs(int(value)).bit_length() * math.log10(2)))
+        return f"an integer of about {digits} digits"
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001 - e.g. a list holding a huge integer
+        text = f"a {type(value).__name__}"
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def real(value, name):
+    """A finite number given as `name`, as a float."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ModelError(f"{name} must be a number, got {show(value)}")
+    try:
+        value = float(value)
+    except OverflowError:
+        raise ModelError(f"{name} is too large for a float: {show(value)}") from None
+    if not math.isfinite(value):
+        raise ModelError(f"{name} must be finite, got {value!r}")
+    return value
+
+
+def positive(value, name):
+    value = real(value, name)
+    if not value > 0:
+        raise ModelError(f"{name} must be positive and finite, got {value!r}")
+    return value
+
+
+def integer(value, name, low, high):
+    """An integer in [low, high] (an integral float is accepted)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ModelError(f"{name} must be an integer, got {show(value)}")
+    if not isinstance(value, numbers.Integral):
+        if not (math.isfinite(value) and float(value).is_integer()):
+            raise ModelError(f"{name} must be an integer, got {value!r}")
+    value = int(value)
+    if not low <= value <= high:
+        raise ModelError(f"{name} must be in {low}..{high}, got {show(value)}")
+    return value
+
+
+def array(value, name):
+    """A 1-D array of finite floats."""
+    try:
+        x = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        raise ModelError(f"{name} must be a sequence of finite numbers, got {show(value)}") from None
+    if not np.all(np.isfinite(x)):
+        raise ModelError(f"{name} must hold finite numbers, got {show(value)}")
+    return x
+
+
+def vec2(value, name):
+    """A pair of finite numbers (x, y) as a float array."""
+    try:
+        x = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        raise ModelError(f"{name} must be a pair of finite numbers, got {show(value)}") from None
+    if x.shape != (2,):
+        raise ModelError(f"{name} must be a pair of numbers, got {show(value)}")
+    if not np.all(np.isfinite(x)):
+        raise ModelError(f"{name} must be finite, got {show(value)}")
+    return x
+
+
+def text(value, name):
+    if not isinstance(value, str):
+        raise ModelError(f"{name} must be a string, got {show(value)}")
+    return value
