@@ -1,10 +1,11 @@
 # make demo: install what is missing, build lagmb, run the seed pendulum.
 # make test: the same set-up, then the test suite.
+# make test-asan: the test suite under AddressSanitizer and UBSan.
 PYTHON ?= $(shell scripts/python.sh)
 SOURCES := $(shell find cpp python -type f -not -name '*.pyc') CMakeLists.txt pyproject.toml
 STAMP := build/.installed-$(subst /,_,$(PYTHON))
 
-.PHONY: demo test test-slow test-fuzz bench setup clean
+.PHONY: demo test test-slow test-fuzz test-asan bench setup clean
 
 demo: $(STAMP)
 	$(PYTHON) -m lagmb demo --plot out/seed_pendulum.png
@@ -17,6 +18,11 @@ test-slow: $(STAMP)
 
 test-fuzz: $(STAMP)
 	$(PYTHON) -m pytest -q -m fuzz
+
+# the suite against a build with AddressSanitizer and UBSan (build/asan); it
+# does not install anything, so it does not depend on $(STAMP)
+test-asan:
+	scripts/test-asan.sh $(PYTHON)
 
 bench: $(STAMP)
 	$(PYTHON) bench/chain.py
