@@ -50,7 +50,9 @@ LD_PRELOAD="$("$CXX" -print-file-name=libasan.so) $("$CXX" -print-file-name=libu
 # objects, module state), so LeakSanitizer would drown the report in leaks that
 # are not ours. exitcode=86: a sanitized process that dies is not mistaken for
 # the exit 1 of a failed run (tests/test_cli.py checks that exit code).
-ASAN_OPTIONS=detect_leaks=0:exitcode=86
+# handle_abort=1: an abort (a failed _GLIBCXX_ASSERTIONS check) prints the C++
+# stack too, after the Python traceback from faulthandler.
+ASAN_OPTIONS=detect_leaks=0:handle_abort=1:exitcode=86
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=86
 PYTHONPATH=$ROOT/$PKG${PYTHONPATH:+:$PYTHONPATH}
 export LD_PRELOAD ASAN_OPTIONS UBSAN_OPTIONS PYTHONPATH
