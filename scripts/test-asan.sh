@@ -42,8 +42,10 @@ ln -s "$ROOT/$so" $PKG/lagmb/
 
 # Python is not instrumented, so the ASan runtime has to be loaded first,
 # before the module (the UBSan runtime too: the module needs both). Tests that
-# start processes (python -m lagmb, the examples, cmake and the compiler for
-# examples/cpp) inherit all of this.
+# start processes inherit all of this: python -m lagmb and the examples load
+# the sanitized module; tests/test_cpp_library.py runs cmake and the compiler
+# under the preloaded runtime (harmless) and builds its own, unsanitized copy
+# of the C++ library, as under make test.
 CXX=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' $BUILD/CMakeCache.txt)
 LD_PRELOAD="$("$CXX" -print-file-name=libasan.so) $("$CXX" -print-file-name=libubsan.so)"
 # detect_leaks=0: CPython never frees much of what it allocates (interned
