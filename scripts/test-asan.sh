@@ -8,8 +8,10 @@
 # target and the static lagmb_core it links) and staged in build/asan/pkg/lagmb
 # next to symlinks to python/lagmb/*.py; PYTHONPATH puts that directory ahead
 # of site-packages. Any sanitizer report fails the run: UB aborts
-# (-fno-sanitize-recover), as do out-of-range std::vector/std::array accesses
-# (-D_GLIBCXX_ASSERTIONS, which UBSan does not see).
+# (-fno-sanitize-recover), as do out-of-range std::vector/std::array indexing
+# (-D_GLIBCXX_ASSERTIONS; UBSan sees v[i] of a vector that never allocated only
+# as a null reference, and neither it nor ASan sees an index past size() but
+# within capacity()).
 set -eu
 PYTHON=${1:-python3}
 if [ $# -gt 0 ]; then shift; fi
