@@ -71,7 +71,7 @@ class Ali3pStepper final : public Stepper {
         t_(plan.t0),
         stop_(plan.t_end),
         t_prev_(plan.t0) {
-    d_.drop_rows(model, start.dropped_rows);
+    if (plan.run) d_.join_run(model, *plan.run);
     q_ = start.q;
     v_ = start.v;
     a_ = start.qdd;

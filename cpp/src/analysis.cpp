@@ -121,7 +121,7 @@ std::string non_finite_source(const Model& model, const double* q, const double*
         std::string kinds;
         for (const auto& g : model.force_groups()) {
           VecX Q = VecX::Zero(n);
-          g->add_forces(q, v, t, Q.data());
+          g->add_forces(q, v, t, d.run_state->data(), Q.data());
           if (!std::isfinite(Q[i])) kinds += std::string(kinds.empty() ? "" : ", ") + g->kind();
         }
         return "the applied force on " + coordinate_label(model, i) + " is not finite (from the " + kinds +

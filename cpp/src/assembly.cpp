@@ -14,7 +14,8 @@ Data::Data(const Model& model)
       Vq(model.jacobian_pattern()),
       H(model.hessian_pattern()),
       Q_q(model.force_q_pattern()),
-      Q_v(model.force_v_pattern()) {
+      Q_v(model.force_v_pattern()),
+      run_state(std::make_shared<VecX>(VecX::Zero(model.run_state_size()))) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
   if (!model.friction_groups().empty()) {
     friction_Q_q = model.force_q_pattern();
@@ -37,6 +38,12 @@ void Data::drop_rows(const Model& model, std::vector<int> rows) {
     for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
       if (std::binary_search(dropped_rows.begin(), dropped_rows.end(), J.innerIndexPtr()[k]))
         dropped_slots.push_back(k);
+}
+
+void Data::join_run(const Model& model, const Data& run) {
+  if (&run == this) return;
+  drop_rows(model, run.dropped_rows);
+  run_state = run.run_state;
 }
 
 namespace {
@@ -106,7 +113,7 @@ void assemble_constraint_hessian(const Model& model, Data& d, const double* q, d
 void assemble_forces(const Model& model, Data& d, const double* q, const double* v, double t) {
   d.Q.setZero();
   for (const auto& f : model.force_groups()) {
-    f->add_forces(q, v, t, d.Q.data());
+    f->add_forces(q, v, t, d.run_state->data(), d.Q.data());
     d.element_evaluations += f->size();
   }
 }
@@ -117,7 +124,7 @@ void assemble_force_derivatives(const Model& model, Data& d, const double* q, co
   d.Q_q.coeffs().setZero();
   d.Q_v.coeffs().setZero();
   for (const auto* f : model.state_dependent_forces()) {
-    f->add_derivatives(q, v, t, d.Q_q.valuePtr(), d.Q_v.valuePtr());
+    f->add_derivatives(q, v, t, d.run_state->data(), d.Q_q.valuePtr(), d.Q_v.valuePtr());
     d.element_evaluations += f->size();
   }
 }

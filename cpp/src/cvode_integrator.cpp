@@ -353,7 +353,7 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
                      const IntegrationPlan& plan,
                      const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
   OdeProblem p(model);
-  p.d.drop_rows(model, start.dropped_rows);
+  if (plan.run) p.d.join_run(model, *plan.run);
   p.alpha = alpha;
   p.beta = beta;
   CvodeSession s;

@@ -43,8 +43,8 @@ class DaeFormulation {
   virtual const double* v(const double* y) const = 0;
   /// Elements the formulation's assembly kernels evaluated so far.
   virtual long element_evaluations() const { return 0; }
-  /// The rows of Phi the run leaves out (Data::dropped_rows).
-  virtual void drop_rows(const std::vector<int>& rows) = 0;
+  /// Joins the run: its dropped rows and run state (Data::join_run).
+  virtual void join_run(const Data& run) = 0;
 };
 
 /// What the DAE forms of lagmb share: y starts with (q, v, lam), and
@@ -66,7 +66,7 @@ class MultiplierDae : public DaeFormulation {
   const double* q(const double* y) const override { return y; }
   const double* v(const double* y) const override { return y + n_; }
   long element_evaluations() const override { return d_.element_evaluations; }
-  void drop_rows(const std::vector<int>& rows) override { d_.drop_rows(model_, rows); }
+  void join_run(const Data& run) override { d_.join_run(model_, run); }
 
  protected:
   MultiplierDae(const Model& model, int size);

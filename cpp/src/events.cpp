@@ -27,10 +27,10 @@ std::string fmt(double x) {
 
 }  // namespace
 
-EventRunner::EventRunner(const Model& model) : model_(model), d_(model), kkt_(model) {
+EventRunner::EventRunner(const Model& model, const Data& run) : model_(model), d_(model), kkt_(model) {
+  d_.join_run(model, run);
   const auto& groups = model.event_groups();
   for (int gi = 0; gi < int(groups.size()); ++gi) {
-    groups[gi]->reset();
     for (int k = 0; k < groups[gi]->size(); ++k)
       for (int r = 0; r < groups[gi]->roots(k); ++r) {
         roots_.push_back({gi, k, r});
@@ -58,7 +58,7 @@ bool EventRunner::start(double t, const VecX& q, VecX& v) {
     if (dir_[i] >= 0 || !(g_[i] < 0.0)) continue;
     auto& group = *model_.event_groups()[roots_[i].group];
     if (g_[i] < -tol) {
-      const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t);
+      const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run_state->data());
       throw ModelError(std::string(group.kind()) + " '" + group.name(roots_[i].element) +
                        "': the initial configuration is beyond its " +
                        (a.label[0] ? a.label : (roots_[i].index == 0 ? "lower" : "upper")) + " limit (by " +
@@ -94,7 +94,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   for (size_t i = 0; i < roots_.size(); ++i) {
     if (!fired[i]) continue;
     auto& group = *model_.event_groups()[roots_[i].group];
-    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t);
+    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run_state->data());
     if (a.type == EventAction::kNone) continue;
     ++events;
     restart = true;

@@ -14,7 +14,9 @@ namespace lagmb {
 
 class EventRunner {
  public:
-  explicit EventRunner(const Model& model);
+  /// run: the run's Data (its dropped rows, and the run state that
+  /// crossings write and the run's force kernels read).
+  EventRunner(const Model& model, const Data& run);
   /// Number of event functions over all event elements (0: none).
   int size() const { return int(roots_.size()); }
   /// SUNDIALS root directions (-1: downward crossings only, 0: both).
@@ -34,8 +36,6 @@ class EventRunner {
   bool handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
   /// q, v with accelerations and multipliers: the state to restart from.
   ConsistentState consistent(double t, const VecX& q, const VecX& v);
-  /// The rows the run leaves out (Data::dropped_rows).
-  void drop_rows(const std::vector<int>& rows) { d_.drop_rows(model_, rows); }
 
   std::vector<EventRecord> records;
   long events = 0, impacts = 0, root_evals = 0;

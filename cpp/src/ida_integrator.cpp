@@ -147,7 +147,7 @@ std::string sundials_version() { return SUNDIALS_VERSION; }
 void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const IntegrationPlan& plan,
                    const std::function<void(const double* q, const double* v)>& record,
                    Stats& stats) {
-  dae.drop_rows(start.dropped_rows);
+  if (plan.run) dae.join_run(*plan.run);
   IdaSession s;
   const int N = dae.size();
   s.y = N_VNew_Serial(N, s.ctx);

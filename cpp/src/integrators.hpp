@@ -25,6 +25,7 @@ struct IntegrationPlan {
   std::function<void(double)> progress;
   double progress_interval;
   class EventRunner* events = nullptr;  // the model's event functions; null: none
+  const Data* run = nullptr;  // the run's Data: each integrator's own Data joins it (Data::join_run)
 };
 
 /// Smallest step an integrator may take: 100 ulps of the largest |t| of the

@@ -741,6 +741,7 @@ void Model::add_contact(const std::string& name, int circle_body, Vec2 center, d
   c.restitution = restitution;
   c.friction = friction;
   c.slip_velocity = slip_velocity;
+  reserve_run_state(c);  // one offset for both entries of the same contact
   add_event_element(c, false);
   add_force_element(std::move(c));
 }

@@ -241,13 +241,13 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   IntegrationPlan plan{o.t0,        o.t_end,     o.rtol,      atol,
                        o.max_step,  o.max_order, o.max_steps, output_times(o),
                        {},          o.progress,  o.progress_interval};
+  plan.run = &d;
   for (double b : model.breakpoints())
     if (b > o.t0 && b < o.t_end) plan.breakpoints.push_back(b);
   // event elements (stops, contacts): root functions for the integrators
   std::unique_ptr<EventRunner> events;
   if (!model.event_groups().empty()) {
-    events = std::make_unique<EventRunner>(model);
-    events->drop_rows(start.dropped_rows);
+    events = std::make_unique<EventRunner>(model, d);
     plan.events = events.get();
     // a joint that starts at a limit, moving into it, gets its impact at t0
     try {

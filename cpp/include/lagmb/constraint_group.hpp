@@ -21,6 +21,7 @@
 
 #include <array>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "lagmb/sparsity.hpp"
@@ -40,6 +41,20 @@ inline Local6 gather(const double* x, const std::array<int, 6>& coord) {
   for (int a = 0; a < 6; ++a) c[a] = coord[a] >= 0 ? x[coord[a]] : 0.0;
   return c;
 }
+
+/// Per-run state of an element kind (any group): a kind that keeps values
+/// during a run (a contact's impact speed) declares
+///   static constexpr int run_state_size;   doubles per element
+///   int run_state = -1;                    its offset, set by the Model
+/// and reads them at run + run_state from the run's Data::run_state. The
+/// Model itself is never written during a run.
+template <class Kind, class = void>
+struct run_state_size_of : std::integral_constant<int, 0> {};
+template <class Kind>
+struct run_state_size_of<Kind, std::void_t<decltype(Kind::run_state_size)>>
+    : std::integral_constant<int, Kind::run_state_size> {};
+template <class Kind>
+inline constexpr int run_state_size_v = run_state_size_of<Kind>::value;
 
 class ConstraintGroupBase {
  public:

@@ -1,13 +1,17 @@
 // Data: the state-dependent values and scratch of one model (cf. mjData).
 #pragma once
 
+#include <memory>
+
 #include "lagmb/model.hpp"
 
 namespace lagmb {
 
 /// Values the kernels write, sized and patterned once from a finalized
-/// Model. Kernels never allocate: they write into these arrays in place.
-/// One Data per thread; a Model may be shared.
+/// Model, and everything a run decides or changes: the dropped rows and the
+/// elements' run state. Kernels never allocate: they write into these arrays
+/// in place. A Model is never written by a run: one Model may be run by
+/// several threads at once, each with its own Data.
 struct Data {
   explicit Data(const Model& model);
 
@@ -38,6 +42,15 @@ struct Data {
   std::vector<int> dropped_slots;  // their entries in the values of Phi_q
   /// Sets dropped_rows (sorted) and their Jacobian slots.
   void drop_rows(const Model& model, std::vector<int> rows);
+
+  /// Per-run state of the elements that keep one (e.g. the approach speed of
+  /// a contact in progress), at the offsets the Model assigned
+  /// (Model::run_state_size); zero at the start of a run, written by event
+  /// crossings, read by the force kernels.
+  std::shared_ptr<VecX> run_state;
+  /// Makes this Data part of `run`: its dropped rows, and the same run state
+  /// (shared, not copied: what an event records, every kernel of the run sees).
+  void join_run(const Model& model, const Data& run);
 };
 
 }  // namespace lagmb

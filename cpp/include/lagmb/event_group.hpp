@@ -12,9 +12,8 @@
 //   int direction(r)                           -1: only downward crossings
 //                                              (+ to -) count; 0: both
 //   EventAction crossing(r, c, cd, t)          what to do at a crossing of g_r
-//                                              (may update the element's
-//                                              per-run state)
-//   void reset()                               clears per-run state before a run
+//   or, for a kind with per-run state (run_state_size, constraint_group.hpp),
+//   EventAction crossing(r, c, cd, t, run)     which may record in run[run_state ..]
 // The runner (cpp/src/events.cpp) applies the actions; the steppers only see
 // "a root was found" and restart from the state the runner hands back. A
 // model without event elements has no group: no root functions are given to
@@ -69,11 +68,11 @@ class EventGroupBase {
   virtual void place(const Model& model) = 0;
   /// Position of element k's coordinates in q (-1: ground / missing angle).
   virtual const std::array<int, 6>& coordinates(int k) const = 0;
-  virtual void reset() = 0;
   /// All event functions of the group, in element order, written at g.
   virtual void values(const double* q, const double* v, double t, double* g) const = 0;
   virtual int direction(int k, int r) const = 0;
-  virtual EventAction crossing(int k, int r, const double* q, const double* v, double t) = 0;
+  /// run: the run's element state (Data::run_state), which the crossing may write.
+  virtual EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const = 0;
 };
 
 template <class Kind>
@@ -89,9 +88,6 @@ class EventGroup final : public EventGroupBase {
   int roots(int) const override { return Kind::roots; }
   void place(const Model& model) override;
   const std::array<int, 6>& coordinates(int k) const override { return coord_[k]; }
-  void reset() override {
-    for (auto& e : items) e.reset();
-  }
   void values(const double* q, const double* v, double t, double* g) const override {
     for (size_t k = 0; k < items.size(); ++k) {
       const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
@@ -99,8 +95,12 @@ class EventGroup final : public EventGroupBase {
     }
   }
   int direction(int k, int r) const override { return items[k].direction(r); }
-  EventAction crossing(int k, int r, const double* q, const double* v, double t) override {
-    return items[k].crossing(r, gather(q, coord_[k]), gather(v, coord_[k]), t);
+  EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const override {
+    const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
+    if constexpr (run_state_size_v<Kind> > 0)
+      return items[k].crossing(r, c, cd, t, run);
+    else
+      return items[k].crossing(r, c, cd, t);
   }
 
  private:

@@ -30,9 +30,10 @@ class ForceGroupBase {
   virtual void declare(SparsityPattern& Q_q, SparsityPattern& Q_v) const = 0;
   virtual void bind(const SpMat& Q_q, const SpMat& Q_v) = 0;
 
-  virtual void add_forces(const double* q, const double* v, double t, double* Q) const = 0;
-  virtual void add_derivatives(const double* q, const double* v, double t, double* Q_q_values,
-                               double* Q_v_values) const = 0;
+  /// run: the run's element state (Data::run_state), read by kinds that keep one.
+  virtual void add_forces(const double* q, const double* v, double t, const double* run, double* Q) const = 0;
+  virtual void add_derivatives(const double* q, const double* v, double t, const double* run,
+                               double* Q_q_values, double* Q_v_values) const = 0;
   /// Potential energy of the conservative part; 0 for dissipative kinds.
   virtual double potential(const double* q, double t) const = 0;
 };
@@ -46,6 +47,8 @@ class ForceGroupBase {
 ///   Local6 force(c, cd, t)                   generalized force on c
 ///   void derivatives(c, cd, t, Mat6& Q_c, Mat6& Q_cd)   if state_dependent
 ///   double potential(c, t)                   0 for non-conservative kinds
+/// A kind with per-run state (see run_state_size in constraint_group.hpp)
+/// takes the run's state as a last argument of force and derivatives.
 template <class Kind>
 class ForceGroup final : public ForceGroupBase {
  public:
@@ -83,20 +86,29 @@ class ForceGroup final : public ForceGroupBase {
     }
   }
 
-  void add_forces(const double* q, const double* v, double t, double* Q) const override {
+  void add_forces(const double* q, const double* v, double t, const double* run, double* Q) const override {
     for (size_t k = 0; k < items.size(); ++k) {
-      const Local6 f = items[k].force(gather(q, coord_[k]), gather(v, coord_[k]), t);
+      const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
+      Local6 f;
+      if constexpr (run_state_size_v<Kind> > 0)
+        f = items[k].force(c, cd, t, run);
+      else
+        f = items[k].force(c, cd, t);
       for (int a = 0; a < 6; ++a)
         if (coord_[k][a] >= 0) Q[coord_[k][a]] += f[a];
     }
   }
 
-  void add_derivatives(const double* q, const double* v, double t, double* Qq,
+  void add_derivatives(const double* q, const double* v, double t, const double* run, double* Qq,
                        double* Qv) const override {
     if constexpr (Kind::state_dependent) {
       Mat6 dq, dv;
       for (size_t k = 0; k < items.size(); ++k) {
-        items[k].derivatives(gather(q, coord_[k]), gather(v, coord_[k]), t, dq, dv);
+        const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
+        if constexpr (run_state_size_v<Kind> > 0)
+          items[k].derivatives(c, cd, t, run, dq, dv);
+        else
+          items[k].derivatives(c, cd, t, dq, dv);
         for (int a = 0; a < 36; ++a) {
           if (slots_q_[k][a] >= 0) Qq[slots_q_[k][a]] += dq.data()[a];
           if (slots_v_[k][a] >= 0) Qv[slots_v_[k][a]] += dv.data()[a];

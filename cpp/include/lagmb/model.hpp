@@ -186,8 +186,8 @@ class Model {
     return time_dependent_;
   }
   const std::vector<std::unique_ptr<ForceGroupBase>>& force_groups() const { return forces_; }
-  /// Event groups (stops, contact switches). Their elements may keep per-run
-  /// state (reset at the start of each simulate): one run at a time per Model.
+  /// Event groups (stops, contact switches). What they record during a run
+  /// goes to the run's Data::run_state, never into the Model.
   const std::vector<std::unique_ptr<EventGroupBase>>& event_groups() const { return events_; }
   /// Force groups whose Q depends on q or v.
   const std::vector<const ForceGroupBase*>& state_dependent_forces() const {
@@ -223,6 +223,8 @@ class Model {
 
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
+  /// Doubles of per-run element state (Data::run_state); 0 for most models.
+  int run_state_size() const { return run_state_size_; }
 
  private:
   void require_open(const std::string& what) const;
@@ -238,6 +240,16 @@ class Model {
   ProjectedOffset across_line(int body_i, int body_j, Vec2 at, Vec2 axis, const std::string& element) const;
   template <class Kind>
   const Kind* find_constraint(const std::string& name) const;
+  /// Gives an element of a kind with per-run state its offset in
+  /// Data::run_state (once: a contact is both a force and an event element).
+  template <class Kind>
+  void reserve_run_state(Kind& element) {
+    if constexpr (run_state_size_v<Kind> > 0)
+      if (element.run_state < 0) {
+        element.run_state = run_state_size_;
+        run_state_size_ += run_state_size_v<Kind>;
+      }
+  }
 
   bool finalized_ = false;
   std::vector<Body> bodies_;
@@ -266,6 +278,7 @@ class Model {
   std::vector<int> row_owner_;  // row -> index into constraint_order_
   std::vector<int> coord_owner_;
   double mass_scale_ = 1.0;
+  int run_state_size_ = 0;
 };
 
 template <class Kind>
@@ -291,6 +304,7 @@ void Model::add_force_element(Kind element) {
       force_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(forces_.size()));
   if (inserted) forces_.push_back(std::make_unique<ForceGroup<Kind>>());
   auto& group = static_cast<ForceGroup<Kind>&>(*forces_[it->second]);
+  reserve_run_state(element);
   register_name(element.name, {ElementRef::kForce, it->second, group.size()});
   group.add(std::move(element));
 }
@@ -304,6 +318,7 @@ void Model::add_event_element(Kind element, bool named) {
       event_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(events_.size()));
   if (inserted) events_.push_back(std::make_unique<EventGroup<Kind>>());
   auto& group = static_cast<EventGroup<Kind>&>(*events_[it->second]);
+  reserve_run_state(element);
   // (an element that is also a force keeps the name of its force entry)
   if (named) register_name(element.name, {ElementRef::kEvent, it->second, group.size()});
   group.add(std::move(element));

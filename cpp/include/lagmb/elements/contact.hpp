@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cmath>
-#include <memory>
 #include <string>
 
 #include "lagmb/event_group.hpp"
@@ -66,11 +65,6 @@ inline double value_of(double x) { return x; }
 template <int N>
 double value_of(const Dual<N>& x) { return x.v; }
 
-/// Per-run state of a contact: the approach speed of the current contact.
-struct ContactState {
-  double impact_speed = 0.0;
-};
-
 /// Circle: centre C = r_i + A_i s_c, radius R, on body i. Line: through
 /// P0 = r_j + A_j s_p with direction u = A_j u' (unit) on body j; the circle
 /// belongs on the side of n = u turned +90 deg. Signed distance of the centre
@@ -83,8 +77,9 @@ struct ContactState {
 ///   F_t = -mu F_n v_t / sqrt(v_t^2 + v_s^2)
 /// F = F_n n + F_t u acts on body i at P and -F on body j at P:
 ///   Q_i = (F, (P - r_i) x F),  Q_j = (-F, -(P - r_j) x F).
-/// v_impact is the approach speed -g' recorded by the onset event (at least
-/// kMinImpactSpeed; a contact present at the start uses kMinImpactSpeed).
+/// v_impact is the approach speed -g' recorded by the onset event in the
+/// run's state (at least kMinImpactSpeed; a contact present at the start, or
+/// a force asked for outside a run, uses kMinImpactSpeed).
 /// Potential (the elastic part): k d^2.5 / 2.5. Q_c and Q_cd are exact
 /// (forward-mode derivatives of this same code, Dual<12>); where the clamp is
 /// active they are those of F_n = 0.
@@ -102,7 +97,8 @@ struct CircleLineContact {
   int body_i = -1, body_j = -1;
   Vec2 s_c = Vec2::Zero(), s_p = Vec2::Zero(), u = Vec2::UnitX();  // local
   double radius = 0.0, stiffness = 0.0, restitution = 1.0, friction = 0.0, slip_velocity = 1e-4;
-  std::shared_ptr<ContactState> state = std::make_shared<ContactState>();
+  static constexpr int run_state_size = 1;  // run[run_state]: v_impact of the contact in progress (m/s)
+  int run_state = -1;
 
   template <class T>
   struct Geometry {
@@ -140,14 +136,14 @@ struct CircleLineContact {
   }
 
   template <class T>
-  void evaluate(const T* c, const T* cd, T* Q) const {
+  void evaluate(const T* c, const T* cd, double impact_speed, T* Q) const {
     using std::pow;
     using std::sqrt;
     for (int a = 0; a < 6; ++a) Q[a] = T(0.0);
     const Geometry<T> G = geometry(c, cd);
     const T d = T(radius) - G.h;
     if (!(value_of(d) > 0.0)) return;
-    const double v_imp = std::max(state->impact_speed, kMinImpactSpeed);
+    const double v_imp = std::max(impact_speed, kMinImpactSpeed);
     const double chi = 8.0 * (1.0 - restitution) / (5.0 * restitution * v_imp);
     T Fn = stiffness * pow(d, kExponent) * (T(1.0) - chi * G.hd);
     if (!(value_of(Fn) > 0.0)) return;  // the damping would pull: no force
@@ -162,12 +158,12 @@ struct CircleLineContact {
     Q[5] = -((G.Px - c[3]) * Fy - (G.Py - c[4]) * Fx);
   }
 
-  Local6 force(const Local6& c, const Local6& cd, double) const {
+  Local6 force(const Local6& c, const Local6& cd, double, const double* run) const {
     double Q[6];
-    evaluate(c.data(), cd.data(), Q);
+    evaluate(c.data(), cd.data(), run[run_state], Q);
     return Eigen::Map<const Local6>(Q);
   }
-  void derivatives(const Local6& c, const Local6& cd, double, Mat6& Q_c, Mat6& Q_cd) const {
+  void derivatives(const Local6& c, const Local6& cd, double, const double* run, Mat6& Q_c, Mat6& Q_cd) const {
     using D = Dual<12>;
     D x[6], xd[6], Q[6];
     for (int a = 0; a < 6; ++a) {
@@ -176,7 +172,7 @@ struct CircleLineContact {
       xd[a] = D(cd[a]);
       xd[a].d[6 + a] = 1.0;
     }
-    evaluate(x, xd, Q);
+    evaluate(x, xd, run[run_state], Q);
     for (int b = 0; b < 6; ++b) {
       Q_c.row(b) = Q[b].d.head<6>().transpose();
       Q_cd.row(b) = Q[b].d.tail<6>().transpose();
@@ -194,19 +190,18 @@ struct CircleLineContact {
     return g != 0.0 ? g : -1e-300;
   }
   int direction(int) const { return 0; }
-  EventAction crossing(int, const Local6& c, const Local6& cd, double) const {
+  EventAction crossing(int, const Local6& c, const Local6& cd, double, double* run) const {
     EventAction a;
     a.type = EventAction::kRestart;
     a.speed = geometry(c.data(), cd.data()).hd;
     if (a.speed < 0.0) {
-      state->impact_speed = -a.speed;
+      run[run_state] = -a.speed;
       a.label = "onset";
     } else {
       a.label = "release";
     }
     return a;
   }
-  void reset() { state->impact_speed = 0.0; }
 };
 
 }  // namespace lagmb

@@ -25,13 +25,13 @@ class Gravity final : public ForceGroupBase {
   void declare(SparsityPattern&, SparsityPattern&) const override {}
   void bind(const SpMat&, const SpMat&) override {}
 
-  void add_forces(const double*, const double*, double, double* Q) const override {
+  void add_forces(const double*, const double*, double, const double*, double* Q) const override {
     for (const auto& b : bodies_) {
       Q[b.ix] += b.mass * g_.x();
       Q[b.ix + 1] += b.mass * g_.y();
     }
   }
-  void add_derivatives(const double*, const double*, double, double*, double*) const override {}
+  void add_derivatives(const double*, const double*, double, const double*, double*, double*) const override {}
   double potential(const double* q, double) const override {
     double V = 0.0;
     for (const auto& b : bodies_) V -= b.mass * (g_.x() * q[b.ix] + g_.y() * q[b.ix + 1]);

@@ -64,7 +64,6 @@ struct JointStop {
     a.label = r == 0 ? "lower" : "upper";
     return a;
   }
-  void reset() {}
 };
 
 }  // namespace lagmb
