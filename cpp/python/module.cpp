@@ -625,6 +625,29 @@ PYBIND11_MODULE(_core, m) {
       py::arg("model"), py::arg("q"), py::arg("v"), py::arg("t") = 0.0);
 
   m.def(
+      "methods",
+      [] {
+        py::list out;
+        for (const Method& x : methods()) {
+          py::dict d;
+          d["name"] = x.name;
+          d["formulation"] = x.formulation;
+          d["integrator"] = x.integrator;
+          d["solver"] = x.solver;
+          d["description"] = x.description;
+          d["max_order"] = x.max_order;
+          d["fixed_step"] = x.fixed_step;
+          d["events"] = x.events;
+          d["friction"] = x.friction;
+          d["baumgarte"] = x.baumgarte;
+          d["drifts"] = x.drifts;
+          out.append(d);
+        }
+        return out;
+      },
+      "The integration methods (lagmb/methods.hpp), one dict each, the default first.");
+
+  m.def(
       "simulate",
       [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
          double atol, std::vector<double> atol_coordinates, double max_step, long max_steps, int max_order, std::string formulation,

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "dae.hpp"
+#include "lagmb/methods.hpp"
+#include "lagmb/simulate.hpp"
 #include "lagmb/trajectory.hpp"
 
 namespace lagmb {
@@ -100,5 +102,10 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
 void integrate_ali3p(const Model& model, double step, const ConsistentState& start,
                      const IntegrationPlan& plan,
                      const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+
+/// Runs a method of the table (methods.cpp) from `start` with `plan`.
+void integrate(const Method& method, const Model& model, const SimulationOptions& options,
+               const ConsistentState& start, const IntegrationPlan& plan,
+               const std::function<void(const double* q, const double* v)>& record, Stats& stats);
 
 }  // namespace lagmb

@@ -11,6 +11,7 @@
 #include "lagmb/assembly.hpp"
 #include "lagmb/equilibrium.hpp"
 #include "lagmb/kinematics.hpp"
+#include "lagmb/methods.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/redundancy.hpp"
 
@@ -70,39 +71,32 @@ void validate(const Model& model, const SimulationOptions& o) {
       throw ModelError("simulate: t_out must be strictly increasing (t_out[" + std::to_string(k) +
                        "] = " + std::to_string(tk) + ")");
   }
-  const bool ida_form = o.formulation == "ggl" || o.formulation == "index3" || o.formulation == "index1";
-  if (!ida_form && o.formulation != "projection" && o.formulation != "ali3p")
-    throw ModelError("simulate: unknown formulation '" + o.formulation +
-                     "' (available: ggl, index3, index1, projection, ali3p)");
-  if (o.formulation == "ali3p") {
-    if (o.max_step == 0.0)
-      throw ModelError("simulate: formulation 'ali3p' takes fixed steps: give the step as max_step (step= in Python)");
-    if (o.integrator != "bdf")
-      throw ModelError("simulate: formulation 'ali3p' has its own integrator (trapezoidal rule), not '" +
-                       o.integrator + "'");
-    // its fixed-step loop neither finds roots (stops, contact onset) nor
-    // takes friction loads from the multipliers: refuse rather than ignore
-    if (!model.friction_groups().empty())
-      throw ModelError("simulate: formulation 'ali3p' does not include joint friction ('" +
-                       model.friction_groups().front()->name(0) +
-                       "'); use ggl, index3, index1 or projection");
-    if (!model.event_groups().empty())
-      throw ModelError("simulate: formulation 'ali3p' has no root finding for stops or contact events ('" +
-                       model.event_groups().front()->name(0) + "'); use ggl, index3, index1 or projection");
-  }
-  if (o.integrator != "bdf" && o.integrator != "adams")
-    throw ModelError("simulate: unknown integrator '" + o.integrator + "' (available: bdf, adams)");
-  if (o.integrator == "adams" && ida_form)
-    throw ModelError("simulate: integrator 'adams' (CVODE) needs formulation 'projection'; '" + o.formulation +
-                     "' is integrated by IDA (BDF)");
-  const int top = o.integrator == "adams" ? 12 : 5;
-  if (o.max_order < 1 || o.max_order > top)
-    throw ModelError("simulate: max_order must be in 1.." + std::to_string(top) + " for " + o.integrator +
-                     ", got " + std::to_string(o.max_order));
-  if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && o.formulation != "index1" &&
-      o.integrator != "adams")
-    throw ModelError("simulate: Baumgarte terms apply to formulation 'index1' and to the Adams integrator only, "
-                     "not to formulation '" + o.formulation + "' with integrator '" + o.integrator + "'");
+  const Method& method = find_method(o.formulation, o.integrator);
+  // what a method does not model is refused, not ignored
+  auto those = [](bool Method::*has) {
+    std::string s;
+    for (const Method& m : methods())
+      if (m.*has) s += (s.empty() ? "" : ", ") + m.name;
+    return s;
+  };
+  if (method.fixed_step && o.max_step == 0.0)
+    throw ModelError("simulate: formulation '" + method.formulation +
+                     "' takes fixed steps: give the step as max_step (step= in Python)");
+  if (!method.friction && !model.friction_groups().empty())
+    throw ModelError("simulate: formulation '" + method.formulation + "' does not include joint friction ('" +
+                     model.friction_groups().front()->name(0) + "'); the methods that do: " +
+                     those(&Method::friction));
+  if (!method.events && !model.event_groups().empty())
+    throw ModelError("simulate: formulation '" + method.formulation +
+                     "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
+                     "'); the methods that have: " + those(&Method::events));
+  if (o.max_order < 0 || o.max_order > method.max_order)
+    throw ModelError("simulate: max_order must be in 1.." + std::to_string(method.max_order) + " for " +
+                     method.name + " (integrator " + method.integrator + "; 0: its highest order), got " +
+                     std::to_string(o.max_order));
+  if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && !method.baumgarte)
+    throw ModelError("simulate: Baumgarte terms apply to the methods " + those(&Method::baumgarte) +
+                     ", not to formulation '" + o.formulation + "' with integrator '" + method.integrator + "'");
   if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
       o.baumgarte_beta < 0)
     throw ModelError("simulate: Baumgarte alpha and beta must be finite and >= 0");
@@ -238,8 +232,9 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
 
   VecX atol = VecX::Constant(n, o.atol);
   if (!o.atol_coordinates.empty()) atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
+  const Method& method = find_method(o.formulation, o.integrator);
   IntegrationPlan plan{o.t0,        o.t_end,     o.rtol,      atol,
-                       o.max_step,  o.max_order, o.max_steps, output_times(o),
+                       o.max_step,  o.max_order ? o.max_order : method.max_order, o.max_steps, output_times(o),
                        {},          o.progress,  o.progress_interval};
   plan.run = &d;
   for (double b : model.breakpoints())
@@ -292,8 +287,8 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       }
     }
   };
-  tr.stats.formulation = o.formulation;
-  tr.stats.integrator = o.integrator;
+  tr.stats.formulation = method.formulation;
+  tr.stats.integrator = method.integrator;
   tr.stats.analysis = "dynamic";
   // solves the outputs not yet solved; returns why one failed ("" if none)
   // and keeps only the solved ones
@@ -323,19 +318,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   };
 
   try {
-    if (o.formulation == "ali3p") {
-      tr.stats.integrator = "trapezoidal";
-      integrate_ali3p(model, o.max_step, start, plan, record, tr.stats);
-    } else if (o.formulation == "projection") {
-      integrate_cvode(model, o.integrator == "adams", o.baumgarte_alpha, o.baumgarte_beta, start, plan, record,
-                      tr.stats);
-    } else {
-      std::unique_ptr<DaeFormulation> dae;
-      if (o.formulation == "ggl") dae = std::make_unique<GglFormulation>(model);
-      else if (o.formulation == "index3") dae = std::make_unique<Index3Formulation>(model);
-      else dae = std::make_unique<Index1Formulation>(model, o.baumgarte_alpha, o.baumgarte_beta);
-      integrate_ida(*dae, start, plan, record, tr.stats);
-    }
+    integrate(method, model, o, start, plan, record, tr.stats);
   } catch (const IntegratorFailure& e) {
     const std::string output_failure = finish();
     std::ostringstream msg;

@@ -18,7 +18,7 @@ from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spli
 from .model import Body, Model
 from .result import BodyPath, Result
 from .scene import Scene, SceneError, load_scene, save_scene
-from .simulation import simulate, solve_accelerations
+from .simulation import methods, simulate, solve_accelerations
 from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
 
@@ -47,6 +47,7 @@ __all__ = [
     "WorkPrecision",
     "load_scene",
     "save_scene",
+    "methods",
     "simulate",
     "solve_accelerations",
     "time_function_from_dict",

@@ -78,7 +78,7 @@ def vec2(value, name):
     if x.shape != (2,):
         raise ModelError(f"{name} must be a pair of numbers, got {show(value)}")
     if not np.all(np.isfinite(x)):
-        raise ModelError(f"{name} must be finite, got {show(value)}")
+        raise ModelError(f"{name} is not finite: {show(value)}")
     return x
 
 

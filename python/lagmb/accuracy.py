@@ -25,17 +25,24 @@ import time
 import numpy as np
 
 from .errors import ModelError, SimulationError
-from .simulation import simulate
+from .simulation import methods, simulate
 
-#: The methods lagmb offers, by name.
-METHODS = {
-    "ggl": dict(formulation="ggl", integrator="bdf"),
-    "index3": dict(formulation="index3", integrator="bdf"),
-    "index1": dict(formulation="index1", integrator="bdf"),
-    "index1-baumgarte": dict(formulation="index1", integrator="bdf", baumgarte=(10.0, 10.0)),
-    "projection-bdf": dict(formulation="projection", integrator="bdf"),
-    "projection-adams": dict(formulation="projection", integrator="adams"),
-}
+def _presets():
+    """Every variable-step method of lagmb.methods() by its name (a
+    work-precision sweep varies the tolerance, which a fixed step ignores),
+    and index1 with Baumgarte terms alpha = beta = 10 as its own line."""
+    presets = {}
+    for m in methods():
+        if m["fixed_step"]:
+            continue
+        presets[m["name"]] = dict(formulation=m["formulation"], integrator=m["integrator"])
+        if m["name"] == "index1":
+            presets["index1-baumgarte"] = dict(presets["index1"], baumgarte=(10.0, 10.0))
+    return presets
+
+
+#: The methods a work-precision study runs, by name.
+METHODS = _presets()
 
 COLUMNS = ["method", "formulation", "integrator", "rtol", "atol", "reference", "status", "message", "error",
            "error_final", "cpu_time", "wall_time", "steps", "residual_evals", "jacobian_evals",

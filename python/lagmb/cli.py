@@ -2,13 +2,16 @@
 
     lagmb run SCENE [-o results.npz|results.csv] [--plot out.png] [--animate out.gif]
                     [--t-end T] [--rtol R] [--n-out N] [--quiet]
-    lagmb info SCENE
+    lagmb info SCENE | --methods
+    lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T]
+                   [-o table.json] [--plot out.png] [--quiet]
     lagmb demo [--plot out.png] [--quiet]
 
 Exit status: 0 done; 2 a usage or scene error (one line naming the file,
 line, table and key, or the option); 1 the simulation failed (the results
 computed until then are still written to -o, if given); 3 an internal error,
-a bug in lagmb (one line; LAGMB_TRACEBACK=1 shows the traceback).
+a bug in lagmb (one line; LAGMB_TRACEBACK=1 shows the traceback); 130
+interrupted (Ctrl-C).
 """
 
 import argparse
@@ -54,8 +57,11 @@ def _parser():
     info = sub.add_parser("info", help="bodies, coordinates, constraints and degrees of freedom",
                           description="Load a scene and report its size, the rank of its "
                                       "constraint Jacobian at the assembled initial position, "
-                                      "its degrees of freedom and any redundant equations.")
-    info.add_argument("scene", help="the scene file (.toml)")
+                                      "its degrees of freedom and any redundant equations; "
+                                      "or, with --methods, the integration methods.")
+    info.add_argument("scene", nargs="?", help="the scene file (.toml)")
+    info.add_argument("--methods", action="store_true",
+                      help="list the integration methods (formulation, integrator, what each supports)")
 
     acc = sub.add_parser("accuracy", help="work-precision study of a scene: error against CPU time",
                          description="Run the scene with each method at each tolerance, measure the "
@@ -119,7 +125,7 @@ def _main(args):
 
 
 def _method_names():
-    from .accuracy import METHODS
+    from .accuracy import METHODS  # the variable-step methods of lagmb.methods(), and presets
 
     return list(METHODS)
 
@@ -406,7 +412,30 @@ def _write(path, r, scene):
 
 # --- info -----------------------------------------------------------------------
 
+def _methods_table():
+    """lagmb.methods() as a table: name, formulation, integrator, support, description."""
+    from .simulation import methods
+
+    rows = []
+    for m in methods():
+        notes = [f"order <= {m['max_order']}", "fixed step" if m["fixed_step"] else "error control"]
+        notes += [w for w, has in (("no events", not m["events"]), ("no friction", not m["friction"]),
+                                   ("baumgarte", m["baumgarte"]), ("drifts", m["drifts"])) if has]
+        rows.append((m["name"], m["formulation"], m["integrator"], ", ".join(notes), m["description"]))
+    head = ("method", "formulation", "integrator", "supports", "")
+    width = [max(len(r[k]) for r in rows + [head]) for k in range(4)]
+    return ["  ".join(c.ljust(w) for c, w in zip(r[:4], width)) + "  " + r[4] for r in [head] + rows]
+
+
 def _info(args):
+    if args.methods:
+        if args.scene:
+            raise _Exit(USAGE, "--methods lists the methods of lagmb; give no scene with it")
+        for line in _methods_table():
+            print(line.rstrip())
+        return OK
+    if not args.scene:
+        raise _Exit(USAGE, "give a scene file, or --methods")
     scene = _load(args.scene)
     model = scene.model
     say = print

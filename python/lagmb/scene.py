@@ -95,7 +95,7 @@ Conventions:
 - Limits (to refuse what no scene means, before it costs a run): a file of
   at most 16 MiB of UTF-8, arrays and inline tables nested at most 32 deep,
   numbers within a float's range, at most 10,000,000 outputs (``n_out`` or
-  ``t_out``), ``max_order`` 1..5 (bdf) or 1..12 (adams); ``[output]`` plot
+  ``t_out``), ``max_order`` 1 to the method's highest (5 bdf, 12 adams; lagmb.methods()); ``[output]`` plot
   and animate paths end in a format matplotlib (plot) or Pillow (animation,
   several frames: .gif, .webp, .png, ...) writes.
 - ``[output]``: relative paths are relative to the current directory. In an
@@ -208,9 +208,6 @@ _OUTPUT = {
 _OUTPUT_FILE_TYPES = (".npz", ".csv")
 
 # simulate's choices (simulate.cpp checks them too, but only when a run starts)
-_FORMULATIONS = ("ggl", "index3", "index1", "projection", "ali3p")
-_INTEGRATORS = ("bdf", "adams")
-_MAX_ORDER = {"bdf": 5, "adams": 12}
 MAX_OUTPUTS = 10_000_000  # n_out, len(t_out): each output holds q, v, a and lam
 _MAX_STEPS = 10**12  # max_steps travels as a C long; a bound this high is no bound
 MAX_SCENE_BYTES = 16 << 20  # larger is no hand-written scene (and /dev/zero never ends)
@@ -808,10 +805,10 @@ class _Reader:
         if "t_out" in out and "n_out" in out:
             raise w.error("give n_out or t_out, not both", "t_out")
         for key, allowed in (("analysis", ("auto", "dynamic", "kinematic", "inverse_dynamics")),
-                             ("start", ("given", "equilibrium")),
-                             ("formulation", _FORMULATIONS), ("integrator", _INTEGRATORS)):
+                             ("start", ("given", "equilibrium"))):
             if key in out and out[key] not in allowed:
                 raise w.error(f"must be one of {', '.join(map(repr, allowed))}, got {out[key]!r}", key)
+        method = self.method(w, out)
         t0 = out.get("t0", 0.0)
         if not math.isfinite(t0):
             raise w.error(f"must be finite, got {t0!r}", "t0")
@@ -829,12 +826,9 @@ class _Reader:
         if "max_steps" in out and not 1 <= out["max_steps"] <= _MAX_STEPS:
             raise w.error(f"must be at least 1 and at most {_MAX_STEPS:.0e}, got "
                           f"{_show(out['max_steps'])}", "max_steps")
-        if "max_order" in out:
-            integrator = out.get("integrator", "bdf")
-            top = _MAX_ORDER[integrator]
-            if not 1 <= out["max_order"] <= top:
-                raise w.error(f"must be in 1..{top} for integrator {integrator!r}, got "
-                              f"{_show(out['max_order'])}", "max_order")
+        if "max_order" in out and not 1 <= out["max_order"] <= method["max_order"]:
+            raise w.error(f"must be in 1..{method['max_order']} for method {method['name']!r}, got "
+                          f"{_show(out['max_order'])}", "max_order")
         if "t_out" in out:
             t = out["t_out"]
             if not t or not all(math.isfinite(x) for x in t) or any(
@@ -847,6 +841,26 @@ class _Reader:
                 raise w.error(f"must lie in t0 .. t_end = {t0!r} .. {out.get('t_end', t[-1])!r}, "
                               f"got {t[0]!r} .. {t[-1]!r}", "t_out")
         return out
+
+    @staticmethod
+    def method(w, settings):
+        """The entry of lagmb.methods() the settings choose (formulation,
+        integrator: None for the formulation's first)."""
+        from .simulation import methods
+
+        table = methods()
+        formulation = settings.get("formulation", table[0]["formulation"])
+        theirs = [m for m in table if m["formulation"] == formulation]
+        if not theirs:
+            names = list(dict.fromkeys(m["formulation"] for m in table))
+            raise w.error(f"must be one of {', '.join(map(repr, names))}, got {formulation!r}", "formulation")
+        if "integrator" not in settings:
+            return theirs[0]
+        for m in theirs:
+            if m["integrator"] == settings["integrator"]:
+                return m
+        raise w.error(f"must be one of {', '.join(repr(m['integrator']) for m in theirs)} for formulation "
+                      f"{formulation!r}, got {settings['integrator']!r}", "integrator")
 
     def read_output(self, table):
         w = self.where(("output",), "[output]")

@@ -36,12 +36,14 @@ def _translate(model=None, core=None):
 
 
 def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
-             max_step=None, max_steps=500_000, formulation="ggl", integrator="bdf", max_order=None,
+             max_step=None, max_steps=500_000, formulation="ggl", integrator=None, max_order=None,
              baumgarte=None, progress=None, analysis="auto", start="given", step=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
-    velocities by projection); then it is integrated in one of these forms:
+    velocities by projection); then it is integrated by one of the methods
+    that :func:`lagmb.methods` lists: a ``formulation`` and one of its
+    integrators (``integrator=None``: the formulation's first):
 
     - ``formulation="ggl"`` (default): stabilized index 2 (Gear, Gupta,
       Leimkuhler), IDA; positions and velocities stay on the constraints.
@@ -57,7 +59,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     - ``"ali3p"``: index-3 augmented Lagrangian with mass-orthogonal
       projections of velocities and accelerations, trapezoidal rule with the
       fixed ``step`` (s; ``max_step`` is taken as the step if ``step`` is
-      not given) (Bayo & Ledesma 1996; Cuadrado et al. 2000). Its Newton
+      not given; integrator ``"trapezoidal"``) (Bayo & Ledesma 1996; Cuadrado et al. 2000). Its Newton
       matrix (multiplier block regularized) stays invertible when the
       constraint Jacobian loses rank, so it runs through singular positions
       (a parallelogram passing its horizontal); a step that lands within
@@ -67,7 +69,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       sets the truncation error (second order; energy error
       O((omega step)^2), no drift).
 
-    ``max_order`` defaults to 5 (BDF) or 12 (Adams). ``atol`` is one number
+    ``max_order`` defaults to the method's highest (5 for BDF, 12 for Adams). ``atol`` is one number
     or one per coordinate (applied to q_i and v_i; e.g. smaller for angles
     than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
@@ -128,7 +130,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
     rtol = _positive(rtol, "rtol")
     formulation = _text(formulation, "formulation")
-    integrator = _text(integrator, "integrator")
+    integrator = "" if integrator is None else _text(integrator, "integrator")  # "": the formulation's first
     atol_coordinates = []
     if np.ndim(atol) > 0:  # one per coordinate (for q_i and v_i)
         atol_coordinates = [_positive(float(a), "atol entry") for a in _array(atol, "atol")]
@@ -140,10 +142,8 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
             raise ModelError(f"step applies to formulation 'ali3p' (fixed step); "
                              f"for {formulation!r} bound the step with max_step")
         max_step = _positive(step, "step")
-    if max_order is None:
-        max_order = 12 if integrator == "adams" else 5
-    else:
-        max_order = _integer(max_order, "max_order", 1, _INT_MAX)  # the core checks the integrator's range
+    # None: the method's highest; the core checks the method's range
+    max_order = 0 if max_order is None else _integer(max_order, "max_order", 1, _INT_MAX)
     if baumgarte is None:
         alpha, beta = 0.0, 0.0
     else:
@@ -198,3 +198,13 @@ def solve_accelerations(model, q, v, t=0.0):
         raise ModelError(f"q and v must have {n} entries, got {q.size} and {v.size}")
     with _translate(model, core):
         return _core.solve_accelerations(core, q, v, t)
+
+
+def methods():
+    """The integration methods, one dict each, the default first: ``name``,
+    ``formulation`` and ``integrator`` (what :func:`simulate` takes),
+    ``solver``, ``description`` (one line), ``max_order``, and what the
+    method supports: ``fixed_step`` (needs ``step``), ``events`` (stops and
+    contact), ``friction`` (joint friction), ``baumgarte``, ``drifts``
+    (positions are not held on the constraints)."""
+    return [dict(m) for m in _core.methods()]

@@ -84,13 +84,13 @@ def test_energy_error_is_second_order_in_the_step():
 
 
 def test_ali3p_options_are_checked():
-    """ali3p needs a step; step belongs to ali3p; it has its own integrator."""
+    """ali3p needs a step; step belongs to ali3p; its integrator is the trapezoidal rule."""
     m = build(1)
     with pytest.raises(ValueError, match="fixed steps"):
         mb.simulate(m, t_end=0.1, formulation="ali3p")
     with pytest.raises(ValueError, match="step applies to formulation 'ali3p'"):
         mb.simulate(m, t_end=0.1, step=1e-3)
-    with pytest.raises(ValueError, match="own integrator"):
+    with pytest.raises(ValueError, match="integrated by .trapezoidal., not by .adams."):
         mb.simulate(m, t_end=0.1, formulation="ali3p", step=1e-3, integrator="adams")
     with pytest.raises(ValueError, match="step must be positive"):
         mb.simulate(m, t_end=0.1, formulation="ali3p", step=-1.0)

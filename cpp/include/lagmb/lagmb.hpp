@@ -13,3 +13,4 @@
 #include "lagmb/types.hpp"
 #include "lagmb/kinematics.hpp"
 #include "lagmb/equilibrium.hpp"
+#include "lagmb/methods.hpp"

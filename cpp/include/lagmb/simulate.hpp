@@ -28,15 +28,13 @@ struct SimulationOptions {
   /// 0: no limit; else SimulationError when reached, and a max_step that
   /// needs more steps than this over [t0, t_end] is refused up front.
   long max_steps = 500000;
-  int max_order = 5;  // BDF: 1..5, Adams: 1..12
-  /// "ggl" (stabilized index 2, IDA), "index3" (IDA), "index1" (IDA, with
-  /// optional Baumgarte terms), "projection" (ODE in accelerations, CVODE,
-  /// coordinate projection after each step), "ali3p" (index-3 augmented
-  /// Lagrangian with mass-orthogonal projections, trapezoidal rule, fixed
-  /// step = max_step, which it needs; runs through singular positions).
+  int max_order = 0;  // 0: the method's highest (BDF 5, Adams 12; methods.hpp)
+  /// The method (methods.hpp, which lists them): a formulation ("ggl", the
+  /// default, "index3", "index1", "projection", "ali3p") and one of its
+  /// integrators ("": the formulation's first, e.g. "bdf"; "adams" for
+  /// projection). ali3p takes a fixed step, given as max_step.
   std::string formulation = "ggl";
-  /// "bdf" (IDA, or CVODE BDF for projection) or "adams" (CVODE Adams-Moulton).
-  std::string integrator = "bdf";
+  std::string integrator;
   double baumgarte_alpha = 0.0, baumgarte_beta = 0.0;  // index1, and projection with adams
   /// Called between steps with the time reached, at most every
   /// progress_interval seconds of wall time; may throw to stop the run.

@@ -1,0 +1,33 @@
+// The integration methods: each formulation with the integrators that can
+// run it, declared once (cpp/src/methods.cpp). simulate validates its options
+// against this table and runs the entry; lagmb.methods(), `lagmb info
+// --methods`, the scene reader and the work-precision presets list it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lagmb {
+
+struct Method {
+  std::string name;         // unique: "ggl", "projection-adams", ...
+  std::string formulation;  // SimulationOptions::formulation
+  std::string integrator;   // SimulationOptions::integrator
+  std::string solver;       // what integrates it: "IDA", "CVODE", "fixed-step trapezoidal rule"
+  std::string description;  // one line for users
+  int max_order = 0;        // highest order (the default); 2 for the fixed-step trapezoidal rule
+  bool fixed_step = false;  // needs step (SimulationOptions::max_step), no error control
+  bool events = true;       // finds roots: stops, contact onset and release
+  bool friction = true;     // joint friction (loads from the multipliers)
+  bool baumgarte = false;   // takes baumgarte=(alpha, beta)
+  bool drifts = false;      // positions are not held on Phi = 0 (only Phi'' = 0)
+};
+
+/// Every method, in the order users see them (the default first).
+const std::vector<Method>& methods();
+
+/// The method of a formulation and integrator; ModelError naming the ones
+/// there are if there is none.
+const Method& find_method(const std::string& formulation, const std::string& integrator);
+
+}  // namespace lagmb

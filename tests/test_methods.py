@@ -1,0 +1,112 @@
+"""The integration methods are declared once (cpp/src/methods.cpp) and every
+user-facing list is that table: lagmb.methods(), `lagmb info --methods`,
+the scene reader's formulation/integrator/max_order checks, simulate's
+validation and the work-precision presets (mb.METHODS)."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+
+G = 9.81
+
+
+def pendulum():
+    m = mb.Model(gravity=(0.0, -G))
+    rod = m.add_body("rod", 1.0, 1.0 / 12.0, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m
+
+
+def options_of(method):
+    options = dict(formulation=method["formulation"], integrator=method["integrator"])
+    if method["fixed_step"]:
+        options["step"] = 1e-3
+    if method["baumgarte"]:
+        options["baumgarte"] = (10.0, 10.0)
+    return options
+
+
+def test_the_table_lists_each_method_once_with_what_it_supports():
+    table = mb.methods()
+    assert table[0]["name"] == "ggl"                          # the default first
+    names = [m["name"] for m in table]
+    assert len(set(names)) == len(names)
+    pairs = [(m["formulation"], m["integrator"]) for m in table]
+    assert len(set(pairs)) == len(pairs)
+    assert {"ggl", "index3", "index1", "projection-bdf", "projection-adams", "ali3p"} <= set(names)
+    for m in table:
+        assert m["description"] and m["solver"] and m["max_order"] >= 1
+    ali3p = next(m for m in table if m["name"] == "ali3p")
+    assert ali3p["fixed_step"] and not ali3p["events"] and not ali3p["friction"]
+
+
+@pytest.mark.parametrize("method", mb.methods(), ids=lambda m: m["name"])
+def test_every_method_swings_the_pendulum_to_the_same_place(method):
+    """Each method, as listed, runs the rod pendulum for 0.5 s; its stats
+    name the method and its angle agrees with ggl's tight run to 1e-3 rad."""
+    reference = mb.simulate(pendulum(), t_end=0.5, rtol=1e-10, atol=1e-12)
+    r = mb.simulate(pendulum(), t_end=0.5, rtol=1e-8, atol=1e-10, **options_of(method))
+    assert (r.stats["formulation"], r.stats["integrator"]) == (method["formulation"], method["integrator"])
+    assert abs(r.q[-1, 2] - reference.q[-1, 2]) < 1e-3
+
+
+def test_the_integrator_defaults_to_the_formulations_first():
+    for formulation in dict.fromkeys(m["formulation"] for m in mb.methods()):
+        first = next(m for m in mb.methods() if m["formulation"] == formulation)
+        options = options_of(first)
+        del options["integrator"]
+        assert mb.simulate(pendulum(), t_end=0.05, **options).stats["integrator"] == first["integrator"]
+
+
+def test_names_outside_the_table_are_refused_listing_it():
+    with pytest.raises(mb.ModelError, match="unknown formulation 'rk4'.*ggl with bdf"):
+        mb.simulate(pendulum(), t_end=0.1, formulation="rk4")
+    with pytest.raises(mb.ModelError, match="integrated by 'bdf', not by 'adams'"):
+        mb.simulate(pendulum(), t_end=0.1, formulation="ggl", integrator="adams")
+    with pytest.raises(mb.ModelError, match=r"max_order must be in 1\.\.5 for projection-bdf"):
+        mb.simulate(pendulum(), t_end=0.1, formulation="projection", max_order=6)
+    with pytest.raises(mb.ModelError, match="Baumgarte terms apply to the methods index1, projection-adams"):
+        mb.simulate(pendulum(), t_end=0.1, baumgarte=(1.0, 1.0))
+
+
+def test_what_a_method_does_not_model_is_refused_naming_the_methods_that_do():
+    m = pendulum()
+    m.add_stop("limit", "pin", lower=-1.0, restitution=0.5)
+    ali3p = next(x for x in mb.methods() if x["name"] == "ali3p")
+    with pytest.raises(mb.ModelError, match="root finding.*'limit'.*the methods that have: ggl"):
+        mb.simulate(m, t_end=0.1, **options_of(ali3p))
+
+
+def test_a_scene_is_checked_against_the_table(tmp_path):
+    def scene(settings):
+        path = tmp_path / "s.toml"
+        path.write_text('[[bodies]]\nname = "b"\nmass = 1.0\ninertia = 1.0\n'
+                        f'[simulation]\nt_end = 0.1\n{settings}\n')
+        return path
+
+    assert mb.load_scene(scene('formulation = "projection"\nintegrator = "adams"\nmax_order = 12'))
+    with pytest.raises(mb.SceneError, match="integrator.*'bdf', 'adams' for formulation 'projection'"):
+        mb.load_scene(scene('formulation = "projection"\nintegrator = "rk4"'))
+    with pytest.raises(mb.SceneError, match="max_order.*1..5 for method 'ggl'"):
+        mb.load_scene(scene("max_order = 6"))
+    with pytest.raises(mb.SceneError, match="formulation.*'ggl', 'index3'"):
+        mb.load_scene(scene('formulation = "rk4"'))
+
+
+def test_the_work_precision_presets_are_the_variable_step_methods():
+    variable = {m["name"] for m in mb.methods() if not m["fixed_step"]}
+    assert set(mb.METHODS) == variable | {"index1-baumgarte"}
+
+
+def test_lagmb_info_lists_the_methods():
+    out = subprocess.run([sys.executable, "-m", "lagmb", "info", "--methods"], capture_output=True,
+                         text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    for m in mb.methods():
+        line = next(x for x in lines if x.split()[0] == m["name"])
+        assert m["formulation"] in line and m["integrator"] in line and m["description"] in line
