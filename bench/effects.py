@@ -3,7 +3,7 @@ the same chain whose scene file also holds one element of every other kind
 (joints, drivers, springs, forces, joint friction, contact, stops), each
 `enabled = false`.
 
-DESIGN.md section 3: an effect the scene does not call for costs nothing.
+docs/design.md section 2.3: an effect the scene does not call for costs nothing.
 Measured three ways, for the simulate call only:
   - element evaluations per step (r.stats["element_evaluations"], exact),
   - instructions per step with valgrind's callgrind, collecting only inside

@@ -1,4 +1,4 @@
-"""Effects a scene does not call for cost nothing (DESIGN.md section 3).
+"""Effects a scene does not call for cost nothing (docs/design.md, section 2.3).
 
 The assembly kernels add, per kind group and call, the number of elements
 they evaluated into a counter (r.stats["element_evaluations"]). A 100-link

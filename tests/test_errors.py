@@ -1,6 +1,6 @@
 """Bad input gets a clear exception that names the element and the value.
 
-DESIGN.md section 6.  Modelling errors raise mb.ModelError (a ValueError);
+docs/design.md section 6.  Modelling errors raise mb.ModelError (a ValueError);
 bad simulation settings raise ValueError naming the setting; solver trouble
 raises mb.SimulationError (not a ValueError) carrying .t (time reached) and
 .result (partial Result or None); a model whose initial positions cannot be

@@ -1,4 +1,4 @@
-"""Exceptions raised by lagmb (DESIGN.md section 6)."""
+"""Exceptions raised by lagmb (docs/design.md, section 6)."""
 
 from . import _core
 

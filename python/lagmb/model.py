@@ -1,4 +1,4 @@
-"""Building a mechanism: bodies, joints, gravity (DESIGN.md section 5)."""
+"""Building a mechanism: bodies, joints, gravity (docs/design.md, section 2.7)."""
 
 import math
 import numbers

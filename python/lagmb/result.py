@@ -1,4 +1,4 @@
-"""Results of a run as numpy arrays (DESIGN.md section 5)."""
+"""Results of a run as numpy arrays (docs/design.md, section 2.7)."""
 
 from functools import cached_property
 
@@ -44,7 +44,7 @@ class BodyPath:
 class Result:
     """States at the output times of a run.
 
-    t (k,), q, v, a (k, n) and lam (k, m) in the sign of DESIGN.md section 1.
+    t (k,), q, v, a (k, n) and lam (k, m) in the sign of docs/design.md section 1.2.
     events: the events handled during the run (impacts at stops, contact
     switches), in time order, each a dict with t, element, kind ("impact",
     "restart", "rest"), label ("lower", "upper", "onset", ...),

@@ -4,7 +4,7 @@
 ``.model`` (an ``mb.Model``), ``.settings`` (the keyword arguments of
 ``mb.simulate``) and ``.output`` (what ``lagmb run`` writes); ``scene.run()``
 simulates it, and ``model, settings = mb.load_scene(path)`` unpacks it where
-only the model and its settings are wanted (DESIGN.md section 5).
+only the model and its settings are wanted (docs/design.md, section 7).
 ``mb.save_scene(model, path, settings=None, output=None)`` (also
 ``model.to_scene(path, ...)``) writes one that loads back into a model giving
 the same results to the last bit.

@@ -25,7 +25,7 @@ class Equilibrium:
     """A static equilibrium found by mb.equilibrium.
 
     Attributes:
-        q (n,), lam (m,): coordinates and multipliers (sign of DESIGN.md
+        q (n,), lam (m,): coordinates and multipliers (sign of docs/design.md
             section 1: Q(q, 0, t) = Phi_q^T lam).
         t: the time it holds at.
         stable: the tangent stiffness reduced to the motions the joints

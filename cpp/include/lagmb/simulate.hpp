@@ -61,7 +61,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& options);
 /// Version of the SUNDIALS library lagmb was built with, e.g. "6.4.1".
 std::string sundials_version();
 
-/// qdd and lam at one instant (the augmented system of DESIGN.md section 1).
+/// qdd and lam at one instant (the augmented system of docs/design.md section 1.2).
 void solve_accelerations(const Model& model, const VecX& q, const VecX& v, double t, VecX& qdd,
                          VecX& lam);
 
