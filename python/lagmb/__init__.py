@@ -6,8 +6,9 @@ the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
     import lagmb as mb
     m = mb.Model(gravity=(0.0, -9.81))
     rod = m.add_body("rod", mass=1.0, inertia=1/12, position=(0.5, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    pin = m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
     r = mb.simulate(m, t_end=2.0)
+    r.reaction(pin)   # every add_* / drive_* returns a handle; names work too
 """
 
 from . import _core
@@ -15,7 +16,8 @@ from .accuracy import METHODS, WorkPrecision, work_precision
 from .errors import AssemblyError, ModelError, RedundantConstraintWarning, SimulationError
 from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
                         time_function_from_dict)
-from .model import Body, Model
+from .handles import Body, Handle
+from .model import Model
 from .result import BodyPath, Result
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import methods, simulate, solve_accelerations
@@ -30,6 +32,7 @@ __all__ = [
     "Body",
     "BodyPath",
     "Constant",
+    "Handle",
     "Harmonic",
     "Linear",
     "METHODS",

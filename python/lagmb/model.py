@@ -7,20 +7,7 @@ from . import _core
 from ._checks import real as _number, vec2 as _vec2
 from .errors import ModelError
 from .functions import TimeFunction, as_time_function
-
-
-class Body:
-    """Handle of a body in a model; pass it to joints and results."""
-
-    __slots__ = ("name", "model", "index")
-
-    def __init__(self, name, model, index):
-        self.name = name
-        self.model = model
-        self.index = index  # -1: the ground
-
-    def __repr__(self):
-        return f"Body({self.name!r})"
+from .handles import KINDS, Body, Handle, name_of
 
 
 def _tuple(x):
@@ -34,6 +21,12 @@ class Model:
     angle, (x, y) of each particle. Points are global, in the initial
     configuration, unless the argument name says ``local``. Every body and
     element has a unique name. Gravity is absent unless given.
+
+    Every add_* and drive_* method returns the handle of what it added
+    (mb.Handle; mb.Body for bodies and particles, ``ground`` for the
+    ground). A handle prints as its name and goes wherever the name does:
+    ``pin = m.add_revolute("pin", ...); m.add_stop("limit", pin, ...);
+    r.reaction(pin)``.
     """
 
     def __init__(self, gravity=None):
@@ -62,30 +55,33 @@ class Model:
         getattr(self._core, method)(*args)  # validates; raises ModelError
         self._calls.append((method, args))
 
-    def _body_index(self, body, element):
-        if isinstance(body, str):
-            if body == "ground":
-                return -1
-            if body not in self._bodies:
-                raise ModelError(f"'{element}': no body named '{body}'")
-            body = self._bodies[body]
-        if not isinstance(body, Body):
-            raise ModelError(f"'{element}': expected a body or its name, got {body!r}")
-        if body.model is not self:
-            raise ModelError(f"'{element}': body '{body.name}' belongs to another model")
-        return body.index
+    def _body(self, body, what, context):
+        """(name, index) of a body given by its handle or name (index -1:
+        the ground); ``what`` is the argument, ``context`` the element."""
+        name = name_of(self, body, ("body",), what, context)
+        if name == "ground":
+            return name, -1
+        if name not in self._bodies:
+            raise ModelError(f"{context}: {what}: no body named '{name}'")
+        return name, self._bodies[name].index
+
+    def _joint(self, joint, context):
+        """The name of a joint given by its handle or name (the core checks
+        that a name is a joint of the right kind)."""
+        return name_of(self, joint, ("joint",), "joint", context)
 
     def _name(self, name):
         if not isinstance(name, str):
             raise ModelError(f"names must be strings, got {name!r}")
         return name
 
-    def _body_name(self, body, element):
-        index = self._body_index(body, element)
-        return "ground" if index < 0 else self.bodies[index].name
-
     def _record(self, method, **kwargs):
+        """Remember an element added (see elements()) and return its handle."""
         self._elements.append((method, kwargs))
+        name = kwargs["name"]
+        if name in self._bodies:
+            return self._bodies[name]
+        return Handle(name, self, *KINDS[method])
 
     def _local(self, body_name, point):
         """A global point of the initial configuration in the body's axes."""
@@ -127,7 +123,7 @@ class Model:
         mass, position = _number(mass, f"{what}: mass"), _vec2(position, f"{what}: position")
         velocity = _vec2(velocity, f"{what}: velocity")
         self._call("add_particle", name, mass, position, velocity)
-        self._bodies[name] = Body(name, self, len(self._bodies))
+        self._bodies[name] = Body(name, self, len(self._bodies), "particle")
         self._pose[name] = (float(position[0]), float(position[1]), 0.0)
         self._record("add_particle", name=name, mass=mass, position=_tuple(position),
                      velocity=_tuple(velocity))
@@ -138,117 +134,126 @@ class Model:
         initial configuration), or at ``local_i`` on body_i and ``local_j`` on
         body_j (each in its body's own axes)."""
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        i, j = self._body_index(bi, name), self._body_index(bj, name)
+        what = f"revolute '{name}'"
+        bi, i = self._body(body_i, "body_i", what)
+        bj, j = self._body(body_j, "body_j", what)
         if at is not None:
             if local_i is not None or local_j is not None:
-                raise ModelError(f"revolute '{name}': give either 'at' or 'local_i' and 'local_j'")
-            at = _vec2(at, f"revolute '{name}': at")
+                raise ModelError(f"{what}: give either 'at' or 'local_i' and 'local_j'")
+            at = _vec2(at, f"{what}: at")
             self._call("add_revolute", name, i, j, at)
-            self._record("add_revolute", name=name, body_i=bi, body_j=bj, at=_tuple(at))
+            handle = self._record("add_revolute", name=name, body_i=bi, body_j=bj, at=_tuple(at))
             self._attach(bi, self._local(bi, at))
             self._attach(bj, self._local(bj, at))
         elif local_i is not None and local_j is not None:
-            li = _vec2(local_i, f"revolute '{name}': local_i")
-            lj = _vec2(local_j, f"revolute '{name}': local_j")
+            li = _vec2(local_i, f"{what}: local_i")
+            lj = _vec2(local_j, f"{what}: local_j")
             self._call("add_revolute_local", name, i, j, li, lj)
-            self._record("add_revolute", name=name, body_i=bi, body_j=bj, local_i=_tuple(li),
-                         local_j=_tuple(lj))
+            handle = self._record("add_revolute", name=name, body_i=bi, body_j=bj, local_i=_tuple(li),
+                                  local_j=_tuple(lj))
             self._attach(bi, li)
             self._attach(bj, lj)
         else:
-            raise ModelError(f"revolute '{name}': give the joint point 'at' (global) "
+            raise ModelError(f"{what}: give the joint point 'at' (global) "
                              "or both 'local_i' and 'local_j'")
+        return handle
 
     def add_translational(self, name, body_i, body_j, at, axis):
         """body_j slides relative to body_i along the line through ``at`` with
         direction ``axis`` (global, initial configuration), without rotating."""
-        self._line_joint("add_translational", "translational", name, body_i, body_j, at, axis)
+        return self._line_joint("add_translational", "translational", name, body_i, body_j, at, axis)
 
     def add_weld(self, name, body_i, body_j):
         """Fix body_j to body_i in their initial relative pose."""
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        self._call("add_weld", name, self._body_index(bi, name), self._body_index(bj, name))
-        self._record("add_weld", name=name, body_i=bi, body_j=bj)
+        what = f"weld '{name}'"
+        (bi, i), (bj, j) = self._body(body_i, "body_i", what), self._body(body_j, "body_j", what)
+        self._call("add_weld", name, i, j)
+        handle = self._record("add_weld", name=name, body_i=bi, body_j=bj)
         self._attach(bi, self._local(bi, self._pose[bj][:2]))
+        return handle
 
     def add_distance(self, name, body_i, point_i, body_j, point_j, length=None):
         """A massless rigid link of ``length`` (default: the initial distance)
         between point_i of body_i and point_j of body_j."""
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        pi, pj = _vec2(point_i, f"distance '{name}': point_i"), _vec2(point_j, f"distance '{name}': point_j")
-        length = None if length is None else _number(length, f"distance '{name}': length")
-        self._call("add_distance", name, self._body_index(bi, name), pi, self._body_index(bj, name), pj,
-                   length)
-        self._record("add_distance", name=name, body_i=bi, point_i=_tuple(pi), body_j=bj,
-                     point_j=_tuple(pj), length=length)
+        what = f"distance '{name}'"
+        (bi, i), (bj, j) = self._body(body_i, "body_i", what), self._body(body_j, "body_j", what)
+        pi, pj = _vec2(point_i, f"{what}: point_i"), _vec2(point_j, f"{what}: point_j")
+        length = None if length is None else _number(length, f"{what}: length")
+        self._call("add_distance", name, i, pi, j, pj, length)
+        handle = self._record("add_distance", name=name, body_i=bi, point_i=_tuple(pi), body_j=bj,
+                              point_j=_tuple(pj), length=length)
         self._attach(bi, self._local(bi, pi))
         self._attach(bj, self._local(bj, pj))
+        return handle
 
     def add_pin_in_slot(self, name, body_i, body_j, at, axis):
         """The pin of body_j at ``at`` moves along the slot of body_i through
         ``at`` in direction ``axis``; rotation is free."""
-        self._line_joint("add_pin_in_slot", "pin_in_slot", name, body_i, body_j, at, axis)
+        return self._line_joint("add_pin_in_slot", "pin_in_slot", name, body_i, body_j, at, axis)
 
     def _line_joint(self, method, kind, name, body_i, body_j, at, axis):
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        at, axis = _vec2(at, f"{kind} '{name}': at"), _vec2(axis, f"{kind} '{name}': axis")
-        self._call(method, name, self._body_index(bi, name), self._body_index(bj, name), at, axis)
-        self._record(method, name=name, body_i=bi, body_j=bj, at=_tuple(at), axis=_tuple(axis))
+        what = f"{kind} '{name}'"
+        (bi, i), (bj, j) = self._body(body_i, "body_i", what), self._body(body_j, "body_j", what)
+        at, axis = _vec2(at, f"{what}: at"), _vec2(axis, f"{what}: axis")
+        self._call(method, name, i, j, at, axis)
+        handle = self._record(method, name=name, body_i=bi, body_j=bj, at=_tuple(at), axis=_tuple(axis))
         self._attach(bi, self._local(bi, at))
         self._attach(bj, self._local(bj, at))
+        return handle
 
     def add_gear(self, name, body_i, body_j, ratio, center_i=None, center_j=None):
         """Gear pair with omega_j / omega_i = ratio while the centres stay put
         (negative: external, positive: internal). Centres default to the
         bodies' centres of mass; a gear on the ground needs its centre."""
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
-        ratio = _number(ratio, f"gear '{name}': ratio")
-        ci = None if center_i is None else _vec2(center_i, f"gear '{name}': center_i")
-        cj = None if center_j is None else _vec2(center_j, f"gear '{name}': center_j")
-        self._call("add_gear", name, self._body_index(bi, name), self._body_index(bj, name), ratio, ci, cj)
-        self._record("add_gear", name=name, body_i=bi, body_j=bj, ratio=ratio,
-                     center_i=None if ci is None else _tuple(ci),
-                     center_j=None if cj is None else _tuple(cj))
+        what = f"gear '{name}'"
+        (bi, i), (bj, j) = self._body(body_i, "body_i", what), self._body(body_j, "body_j", what)
+        ratio = _number(ratio, f"{what}: ratio")
+        ci = None if center_i is None else _vec2(center_i, f"{what}: center_i")
+        cj = None if center_j is None else _vec2(center_j, f"{what}: center_j")
+        self._call("add_gear", name, i, j, ratio, ci, cj)
+        return self._record("add_gear", name=name, body_i=bi, body_j=bj, ratio=ratio,
+                            center_i=None if ci is None else _tuple(ci),
+                            center_j=None if cj is None else _tuple(cj))
 
     def add_rack_pinion(self, name, pinion, rack, radius, axis):
         """The pinion (centre at its centre of mass, pitch ``radius``) rolls
         on the rack's pitch line along ``axis``; the pinion is on the left
         of the axis (axis turned +90 deg points from the rack to it)."""
         name = self._name(name)
-        bp, br = self._body_name(pinion, name), self._body_name(rack, name)
-        radius = _number(radius, f"rack_pinion '{name}': radius")
-        axis = _vec2(axis, f"rack_pinion '{name}': axis")
-        self._call("add_rack_pinion", name, self._body_index(bp, name), self._body_index(br, name),
-                   radius, axis)
-        self._record("add_rack_pinion", name=name, pinion=bp, rack=br, radius=radius, axis=_tuple(axis))
+        what = f"rack_pinion '{name}'"
+        (bp, p), (br, r) = self._body(pinion, "pinion", what), self._body(rack, "rack", what)
+        radius = _number(radius, f"{what}: radius")
+        axis = _vec2(axis, f"{what}: axis")
+        self._call("add_rack_pinion", name, p, r, radius, axis)
+        return self._record("add_rack_pinion", name=name, pinion=bp, rack=br, radius=radius,
+                            axis=_tuple(axis))
 
     # --- drivers ---------------------------------------------------------
 
     def drive_joint(self, name, joint, f):
         """Prescribe a revolute's relative angle phi_j - phi_i, or a
         translational's slide (0 in the initial configuration), as f(t):
-        a number, a time function or a callable t -> (y, dy, ddy)."""
+        a number, a time function or a callable t -> (y, dy, ddy).
+        ``joint``: the joint's handle or name."""
         name = self._name(name)
-        joint = getattr(joint, "name", joint)
-        if not isinstance(joint, str):
-            raise ModelError(f"driver '{name}': joint must be a joint name, got {joint!r}")
-        self._call("drive_joint", name, joint, as_time_function(f, f"driver '{name}'"))
-        self._record("drive_joint", name=name, joint=joint, f=f)
+        what = f"driver '{name}'"
+        joint = self._joint(joint, what)
+        self._call("drive_joint", name, joint, as_time_function(f, what))
+        return self._record("drive_joint", name=name, joint=joint, f=f)
 
     def drive_body(self, name, body, coordinate, f):
         """Prescribe a body's "x", "y" or "angle" as f(t)."""
         name = self._name(name)
-        b = self._body_name(body, name)
+        what = f"driver '{name}'"
+        b, index = self._body(body, "body", what)
         if coordinate not in ("x", "y", "angle"):
-            raise ModelError(f"driver '{name}': coordinate must be 'x', 'y' or 'angle', got {coordinate!r}")
-        self._call("drive_body", name, self._body_index(b, name), coordinate,
-                   as_time_function(f, f"driver '{name}'"))
-        self._record("drive_body", name=name, body=b, coordinate=coordinate, f=f)
+            raise ModelError(f"{what}: coordinate must be 'x', 'y' or 'angle', got {coordinate!r}")
+        self._call("drive_body", name, index, coordinate, as_time_function(f, what))
+        return self._record("drive_body", name=name, body=b, coordinate=coordinate, f=f)
 
     # --- stops (joint limits with impacts) --------------------------------
 
@@ -256,7 +261,8 @@ class Model:
         """Limit a joint coordinate s to lower <= s <= upper (either may be
         None): a revolute's relative angle phi_j - phi_i (rad) or a
         translational's slide displacement (m, 0 in the initial
-        configuration), as for drive_joint. Reaching a limit with approaching
+        configuration), as for drive_joint; ``joint``: its handle or name.
+        Reaching a limit with approaching
         speed is an impact: the relative velocity along s reverses with
         Newton's ``restitution`` e in [0, 1] (s'+ = -e s'-), the joints are
         kept, and the integrator restarts. A rebound slower than
@@ -264,17 +270,15 @@ class Model:
         stops the run with SimulationError naming the stop (resting contact
         is not modelled). Impacts are listed in ``Result.events``."""
         name = self._name(name)
-        joint = getattr(joint, "name", joint)
         what = f"stop '{name}'"
-        if not isinstance(joint, str):
-            raise ModelError(f"{what}: joint must be a joint name, got {joint!r}")
+        joint = self._joint(joint, what)
         lo = None if lower is None else _number(lower, f"{what}: lower")
         up = None if upper is None else _number(upper, f"{what}: upper")
         e = _number(restitution, f"{what}: restitution")
         vr = _number(rest_speed, f"{what}: rest_speed")
         self._call("add_stop", name, joint, lo, up, e, vr)
-        self._record("add_stop", name=name, joint=joint, lower=lo, upper=up, restitution=e,
-                     rest_speed=vr)
+        return self._record("add_stop", name=name, joint=joint, lower=lo, upper=up, restitution=e,
+                            rest_speed=vr)
 
     # --- contact -----------------------------------------------------------
 
@@ -293,8 +297,9 @@ class Model:
         smoothed. Onset and release are events (r.events) where the
         integrator restarts."""
         name = self._name(name)
-        bc, bl = self._body_name(circle_body, name), self._body_name(line_body, name)
         what = f"contact '{name}'"
+        bc, ic = self._body(circle_body, "circle_body", what)
+        bl, il = self._body(line_body, "line_body", what)
         c = _vec2(center, f"{what}: center")
         p = _vec2(point, f"{what}: point")
         u = _vec2(direction, f"{what}: direction")
@@ -302,12 +307,12 @@ class Model:
                 ((radius, "radius"), (stiffness, "stiffness"), (restitution, "restitution"),
                  (friction, "friction"), (slip_velocity, "slip_velocity"))]
         R, k, e, mu, vs = args
-        self._call("add_contact", name, self._body_index(bc, name), c, R, self._body_index(bl, name), p, u,
-                   k, e, mu, vs)
-        self._record("add_contact", name=name, circle_body=bc, center=_tuple(c), radius=R, line_body=bl,
-                     point=_tuple(p), direction=_tuple(u), stiffness=k, restitution=e, friction=mu,
-                     slip_velocity=vs)
+        self._call("add_contact", name, ic, c, R, il, p, u, k, e, mu, vs)
+        handle = self._record("add_contact", name=name, circle_body=bc, center=_tuple(c), radius=R,
+                              line_body=bl, point=_tuple(p), direction=_tuple(u), stiffness=k,
+                              restitution=e, friction=mu, slip_velocity=vs)
         self._attach(bc, self._local(bc, c))
+        return handle
 
     # --- forces ----------------------------------------------------------
 
@@ -317,33 +322,32 @@ class Model:
         pushes the points apart; number, time function or callable t -> F)
         between point_i of body_i and point_j of body_j."""
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
         what = f"spring_damper '{name}'"
+        (bi, i), (bj, j) = self._body(body_i, "body_i", what), self._body(body_j, "body_j", what)
         pi, pj = _vec2(point_i, f"{what}: point_i"), _vec2(point_j, f"{what}: point_j")
         k, c = _number(stiffness, f"{what}: stiffness"), _number(damping, f"{what}: damping")
         l0 = None if free_length is None else _number(free_length, f"{what}: free_length")
         act = None if force is None else as_time_function(force, what, derivatives=False)
-        self._call("add_spring_damper", name, self._body_index(bi, name), pi, self._body_index(bj, name),
-                   pj, k, c, l0, act)
-        self._record("add_spring_damper", name=name, body_i=bi, point_i=_tuple(pi), body_j=bj,
-                     point_j=_tuple(pj), stiffness=k, damping=c, free_length=l0, force=force)
+        self._call("add_spring_damper", name, i, pi, j, pj, k, c, l0, act)
+        handle = self._record("add_spring_damper", name=name, body_i=bi, point_i=_tuple(pi), body_j=bj,
+                              point_j=_tuple(pj), stiffness=k, damping=c, free_length=l0, force=force)
         self._attach(bi, self._local(bi, pi))
         self._attach(bj, self._local(bj, pj))
+        return handle
 
     def add_rotational_spring_damper(self, name, body_i, body_j, stiffness=0.0, damping=0.0,
                                      free_angle=None, torque=None):
         """Torsion spring (N m/rad), damper (N m s/rad) and actuator
         ``torque`` (N m, on body_j; body_i gets the opposite)."""
         name = self._name(name)
-        bi, bj = self._body_name(body_i, name), self._body_name(body_j, name)
         what = f"rotational_spring_damper '{name}'"
+        (bi, i), (bj, j) = self._body(body_i, "body_i", what), self._body(body_j, "body_j", what)
         k, c = _number(stiffness, f"{what}: stiffness"), _number(damping, f"{what}: damping")
         a0 = None if free_angle is None else _number(free_angle, f"{what}: free_angle")
         act = None if torque is None else as_time_function(torque, what, derivatives=False)
-        self._call("add_rotational_spring_damper", name, self._body_index(bi, name),
-                   self._body_index(bj, name), k, c, a0, act)
-        self._record("add_rotational_spring_damper", name=name, body_i=bi, body_j=bj, stiffness=k,
-                     damping=c, free_angle=a0, torque=torque)
+        self._call("add_rotational_spring_damper", name, i, j, k, c, a0, act)
+        return self._record("add_rotational_spring_damper", name=name, body_i=bi, body_j=bj,
+                            stiffness=k, damping=c, free_angle=a0, torque=torque)
 
     def add_force(self, name, body, force, point=None, local=False):
         """A force on a body: ``force`` = (fx, fy) of numbers or time
@@ -351,8 +355,8 @@ class Model:
         initial; default: the centre of mass); ``local``: components in the
         body's axes, turning with it."""
         name = self._name(name)
-        b = self._body_name(body, name)
         what = f"force '{name}'"
+        b, index = self._body(body, "body", what)
         if callable(force) and not isinstance(force, TimeFunction):
             fx = as_time_function(force, what, derivatives=False, component=0)
             fy = as_time_function(force, what, derivatives=False, component=1)
@@ -363,25 +367,28 @@ class Model:
             fy = as_time_function(force[1], f"{what}: fy", derivatives=False)
             force = tuple(float(f) if isinstance(f, numbers.Real) else f for f in force)
         p = None if point is None else _vec2(point, f"{what}: point")
-        self._call("add_force", name, self._body_index(b, name), fx, fy, p, bool(local))
-        self._record("add_force", name=name, body=b, force=force, point=None if p is None else _tuple(p),
-                     local=bool(local))
+        self._call("add_force", name, index, fx, fy, p, bool(local))
+        handle = self._record("add_force", name=name, body=b, force=force,
+                              point=None if p is None else _tuple(p), local=bool(local))
         if p is not None:
             self._attach(b, self._local(b, p))
+        return handle
 
     def add_torque(self, name, body, torque):
         """A pure torque (N m) on a body: number, time function or callable t -> tau."""
         name = self._name(name)
-        b = self._body_name(body, name)
-        tau = as_time_function(torque, f"torque '{name}'", derivatives=False)
-        self._call("add_torque", name, self._body_index(b, name), tau)
-        self._record("add_torque", name=name, body=b, torque=torque)
+        what = f"torque '{name}'"
+        b, index = self._body(body, "body", what)
+        tau = as_time_function(torque, what, derivatives=False)
+        self._call("add_torque", name, index, tau)
+        return self._record("add_torque", name=name, body=b, torque=torque)
 
     def add_joint_friction(self, name, joint, mu=0.0, viscous=0.0, pin_radius=None,
                            bearing_length=None, preload=0.0, slip_velocity=1e-3,
                            load_smoothing=1e-6):
-        """Friction in a revolute or translational joint (docs/modelling.md,
-        "Joint friction"): Coulomb with the load taken from the joint's own
+        """Friction in a revolute or translational joint (``joint``: its
+        handle or name; docs/modelling.md, "Joint friction"): Coulomb with
+        the load taken from the joint's own
         reaction, plus viscous. With sd the joint's relative rate (rad/s or
         m/s), F = -(mu rho N + preload) sd / sqrt(sd^2 + slip_velocity^2)
         - viscous sd, a torque (revolute: rho = pin_radius, N = |joint force|)
@@ -390,10 +397,8 @@ class Model:
         bearing_length is given) on the joint's second body; the first gets
         the opposite. ``load_smoothing`` (N) rounds |.| of the load near 0."""
         name = self._name(name)
-        joint = getattr(joint, "name", joint)
         what = f"joint friction '{name}'"
-        if not isinstance(joint, str):
-            raise ModelError(f"{what}: joint must be a joint name, got {joint!r}")
+        joint = self._joint(joint, what)
         values = {
             "mu": _number(mu, f"{what}: mu"),
             "viscous": _number(viscous, f"{what}: viscous"),
@@ -410,7 +415,7 @@ class Model:
         self._call("add_joint_friction", name, joint, values["mu"], values["viscous"], values["preload"],
                    values["pin_radius"] or 0.0, values["bearing_length"] or 0.0, values["slip_velocity"],
                    values["load_smoothing"])
-        self._record("add_joint_friction", name=name, joint=joint, **values)
+        return self._record("add_joint_friction", name=name, joint=joint, **values)
 
     # --- questions -------------------------------------------------------
 
@@ -447,7 +452,8 @@ class Model:
     def outline(self, body):
         """Local points (body axes) where joints and forces attach to a body,
         in the order added: what a drawing of the body joins."""
-        return list(self._outline.get(getattr(body, "name", body), []))
+        name = name_of(self, body, ("body",), "body", "Model.outline")
+        return list(self._outline.get(name, []))
 
     def to_scene(self, path, settings=None, output=None):
         """Write the model (and optional simulation settings) as a TOML scene."""
