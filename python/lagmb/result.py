@@ -5,7 +5,7 @@ from functools import cached_property
 import numpy as np
 
 from .errors import KinematicOnlyError, ModelError
-
+from .handles import name_of
 
 
 def _frozen(x):
@@ -14,13 +14,19 @@ def _frozen(x):
     return x
 
 
-def element_name(core, item):
-    """The name of a body or element (a handle or a name) of the compiled
-    model `core`; ModelError if there is none."""
-    name = getattr(item, "name", item)
-    if not isinstance(name, str) or not core.has(name):
-        raise ModelError(f"no body or element named '{name}' in this model")
+def element_name(model, core, item, accepts, what, context):
+    """The name of a body or element (its handle or its name) of the run's
+    model `model`, compiled as `core`; ModelError if there is none, or if a
+    handle is of another model or not one of the roles `accepts` (see
+    handles.name_of for `what` and `context`)."""
+    name = name_of(model, item, accepts, what, context)
+    if not core.has(name):
+        raise ModelError(f"{context}: no body or element named '{name}' in this model")
     return name
+
+
+_CONSTRAINTS = ("joint", "driver")  # the elements with multipliers
+
 
 class BodyPath:
     """The motion of one body: position (k, 2) of its centre of mass, angle
@@ -84,12 +90,12 @@ class Result:
                 "were not computed. Run with analysis='inverse_dynamics' (every mass > 0) for them.")
         return self._lam
 
-    def _name(self, item):
-        return element_name(self._core, item)
+    def _name(self, item, accepts, what, context):
+        return element_name(self.model, self._core, item, accepts, what, context)
 
     def body(self, body):
         """Motion of a body (handle or name): .position, .angle, ..."""
-        first, count = self._core.body_coordinates(self._name(body))
+        first, count = self._core.body_coordinates(self._name(body, ("body",), "body", "Result.body"))
         return BodyPath(self, first, count)
 
     def point(self, body, local_point):
@@ -106,7 +112,8 @@ class Result:
 
     def multipliers(self, element):
         """(k, rows) columns of lam that belong to a joint or driver."""
-        row0, rows = self._core.constraint_rows(self._name(element))
+        name = self._name(element, _CONSTRAINTS, "element", "Result.multipliers")
+        row0, rows = self._core.constraint_rows(name)
         return self.lam[:, row0:row0 + rows]
 
     def reaction(self, element, frame="global"):
@@ -115,12 +122,13 @@ class Result:
         frame="joint": the force in the element's own axes (docs/modelling.md)."""
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
-        return self._core.reaction(self._name(element), self.t, self.q, self.lam, frame == "joint")
+        name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")
+        return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint")
 
     def effort(self, driver):
         """(k,) the force (N) or torque (N m) a driver applies to impose its
         motion, positive along the driven coordinate."""
-        name = self._name(driver)
+        name = self._name(driver, ("driver",), "driver", "Result.effort")
         if not self._core.element_kind(name).endswith("_driver"):
             raise ModelError(f"'{name}' is not a driver")
         return -self.multipliers(name)[:, 0]
@@ -129,14 +137,14 @@ class Result:
         """(k,) the friction torque (N m) or force (N) of a joint friction on
         the joint's second body (docs/modelling.md, "Joint friction"),
         evaluated from the run's own states and reactions."""
-        name = self._name(element)
+        name = self._name(element, ("friction",), "element", "Result.friction")
         return self._core.friction(name, self.q, self.v, self.lam)[:, 0]
 
     def friction_power(self, element):
         """(k,) power (W, <= 0) of a joint friction: its torque or force
         times the joint's relative rate. Its time integral is the work
         friction did, the energy it took out of the system."""
-        name = self._name(element)
+        name = self._name(element, ("friction",), "element", "Result.friction_power")
         f = self._core.friction(name, self.q, self.v, self.lam)
         return f[:, 0] * f[:, 1]
 

@@ -50,12 +50,12 @@ class Equilibrium:
         self.force_residual = float(raw["force_residual"])
         self.constraint_residual = float(raw["constraint_residual"])
 
-    def _name(self, item):
-        return element_name(self._core, item)
+    def _name(self, item, accepts, what, context):
+        return element_name(self.model, self._core, item, accepts, what, context)
 
     def body(self, body):
         """Pose of a body (handle or name): .position (2,), .angle."""
-        first, count = self._core.body_coordinates(self._name(body))
+        first, count = self._core.body_coordinates(self._name(body, ("body",), "body", "Equilibrium.body"))
         x = self.q[first:first + count]
         return EquilibriumBody(x[:2].copy(), float(x[2]) if count == 3 else 0.0)
 
@@ -64,7 +64,8 @@ class Equilibrium:
         in N m about its centre of mass, as Result.reaction."""
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
-        out = self._core.reaction(self._name(element), np.array([self.t]), self.q[None, :],
+        name = self._name(element, ("joint", "driver"), "element", "Equilibrium.reaction")
+        out = self._core.reaction(name, np.array([self.t]), self.q[None, :],
                                   self.lam[None, :], frame == "joint")
         return np.asarray(out)[0]
 
