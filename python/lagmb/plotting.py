@@ -20,6 +20,8 @@ import os
 
 import numpy as np
 
+from .handles import Handle, name_of
+
 _HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
 
 # the kinds of model calls, by what they add
@@ -60,11 +62,6 @@ def _save(fig, path, **kwargs):
 
 
 # --- what the model holds ------------------------------------------------
-
-
-def _name(body):
-    """A body handle or name -> its name (m.ground -> "ground")."""
-    return getattr(body, "name", body)
 
 
 def _elements(model):
@@ -172,7 +169,7 @@ class _Scene:
     def attachments(self, kind, kw):
         """[(body, local point)] where one element attaches."""
         out = []
-        bi, bj = _name(kw.get("body_i")), _name(kw.get("body_j"))
+        bi, bj = kw.get("body_i"), kw.get("body_j")
         if kw.get("at") is not None:
             out += [(b, self.local(b, kw["at"])) for b in (bi, bj) if b is not None]
         if kw.get("local_i") is not None and bi is not None:
@@ -184,7 +181,7 @@ class _Scene:
         if kw.get("point_j") is not None and bj is not None:
             out.append((bj, self.local(bj, kw["point_j"])))
         if kind == "add_force" and kw.get("point") is not None:
-            b = _name(kw.get("body"))
+            b = kw.get("body")
             out.append((b, self.local(b, kw["point"])))
         if kind == "add_weld" and bi is not None and bj in self._pose0:
             out += [(bi, self.local(bi, self._pose0[bj][0])), (bj, np.zeros(2))]
@@ -222,7 +219,7 @@ class _Scene:
         if kind == "drive_body":
             return "N m" if kw.get("coordinate") == "angle" else "N"
         if kind == "drive_joint":
-            return "N" if self.kind_of.get(_name(kw.get("joint"))) == "add_translational" else "N m"
+            return "N" if self.kind_of.get(kw.get("joint")) == "add_translational" else "N m"
         return "N or N m"
 
 
@@ -501,7 +498,8 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     dot marks each centre of mass, white circles the revolute
     joints, triangles the joints to the ground, zig-zags the spring-dampers,
     dashed lines the slide axes fixed to the ground.
-    ``trace``: a list of (body, local point) pairs (or one pair) whose paths
+    ``trace``: a list of (body, local point) pairs (or one pair; body: its
+    handle or name) whose paths
     are drawn as they are travelled (faint ahead); a traced point also joins
     its body's shape (so a pendulum's free tip is drawn). The axes are fixed
     to cover the whole motion, with equal scales, in m.
@@ -523,10 +521,11 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
         raise ValueError("animate: the result has no outputs")
     scene = _Scene(result)
     frames = _frame_indices(len(t), max_frames)
-    if trace is not None and len(trace) == 2 and isinstance(_name(trace[0]), str) \
+    if trace is not None and len(trace) == 2 and isinstance(trace[0], (str, Handle)) \
             and np.ndim(trace[1]) == 1:
         trace = [trace]  # one (body, point) pair
-    trace = [(_name(b), np.asarray(p, dtype=float).reshape(2)) for b, p in (trace or [])]
+    trace = [(name_of(result.model, b, ("body",), "body", "animate: trace"),
+              np.asarray(p, dtype=float).reshape(2)) for b, p in (trace or [])]
 
     # global paths of everything drawn, over all outputs (for the limits);
     # traced points belong to their bodies' shapes too (a pendulum's free tip)
@@ -541,7 +540,7 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     pins, supports, guides, links, sliders = [], [], [], [], set()
     for kind, kw in scene.elements:
         if kind == "add_translational":
-            sliders.add(_name(kw.get("body_j")))
+            sliders.add(kw.get("body_j"))
         att = scene.attachments(kind, kw)
         if kind == "add_revolute" and att:
             moving = [(b, p) for b, p in att if b != "ground"]
@@ -551,7 +550,7 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
             if fixed:
                 supports.append(fixed[0])
         elif kind in ("add_translational", "add_pin_in_slot") and kw.get("axis") is not None:
-            if _name(kw.get("body_i")) == "ground" and kw.get("at") is not None:
+            if kw.get("body_i") == "ground" and kw.get("at") is not None:
                 guides.append((np.asarray(kw["at"], float), np.asarray(kw["axis"], float)))
             moving = [(b, p) for b, p in att if b != "ground"]
             if moving and kind == "add_pin_in_slot":

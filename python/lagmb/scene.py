@@ -129,6 +129,7 @@ except ImportError:  # pragma: no cover - older Pythons
 import numpy as np
 
 from .errors import ModelError
+from .handles import Handle, name_of
 from .model import Model
 
 __all__ = ["Scene", "SceneError", "load_scene", "save_scene"]
@@ -1105,7 +1106,7 @@ def _value(v):
         return _string_value(v)
     if hasattr(v, "to_dict") and callable(v.to_dict):  # a TimeFunction
         return _value(v.to_dict())
-    if hasattr(v, "name") and hasattr(v, "model") and isinstance(v.name, str):  # a Body
+    if isinstance(v, Handle):  # elements() holds names; a handle is written as one
         return _string_value(v.name)
     if isinstance(v, dict):
         return "{ " + ", ".join(f"{_key(str(k))} = {_value(x)}" for k, x in v.items()) + " }"
@@ -1166,6 +1167,11 @@ def scene_text(model, settings=None, output=None):
             settings.pop("n_out", None)  # simulate ignores it when t_out is given
         out += _table_lines("[simulation]", settings) + [""]
     if output:
+        output = dict(output)
+        for key, accepts in (("reactions", ("joint", "driver")), ("efforts", ("driver",))):
+            if isinstance(output.get(key), (list, tuple)):  # names or handles
+                output[key] = [name_of(model, x, accepts, f"{key} entry", "[output]")
+                               for x in output[key]]
         out += _table_lines("[output]", output) + [""]
     return "\n".join(out)
 
@@ -1173,7 +1179,8 @@ def scene_text(model, settings=None, output=None):
 def save_scene(model, path, settings=None, output=None):
     """Write a model as a scene file that load_scene reads back into a model
     giving the same results. ``settings``: mb.simulate keyword arguments for
-    [simulation]; ``output``: the [output] table. Raises SceneError (a
+    [simulation]; ``output``: the [output] table (reactions and efforts as
+    names or handles). Raises SceneError (a
     ModelError) naming the element if something cannot be written, e.g. a
     Python callable as a time function; nothing is written then."""
     path = os.fspath(path)
