@@ -79,9 +79,8 @@ class Model:
         """Remember an element added (see elements()) and return its handle."""
         self._elements.append((method, kwargs))
         name = kwargs["name"]
-        if name in self._bodies:
-            return self._bodies[name]
-        return Handle(name, self, *KINDS[method])
+        kind, role = KINDS[method]
+        return self._bodies[name] if role == "body" else Handle(name, self, kind, role)
 
     def _local(self, body_name, point):
         """A global point of the initial configuration in the body's axes."""
