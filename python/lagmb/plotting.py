@@ -498,11 +498,11 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     dot marks each centre of mass, white circles the revolute
     joints, triangles the joints to the ground, zig-zags the spring-dampers,
     dashed lines the slide axes fixed to the ground.
-    ``trace``: a list of (body, local point) pairs (or one pair; body: its
-    handle or name) whose paths
-    are drawn as they are travelled (faint ahead); a traced point also joins
-    its body's shape (so a pendulum's free tip is drawn). The axes are fixed
-    to cover the whole motion, with equal scales, in m.
+    ``trace``: a list of (body, local point) pairs (or one pair; the body by
+    its handle or name) whose paths are drawn as they are travelled (faint
+    ahead); a traced point also joins its body's shape (so a pendulum's free
+    tip is drawn). The axes are fixed to cover the whole motion, with equal
+    scales, in m.
 
     Frames are the output times of the result, evenly subsampled to at most
     ``max_frames``; they play at ``fps`` frames per second. ``size`` is the

@@ -1180,9 +1180,9 @@ def save_scene(model, path, settings=None, output=None):
     """Write a model as a scene file that load_scene reads back into a model
     giving the same results. ``settings``: mb.simulate keyword arguments for
     [simulation]; ``output``: the [output] table (reactions and efforts as
-    names or handles). Raises SceneError (a
-    ModelError) naming the element if something cannot be written, e.g. a
-    Python callable as a time function; nothing is written then."""
+    names or handles). Raises SceneError (a ModelError) naming the element
+    if something cannot be written, e.g. a Python callable as a time
+    function; nothing is written then."""
     path = os.fspath(path)
     try:
         text = scene_text(model, settings, output)
