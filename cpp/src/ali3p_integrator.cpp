@@ -296,9 +296,8 @@ class Ali3pStepper final : public Stepper {
   }
 
   bool factorize() {
-    lu_.factorize(K_);
     ++factorizations_;
-    return lu_.info() == Eigen::Success;
+    return factorize_finite(lu_, K_);
   }
 
   /// T0-orthogonal projection of x onto r(x) = Phi_q x + c = 0 with the

@@ -43,12 +43,14 @@ bool AugmentedSystem::factorize(const Data& d) {
   for (int i = 0; i < n_; ++i) K[mass_slots_[i]] = mass_[i];
   for (int i = 0; i < m_; ++i) K[reg_slots_[i]] = -eps_;
   for (size_t k = 0; k < jac_slots_.size(); ++k) K[jac_slots_[k]] = K[jact_slots_[k]] = J[k];
-  lu_.factorize(K_);
   ++factorizations_;
-  return lu_.info() == Eigen::Success;
+  factorized_ = factorize_finite(lu_, K_);
+  return factorized_;
 }
 
 void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
+  // a solve with a failed factorization is undefined in Eigen: refuse it
+  if (!factorized_) throw SimulationError("the augmented matrix [M Phi_q^T; Phi_q 0] is singular or not finite", NAN);
   rhs_ << b1, b2;
   x_ = lu_.solve(rhs_);
   // refine against eps = 0: K0 x = K x + eps [0; x2]

@@ -121,10 +121,9 @@ struct OdeProblem {
       for (size_t k = 0; k < Kq.size(); ++k) x[Kq[k]] -= gamma * gamma * d.friction_Q_q.valuePtr()[k];
       for (size_t k = 0; k < Cv.size(); ++k) x[Cv[k]] -= gamma * d.friction_Q_v.valuePtr()[k];
     }
-    lu.factorize(N);
     ++factorizations;
     gamma_setup = gamma;
-    return lu.info() == Eigen::Success;
+    return factorize_finite(lu, N);
   }
 
   /// x = (I - gamma J)^-1 b with the gamma of the last setup.

@@ -141,9 +141,8 @@ class SquareJacobian {
     const double* j = Phi_q.valuePtr();
     for (size_t k = 0; k < slots_.size(); ++k)
       if (slots_[k] >= 0) s[slots_[k]] = j[k];
-    lu_.factorize(S_);
     ++factorizations_;
-    return lu_.info() == Eigen::Success;
+    return factorize_finite(lu_, S_);
   }
 
   /// x (n) solving the independent rows of Phi_q x = b (b: m rows).

@@ -70,18 +70,18 @@ Redundancy find_redundancy(const Model& model, Data& d, AugmentedSystem& kkt, co
   }
   std::mt19937 random(20261123u);  // fixed: the same model decides the same way every run
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  VecX z(n), dq(n);
+  // two directions, each M-orthogonally projected onto the null space of
+  // Phi_q at the start (before a probe re-assembles, and re-factorizes, kkt)
+  VecX z(n), directions[2];
+  for (VecX& dq : directions) {
+    for (int i = 0; i < n; ++i) z[i] = uniform(random);
+    kkt.solve(M.cwiseProduct(z), zero_m, dq, kappa);
+    const double size = max_abs(dq);
+    dq *= size > 0 ? h / size : 0.0;
+  }
   for (int probe = 0; probe < 4; ++probe) {
     poll_interrupt();
-    if (probe % 2 == 0) {
-      for (int i = 0; i < n; ++i) z[i] = uniform(random);
-      // M-orthogonal projection onto the null space of Phi_q
-      kkt.solve(M.cwiseProduct(z), zero_m, dq, kappa);
-      const double size = max_abs(dq);
-      dq *= size > 0 ? h / size : 0.0;
-    } else {
-      dq = -dq;  // the other way along the same direction
-    }
+    const VecX dq = (probe % 2 ? -1.0 : 1.0) * directions[probe / 2];  // each direction both ways
     const double t1 = t0 + dt;
     VecX q1;
     try {

@@ -336,6 +336,10 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     e.t = tr.t.empty() ? o.t0 : tr.t.back();
     e.partial = std::move(tr);
     throw;
+  } catch (const SimulationError& e) {  // a solve inside a step or restart (friction load, augmented system)
+    if (!e.partial.t.empty()) throw;
+    finish();
+    throw SimulationError(e.what() + kept(), e.t, std::move(tr));
   }
   const std::string output_failure = finish();
   if (!output_failure.empty()) {

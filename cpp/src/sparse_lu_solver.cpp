@@ -41,9 +41,8 @@ SUNLinearSolver make_sparse_lu_solver(SUNContext ctx, SparseLU* st) {
       s.lu.analyzePattern(J);
       s.analyzed = true;
     }
-    s.lu.factorize(J);
     ++s.factorizations;
-    if (s.lu.info() != Eigen::Success) {
+    if (!factorize_finite(s.lu, J)) {
       ++s.failed_factorizations;
       return SUNLS_LUFACT_FAIL;  // > 0: recoverable
     }

@@ -22,9 +22,11 @@ class AugmentedSystem {
  public:
   explicit AugmentedSystem(const Model& model);
 
-  /// Factorizes K with the current d.Phi_q; false if the LU fails.
+  /// Factorizes K with the current d.Phi_q; false if the LU fails or K is
+  /// not finite.
   bool factorize(const Data& d);
   /// Solves K [x1; x2] = [b1; b2] (sizes n, m), refining against eps = 0.
+  /// SimulationError if the last factorization failed.
   void solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
 
   int factorizations() const { return factorizations_; }
@@ -37,6 +39,7 @@ class AugmentedSystem {
   std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
   const VecX& mass_;
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  bool factorized_ = false;
   VecX rhs_, x_, r_;
   int factorizations_ = 0;
 };
