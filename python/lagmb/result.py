@@ -4,7 +4,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .errors import KinematicOnlyError, ModelError
+from .errors import KinematicOnlyError, ModelError, SimulationError
 from .handles import name_of
 
 
@@ -150,18 +150,31 @@ class Result:
 
     @cached_property
     def energy(self):
-        """(k,) kinetic + potential energy (J) of the conservative forces."""
-        return self._core.energy(self.t, self.q, self.v)
+        """(k,) kinetic + potential energy (J) of the conservative forces.
+        SimulationError if it overflows double precision (e.g. a body 1e308 m
+        up under gravity), rather than an inf or a NaN."""
+        return self._finite(self._core.energy(self.t, self.q, self.v), "the energy")
 
     @cached_property
     def residual(self):
         """(k,) max |Phi| (position-level constraint violation)."""
-        return self._core.residual(self.t, self.q)
+        return self._finite(self._core.residual(self.t, self.q), "the constraint residual")
 
     @cached_property
     def velocity_residual(self):
         """(k,) max |Phi_q v + Phi_t| (velocity-level constraint violation)."""
-        return self._core.velocity_residual(self.t, self.q, self.v)
+        return self._finite(self._core.velocity_residual(self.t, self.q, self.v),
+                            "the velocity residual")
+
+    def _finite(self, values, what):
+        """values, read-only, if all are finite; else SimulationError naming
+        the first output where they overflow (the states themselves are finite)."""
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            t = float(self.t[bad[0]])
+            raise SimulationError(f"{what} is not finite at t = {t:g} s (it overflows double precision for "
+                                  f"this model's magnitudes: largest |q| {np.max(np.abs(self.q)):.3g})", t)
+        return _frozen(values)
 
     def __repr__(self):
         return (f"<lagmb.Result: {len(self.t)} outputs, t = {self.t[0]:g}..{self.t[-1]:g} s, "
