@@ -1161,9 +1161,29 @@ def replay(path, timeout=30.0):
         w.close()
 
 
+def generate(n, derandomize, rng_seed=None):
+    """n cases drawn by hypothesis (generation only: they are plain data)."""
+    from hypothesis import HealthCheck, Phase, given, seed, settings
+
+    drawn = []
+
+    def collect(case):
+        drawn.append(case)
+
+    test = given(cases())(collect)
+    test = settings(max_examples=n, derandomize=derandomize, database=None, deadline=None,
+                    phases=[Phase.generate], suppress_health_check=list(HealthCheck))(test)
+    if rng_seed is not None:
+        test = seed(rng_seed)(test)
+    test()
+    return drawn
+
+
 if __name__ == "__main__":
     if sys.argv[1:] == ["--worker"]:
         worker_main()
+    elif len(sys.argv) == 3 and sys.argv[1] == "--generate":  # deterministic, as JSON
+        json.dump(generate(int(sys.argv[2]), derandomize=True), sys.stdout)
     elif len(sys.argv) == 3 and sys.argv[1] == "--replay":
         problems, _ = replay(sys.argv[2])
         for p in problems:
