@@ -298,7 +298,7 @@ def test_a_failing_user_function_is_a_lagmb_error_with_its_cause_chained():
     (dict(atol=[1e-8, "x", 1e-8]), "atol"),
     (dict(max_steps=0.5), "max_steps"),
     (dict(formulation=3), "formulation"),
-    (dict(integrator=None), "integrator"),
+    (dict(integrator=3), "integrator"),  # None: the formulation's first
     (dict(analysis=["auto"]), "analysis"),
     (dict(baumgarte=(1.0, "b"), formulation="index1"), "baumgarte"),
     (dict(t_out=[0.0, "half", 1.0]), "t_out"),
