@@ -538,3 +538,13 @@ def test_a_driver_too_fast_to_follow_is_refused_not_followed_for_ever():
     partial = failure.value.result
     assert partial is not None and 1 <= len(partial.t) < 201
     assert np.all(np.isfinite(partial.q))
+
+
+def test_the_core_takes_options_by_name_and_refuses_unknown_ones():
+    """_core.simulate reads SimulationOptions' fields by name (one list in
+    simulate.hpp); a misspelt name is refused, not ignored."""
+    core = pendulum().compiled()
+    raw = _core.simulate(core, dict(t_end=0.1, n_out=3, rtol=1e-8))
+    assert raw["t"].shape == (3,) and raw["stats"]["formulation"] == "ggl"
+    with pytest.raises(_core.ModelError, match="unknown option 'rtoll'"):
+        _core.simulate(core, dict(t_end=0.1, rtoll=1e-8))

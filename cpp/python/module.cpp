@@ -31,28 +31,8 @@ py::dict to_python(Trajectory&& tr) {
   out["v"] = to_numpy(std::move(tr.v), {k, tr.n});
   out["a"] = to_numpy(std::move(tr.a), {k, tr.n});
   out["lam"] = to_numpy(std::move(tr.lam), {k, tr.m});
-  const Stats& s = tr.stats;
   py::dict stats;
-  stats["steps"] = s.steps;
-  stats["residual_evals"] = s.residual_evals;
-  stats["jacobian_evals"] = s.jacobian_evals;
-  stats["lu_factorizations"] = s.lu_factorizations;
-  stats["augmented_factorizations"] = s.augmented_factorizations;
-  stats["projections"] = s.projections;
-  stats["newton_iterations"] = s.newton_iterations;
-  stats["error_test_failures"] = s.error_test_failures;
-  stats["convergence_failures"] = s.convergence_failures;
-  stats["element_evaluations"] = s.element_evaluations;
-  stats["last_order"] = s.last_order;
-  stats["last_step"] = s.last_step;
-  stats["wall_time"] = s.wall_time;
-  stats["formulation"] = s.formulation;
-  stats["integrator"] = s.integrator;
-  stats["analysis"] = s.analysis;
-  stats["kinematic_solves"] = s.kinematic_solves;
-  stats["events"] = s.events;
-  stats["impacts"] = s.impacts;
-  stats["root_evals"] = s.root_evals;
+  tr.stats.for_each_field([&](const char* name, const auto& value) { stats[name] = value; });
   out["stats"] = stats;
   py::list events;
   for (const EventRecord& e : tr.events) {
@@ -422,12 +402,8 @@ PYBIND11_MODULE(_core, m) {
             const auto& g = constraint_group(model, name);
             const int k = model.find(name).index;
             RowMajor out(q.rows(), 3);
-            for (Eigen::Index s = 0; s < q.rows(); ++s) {
-              const Eigen::Vector3d w = g.generalized_reaction(k, q.row(s).data(), t[s], lam.row(s).data()).tail<3>();
-              out.row(s) = w.transpose();
-              if (joint_axes)
-                out.row(s).head<2>() = (g.axes(k, q.row(s).data(), t[s]).transpose() * w.head<2>()).transpose();
-            }
+            for (Eigen::Index s = 0; s < q.rows(); ++s)
+              out.row(s) = g.reaction(k, q.row(s).data(), t[s], lam.row(s).data(), joint_axes).transpose();
             return out;
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
@@ -649,27 +625,21 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "simulate",
-      [](const Model& model, double t0, double t_end, std::vector<double> t_out, int n_out, double rtol,
-         double atol, std::vector<double> atol_coordinates, double max_step, long max_steps, int max_order, std::string formulation,
-         std::string integrator, double baumgarte_alpha, double baumgarte_beta, py::object progress,
-         std::string analysis, std::string start) {
+      [](const Model& model, const py::dict& options, py::object progress) {
+        // the fields of SimulationOptions by name (checked in Python, and again by simulate)
         SimulationOptions o;
-        o.t0 = t0;
-        o.t_end = t_end;
-        o.t_out = std::move(t_out);
-        o.n_out = n_out;
-        o.rtol = rtol;
-        o.atol = atol;
-        o.atol_coordinates = std::move(atol_coordinates);
-        o.max_step = max_step;
-        o.max_steps = max_steps;
-        o.max_order = max_order;
-        o.formulation = std::move(formulation);
-        o.integrator = std::move(integrator);
-        o.baumgarte_alpha = baumgarte_alpha;
-        o.baumgarte_beta = baumgarte_beta;
-        o.analysis = std::move(analysis);
-        o.start = std::move(start);
+        size_t used = 0;
+        o.for_each_field([&](const char* name, auto& field) {
+          if (!options.contains(name)) return;
+          field = options[name].template cast<std::decay_t<decltype(field)>>();
+          ++used;
+        });
+        if (used != options.size())
+          for (const auto& item : options) {
+            bool known = false;
+            o.for_each_field([&](const char* name, auto&) { known = known || py::str(item.first).equal(py::str(name)); });
+            if (!known) throw ModelError("simulate: unknown option '" + std::string(py::str(item.first)) + "'");
+          }
         // between steps: let Ctrl-C through, and report progress if asked
         // (a borrowed pointer: the std::function is copied without the GIL)
         PyObject* report = progress.ptr();
@@ -697,10 +667,8 @@ PYBIND11_MODULE(_core, m) {
         }
         return to_python(std::move(tr));
       },
-      py::arg("model"), py::arg("t0"), py::arg("t_end"), py::arg("t_out"), py::arg("n_out"), py::arg("rtol"),
-      py::arg("atol"), py::arg("atol_coordinates"), py::arg("max_step"), py::arg("max_steps"), py::arg("max_order"), py::arg("formulation"),
-      py::arg("integrator"), py::arg("baumgarte_alpha"), py::arg("baumgarte_beta"), py::arg("progress"),
-      py::arg("analysis") = "auto", py::arg("start") = "given");
+      py::arg("model"), py::arg("options"), py::arg("progress") = py::none(),
+      "Runs simulate(model, options): options by the names of SimulationOptions' fields.");
 
   m.def(
       "equilibrium",

@@ -168,10 +168,12 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     start = _choice(start, "start", ("given", "equilibrium"))
     core = model.compiled()
     with _translate(model, core):
-        raw = _core.simulate(core, t0, t_end, [] if t_out is None else list(t_out),
-                             n_out, rtol, atol, atol_coordinates, max_step, max_steps, max_order,
-                             formulation, integrator, alpha, beta, progress,
-                             analysis=analysis, start=start)
+        options = dict(t0=t0, t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out,
+                       rtol=rtol, atol=atol, atol_coordinates=atol_coordinates, max_step=max_step,
+                       max_steps=max_steps, max_order=max_order, formulation=formulation,
+                       integrator=integrator, baumgarte_alpha=alpha, baumgarte_beta=beta,
+                       analysis=analysis, start=start)
+        raw = _core.simulate(core, options, progress)
     model._warn_redundant(raw.get("dropped_rows", []), stacklevel=3)
     return Result(model, core, raw)
 

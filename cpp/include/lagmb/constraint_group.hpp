@@ -87,6 +87,14 @@ class ConstraintGroupBase {
                                       const double* lam) const = 0;
   /// The element's own axes (columns, global components) at state q.
   virtual Mat2 axes(int k, const double* q, double t) const = 0;
+  /// The reaction on the element's second body: force (x, y) and torque
+  /// about its centre of mass, the last three of generalized_reaction; with
+  /// joint_axes the force in the element's own axes, A^T F.
+  Eigen::Vector3d reaction(int k, const double* q, double t, const double* lam, bool joint_axes) const {
+    Eigen::Vector3d w = generalized_reaction(k, q, t, lam).tail<3>();
+    if (joint_axes) w.head<2>() = axes(k, q, t).transpose() * w.head<2>();
+    return w;
+  }
 };
 
 template <class Kind>

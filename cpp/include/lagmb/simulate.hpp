@@ -50,6 +50,17 @@ struct SimulationOptions {
   /// "equilibrium": from the static equilibrium at t0 (equilibrium.hpp),
   /// at rest. A dynamic analysis only.
   std::string start = "given";
+
+  /// f(name, field) for every field but progress: the one list bindings
+  /// read options by (Python passes them by these names).
+  template <class F>
+  void for_each_field(F&& f) {
+    f("t0", t0), f("t_end", t_end), f("t_out", t_out), f("n_out", n_out), f("rtol", rtol), f("atol", atol);
+    f("atol_coordinates", atol_coordinates), f("max_step", max_step), f("max_steps", max_steps);
+    f("max_order", max_order), f("formulation", formulation), f("integrator", integrator);
+    f("baumgarte_alpha", baumgarte_alpha), f("baumgarte_beta", baumgarte_beta);
+    f("progress_interval", progress_interval), f("analysis", analysis), f("start", start);
+  }
 };
 
 /// Makes the initial state consistent, integrates, and returns the states at

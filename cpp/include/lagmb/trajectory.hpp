@@ -34,6 +34,20 @@ struct Stats {
   long events = 0;    // event-function crossings handled (stops, contact switches)
   long impacts = 0;   // of which velocity jumps
   long root_evals = 0;  // evaluations of the event functions
+
+  /// f(name, field) for every field, in this order: the one list bindings
+  /// and reports read (Python's r.stats is this dict).
+  template <class F>
+  void for_each_field(F&& f) const {
+    f("steps", steps), f("residual_evals", residual_evals), f("jacobian_evals", jacobian_evals);
+    f("lu_factorizations", lu_factorizations), f("augmented_factorizations", augmented_factorizations);
+    f("projections", projections), f("newton_iterations", newton_iterations);
+    f("error_test_failures", error_test_failures), f("convergence_failures", convergence_failures);
+    f("element_evaluations", element_evaluations), f("last_order", last_order), f("last_step", last_step);
+    f("wall_time", wall_time), f("formulation", formulation), f("integrator", integrator);
+    f("analysis", analysis), f("kinematic_solves", kinematic_solves), f("events", events);
+    f("impacts", impacts), f("root_evals", root_evals);
+  }
 };
 
 /// One handled event: an impact at a stop, or a switch of a contact force.
