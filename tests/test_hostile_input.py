@@ -159,7 +159,12 @@ def test_a_step_bound_that_needs_too_many_steps_is_refused_up_front():
 
 
 def interrupt_after(seconds):
-    """Sends SIGINT to this process after `seconds` (as Ctrl-C does)."""
+    """Sends SIGINT to this process after `seconds` (as Ctrl-C does). Python
+    turns SIGINT into KeyboardInterrupt only if it was not ignored when the
+    interpreter started (a shell's background job ignores it): install that
+    handler here, so the test does not depend on how pytest was launched."""
+    if signal.getsignal(signal.SIGINT) in (signal.SIG_IGN, signal.SIG_DFL):
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
     return timer
