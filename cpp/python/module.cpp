@@ -606,17 +606,7 @@ PYBIND11_MODULE(_core, m) {
         py::list out;
         for (const Method& x : methods()) {
           py::dict d;
-          d["name"] = x.name;
-          d["formulation"] = x.formulation;
-          d["integrator"] = x.integrator;
-          d["solver"] = x.solver;
-          d["description"] = x.description;
-          d["max_order"] = x.max_order;
-          d["fixed_step"] = x.fixed_step;
-          d["events"] = x.events;
-          d["friction"] = x.friction;
-          d["baumgarte"] = x.baumgarte;
-          d["drifts"] = x.drifts;
+          x.for_each_field([&](const char* name, const auto& value) { d[name] = value; });
           out.append(d);
         }
         return out;

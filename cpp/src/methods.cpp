@@ -20,6 +20,12 @@ struct Entry {
   Runner run;
 };
 
+template <bool adams>
+void run_cvode(const Model& model, const SimulationOptions& o, const ConsistentState& start,
+               const IntegrationPlan& plan, const Record& record, Stats& stats) {
+  integrate_cvode(model, adams, o.baumgarte_alpha, o.baumgarte_beta, start, plan, record, stats);
+}
+
 template <class Formulation>
 void run_ida(const Model& model, const SimulationOptions&, const ConsistentState& start, const IntegrationPlan& plan,
              const Record& record, Stats& stats) {
@@ -52,20 +58,14 @@ const std::vector<Entry>& entries() {
     m = {"projection-bdf", "projection", "bdf", "CVODE",
          "ODE in accelerations from the augmented system, BDF, positions and velocities projected after each step",
          5};
-    add(m, [](const Model& model, const SimulationOptions& o, const ConsistentState& start,
-              const IntegrationPlan& plan, const Record& record, Stats& stats) {
-      integrate_cvode(model, false, o.baumgarte_alpha, o.baumgarte_beta, start, plan, record, stats);
-    });
+    add(m, &run_cvode<false>);
     m = {"projection-adams", "projection", "adams", "CVODE",
          "ODE in accelerations, Adams-Moulton (non-stiff); CVODE cannot project here, so baumgarte terms hold "
          "the constraints",
          12};
     m.baumgarte = true;
     m.drifts = true;
-    add(m, [](const Model& model, const SimulationOptions& o, const ConsistentState& start,
-              const IntegrationPlan& plan, const Record& record, Stats& stats) {
-      integrate_cvode(model, true, o.baumgarte_alpha, o.baumgarte_beta, start, plan, record, stats);
-    });
+    add(m, &run_cvode<true>);
     m = {"ali3p", "ali3p", "trapezoidal", "fixed-step trapezoidal rule",
          "index-3 augmented Lagrangian with mass-orthogonal projections (ALI3-P), fixed step; runs through "
          "singular positions",

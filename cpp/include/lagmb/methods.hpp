@@ -21,6 +21,14 @@ struct Method {
   bool friction = true;     // joint friction (loads from the multipliers)
   bool baumgarte = false;   // takes baumgarte=(alpha, beta)
   bool drifts = false;      // positions are not held on Phi = 0 (only Phi'' = 0)
+
+  /// f(name, field) for every field (lagmb.methods() lists them by these names).
+  template <class F>
+  void for_each_field(F&& f) const {
+    f("name", name), f("formulation", formulation), f("integrator", integrator), f("solver", solver);
+    f("description", description), f("max_order", max_order), f("fixed_step", fixed_step);
+    f("events", events), f("friction", friction), f("baumgarte", baumgarte), f("drifts", drifts);
+  }
 };
 
 /// Every method, in the order users see them (the default first).
