@@ -21,10 +21,12 @@ except ImportError:  # pragma: no cover - older Pythons
 from ..errors import ModelError
 from ..model import Model
 from .lines import Lines
-from .schema import (BODY_REF, BOOL, ELEMENT_TABLES, FUNCTION, FUNCTION_PAIR, MAX_NESTING,
-                     MAX_OUTPUTS, MAX_SCENE_BYTES, MAX_STEPS, METHODS, NUMBER, OUTPUT,
-                     OUTPUT_FILE_TYPES, RENAMED, SIMULATION, SINGULAR, STRING, TABLES, VEC2)
+from .schema import (BODY, BOOL, CHOICES, ELEMENT_TABLES, ELEMENTS, FUNCTION, FUNCTION_PAIR,
+                     INTEGER, JOINT, MAX_NESTING, MAX_OUTPUTS, MAX_SCENE_BYTES, MAX_STEPS,
+                     METHODS, NUMBER, NUMBERS, OUTPUT_FILE_TYPES, SETTINGS, STRING, STRINGS,
+                     TABLES, VEC2)
 from .values import show, toml_type
+
 
 class SceneError(ModelError):
     """A scene file that cannot make a model (a ModelError, so a ValueError).
@@ -110,6 +112,13 @@ def _list_of(where, key, value, check, what):
     return [check(where, key, x) for x in value]
 
 
+def _function_pair(where, key, value):
+    if not isinstance(value, list) or len(value) != 2:
+        raise where.error("must be a pair [fx, fy] of numbers or time functions, got "
+                          f"{toml_type(value)} ({show(value)})", key)
+    return tuple(_time_function(where, key, x) for x in value)
+
+
 def _time_function(where, key, value):
     """A number (kept as a number: the model reads it as a Constant) or an
     inline table {type = ..., ...} made into a TimeFunction."""
@@ -140,6 +149,20 @@ def _time_function(where, key, value):
     return f
 
 
+# kind of value (schema.py) -> its check: (where, key, value) -> the value to use
+_CHECKS = {
+    NUMBER: _number,
+    INTEGER: _integer,
+    STRING: _string,
+    BOOL: _bool,
+    VEC2: _vec2,
+    FUNCTION: _time_function,
+    FUNCTION_PAIR: _function_pair,
+    NUMBERS: lambda where, key, value: _list_of(where, key, value, _number, "numbers"),
+    STRINGS: lambda where, key, value: _list_of(where, key, value, _string, "strings"),
+}
+
+
 def _message(e):
     text = str(e)
     if isinstance(e, KeyError) and e.args:
@@ -159,24 +182,9 @@ def _parameters(method_name):
     return names, required
 
 
-def _kind(method, arg):
-    if arg in BODY_REF:
-        return "body"
-    if arg == "joint":
-        return "joint"
-    if (method, arg) in FUNCTION_PAIR:
-        return "function_pair"
-    if arg in FUNCTION or (method, arg) in FUNCTION:
-        return "function"
-    if arg in VEC2:
-        return "vec2"
-    if arg in NUMBER:
-        return "number"
-    if arg in STRING:
-        return "string"
-    if arg in BOOL:
-        return "bool"
-    return None
+# "[model], [[bodies]], ... and [output]": the tables, for the message about an unknown one
+_HEADERS = [f"[[{t}]]" if t in ELEMENT_TABLES else f"[{t}]" for t in TABLES]
+_TABLE_LIST = ", ".join(_HEADERS[:-1]) + " and " + _HEADERS[-1]
 
 
 def _place(path):
@@ -260,10 +268,9 @@ class Reader:
                     msg = f"unknown table [[{key}]]"
                 else:
                     msg = f"unknown top-level key '{key}'"
-                raise SceneError(f"{msg}; a scene has the tables [model], [[bodies]], "
-                                 "[[particles]], [[joints]], [[drivers]], [[forces]], "
-                                 "[[stops]], [simulation] and [output]", self.path, w.line(), None, key)
-        for key in ("model", "simulation", "output"):
+                raise SceneError(f"{msg}; a scene has the tables {_TABLE_LIST}", self.path,
+                                 w.line(), None, key)
+        for key in SETTINGS:
             if key in data and not isinstance(data[key], dict):
                 raise SceneError(f"'{key}' must be a table [{key}], got {toml_type(data[key])}",
                                  self.path, self.lines.line((key,)), None, key)
@@ -276,10 +283,10 @@ class Reader:
 
         model = self.read_model(data.get("model", {}))
         order = []
-        for table in ELEMENT_TABLES:
+        for rank, table in enumerate(ELEMENT_TABLES):
             for i, entry in enumerate(data.get(table, [])):
                 line = self.lines.line((table, i)) or 0
-                order.append((line, ELEMENT_TABLES.index(table), i, table, entry))
+                order.append((line, rank, i, table, entry))
         order.sort(key=lambda x: x[:3])
         for _, _, i, table, entry in order:
             self.add(model, table, i, entry)
@@ -289,16 +296,23 @@ class Reader:
 
     def read_model(self, table):
         w = self.where(("model",), "[model]")
-        gravity = None
-        for key, value in table.items():
-            if key == "gravity":
-                gravity = _vec2(w, key, value)
-            else:
-                raise w.error("unknown key; [model] has: gravity", key)
+        kwargs = self.read_keys(w, "model", table)
         try:
-            return Model(gravity=gravity)
-        except ModelError as e:
+            return Model(**kwargs)
+        except ModelError as e:  # gravity, its one key, is what it can refuse
             raise w.error(str(e), "gravity") from None
+
+    @staticmethod
+    def read_keys(w, name, table):
+        """The keys of [model], [simulation] or [output], each value checked
+        for its kind."""
+        kinds = SETTINGS[name]
+        out = {}
+        for key, value in table.items():
+            if key not in kinds:
+                raise w.error(f"unknown key; [{name}] has: " + ", ".join(kinds), key)
+            out[key] = _CHECKS[kinds[key]](w, key, value)
+        return out
 
     def label(self, table, i, entry):
         name = entry.get("name")
@@ -320,15 +334,16 @@ class Reader:
                 raise w.error(f"missing required key ({', '.join(types)})", "type")
             typ = _string(w, "type", entry["type"])
             if typ not in types:
-                raise w.error(f"unknown {SINGULAR[table]} type {typ!r}; known: {', '.join(types)}",
-                              "type")
+                raise w.error(f"unknown {ELEMENT_TABLES[table]} type {typ!r}; known: "
+                              f"{', '.join(types)}", "type")
             method_name = types[typ]
         params = _parameters(method_name)
         if params is None:
             raise w.error(f"this lagmb has no Model.{method_name}", "type" if typ else None)
         names, required = params
-        what = f"a {typ.replace('_', ' ')} {SINGULAR[table]}" if typ else f"[[{table}]]"
-        scene_key = {arg: RENAMED.get((method_name, arg), arg) for arg in names}
+        what = f"a {typ.replace('_', ' ')} {ELEMENT_TABLES[table]}" if typ else f"[[{table}]]"
+        renamed = ELEMENTS[method_name].renamed
+        scene_key = {arg: renamed.get(arg, arg) for arg in names}
         arg_of = {k: a for a, k in scene_key.items()}
         for key in entry:
             if key != "type" and key not in arg_of:
@@ -393,8 +408,8 @@ class Reader:
         return f"{what} {name!r} is defined later ({found[0]}, line {found[1]}); {hint}"
 
     def convert(self, w, method, arg, key, value):
-        kind = _kind(method, arg)
-        if kind == "body":
+        kind = ELEMENTS[method].arguments.get(arg)
+        if kind == BODY:
             name = _string(w, key, value)
             if name not in self.bodies:
                 found = self.later(("bodies", "particles"), name)
@@ -404,7 +419,7 @@ class Reader:
                 raise w.error(f"no body named {name!r} (bodies: "
                               f"{', '.join(sorted(self.bodies))})", key)
             return name
-        if kind == "joint":
+        if kind == JOINT:
             name = _string(w, key, value)
             if name not in self.joints:
                 found = self.later(("joints",), name)
@@ -414,35 +429,17 @@ class Reader:
                 known = ", ".join(sorted(self.joints)) or "none"
                 raise w.error(f"no joint named {name!r} (joints: {known})", key)
             return name
-        if kind == "vec2":
-            return _vec2(w, key, value)
-        if kind == "number":
-            return _number(w, key, value)
-        if kind == "string":
-            return _string(w, key, value)
-        if kind == "bool":
-            return _bool(w, key, value)
-        if kind == "function":
-            return _time_function(w, key, value)
-        if kind == "function_pair":
-            if not isinstance(value, list) or len(value) != 2:
-                raise w.error("must be a pair [fx, fy] of numbers or time functions, got "
-                              f"{toml_type(value)} ({show(value)})", key)
-            return tuple(_time_function(w, key, x) for x in value)
-        return value  # an argument this reader does not know: the model checks it
+        if kind is None:
+            return value  # an argument this reader does not know: the model checks it
+        return _CHECKS[kind](w, key, value)
 
     def read_settings(self, table):
         w = self.where(("simulation",), "[simulation]")
-        out = {}
-        for key, value in table.items():
-            kind = SIMULATION.get(key)
-            if kind is None:
-                raise w.error("unknown key; [simulation] has: " + ", ".join(SIMULATION), key)
-            out[key] = _setting(w, key, value, kind)
+        out = self.read_keys(w, "simulation", table)
         if "t_out" in out and "n_out" in out:
             raise w.error("give n_out or t_out, not both", "t_out")
-        for key, allowed in (("analysis", ("auto", "dynamic", "kinematic", "inverse_dynamics")),
-                             ("start", ("given", "equilibrium"))):
+        for key in ("analysis", "start"):
+            allowed = CHOICES["simulation", key]
             if key in out and out[key] not in allowed:
                 raise w.error(f"must be one of {', '.join(map(repr, allowed))}, got {out[key]!r}", key)
         method = self.method(w, out)
@@ -501,12 +498,7 @@ class Reader:
 
     def read_output(self, table):
         w = self.where(("output",), "[output]")
-        out = {}
-        for key, value in table.items():
-            kind = OUTPUT.get(key)
-            if kind is None:
-                raise w.error("unknown key; [output] has: " + ", ".join(OUTPUT), key)
-            out[key] = _setting(w, key, value, kind)
+        out = self.read_keys(w, "output", table)
         for key in ("file", "plot", "animate"):
             if "\0" in out.get(key, ""):  # no file system takes it (open raises ValueError)
                 raise w.error("a file name cannot contain a NUL character", key)
@@ -517,9 +509,10 @@ class Reader:
             reason = problem(out[key]) if key in out else None
             if reason:
                 raise w.error(f"{out[key]!r} {reason}", key)
-        if out.get("reaction_frame", "global") not in ("global", "joint"):
-            raise w.error(f"must be \"global\" or \"joint\", got {out['reaction_frame']!r}",
-                          "reaction_frame")
+        frames = CHOICES["output", "reaction_frame"]
+        if out.get("reaction_frame", frames[0]) not in frames:
+            names = " or ".join(f'"{x}"' for x in frames)
+            raise w.error(f"must be {names}, got {out['reaction_frame']!r}", "reaction_frame")
         joints = [e.name for e in self.elements if e.table in ("joints", "drivers")]
         drivers = [e.name for e in self.elements if e.table == "drivers"]
         for key, known, what in (("reactions", joints, "joint or driver"),
@@ -565,22 +558,6 @@ def animation_format_problem(path):
         return ("must end in one of the animation formats Pillow writes: " + ", ".join(exts)
                 + " (video formats such as .mp4 are not written)")
     return None
-
-
-def _setting(w, key, value, kind):
-    if kind == "number":
-        return _number(w, key, value)
-    if kind == "integer":
-        return _integer(w, key, value)
-    if kind == "string":
-        return _string(w, key, value)
-    if kind == "bool":
-        return _bool(w, key, value)
-    if kind == "numbers":
-        return _list_of(w, key, value, _number, "numbers")
-    if kind == "strings":
-        return _list_of(w, key, value, _string, "strings")
-    raise AssertionError(kind)
 
 
 class SceneElement:

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..handles import name_of
 from .reader import Reader, SceneError
-from .schema import RENAMED, TABLE_OF
+from .schema import ELEMENTS
 from .values import NotWritable, show, toml_key, toml_string, toml_value
 
 
@@ -39,17 +39,18 @@ def scene_text(model, settings=None, output=None):
         out += ["[model]", f"gravity = {toml_value(tuple(gravity))}", ""]
     for method, kwargs in model.elements():
         name = kwargs.get("name")
-        if method not in TABLE_OF:
+        if method not in ELEMENTS:
             raise SceneError(f"cannot write element {name!r}: {method} has no scene table")
-        table, typ = TABLE_OF[method]
+        element = ELEMENTS[method]
+        table = element.table
         out.append(f"[[{table}]]")
-        if typ is not None:
-            out.append(f"type = {toml_string(typ)}")
+        if element.type is not None:
+            out.append(f"type = {toml_string(element.type)}")
         items = sorted(kwargs.items(), key=lambda kv: kv[0] != "name")
         for arg, value in items:
             if value is None:
                 continue
-            key = RENAMED.get((method, arg), arg)
+            key = element.renamed.get(arg, arg)
             try:
                 text = toml_value(value)
             except NotWritable as e:
