@@ -40,7 +40,7 @@ def _parser():
     sub = parser.add_subparsers(dest="command", required=True)
 
     run = sub.add_parser("run", help="simulate a scene file and write its results",
-                         description="Simulate a scene file (TOML, see lagmb.scene) with its "
+                         description="Simulate a scene file (TOML, docs/scene-format.md) with its "
                                      "[simulation] settings; write what -o and [output] ask for.")
     run.add_argument("scene", help="the scene file (.toml)")
     run.add_argument("-o", "--output", metavar="FILE",
