@@ -6,12 +6,12 @@
 # It leaves the normal build and the installed package alone: the sanitized
 # module is built in build/asan (configured by CMake directly, only the _core
 # target and the static lagmb_core it links) and staged in build/asan/pkg/lagmb
-# next to symlinks to python/lagmb/*.py; PYTHONPATH puts that directory ahead
-# of site-packages. Any sanitizer report fails the run: UB aborts
-# (-fno-sanitize-recover), as do out-of-range std::vector/std::array indexing
-# (-D_GLIBCXX_ASSERTIONS; UBSan sees v[i] of a vector that never allocated only
-# as a null reference, and neither it nor ASan sees an index past size() but
-# within capacity()).
+# next to symlinks to python/lagmb/*.py and its subpackages (scene/);
+# PYTHONPATH puts that directory ahead of site-packages. Any sanitizer report
+# fails the run: UB aborts (-fno-sanitize-recover), as do out-of-range
+# std::vector/std::array indexing (-D_GLIBCXX_ASSERTIONS; UBSan sees v[i] of a
+# vector that never allocated only as a null reference, and neither it nor
+# ASan sees an index past size() but within capacity()).
 set -eu
 PYTHON=${1:-python3}
 if [ $# -gt 0 ]; then shift; fi
@@ -40,6 +40,7 @@ t1=$(date +%s)
 so=$(ls $BUILD/_core*.so)
 rm -rf $PKG && mkdir -p $PKG/lagmb
 for f in python/lagmb/*.py; do ln -s "$ROOT/$f" $PKG/lagmb/; done
+for f in python/lagmb/*/__init__.py; do ln -s "$ROOT/${f%/__init__.py}" $PKG/lagmb/; done
 ln -s "$ROOT/$so" $PKG/lagmb/
 
 # Python is not instrumented, so the ASan runtime has to be loaded first,

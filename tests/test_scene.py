@@ -541,3 +541,20 @@ def test_driver_errors(tmp_path):
     check_error(tmp_path, DRIVEN.replace("function = {", "# function = {").replace(
         "[[drivers]]", "[[drivers]]  # <-"), "function", "drivers[0] 'motor'",
         "missing required key")
+
+
+def test_schema_gives_every_model_method_and_argument_a_kind():
+    """lagmb.scene.schema.ELEMENTS lists every add_* / drive_* method of the
+    Model (as handles.KINDS does) with exactly its arguments: the reader
+    takes the keys from the signature and their kinds of value from the
+    schema, so an argument missing there would be passed on unchecked."""
+    import inspect
+
+    from lagmb.handles import KINDS
+    from lagmb.scene.schema import ELEMENTS
+
+    assert set(ELEMENTS) == set(KINDS)
+    for method, element in ELEMENTS.items():
+        params = list(inspect.signature(getattr(mb.Model, method)).parameters)[1:]
+        assert list(element.arguments) == params, method
+        assert set(element.renamed) <= set(params), method

@@ -40,7 +40,7 @@ def _parser():
     sub = parser.add_subparsers(dest="command", required=True)
 
     run = sub.add_parser("run", help="simulate a scene file and write its results",
-                         description="Simulate a scene file (TOML, see lagmb.scene) with its "
+                         description="Simulate a scene file (TOML, docs/scene-format.md) with its "
                                      "[simulation] settings; write what -o and [output] ask for.")
     run.add_argument("scene", help="the scene file (.toml)")
     run.add_argument("-o", "--output", metavar="FILE",
@@ -242,7 +242,8 @@ def _results_format_problem(path):
 
 def _run(args):
     from .progress import Progress
-    from .scene import MAX_OUTPUTS, SceneError, _animation_format_problem, _plot_format_problem
+    from .scene import MAX_OUTPUTS, SceneError
+    from .scene.reader import animation_format_problem, plot_format_problem
 
     scene = _load(args.scene)
     # the options, outputs and formats first: a mistake there costs no run
@@ -253,10 +254,10 @@ def _run(args):
     out = _output(scene, args.output, "-o", "file", _results_format_problem)
     if args.plot or scene.output.get("plot"):
         _need_matplotlib("plotting")
-    plot = _output(scene, args.plot, "--plot", "plot", _plot_format_problem)
+    plot = _output(scene, args.plot, "--plot", "plot", plot_format_problem)
     if args.animate or scene.output.get("animate"):
         _need_matplotlib("animating")
-    animate = _output(scene, args.animate, "--animate", "animate", _animation_format_problem)
+    animate = _output(scene, args.animate, "--animate", "animate", animation_format_problem)
 
     overrides = {}
     if args.t_end is not None:
