@@ -339,7 +339,8 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   } catch (const SimulationError& e) {  // a solve inside a step or restart (friction load, augmented system)
     if (!e.partial.t.empty()) throw;
     finish();
-    throw SimulationError(e.what() + kept(), e.t, std::move(tr));
+    const double t = std::isfinite(e.t) ? e.t : (tr.t.empty() ? o.t0 : tr.t.back());
+    throw SimulationError(e.what() + kept(), t, std::move(tr));
   }
   const std::string output_failure = finish();
   if (!output_failure.empty()) {

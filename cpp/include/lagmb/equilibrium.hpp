@@ -15,7 +15,8 @@
 //   K = H(lam) - Q_q,   H(lam) = (Phi_q^T lam)_q = sum_r lam_r d2Phi_r/dq2,
 //
 // the tangent stiffness (for conservative forces Q = -V_q it is the Hessian
-// of V + lam^T Phi). Redundant rows (dropped at finalize) get lam = 0.
+// of V + lam^T Phi). Redundant rows (found where the
+// assembly lands, redundancy.hpp, and dropped in its Data) get lam = 0.
 // Start: the assembled initial configuration (least change, as for a
 // dynamic run) and the least-squares multipliers of Phi_q^T lam = Q there.
 // Each step is limited to 0.5 rad in any angle and half a model length in

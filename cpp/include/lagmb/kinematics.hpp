@@ -19,13 +19,13 @@
 //      driver efforts) from M a + Phi_q^T lam = Q(q, v, t).
 //
 // At 0 DOF the independent rows of Phi_q (the rows not dropped as redundant
-// at finalize) form a square, invertible n x n matrix: every solve above is
+// where the run starts, redundancy.hpp) form a square, invertible n x n matrix: every solve above is
 // one with its sparse LU (Newton reuses the factorization while it contracts
 // well), and step 4 one with its transpose, lam = Phi_q^-T (Q - M a),
 // refined against the exact Phi_q at the converged q. That is half the size
 // of the augmented matrix [M Phi_q^T; Phi_q 0] a dynamic run factorizes, and
 // needs no regularization (AugmentedSystem remains the fallback when
-// dependent rows appear that finalize did not find). Joint friction, whose
+// dependent rows appear that the start did not show). Joint friction, whose
 // load is lam itself, is solved by fixed point in step 4. Redundant rows read 0 = 0 and
 // get lam = 0. Masses may be 0 for a kinematic-only analysis.
 #pragma once
