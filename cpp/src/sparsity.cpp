@@ -14,6 +14,10 @@ SpMat SparsityPattern::build() const {
   });
   e.erase(std::unique(e.begin(), e.end()), e.end());
   SpMat A(rows_, cols_);
+  // no entries (e.g. a model without bodies): a new matrix is already
+  // compressed, and Eigen 3.4's reserve/makeCompressed read past the end of
+  // an empty outer index there (AddressSanitizer: heap-buffer-overflow)
+  if (e.empty()) return A;
   std::vector<int> per_col(cols_, 0);
   for (const auto& [r, c] : e) per_col[c]++;
   A.reserve(per_col);
