@@ -158,6 +158,10 @@ def test_a_step_bound_that_needs_too_many_steps_is_refused_up_front():
     assert failure.value.result is None or len(failure.value.result.t) < 101
 
 
+# a sanitized build (make test-asan) runs several times slower
+RESPONSE = 3.0 if "libasan" in os.environ.get("LD_PRELOAD", "") else 1.0
+
+
 def interrupt_after(seconds):
     """Sends SIGINT to this process after `seconds` (as Ctrl-C does). Python
     turns SIGINT into KeyboardInterrupt only if it was not ignored when the
@@ -181,7 +185,7 @@ def test_ctrl_c_stops_a_long_run_within_a_second_and_keeps_the_outputs():
         mb.simulate(m, t_end=100.0, rtol=1e-10, n_out=100001)
     waited = time.monotonic() - start - 0.5
     timer.cancel()
-    assert waited < 1.0
+    assert waited < RESPONSE
     partial = stop.value.result
     assert partial is not None and len(partial.t) >= 1
     assert np.all(np.isfinite(partial.q)) and np.all(np.isfinite(partial.lam))
@@ -199,7 +203,7 @@ def test_ctrl_c_stops_a_kinematic_analysis():
     with pytest.raises(KeyboardInterrupt):
         mb.simulate(m, t_end=1000.0, n_out=1_000_000)
     timer.cancel()
-    assert time.monotonic() - start - 0.5 < 1.0
+    assert time.monotonic() - start - 0.5 < RESPONSE
 
 
 @pytest.mark.parametrize("exception", [KeyboardInterrupt, SystemExit])
