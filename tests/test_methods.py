@@ -6,19 +6,13 @@ validation and the work-precision presets (mb.METHODS)."""
 import subprocess
 import sys
 
-import numpy as np
 import pytest
 
 import lagmb as mb
+from builders import seed_pendulum
 
-G = 9.81
 
-
-def pendulum():
-    m = mb.Model(gravity=(0.0, -G))
-    rod = m.add_body("rod", 1.0, 1.0 / 12.0, position=(0.5, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    return m
+pendulum = seed_pendulum  # a uniform rod (1 m, 1 kg) pinned at the origin, horizontal
 
 
 def options_of(method):
