@@ -504,9 +504,9 @@ def test_the_core_model_is_collected_with_its_time_functions():
     import gc
 
     core = _core.Model()
-    body = core.add_body("b", 1.0, 0.1, (0.0, 0.0), 0.0, (0.0, 0.0), 0.0)
+    core.add("body", "b", {"mass": 1.0, "inertia": 0.1})
     f = _core.python_function(lambda t: core and 0.0, "torque 't'", False)
-    core.add_torque("t", body, f)
+    core.add("torque", "t", {"body": 0, "torque": f})
     ref = weakref.ref(core)
     del core, f
     gc.collect()

@@ -206,32 +206,27 @@ def test_bodies_are_drawn_through_their_joints():
     np.testing.assert_allclose(ends["rocker"][1], np.broadcast_to(D, (11, 2)), atol=tol)
 
 
-def test_drawing_uses_model_outline_and_elements_when_the_model_has_them():
-    """A model giving elements() and outline() is drawn from those: a coupler
-    outlined by three points becomes a triangle (closed polygon)."""
-    m, _ = fourbar()
+def test_drawing_uses_the_model_outline_and_attachments():
+    """Bodies are drawn through the points where elements attach (the
+    model's outline, computed by the core): a coupler with a force at a third
+    point becomes a triangle (closed polygon); a revolute attaches to both
+    its bodies at the joint point."""
+    m, (A, B, C, D) = fourbar()
+    apex = 0.5 * (B + C) + np.array([0.0, 0.8])
+    m.add_force("load", "coupler", (0.0, -1.0), point=apex)
     r = mb.simulate(m, t_end=0.1, n_out=3)
-    triangle = [(-1.75, 0.0), (1.75, 0.0), (0.0, 0.8)]
-
-    class WithOutline:
-        bodies = m.bodies
-
-        def elements(self):
-            return [("add_revolute", {"name": "pin", "body_i": "ground", "body_j": "crank",
-                                      "at": (0.0, 0.0)}),
-                    ("drive_joint", {"name": "motor", "joint": "pin", "f": 1.0})]
-
-        def outline(self, body):
-            return triangle if body == "coupler" else []
-
-    r.model = WithOutline()
     scene = plotting._Scene(r)
-    assert scene.joints == ["pin"] and scene.drivers == ["motor"]
-    assert scene.effort_unit("motor") == "N m"
-    np.testing.assert_array_equal(scene.outlines["coupler"], triangle)
-    assert scene.outlines["crank"] == []
+    assert scene.joints == ["A", "B", "C", "D"] and scene.by_role["force"] == ["load"]
+    assert len(scene.outlines["coupler"]) == 3
     local, closed = plotting._shape(scene.outlines["coupler"])
     assert closed and len(local) == 3
+    (bi, pi), (bj, pj) = scene.attachments("add_revolute", {"name": "B"})
+    assert (bi, bj) == ("crank", "coupler")
+    np.testing.assert_allclose(r.point("crank", pi)[0], B, atol=1e-9)
+    np.testing.assert_allclose(r.point("coupler", pj)[0], B, atol=1e-9)
+    ground, support = scene.attachments("add_revolute", {"name": "A"})[0]
+    assert ground == "ground"
+    np.testing.assert_allclose(support, A)
 
 
 @pytest.mark.parametrize("outline, n, closed", [

@@ -217,6 +217,87 @@ struct OwnFunction {
   }
 };
 
+/// A Python value (already checked by lagmb.model) as the registry's Value.
+Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
+  const Param* p = kind.param(key);
+  if (!p) throw ModelError(kind.name + " has no parameter '" + key + "'");
+  if (x.is_none()) return std::monostate{};
+  switch (p->type) {
+    case ParamType::kText:
+    case ParamType::kJoint:
+    case ParamType::kChoice: return x.cast<std::string>();
+    case ParamType::kReal: return x.cast<double>();
+    case ParamType::kVec2: return x.cast<Vec2>();
+    case ParamType::kBool: return x.cast<bool>();
+    case ParamType::kBody: return BodyIndex{x.cast<int>()};
+    case ParamType::kMotion:
+    case ParamType::kFunction: return own(x.cast<TimeFunctionPtr>());
+    case ParamType::kFunctionPair: {
+      auto pair = x.cast<std::pair<TimeFunctionPtr, TimeFunctionPtr>>();
+      return std::make_pair(own(pair.first), own(pair.second));
+    }
+  }
+  return std::monostate{};
+}
+
+/// A default (a number, a vector, a flag or None) as Python has it.
+py::object default_to_python(const Value& v) {
+  if (const double* x = std::get_if<double>(&v)) return py::float_(*x);
+  if (const Vec2* x = std::get_if<Vec2>(&v)) return py::make_tuple(x->x(), x->y());
+  if (const bool* x = std::get_if<bool>(&v)) return py::bool_(*x);
+  if (const std::string* x = std::get_if<std::string>(&v)) return py::str(*x);
+  return py::none();
+}
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::kText: return "text";
+    case ParamType::kReal: return "real";
+    case ParamType::kVec2: return "vec2";
+    case ParamType::kBool: return "bool";
+    case ParamType::kBody: return "body";
+    case ParamType::kJoint: return "joint";
+    case ParamType::kChoice: return "choice";
+    case ParamType::kMotion: return "motion";
+    case ParamType::kFunction: return "function";
+    case ParamType::kFunctionPair: return "function_pair";
+  }
+  return "?";
+}
+
+/// The registry as plain Python data (lagmb.registry reads it).
+py::list kinds_to_python() {
+  py::list out;
+  for (const KindInfo& k : element_kinds()) {
+    py::list params;
+    for (const Param& p : k.params) {
+      py::dict d;
+      d["name"] = p.name;
+      d["type"] = type_name(p.type);
+      d["required"] = p.required;
+      d["default"] = default_to_python(p.fallback);
+      d["unit"] = p.unit;
+      d["doc"] = p.doc;
+      d["choices"] = py::tuple(py::cast(p.choices));
+      d["on"] = py::tuple(py::cast(p.on));
+      d["local"] = p.local;
+      d["keyword_only"] = p.keyword_only;
+      d["scene_key"] = p.scene_key.empty() ? p.name : p.scene_key;
+      params.append(d);
+    }
+    py::dict d;
+    d["name"] = k.name;
+    d["method"] = k.method;
+    d["table"] = k.table;
+    d["type"] = k.type.empty() ? py::object(py::none()) : py::object(py::str(k.type));
+    d["role"] = role_name(k.role);
+    d["doc"] = k.doc;
+    d["params"] = params;
+    out.append(d);
+  }
+  return out;
+}
+
 const ConstraintGroupBase& constraint_group(const Model& model, const std::string& name) {
   const ElementRef& r = model.find(name);
   if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
@@ -280,87 +361,35 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<Model>(m, "Model", py::custom_type_setup(collectable<Model, ModelFunctions>))
       .def(py::init<>())
-      .def("add_body", &Model::add_body, py::arg("name"), py::arg("mass"), py::arg("inertia"),
-           py::arg("position"), py::arg("angle"), py::arg("velocity"), py::arg("angular_velocity"))
-      .def("add_particle", &Model::add_particle, py::arg("name"), py::arg("mass"), py::arg("position"),
-           py::arg("velocity"))
-      .def("add_revolute", &Model::add_revolute, py::arg("name"), py::arg("body_i"), py::arg("body_j"),
-           py::arg("at"))
-      .def("add_revolute_local", &Model::add_revolute_local, py::arg("name"), py::arg("body_i"),
-           py::arg("body_j"), py::arg("s_i"), py::arg("s_j"))
+      .def(
+          "add",
+          [](Model& model, const std::string& kind_name, const std::string& name, const py::dict& values) {
+            const KindInfo& kind = find_kind(kind_name);
+            Args args(kind);
+            for (auto item : values) {
+              const std::string key = py::str(item.first);
+              args.set(key, to_value(kind, key, item.second));
+            }
+            add_element(model, name, args);
+          },
+          py::arg("kind"), py::arg("name"), py::arg("values"))
       .def("set_gravity", &Model::set_gravity, py::arg("g"))
-      .def("add_translational", &Model::add_translational, py::arg("name"), py::arg("body_i"),
-           py::arg("body_j"), py::arg("at"), py::arg("axis"))
-      .def("add_weld", &Model::add_weld, py::arg("name"), py::arg("body_i"), py::arg("body_j"))
-      .def("add_distance", &Model::add_distance, py::arg("name"), py::arg("body_i"), py::arg("point_i"),
-           py::arg("body_j"), py::arg("point_j"), py::arg("length"))
-      .def("add_pin_in_slot", &Model::add_pin_in_slot, py::arg("name"), py::arg("body_i"), py::arg("body_j"),
-           py::arg("at"), py::arg("axis"))
-      .def("add_gear", &Model::add_gear, py::arg("name"), py::arg("body_i"), py::arg("body_j"),
-           py::arg("ratio"), py::arg("center_i"), py::arg("center_j"))
-      .def("add_rack_pinion", &Model::add_rack_pinion, py::arg("name"), py::arg("pinion"), py::arg("rack"),
-           py::arg("radius"), py::arg("axis"))
       .def(
-          "drive_joint",
-          [](Model& model, const std::string& name, const std::string& joint, const TimeFunctionPtr& f) {
-            model.drive_joint(name, joint, own(f));
+          "outline",
+          [](const Model& model, int body) {
+            py::list out;
+            for (const Vec2& p : model.outline(body)) out.append(py::make_tuple(p.x(), p.y()));
+            return out;
           },
-          py::arg("name"), py::arg("joint"), py::arg("f"))
+          py::arg("body"))
       .def(
-          "drive_body",
-          [](Model& model, const std::string& name, int body, const std::string& coordinate,
-             const TimeFunctionPtr& f) { model.drive_body(name, body, coordinate, own(f)); },
-          py::arg("name"), py::arg("body"), py::arg("coordinate"), py::arg("f"))
-      .def(
-          "add_spring_damper",
-          [](Model& model, const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
-             double stiffness, double damping, std::optional<double> free_length, const TimeFunctionPtr& actuator) {
-            model.add_spring_damper(name, body_i, point_i, body_j, point_j, stiffness, damping, free_length,
-                                    own(actuator));
+          "attachments",
+          [](const Model& model, const std::string& element) {
+            py::list out;
+            for (const auto& [body, p] : model.attachments(element)) out.append(py::make_tuple(body, p.x(), p.y()));
+            return out;
           },
-          py::arg("name"), py::arg("body_i"), py::arg("point_i"), py::arg("body_j"), py::arg("point_j"),
-          py::arg("stiffness"), py::arg("damping"), py::arg("free_length"), py::arg("actuator"))
-      .def(
-          "add_rotational_spring_damper",
-          [](Model& model, const std::string& name, int body_i, int body_j, double stiffness, double damping,
-             std::optional<double> free_angle, const TimeFunctionPtr& torque) {
-            model.add_rotational_spring_damper(name, body_i, body_j, stiffness, damping, free_angle, own(torque));
-          },
-          py::arg("name"), py::arg("body_i"), py::arg("body_j"), py::arg("stiffness"), py::arg("damping"),
-          py::arg("free_angle"), py::arg("torque"))
-      .def(
-          "add_force",
-          [](Model& model, const std::string& name, int body, const TimeFunctionPtr& fx, const TimeFunctionPtr& fy,
-             std::optional<Vec2> point, bool local) { model.add_force(name, body, own(fx), own(fy), point, local); },
-          py::arg("name"), py::arg("body"), py::arg("fx"), py::arg("fy"), py::arg("point"), py::arg("local"))
-      .def(
-          "add_torque",
-          [](Model& model, const std::string& name, int body, const TimeFunctionPtr& torque) {
-            model.add_torque(name, body, own(torque));
-          },
-          py::arg("name"), py::arg("body"), py::arg("torque"))
-      .def(
-          "add_joint_friction",
-          [](Model& model, const std::string& name, const std::string& joint, double mu, double viscous,
-             double preload, double pin_radius, double bearing_length, double slip_velocity,
-             double load_smoothing) {
-            JointFrictionParameters p;
-            p.mu = mu;
-            p.viscous = viscous;
-            p.preload = preload;
-            p.pin_radius = pin_radius;
-            p.bearing_length = bearing_length;
-            p.slip_velocity = slip_velocity;
-            p.load_smoothing = load_smoothing;
-            model.add_joint_friction(name, joint, p);
-          },
-          py::arg("name"), py::arg("joint"), py::arg("mu"), py::arg("viscous"), py::arg("preload"),
-          py::arg("pin_radius"), py::arg("bearing_length"), py::arg("slip_velocity"), py::arg("load_smoothing"))
-      .def("add_stop", &Model::add_stop, py::arg("name"), py::arg("joint"), py::arg("lower"), py::arg("upper"),
-           py::arg("restitution"), py::arg("rest_speed"))
-      .def("add_contact", &Model::add_contact, py::arg("name"), py::arg("circle_body"), py::arg("center"),
-           py::arg("radius"), py::arg("line_body"), py::arg("point"), py::arg("direction"), py::arg("stiffness"),
-           py::arg("restitution"), py::arg("friction"), py::arg("slip_velocity"))
+          py::arg("element"))
       .def("finalize", &Model::finalize)
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
@@ -567,6 +596,7 @@ PYBIND11_MODULE(_core, m) {
         const TimeValue v = f.eval(t);
         return py::make_tuple(v.f, v.df, v.ddf);
       });
+  m.def("kinds", &kinds_to_python, "The registry of element kinds (lagmb/registry.hpp) as plain data.");
   m.def("constant", &constant, py::arg("c"));
   m.def("linear", &linear, py::arg("rate"), py::arg("start"));
   m.def("polynomial", &polynomial, py::arg("coeffs"));

@@ -19,11 +19,7 @@ VecX global_row(const Eigen::Matrix<double, 1, 6>& local, const std::array<int, 
   return g;
 }
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+std::string fmt(double x) { return to_text(x); }
 
 }  // namespace
 

@@ -12,13 +12,8 @@ namespace {
 
 bool finite(Vec2 v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-std::string fmt(Vec2 v) { return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ")"; }
+std::string fmt(double x) { return to_text(x); }
+std::string fmt(Vec2 v) { return to_text(v); }
 
 }  // namespace
 
@@ -97,6 +92,30 @@ int Model::add_particle(const std::string& name, double mass, Vec2 position, Vec
   register_name(name, {ElementRef::kBody, index, 0});
   bodies_.push_back(std::move(b));
   return index;
+}
+
+void Model::attach(const std::string& element, int body, Vec2 local) {
+  attachments_[element].emplace_back(body, local);
+  if (body == kGround) return;
+  outlines_.resize(bodies_.size());
+  std::vector<Vec2>& points = outlines_.at(body);
+  for (const Vec2& p : points)
+    if ((p - local).cwiseAbs().sum() <= 1e-12) return;
+  points.push_back(local);
+}
+
+const std::vector<Vec2>& Model::outline(int body) const {
+  static const std::vector<Vec2> none;
+  if (body < 0 || body >= static_cast<int>(bodies_.size()))
+    throw ModelError("outline: no body with index " + std::to_string(body));
+  return body < static_cast<int>(outlines_.size()) ? outlines_[body] : none;
+}
+
+const std::vector<std::pair<int, Vec2>>& Model::attachments(const std::string& element) const {
+  static const std::vector<std::pair<int, Vec2>> none;
+  find(element);  // ModelError if there is no such element
+  auto it = attachments_.find(element);
+  return it == attachments_.end() ? none : it->second;
 }
 
 Vec2 Model::to_local(int body, Vec2 p) const {

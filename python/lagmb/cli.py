@@ -24,6 +24,8 @@ import warnings
 
 from . import __version__
 from .errors import ModelError, SimulationError
+from .registry import BY_METHOD, markdown
+from .scene.schema import ELEMENT_TABLES, ELEMENTS, METHODS
 
 OK, FAILED, USAGE, INTERNAL = 0, 1, 2, 3
 
@@ -58,10 +60,13 @@ def _parser():
                           description="Load a scene and report its size, the rank of its "
                                       "constraint Jacobian at the assembled initial position, "
                                       "its degrees of freedom and any redundant equations; "
-                                      "or, with --methods, the integration methods.")
+                                      "or, with --methods, the integration methods; with --kinds, "
+                                      "the element kinds.")
     info.add_argument("scene", nargs="?", help="the scene file (.toml)")
     info.add_argument("--methods", action="store_true",
                       help="list the integration methods (formulation, integrator, what each supports)")
+    info.add_argument("--kinds", action="store_true",
+                      help="the element kinds and their parameters (Markdown; docs/modelling.md)")
 
     acc = sub.add_parser("accuracy", help="work-precision study of a scene: error against CPU time",
                          description="Run the scene with each method at each tolerance, measure the "
@@ -429,6 +434,11 @@ def _methods_table():
 
 
 def _info(args):
+    if args.kinds:
+        if args.scene or args.methods:
+            raise _Exit(USAGE, "--kinds lists the element kinds of lagmb; give no scene or --methods with it")
+        print(markdown(), end="")
+        return OK
     if args.methods:
         if args.scene:
             raise _Exit(USAGE, "--methods lists the methods of lagmb; give no scene with it")
@@ -456,11 +466,9 @@ def _info(args):
     gravity = getattr(model, "gravity", None)
     say(f"scene: {scene.path}")
     say(f"gravity: {'none' if gravity is None else tuple(float(g) for g in gravity)}")
-    say(f"bodies: {listing('bodies')}")
-    say(f"particles: {listing('particles')}")
-    say(f"joints: {kinds('joints')}")
-    say(f"drivers: {kinds('drivers')}")
-    say(f"forces: {kinds('forces')}")
+    for table in ELEMENT_TABLES:  # from the registry of element kinds
+        typed = any(e.table == table and e.type for e in ELEMENTS.values())
+        say(f"{table}: {kinds(table) if typed else listing(table)}")
     try:
         core = model.compiled()
         say(f"coordinates: {core.n_coordinates}")
@@ -479,7 +487,7 @@ def _info(args):
         say(f"redundant equations: {len(dependent)}")
         owners = []
         for e in scene.elements:
-            if e.table in ("joints", "drivers"):
+            if BY_METHOD[METHODS[e.table][e.type]].role in ("joint", "driver"):  # they have rows
                 row0, rows = core.constraint_rows(e.name)
                 owners.append((row0, rows, e))
         for row in dependent:

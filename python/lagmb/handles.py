@@ -22,31 +22,11 @@ Compare names for that: ``handle.name == "pin"`` (or ``str(handle)``).
 
 from ._checks import show
 from .errors import ModelError
+from .registry import KINDS as _KINDS, ROLES
 
-#: Model method -> (kind, role) of the element it adds. A new add_* or
-#: drive_* method needs its line here (tests/test_handles.py walks them all).
-KINDS = {
-    "add_body": ("body", "body"),
-    "add_particle": ("particle", "body"),
-    "add_revolute": ("revolute", "joint"),
-    "add_translational": ("translational", "joint"),
-    "add_weld": ("weld", "joint"),
-    "add_distance": ("distance", "joint"),
-    "add_pin_in_slot": ("pin_in_slot", "joint"),
-    "add_gear": ("gear", "joint"),
-    "add_rack_pinion": ("rack_pinion", "joint"),
-    "drive_joint": ("joint_driver", "driver"),
-    "drive_body": ("body_driver", "driver"),
-    "add_stop": ("stop", "stop"),
-    "add_contact": ("contact", "contact"),
-    "add_spring_damper": ("spring_damper", "force"),
-    "add_rotational_spring_damper": ("rotational_spring_damper", "force"),
-    "add_force": ("force", "force"),
-    "add_torque": ("torque", "force"),
-    "add_joint_friction": ("joint_friction", "friction"),
-}
-
-ROLES = ("body", "joint", "driver", "force", "friction", "stop", "contact")
+#: Model method -> (kind, role) of the element it adds, from the registry of
+#: element kinds (lagmb.registry).
+KINDS = {k.method: (k.name, k.role) for k in _KINDS}
 
 _ROLE_WORDS = {"body": "a body", "joint": "a joint", "driver": "a driver", "force": "a force",
                "friction": "a joint friction", "stop": "a stop", "contact": "a contact"}

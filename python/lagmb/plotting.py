@@ -10,9 +10,10 @@ changes the backend or the figure registry of the caller's session.
     animate(r, "run.gif", trace=[("coupler", (0.0, 0.5))])
 
 What the pictures show of the model comes from ``model.elements()`` (the
-add_* and drive_* calls with their arguments) and ``model.outline(body)``
-(the local points where joints and forces attach to a body). Models without
-these methods are read from the calls they recorded.
+add_* and drive_* calls with their arguments, counted by the role the
+registry of element kinds gives each), ``model.outline(body)`` and
+``model.attachments(element)`` (the local points where elements attach to
+the bodies, computed by the core).
 """
 
 import math
@@ -21,14 +22,9 @@ import os
 import numpy as np
 
 from .handles import Handle, name_of
+from .registry import BY_METHOD, ROLE_WORDS, ROLES
 
 _HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
-
-# the kinds of model calls, by what they add
-_BODIES = ("add_body", "add_particle")
-_FORCES = ("add_spring_damper", "add_rotational_spring_damper", "add_force", "add_torque",
-           "add_joint_friction")
-_NOT_JOINTS = _BODIES + _FORCES + ("set_gravity",)
 
 _MAX_LINES = 8    # lines (legend entries) per subplot
 _MAX_BODIES = 6   # bodies in the coordinate plots (their legend adds the x / y keys)
@@ -64,140 +60,28 @@ def _save(fig, path, **kwargs):
 # --- what the model holds ------------------------------------------------
 
 
-def _elements(model):
-    """[(kind, kwargs)] of the model's calls, in the order made."""
-    if hasattr(model, "elements"):
-        return [(kind, dict(kwargs)) for kind, kwargs in model.elements()]
-    return _elements_from_calls(model)
-
-
-def _elements_from_calls(model):
-    """The same list read from the calls a model recorded (models that have
-    no elements() yet): bodies and revolutes."""
-    calls = getattr(model, "_calls", None)
-    if not calls:
-        return []
-    bodies = [b.name for b in getattr(model, "bodies", [])]
-
-    def body(index):
-        return "ground" if index < 0 else bodies[index]
-
-    def pair(x):
-        return tuple(float(v) for v in np.asarray(x, dtype=float).reshape(2))
-
-    out = []
-    try:
-        for method, args in calls:
-            if method == "add_body":
-                name, mass, inertia, pos, angle, vel, omega = args
-                out.append((method, {"name": name, "mass": mass, "inertia": inertia,
-                                     "position": pair(pos), "angle": angle,
-                                     "velocity": pair(vel), "angular_velocity": omega}))
-            elif method == "add_particle":
-                name, mass, pos, vel = args
-                out.append((method, {"name": name, "mass": mass, "position": pair(pos),
-                                     "velocity": pair(vel)}))
-            elif method == "add_revolute":
-                name, i, j, at = args
-                out.append((method, {"name": name, "body_i": body(i), "body_j": body(j),
-                                     "at": pair(at)}))
-            elif method == "add_revolute_local":
-                name, i, j, si, sj = args
-                out.append(("add_revolute", {"name": name, "body_i": body(i), "body_j": body(j),
-                                             "local_i": pair(si), "local_j": pair(sj)}))
-    except (ValueError, TypeError, IndexError):
-        return []
-    return out
-
-
-def _rot(angle):
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s], [s, c]])
-
-
 class _Scene:
     """What the model says about a result, for drawing it: the bodies, the
-    joints, drivers and forces, and where each element attaches to its bodies
-    (as points in each body's own axes)."""
+    elements by role (lagmb.registry), and where each element attaches to
+    its bodies (as points in each body's own axes)."""
 
     def __init__(self, result):
         self.result = result
         model = result.model
-        self.elements = _elements(model)
+        self.elements = model.elements()
         self.bodies = [b.name for b in model.bodies]
-        kinds = {}
-        for kind, kw in self.elements:
-            kinds.setdefault(kind, []).append(kw)
-        self.kind_of = {kw.get("name"): kind for kind, kw in self.elements}
-        self.particles = {kw["name"] for kw in kinds.get("add_particle", [])}
-        if not self.elements:  # nothing recorded: ask the core which bodies have no angle
-            for b in self.bodies:
-                try:
-                    if result._core.body_coordinates(b)[1] == 2:
-                        self.particles.add(b)
-                except Exception:  # noqa: BLE001 - a private helper; drawing goes on without
-                    pass
-        self.joints = [kw["name"] for kind, kw in self.elements
-                       if kind.startswith("add_") and kind not in _NOT_JOINTS]
-        self.drivers = [kw["name"] for kind, kw in self.elements if kind.startswith("drive_")]
-        self.forces = [kw["name"] for kind, kw in self.elements if kind in _FORCES]
-        self._pose0 = self._initial_poses()
-        self.outlines = {b: self._outline(model, b) for b in self.bodies}
-
-    # initial configuration: the one that global points of the model refer to
-    def _initial_poses(self):
-        poses = {}
-        for kind, kw in self.elements:
-            if kind in _BODIES:
-                pos = np.asarray(kw.get("position", (0.0, 0.0)), dtype=float).reshape(2)
-                poses[kw["name"]] = (pos, float(kw.get("angle", 0.0)))
-        r = self.result
-        for b in self.bodies:
-            if b not in poses and len(r.t):
-                path = r.body(b)
-                poses[b] = (path.position[0].copy(), float(path.angle[0]))
-        return poses
-
-    def local(self, body, point):
-        """A global point of the initial configuration in the body's own axes."""
-        p = np.asarray(point, dtype=float).reshape(2)
-        if body == "ground" or body not in self._pose0:
-            return p
-        r0, phi0 = self._pose0[body]
-        return _rot(phi0).T @ (p - r0)
+        self.kind_of = {kw["name"]: method for method, kw in self.elements}
+        self.particles = {b.name for b in model.bodies if b.kind == "particle"}
+        self.by_role = {role: [kw["name"] for method, kw in self.elements if BY_METHOD[method].role == role]
+                        for role in ROLES}
+        self.joints, self.drivers = self.by_role["joint"], self.by_role["driver"]
+        self._attachments = {kw["name"]: [(b, np.asarray(p, dtype=float)) for b, p in model.attachments(kw["name"])]
+                             for method, kw in self.elements if BY_METHOD[method].role != "body"}
+        self.outlines = {b: [np.asarray(p, dtype=float) for p in model.outline(b)] for b in self.bodies}
 
     def attachments(self, kind, kw):
         """[(body, local point)] where one element attaches."""
-        out = []
-        bi, bj = kw.get("body_i"), kw.get("body_j")
-        if kw.get("at") is not None:
-            out += [(b, self.local(b, kw["at"])) for b in (bi, bj) if b is not None]
-        if kw.get("local_i") is not None and bi is not None:
-            out.append((bi, np.asarray(kw["local_i"], dtype=float).reshape(2)))
-        if kw.get("local_j") is not None and bj is not None:
-            out.append((bj, np.asarray(kw["local_j"], dtype=float).reshape(2)))
-        if kw.get("point_i") is not None and bi is not None:
-            out.append((bi, self.local(bi, kw["point_i"])))
-        if kw.get("point_j") is not None and bj is not None:
-            out.append((bj, self.local(bj, kw["point_j"])))
-        if kind == "add_force" and kw.get("point") is not None:
-            b = kw.get("body")
-            out.append((b, self.local(b, kw["point"])))
-        if kind == "add_weld" and bi is not None and bj in self._pose0:
-            out += [(bi, self.local(bi, self._pose0[bj][0])), (bj, np.zeros(2))]
-        return out
-
-    def _outline(self, model, body):
-        if hasattr(model, "outline"):
-            pts = [np.asarray(p, dtype=float).reshape(2) for p in model.outline(body)]
-        else:
-            pts = [p for kind, kw in self.elements for b, p in self.attachments(kind, kw)
-                   if b == body]
-        unique = []
-        for p in pts:
-            if all(np.hypot(*(p - u)) > 1e-12 for u in unique):
-                unique.append(p)
-        return unique
+        return self._attachments.get(kw["name"], [])
 
     def path(self, body, local, index=slice(None)):
         """(k, 2) global path of a body's local point (fixed for the ground)."""
@@ -206,12 +90,9 @@ class _Scene:
         return self.result.point(body, local)[index]
 
     def summary(self):
-        parts = [_count(len(self.bodies), "body", "bodies")]
-        for n, one in ((len(self.joints), "joint"), (len(self.drivers), "driver"),
-                       (len(self.forces), "force element")):
-            if n:
-                parts.append(_count(n, one))
-        return ", ".join(parts)
+        """"2 bodies, 1 joint, 1 stop": each role that has elements."""
+        return ", ".join(_count(len(names), *ROLE_WORDS[role]) for role, names in self.by_role.items()
+                         if names or role == "body")
 
     def effort_unit(self, name):
         kind = self.kind_of.get(name)

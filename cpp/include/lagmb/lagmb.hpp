@@ -14,3 +14,4 @@
 #include "lagmb/kinematics.hpp"
 #include "lagmb/equilibrium.hpp"
 #include "lagmb/methods.hpp"
+#include "lagmb/registry.hpp"

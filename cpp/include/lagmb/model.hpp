@@ -12,6 +12,7 @@
 
 #include "lagmb/constraint_group.hpp"
 #include "lagmb/elements/applied_force.hpp"
+#include "lagmb/elements/body.hpp"
 #include "lagmb/elements/contact.hpp"
 #include "lagmb/elements/distance.hpp"
 #include "lagmb/elements/drivers.hpp"
@@ -34,24 +35,6 @@
 #include "lagmb/types.hpp"
 
 namespace lagmb {
-
-/// A planar rigid body (3 coordinates: x, y of the centre of mass and the
-/// angle phi) or a particle (2 coordinates: x, y). SI units.
-struct Body {
-  std::string name;
-  double mass = 1.0;     // kg
-  double inertia = 1.0;  // kg m^2 about the centre of mass (0 for particles)
-  Vec2 position = Vec2::Zero();
-  double angle = 0.0;
-  Vec2 velocity = Vec2::Zero();
-  double angular_velocity = 0.0;
-  bool particle = false;
-  int first_coord = -1;  // set by finalize()
-
-  int n_coordinates() const { return particle ? 2 : 3; }
-  /// Index of the angle coordinate in q, or -1 for a particle.
-  int angle_coord() const { return particle ? -1 : first_coord + 2; }
-};
 
 /// The ground: body index -1, at rest at the origin with angle 0.
 constexpr int kGround = -1;
@@ -150,6 +133,20 @@ class Model {
                    Vec2 point, Vec2 direction, double stiffness, double restitution, double friction = 0.0,
                    double slip_velocity = 1e-4);
 
+  /// Records that `element` attaches at `local` (body axes; global for the
+  /// ground) on `body` (add_element does it for every point parameter).
+  void attach(const std::string& element, int body, Vec2 local);
+  /// Local points where elements attach to a body, in the order added,
+  /// each once: what a drawing of the body joins.
+  const std::vector<Vec2>& outline(int body) const;
+  /// (body, local point) where an element attaches, in the order recorded.
+  const std::vector<std::pair<int, Vec2>>& attachments(const std::string& element) const;
+  /// A global point of the initial configuration in the body's axes.
+  Vec2 local_point(int body, Vec2 global_point) const { return to_local(body, global_point); }
+  /// Initial position of a body's centre of mass (the origin for the ground).
+  Vec2 initial_position(int body) const;
+  double initial_angle(int body) const;
+
   /// Adds a constraint element of any kind (see constraint_group.hpp).
   template <class Kind>
   void add_constraint(Kind element);
@@ -233,8 +230,6 @@ class Model {
   void check_pair(const std::string& name, int body_i, int body_j) const;
   Vec2 to_local(int body, Vec2 global_point) const;
   Vec2 direction_to_local(int body, Vec2 global_direction, const std::string& element) const;
-  double initial_angle(int body) const;
-  Vec2 initial_position(int body) const;
   void require_rigid(int body, const std::string& element, const char* why) const;
   void require_on_particle(int body, Vec2 point, const std::string& element) const;
   ProjectedOffset across_line(int body_i, int body_j, Vec2 at, Vec2 axis, const std::string& element) const;
@@ -253,6 +248,8 @@ class Model {
 
   bool finalized_ = false;
   std::vector<Body> bodies_;
+  std::vector<std::vector<Vec2>> outlines_;  // per body
+  std::map<std::string, std::vector<std::pair<int, Vec2>>> attachments_;  // per element
   std::vector<std::unique_ptr<ConstraintGroupBase>> constraints_;
   std::map<std::type_index, int> constraint_group_of_kind_, force_group_of_kind_;
   std::vector<std::pair<int, int>> constraint_order_;  // (group, index) in insertion order

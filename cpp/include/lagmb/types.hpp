@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,14 @@ inline Mat2 rotation_derivative(double phi) {
   B << -s, -c, c, -s;
   return B;
 }
+
+/// A number as messages show it (shortest form, e.g. 0.001, 1e+308, nan).
+inline std::string to_text(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+inline std::string to_text(const Vec2& v) { return "(" + to_text(v.x()) + ", " + to_text(v.y()) + ")"; }
 
 /// 2-D cross product a x b (the z component).
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }

@@ -2,15 +2,16 @@
 element, the kind of value each key takes, and the limits.
 
 Data only (docs/scene-format.md describes the same for users): the reader
-checks a file against it, the writer names tables and keys by it. An
-element kind is one entry of ELEMENTS, so that a registry of element kinds
-can generate them; the keys an element may have and which it needs are the
-Model method's arguments (the reader asks the method's signature), ELEMENTS
-gives their kinds of value.
+checks a file against it, the writer names tables and keys by it. The
+element tables come from the registry of element kinds (lagmb.registry):
+an element's keys are its kind's parameters, which are also the arguments
+of its Model method (the reader asks the method's signature).
 """
 
 from types import MappingProxyType
 from typing import Mapping, NamedTuple, Optional
+
+from ..registry import KINDS
 
 # The kinds of value a key takes (the reader's checks, reader._CHECKS)
 BODY = "body"  # the name of a body or particle given earlier in the file, or "ground"
@@ -25,12 +26,6 @@ FUNCTION_PAIR = "function_pair"  # [fx, fy], two numbers or time functions
 NUMBERS = "numbers"  # an array of numbers
 STRINGS = "strings"  # an array of strings
 
-# The tables of elements, in the order messages list them, with what one
-# entry is called in messages. Each entry is one call of a Model method,
-# chosen by the table and its `type` key.
-ELEMENT_TABLES = {"bodies": "body", "particles": "particle", "joints": "joint",
-                  "drivers": "driver", "forces": "force", "stops": "stop"}
-
 
 class Element(NamedTuple):
     """One kind of element: its table, the `type` that selects it there
@@ -44,52 +39,27 @@ class Element(NamedTuple):
     renamed: Mapping[str, str] = MappingProxyType({})
 
 
-# Model method -> Element. A table's types are listed in messages in this order.
-ELEMENTS = {
-    "add_body": Element("bodies", None, dict(
-        name=STRING, mass=NUMBER, inertia=NUMBER, position=VEC2, angle=NUMBER, velocity=VEC2,
-        angular_velocity=NUMBER)),
-    "add_particle": Element("particles", None, dict(
-        name=STRING, mass=NUMBER, position=VEC2, velocity=VEC2)),
-    "add_revolute": Element("joints", "revolute", dict(
-        name=STRING, body_i=BODY, body_j=BODY, at=VEC2, local_i=VEC2, local_j=VEC2)),
-    "add_translational": Element("joints", "translational", dict(
-        name=STRING, body_i=BODY, body_j=BODY, at=VEC2, axis=VEC2)),
-    "add_weld": Element("joints", "weld", dict(
-        name=STRING, body_i=BODY, body_j=BODY)),
-    "add_distance": Element("joints", "distance", dict(
-        name=STRING, body_i=BODY, point_i=VEC2, body_j=BODY, point_j=VEC2, length=NUMBER)),
-    "add_pin_in_slot": Element("joints", "pin_in_slot", dict(
-        name=STRING, body_i=BODY, body_j=BODY, at=VEC2, axis=VEC2)),
-    "add_gear": Element("joints", "gear", dict(
-        name=STRING, body_i=BODY, body_j=BODY, ratio=NUMBER, center_i=VEC2, center_j=VEC2)),
-    "add_rack_pinion": Element("joints", "rack_pinion", dict(
-        name=STRING, pinion=BODY, rack=BODY, radius=NUMBER, axis=VEC2)),
-    "drive_joint": Element("drivers", "joint", dict(
-        name=STRING, joint=JOINT, f=FUNCTION), {"f": "function"}),
-    "drive_body": Element("drivers", "body", dict(
-        name=STRING, body=BODY, coordinate=STRING, f=FUNCTION), {"f": "function"}),
-    "add_spring_damper": Element("forces", "spring_damper", dict(
-        name=STRING, body_i=BODY, point_i=VEC2, body_j=BODY, point_j=VEC2, stiffness=NUMBER,
-        damping=NUMBER, free_length=NUMBER, force=FUNCTION)),
-    "add_rotational_spring_damper": Element("forces", "rotational_spring_damper", dict(
-        name=STRING, body_i=BODY, body_j=BODY, stiffness=NUMBER, damping=NUMBER,
-        free_angle=NUMBER, torque=FUNCTION)),
-    "add_force": Element("forces", "force", dict(
-        name=STRING, body=BODY, force=FUNCTION_PAIR, point=VEC2, local=BOOL)),
-    "add_torque": Element("forces", "torque", dict(
-        name=STRING, body=BODY, torque=FUNCTION)),
-    "add_joint_friction": Element("forces", "joint_friction", dict(
-        name=STRING, joint=JOINT, mu=NUMBER, viscous=NUMBER, pin_radius=NUMBER,
-        bearing_length=NUMBER, preload=NUMBER, slip_velocity=NUMBER, load_smoothing=NUMBER)),
-    "add_contact": Element("forces", "contact", dict(
-        name=STRING, circle_body=BODY, center=VEC2, radius=NUMBER, line_body=BODY, point=VEC2,
-        direction=VEC2, stiffness=NUMBER, restitution=NUMBER, friction=NUMBER,
-        slip_velocity=NUMBER)),
-    "add_stop": Element("stops", None, dict(
-        name=STRING, joint=JOINT, lower=NUMBER, upper=NUMBER, restitution=NUMBER,
-        rest_speed=NUMBER)),
-}
+# the kind of value a scene key takes, by the type of its parameter
+_VALUE_OF = {"text": STRING, "real": NUMBER, "vec2": VEC2, "bool": BOOL, "body": BODY, "joint": JOINT,
+             "choice": STRING, "motion": FUNCTION, "function": FUNCTION, "function_pair": FUNCTION_PAIR}
+
+
+def _element(kind):
+    return Element(kind.table, kind.type, {"name": STRING, **{p.name: _VALUE_OF[p.type] for p in kind.params}},
+                   MappingProxyType({p.name: p.scene_key for p in kind.params if p.scene_key != p.name}))
+
+
+def _entry_word(table):
+    return table[:-3] + "y" if table.endswith("ies") else table[:-1]
+
+
+# Model method -> Element, from the registry of element kinds. A table's
+# types are listed in messages in this order.
+ELEMENTS = {kind.method: _element(kind) for kind in KINDS}
+# The tables of elements, in the order messages list them, with what one
+# entry is called in messages. Each entry is one call of a Model method,
+# chosen by the table and its `type` key.
+ELEMENT_TABLES = {e.table: _entry_word(e.table) for e in ELEMENTS.values()}
 
 # The other tables: key -> kind, in the order messages list them. [simulation]
 # holds keyword arguments of mb.simulate ("step": the fixed step of

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/event_group.hpp"
 #include "lagmb/types.hpp"
 
@@ -203,5 +204,8 @@ struct CircleLineContact {
     return a;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/contact.cpp).
+KindInfo contact_kind();
 
 }  // namespace lagmb

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -57,5 +58,8 @@ struct DistanceJoint {
     return E;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/distance.cpp).
+KindInfo distance_kind();
 
 }  // namespace lagmb

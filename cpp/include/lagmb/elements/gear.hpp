@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -86,5 +87,8 @@ struct GearPair {
     return E;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/gear.cpp).
+KindInfo gear_kind();
 
 }  // namespace lagmb

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/types.hpp"
 
@@ -112,5 +113,8 @@ struct TranslationalFriction {
     return N;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/joint_friction.cpp).
+KindInfo joint_friction_kind();
 
 }  // namespace lagmb

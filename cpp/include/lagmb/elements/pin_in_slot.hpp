@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 
 namespace lagmb {
@@ -26,5 +27,8 @@ struct PinInSlotJoint {
   void hessians(const Local6& c, double, Mat6* H) const { H[0] = across.hessian(c); }
   Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/pin_in_slot.cpp).
+KindInfo pin_in_slot_kind();
 
 }  // namespace lagmb

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 
 namespace lagmb {
@@ -52,5 +53,8 @@ struct RackPinion {
     return E;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/rack_pinion.cpp).
+KindInfo rack_pinion_kind();
 
 }  // namespace lagmb

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -58,5 +59,8 @@ struct RevoluteJoint {
     return E;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/revolute.cpp).
+KindInfo revolute_kind();
 
 }  // namespace lagmb

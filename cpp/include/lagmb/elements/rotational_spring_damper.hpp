@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/types.hpp"
 
@@ -42,5 +43,8 @@ struct RotationalSpringDamper {
     return 0.5 * stiffness * e * e;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/rotational_spring_damper.cpp).
+KindInfo rotational_spring_damper_kind();
 
 }  // namespace lagmb

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/event_group.hpp"
 
@@ -65,5 +66,8 @@ struct JointStop {
     return a;
   }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/stop.cpp).
+KindInfo stop_kind();
 
 }  // namespace lagmb

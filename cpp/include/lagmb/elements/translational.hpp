@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 
 namespace lagmb {
@@ -37,5 +38,8 @@ struct TranslationalJoint {
   }
   Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
 };
+
+/// How users add one (registry.hpp; declared in cpp/src/elements/translational.cpp).
+KindInfo translational_kind();
 
 }  // namespace lagmb

@@ -1,0 +1,224 @@
+// The registry of element kinds (registry.hpp): the list, the values given
+// for one element, and the one way every element is added.
+#include "lagmb/registry.hpp"
+
+#include "lagmb/model.hpp"
+
+namespace lagmb {
+
+const char* role_name(Role role) {
+  switch (role) {
+    case Role::kBody: return "body";
+    case Role::kJoint: return "joint";
+    case Role::kDriver: return "driver";
+    case Role::kForce: return "force";
+    case Role::kFriction: return "friction";
+    case Role::kStop: return "stop";
+    case Role::kContact: return "contact";
+  }
+  return "?";
+}
+
+const Param* KindInfo::param(const std::string& key) const {
+  for (const Param& p : params)
+    if (p.name == key) return &p;
+  return nullptr;
+}
+
+const std::vector<KindInfo>& element_kinds() {
+  // the order of scene tables and docs; a new kind adds its line here
+  static const std::vector<KindInfo> kinds = {
+      body_kind(),          particle_kind(),
+      revolute_kind(),      translational_kind(),
+      weld_kind(),          distance_kind(),
+      pin_in_slot_kind(),   gear_kind(),
+      rack_pinion_kind(),   joint_driver_kind(),
+      body_driver_kind(),   spring_damper_kind(),
+      rotational_spring_damper_kind(), force_kind(),
+      torque_kind(),        joint_friction_kind(),
+      contact_kind(),       stop_kind(),
+  };
+  return kinds;
+}
+
+const KindInfo& find_kind(const std::string& name) {
+  std::string known;
+  for (const KindInfo& k : element_kinds()) {
+    if (k.name == name) return k;
+    known += (known.empty() ? "" : ", ") + k.name;
+  }
+  throw ModelError("no element kind '" + name + "'; the kinds are " + known);
+}
+
+namespace {
+
+/// Whether `value` is of the C++ type a parameter of `type` holds.
+bool fits(ParamType type, const Value& value) {
+  switch (type) {
+    case ParamType::kText:
+    case ParamType::kJoint:
+    case ParamType::kChoice: return std::holds_alternative<std::string>(value);
+    case ParamType::kReal: return std::holds_alternative<double>(value);
+    case ParamType::kVec2: return std::holds_alternative<Vec2>(value);
+    case ParamType::kBool: return std::holds_alternative<bool>(value);
+    case ParamType::kBody: return std::holds_alternative<BodyIndex>(value);
+    case ParamType::kMotion:
+    case ParamType::kFunction: return std::holds_alternative<TimeFunctionPtr>(value);
+    case ParamType::kFunctionPair: return std::holds_alternative<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(value);
+  }
+  return false;
+}
+
+template <class T>
+const T& as(const Args& a, const std::string& key) {
+  const Value& v = a.get(key);
+  if (const T* x = std::get_if<T>(&v)) return *x;
+  throw ModelError(a.kind().name + ": '" + key + "' is required");
+}
+
+}  // namespace
+
+void Args::set(const std::string& key, Value value) {
+  const Param* p = kind_->param(key);
+  if (!p) throw ModelError(kind_->name + " has no parameter '" + key + "'");
+  if (!std::holds_alternative<std::monostate>(value) && !fits(p->type, value))
+    throw ModelError(kind_->name + ": '" + key + "' is of the wrong type");
+  if (p->type == ParamType::kChoice && std::holds_alternative<std::string>(value)) {
+    const std::string& word = std::get<std::string>(value);
+    bool known = false;
+    std::string list;
+    for (const std::string& c : p->choices) {
+      known = known || c == word;
+      list += (list.empty() ? "'" : ", '") + c + "'";
+    }
+    if (!known) throw ModelError(kind_->name + ": " + key + " must be one of " + list + ", got '" + word + "'");
+  }
+  values_[key] = std::move(value);
+}
+
+const Value& Args::get(const std::string& key) const {
+  auto it = values_.find(key);
+  if (it != values_.end()) return it->second;
+  const Param* p = kind_->param(key);
+  if (!p) throw ModelError(kind_->name + " has no parameter '" + key + "'");  // a builder's typo
+  return p->fallback;
+}
+
+bool Args::given(const std::string& key) const { return !std::holds_alternative<std::monostate>(get(key)); }
+double Args::real(const std::string& key) const { return as<double>(*this, key); }
+Vec2 Args::vec2(const std::string& key) const { return as<Vec2>(*this, key); }
+bool Args::flag(const std::string& key) const { return as<bool>(*this, key); }
+const std::string& Args::text(const std::string& key) const { return as<std::string>(*this, key); }
+int Args::body(const std::string& key) const { return as<BodyIndex>(*this, key).index; }
+
+std::optional<double> Args::optional_real(const std::string& key) const {
+  if (!given(key)) return std::nullopt;
+  return real(key);
+}
+
+std::optional<Vec2> Args::optional_vec2(const std::string& key) const {
+  if (!given(key)) return std::nullopt;
+  return vec2(key);
+}
+
+TimeFunctionPtr Args::function(const std::string& key) const {
+  if (!given(key)) return nullptr;
+  return as<TimeFunctionPtr>(*this, key);
+}
+
+std::pair<TimeFunctionPtr, TimeFunctionPtr> Args::function_pair(const std::string& key) const {
+  return as<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(*this, key);
+}
+
+void add_element(Model& model, const std::string& name, const Args& args) {
+  const KindInfo& kind = args.kind();
+  for (const Param& p : kind.params)
+    if (p.required && !args.given(p.name))
+      throw ModelError(kind.name + " '" + name + "': '" + p.name + "' is required");
+  kind.build(model, name, args);
+  // where the element's points sit on its bodies: what a drawing of each body joins
+  for (const Param& p : kind.params) {
+    if (p.on.empty() || !args.given(p.name)) continue;
+    for (const std::string& on : p.on) {
+      const int body = args.body(on);
+      model.attach(name, body, p.local ? args.vec2(p.name) : model.local_point(body, args.vec2(p.name)));
+    }
+  }
+}
+
+// --- declaring kinds -------------------------------------------------------
+namespace param {
+
+namespace {
+Param make(const std::string& name, ParamType type, bool required, Value fallback, const std::string& unit,
+           const std::string& doc) {
+  Param p;
+  p.name = name;
+  p.type = type;
+  p.required = required;
+  p.fallback = std::move(fallback);
+  p.unit = unit;
+  p.doc = doc;
+  return p;
+}
+}  // namespace
+
+Param body(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kBody, true, {}, "", doc);
+}
+Param joint(const std::string& doc) { return make("joint", ParamType::kJoint, true, {}, "", doc); }
+Param real(const std::string& name, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kReal, true, {}, unit, doc);
+}
+Param real(const std::string& name, double fallback, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kReal, false, fallback, unit, doc);
+}
+Param optional_real(const std::string& name, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kReal, false, {}, unit, doc);
+}
+Param point(const std::string& name, std::vector<std::string> on, const std::string& doc) {
+  Param p = make(name, ParamType::kVec2, true, {}, "m", doc + " (global, initial configuration)");
+  p.on = std::move(on);
+  return p;
+}
+Param optional_point(const std::string& name, std::vector<std::string> on, const std::string& doc) {
+  Param p = point(name, std::move(on), doc);
+  p.required = false;
+  return p;
+}
+Param local_point(const std::string& name, const std::string& on, const std::string& doc) {
+  Param p = make(name, ParamType::kVec2, false, {}, "m", doc + " (in " + on + "'s axes)");
+  p.on = {on};
+  p.local = true;
+  p.keyword_only = true;
+  return p;
+}
+Param direction(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kVec2, true, {}, "", doc + " (global, initial configuration; any length)");
+}
+Param vec2(const std::string& name, Vec2 fallback, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kVec2, false, fallback, unit, doc);
+}
+Param flag(const std::string& name, bool fallback, const std::string& doc) {
+  return make(name, ParamType::kBool, false, fallback, "", doc);
+}
+Param choice(const std::string& name, std::vector<std::string> choices, const std::string& doc) {
+  Param p = make(name, ParamType::kChoice, true, {}, "", doc);
+  p.choices = std::move(choices);
+  return p;
+}
+Param motion(const std::string& name, const std::string& unit, const std::string& doc,
+             const std::string& scene_key) {
+  Param p = make(name, ParamType::kMotion, true, {}, unit, doc);
+  p.scene_key = scene_key;
+  return p;
+}
+Param function(const std::string& name, const std::string& unit, const std::string& doc, bool required) {
+  return make(name, ParamType::kFunction, required, {}, unit, doc);
+}
+Param function_pair(const std::string& name, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kFunctionPair, true, {}, unit, doc);
+}
+
+}  // namespace param
+}  // namespace lagmb

@@ -1,0 +1,129 @@
+"""The element kinds of lagmb, as the C++ core declares them.
+
+Each kind (a body, a joint, a driver, a force, ...) is declared once, in C++
+next to its equations (cpp/src/elements/*.cpp, lagmb/registry.hpp): its
+name, the Model method that adds it, its scene table and type, its role,
+and each parameter's type, default, unit and one-line documentation. This
+module reads that declaration and derives from it what Python needs: the
+signature and docstring of each Model.add_* / drive_* method, the scene
+schema (lagmb.scene.schema), the roles handles and drawings count, and the
+element reference of docs/modelling.md (``lagmb info --kinds``).
+"""
+
+import inspect
+import textwrap
+from typing import NamedTuple, Optional, Tuple
+
+from . import _core
+
+
+class Param(NamedTuple):
+    """One parameter of an element kind (see registry.hpp, struct Param)."""
+
+    name: str
+    type: str  # text, real, vec2, bool, body, joint, choice, motion, function, function_pair
+    required: bool
+    default: object  # None, a float, a tuple or a bool
+    unit: str
+    doc: str
+    choices: Tuple[str, ...]
+    on: Tuple[str, ...]  # a point: the body parameters it attaches to
+    local: bool  # a point in its body's axes (else global, initial configuration)
+    keyword_only: bool
+    scene_key: str
+
+
+class Kind(NamedTuple):
+    """One element kind: its name, Model method, scene table and type, role,
+    documentation and parameters (after the element's name)."""
+
+    name: str
+    method: str
+    table: str
+    type: Optional[str]
+    role: str
+    doc: str
+    params: Tuple[Param, ...]
+
+    @property
+    def what(self):
+        """How messages call one: "revolute", "joint driver", ..."""
+        return self.name.replace("_", " ")
+
+
+def _read():
+    kinds = []
+    for k in _core.kinds():
+        params = tuple(Param(**p) for p in k.pop("params"))
+        kinds.append(Kind(params=params, **k))
+    return tuple(kinds)
+
+
+#: Every element kind, in the order scenes, messages and docs list them.
+KINDS = _read()
+BY_METHOD = {k.method: k for k in KINDS}
+BY_NAME = {k.name: k for k in KINDS}
+
+#: What an element may stand for, and how a summary counts each role.
+ROLES = ("body", "joint", "driver", "force", "friction", "stop", "contact")
+ROLE_WORDS = {"body": ("body", "bodies"), "joint": ("joint", "joints"), "driver": ("driver", "drivers"),
+              "force": ("force element", "force elements"),
+              "friction": ("joint friction", "joint frictions"), "stop": ("stop", "stops"),
+              "contact": ("contact", "contacts")}
+
+
+def methods_of(*roles):
+    """The Model methods that add elements of the given roles."""
+    return tuple(k.method for k in KINDS if k.role in roles)
+
+
+def signature(kind):
+    """The Python signature of the kind's Model method (self, name, params)."""
+    P = inspect.Parameter
+    out = [P("self", P.POSITIONAL_OR_KEYWORD), P("name", P.POSITIONAL_OR_KEYWORD)]
+    for p in kind.params:
+        how = P.KEYWORD_ONLY if p.keyword_only else P.POSITIONAL_OR_KEYWORD
+        out.append(P(p.name, how) if p.required else P(p.name, how, default=p.default))
+    return inspect.Signature(out)
+
+
+_TYPE_WORDS = {"text": "text", "real": "number", "vec2": "(x, y)", "bool": "bool",
+               "body": "body handle or name", "joint": "joint handle or name", "choice": "one of",
+               "motion": "number, time function or callable t -> (y, dy, ddy)",
+               "function": "number, time function or callable t -> y",
+               "function_pair": "(fx, fy) of numbers or time functions, or a callable t -> (fx, fy)"}
+
+
+def describe(param):
+    """One line: what the parameter takes, its unit and default."""
+    kind = _TYPE_WORDS[param.type]
+    if param.type == "choice":
+        kind += " " + ", ".join(repr(c) for c in param.choices)
+    unit = f", {param.unit}" if param.unit else ""
+    default = "" if param.required else f"; default {param.default!r}"
+    return f"{param.doc} ({kind}{unit}{default})"
+
+
+def docstring(kind):
+    """The docstring of the kind's Model method, from the declaration."""
+    lines = [textwrap.fill(kind.doc, 76), "", "Parameters:", "  name: the element's unique name"]
+    lines += [f"  {p.name}: {describe(p)}" for p in kind.params]
+    lines += ["", "Returns the element's handle."]
+    return "\n".join(lines)
+
+
+def markdown():
+    """The parameter tables of docs/modelling.md ("Element reference")."""
+    out = []
+    for k in KINDS:
+        where = f"[[{k.table}]]" + (f" type = \"{k.type}\"" if k.type else "")
+        out += [f"### `{k.method}` ({k.name}: {k.role}; scene `{where}`)", "", k.doc, "",
+                "| parameter | takes | unit | default | meaning |", "|---|---|---|---|---|"]
+        for p in k.params:
+            takes = _TYPE_WORDS[p.type] + (" " + ", ".join(f"`{c}`" for c in p.choices) if p.choices else "")
+            default = "required" if p.required else f"`{p.default!r}`"
+            key = p.name if p.scene_key == p.name else f"{p.name} (scene: {p.scene_key})"
+            cells = (key, takes, p.unit or "-", default, p.doc)
+            out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+        out.append("")
+    return "\n".join(out)

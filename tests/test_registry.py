@@ -1,0 +1,289 @@
+"""The registry of element kinds (lagmb/registry.hpp, lagmb.registry).
+
+Every kind is declared once, in C++; the Python methods, the scene schema,
+the plotting roles and the element reference of docs/modelling.md are read
+from that declaration. These tests walk the registry: a kind without an
+example model here, a derivative check, a scene round trip, a plotting
+role or a documentation entry fails them.
+"""
+
+import inspect
+import pathlib
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+from lagmb import registry
+from lagmb.scene import load_scene
+from lagmb.scene.schema import ELEMENTS
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+# --- one small model per kind ------------------------------------------------
+
+
+def _pendulum(m=None):
+    m = m or mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", 1.0, 1 / 12, position=(0.5, 0.0))
+    return m, rod
+
+
+def _slider():
+    m = mb.Model(gravity=(0.0, -9.81))
+    block = m.add_body("block", 2.0, 0.1, position=(1.0, 0.0))
+    rail = m.add_translational("rail", m.ground, block, at=(1.0, 0.0), axis=(1.0, 0.0))
+    return m, block, rail
+
+
+def example_body():
+    m, rod = _pendulum()
+    return m, rod
+
+
+def example_particle():
+    m = mb.Model(gravity=(0.0, -9.81))
+    return m, m.add_particle("bob", 0.5, position=(1.0, -1.0), velocity=(0.2, 0.0))
+
+
+def example_revolute():
+    m, rod = _pendulum()
+    return m, m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+
+
+def example_translational():
+    m, _, rail = _slider()
+    return m, rail
+
+
+def example_weld():
+    m, rod = _pendulum()
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    tip = m.add_body("tip", 0.2, 0.01, position=(1.0, 0.0))
+    return m, m.add_weld("glue", rod, tip)
+
+
+def example_distance():
+    m = mb.Model(gravity=(0.0, -9.81))
+    bob = m.add_particle("bob", 1.0, position=(0.0, -1.0))
+    return m, m.add_distance("string", m.ground, (0.0, 0.0), bob, (0.0, -1.0), length=1.0)
+
+
+def example_pin_in_slot():
+    m, rod = _pendulum()
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    follower = m.add_body("follower", 0.3, 0.01, position=(0.5, 0.5))
+    m.add_revolute("hinge", m.ground, follower, at=(0.5, 1.0))
+    return m, m.add_pin_in_slot("slot", rod, follower, at=(0.5, 0.0), axis=(1.0, 0.0))
+
+
+def example_gear():
+    m = mb.Model()
+    a = m.add_body("a", 1.0, 0.1, position=(0.0, 0.0), angular_velocity=1.0)
+    b = m.add_body("b", 1.0, 0.1, position=(0.3, 0.0))
+    m.add_revolute("pa", m.ground, a, at=(0.0, 0.0))
+    m.add_revolute("pb", m.ground, b, at=(0.3, 0.0))
+    return m, m.add_gear("mesh", a, b, ratio=-2.0)
+
+
+def example_rack_pinion():
+    m, block, _ = _slider()
+    pinion = m.add_body("pinion", 0.5, 0.01, position=(1.0, 0.1))
+    m.add_revolute("axle", m.ground, pinion, at=(1.0, 0.1))
+    return m, m.add_rack_pinion("teeth", pinion, block, radius=0.1, axis=(1.0, 0.0))
+
+
+def example_joint_driver():
+    m, rod = _pendulum()
+    pin = m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m, m.drive_joint("motor", pin, mb.Linear(1.0))
+
+
+def example_body_driver():
+    m, block, _ = _slider()
+    return m, m.drive_body("push", block, "x", mb.Harmonic(0.1, 2.0, offset=1.0))
+
+
+def example_spring_damper():
+    m, block, _ = _slider()
+    return m, m.add_spring_damper("spring", m.ground, (0.0, 0.0), block, (1.0, 0.0), stiffness=100.0,
+                                  damping=1.0, free_length=0.8, force=mb.Constant(2.0))
+
+
+def example_rotational_spring_damper():
+    m, rod = _pendulum()
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m, m.add_rotational_spring_damper("coil", m.ground, rod, stiffness=20.0, damping=0.5,
+                                             free_angle=0.1, torque=mb.Linear(0.5))
+
+
+def example_force():
+    m, block, _ = _slider()
+    return m, m.add_force("push", block, (1.0, mb.Linear(2.0)), point=(1.1, 0.0), local=True)
+
+
+def example_torque():
+    m, rod = _pendulum()
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m, m.add_torque("twist", rod, mb.Harmonic(1.0, 3.0))
+
+
+def example_joint_friction():
+    m, rod = _pendulum()
+    pin = m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m, m.add_joint_friction("drag", pin, mu=0.2, viscous=0.01, pin_radius=0.01)
+
+
+def example_contact():
+    m = mb.Model(gravity=(0.0, -9.81))
+    ball = m.add_body("ball", 1.0, 0.004, position=(0.0, 0.11))
+    return m, m.add_contact("floor", ball, (0.0, 0.11), 0.1, m.ground, (0.0, 0.0), (1.0, 0.0),
+                            stiffness=1e6, restitution=0.8, friction=0.3)
+
+
+def example_stop():
+    m, rod = _pendulum()
+    pin = m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m, m.add_stop("limit", pin, lower=-1.0, upper=1.0, restitution=0.5)
+
+
+EXAMPLES = {name[len("example_"):]: f for name, f in dict(globals()).items() if name.startswith("example_")}
+
+#: Where each kind's derivatives (Phi_q, its derivatives, gamma, Q_q, Q_v,
+#: or the event function's gradient) are checked against finite
+#: differences. Kinds in tests/test_derivatives.py are found in its
+#: every_kind() model (test_every_kind_has_a_derivative_check).
+DERIVATIVE_CHECKS = {
+    "joint_friction": "tests/test_friction.py::test_friction_force_derivatives",
+    "contact": "tests/test_contact.py::test_contact_derivatives_match_finite_differences",
+    # a stop's coordinate s(q) and its gradient and Hessian are those of
+    # drive_joint on the same joint (phi_j - phi_i, or the ProjectedOffset of
+    # a slide), checked through every_kind()'s drivers "motor" and "push"
+    "stop": "tests/test_derivatives.py::test_constraint_jacobian",
+}
+
+
+def kinds():
+    return [k.name for k in registry.KINDS]
+
+
+def test_every_kind_has_an_example():
+    assert sorted(EXAMPLES) == sorted(kinds())
+
+
+@pytest.mark.parametrize("kind", kinds())
+def test_example_holds_its_kind_and_runs(kind):
+    """The example adds the element with its kind's method, and the model
+    simulates for a moment (a body alone falls)."""
+    m, handle = EXAMPLES[kind]()
+    assert handle.kind == kind
+    assert handle.role == registry.BY_NAME[kind].role
+    assert (registry.BY_NAME[kind].method, handle.name) in [(meth, kw["name"]) for meth, kw in m.elements()]
+    r = mb.simulate(m, 0.02, n_out=3)
+    assert np.isfinite(r.q).all()
+
+
+@pytest.mark.parametrize("kind", kinds())
+def test_every_kind_has_a_derivative_check(kind):
+    import test_derivatives
+
+    held = {method for method, _ in test_derivatives.every_kind().elements()}
+    if registry.BY_NAME[kind].method in held:
+        return
+    where = DERIVATIVE_CHECKS.get(kind)
+    assert where, f"{kind}: no derivative check (add it to every_kind() in tests/test_derivatives.py)"
+    path, _, test = where.partition("::")
+    source = (ROOT / path.split(":")[0]).read_text()
+    assert not test or f"def {test}(" in source, where
+
+
+@pytest.mark.parametrize("kind", kinds())
+def test_every_kind_round_trips_through_a_scene(kind, tmp_path):
+    m, handle = EXAMPLES[kind]()
+    path = tmp_path / f"{kind}.toml"
+    m.to_scene(path)
+    back = load_scene(path).model
+    assert [meth for meth, _ in back.elements()] == [meth for meth, _ in m.elements()]
+    mine = dict(m.elements())[registry.BY_NAME[kind].method]
+    theirs = dict(back.elements())[registry.BY_NAME[kind].method]
+    for key, value in mine.items():
+        other = theirs[key]
+        if isinstance(value, (mb.TimeFunction,)):
+            assert [value(t) for t in (0.0, 0.3)] == [other(t) for t in (0.0, 0.3)], key
+        elif isinstance(value, tuple) and any(isinstance(v, mb.TimeFunction) for v in value):
+            for a, b in zip(value, other):
+                assert (a(0.3) if callable(a) else a) == (b(0.3) if callable(b) else b), key
+        else:
+            assert value == other, key
+
+
+@pytest.mark.parametrize("kind", kinds())
+def test_every_kind_has_a_plotting_role(kind):
+    """Drawings and summaries count an element by its role: a pendulum with
+    a stop is "1 body, 1 joint, 1 stop"."""
+    from lagmb import plotting
+
+    m, handle = EXAMPLES[kind]()
+    role = registry.BY_NAME[kind].role
+    assert role in registry.ROLES
+    r = mb.simulate(m, 0.01, n_out=2)
+    scene = plotting._Scene(r)
+    assert handle.name in scene.by_role[role]
+    one, many = registry.ROLE_WORDS[role]
+    n = len(scene.by_role[role])
+    assert f"{n} {one if n == 1 else many}" in scene.summary()
+
+
+def test_the_modelling_reference_is_the_registry():
+    """docs/modelling.md ends with the element reference that
+    `python -m lagmb.registry` prints; regenerate it after changing a kind."""
+    text = (ROOT / "docs" / "modelling.md").read_text()
+    begin, end = "<!-- element reference: begin -->\n", "<!-- element reference: end -->"
+    assert begin in text and end in text
+    assert text.split(begin, 1)[1].split(end, 1)[0] == registry.markdown()
+    for k in registry.KINDS:
+        assert f"### `{k.method}`" in text
+
+
+def test_lagmb_info_kinds_prints_the_reference():
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "lagmb", "info", "--kinds"], capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout == registry.markdown()
+    refused = subprocess.run([sys.executable, "-m", "lagmb", "info", "--kinds", "--methods"],
+                             capture_output=True, text=True, timeout=120)
+    assert refused.returncode == 2 and "--kinds" in refused.stderr
+
+
+def test_methods_scene_schema_and_handles_come_from_the_registry():
+    for k in registry.KINDS:
+        method = getattr(mb.Model, k.method)
+        params = list(inspect.signature(method).parameters)
+        assert params == ["self", "name"] + [p.name for p in k.params]
+        assert k.doc.split()[0] in method.__doc__
+        assert ELEMENTS[k.method].table == k.table and ELEMENTS[k.method].type == k.type
+    assert mb.handles.KINDS == {k.method: (k.name, k.role) for k in registry.KINDS}
+
+
+def test_a_pendulum_with_a_stop_is_summarised_by_role():
+    from lagmb import plotting
+
+    m, _ = example_stop()
+    scene = plotting._Scene(mb.simulate(m, 0.01, n_out=2))
+    assert scene.summary() == "1 body, 1 joint, 1 stop"
+
+
+def test_unknown_kind_and_parameter_are_model_errors():
+    from lagmb import _core
+
+    core = _core.Model()
+    with pytest.raises(mb.ModelError, match="no element kind 'hinge'.*revolute"):
+        core.add("hinge", "h", {})
+    with pytest.raises(mb.ModelError, match="body has no parameter 'colour'"):
+        core.add("body", "b", {"mass": 1.0, "inertia": 1.0, "colour": 1.0})
+    with pytest.raises(mb.ModelError, match="body 'b': 'mass' is required"):
+        core.add("body", "b", {"inertia": 1.0})
