@@ -500,15 +500,16 @@ def test_models_whose_callables_refer_to_them_are_collected():
     assert sum(r() is not None for r in alive) == 0
 
 
-def test_the_core_model_is_collected_with_its_time_functions():
+def test_the_core_spec_is_collected_with_its_time_functions():
     import gc
 
-    core = _core.Model()
-    core.add("body", "b", {"mass": 1.0, "inertia": 0.1})
-    f = _core.python_function(lambda t: core and 0.0, "torque 't'", False)
-    core.add("torque", "t", {"body": 0, "torque": f})
-    ref = weakref.ref(core)
-    del core, f
+    spec = _core.ModelSpec()
+    spec.add("body", "b", {"mass": 1.0, "inertia": 0.1})
+    f = _core.python_function(lambda t: spec and 0.0, "torque 't'", False)
+    spec.add("torque", "t", {"body": 0, "torque": f})
+    spec.compile()
+    ref = weakref.ref(spec)
+    del spec, f
     gc.collect()
     assert ref() is None
 

@@ -280,10 +280,11 @@ def test_a_pendulum_with_a_stop_is_summarised_by_role():
 def test_unknown_kind_and_parameter_are_model_errors():
     from lagmb import _core
 
-    core = _core.Model()
+    spec = _core.ModelSpec()
     with pytest.raises(mb.ModelError, match="no element kind 'hinge'.*revolute"):
-        core.add("hinge", "h", {})
+        spec.add("hinge", "h", {})
     with pytest.raises(mb.ModelError, match="body has no parameter 'colour'"):
-        core.add("body", "b", {"mass": 1.0, "inertia": 1.0, "colour": 1.0})
+        spec.add("body", "b", {"mass": 1.0, "inertia": 1.0, "colour": 1.0})
     with pytest.raises(mb.ModelError, match="body 'b': 'mass' is required"):
-        core.add("body", "b", {"inertia": 1.0})
+        spec.add("body", "b", {"inertia": 1.0})
+    assert len(spec) == 0

@@ -202,11 +202,25 @@ void collectable(PyHeapTypeObject* heap_type) {
   };
 }
 
-struct ModelFunctions {
+/// The Python functions of a spec's elements. Only the spec reports them to
+/// the collector: its draft and compiled models share the same function
+/// objects, and a reference reported twice would corrupt the collector's
+/// counts. (A compiled model outliving its spec and caught in a cycle is
+/// therefore not collected.)
+struct SpecFunctions {
   template <class Visit>
-  static void each(const Model& model, Visit&& visit) {
-    for (const auto& f : model.time_functions())
+  static void each(const ModelSpec& spec, Visit&& visit) {
+    auto one = [&](const TimeFunctionPtr& f) {
       if (auto* p = dynamic_cast<PythonTimeFunction*>(f.get())) visit(*p);
+    };
+    for (const ModelSpec::Element& e : spec.elements())
+      for (const auto& [key, value] : e.args.values()) {
+        if (const auto* f = std::get_if<TimeFunctionPtr>(&value)) one(*f);
+        if (const auto* fs = std::get_if<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(&value)) {
+          one(fs->first);
+          one(fs->second);
+        }
+      }
   }
 };
 
@@ -359,38 +373,45 @@ PYBIND11_MODULE(_core, m) {
 
   py::register_exception<EquilibriumError>(m, "EquilibriumError", m.attr("ModelError"));
 
-  py::class_<Model>(m, "Model", py::custom_type_setup(collectable<Model, ModelFunctions>))
+  py::class_<ModelSpec>(m, "ModelSpec", py::custom_type_setup(collectable<ModelSpec, SpecFunctions>))
       .def(py::init<>())
+      .def("__copy__", [](const ModelSpec& spec) { return ModelSpec(spec); })
+      .def("__len__", [](const ModelSpec& spec) { return spec.elements().size(); })
+      .def("set_gravity", &ModelSpec::set_gravity, py::arg("g"))
       .def(
           "add",
-          [](Model& model, const std::string& kind_name, const std::string& name, const py::dict& values) {
+          [](ModelSpec& spec, const std::string& kind_name, const std::string& name, const py::dict& values) {
             const KindInfo& kind = find_kind(kind_name);
             Args args(kind);
             for (auto item : values) {
               const std::string key = py::str(item.first);
               args.set(key, to_value(kind, key, item.second));
             }
-            add_element(model, name, args);
+            spec.add(name, std::move(args));
           },
           py::arg("kind"), py::arg("name"), py::arg("values"))
-      .def("set_gravity", &Model::set_gravity, py::arg("g"))
+      .def("compile", [](const ModelSpec& spec) { return std::const_pointer_cast<Model>(spec.compile()); },
+           "The immutable compiled Model (the same object until the spec changes).")
       .def(
           "outline",
-          [](const Model& model, int body) {
+          [](const ModelSpec& spec, int body) {
             py::list out;
-            for (const Vec2& p : model.outline(body)) out.append(py::make_tuple(p.x(), p.y()));
+            for (const Vec2& p : spec.draft().outline(body)) out.append(py::make_tuple(p.x(), p.y()));
             return out;
           },
           py::arg("body"))
       .def(
           "attachments",
-          [](const Model& model, const std::string& element) {
+          [](const ModelSpec& spec, const std::string& element) {
             py::list out;
-            for (const auto& [body, p] : model.attachments(element)) out.append(py::make_tuple(body, p.x(), p.y()));
+            for (const auto& [body, p] : spec.draft().attachments(element))
+              out.append(py::make_tuple(body, p.x(), p.y()));
             return out;
           },
-          py::arg("element"))
-      .def("finalize", &Model::finalize)
+          py::arg("element"));
+
+  // compiled models come from ModelSpec.compile(); nothing here changes one
+  py::class_<Model, std::shared_ptr<Model>>(m, "Model")
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)

@@ -160,7 +160,7 @@ namespace {
 
 /// AssemblyError if a dropped row's equation at velocity or acceleration
 /// level, residual[row], exceeds tol: its dependent set conflicts.
-void check_dropped(const Model& model, const Redundancy& r, const VecX& residual, double tol, double t,
+void check_dropped(const Redundancy& r, const VecX& residual, double tol, double t,
                    const char* level) {
   for (size_t k = 0; k < r.rows.size(); ++k) {
     const double e = std::abs(residual[r.rows[k]]);
@@ -201,12 +201,12 @@ ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, V
     VecX rv = full.phi_t;
     add_jacobian_times(full, s.v.data(), rv.data());
     const double tol_v = 1e-8 * (1.0 + max_abs(s.v) + max_abs(full.phi_t));
-    check_dropped(model, r, rv, tol_v, t, "velocity");
+    check_dropped(r, rv, tol_v, t, "velocity");
     assemble_gamma(model, full, s.q.data(), s.v.data(), t);
     VecX ra = -full.gamma;
     add_jacobian_times(full, s.qdd.data(), ra.data());
     const double tol_a = 1e-8 * (1.0 + max_abs(s.qdd) + max_abs(full.gamma));
-    check_dropped(model, r, ra, tol_a, t, "acceleration");
+    check_dropped(r, ra, tol_a, t, "acceleration");
     d.element_evaluations += full.element_evaluations;
   }
   if (redundancy) *redundancy = std::move(r);

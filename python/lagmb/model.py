@@ -1,5 +1,6 @@
 """Building a mechanism: bodies, joints, gravity (docs/design.md, section 2.7)."""
 
+import copy
 import numbers
 
 from . import _core
@@ -30,28 +31,31 @@ class Model:
     """
 
     def __init__(self, gravity=None):
-        self._calls = []  # the core calls, replayed when the model changes after a run
-        self._core = _core.Model()
+        self._spec = _core.ModelSpec()  # the description; compiled() gives the immutable core Model
         self._bodies = {}
         self._elements = []  # (method, kwargs) in user terms: see elements()
         self.ground = Body("ground", self, -1)
         self.gravity = None
         if gravity is not None:
             g = _vec2(gravity, "gravity")
-            self._call("set_gravity", g)
+            self._spec.set_gravity(g)
             self.gravity = (float(g[0]), float(g[1]))
 
-    # --- building --------------------------------------------------------
+    def copy(self):
+        """An independent copy to edit: the same bodies and elements (time
+        functions shared), its own handles. Results of this model keep
+        pointing to this one."""
+        other = Model.__new__(Model)
+        other._spec = copy.copy(self._spec)
+        other._bodies = {name: Body(name, other, b.index, b.kind) for name, b in self._bodies.items()}
+        other._elements = [(method, dict(kw)) for method, kw in self._elements]
+        other.ground = Body("ground", other, -1)
+        other.gravity = self.gravity
+        return other
 
-    def _call(self, method, *args):
-        if self._core.finalized:
-            # the compiled model is frozen: start a new one with the same elements
-            core = _core.Model()
-            for m, a in self._calls:
-                getattr(core, m)(*a)
-            self._core = core
-        getattr(self._core, method)(*args)  # validates; raises ModelError
-        self._calls.append((method, args))
+    __copy__ = copy
+
+    # --- building --------------------------------------------------------
 
     def _body(self, body, what, context):
         """(name, index) of a body given by its handle or name (index -1:
@@ -126,7 +130,7 @@ class Model:
         for param in kind.params:
             core[param.name], given[param.name] = self._value(param, values[param.name], what)
         index = len(self._bodies)
-        self._call("add", kind.name, name, core)
+        self._spec.add(kind.name, name, core)  # checks it against the model so far; ModelError
         self._elements.append((kind.method, given))
         if kind.role == "body":
             self._bodies[name] = Body(name, self, index, kind.name)
@@ -136,12 +140,12 @@ class Model:
     # --- questions -------------------------------------------------------
 
     def compiled(self):
-        """The finalized C++ model (built once, rebuilt after changes).
-        Compiling numbers coordinates and rows and builds patterns; it runs
-        no solver (redundant equations are found where a run starts)."""
-        if not self._core.finalized:
-            self._core.finalize()
-        return self._core
+        """The compiled, immutable C++ model (lagmb/spec.hpp): built when
+        first asked and again after the model changes. Compiling numbers
+        coordinates and rows and builds patterns, in time linear in the
+        model's size; it runs no solver (redundant equations are found where
+        a run starts). Several threads may run one compiled model."""
+        return self._spec.compile()
 
     def _warn_redundant(self, rows, stacklevel=3):
         """RedundantConstraintWarning for the rows a run left out."""
@@ -151,7 +155,8 @@ class Model:
 
         from .errors import RedundantConstraintWarning
 
-        named = ", ".join(f"'{self._core.constraint_name_of_row(r)}' (row {r})" for r in rows)
+        core = self.compiled()
+        named = ", ".join(f"'{core.constraint_name_of_row(r)}' (row {r})" for r in rows)
         warnings.warn(RedundantConstraintWarning(
             f"{len(rows)} constraint equation(s) are redundant at the initial configuration: "
             f"{named}. They are dropped: the motion is unique and is simulated, and the "
@@ -173,14 +178,14 @@ class Model:
             return []
         if name not in self._bodies:
             raise ModelError(f"Model.outline: no body named '{name}'")
-        return list(self._core.outline(self._bodies[name].index))
+        return list(self._spec.outline(self._bodies[name].index))
 
     def attachments(self, element):
         """[(body name, local point)] where an element attaches, in the
         order of its parameters (a point on the ground is global)."""
         name = name_of(self, element, registry.ROLES, "element", "Model.attachments")
         names = ["ground"] + list(self._bodies)  # by index + 1
-        return [(names[b + 1], (x, y)) for b, x, y in self._core.attachments(name)]
+        return [(names[b + 1], (x, y)) for b, x, y in self._spec.attachments(name)]
 
     def to_scene(self, path, settings=None, output=None):
         """Write the model (and optional simulation settings) as a TOML scene."""
@@ -239,7 +244,7 @@ class Model:
             return self.compiled().rank(q, 0.0)
 
     def __repr__(self):
-        n_elements = len(self._calls) - len(self._bodies)
+        n_elements = len(self._spec) - len(self._bodies)
         return f"<lagmb.Model: {len(self._bodies)} bodies, {n_elements} other elements>"
 
 

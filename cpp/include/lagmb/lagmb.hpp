@@ -15,3 +15,4 @@
 #include "lagmb/equilibrium.hpp"
 #include "lagmb/methods.hpp"
 #include "lagmb/registry.hpp"
+#include "lagmb/spec.hpp"

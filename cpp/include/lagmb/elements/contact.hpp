@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/event_group.hpp"
+#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {

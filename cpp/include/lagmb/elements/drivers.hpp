@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {

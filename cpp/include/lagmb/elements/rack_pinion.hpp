@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/registry.hpp"
 
 namespace lagmb {
 

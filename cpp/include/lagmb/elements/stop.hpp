@@ -3,9 +3,9 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/event_group.hpp"
+#include "lagmb/registry.hpp"
 
 namespace lagmb {
 

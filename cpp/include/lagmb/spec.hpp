@@ -1,0 +1,61 @@
+// The editable description of a model, compiled into an immutable Model
+// (as MuJoCo separates mjSpec from mjModel).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lagmb/registry.hpp"
+#include "lagmb/types.hpp"
+
+namespace lagmb {
+
+/// A model as the user describes it: gravity and the elements in the order
+/// added, each a kind of the registry, a name and its values. Copying a
+/// spec copies the description (the time functions are shared); a copy is
+/// edited independently.
+///
+/// Each add() is checked at once against what came before (names, bodies,
+/// joints, values), so an error names the element that causes it. compile()
+/// gives the immutable Model that kernels and runs read: coordinates and
+/// rows numbered, patterns and slots built, linear in the model's size and
+/// without solver calls (Model::finalize). The compiled Model is kept until
+/// the spec changes; it is never changed, so several threads may run it.
+/// A spec itself is edited by one thread at a time.
+class ModelSpec {
+ public:
+  struct Element {
+    std::string name;
+    Args args;  // knows its kind
+  };
+
+  /// Uniform gravity g (m/s^2); absent until set.
+  void set_gravity(Vec2 g);
+  const std::optional<Vec2>& gravity() const { return gravity_; }
+
+  /// Adds an element of args.kind() called `name`; ModelError if the
+  /// element does not fit the model so far (the spec is then unchanged).
+  void add(const std::string& name, Args args);
+  const std::vector<Element>& elements() const { return elements_; }
+
+  /// The compiled, immutable model of the spec as it is now.
+  std::shared_ptr<const Model> compile() const;
+
+  /// The model being built, not compiled: the checks of add() and what an
+  /// element attaches to (Model::outline, Model::attachments).
+  const Model& draft() const;
+
+ private:
+  std::shared_ptr<Model> rebuild() const;  // a new open Model from the description
+
+  std::optional<Vec2> gravity_;
+  std::vector<Element> elements_;
+  // The open Model holding every element so far, owned by this spec alone
+  // (a copy or compile() leaves it to be rebuilt), and the compiled model.
+  mutable std::shared_ptr<Model> draft_;
+  mutable std::shared_ptr<const Model> compiled_;
+};
+
+}  // namespace lagmb

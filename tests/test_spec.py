@@ -1,0 +1,108 @@
+"""The editable model and the compiled one (lagmb/spec.hpp).
+
+mb.Model is a description (a ModelSpec in the core); compiled() gives the
+immutable core Model that runs read. These tests check the split: the
+compiled model stays what it was when the description changes, copies are
+independent, a refused element leaves the description as it was, and a run
+never changes the compiled model.
+"""
+
+import copy
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+from lagmb import _core
+
+
+def pendulum():
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", 1.0, 1 / 12, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m
+
+
+def test_compiled_model_is_built_once_and_kept_until_the_model_changes():
+    m = pendulum()
+    first = m.compiled()
+    assert m.compiled() is first
+    assert (first.n_coordinates, first.n_constraints) == (3, 2)
+    tip = m.add_body("tip", 0.5, 0.01, position=(1.5, 0.0))
+    m.add_revolute("elbow", "rod", tip, at=(1.0, 0.0))
+    second = m.compiled()
+    assert second is not first
+    assert (second.n_coordinates, second.n_constraints) == (6, 4)
+    # the first is immutable: what was compiled stays as it was
+    assert (first.n_coordinates, first.n_constraints) == (3, 2)
+    assert first.finalized and second.finalized
+
+
+def test_a_result_keeps_the_model_it_was_computed_with():
+    m = pendulum()
+    r = mb.simulate(m, 0.2, n_out=3)
+    m.add_torque("push", "rod", 1.0)
+    assert r.q.shape == (3, 3)
+    assert np.isfinite(r.reaction("pin")).all()
+
+
+def test_copies_are_edited_independently():
+    m = pendulum()
+    twin = m.copy()
+    assert copy.copy(m).elements() == m.elements()
+    twin.add_torque("push", "rod", 2.0)
+    assert [kw["name"] for _, kw in m.elements()] == ["rod", "pin"]
+    assert [kw["name"] for _, kw in twin.elements()] == ["rod", "pin", "push"]
+    assert twin.bodies[0].model is twin and m.bodies[0].model is m
+    free = mb.simulate(m, 0.5, n_out=2).q[-1]
+    pushed = mb.simulate(twin, 0.5, n_out=2).q[-1]
+    assert pushed[2] > free[2] + 0.1  # the torque of 2 N m turns the copy further up
+    # the original compiles to the same model as before the copy was edited
+    assert m.compiled().n_coordinates == twin.compiled().n_coordinates == 3
+
+
+def test_handles_belong_to_their_copy():
+    m = pendulum()
+    twin = m.copy()
+    with pytest.raises(mb.ModelError, match="handle of another model"):
+        twin.add_torque("push", m.bodies[0], 1.0)
+    twin.add_torque("push", twin.bodies[0], 1.0)
+
+
+def test_a_refused_element_leaves_the_model_as_it_was():
+    m = pendulum()
+    weld = m.add_weld("glue", m.ground, m.add_body("block", 1.0, 0.1, position=(3.0, 0.0)))
+    before = m.compiled()
+    with pytest.raises(mb.ModelError, match="revolute or translational"):
+        m.add_joint_friction("drag", weld, mu=0.1)
+    assert "drag" not in [kw["name"] for _, kw in m.elements()]
+    assert m.compiled() is before  # nothing changed, nothing to recompile
+    m.add_joint_friction("drag", "pin", viscous=0.1)  # the name is still free
+    r = mb.simulate(m, 0.1, n_out=2)
+    assert np.isfinite(r.q).all()
+
+
+def test_the_core_spec_checks_each_element_against_those_before():
+    spec = _core.ModelSpec()
+    spec.add("body", "rod", {"mass": 1.0, "inertia": 0.1})
+    with pytest.raises(mb.ModelError, match="duplicate name 'rod'"):
+        spec.add("body", "rod", {"mass": 1.0, "inertia": 0.1})
+    with pytest.raises(mb.ModelError, match="body index 5 does not exist"):
+        spec.add("revolute", "pin", {"body_i": -1, "body_j": 5, "at": (0.0, 0.0)})
+    spec.add("revolute", "pin", {"body_i": -1, "body_j": 0, "at": (0.0, 0.0)})
+    assert len(spec) == 2
+    twin = copy.copy(spec)
+    twin.add("torque", "push", {"body": 0, "torque": _core.constant(1.0)})
+    assert (len(spec), len(twin)) == (2, 3)
+    assert spec.compile().n_constraints == twin.compile().n_constraints == 2
+
+
+def test_a_run_does_not_change_the_compiled_model():
+    m = pendulum()
+    core = m.compiled()
+    q0, v0 = core.initial_state()
+    mb.simulate(m, 0.3, n_out=2)
+    q1, v1 = core.initial_state()
+    np.testing.assert_array_equal(q0, q1)
+    np.testing.assert_array_equal(v0, v1)
+    assert m.compiled() is core
