@@ -181,7 +181,8 @@ TimeFunctionPtr own(const TimeFunctionPtr& f) {
 }
 
 /// tp_traverse / tp_clear for a class whose C++ object owns Python
-/// functions: `each(self, visit)` calls visit(PythonTimeFunction&) for each.
+/// functions: `Each::each(self, visit)` calls visit(PythonTimeFunction&) for
+/// each, `Each::clear(self)` lets them go.
 template <class T, class Each>
 void collectable(PyHeapTypeObject* heap_type) {
   auto* type = &heap_type->ht_type;
@@ -196,31 +197,47 @@ void collectable(PyHeapTypeObject* heap_type) {
     return out;
   };
   type->tp_clear = [](PyObject* self) -> int {
-    if (py::detail::is_holder_constructed(self))
-      Each::each(py::cast<T&>(py::handle(self)), [](PythonTimeFunction& f) { f.clear(); });
+    if (py::detail::is_holder_constructed(self)) Each::clear(py::cast<T&>(py::handle(self)));
     return 0;
   };
 }
 
-/// The Python functions of a spec's elements. Only the spec reports them to
-/// the collector: its draft and compiled models share the same function
-/// objects, and a reference reported twice would corrupt the collector's
-/// counts. (A compiled model outliving its spec and caught in a cycle is
-/// therefore not collected.)
+template <class Visit>
+void each_python_function(const TimeFunctionPtr& f, Visit&& visit) {
+  if (auto* p = dynamic_cast<PythonTimeFunction*>(f.get())) visit(*p);
+}
+
+/// The Python functions a spec or a compiled model holds. Each Python
+/// object reports the references it owns, once: a spec those of its elements
+/// (its draft model, no Python object, shares them), a compiled model its own
+/// (the binding builds each with own(), a new reference to every callable,
+/// and never shares one between Python objects). A reference reported by an
+/// object that does not own it would let the collector clear a callable
+/// still in use.
 struct SpecFunctions {
   template <class Visit>
   static void each(const ModelSpec& spec, Visit&& visit) {
-    auto one = [&](const TimeFunctionPtr& f) {
-      if (auto* p = dynamic_cast<PythonTimeFunction*>(f.get())) visit(*p);
-    };
     for (const ModelSpec::Element& e : spec.elements())
       for (const auto& [key, value] : e.args.values()) {
-        if (const auto* f = std::get_if<TimeFunctionPtr>(&value)) one(*f);
+        if (const auto* f = std::get_if<TimeFunctionPtr>(&value)) each_python_function(*f, visit);
         if (const auto* fs = std::get_if<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(&value)) {
-          one(fs->first);
-          one(fs->second);
+          each_python_function(fs->first, visit);
+          each_python_function(fs->second, visit);
         }
       }
+  }
+  static void clear(ModelSpec& spec) {
+    each(spec, [](PythonTimeFunction& f) { f.clear(); });
+  }
+};
+
+struct ModelFunctions {
+  template <class Visit>
+  static void each(const Model& model, Visit&& visit) {
+    for (const auto& f : model.time_functions()) each_python_function(f, visit);
+  }
+  static void clear(Model& model) {
+    each(model, [](PythonTimeFunction& f) { f.clear(); });
   }
 };
 
@@ -229,7 +246,24 @@ struct OwnFunction {
   static void each(TimeFunction& f, Visit&& visit) {
     if (auto* p = dynamic_cast<PythonTimeFunction*>(&f)) visit(*p);
   }
+  static void clear(TimeFunction& f) {
+    each(f, [](PythonTimeFunction& p) { p.clear(); });
+  }
 };
+
+/// [(x, y)]: where elements attach to a body (Model::outline).
+py::list outline_of(const Model& model, int body) {
+  py::list out;
+  for (const Vec2& p : model.outline(body)) out.append(py::make_tuple(p.x(), p.y()));
+  return out;
+}
+
+/// [(body index, x, y)]: where an element attaches (Model::attachments).
+py::list attachments_of(const Model& model, const std::string& element) {
+  py::list out;
+  for (const auto& [body, p] : model.attachments(element)) out.append(py::make_tuple(body, p.x(), p.y()));
+  return out;
+}
 
 /// A Python value (already checked by lagmb.model) as the registry's Value.
 Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
@@ -375,7 +409,7 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<ModelSpec>(m, "ModelSpec", py::custom_type_setup(collectable<ModelSpec, SpecFunctions>))
       .def(py::init<>())
-      .def("__copy__", [](const ModelSpec& spec) { return ModelSpec(spec); })
+      .def("__copy__", [](const ModelSpec& spec) { return spec.copied(own); })
       .def("__len__", [](const ModelSpec& spec) { return spec.elements().size(); })
       .def("set_gravity", &ModelSpec::set_gravity, py::arg("g"))
       .def(
@@ -390,28 +424,22 @@ PYBIND11_MODULE(_core, m) {
             spec.add(name, std::move(args));
           },
           py::arg("kind"), py::arg("name"), py::arg("values"))
-      .def("compile", [](const ModelSpec& spec) { return std::const_pointer_cast<Model>(spec.compile()); },
-           "The immutable compiled Model (the same object until the spec changes).")
+      .def("compile", [](const ModelSpec& spec) { return spec.build(own); },
+           "A new compiled Model with its own references to the Python callables (lagmb.Model keeps it "
+           "until the model changes).")
       .def(
           "outline",
-          [](const ModelSpec& spec, int body) {
-            py::list out;
-            for (const Vec2& p : spec.draft().outline(body)) out.append(py::make_tuple(p.x(), p.y()));
-            return out;
-          },
+          [](const ModelSpec& spec, int body) { return outline_of(spec.draft(), body); },
           py::arg("body"))
       .def(
           "attachments",
-          [](const ModelSpec& spec, const std::string& element) {
-            py::list out;
-            for (const auto& [body, p] : spec.draft().attachments(element))
-              out.append(py::make_tuple(body, p.x(), p.y()));
-            return out;
-          },
+          [](const ModelSpec& spec, const std::string& element) { return attachments_of(spec.draft(), element); },
           py::arg("element"));
 
   // compiled models come from ModelSpec.compile(); nothing here changes one
-  py::class_<Model, std::shared_ptr<Model>>(m, "Model")
+  py::class_<Model, std::shared_ptr<Model>>(m, "Model", py::custom_type_setup(collectable<Model, ModelFunctions>))
+      .def("outline", &outline_of, py::arg("body"))
+      .def("attachments", &attachments_of, py::arg("element"))
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)

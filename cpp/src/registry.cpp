@@ -98,7 +98,7 @@ void Args::set(const std::string& key, Value value) {
 
 const Value& Args::get(const std::string& key) const {
   auto it = values_.find(key);
-  if (it != values_.end()) return it->second;
+  if (it != values_.end() && !std::holds_alternative<std::monostate>(it->second)) return it->second;
   const Param* p = kind_->param(key);
   if (!p) throw ModelError(kind_->name + " has no parameter '" + key + "'");  // a builder's typo
   return p->fallback;

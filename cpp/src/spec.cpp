@@ -12,17 +12,36 @@ void ModelSpec::set_gravity(Vec2 g) {
   compiled_.reset();
 }
 
-std::shared_ptr<Model> ModelSpec::rebuild() const {
+namespace {
+
+/// The values of `args` with `copy` applied to each time function.
+Args with_copies(const Args& args, const ModelSpec::FunctionCopy& copy) {
+  if (!copy) return args;
+  Args out(args.kind());
+  for (const auto& [key, value] : args.values()) {
+    if (const auto* f = std::get_if<TimeFunctionPtr>(&value))
+      out.set(key, copy(*f));
+    else if (const auto* fs = std::get_if<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(&value))
+      out.set(key, std::make_pair(copy(fs->first), copy(fs->second)));
+    else
+      out.set(key, value);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<Model> ModelSpec::rebuild(const FunctionCopy& copy) const {
   auto model = std::make_shared<Model>();
   if (gravity_) model->set_gravity(*gravity_);
-  for (const Element& e : elements_) add_element(*model, e.name, e.args);
+  for (const Element& e : elements_) add_element(*model, e.name, with_copies(e.args, copy));
   return model;
 }
 
 void ModelSpec::add(const std::string& name, Args args) {
-  // build into an open model of our own (a copy of this spec, or compile(),
-  // may hold the one we had)
-  if (!draft_ || draft_.use_count() > 1 || draft_->finalized()) draft_ = rebuild();
+  // build into an open model of our own (a copy of this spec may share the one we had)
+  if (!draft_ || draft_.use_count() > 1) draft_ = rebuild();
+  elements_.reserve(elements_.size() + 1);  // so that nothing throws after the draft took the element
   try {
     add_element(*draft_, name, args);
   } catch (...) {
@@ -33,21 +52,26 @@ void ModelSpec::add(const std::string& name, Args args) {
   compiled_.reset();
 }
 
-std::shared_ptr<const Model> ModelSpec::compile() const {
-  if (!compiled_) {
-    std::shared_ptr<Model> model =
-        draft_ && draft_.use_count() == 1 && !draft_->finalized() ? std::move(draft_) : rebuild();
-    draft_.reset();
-    model->finalize();
-    compiled_ = std::move(model);
-  }
+std::shared_ptr<Model> ModelSpec::build(const FunctionCopy& copy) const {
+  std::shared_ptr<Model> model = rebuild(copy);
+  model->finalize();
+  return model;
+}
+
+std::shared_ptr<const Model> ModelSpec::compile(const FunctionCopy& copy) const {
+  if (!compiled_) compiled_ = build(copy);
   return compiled_;
 }
 
+ModelSpec ModelSpec::copied(const FunctionCopy& copy) const {
+  ModelSpec out;
+  out.gravity_ = gravity_;
+  for (const Element& e : elements_) out.elements_.push_back({e.name, with_copies(e.args, copy)});
+  return out;
+}
+
 const Model& ModelSpec::draft() const {
-  if (draft_) return *draft_;
-  if (compiled_) return *compiled_;
-  draft_ = rebuild();
+  if (!draft_) draft_ = rebuild();
   return *draft_;
 }
 

@@ -32,6 +32,7 @@ class Model:
 
     def __init__(self, gravity=None):
         self._spec = _core.ModelSpec()  # the description; compiled() gives the immutable core Model
+        self._compiled = None  # kept until the description changes
         self._bodies = {}
         self._elements = []  # (method, kwargs) in user terms: see elements()
         self.ground = Body("ground", self, -1)
@@ -47,6 +48,7 @@ class Model:
         pointing to this one."""
         other = Model.__new__(Model)
         other._spec = copy.copy(self._spec)
+        other._compiled = self._compiled
         other._bodies = {name: Body(name, other, b.index, b.kind) for name, b in self._bodies.items()}
         other._elements = [(method, dict(kw)) for method, kw in self._elements]
         other.ground = Body("ground", other, -1)
@@ -82,7 +84,9 @@ class Model:
         parameter, checked by its declared type (lagmb.registry)."""
         label = f"{what}: {param.name}"
         if value is None and not param.required:
-            return None, None
+            value = param.default  # None means "not given"
+            if value is None:
+                return None, None
         t = param.type
         if t == "real":
             x = _number(value, label)
@@ -131,6 +135,7 @@ class Model:
             core[param.name], given[param.name] = self._value(param, values[param.name], what)
         index = len(self._bodies)
         self._spec.add(kind.name, name, core)  # checks it against the model so far; ModelError
+        self._compiled = None
         self._elements.append((kind.method, given))
         if kind.role == "body":
             self._bodies[name] = Body(name, self, index, kind.name)
@@ -145,7 +150,9 @@ class Model:
         coordinates and rows and builds patterns, in time linear in the
         model's size; it runs no solver (redundant equations are found where
         a run starts). Several threads may run one compiled model."""
-        return self._spec.compile()
+        if self._compiled is None:
+            self._compiled = self._spec.compile()
+        return self._compiled
 
     def _warn_redundant(self, rows, stacklevel=3):
         """RedundantConstraintWarning for the rows a run left out."""

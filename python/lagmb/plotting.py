@@ -11,9 +11,9 @@ changes the backend or the figure registry of the caller's session.
 
 What the pictures show of the model comes from ``model.elements()`` (the
 add_* and drive_* calls with their arguments, counted by the role the
-registry of element kinds gives each), ``model.outline(body)`` and
-``model.attachments(element)`` (the local points where elements attach to
-the bodies, computed by the core).
+registry of element kinds gives each) and, from the compiled model the run
+used, the local points where elements attach to the bodies (the core's
+outline and attachments).
 """
 
 import math
@@ -67,17 +67,21 @@ class _Scene:
 
     def __init__(self, result):
         self.result = result
-        model = result.model
-        self.elements = model.elements()
-        self.bodies = [b.name for b in model.bodies]
+        model, core = result.model, result._core  # core: the compiled model the run used
+        # what the run simulated: the model may have grown since
+        self.elements = [(method, kw) for method, kw in model.elements() if core.has(kw["name"])]
+        bodies = [b for b in model.bodies if core.has(b.name)]
+        self.bodies = [b.name for b in bodies]
         self.kind_of = {kw["name"]: method for method, kw in self.elements}
-        self.particles = {b.name for b in model.bodies if b.kind == "particle"}
+        self.particles = {b.name for b in bodies if b.kind == "particle"}
         self.by_role = {role: [kw["name"] for method, kw in self.elements if BY_METHOD[method].role == role]
                         for role in ROLES}
         self.joints, self.drivers = self.by_role["joint"], self.by_role["driver"]
-        self._attachments = {kw["name"]: [(b, np.asarray(p, dtype=float)) for b, p in model.attachments(kw["name"])]
-                             for method, kw in self.elements if BY_METHOD[method].role != "body"}
-        self.outlines = {b: [np.asarray(p, dtype=float) for p in model.outline(b)] for b in self.bodies}
+        names = ["ground"] + self.bodies  # by core body index + 1
+        self._attachments = {
+            kw["name"]: [(names[b + 1], np.array([x, y])) for b, x, y in core.attachments(kw["name"])]
+            for method, kw in self.elements if BY_METHOD[method].role != "body"}
+        self.outlines = {b.name: [np.asarray(p, dtype=float) for p in core.outline(b.index)] for b in bodies}
 
     def attachments(self, kind, kw):
         """[(body, local point)] where one element attaches."""

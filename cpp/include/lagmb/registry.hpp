@@ -87,11 +87,12 @@ struct KindInfo {
 class Args {
  public:
   explicit Args(const KindInfo& kind) : kind_(&kind) {}
+  Args(KindInfo&&) = delete;  // the kind must outlive its values: one of element_kinds()
   /// Sets a parameter; ModelError if the kind has no such parameter or the
   /// value's type does not fit it.
   void set(const std::string& key, Value value);
 
-  const Value& get(const std::string& key) const;  // given, else the default
+  const Value& get(const std::string& key) const;  // given (not None), else the default
   bool given(const std::string& key) const;        // not None
   double real(const std::string& key) const;
   std::optional<double> optional_real(const std::string& key) const;

@@ -2,6 +2,7 @@
 // (as MuJoCo separates mjSpec from mjModel).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,20 +41,35 @@ class ModelSpec {
   void add(const std::string& name, Args args);
   const std::vector<Element>& elements() const { return elements_; }
 
-  /// The compiled, immutable model of the spec as it is now.
-  std::shared_ptr<const Model> compile() const;
+  /// Gives a compiled model its own copy of a time function (the Python
+  /// binding: its own reference to a Python callable, so that the collector
+  /// sees each reference once); null: the functions are shared.
+  using FunctionCopy = std::function<TimeFunctionPtr(const TimeFunctionPtr&)>;
+
+  /// The compiled, immutable model of the spec as it is now: built from the
+  /// description (with `copy` applied to its time functions), finalized,
+  /// and kept until the spec changes.
+  std::shared_ptr<const Model> compile(const FunctionCopy& copy = nullptr) const;
+
+  /// A new compiled model, not kept (compile() keeps one): the Python
+  /// binding gives each compiled model its own Python owner.
+  std::shared_ptr<Model> build(const FunctionCopy& copy = nullptr) const;
+
+  /// The description with `copy` applied to its time functions.
+  ModelSpec copied(const FunctionCopy& copy) const;
 
   /// The model being built, not compiled: the checks of add() and what an
   /// element attaches to (Model::outline, Model::attachments).
   const Model& draft() const;
 
  private:
-  std::shared_ptr<Model> rebuild() const;  // a new open Model from the description
+  // a new open Model from the description
+  std::shared_ptr<Model> rebuild(const FunctionCopy& copy = nullptr) const;
 
   std::optional<Vec2> gravity_;
   std::vector<Element> elements_;
-  // The open Model holding every element so far, owned by this spec alone
-  // (a copy or compile() leaves it to be rebuilt), and the compiled model.
+  // The open Model holding every element so far (checks each add; a copy of
+  // the spec shares it until either adds), and the compiled model.
   mutable std::shared_ptr<Model> draft_;
   mutable std::shared_ptr<const Model> compiled_;
 };
