@@ -220,11 +220,11 @@ def test_drawing_uses_the_model_outline_and_attachments():
     assert len(scene.outlines["coupler"]) == 3
     local, closed = plotting._shape(scene.outlines["coupler"])
     assert closed and len(local) == 3
-    (bi, pi), (bj, pj) = scene.attachments("add_revolute", {"name": "B"})
+    (bi, pi), (bj, pj) = scene.attachments("B")
     assert (bi, bj) == ("crank", "coupler")
     np.testing.assert_allclose(r.point("crank", pi)[0], B, atol=1e-9)
     np.testing.assert_allclose(r.point("coupler", pj)[0], B, atol=1e-9)
-    ground, support = scene.attachments("add_revolute", {"name": "A"})[0]
+    ground, support = scene.attachments("A")[0]
     assert ground == "ground"
     np.testing.assert_allclose(support, A)
 

@@ -83,9 +83,9 @@ class _Scene:
             for method, kw in self.elements if BY_METHOD[method].role != "body"}
         self.outlines = {b.name: [np.asarray(p, dtype=float) for p in core.outline(b.index)] for b in bodies}
 
-    def attachments(self, kind, kw):
+    def attachments(self, name):
         """[(body, local point)] where one element attaches."""
-        return self._attachments.get(kw["name"], [])
+        return self._attachments.get(name, [])
 
     def path(self, body, local, index=slice(None)):
         """(k, 2) global path of a body's local point (fixed for the ground)."""
@@ -426,7 +426,7 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     for kind, kw in scene.elements:
         if kind == "add_translational":
             sliders.add(kw.get("body_j"))
-        att = scene.attachments(kind, kw)
+        att = scene.attachments(kw["name"])
         if kind == "add_revolute" and att:
             moving = [(b, p) for b, p in att if b != "ground"]
             fixed = [p for b, p in att if b == "ground"]

@@ -72,10 +72,6 @@ ROLE_WORDS = {"body": ("body", "bodies"), "joint": ("joint", "joints"), "driver"
               "contact": ("contact", "contacts")}
 
 
-def methods_of(*roles):
-    """The Model methods that add elements of the given roles."""
-    return tuple(k.method for k in KINDS if k.role in roles)
-
 
 def signature(kind):
     """The Python signature of the kind's Model method (self, name, params)."""
