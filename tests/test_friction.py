@@ -322,7 +322,7 @@ def test_bad_input_is_a_clear_error():
     m.add_translational("slide", m.ground, cart, at=(3.0, 0.0), axis=(1.0, 0.0))
     with pytest.raises(ValueError, match="'nope' is not a joint of this model"):
         m.add_joint_friction("f1", "nope", mu=0.1, pin_radius=0.01)
-    with pytest.raises(ValueError, match="'weld' is a weld; friction needs a revolute or translational"):
+    with pytest.raises(ValueError, match="'weld' is a weld, not a revolute or translational joint"):
         m.add_joint_friction("f2", "weld", mu=0.1)
     with pytest.raises(ValueError, match="'rod' is a body"):
         m.add_joint_friction("f3", "rod", mu=0.1)

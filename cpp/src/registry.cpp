@@ -4,6 +4,8 @@
 
 #include "lagmb/model.hpp"
 
+#include <cmath>
+
 namespace lagmb {
 
 const char* role_name(Role role) {
@@ -61,7 +63,8 @@ bool fits(ParamType type, const Value& value) {
     case ParamType::kReal: return std::holds_alternative<double>(value);
     case ParamType::kVec2: return std::holds_alternative<Vec2>(value);
     case ParamType::kBool: return std::holds_alternative<bool>(value);
-    case ParamType::kBody: return std::holds_alternative<BodyIndex>(value);
+    case ParamType::kBody:  // an index, or a name (from C++)
+      return std::holds_alternative<BodyIndex>(value) || std::holds_alternative<std::string>(value);
     case ParamType::kMotion:
     case ParamType::kFunction: return std::holds_alternative<TimeFunctionPtr>(value);
     case ParamType::kFunctionPair: return std::holds_alternative<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(value);
@@ -130,15 +133,64 @@ std::pair<TimeFunctionPtr, TimeFunctionPtr> Args::function_pair(const std::strin
   return as<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(*this, key);
 }
 
-void add_element(Model& model, const std::string& name, const Args& args) {
-  const KindInfo& kind = args.kind();
-  for (const Param& p : kind.params)
-    if (p.required && !args.given(p.name))
-      throw ModelError(kind.name + " '" + name + "': '" + p.name + "' is required");
-  kind.build(model, name, args);
-  // where the element's points sit on its bodies: what a drawing of each body joins
+namespace {
+
+bool finite(const Value& v) {
+  if (const double* x = std::get_if<double>(&v)) return std::isfinite(*x);
+  if (const Vec2* p = std::get_if<Vec2>(&v)) return std::isfinite(p->x()) && std::isfinite(p->y());
+  return true;
+}
+
+/// The values with each body given by name replaced by its index; ModelError
+/// for a body index or name the model does not have.
+Args resolved(const Model& model, const std::string& label, const Args& args) {
+  Args out = args;
+  for (const Param& p : args.kind().params) {
+    if (p.type != ParamType::kBody || !args.given(p.name)) continue;
+    const Value& v = args.get(p.name);
+    int index = kGround;
+    if (const auto* name = std::get_if<std::string>(&v)) {
+      if (*name != "ground") {
+        if (!model.has(*name)) throw ModelError(label + ": " + p.name + " '" + *name + "' is not a body of this model");
+        const ElementRef& r = model.find(*name);
+        if (r.type != ElementRef::kBody)
+          throw ModelError(label + ": " + p.name + " '" + *name + "' is " + model.describe(*name) + ", not a body");
+        index = r.group;
+      }
+    } else {
+      index = std::get<BodyIndex>(v).index;
+      if (index < kGround || index >= int(model.bodies().size()))
+        throw ModelError(label + ": " + p.name + ": body index " + std::to_string(index) + " does not exist");
+    }
+    out.set(p.name, BodyIndex{index});
+  }
+  return out;
+}
+
+}  // namespace
+
+void add_element(Model& model, const std::string& name, const Args& given) {
+  const KindInfo& kind = given.kind();
+  const std::string label = kind.name + " '" + name + "'";
   for (const Param& p : kind.params) {
-    if (p.on.empty() || !args.given(p.name)) continue;
+    if (p.required && !given.given(p.name)) throw ModelError(label + ": '" + p.name + "' is required");
+    const Value& v = given.get(p.name);
+    if (!finite(v))
+      throw ModelError(label + ": " + p.name + " is not finite: " +
+                       (std::holds_alternative<double>(v) ? to_text(std::get<double>(v)) : to_text(std::get<Vec2>(v))));
+  }
+  const Args args = resolved(model, label, given);
+  kind.build(model, name, args);
+  for (const Param& p : kind.params) {
+    if (!args.given(p.name)) continue;
+    // the functions of time: their breakpoints are the run's
+    if (p.type == ParamType::kMotion || p.type == ParamType::kFunction) model.use_time_function(args.function(p.name));
+    if (p.type == ParamType::kFunctionPair) {
+      auto [f, g] = args.function_pair(p.name);
+      model.use_time_function(f);
+      model.use_time_function(g);
+    }
+    // where the element's points sit on its bodies: what a drawing of each body joins
     for (const std::string& on : p.on) {
       const int body = args.body(on);
       model.attach(name, body, p.local ? args.vec2(p.name) : model.local_point(body, args.vec2(p.name)));

@@ -52,6 +52,12 @@ void ModelSpec::add(const std::string& name, Args args) {
   compiled_.reset();
 }
 
+void ModelSpec::add(const std::string& kind, const std::string& name, std::initializer_list<Given> values) {
+  Args args(find_kind(kind));
+  for (const Given& g : values) args.set(g.key, g.value);
+  add(name, std::move(args));
+}
+
 std::shared_ptr<Model> ModelSpec::build(const FunctionCopy& copy) const {
   std::shared_ptr<Model> model = rebuild(copy);
   model->finalize();

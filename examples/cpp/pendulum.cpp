@@ -6,18 +6,19 @@
 
 int main() {
   using namespace lagmb;
-  Model model;
-  model.set_gravity(Vec2(0.0, -9.81));
-  const int rod = model.add_body("rod", 1.0, 1.0 / 12.0, Vec2(0.5, 0.0));
-  model.add_revolute("pin", kGround, rod, Vec2(0.0, 0.0));
-  model.finalize();
+  // the description, checked as it grows; then the immutable model runs read
+  ModelSpec spec;
+  spec.set_gravity(Vec2(0.0, -9.81));
+  spec.add("body", "rod", {{"mass", 1.0}, {"inertia", 1.0 / 12.0}, {"position", Vec2(0.5, 0.0)}});
+  spec.add("revolute", "pin", {{"body_i", "ground"}, {"body_j", "rod"}, {"at", Vec2(0.0, 0.0)}});
+  const std::shared_ptr<const Model> model = spec.compile();
 
   SimulationOptions options;
   options.t_end = 1.0;
   options.rtol = 1e-8;
   options.atol = 1e-10;
   options.n_out = 3;
-  const Trajectory tr = simulate(model, options);
+  const Trajectory tr = simulate(*model, options);
 
   // the multipliers are the force the pin puts on the ground side (body i);
   // the rod gets the opposite: -lam

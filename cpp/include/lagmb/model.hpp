@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <typeindex>
@@ -46,92 +47,59 @@ struct ElementRef {
   int index;  // element within its group
 };
 
-/// A mechanism. Build it with the add_* calls, then finalize(): coordinates,
-/// constraint rows, sparsity patterns and element slots are fixed there, and
-/// the model no longer changes. Kernels take (const Model&, Data&).
+/// A mechanism, compiled from a ModelSpec (spec.hpp): the bodies and the
+/// elements grouped by kind. The builders of element kinds add to it; then
+/// finalize() fixes coordinates, constraint rows, sparsity patterns and
+/// element slots, and the model no longer changes. Kernels take
+/// (const Model&, Data&); several runs may read one Model at once.
 class Model {
  public:
   Model() = default;
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
 
-  /// Adds a rigid body; returns its index.
-  int add_body(const std::string& name, double mass, double inertia, Vec2 position,
-               double angle = 0.0, Vec2 velocity = Vec2::Zero(), double angular_velocity = 0.0);
-  /// Adds a point mass with two coordinates; returns its index.
-  int add_particle(const std::string& name, double mass, Vec2 position,
-                   Vec2 velocity = Vec2::Zero());
-
-  /// Revolute joint at a global point `at`, given in the initial configuration.
-  void add_revolute(const std::string& name, int body_i, int body_j, Vec2 at);
-  /// Revolute joint at local points s_i on body i and s_j on body j.
-  void add_revolute_local(const std::string& name, int body_i, int body_j, Vec2 s_i, Vec2 s_j);
-
-  /// Translational joint: body j slides along the line through `at` with
-  /// direction `axis` (global, initial configuration), fixed in body i.
-  void add_translational(const std::string& name, int body_i, int body_j, Vec2 at, Vec2 axis);
-  /// Weld: body j keeps its initial pose relative to body i.
-  void add_weld(const std::string& name, int body_i, int body_j);
-  /// Massless link of length L (default: the initial distance) between two points.
-  void add_distance(const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
-                    std::optional<double> length = std::nullopt);
-  /// The point `at` of body j stays on the line through `at` along `axis`, fixed in body i.
-  void add_pin_in_slot(const std::string& name, int body_i, int body_j, Vec2 at, Vec2 axis);
-  /// Gear pair: omega_j / omega_i = ratio while the centres stay fixed
-  /// (negative: external, positive: internal). Centres default to the
-  /// bodies' centres of mass; a ground gear needs its centre.
-  void add_gear(const std::string& name, int body_i, int body_j, double ratio,
-                std::optional<Vec2> center_i = std::nullopt, std::optional<Vec2> center_j = std::nullopt);
-  /// Pinion (rolling on its centre of mass) on a rack whose pitch line runs along
-  /// `axis`; the pinion lies to the left of the axis.
-  void add_rack_pinion(const std::string& name, int pinion, int rack, double radius, Vec2 axis);
-
-  /// Prescribes a revolute's relative angle phi_j - phi_i, or a translational's
-  /// slide displacement (0 in the initial configuration), as f(t).
-  void drive_joint(const std::string& name, const std::string& joint, TimeFunctionPtr f);
-  /// Prescribes a body's coordinate "x", "y" or "angle" as f(t).
-  void drive_body(const std::string& name, int body, const std::string& coordinate, TimeFunctionPtr f);
-
   /// Uniform gravity acceleration g (m/s^2) on every body.
   void set_gravity(Vec2 g);
-  /// Spring-damper-actuator between two points (see spring_damper.hpp);
-  /// free length defaults to the initial distance; actuator may be null.
-  void add_spring_damper(const std::string& name, int body_i, Vec2 point_i, int body_j, Vec2 point_j,
-                         double stiffness, double damping, std::optional<double> free_length = std::nullopt,
-                         TimeFunctionPtr actuator = nullptr);
-  /// Rotational spring-damper-actuator; free angle defaults to the initial relative angle.
-  void add_rotational_spring_damper(const std::string& name, int body_i, int body_j, double stiffness,
-                                    double damping, std::optional<double> free_angle = std::nullopt,
-                                    TimeFunctionPtr torque = nullptr);
-  /// Force (fx, fy) at `point` (global, initial; default: centre of mass),
-  /// in global axes or, if local, in the body's axes.
-  void add_force(const std::string& name, int body, TimeFunctionPtr fx, TimeFunctionPtr fy,
-                 std::optional<Vec2> point = std::nullopt, bool local = false);
-  /// Pure torque on a body.
-  void add_torque(const std::string& name, int body, TimeFunctionPtr torque);
 
-  /// Friction in a revolute or translational joint (elements/joint_friction.hpp):
-  /// Coulomb with the load from the joint's own reaction, plus viscous.
-  void add_joint_friction(const std::string& name, const std::string& joint,
-                          const JointFrictionParameters& parameters);
+  // --- for the builders of element kinds (registry.hpp) -----------------
+  // Users add elements through a ModelSpec (spec.hpp); each kind's builder
+  // (cpp/src/elements/<kind>.cpp) checks its values and adds the element
+  // here, which numbers it and records its name.
 
-  /// Stop (limit) on a revolute's relative angle phi_j - phi_i or a
-  /// translational's slide displacement (0 in the initial configuration), as
-  /// for drive_joint: lower <= s <= upper (either may be absent), impacts with
-  /// Newton's restitution e in [0, 1]; rebounds slower than rest_speed (rad/s
-  /// or m/s) while the motion presses on the limit stop the run (resting
-  /// contact is not modelled). See elements/stop.hpp.
-  void add_stop(const std::string& name, const std::string& joint, std::optional<double> lower,
-                std::optional<double> upper, double restitution, double rest_speed = 1e-3);
-
-  /// Contact between a circle (centre `center`, global, initial; `radius`) on
-  /// circle_body and the line through `point` along `direction` (global,
-  /// initial) on line_body: Hunt-Crossley normal force k d^1.5 (1 + 8 (1 - e)
-  /// / (5 e) d' / v_impact), Coulomb friction mu regularized below
-  /// slip_velocity (m/s). See elements/contact.hpp.
-  void add_contact(const std::string& name, int circle_body, Vec2 center, double radius, int line_body,
-                   Vec2 point, Vec2 direction, double stiffness, double restitution, double friction = 0.0,
-                   double slip_velocity = 1e-4);
+  /// Adds a body or particle (its values already checked); returns its index.
+  int add_body(Body body);
+  /// Adds a constraint element of any kind (see constraint_group.hpp).
+  template <class Kind>
+  void add_constraint(Kind element);
+  /// Adds a force element of any kind (see force_group.hpp).
+  template <class Kind>
+  void add_force_element(Kind element);
+  /// Adds an event element of any kind (see event_group.hpp); an element
+  /// that is also a force is added as a force first and not named again.
+  template <class Kind>
+  void add_event_element(Kind element, bool named = true);
+  /// Adds a joint-friction element of any kind (see friction_group.hpp).
+  template <class Kind>
+  void add_friction(Kind element);
+  /// Gives an element of a kind with per-run state its offset in
+  /// Data::run_state (once: a contact is both a force and an event element).
+  template <class Kind>
+  void reserve_run_state(Kind& element) {
+    if constexpr (run_state_size_v<Kind> > 0)
+      if (element.run_state < 0) {
+        element.run_state = run_state_size_;
+        run_state_size_ += run_state_size_v<Kind>;
+      }
+  }
+  /// Notes a time function of a driver or force (for breakpoints()).
+  void use_time_function(const TimeFunctionPtr& f);
+  /// ModelError naming `element` unless both bodies exist and differ.
+  void check_pair(const std::string& element, int body_i, int body_j) const;
+  /// The constraint element of kind Kind called `name`, or null.
+  template <class Kind>
+  const Kind* find_constraint(const std::string& name) const;
+  /// What `name` is, for messages: "a body", "a weld", ...
+  std::string describe(const std::string& name) const;
 
   /// Records that `element` attaches at `local` (body axes; global for the
   /// ground) on `body` (add_element does it for every point parameter).
@@ -142,20 +110,10 @@ class Model {
   /// (body, local point) where an element attaches, in the order recorded.
   const std::vector<std::pair<int, Vec2>>& attachments(const std::string& element) const;
   /// A global point of the initial configuration in the body's axes.
-  Vec2 local_point(int body, Vec2 global_point) const { return to_local(body, global_point); }
+  Vec2 local_point(int body, Vec2 global_point) const;
   /// Initial position of a body's centre of mass (the origin for the ground).
   Vec2 initial_position(int body) const;
   double initial_angle(int body) const;
-
-  /// Adds a constraint element of any kind (see constraint_group.hpp).
-  template <class Kind>
-  void add_constraint(Kind element);
-  /// Adds a force element of any kind (see force_group.hpp).
-  template <class Kind>
-  void add_force_element(Kind element);
-  /// Adds an event element of any kind (see event_group.hpp).
-  template <class Kind>
-  void add_event_element(Kind element, bool named = true);
 
   /// Freezes the model: numbers coordinates and rows, builds patterns and
   /// slots. Linear in the model's size, and no solver runs here: which
@@ -227,24 +185,6 @@ class Model {
   void require_open(const std::string& what) const;
   void check_new_name(const std::string& name) const;
   void register_name(const std::string& name, ElementRef ref);
-  void check_pair(const std::string& name, int body_i, int body_j) const;
-  Vec2 to_local(int body, Vec2 global_point) const;
-  Vec2 direction_to_local(int body, Vec2 global_direction, const std::string& element) const;
-  void require_rigid(int body, const std::string& element, const char* why) const;
-  void require_on_particle(int body, Vec2 point, const std::string& element) const;
-  ProjectedOffset across_line(int body_i, int body_j, Vec2 at, Vec2 axis, const std::string& element) const;
-  template <class Kind>
-  const Kind* find_constraint(const std::string& name) const;
-  /// Gives an element of a kind with per-run state its offset in
-  /// Data::run_state (once: a contact is both a force and an event element).
-  template <class Kind>
-  void reserve_run_state(Kind& element) {
-    if constexpr (run_state_size_v<Kind> > 0)
-      if (element.run_state < 0) {
-        element.run_state = run_state_size_;
-        run_state_size_ += run_state_size_v<Kind>;
-      }
-  }
 
   bool finalized_ = false;
   std::vector<Body> bodies_;
@@ -259,15 +199,10 @@ class Model {
   std::vector<const ConstraintGroupBase*> time_dependent_;
   std::vector<const ForceGroupBase*> state_dependent_;
   std::vector<TimeFunctionPtr> time_functions_;  // of drivers and forces, for breakpoints
-  void note(const TimeFunctionPtr& f) {
-    if (f && std::find(time_functions_.begin(), time_functions_.end(), f) == time_functions_.end())
-      time_functions_.push_back(f);
-  }
+  std::set<const TimeFunction*> time_function_set_;  // the same, to add each once
   std::map<std::string, ElementRef> names_;
   std::vector<std::unique_ptr<FrictionGroupBase>> frictions_;
   std::map<std::type_index, int> friction_group_of_kind_;
-  template <class Kind>
-  void add_friction(Kind element);
 
   int n_ = 0, m_ = 0;
   VecX mass_diag_;

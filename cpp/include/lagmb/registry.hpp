@@ -71,7 +71,7 @@ class Args;
 /// One element kind.
 struct KindInfo {
   std::string name;    // "revolute"
-  std::string method;  // the Model method that adds one: "add_revolute"
+  std::string method;  // the Python Model method that adds one: "add_revolute"
   std::string table;   // its scene table: "joints"
   std::string type;    // its `type` there ("" if the table has this one kind)
   Role role = Role::kJoint;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
@@ -25,6 +26,23 @@ namespace lagmb {
 /// without solver calls (Model::finalize). The compiled Model is kept until
 /// the spec changes; it is never changed, so several threads may run it.
 /// A spec itself is edited by one thread at a time.
+/// One value given by its parameter's name, for ModelSpec::add from C++:
+/// {"mass", 1.0}, {"at", Vec2(0, 0)}, {"body_j", "rod"}. Bodies are given
+/// by name ("ground" for the ground).
+struct Given {
+  Given(std::string key, double x) : key(std::move(key)), value(x) {}
+  Given(std::string key, int x) : key(std::move(key)), value(double(x)) {}
+  Given(std::string key, Vec2 x) : key(std::move(key)), value(x) {}
+  Given(std::string key, bool x) : key(std::move(key)), value(x) {}
+  Given(std::string key, const char* text) : key(std::move(key)), value(std::string(text)) {}
+  Given(std::string key, std::string text) : key(std::move(key)), value(std::move(text)) {}
+  Given(std::string key, TimeFunctionPtr f) : key(std::move(key)), value(std::move(f)) {}
+  Given(std::string key, TimeFunctionPtr fx, TimeFunctionPtr fy)
+      : key(std::move(key)), value(std::make_pair(std::move(fx), std::move(fy))) {}
+  std::string key;
+  Value value;
+};
+
 class ModelSpec {
  public:
   struct Element {
@@ -39,6 +57,9 @@ class ModelSpec {
   /// Adds an element of args.kind() called `name`; ModelError if the
   /// element does not fit the model so far (the spec is then unchanged).
   void add(const std::string& name, Args args);
+  /// The same with the kind by name (registry.hpp) and its values:
+  ///   spec.add("revolute", "pin", {{"body_i", "ground"}, {"body_j", "rod"}, {"at", Vec2(0, 0)}});
+  void add(const std::string& kind, const std::string& name, std::initializer_list<Given> values);
   const std::vector<Element>& elements() const { return elements_; }
 
   /// Gives a compiled model its own copy of a time function (the Python

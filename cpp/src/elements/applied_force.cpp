@@ -1,9 +1,32 @@
 // Applied forces and torques: how users add them (registry.hpp).
 #include "lagmb/elements/applied_force.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_force(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  AppliedForce e = build::joining<AppliedForce>(m, name, a.body("body"), kGround);
+  if (const std::optional<Vec2> point = a.optional_vec2("point")) {
+    build::require_on_particle(m, e.body_i, *point, label);
+    e.s = m.local_point(e.body_i, *point);
+  }
+  std::tie(e.fx, e.fy) = a.function_pair("force");
+  e.local = a.flag("local");
+  m.add_force_element(std::move(e));
+}
+
+void build_torque(Model& m, const std::string& name, const Args& a) {
+  AppliedTorque e = build::joining<AppliedTorque>(m, name, a.body("body"), kGround);
+  build::require_rigid(m, e.body_i, build::label(a, name), "cannot take a torque");
+  e.torque = a.function("torque");
+  m.add_force_element(std::move(e));
+}
+
+}  // namespace
 
 KindInfo force_kind() {
   return {"force", "add_force", "forces", "force", Role::kForce,
@@ -15,10 +38,7 @@ KindInfo force_kind() {
               param::optional_point("point", {"body"}, "where it acts (default: the centre of mass)"),
               param::flag("local", false, "components in the body's axes, turning with it"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            auto [fx, fy] = a.function_pair("force");
-            m.add_force(name, a.body("body"), fx, fy, a.optional_vec2("point"), a.flag("local"));
-          }};
+          build_force};
 }
 
 KindInfo torque_kind() {
@@ -28,9 +48,7 @@ KindInfo torque_kind() {
               param::body("body", "the body turned"),
               param::function("torque", "N m", "the torque: a number, time function or callable", true),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_torque(name, a.body("body"), a.function("torque"));
-          }};
+          build_torque};
 }
 
 }  // namespace lagmb

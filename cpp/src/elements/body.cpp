@@ -1,9 +1,47 @@
 // Bodies and particles: how users add them (registry.hpp).
 #include "lagmb/elements/body.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+// 0 is allowed (a massless body, for kinematic analysis); simulate refuses it in a dynamic run
+void require_mass(double x, const std::string& element, const char* what) {
+  if (!(x >= 0))
+    throw ModelError(element + ": " + what + " must be positive (or 0: massless, kinematics only) and finite, got " +
+                     to_text(x));
+}
+
+void build_body(Model& m, const std::string& name, const Args& a) {
+  const std::string label = "body '" + name + "'";
+  Body b;
+  b.name = name;
+  b.mass = a.real("mass");
+  b.inertia = a.real("inertia");
+  require_mass(b.mass, label, "mass");
+  require_mass(b.inertia, label, "inertia");
+  b.position = a.vec2("position");
+  b.angle = a.real("angle");
+  b.velocity = a.vec2("velocity");
+  b.angular_velocity = a.real("angular_velocity");
+  m.add_body(std::move(b));
+}
+
+void build_particle(Model& m, const std::string& name, const Args& a) {
+  Body b;
+  b.name = name;
+  b.mass = a.real("mass");
+  require_mass(b.mass, "particle '" + name + "'", "mass");
+  b.inertia = 0.0;
+  b.position = a.vec2("position");
+  b.velocity = a.vec2("velocity");
+  b.particle = true;
+  m.add_body(std::move(b));
+}
+
+}  // namespace
 
 KindInfo body_kind() {
   return {"body", "add_body", "bodies", "", Role::kBody,
@@ -16,10 +54,7 @@ KindInfo body_kind() {
               param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity of the centre of mass"),
               param::real("angular_velocity", 0.0, "rad/s", "initial angular velocity"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_body(name, a.real("mass"), a.real("inertia"), a.vec2("position"), a.real("angle"), a.vec2("velocity"),
-                       a.real("angular_velocity"));
-          }};
+          build_body};
 }
 
 KindInfo particle_kind() {
@@ -31,9 +66,7 @@ KindInfo particle_kind() {
               param::point("position", {}, "initial position"),
               param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_particle(name, a.real("mass"), a.vec2("position"), a.vec2("velocity"));
-          }};
+          build_particle};
 }
 
 }  // namespace lagmb

@@ -1,9 +1,39 @@
 // Circle-line contact: how users add one (registry.hpp).
 #include "lagmb/elements/contact.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+/// One element in two groups: its force (normal and friction) and its
+/// events (onset and release), sharing one slot of run state.
+void build_contact(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  CircleLineContact c = build::joining<CircleLineContact>(m, name, a.body("circle_body"), a.body("line_body"));
+  c.radius = a.real("radius");
+  c.stiffness = a.real("stiffness");
+  c.slip_velocity = a.real("slip_velocity");
+  build::require_positive(c.radius, label, "radius");
+  build::require_positive(c.stiffness, label, "stiffness");
+  build::require_positive(c.slip_velocity, label, "slip_velocity");
+  c.restitution = a.real("restitution");
+  if (!(c.restitution > 0.0 && c.restitution <= 1.0))
+    throw ModelError(label + ": restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
+                     to_text(c.restitution));
+  c.friction = a.real("friction");
+  build::require_nonnegative(c.friction, label, "friction");
+  build::require_on_particle(m, c.body_i, a.vec2("center"), label);
+  c.s_c = m.local_point(c.body_i, a.vec2("center"));
+  c.s_p = m.local_point(c.body_j, a.vec2("point"));
+  c.u = build::local_direction(m, c.body_j, a.vec2("direction"), label);
+  m.reserve_run_state(c);  // one offset for both entries of the same contact
+  m.add_event_element(c, false);
+  m.add_force_element(std::move(c));
+}
+
+}  // namespace
 
 KindInfo contact_kind() {
   return {"contact", "add_contact", "forces", "contact", Role::kContact,
@@ -25,11 +55,7 @@ KindInfo contact_kind() {
               param::real("friction", 0.0, "", "Coulomb coefficient mu"),
               param::real("slip_velocity", 1e-4, "m/s", "v_s below which friction is smoothed"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_contact(name, a.body("circle_body"), a.vec2("center"), a.real("radius"), a.body("line_body"),
-                          a.vec2("point"), a.vec2("direction"), a.real("stiffness"), a.real("restitution"),
-                          a.real("friction"), a.real("slip_velocity"));
-          }};
+          build_contact};
 }
 
 }  // namespace lagmb

@@ -1,9 +1,38 @@
 // Drivers (prescribed motion): how users add them (registry.hpp).
 #include "lagmb/elements/drivers.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+/// A revolute's driver is an AngleDriver, a translational's a SlideDriver
+/// (build::joint_coordinate).
+void build_joint_driver(Model& m, const std::string& name, const Args& a) {
+  const build::JointCoordinate c = build::joint_coordinate(m, a.text("joint"), build::label(a, name));
+  if (c.slide) {
+    SlideDriver d = build::joining<SlideDriver>(m, name, c.body_i, c.body_j);
+    d.along = c.along;
+    d.f = a.function("f");
+    m.add_constraint(std::move(d));
+  } else {
+    AngleDriver d = build::joining<AngleDriver>(m, name, c.body_i, c.body_j);
+    d.f = a.function("f");
+    m.add_constraint(std::move(d));
+  }
+}
+
+void build_body_driver(Model& m, const std::string& name, const Args& a) {
+  CoordinateDriver d = build::joining<CoordinateDriver>(m, name, kGround, a.body("body"));
+  const std::string& coordinate = a.text("coordinate");  // one of the choices (Args::set)
+  d.coordinate = coordinate == "x" ? 0 : coordinate == "y" ? 1 : 2;
+  if (d.coordinate == 2) build::require_rigid(m, d.body_j, build::label(a, name), "has no angle to drive");
+  d.f = a.function("f");
+  m.add_constraint(std::move(d));
+}
+
+}  // namespace
 
 KindInfo joint_driver_kind() {
   return {"joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
@@ -13,9 +42,7 @@ KindInfo joint_driver_kind() {
               param::joint("the revolute or translational joint driven"),
               param::motion("f", "rad or m", "the joint coordinate as a function of time", "function"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.drive_joint(name, a.text("joint"), a.function("f"));
-          }};
+          build_joint_driver};
 }
 
 KindInfo body_driver_kind() {
@@ -26,9 +53,7 @@ KindInfo body_driver_kind() {
               param::choice("coordinate", {"x", "y", "angle"}, "the coordinate driven"),
               param::motion("f", "m or rad", "the coordinate as a function of time", "function"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.drive_body(name, a.body("body"), a.text("coordinate"), a.function("f"));
-          }};
+          build_body_driver};
 }
 
 }  // namespace lagmb

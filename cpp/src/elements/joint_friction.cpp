@@ -1,9 +1,60 @@
 // Joint friction: how users add it (registry.hpp).
 #include "lagmb/elements/joint_friction.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+/// A revolute's friction acts on its relative angle with the pin radius as
+/// arm; a translational's on its slide (build::joint_coordinate).
+void build_joint_friction(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  JointFrictionParameters p;
+  p.mu = a.real("mu");
+  p.viscous = a.real("viscous");
+  p.preload = a.real("preload");
+  p.slip_velocity = a.real("slip_velocity");
+  p.load_smoothing = a.real("load_smoothing");
+  for (auto [x, key] : {std::pair{p.mu, "mu"}, std::pair{p.viscous, "viscous"}, std::pair{p.preload, "preload"}})
+    build::require_nonnegative(x, label, key);
+  for (auto [x, key] : {std::pair{p.slip_velocity, "slip_velocity"}, std::pair{p.load_smoothing, "load_smoothing"}})
+    build::require_positive(x, label, key);
+  for (const char* key : {"pin_radius", "bearing_length"})
+    if (a.given(key)) build::require_positive(a.real(key), label, key);
+  p.pin_radius = a.optional_real("pin_radius").value_or(0.0);
+  p.bearing_length = a.optional_real("bearing_length").value_or(0.0);
+
+  const std::string& joint = a.text("joint");
+  const build::JointCoordinate c = build::joint_coordinate(m, joint, label);
+  // the friction element of the joint's kind, reading the joint's multipliers
+  auto on_joint = [&](auto f, double arm) {
+    f.joint_group = c.joint.group;
+    f.joint_index = c.joint.index;
+    f.law.p = p;
+    f.law.arm = arm;
+    return f;
+  };
+  if (c.slide) {
+    if (p.pin_radius != 0.0)
+      throw ModelError(label + ": pin_radius applies to revolute joints; '" + joint + "' is translational");
+    auto f = on_joint(build::joining<TranslationalFriction>(m, name, c.body_i, c.body_j), 1.0);
+    f.along = c.along;
+    m.add_friction(std::move(f));
+  } else {
+    if (p.bearing_length != 0.0)
+      throw ModelError(label + ": bearing_length applies to translational joints; '" + joint + "' is revolute");
+    if (p.mu > 0.0 && !(p.pin_radius > 0.0))
+      throw ModelError(label + ": mu = " + to_text(p.mu) + " needs the pin radius (pin_radius > 0) of revolute '" +
+                       joint + "'");
+    for (int b : {c.body_i, c.body_j})
+      build::require_rigid(m, b, label, "cannot take revolute friction (it has no angle)");
+    m.add_friction(on_joint(build::joining<RevoluteFriction>(m, name, c.body_i, c.body_j), p.pin_radius));
+  }
+}
+
+}  // namespace
 
 KindInfo joint_friction_kind() {
   return {"joint_friction", "add_joint_friction", "forces", "joint_friction", Role::kFriction,
@@ -22,21 +73,7 @@ KindInfo joint_friction_kind() {
               param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed"),
               param::real("load_smoothing", 1e-6, "N", "rounds |.| of the load near 0"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            JointFrictionParameters p;
-            p.mu = a.real("mu");
-            p.viscous = a.real("viscous");
-            p.preload = a.real("preload");
-            p.slip_velocity = a.real("slip_velocity");
-            p.load_smoothing = a.real("load_smoothing");
-            for (const char* key : {"pin_radius", "bearing_length"}) {
-              const std::optional<double> x = a.optional_real(key);
-              if (x && !(*x > 0))
-                throw ModelError("joint friction '" + name + "': " + key + " must be positive, got " + to_text(*x));
-              (key[0] == 'p' ? p.pin_radius : p.bearing_length) = x.value_or(0.0);
-            }
-            m.add_joint_friction(name, a.text("joint"), p);
-          }};
+          build_joint_friction};
 }
 
 }  // namespace lagmb

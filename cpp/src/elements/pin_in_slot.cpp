@@ -1,9 +1,22 @@
 // Pin in slot: how users add one (registry.hpp).
 #include "lagmb/elements/pin_in_slot.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_pin_in_slot(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  PinInSlotJoint j = build::joining<PinInSlotJoint>(m, name, a.body("body_i"), a.body("body_j"));
+  build::require_rigid(m, j.body_i, label, "cannot carry a slot (it has no angle)");
+  build::require_on_particle(m, j.body_j, a.vec2("at"), label);
+  j.across = build::across_line(m, j.body_i, j.body_j, a.vec2("at"), a.vec2("axis"), label);
+  m.add_constraint(std::move(j));
+}
+
+}  // namespace
 
 KindInfo pin_in_slot_kind() {
   return {"pin_in_slot", "add_pin_in_slot", "joints", "pin_in_slot", Role::kJoint,
@@ -15,9 +28,7 @@ KindInfo pin_in_slot_kind() {
               param::point("at", {"body_i", "body_j"}, "the pin, on the slot line"),
               param::direction("axis", "direction of the slot"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_pin_in_slot(name, a.body("body_i"), a.body("body_j"), a.vec2("at"), a.vec2("axis"));
-          }};
+          build_pin_in_slot};
 }
 
 }  // namespace lagmb

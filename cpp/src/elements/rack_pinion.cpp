@@ -1,9 +1,28 @@
 // Rack and pinion: how users add one (registry.hpp).
 #include "lagmb/elements/rack_pinion.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_rack_pinion(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  RackPinion r = build::joining<RackPinion>(m, name, a.body("pinion"), a.body("rack"));
+  for (int b : {r.body_i, r.body_j})
+    build::require_rigid(m, b, label, "cannot be a rack or pinion (it has no angle)");
+  if (r.body_i == kGround) throw ModelError(label + ": the pinion cannot be the ground");
+  r.radius = a.real("radius");
+  build::require_positive(r.radius, label, "radius");
+  r.along.w = build::local_direction(m, r.body_j, a.vec2("axis"), label);
+  r.along.s_i = m.local_point(r.body_j, m.initial_position(r.body_i));  // on swapped coordinates: the rack is "i"
+  r.along.s_j = Vec2::Zero();
+  r.c0 = r.radius * (m.initial_angle(r.body_i) - m.initial_angle(r.body_j));
+  m.add_constraint(std::move(r));
+}
+
+}  // namespace
 
 KindInfo rack_pinion_kind() {
   return {"rack_pinion", "add_rack_pinion", "joints", "rack_pinion", Role::kJoint,
@@ -16,9 +35,7 @@ KindInfo rack_pinion_kind() {
               param::real("radius", "m", "pitch radius of the pinion"),
               param::direction("axis", "direction of the rack's pitch line"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_rack_pinion(name, a.body("pinion"), a.body("rack"), a.real("radius"), a.vec2("axis"));
-          }};
+          build_rack_pinion};
 }
 
 }  // namespace lagmb

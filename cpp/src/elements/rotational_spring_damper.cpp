@@ -1,9 +1,26 @@
 // Rotational spring-damper-actuator: how users add one (registry.hpp).
 #include "lagmb/elements/rotational_spring_damper.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_rotational_spring_damper(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  RotationalSpringDamper e = build::joining<RotationalSpringDamper>(m, name, a.body("body_i"), a.body("body_j"));
+  for (int b : {e.body_i, e.body_j}) build::require_rigid(m, b, label, "has no angle");
+  e.stiffness = a.real("stiffness");
+  e.damping = a.real("damping");
+  build::require_nonnegative(e.stiffness, label, "stiffness");
+  build::require_nonnegative(e.damping, label, "damping");
+  e.free_angle = a.optional_real("free_angle").value_or(m.initial_angle(e.body_j) - m.initial_angle(e.body_i));
+  e.actuator = a.function("torque");
+  m.add_force_element(std::move(e));
+}
+
+}  // namespace
 
 KindInfo rotational_spring_damper_kind() {
   return {"rotational_spring_damper", "add_rotational_spring_damper", "forces", "rotational_spring_damper", Role::kForce,
@@ -17,10 +34,7 @@ KindInfo rotational_spring_damper_kind() {
               param::optional_real("free_angle", "rad", "free angle theta0 (default: the initial relative angle)"),
               param::function("torque", "N m", "actuator torque tau(t) on body_j"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_rotational_spring_damper(name, a.body("body_i"), a.body("body_j"), a.real("stiffness"),
-                                           a.real("damping"), a.optional_real("free_angle"), a.function("torque"));
-          }};
+          build_rotational_spring_damper};
 }
 
 }  // namespace lagmb

@@ -1,9 +1,33 @@
 // Spring-damper-actuator: how users add one (registry.hpp).
 #include "lagmb/elements/spring_damper.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_spring_damper(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  SpringDamper e = build::joining<SpringDamper>(m, name, a.body("body_i"), a.body("body_j"));
+  const Vec2 p_i = a.vec2("point_i"), p_j = a.vec2("point_j");
+  if (!((p_j - p_i).norm() > 0))
+    throw ModelError(label + ": the two points coincide; the line of action is undefined");
+  build::require_on_particle(m, e.body_i, p_i, label);
+  build::require_on_particle(m, e.body_j, p_j, label);
+  e.s_i = m.local_point(e.body_i, p_i);
+  e.s_j = m.local_point(e.body_j, p_j);
+  e.stiffness = a.real("stiffness");
+  e.damping = a.real("damping");
+  build::require_nonnegative(e.stiffness, label, "stiffness");
+  build::require_nonnegative(e.damping, label, "damping");
+  e.free_length = a.optional_real("free_length").value_or((p_j - p_i).norm());
+  build::require_nonnegative(e.free_length, label, "free_length");
+  e.actuator = a.function("force");
+  m.add_force_element(std::move(e));
+}
+
+}  // namespace
 
 KindInfo spring_damper_kind() {
   return {"spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
@@ -19,10 +43,7 @@ KindInfo spring_damper_kind() {
               param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
               param::function("force", "N", "actuator force f(t), positive pushes the points apart"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_spring_damper(name, a.body("body_i"), a.vec2("point_i"), a.body("body_j"), a.vec2("point_j"),
-                                a.real("stiffness"), a.real("damping"), a.optional_real("free_length"), a.function("force"));
-          }};
+          build_spring_damper};
 }
 
 }  // namespace lagmb

@@ -1,9 +1,23 @@
 // Translational joint: how users add one (registry.hpp).
 #include "lagmb/elements/translational.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_translational(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  TranslationalJoint j = build::joining<TranslationalJoint>(m, name, a.body("body_i"), a.body("body_j"));
+  for (int b : {j.body_i, j.body_j})
+    build::require_rigid(m, b, label, "cannot take a translational joint (it has no angle)");
+  j.across = build::across_line(m, j.body_i, j.body_j, a.vec2("at"), a.vec2("axis"), label);
+  j.phi0 = m.initial_angle(j.body_j) - m.initial_angle(j.body_i);
+  m.add_constraint(std::move(j));
+}
+
+}  // namespace
 
 KindInfo translational_kind() {
   return {"translational", "add_translational", "joints", "translational", Role::kJoint,
@@ -15,9 +29,7 @@ KindInfo translational_kind() {
               param::point("at", {"body_i", "body_j"}, "a point of the sliding line"),
               param::direction("axis", "direction of sliding"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            m.add_translational(name, a.body("body_i"), a.body("body_j"), a.vec2("at"), a.vec2("axis"));
-          }};
+          build_translational};
 }
 
 }  // namespace lagmb

@@ -1,9 +1,26 @@
 // Weld: how users add one (registry.hpp).
 #include "lagmb/elements/weld.hpp"
 
-#include "lagmb/model.hpp"
+#include "build.hpp"
 
 namespace lagmb {
+
+namespace {
+
+void build_weld(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  WeldJoint j = build::joining<WeldJoint>(m, name, a.body("body_i"), a.body("body_j"));
+  for (int b : {j.body_i, j.body_j}) build::require_rigid(m, b, label, "cannot be welded (it has no angle)");
+  j.s_i = m.local_point(j.body_i, m.initial_position(j.body_j));
+  j.phi0 = m.initial_angle(j.body_j) - m.initial_angle(j.body_i);
+  const int body_i = j.body_i;
+  const Vec2 holds = j.s_i;
+  m.add_constraint(std::move(j));
+  // drawn as a link from body_i to body_j's centre of mass, where the weld holds
+  m.attach(name, body_i, holds);
+}
+
+}  // namespace
 
 KindInfo weld_kind() {
   return {"weld", "add_weld", "joints", "weld", Role::kJoint,
@@ -12,12 +29,7 @@ KindInfo weld_kind() {
               param::body("body_i", "the first body"),
               param::body("body_j", "the body fixed to it"),
           },
-          [](Model& m, const std::string& name, const Args& a) {
-            const int i = a.body("body_i"), j = a.body("body_j");
-            m.add_weld(name, i, j);
-            // drawn as a link from body_i to body_j's centre of mass, where the weld holds
-            m.attach(name, i, m.local_point(i, m.initial_position(j)));
-          }};
+          build_weld};
 }
 
 }  // namespace lagmb

@@ -1,0 +1,71 @@
+// What the builders of element kinds share (build.hpp).
+#include "build.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lagmb::build {
+
+std::string label(const Args& args, const std::string& name) {
+  std::string kind = args.kind().name;
+  std::replace(kind.begin(), kind.end(), '_', ' ');
+  return kind + " '" + name + "'";
+}
+
+void require_positive(double x, const std::string& element, const char* what) {
+  if (!(std::isfinite(x) && x > 0))
+    throw ModelError(element + ": " + what + " must be positive and finite, got " + to_text(x));
+}
+
+void require_nonnegative(double x, const std::string& element, const char* what) {
+  if (!(std::isfinite(x) && x >= 0))
+    throw ModelError(element + ": " + what + " must be finite and >= 0, got " + to_text(x));
+}
+
+void require_rigid(const Model& m, int body, const std::string& element, const char* why) {
+  if (body != kGround && m.body(body).particle)
+    throw ModelError(element + ": particle '" + m.body(body).name + "' " + why);
+}
+
+void require_on_particle(const Model& m, int body, Vec2 point, const std::string& element) {
+  if (body != kGround && m.body(body).particle && (point - m.body(body).position).norm() > 0)
+    throw ModelError(element + ": the point on particle '" + m.body(body).name + "' must be the particle itself");
+}
+
+Vec2 local_direction(const Model& m, int body, Vec2 direction, const std::string& element) {
+  const double n = direction.norm();
+  if (!(n > 0.0)) throw ModelError(element + ": the direction must be a non-zero vector, got " + to_text(direction));
+  return rotation(m.initial_angle(body)).transpose() * (direction / n);
+}
+
+ProjectedOffset across_line(const Model& m, int body_i, int body_j, Vec2 at, Vec2 axis,
+                            const std::string& element) {
+  const Vec2 u = local_direction(m, body_i, axis, element);
+  ProjectedOffset f;
+  f.w = Vec2(-u.y(), u.x());
+  f.s_i = m.local_point(body_i, at);
+  f.s_j = m.local_point(body_j, at);
+  return f;
+}
+
+JointCoordinate joint_coordinate(const Model& m, const std::string& joint, const std::string& element) {
+  if (!m.has(joint)) throw ModelError(element + ": '" + joint + "' is not a joint of this model");
+  JointCoordinate c;
+  c.joint = m.find(joint);
+  if (const auto* rev = m.find_constraint<RevoluteJoint>(joint)) {
+    c.body_i = rev->body_i;
+    c.body_j = rev->body_j;
+  } else if (const auto* tr = m.find_constraint<TranslationalJoint>(joint)) {
+    c.body_i = tr->body_i;
+    c.body_j = tr->body_j;
+    c.slide = true;
+    c.along = tr->across;
+    c.along.w = tr->across.line_direction();
+  } else {
+    throw ModelError(element + ": '" + joint + "' is " + m.describe(joint) +
+                     ", not a revolute or translational joint");
+  }
+  return c;
+}
+
+}  // namespace lagmb::build
