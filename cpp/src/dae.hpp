@@ -54,9 +54,9 @@ class DaeFormulation {
 /// with Newton blocks F1: [cj I, -I] on (q, v) and F2: [(Phi_q^T lam)_q - Q_q,
 /// cj M - Q_v, Phi_q^T] on (q, v, lam), and Phi_q in the q columns of the
 /// first constraint rows (F3, from row 2n): the saddle point of
-/// saddle_point.hpp. Each form adds its constraint rows
-/// and picks the equilibration: rows F1, F2 scaled by r1, r2, columns v, lam
-/// by cv, cl (see each form), so that every block is O(1) at any step size.
+/// saddle_point.hpp. Each form adds its constraint rows and picks the
+/// equilibration: rows F1, F2 scaled by r1, r2, columns v, lam by cv, cl (see
+/// each form), so that every block is O(1) at any step size.
 /// Joint friction Q_f(q, v, lam), where present, joins Q, and its exact
 /// derivatives join the F2 blocks: -Q_f,q, -Q_f,v, and -Q_f,lam next to
 /// Phi_q^T (same pattern: a joint's friction reads only its own multipliers).
@@ -104,7 +104,7 @@ class MultiplierDae : public DaeFormulation {
   int n_, m_, size_;
   SpMat J_;
   VecX row_scale_, col_scale_;
-  /// T0 and Phi_q^T in the F2 rows, Phi_q in the F3 rows (saddle.jacobian).
+  /// T0 and Phi_q^T in the F2 rows, Phi_q in the F3 rows (saddle_.jacobian).
   SaddlePoint saddle_;
 
  private:

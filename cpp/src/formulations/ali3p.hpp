@@ -41,7 +41,10 @@ class Ali3pFormulation {
   void begin_step();
   /// Puts q and lam back to the start of the step (before a retry).
   void undo_step();
+  /// Solves the step of length h, ending at t1, for q and lam (the
+  /// equations: ali3p.cpp); false if Newton diverges or does not converge.
   bool newton(double t1, double h, int& it, double& err);
+  /// v and a at t1 from the converged q, projected onto the constraints.
   void finish_step(double t1, double h);
   /// Fresh a and lam at (q, v, t) from the augmented system (a derivative of
   /// a time function jumps), and the state taken as the start of a step.
@@ -52,7 +55,8 @@ class Ali3pFormulation {
   /// lu_factorizations, projections, element_evaluations.
   void count(Stats& stats) const;
 
-  /// The state at the end of the last step (or the last Newton iterate), and at the start of the step.
+  /// The state at the end of the step (during newton(): its iterate), and at
+  /// its start.
   VecX q, v, a, lam;
   VecX q_prev, v_prev, a_prev, lam_prev;
 
