@@ -1,202 +1,31 @@
-// CVODE (BDF or Adams-Moulton) on the ODE in accelerations with coordinate
-// projection: the "projection" formulation.
+// CVODE (BDF or Adams-Moulton) driving the "projection" formulation
+// (formulations/projection.hpp): SUNDIALS plumbing, a linear solver that hands
+// CVODE's Newton systems to the formulation, and the stepper.
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
 #include <nvector/nvector_serial.h>
 
-#include <Eigen/SparseLU>
-#include <cmath>
 #include <exception>
 #include <sstream>
 
 #include "events.hpp"
+#include "formulations/projection.hpp"
 #include "integrators.hpp"
-#include "lagmb/assembly.hpp"
-#include "lagmb/time_function.hpp"
-#include "sparse_lu_solver.hpp"
 #include "sun_compat.hpp"
 
 namespace lagmb {
 
 namespace {
 
-/// y = (q, v); f(t, y) = (v, qdd) with qdd, lam from the augmented system.
-///
-/// Newton matrix I - gamma J. J = [[0, I], [A_q, A_v]] with A the derivative
-/// of qdd; we take the part that comes from the forces and the multipliers'
-/// curvature, A_q ~ P M^-1 (Q_q - (Phi_q^T lam)_q), A_v ~ P M^-1 Q_v (P the
-/// M-orthogonal projector on Phi_q a = 0), and leave out the derivatives of
-/// gamma. Solving (I - gamma J) x = b then reduces to one sparse saddle-point
-/// system of the size of the augmented matrix:
-///   [ M - gamma Q_v - gamma^2 K   Phi_q^T ] [ x_v ]   [ M b_v + gamma K b_q ]
-///   [ Phi_q                       0       ] [ mu  ] = [ Phi_q b_v           ]
-///   x_q = b_q + gamma x_v,    K = Q_q - (Phi_q^T lam)_q.
-struct OdeProblem {
-  OdeProblem(const Model& m)
-      : model(m), d(m), kkt(m), n(m.n_coordinates()), nc(m.n_constraints()) {
-    qdd.resize(n);
-    lam.resize(nc);
-    lam_lin = VecX::Zero(nc);
-    q_lin.resize(n);
-    v_lin.resize(n);
-    kappa.resize(nc);
-    dq.resize(n);
-    zero_n = VecX::Zero(n);
-    // the Newton saddle-point pattern
-    SparsityPattern p(n + nc, n + nc);
-    auto add = [&](const SpMat& A, int r0, int c0, bool tr) {
-      for (int c = 0; c < A.outerSize(); ++c)
-        for (SpMat::InnerIterator it(A, c); it; ++it)
-          tr ? p.add(r0 + c, c0 + int(it.row())) : p.add(r0 + int(it.row()), c0 + c);
-    };
-    for (int i = 0; i < n + nc; ++i) p.add(i, i);
-    add(m.hessian_pattern(), 0, 0, false);
-    add(m.force_q_pattern(), 0, 0, false);
-    add(m.force_v_pattern(), 0, 0, false);
-    add(m.jacobian_pattern(), n, 0, false);
-    add(m.jacobian_pattern(), 0, n, true);
-    N = p.build();
-    for (int i = 0; i < n; ++i) diag.push_back(slot(N, i, i));
-    hess = embed_slots(m.hessian_pattern(), N, 0, 0);
-    Kq = embed_slots(m.force_q_pattern(), N, 0, 0);
-    Cv = embed_slots(m.force_v_pattern(), N, 0, 0);
-    G = embed_slots(m.jacobian_pattern(), N, n, 0);
-    GT = embed_slots(m.jacobian_pattern(), N, 0, n, true);
-    lu.analyzePattern(N);
-    rhs.resize(n + nc);
-    sol.resize(n + nc);
-    Kb.resize(n);
-    q0.resize(n);
-    v0.resize(n);
-    vnew.resize(n);
-    Mv.resize(n);
-    w.resize(nc);
-  }
-
-  /// qdd and lam at (t, q, v); false if the augmented matrix is singular.
-  /// With Baumgarte terms: Phi_q qdd = gamma - 2 alpha (Phi_q v + Phi_t) - beta^2 Phi.
-  bool accelerations(double t, const double* q, const double* v) {
-    assemble_jacobian(model, d, q, t);
-    if (!kkt.factorize(d)) return false;
-    assemble_forces(model, d, q, v, t);
-    assemble_gamma(model, d, q, v, t);
-    if (alpha != 0.0) {
-      assemble_phi_t(model, d, q, t);
-      w = d.phi_t;
-      add_jacobian_times(d, v, w.data());
-      d.gamma -= 2.0 * alpha * w;
-    }
-    if (beta != 0.0) {
-      assemble_constraints(model, d, q, t);
-      d.gamma -= beta * beta * d.Phi;
-    }
-    kkt.solve(d.Q, d.gamma, qdd, lam);
-    if (!model.friction_groups().empty()) solve_friction(model, d, kkt, q, v, t, qdd, lam);
-    return qdd.allFinite();
-  }
-
-  /// Factorizes the Newton saddle-point matrix at the linearization point.
-  bool setup(double gamma) {
-    const double* q = q_lin.data();
-    const double* v = v_lin.data();
-    const VecX& M = model.mass_diagonal();
-    double* x = N.valuePtr();
-    N.coeffs().setZero();
-    for (int i = 0; i < n; ++i) x[diag[i]] = M[i];
-    assemble_jacobian(model, d, q, t_lin);
-    for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d.Phi_q.valuePtr()[k];
-    // K = Q_q - (Phi_q^T lam)_q, kept for the right side
-    assemble_constraint_hessian(model, d, q, t_lin, lam_lin.data());
-    for (size_t k = 0; k < hess.size(); ++k) x[hess[k]] += gamma * gamma * d.H.valuePtr()[k];
-    if (!model.state_dependent_forces().empty()) {
-      assemble_force_derivatives(model, d, q, v, t_lin);
-      for (size_t k = 0; k < Kq.size(); ++k) x[Kq[k]] -= gamma * gamma * d.Q_q.valuePtr()[k];
-      for (size_t k = 0; k < Cv.size(); ++k) x[Cv[k]] -= gamma * d.Q_v.valuePtr()[k];
-    }
-    if (!model.friction_groups().empty()) {
-      // joint friction at the linearization multipliers; its dependence on
-      // lam (through the reactions) is left out of this Newton matrix
-      assemble_friction_derivatives(model, d, q, v, lam_lin.data());
-      for (size_t k = 0; k < Kq.size(); ++k) x[Kq[k]] -= gamma * gamma * d.friction_Q_q.valuePtr()[k];
-      for (size_t k = 0; k < Cv.size(); ++k) x[Cv[k]] -= gamma * d.friction_Q_v.valuePtr()[k];
-    }
-    ++factorizations;
-    gamma_setup = gamma;
-    return factorize_finite(lu, N);
-  }
-
-  /// x = (I - gamma J)^-1 b with the gamma of the last setup.
-  void solve(const double* b, double* x) {
-    const double g = gamma_setup;
-    const VecX& M = model.mass_diagonal();
-    Eigen::Map<const VecX> bq(b, n), bv(b + n, n);
-    Eigen::Map<VecX> xq(x, n), xv(x + n, n);
-    // K b_q = (Q_q - H) b_q, from the values still in d (same linearization)
-    Kb.noalias() = -(d.H * bq);
-    if (!model.state_dependent_forces().empty()) Kb.noalias() += d.Q_q * bq;
-    if (!model.friction_groups().empty()) Kb.noalias() += d.friction_Q_q * bq;
-    rhs.head(n) = M.cwiseProduct(bv) + g * Kb;
-    rhs.tail(nc).setZero();
-    add_jacobian_times(d, bv.data(), rhs.data() + n);
-    sol = lu.solve(rhs);
-    xv = sol.head(n);
-    xq = bq + g * xv;
-  }
-
-  /// Projects (q, v) onto Phi = 0 and Phi_q v + Phi_t = 0 (least change in
-  /// the M-metric), and the error estimate onto the tangent space.
-  int project(double t, double* q, double* v, double* corr, double* err) {
-    Eigen::Map<VecX> Q(q, n), V(v, n);
-    q0 = Q;
-    v0 = V;
-    for (int it = 0; it < 3; ++it) {
-      assemble_constraints(model, d, q, t);
-      const double e = nc ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
-      if (e <= 1e-14 * (1.0 + Q.lpNorm<Eigen::Infinity>())) break;
-      assemble_jacobian(model, d, q, t);
-      if (!kkt.factorize(d)) return 1;
-      d.Phi = -d.Phi;  // in place: no temporary
-      kkt.solve(zero_n, d.Phi, dq, kappa);
-      Q += dq;
-    }
-    assemble_jacobian(model, d, q, t);
-    if (!kkt.factorize(d)) return 1;
-    assemble_phi_t(model, d, q, t);
-    Mv = model.mass_diagonal().cwiseProduct(V);
-    d.phi_t = -d.phi_t;
-    kkt.solve(Mv, d.phi_t, vnew, kappa);
-    V = vnew;
-    Eigen::Map<VecX>(corr, n) = Q - q0;
-    Eigen::Map<VecX>(corr + n, n) = V - v0;
-    if (err) {
-      for (int part = 0; part < 2; ++part) {
-        Eigen::Map<VecX> e(err + part * n, n);
-        w.setZero();
-        add_jacobian_times(d, e.data(), w.data());
-        w = -w;
-        kkt.solve(zero_n, w, dq, kappa);
-        e += dq;
-      }
-    }
-    ++projections;
-    return 0;
-  }
-
-  const Model& model;
-  Data d;
-  AugmentedSystem kkt;
-  int n, nc;
-  VecX qdd, lam, lam_lin, q_lin, v_lin, kappa, dq, zero_n, rhs, sol;
-  VecX Kb, q0, v0, vnew, Mv, w;  // scratch, sized once: no allocation per solve or projection
-  double t_lin = 0.0, gamma_setup = 0.0;
-  double alpha = 0.0, beta = 0.0;  // Baumgarte (Adams: CVODE projects only for BDF)
-  SpMat N;
-  std::vector<int> diag, hess, Kq, Cv, G, GT;
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
-  long factorizations = 0, projections = 0;
-  std::exception_ptr error;
+/// What CVODE's callbacks reach (its user data): the formulation, the
+/// model's event functions, and the exception a callback caught, which the
+/// stepper rethrows (an exception must not cross CVODE's C frames).
+struct CvodeUserData {
+  explicit CvodeUserData(ProjectionFormulation& formulation) : ode(formulation) {}
+  ProjectionFormulation& ode;
   EventRunner* events = nullptr;
+  std::exception_ptr error;
 };
 
 /// The Newton "matrix" I + c J, held implicitly: CVODE only scales it
@@ -242,24 +71,24 @@ SUNMatrix make_implicit_matrix(SUNContext ctx) {
   return M;
 }
 
-SUNLinearSolver make_saddle_solver(SUNContext ctx, OdeProblem* p) {
+SUNLinearSolver make_saddle_solver(SUNContext ctx, CvodeUserData* p) {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   if (!S) return nullptr;
   S->content = p;
   S->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
   S->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
   S->ops->setup = [](SUNLinearSolver S, SUNMatrix A) -> int {
-    auto* p = static_cast<OdeProblem*>(S->content);
+    auto* p = static_cast<CvodeUserData*>(S->content);
     try {
-      return p->setup(-imat(A).c) ? 0 : SUNLS_LUFACT_FAIL;
+      return p->ode.setup(-imat(A).c) ? 0 : SUNLS_LUFACT_FAIL;
     } catch (...) {
       p->error = std::current_exception();
       return -1;
     }
   };
   S->ops->solve = [](SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) -> int {
-    auto* p = static_cast<OdeProblem*>(S->content);
-    p->solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
+    auto* p = static_cast<CvodeUserData*>(S->content);
+    p->ode.solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
     return 0;
   };
   S->ops->free = [](SUNLinearSolver S) -> int {
@@ -271,14 +100,9 @@ SUNLinearSolver make_saddle_solver(SUNContext ctx, OdeProblem* p) {
 }
 
 int rhs_fn(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
-  auto* p = static_cast<OdeProblem*>(data);
+  auto* p = static_cast<CvodeUserData*>(data);
   try {
-    const double* yy = N_VGetArrayPointer(y);
-    double* f = N_VGetArrayPointer(ydot);
-    if (!p->accelerations(t, yy, yy + p->n)) return 1;  // recoverable
-    std::copy(yy + p->n, yy + 2 * p->n, f);
-    std::copy(p->qdd.data(), p->qdd.data() + p->n, f + p->n);
-    return 0;
+    return p->ode.right_hand_side(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)) ? 0 : 1;  // 1: recoverable
   } catch (...) {
     p->error = std::current_exception();
     return -1;
@@ -286,16 +110,9 @@ int rhs_fn(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
 }
 
 int jac_fn(sunrealtype t, N_Vector y, N_Vector, SUNMatrix, void* data, N_Vector, N_Vector, N_Vector) {
-  auto* p = static_cast<OdeProblem*>(data);
+  auto* p = static_cast<CvodeUserData*>(data);
   try {
-    // the linearization point: state and multipliers at (t, y)
-    const double* yy = N_VGetArrayPointer(y);
-    if (!p->accelerations(t, yy, yy + p->n)) return 1;
-    p->t_lin = t;
-    p->q_lin = Eigen::Map<const VecX>(yy, p->n);
-    p->v_lin = Eigen::Map<const VecX>(yy + p->n, p->n);
-    p->lam_lin = p->lam;
-    return 0;
+    return p->ode.linearize(t, N_VGetArrayPointer(y)) ? 0 : 1;
   } catch (...) {
     p->error = std::current_exception();
     return -1;
@@ -303,10 +120,10 @@ int jac_fn(sunrealtype t, N_Vector y, N_Vector, SUNMatrix, void* data, N_Vector,
 }
 
 int proj_fn(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype, N_Vector err, void* data) {
-  auto* p = static_cast<OdeProblem*>(data);
+  auto* p = static_cast<CvodeUserData*>(data);
   try {
     double* yy = N_VGetArrayPointer(y);
-    return p->project(t, yy, yy + p->n, N_VGetArrayPointer(corr), err ? N_VGetArrayPointer(err) : nullptr);
+    return p->ode.project(t, yy, yy + p->ode.n(), N_VGetArrayPointer(corr), err ? N_VGetArrayPointer(err) : nullptr);
   } catch (...) {
     p->error = std::current_exception();
     return -1;
@@ -314,10 +131,10 @@ int proj_fn(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype, N_Vector err,
 }
 
 int root_fn(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
-  auto* p = static_cast<OdeProblem*>(data);
+  auto* p = static_cast<CvodeUserData*>(data);
   try {
     const double* yy = N_VGetArrayPointer(y);
-    p->events->values(t, yy, yy + p->n, g);
+    p->events->values(t, yy, yy + p->ode.n(), g);
     return 0;
   } catch (...) {
     p->error = std::current_exception();
@@ -351,12 +168,11 @@ void check(int flag, const char* call, sun::Context& ctx) {
 void integrate_cvode(const Model& model, bool adams, double alpha, double beta, const ConsistentState& start,
                      const IntegrationPlan& plan,
                      const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
-  OdeProblem p(model);
-  if (plan.run) p.d.join_run(model, *plan.run);
-  p.alpha = alpha;
-  p.beta = beta;
+  ProjectionFormulation ode(model, alpha, beta);
+  if (plan.run) ode.join_run(*plan.run);
+  CvodeUserData p{ode};
   CvodeSession s;
-  const int n = p.n;
+  const int n = ode.n();
   s.y = N_VNew_Serial(2 * n, s.ctx);
   s.abstol = N_VNew_Serial(2 * n, s.ctx);
   s.out = N_VNew_Serial(2 * n, s.ctx);
@@ -379,7 +195,7 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
   if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the CVODE linear solver");
   check(CVodeSetLinearSolver(s.mem, s.LS, s.A), "CVodeSetLinearSolver", s.ctx);
   check(CVodeSetJacFn(s.mem, jac_fn), "CVodeSetJacFn", s.ctx);
-  if (p.nc > 0 && !adams) {  // CVODE's projection works with BDF only
+  if (ode.n_constraints() > 0 && !adams) {  // CVODE's projection works with BDF only
     check(CVodeSetProjFn(s.mem, proj_fn), "CVodeSetProjFn", s.ctx);
     // keep the error estimate as it is: projected onto the manifold it
     // vanishes for a fully driven mechanism and the steps run away
@@ -394,10 +210,11 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
   /// CVODE behind the shared stepping loop.
   struct CvodeStepper final : Stepper {
     CvodeSession& s;
-    OdeProblem& p;
+    CvodeUserData& p;
+    const int n;
     double t_end;
     Stats before;  // counts of the segments before the last CVodeReInit (which zeroes them)
-    CvodeStepper(CvodeSession& s_, OdeProblem& p_, double t_end_) : s(s_), p(p_), t_end(t_end_) {}
+    CvodeStepper(CvodeSession& s_, CvodeUserData& p_, double t_end_) : s(s_), p(p_), n(p_.ode.n()), t_end(t_end_) {}
     const char* name() const override { return "CVODE"; }
     void set_stop(double stop) override { check(CVodeSetStopTime(s.mem, stop), "CVodeSetStopTime", s.ctx); }
     double step(bool& at_stop) override {
@@ -429,16 +246,16 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
       check(CVodeGetRootInfo(s.mem, fired.data()), "CVodeGetRootInfo", s.ctx);
       return true;
     }
-    const double* velocities() const override { return N_VGetArrayPointer(s.y) + p.n; }
+    const double* velocities() const override { return N_VGetArrayPointer(s.y) + n; }
     void reset(double t, const ConsistentState& state) override {
-      Eigen::Map<VecX>(N_VGetArrayPointer(s.y), p.n) = state.q;
-      Eigen::Map<VecX>(N_VGetArrayPointer(s.y) + p.n, p.n) = state.v;
+      Eigen::Map<VecX>(N_VGetArrayPointer(s.y), n) = state.q;
+      Eigen::Map<VecX>(N_VGetArrayPointer(s.y) + n, n) = state.v;
       restart(t);
     }
     void interpolate(double t, const double*& q, const double*& v) override {
       check(CVodeGetDky(s.mem, t, 0, s.out), "CVodeGetDky", s.ctx);
       q = N_VGetArrayPointer(s.out);
-      v = q + p.n;
+      v = q + n;
     }
     const double* positions() const override { return N_VGetArrayPointer(s.y); }
     void restart(double t) override {
@@ -458,10 +275,7 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
       CVodeGetLastOrder(s.mem, &order), stats.last_order = order;
       sunrealtype h = 0;
       CVodeGetLastStep(s.mem, &h), stats.last_step = h;
-      stats.lu_factorizations = p.factorizations;
-      stats.augmented_factorizations = p.kkt.factorizations();
-      stats.projections = p.projections;
-      stats.element_evaluations = p.d.element_evaluations;
+      p.ode.count(stats);
     }
   } stepper(s, p, plan.t_end);
   run_steps(stepper, plan, start, record, stats);

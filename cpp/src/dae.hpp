@@ -1,6 +1,7 @@
 // A DAE form of the equations of motion, F(t, y, y') = 0, for IDA.
 #pragma once
 
+#include "formulations/saddle_point.hpp"
 #include "lagmb/augmented.hpp"
 #include "lagmb/data.hpp"
 
@@ -51,9 +52,11 @@ class DaeFormulation {
 ///   F1 = q' - v (+ ...)            rows 0..n
 ///   F2 = M v' + Phi_q^T lam - Q    rows n..2n
 /// with Newton blocks F1: [cj I, -I] on (q, v) and F2: [(Phi_q^T lam)_q - Q_q,
-/// cj M - Q_v, Phi_q^T] on (q, v, lam). Each form adds its constraint rows
-/// and picks the equilibration: rows F1, F2 scaled by r1, r2, columns v, lam
-/// by cv, cl (see each form), so that every block is O(1) at any step size.
+/// cj M - Q_v, Phi_q^T] on (q, v, lam), and Phi_q in the q columns of the
+/// first constraint rows (F3, from row 2n): the saddle point of
+/// saddle_point.hpp. Each form adds its constraint rows and picks the
+/// equilibration: rows F1, F2 scaled by r1, r2, columns v, lam by cv, cl (see
+/// each form), so that every block is O(1) at any step size.
 /// Joint friction Q_f(q, v, lam), where present, joins Q, and its exact
 /// derivatives join the F2 blocks: -Q_f,q, -Q_f,v, and -Q_f,lam next to
 /// Phi_q^T (same pattern: a joint's friction reads only its own multipliers).
@@ -67,10 +70,12 @@ class MultiplierDae : public DaeFormulation {
   const double* v(const double* y) const override { return y + n_; }
   long element_evaluations() const override { return d_.element_evaluations; }
   void join_run(const Data& run) override { d_.join_run(model_, run); }
+  /// y = (q, v, lam, 0...), y' = (v, qdd, 0...) from the consistent start.
+  void initial(const ConsistentState& s, double* y, double* yp) const override;
 
  protected:
   MultiplierDae(const Model& model, int size);
-  /// Declares the F1, F2 blocks; call before adding the form's own.
+  /// Declares the F1, F2 blocks and Phi_q at (F3, q); call before adding the form's own.
   void declare_common(SparsityPattern& p) const;
   /// Builds J_ from p and binds the common slots.
   void bind_common(const SparsityPattern& p);
@@ -99,9 +104,11 @@ class MultiplierDae : public DaeFormulation {
   int n_, m_, size_;
   SpMat J_;
   VecX row_scale_, col_scale_;
+  /// T0 and Phi_q^T in the F2 rows, Phi_q in the F3 rows (saddle_.jacobian).
+  SaddlePoint saddle_;
 
  private:
-  std::vector<int> q_diag_, qv_diag_, v_diag_, jac_F2lam_, hess_F2q_, Qq_F2q_, Qv_F2v_, alg_diag_;
+  std::vector<int> q_diag_, qv_diag_, v_diag_, alg_diag_;
 };
 
 /// Stabilized index-2 form of Gear, Gupta and Leimkuhler, y = (q, v, lam, mu):
@@ -129,12 +136,11 @@ class GglFormulation final : public MultiplierDae {
   void ids(double* id) const override;
   void index_levels(int* level) const override;
   void tolerances(const VecX& atol, double* abstol) const override;
-  void initial(const ConsistentState& s, double* y, double* yp) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;
 
  private:
-  std::vector<int> q_diag_, jac_F3q_, jac_F4v_, jac_F1mu_, vq_F4q_, hess_F1q_;
+  std::vector<int> jac_F4v_, jac_F1mu_, vq_F4q_, hess_F1q_;
 };
 
 /// Index-3 form, y = (q, v, lam): F1 = q' - v, F2 as above, F3 = Phi(q, t).
@@ -159,12 +165,8 @@ class Index3Formulation final : public MultiplierDae {
   void ids(double* id) const override;
   void index_levels(int* level) const override;
   void tolerances(const VecX& atol, double* abstol) const override;
-  void initial(const ConsistentState& s, double* y, double* yp) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;
-
- private:
-  std::vector<int> jac_F3q_;
 };
 
 /// Index-1 form, y = (q, v, lam), with optional Baumgarte terms:
@@ -183,14 +185,13 @@ class Index1Formulation final : public MultiplierDae {
   void ids(double* id) const override;
   void index_levels(int* level) const override;
   void tolerances(const VecX& atol, double* abstol) const override;
-  void initial(const ConsistentState& s, double* y, double* yp) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;
 
  private:
   double alpha_, beta_;
   VecX scratch_;
-  std::vector<int> F3q_, F3v_;
+  std::vector<int> F3v_;
 };
 
 }  // namespace lagmb

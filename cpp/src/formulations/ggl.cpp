@@ -1,3 +1,4 @@
+// The stabilized index-2 form of Gear, Gupta and Leimkuhler (GglFormulation, dae.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -8,22 +9,15 @@ namespace lagmb {
 
 GglFormulation::GglFormulation(const Model& model)
     : MultiplierDae(model, 2 * model.n_coordinates() + 2 * model.n_constraints()) {
-  const int n = n_, m = m_, V = n, L = 2 * n, U = 2 * n + m;  // first rows/columns of v, lam, mu
+  const int V = n_, U = 2 * n_ + m_;  // first rows/columns of v, mu
   SparsityPattern p(size_, size_);
-  declare_common(p);
-  for (int c = 0; c < model.hessian_pattern().outerSize(); ++c)
-    for (SpMat::InnerIterator it(model.hessian_pattern(), c); it; ++it) p.add(int(it.row()), c);
+  declare_common(p);  // with F3 x q: Phi_q
   const SpMat& G = model.jacobian_pattern();
-  for (int c = 0; c < G.outerSize(); ++c)
-    for (SpMat::InnerIterator it(G, c); it; ++it) {
-      const int r = int(it.row());
-      p.add(c, U + r);      // F1 x mu: Phi_q^T
-      p.add(L + r, c);      // F3 x q: Phi_q
-      p.add(U + r, c);      // F4 x q: (Phi_q v + Phi_t)_q
-      p.add(U + r, V + c);  // F4 x v: Phi_q
-    }
+  add_block(p, model.hessian_pattern(), 0, 0);  // F1 x q: (Phi_q^T mu)_q
+  add_block(p, G, 0, U, true);                  // F1 x mu: Phi_q^T
+  add_block(p, G, U, 0);                        // F4 x q: (Phi_q v + Phi_t)_q
+  add_block(p, G, U, V);                        // F4 x v: Phi_q
   bind_common(p);
-  jac_F3q_ = jacobian_slots(L, 0);
   jac_F4v_ = jacobian_slots(U, V);
   jac_F1mu_ = jacobian_slots(0, U, true);
   vq_F4q_ = jacobian_slots(U, 0);
@@ -47,16 +41,6 @@ void GglFormulation::tolerances(const VecX& atol, double* abstol) const {
   std::fill(abstol + 2 * n_ + m_, abstol + size_, atol.mean());
 }
 
-void GglFormulation::initial(const ConsistentState& s, double* y, double* yp) const {
-  std::fill(y, y + size_, 0.0);
-  std::fill(yp, yp + size_, 0.0);
-  std::copy(s.q.data(), s.q.data() + n_, y);
-  std::copy(s.v.data(), s.v.data() + n_, y + n_);
-  std::copy(s.lam.data(), s.lam.data() + m_, y + 2 * n_);
-  std::copy(s.v.data(), s.v.data() + n_, yp);
-  std::copy(s.qdd.data(), s.qdd.data() + n_, yp + n_);
-}
-
 int GglFormulation::residual(double t, const double* y, const double* yp, double* F) {
   const double *q = y, *v = y + n_, *mu = y + 2 * n_ + m_;
   double *F1 = F, *F3 = F + 2 * n_, *F4 = F + 2 * n_ + m_;
@@ -76,7 +60,7 @@ void GglFormulation::newton_matrix(double t, double cj, const double* y, const d
   momentum_jacobian(t, cj, y, h, h, 1.0, cj);
   col_scale_.tail(m_).setConstant(cj);
   double* J = J_.valuePtr();
-  put_jacobian(jac_F3q_, 1.0);
+  put_jacobian(saddle_.jacobian, 1.0);  // F3 x q
   put_jacobian(jac_F4v_, 1.0);
   put_jacobian(jac_F1mu_, 1.0);  // h (row) x cj (column)
   assemble_velocity_jacobian(model_, d_, q, v, t);

@@ -1,3 +1,4 @@
+// The index-1 form with Baumgarte terms (Index1Formulation, dae.hpp).
 #include <algorithm>
 
 #include "../dae.hpp"
@@ -8,15 +9,9 @@ namespace lagmb {
 Index1Formulation::Index1Formulation(const Model& model, double alpha, double beta)
     : MultiplierDae(model, 2 * model.n_coordinates() + model.n_constraints()), alpha_(alpha), beta_(beta) {
   SparsityPattern p(size_, size_);
-  declare_common(p);
-  const SpMat& G = model.jacobian_pattern();
-  for (int c = 0; c < G.outerSize(); ++c)
-    for (SpMat::InnerIterator it(G, c); it; ++it) {
-      p.add(2 * n_ + int(it.row()), c);       // F3 x q
-      p.add(2 * n_ + int(it.row()), n_ + c);  // F3 x v
-    }
+  declare_common(p);  // with F3 x q: the pattern of Phi_q
+  add_block(p, model.jacobian_pattern(), 2 * n_, n_);  // F3 x v
   bind_common(p);
-  F3q_ = jacobian_slots(2 * n_, 0);
   F3v_ = jacobian_slots(2 * n_, n_);
   scratch_.resize(m_);
 }
@@ -31,16 +26,6 @@ void Index1Formulation::index_levels(int* level) const { std::fill(level, level 
 void Index1Formulation::tolerances(const VecX& atol, double* abstol) const {
   coordinate_tolerances(atol, abstol);
   std::fill(abstol + 2 * n_, abstol + size_, atol.mean() * model_.mass_scale());
-}
-
-void Index1Formulation::initial(const ConsistentState& s, double* y, double* yp) const {
-  std::fill(y, y + size_, 0.0);
-  std::fill(yp, yp + size_, 0.0);
-  std::copy(s.q.data(), s.q.data() + n_, y);
-  std::copy(s.v.data(), s.v.data() + n_, y + n_);
-  std::copy(s.lam.data(), s.lam.data() + m_, y + 2 * n_);
-  std::copy(s.v.data(), s.v.data() + n_, yp);
-  std::copy(s.qdd.data(), s.qdd.data() + n_, yp + n_);
 }
 
 int Index1Formulation::residual(double t, const double* y, const double* yp, double* F) {
@@ -70,17 +55,18 @@ void Index1Formulation::newton_matrix(double t, double cj, const double* y, cons
   momentum_jacobian(t, cj, y, h, h, 1.0, cj);
   row_scale_.tail(m_).setConstant(h);
   double* J = J_.valuePtr();
+  const std::vector<int>& F3q = saddle_.jacobian;
   // (Phi_q v')_q: the velocity Jacobian evaluated with v' (Phi_tq is zero for
   // every kind lagmb has)
   assemble_velocity_jacobian(model_, d_, q, vp, t);
-  for (size_t k = 0; k < F3q_.size(); ++k) J[F3q_[k]] += h * d_.Vq.valuePtr()[k];
+  for (size_t k = 0; k < F3q.size(); ++k) J[F3q[k]] += h * d_.Vq.valuePtr()[k];
   assemble_velocity_jacobian(model_, d_, q, v, t);
-  for (size_t k = 0; k < F3q_.size(); ++k) {
-    J[F3q_[k]] += h * 2.0 * alpha_ * d_.Vq.valuePtr()[k];
+  for (size_t k = 0; k < F3q.size(); ++k) {
+    J[F3q[k]] += h * 2.0 * alpha_ * d_.Vq.valuePtr()[k];
     J[F3v_[k]] += h * 2.0 * d_.Vq.valuePtr()[k];
   }
   put_jacobian(F3v_, 1.0 + 2.0 * alpha_ * h);
-  put_jacobian(F3q_, h * beta_ * beta_);
+  put_jacobian(F3q, h * beta_ * beta_);
   pin_dropped_multipliers();
 }
 

@@ -1,3 +1,4 @@
+// The rows and Newton blocks the multiplier DAE forms share (MultiplierDae, dae.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -6,48 +7,47 @@
 
 namespace lagmb {
 
-namespace {
-
-void add_block(SparsityPattern& p, const SpMat& A, int r0, int c0, bool transpose) {
-  for (int c = 0; c < A.outerSize(); ++c)
-    for (SpMat::InnerIterator it(A, c); it; ++it)
-      transpose ? p.add(r0 + c, c0 + int(it.row())) : p.add(r0 + int(it.row()), c0 + c);
-}
-
-}  // namespace
-
 MultiplierDae::MultiplierDae(const Model& model, int size)
-    : model_(model), d_(model), n_(model.n_coordinates()), m_(model.n_constraints()), size_(size) {}
+    : model_(model),
+      d_(model),
+      n_(model.n_coordinates()),
+      m_(model.n_constraints()),
+      size_(size),
+      saddle_(model, {n_, 0, n_, 2 * n_, 2 * n_}) {}
 
 void MultiplierDae::declare_common(SparsityPattern& p) const {
-  const int V = n_, L = 2 * n_;
+  const int V = n_;
   for (int i = 0; i < n_; ++i) {
     p.add(i, i);
     p.add(i, V + i);
     p.add(V + i, V + i);
   }
   for (int i = 2 * n_; i < size_; ++i) p.add(i, i);  // zero diagonal: room for pivoting
-  add_block(p, model_.hessian_pattern(), V, 0, false);
-  add_block(p, model_.force_q_pattern(), V, 0, false);
-  add_block(p, model_.force_v_pattern(), V, V, false);
-  add_block(p, model_.jacobian_pattern(), V, L, true);
+  saddle_.declare(p);
 }
 
 void MultiplierDae::bind_common(const SparsityPattern& p) {
   J_ = p.build();
-  const int V = n_, L = 2 * n_;
+  const int V = n_;
   for (int i = 0; i < n_; ++i) {
     q_diag_.push_back(slot(J_, i, i));
     qv_diag_.push_back(slot(J_, i, V + i));
     v_diag_.push_back(slot(J_, V + i, V + i));
   }
-  jac_F2lam_ = jacobian_slots(V, L, true);
   for (int i = 2 * n_; i < size_; ++i) alg_diag_.push_back(slot(J_, i, i));
-  hess_F2q_ = embed_slots(model_.hessian_pattern(), J_, V, 0);
-  Qq_F2q_ = embed_slots(model_.force_q_pattern(), J_, V, 0);
-  Qv_F2v_ = embed_slots(model_.force_v_pattern(), J_, V, V);
+  saddle_.bind(J_);
   row_scale_ = VecX::Ones(size_);
   col_scale_ = VecX::Ones(size_);
+}
+
+void MultiplierDae::initial(const ConsistentState& s, double* y, double* yp) const {
+  std::fill(y, y + size_, 0.0);
+  std::fill(yp, yp + size_, 0.0);
+  std::copy(s.q.data(), s.q.data() + n_, y);
+  std::copy(s.v.data(), s.v.data() + n_, y + n_);
+  std::copy(s.lam.data(), s.lam.data() + m_, y + 2 * n_);
+  std::copy(s.v.data(), s.v.data() + n_, yp);
+  std::copy(s.qdd.data(), s.qdd.data() + n_, yp + n_);
 }
 
 std::vector<int> MultiplierDae::jacobian_slots(int row0, int col0, bool transpose) const {
@@ -84,22 +84,12 @@ void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, doub
     J[v_diag_[i]] = r2 * cv * cj * M[i];
   }
   assemble_jacobian(model_, d_, q, t);
-  put_jacobian(jac_F2lam_, r2 * cl);
-  assemble_constraint_hessian(model_, d_, q, t, lam);
-  for (size_t k = 0; k < hess_F2q_.size(); ++k) J[hess_F2q_[k]] += r2 * d_.H.valuePtr()[k];
-  if (!model_.state_dependent_forces().empty()) {
-    assemble_force_derivatives(model_, d_, q, v, t);
-    for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= r2 * d_.Q_q.valuePtr()[k];
-    for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= r2 * cv * d_.Q_v.valuePtr()[k];
-  }
-  if (!model_.friction_groups().empty()) {
-    // joint friction Q_f(q, v, lam): -Q_f,q, -Q_f,v, and -Q_f,lam beside
-    // Phi_q^T (a joint's friction depends only on that joint's multipliers)
-    assemble_friction_derivatives(model_, d_, q, v, lam);
-    for (size_t k = 0; k < Qq_F2q_.size(); ++k) J[Qq_F2q_[k]] -= r2 * d_.friction_Q_q.valuePtr()[k];
-    for (size_t k = 0; k < Qv_F2v_.size(); ++k) J[Qv_F2v_[k]] -= r2 * cv * d_.friction_Q_v.valuePtr()[k];
-    for (size_t k = 0; k < jac_F2lam_.size(); ++k) J[jac_F2lam_[k]] -= r2 * cl * d_.friction_Q_lam.valuePtr()[k];
-  }
+  put_jacobian(saddle_.jacobian_t, r2 * cl);
+  // (Phi_q^T lam)_q - Q_q - Q_v, with joint friction Q_f(q, v, lam)'s -Q_f,q
+  // and -Q_f,v; its -Q_f,lam goes beside Phi_q^T (a joint's friction depends
+  // only on that joint's multipliers)
+  saddle_.add_tangent(d_, J, q, v, t, lam, r2, r2 * cv);
+  if (!model_.friction_groups().empty()) add_scaled(J, saddle_.jacobian_t, d_.friction_Q_lam, -r2 * cl);
 }
 
 void MultiplierDae::pin_dropped_multipliers() {
@@ -116,9 +106,7 @@ int MultiplierDae::check_finite(const double* F, int n) {
 }
 
 void MultiplierDae::put_jacobian(const std::vector<int>& slots, double scale) {
-  double* J = J_.valuePtr();
-  const double* G = d_.Phi_q.valuePtr();
-  for (size_t k = 0; k < slots.size(); ++k) J[slots[k]] += scale * G[k];
+  add_scaled(J_.valuePtr(), slots, d_.Phi_q, scale);
 }
 
 }  // namespace lagmb

@@ -1,0 +1,172 @@
+// The "projection" formulation (projection.hpp): the ODE in accelerations,
+// its Newton system and the coordinate projection.
+#include "projection.hpp"
+
+#include "lagmb/assembly.hpp"
+#include "lagmb/trajectory.hpp"
+
+namespace lagmb {
+
+ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, double beta)
+    : model_(model),
+      d_(model),
+      kkt_(model),
+      n_(model.n_coordinates()),
+      nc_(model.n_constraints()),
+      alpha_(alpha),
+      beta_(beta),
+      saddle_(model, {0, 0, 0, n_, n_}) {
+  qdd_.resize(n_);
+  lam_.resize(nc_);
+  lam_lin_ = VecX::Zero(nc_);
+  q_lin_.resize(n_);
+  v_lin_.resize(n_);
+  kappa_.resize(nc_);
+  dq_.resize(n_);
+  zero_n_ = VecX::Zero(n_);
+  N_ = saddle_.build_square(diag_);
+  lu_.analyzePattern(N_);
+  rhs_.resize(n_ + nc_);
+  sol_.resize(n_ + nc_);
+  Kb_.resize(n_);
+  q0_.resize(n_);
+  v0_.resize(n_);
+  vnew_.resize(n_);
+  Mv_.resize(n_);
+  w_.resize(nc_);
+}
+
+/// qdd and lam at (t, q, v) from the augmented system; false if its matrix
+/// is singular. With Baumgarte terms:
+///   Phi_q qdd = gamma - 2 alpha (Phi_q v + Phi_t) - beta^2 Phi.
+bool ProjectionFormulation::accelerations(double t, const double* q, const double* v) {
+  assemble_jacobian(model_, d_, q, t);
+  if (!kkt_.factorize(d_)) return false;
+  assemble_forces(model_, d_, q, v, t);
+  assemble_gamma(model_, d_, q, v, t);
+  if (alpha_ != 0.0) {
+    assemble_phi_t(model_, d_, q, t);
+    w_ = d_.phi_t;
+    add_jacobian_times(d_, v, w_.data());
+    d_.gamma -= 2.0 * alpha_ * w_;
+  }
+  if (beta_ != 0.0) {
+    assemble_constraints(model_, d_, q, t);
+    d_.gamma -= beta_ * beta_ * d_.Phi;
+  }
+  kkt_.solve(d_.Q, d_.gamma, qdd_, lam_);
+  if (!model_.friction_groups().empty()) solve_friction(model_, d_, kkt_, q, v, t, qdd_, lam_);
+  return qdd_.allFinite();
+}
+
+bool ProjectionFormulation::right_hand_side(double t, const double* y, double* f) {
+  if (!accelerations(t, y, y + n_)) return false;
+  std::copy(y + n_, y + 2 * n_, f);
+  std::copy(qdd_.data(), qdd_.data() + n_, f + n_);
+  return true;
+}
+
+bool ProjectionFormulation::linearize(double t, const double* y) {
+  if (!accelerations(t, y, y + n_)) return false;
+  t_lin_ = t;
+  q_lin_ = Eigen::Map<const VecX>(y, n_);
+  v_lin_ = Eigen::Map<const VecX>(y + n_, n_);
+  lam_lin_ = lam_;
+  return true;
+}
+
+/// The Newton matrix I - gamma J, J = [[0, I], [A_q, A_v]] with A the
+/// derivative of qdd. We take the part that comes from the forces and the
+/// multipliers' curvature, A_q ~ P M^-1 (Q_q - (Phi_q^T lam)_q), A_v ~ P M^-1
+/// Q_v (P the M-orthogonal projector on Phi_q a = 0), and leave out the
+/// derivatives of gamma and the friction's dependence on lam (through the
+/// reactions). Solving (I - gamma J) x = b then reduces to one sparse
+/// saddle-point system of the size of the augmented matrix, factorized here:
+///   [ M - gamma Q_v - gamma^2 K   Phi_q^T ] [ x_v ]   [ M b_v + gamma K b_q ]
+///   [ Phi_q                       0       ] [ mu  ] = [ Phi_q b_v           ]
+///   x_q = b_q + gamma x_v,    K = Q_q - (Phi_q^T lam)_q.
+bool ProjectionFormulation::setup(double gamma) {
+  const double* q = q_lin_.data();
+  const double* v = v_lin_.data();
+  const VecX& M = model_.mass_diagonal();
+  double* x = N_.valuePtr();
+  N_.coeffs().setZero();
+  for (int i = 0; i < n_; ++i) x[diag_[i]] = M[i];
+  assemble_jacobian(model_, d_, q, t_lin_);
+  const std::vector<int>&G = saddle_.jacobian, &GT = saddle_.jacobian_t;
+  for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d_.Phi_q.valuePtr()[k];
+  // -gamma^2 K - gamma Q_v; K's values stay in d_ for solve()
+  saddle_.add_tangent(d_, x, q, v, t_lin_, lam_lin_.data(), gamma * gamma, gamma);
+  ++factorizations_;
+  gamma_setup_ = gamma;
+  return factorize_finite(lu_, N_);
+}
+
+/// The right side and back substitution of setup()'s system.
+void ProjectionFormulation::solve(const double* b, double* x) {
+  const double g = gamma_setup_;
+  const VecX& M = model_.mass_diagonal();
+  Eigen::Map<const VecX> bq(b, n_), bv(b + n_, n_);
+  Eigen::Map<VecX> xq(x, n_), xv(x + n_, n_);
+  // K b_q = (Q_q - H) b_q, from the values still in d_ (same linearization)
+  Kb_.noalias() = -(d_.H * bq);
+  if (!model_.state_dependent_forces().empty()) Kb_.noalias() += d_.Q_q * bq;
+  if (!model_.friction_groups().empty()) Kb_.noalias() += d_.friction_Q_q * bq;
+  rhs_.head(n_) = M.cwiseProduct(bv) + g * Kb_;
+  rhs_.tail(nc_).setZero();
+  add_jacobian_times(d_, bv.data(), rhs_.data() + n_);
+  sol_ = lu_.solve(rhs_);
+  xv = sol_.head(n_);
+  xq = bq + g * xv;
+}
+
+/// q onto Phi = 0 (up to 3 Newton steps) and v onto Phi_q v + Phi_t = 0,
+/// each the least change in the M metric:
+///   [ M Phi_q^T; Phi_q 0 ] [ dq; kappa ] = [ 0; -Phi ],
+///   [ M Phi_q^T; Phi_q 0 ] [ v; kappa ] = [ M v; -Phi_t ];
+/// the error estimate's q and v parts onto Phi_q e = 0 the same way.
+int ProjectionFormulation::project(double t, double* q, double* v, double* corr, double* err) {
+  Eigen::Map<VecX> Q(q, n_), V(v, n_);
+  q0_ = Q;
+  v0_ = V;
+  for (int it = 0; it < 3; ++it) {
+    assemble_constraints(model_, d_, q, t);
+    const double e = nc_ ? d_.Phi.lpNorm<Eigen::Infinity>() : 0.0;
+    if (e <= 1e-14 * (1.0 + Q.lpNorm<Eigen::Infinity>())) break;
+    assemble_jacobian(model_, d_, q, t);
+    if (!kkt_.factorize(d_)) return 1;
+    d_.Phi = -d_.Phi;  // in place: no temporary
+    kkt_.solve(zero_n_, d_.Phi, dq_, kappa_);
+    Q += dq_;
+  }
+  assemble_jacobian(model_, d_, q, t);
+  if (!kkt_.factorize(d_)) return 1;
+  assemble_phi_t(model_, d_, q, t);
+  Mv_ = model_.mass_diagonal().cwiseProduct(V);
+  d_.phi_t = -d_.phi_t;
+  kkt_.solve(Mv_, d_.phi_t, vnew_, kappa_);
+  V = vnew_;
+  Eigen::Map<VecX>(corr, n_) = Q - q0_;
+  Eigen::Map<VecX>(corr + n_, n_) = V - v0_;
+  if (err) {
+    for (int part = 0; part < 2; ++part) {
+      Eigen::Map<VecX> e(err + part * n_, n_);
+      w_.setZero();
+      add_jacobian_times(d_, e.data(), w_.data());
+      w_ = -w_;
+      kkt_.solve(zero_n_, w_, dq_, kappa_);
+      e += dq_;
+    }
+  }
+  ++projections_;
+  return 0;
+}
+
+void ProjectionFormulation::count(Stats& stats) const {
+  stats.lu_factorizations = factorizations_;
+  stats.augmented_factorizations = kkt_.factorizations();
+  stats.projections = projections_;
+  stats.element_evaluations = d_.element_evaluations;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,65 @@
+// The "projection" formulation: the ODE in accelerations, y = (q, v), with
+// qdd and lam from the augmented system, its Newton system and the
+// projection of q and v onto the constraints. CVODE integrates it
+// (cvode_integrator.cpp).
+#pragma once
+
+#include <Eigen/SparseLU>
+
+#include "saddle_point.hpp"
+#include "lagmb/augmented.hpp"
+
+namespace lagmb {
+
+struct Stats;
+
+/// y = (q, v); f(t, y) = (v, qdd) with qdd, lam from the augmented system
+///   [ M      Phi_q^T ] [ qdd ]   [ Q     ]
+///   [ Phi_q  0       ] [ lam ] = [ gamma ]
+/// (with the joint friction's fixed point where the model has friction).
+class ProjectionFormulation {
+ public:
+  /// alpha, beta: Baumgarte terms (for Adams, which CVODE cannot project).
+  ProjectionFormulation(const Model& model, double alpha, double beta);
+  int n() const { return n_; }
+  int n_constraints() const { return nc_; }
+  /// Joins the run: its dropped rows and run state (Data::join_run).
+  void join_run(const Data& run) { d_.join_run(model_, run); }
+
+  /// f = (v, qdd) at (t, y); false if the augmented matrix is singular or
+  /// qdd is not finite (recoverable: the integrator cuts the step).
+  bool right_hand_side(double t, const double* y, double* f);
+  /// Takes (t, y) and its multipliers as the point the Newton matrix is
+  /// linearized at; false as right_hand_side.
+  bool linearize(double t, const double* y);
+  /// Factorizes the Newton matrix I - gamma J at the linearization point.
+  bool setup(double gamma);
+  /// x = (I - gamma J)^-1 b with the gamma of the last setup.
+  void solve(const double* b, double* x);
+  /// Projects (q, v) onto the constraints; corr = the change of (q, v), err
+  /// (if given) projected onto the tangent space. 0, or 1 if the augmented
+  /// matrix is singular.
+  int project(double t, double* q, double* v, double* corr, double* err);
+  /// Its counts: lu_factorizations, augmented_factorizations, projections,
+  /// element_evaluations.
+  void count(Stats& stats) const;
+
+ private:
+  bool accelerations(double t, const double* q, const double* v);
+
+  const Model& model_;
+  Data d_;
+  AugmentedSystem kkt_;
+  int n_, nc_;
+  double alpha_, beta_;
+  VecX qdd_, lam_, lam_lin_, q_lin_, v_lin_, kappa_, dq_, zero_n_, rhs_, sol_;
+  VecX Kb_, q0_, v0_, vnew_, Mv_, w_;  // scratch, sized once: no allocation per solve or projection
+  double t_lin_ = 0.0, gamma_setup_ = 0.0;
+  SaddlePoint saddle_;
+  SpMat N_;
+  std::vector<int> diag_;
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  long factorizations_ = 0, projections_ = 0;
+};
+
+}  // namespace lagmb
