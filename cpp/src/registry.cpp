@@ -27,8 +27,28 @@ const Param* KindInfo::param(const std::string& key) const {
   return nullptr;
 }
 
+// Each kind's declaration, in cpp/src/elements/<file>.cpp.
+KindInfo body_kind();
+KindInfo particle_kind();
+KindInfo revolute_kind();
+KindInfo translational_kind();
+KindInfo weld_kind();
+KindInfo distance_kind();
+KindInfo pin_in_slot_kind();
+KindInfo gear_kind();
+KindInfo rack_pinion_kind();
+KindInfo joint_driver_kind();
+KindInfo body_driver_kind();
+KindInfo spring_damper_kind();
+KindInfo rotational_spring_damper_kind();
+KindInfo force_kind();
+KindInfo torque_kind();
+KindInfo joint_friction_kind();
+KindInfo contact_kind();
+KindInfo stop_kind();
+
 const std::vector<KindInfo>& element_kinds() {
-  // the order of scene tables and docs; a new kind adds its line here
+  // the order of scene tables and docs; a new kind adds its line here and above
   static const std::vector<KindInfo> kinds = {
       body_kind(),          particle_kind(),
       revolute_kind(),      translational_kind(),

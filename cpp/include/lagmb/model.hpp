@@ -3,31 +3,15 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
 #include <memory>
+#include <set>
 #include <string>
 #include <typeindex>
 #include <vector>
 
-#include <optional>
-
 #include "lagmb/constraint_group.hpp"
-#include "lagmb/elements/applied_force.hpp"
 #include "lagmb/elements/body.hpp"
-#include "lagmb/elements/contact.hpp"
-#include "lagmb/elements/distance.hpp"
-#include "lagmb/elements/drivers.hpp"
-#include "lagmb/elements/gear.hpp"
 #include "lagmb/elements/gravity.hpp"
-#include "lagmb/elements/joint_friction.hpp"
-#include "lagmb/elements/pin_in_slot.hpp"
-#include "lagmb/elements/rack_pinion.hpp"
-#include "lagmb/elements/revolute.hpp"
-#include "lagmb/elements/rotational_spring_damper.hpp"
-#include "lagmb/elements/spring_damper.hpp"
-#include "lagmb/elements/stop.hpp"
-#include "lagmb/elements/translational.hpp"
-#include "lagmb/elements/weld.hpp"
 #include "lagmb/event_group.hpp"
 #include "lagmb/force_group.hpp"
 #include "lagmb/friction_group.hpp"

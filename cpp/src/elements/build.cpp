@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lagmb/elements/revolute.hpp"
+#include "lagmb/elements/translational.hpp"
+
 namespace lagmb::build {
 
 std::string label(const Args& args, const std::string& name) {

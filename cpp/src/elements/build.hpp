@@ -8,6 +8,7 @@
 
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/model.hpp"
+#include "lagmb/registry.hpp"
 
 namespace lagmb::build {
 

@@ -3,7 +3,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/types.hpp"
 
@@ -61,9 +60,5 @@ struct AppliedTorque {
   void derivatives(const Local6&, const Local6&, double, Mat6&, Mat6&) const {}
   double potential(const Local6&, double) const { return 0.0; }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/applied_force.cpp).
-KindInfo force_kind();
-KindInfo torque_kind();
 
 }  // namespace lagmb

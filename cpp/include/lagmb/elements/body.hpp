@@ -3,7 +3,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -27,9 +26,5 @@ struct Body {
   /// Index of the angle coordinate in q, or -1 for a particle.
   int angle_coord() const { return particle ? -1 : first_coord + 2; }
 };
-
-/// How users add them (registry.hpp; declared in cpp/src/elements/body.cpp).
-KindInfo body_kind();
-KindInfo particle_kind();
 
 }  // namespace lagmb

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "lagmb/event_group.hpp"
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -204,8 +203,5 @@ struct CircleLineContact {
     return a;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/contact.cpp).
-KindInfo contact_kind();
 
 }  // namespace lagmb

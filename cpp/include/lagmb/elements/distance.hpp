@@ -4,7 +4,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -58,8 +57,5 @@ struct DistanceJoint {
     return E;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/distance.cpp).
-KindInfo distance_kind();
 
 }  // namespace lagmb

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {
@@ -80,9 +79,5 @@ struct CoordinateDriver : DriverBase {
   void hessians(const Local6&, double, Mat6* H) const { H[0].setZero(); }
   Mat2 axes(const Local6&, double) const { return Mat2::Identity(); }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/drivers.cpp).
-KindInfo joint_driver_kind();
-KindInfo body_driver_kind();
 
 }  // namespace lagmb

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -87,8 +86,5 @@ struct GearPair {
     return E;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/gear.cpp).
-KindInfo gear_kind();
 
 }  // namespace lagmb

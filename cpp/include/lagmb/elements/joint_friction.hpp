@@ -6,7 +6,6 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -113,8 +112,5 @@ struct TranslationalFriction {
     return N;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/joint_friction.cpp).
-KindInfo joint_friction_kind();
 
 }  // namespace lagmb

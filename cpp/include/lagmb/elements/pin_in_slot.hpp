@@ -4,7 +4,6 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/registry.hpp"
 
 namespace lagmb {
 
@@ -27,8 +26,5 @@ struct PinInSlotJoint {
   void hessians(const Local6& c, double, Mat6* H) const { H[0] = across.hessian(c); }
   Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/pin_in_slot.cpp).
-KindInfo pin_in_slot_kind();
 
 }  // namespace lagmb

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/registry.hpp"
 
 namespace lagmb {
 
@@ -53,8 +52,5 @@ struct RackPinion {
     return E;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/rack_pinion.cpp).
-KindInfo rack_pinion_kind();
 
 }  // namespace lagmb

@@ -3,7 +3,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -59,8 +58,5 @@ struct RevoluteJoint {
     return E;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/revolute.cpp).
-KindInfo revolute_kind();
 
 }  // namespace lagmb

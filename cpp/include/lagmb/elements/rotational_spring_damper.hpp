@@ -3,7 +3,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/types.hpp"
 
@@ -43,8 +42,5 @@ struct RotationalSpringDamper {
     return 0.5 * stiffness * e * e;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/rotational_spring_damper.cpp).
-KindInfo rotational_spring_damper_kind();
 
 }  // namespace lagmb

@@ -4,7 +4,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/types.hpp"
 
@@ -66,8 +65,5 @@ struct SpringDamper {
     return 0.5 * stiffness * e * e;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/spring_damper.cpp).
-KindInfo spring_damper_kind();
 
 }  // namespace lagmb

@@ -5,7 +5,6 @@
 
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/event_group.hpp"
-#include "lagmb/registry.hpp"
 
 namespace lagmb {
 
@@ -66,8 +65,5 @@ struct JointStop {
     return a;
   }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/stop.cpp).
-KindInfo stop_kind();
 
 }  // namespace lagmb

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/registry.hpp"
 
 namespace lagmb {
 
@@ -38,8 +37,5 @@ struct TranslationalJoint {
   }
   Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/translational.cpp).
-KindInfo translational_kind();
 
 }  // namespace lagmb

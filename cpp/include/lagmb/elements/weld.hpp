@@ -3,7 +3,6 @@
 
 #include <string>
 
-#include "lagmb/registry.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -42,8 +41,5 @@ struct WeldJoint {
   }
   Mat2 axes(const Local6& c, double) const { return rotation(c[2]); }
 };
-
-/// How users add one (registry.hpp; declared in cpp/src/elements/weld.cpp).
-KindInfo weld_kind();
 
 }  // namespace lagmb
