@@ -1,5 +1,5 @@
 #!/bin/sh
-# Installs what lagmb needs and is missing: Eigen 3.4 and SUNDIALS (apt, on
+# Installs what lagmb needs and is missing: Eigen 3.4, SUNDIALS and SuiteSparse (apt, on
 # Debian/Ubuntu), then the Python build tools, and the package with its
 # test and plot extras. Usage: scripts/setup.sh PYTHON
 set -eu
@@ -7,7 +7,7 @@ PYTHON=${1:-python3}
 
 need=""
 if command -v dpkg >/dev/null 2>&1; then
-  for pkg in libsundials-dev libeigen3-dev; do
+  for pkg in libsundials-dev libeigen3-dev libsuitesparse-dev; do
     dpkg -s "$pkg" >/dev/null 2>&1 || need="$need $pkg"
   done
   if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
@@ -23,7 +23,7 @@ if [ -n "$need" ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $need >/dev/null
 elif ! command -v dpkg >/dev/null 2>&1; then
-  echo "setup: not a Debian system; install SUNDIALS >= 6 and Eigen 3.4 yourself (see README.md)"
+  echo "setup: not a Debian system; install SUNDIALS >= 6, Eigen 3.4 and SuiteSparse yourself (see README.md)"
 fi
 
 if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then

@@ -2,13 +2,13 @@
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
-#include <Eigen/SparseQR>
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
 
 #include "lagmb/assembly.hpp"
+#include "sparse_qr.hpp"
 #include "lagmb/equilibrium.hpp"
 
 namespace lagmb {
@@ -24,18 +24,13 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
   if (r.equations == 0) return r;
   Data d(model);
   assemble_jacobian(model, d, q.data(), t);
-  SpMat JT = d.Phi_q.transpose();
-  JT.makeCompressed();
+  const SpMat JT = d.Phi_q.transpose();
   double max_norm = 0.0;
   for (int c = 0; c < JT.cols(); ++c) max_norm = std::max(max_norm, JT.col(c).norm());
-  Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>> qr;
-  qr.setPivotThreshold(tol * std::max(max_norm, 1e-300));
-  qr.compute(JT);
-  if (qr.info() != Eigen::Success) throw std::runtime_error("lagmb: sparse QR of Phi_q^T failed");
-  r.rank = static_cast<int>(qr.rank());
-  const auto& perm = qr.colsPermutation().indices();
-  for (int k = r.rank; k < r.equations; ++k) r.dependent_rows.push_back(perm[k]);
-  std::sort(r.dependent_rows.begin(), r.dependent_rows.end());
+  const SparseQR qr(JT, tol * std::max(max_norm, 1e-300));
+  if (!qr.ok()) throw std::runtime_error("lagmb: sparse QR of Phi_q^T failed");
+  r.rank = qr.rank();
+  r.dependent_rows = qr.dependent_columns();
   return r;
 }
 

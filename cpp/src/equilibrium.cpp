@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseLU>
-#include <Eigen/SparseQR>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -11,6 +10,7 @@
 #include "lagmb/assembly.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/redundancy.hpp"
+#include "sparse_qr.hpp"
 #include "lagmb/augmented.hpp"
 #include "lagmb/errors.hpp"
 
@@ -64,11 +64,8 @@ class EquilibriumSolver {
     assemble_forces(model_, d_, q.data(), v0_.data(), t_);
     VecX lam = VecX::Zero(m_);
     if (m_ > 0) {
-      SpMat JT = d_.Phi_q.transpose();
-      JT.makeCompressed();
-      Eigen::SparseQR<SpMat, Eigen::COLAMDOrdering<int>> qr;
-      qr.compute(JT);
-      if (qr.info() == Eigen::Success) {
+      const SparseQR qr(d_.Phi_q.transpose());
+      if (qr.ok()) {
         lam = qr.solve(d_.Q);
         if (!lam.allFinite()) lam.setZero();
       }

@@ -41,7 +41,9 @@ std::shared_ptr<Model> ModelSpec::rebuild(const FunctionCopy& copy) const {
 void ModelSpec::add(const std::string& name, Args args) {
   // build into an open model of our own (a copy of this spec may share the one we had)
   if (!draft_ || draft_.use_count() > 1) draft_ = rebuild();
-  elements_.reserve(elements_.size() + 1);  // so that nothing throws after the draft took the element
+  // room for one more (doubling, so that adds stay amortized O(1)), so that
+  // nothing throws after the draft took the element
+  if (elements_.size() == elements_.capacity()) elements_.reserve(2 * elements_.size() + 1);
   try {
     add_element(*draft_, name, args);
   } catch (...) {
