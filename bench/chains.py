@@ -28,20 +28,10 @@ import subprocess
 import sys
 import time
 
+from chain import chain  # the same chain as bench/chain.py
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 PHASES = ("build", "compile", "assemble", "run")
-
-
-def chain(n):
-    import lagmb as mb
-
-    m = mb.Model(gravity=(0.0, -9.81))
-    prev = m.ground
-    for k in range(n):
-        rod = m.add_body(f"rod{k}", mass=1.0, inertia=1.0 / 12.0, position=(k + 0.5, 0.0))
-        m.add_revolute(f"pin{k}", prev, rod, at=(float(k), 0.0))
-        prev = rod
-    return m
 
 
 def measure(n, t_end, run):

@@ -22,17 +22,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "examples"))
 
+import chain as chain_bench  # noqa: E402  (bench/chain.py, next to this file)
 import lagmb as mb  # noqa: E402
 
 
 def chain(n, t_end):
-    m = mb.Model(gravity=(0.0, -9.81))
-    prev = m.ground
-    for k in range(n):
-        rod = m.add_body(f"rod{k}", mass=1.0, inertia=1.0 / 12.0, position=(k + 0.5, 0.0))
-        m.add_revolute(f"pin{k}", prev, rod, at=(float(k), 0.0))
-        prev = rod
-    return m, t_end
+    return chain_bench.chain(n), t_end
 
 
 def problems():
