@@ -68,7 +68,7 @@ def fit_exponent(rows, phase):
     return sum((x - mx) * (y - my) for x, y in pts) / sxx
 
 
-def plot(rows, path):
+def plot(rows, path, t_end):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -84,7 +84,7 @@ def plot(rows, path):
     ax.loglog(ns, [ref * x for x in ns], "k:", label="linear")
     ax.set_xlabel("links N")
     ax.set_ylabel("wall time (s)")
-    ax.set_title("N-link chain: set-up and a run of the first 0.1 s")
+    ax.set_title(f"N-link chain: set-up, and a run of {t_end:g} s")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
@@ -124,7 +124,7 @@ def main():
         json.dump({"machine": platform.platform(), "processor": platform.processor(), "t_end": args.t_end,
                    "rtol": 1e-6, "atol": 1e-8, "exponents": exponents, "rows": rows}, f, indent=1)
     try:
-        plot(rows, os.path.splitext(args.out)[0] + ".png")
+        plot(rows, os.path.splitext(args.out)[0] + ".png", args.t_end)
     except ImportError:
         pass
 
