@@ -40,8 +40,8 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 ALL_METHODS = list(mb.METHODS)
 
 
-def test_methods_are_the_six_documented():
-    """mb.METHODS names exactly the six methods documented in simulate() and
+def test_methods_are_the_seven_documented():
+    """mb.METHODS names exactly the seven methods documented in simulate() and
     lagmb.accuracy, with the options they stand for (so every method below
     is one of the documented combinations)."""
     assert mb.METHODS == {
@@ -51,6 +51,7 @@ def test_methods_are_the_six_documented():
         "index1-baumgarte": dict(formulation="index1", integrator="bdf", baumgarte=(10.0, 10.0)),
         "projection-bdf": dict(formulation="projection", integrator="bdf"),
         "projection-adams": dict(formulation="projection", integrator="adams"),
+        "projection-erk": dict(formulation="projection", integrator="erk"),
     }
 
 

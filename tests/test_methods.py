@@ -3,6 +3,7 @@ user-facing list is that table: lagmb.methods(), `lagmb info --methods`,
 the scene reader's formulation/integrator/max_order checks, simulate's
 validation and the work-precision presets (mb.METHODS)."""
 
+import re
 import subprocess
 import sys
 
@@ -83,7 +84,8 @@ def test_a_scene_is_checked_against_the_table(tmp_path):
         return path
 
     assert mb.load_scene(scene('formulation = "projection"\nintegrator = "adams"\nmax_order = 12'))
-    with pytest.raises(mb.SceneError, match="integrator.*'bdf', 'adams' for formulation 'projection'"):
+    projection = ", ".join(f"'{m['integrator']}'" for m in mb.methods() if m["formulation"] == "projection")
+    with pytest.raises(mb.SceneError, match=f"integrator.*{re.escape(projection)} for formulation 'projection'"):
         mb.load_scene(scene('formulation = "projection"\nintegrator = "rk4"'))
     with pytest.raises(mb.SceneError, match="max_order.*1..5 for method 'ggl'"):
         mb.load_scene(scene("max_order = 6"))

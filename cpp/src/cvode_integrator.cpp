@@ -7,26 +7,11 @@
 #include <nvector/nvector_serial.h>
 
 #include <exception>
-#include <sstream>
-
-#include "events.hpp"
-#include "formulations/projection.hpp"
-#include "integrators.hpp"
-#include "sun_compat.hpp"
+#include "ode_callbacks.hpp"
 
 namespace lagmb {
 
 namespace {
-
-/// What CVODE's callbacks reach (its user data): the formulation, the
-/// model's event functions, and the exception a callback caught, which the
-/// stepper rethrows (an exception must not cross CVODE's C frames).
-struct CvodeUserData {
-  explicit CvodeUserData(ProjectionFormulation& formulation) : ode(formulation) {}
-  ProjectionFormulation& ode;
-  EventRunner* events = nullptr;
-  std::exception_ptr error;
-};
 
 /// The Newton "matrix" I + c J, held implicitly: CVODE only scales it
 /// (SUNMatScaleAddI with c = -gamma), copies and zeroes it; the linear solver
@@ -71,14 +56,14 @@ SUNMatrix make_implicit_matrix(SUNContext ctx) {
   return M;
 }
 
-SUNLinearSolver make_saddle_solver(SUNContext ctx, CvodeUserData* p) {
+SUNLinearSolver make_saddle_solver(SUNContext ctx, OdeUserData* p) {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   if (!S) return nullptr;
   S->content = p;
   S->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
   S->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
   S->ops->setup = [](SUNLinearSolver S, SUNMatrix A) -> int {
-    auto* p = static_cast<CvodeUserData*>(S->content);
+    auto* p = static_cast<OdeUserData*>(S->content);
     try {
       return p->ode.setup(-imat(A).c) ? 0 : SUNLS_LUFACT_FAIL;
     } catch (...) {
@@ -87,7 +72,7 @@ SUNLinearSolver make_saddle_solver(SUNContext ctx, CvodeUserData* p) {
     }
   };
   S->ops->solve = [](SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) -> int {
-    auto* p = static_cast<CvodeUserData*>(S->content);
+    auto* p = static_cast<OdeUserData*>(S->content);
     p->ode.solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
     return 0;
   };
@@ -99,18 +84,8 @@ SUNLinearSolver make_saddle_solver(SUNContext ctx, CvodeUserData* p) {
   return S;
 }
 
-int rhs_fn(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
-  auto* p = static_cast<CvodeUserData*>(data);
-  try {
-    return p->ode.right_hand_side(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)) ? 0 : 1;  // 1: recoverable
-  } catch (...) {
-    p->error = std::current_exception();
-    return -1;
-  }
-}
-
 int jac_fn(sunrealtype t, N_Vector y, N_Vector, SUNMatrix, void* data, N_Vector, N_Vector, N_Vector) {
-  auto* p = static_cast<CvodeUserData*>(data);
+  auto* p = static_cast<OdeUserData*>(data);
   try {
     return p->ode.linearize(t, N_VGetArrayPointer(y)) ? 0 : 1;
   } catch (...) {
@@ -120,7 +95,7 @@ int jac_fn(sunrealtype t, N_Vector y, N_Vector, SUNMatrix, void* data, N_Vector,
 }
 
 int proj_fn(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype, N_Vector err, void* data) {
-  auto* p = static_cast<CvodeUserData*>(data);
+  auto* p = static_cast<OdeUserData*>(data);
   try {
     double* yy = N_VGetArrayPointer(y);
     return p->ode.project(t, yy, yy + p->ode.n(), N_VGetArrayPointer(corr), err ? N_VGetArrayPointer(err) : nullptr);
@@ -130,38 +105,17 @@ int proj_fn(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype, N_Vector err,
   }
 }
 
-int root_fn(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
-  auto* p = static_cast<CvodeUserData*>(data);
-  try {
-    const double* yy = N_VGetArrayPointer(y);
-    p->events->values(t, yy, yy + p->ode.n(), g);
-    return 0;
-  } catch (...) {
-    p->error = std::current_exception();
-    return -1;
-  }
-}
-
-struct CvodeSession {
-  sun::Context ctx;
+struct CvodeSession : OdeSession {
+  using OdeSession::OdeSession;
   void* mem = nullptr;
-  N_Vector y = nullptr, abstol = nullptr, out = nullptr;
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
   ~CvodeSession() {
     if (mem) CVodeFree(&mem);
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
-    for (N_Vector* v : {&y, &abstol, &out})
-      if (*v) N_VDestroy(*v);
   }
 };
-
-void check(int flag, const char* call, sun::Context& ctx) {
-  if (flag < 0)
-    throw std::runtime_error(std::string("lagmb: ") + call + " failed (" + std::to_string(flag) +
-                             "): " + ctx.sink().message);
-}
 
 }  // namespace
 
@@ -170,21 +124,13 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
                      const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
   ProjectionFormulation ode(model, alpha, beta);
   if (plan.run) ode.join_run(*plan.run);
-  CvodeUserData p{ode};
-  CvodeSession s;
-  const int n = ode.n();
-  s.y = N_VNew_Serial(2 * n, s.ctx);
-  s.abstol = N_VNew_Serial(2 * n, s.ctx);
-  s.out = N_VNew_Serial(2 * n, s.ctx);
-  Eigen::Map<VecX>(N_VGetArrayPointer(s.y), n) = start.q;
-  Eigen::Map<VecX>(N_VGetArrayPointer(s.y) + n, n) = start.v;
-  Eigen::Map<VecX>(N_VGetArrayPointer(s.abstol), n) = plan.atol;
-  Eigen::Map<VecX>(N_VGetArrayPointer(s.abstol) + n, n) = plan.atol;
+  OdeUserData p{ode};
+  CvodeSession s(start, plan.atol);
 
   s.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, s.ctx);
   if (!s.mem) throw std::runtime_error("lagmb: CVodeCreate failed");
   s.ctx.attach_cvode(s.mem);
-  check(CVodeInit(s.mem, rhs_fn, plan.t0, s.y), "CVodeInit", s.ctx);
+  check(CVodeInit(s.mem, ode_rhs, plan.t0, s.y), "CVodeInit", s.ctx);
   check(CVodeSVtolerances(s.mem, plan.rtol, s.abstol), "CVodeSVtolerances", s.ctx);
   check(CVodeSetUserData(s.mem, &p), "CVodeSetUserData", s.ctx);
   check(CVodeSetMaxOrd(s.mem, plan.max_order), "CVodeSetMaxOrd", s.ctx);
@@ -203,61 +149,37 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
   }
   if (plan.events && plan.events->size() > 0) {  // only models with event elements
     p.events = plan.events;
-    check(CVodeRootInit(s.mem, plan.events->size(), root_fn), "CVodeRootInit", s.ctx);
+    check(CVodeRootInit(s.mem, plan.events->size(), ode_roots), "CVodeRootInit", s.ctx);
     check(CVodeSetRootDirection(s.mem, plan.events->directions()), "CVodeSetRootDirection", s.ctx);
   }
 
   /// CVODE behind the shared stepping loop.
-  struct CvodeStepper final : Stepper {
+  struct CvodeStepper final : OdeStepper {
     CvodeSession& s;
-    CvodeUserData& p;
-    const int n;
     double t_end;
     Stats before;  // counts of the segments before the last CVodeReInit (which zeroes them)
-    CvodeStepper(CvodeSession& s_, CvodeUserData& p_, double t_end_) : s(s_), p(p_), n(p_.ode.n()), t_end(t_end_) {}
+    CvodeStepper(CvodeSession& s_, OdeUserData& p_, double t_end_) : OdeStepper(s_.y, p_), s(s_), t_end(t_end_) {}
     const char* name() const override { return "CVODE"; }
     void set_stop(double stop) override { check(CVodeSetStopTime(s.mem, stop), "CVodeSetStopTime", s.ctx); }
     double step(bool& at_stop) override {
       sunrealtype t = 0.0;
       const int flag = CVode(s.mem, t_end, s.y, &t, CV_ONE_STEP);
-      if (p.error) {
-        try {
-          std::rethrow_exception(p.error);
-        } catch (const UserFunctionError& e) {
-          throw IntegratorFailure(e.what(), t);  // keeps the partial result
-        }
-      }
+      rethrow_callback_error(p, t);
       if (flag < 0) {
         sunrealtype h = 0;
         CVodeGetCurrentStep(s.mem, &h);
-        std::ostringstream msg;
-        msg << "CVODE failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
-            << CVodeGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
-        throw IntegratorFailure(msg.str(), t);
+        throw solver_failure("CVODE", t, h, flag, CVodeGetReturnFlagName(flag), s.ctx.sink().message);
       }
       at_stop = flag == CV_TSTOP_RETURN;
       at_root = flag == CV_ROOT_RETURN;
       return t;
     }
-    bool at_root = false;
-    bool root_found(std::vector<int>& fired) override {
-      if (!at_root) return false;
-      fired.assign(p.events->size(), 0);
-      check(CVodeGetRootInfo(s.mem, fired.data()), "CVodeGetRootInfo", s.ctx);
-      return true;
-    }
-    const double* velocities() const override { return N_VGetArrayPointer(s.y) + n; }
-    void reset(double t, const ConsistentState& state) override {
-      Eigen::Map<VecX>(N_VGetArrayPointer(s.y), n) = state.q;
-      Eigen::Map<VecX>(N_VGetArrayPointer(s.y) + n, n) = state.v;
-      restart(t);
-    }
+    void root_info(int* fired) override { check(CVodeGetRootInfo(s.mem, fired), "CVodeGetRootInfo", s.ctx); }
     void interpolate(double t, const double*& q, const double*& v) override {
       check(CVodeGetDky(s.mem, t, 0, s.out), "CVodeGetDky", s.ctx);
       q = N_VGetArrayPointer(s.out);
       v = q + n;
     }
-    const double* positions() const override { return N_VGetArrayPointer(s.y); }
     void restart(double t) override {
       fill_stats(before);
       check(CVodeReInit(s.mem, t, s.y), "CVodeReInit", s.ctx);

@@ -96,6 +96,12 @@ void integrate_cvode(const Model& model, bool adams, double alpha, double beta, 
                      const IntegrationPlan& plan,
                      const std::function<void(const double* q, const double* v)>& record, Stats& stats);
 
+/// Integrates the ODE in accelerations with ARKODE's explicit Runge-Kutta
+/// methods (ERKStep, order plan.max_order: 2 to 6 or 8), projecting q and v
+/// onto Phi = 0 and Phi_q v + Phi_t = 0 after every accepted step.
+void integrate_erk(const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
+                   const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+
 /// Integrates with ALI3-P (ali3p_integrator.cpp): index-3 equations,
 /// trapezoidal rule with the fixed step `step`, Newton on (q, lam) with a
 /// regularized multiplier block, mass-orthogonal projections of v and a.

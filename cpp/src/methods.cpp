@@ -66,6 +66,14 @@ const std::vector<Entry>& entries() {
     m.baumgarte = true;
     m.drifts = true;
     add(m, &run_cvode<true>);
+    m = {"projection-erk", "projection", "erk", "ARKODE ERKStep",
+         "ODE in accelerations, explicit Runge-Kutta (Fehlberg 7(8) by default), positions and velocities "
+         "projected after each step; for non-stiff mechanisms such as long free chains",
+         8};
+    add(m, [](const Model& model, const SimulationOptions&, const ConsistentState& start,
+              const IntegrationPlan& plan, const Record& record, Stats& stats) {
+      integrate_erk(model, start, plan, record, stats);
+    });
     m = {"ali3p", "ali3p", "trapezoidal", "fixed-step trapezoidal rule",
          "index-3 augmented Lagrangian with mass-orthogonal projections (ALI3-P), fixed step; runs through "
          "singular positions",

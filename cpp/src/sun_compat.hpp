@@ -5,6 +5,7 @@
 // how errors are reported. Errors are captured here, never printed.
 #pragma once
 
+#include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
 #include <ida/ida.h>
 #include <sundials/sundials_config.h>
@@ -61,6 +62,13 @@ class Context {
     CVodeSetErrHandlerFn(cvode_mem, &Context::handler6, &sink_);
 #else
     (void)cvode_mem;
+#endif
+  }
+  void attach_erkstep(void* arkode_mem) {
+#if SUNDIALS_VERSION_MAJOR < 7
+    ERKStepSetErrHandlerFn(arkode_mem, &Context::handler6, &sink_);
+#else
+    (void)arkode_mem;
 #endif
   }
 

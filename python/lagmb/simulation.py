@@ -55,7 +55,12 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       every right-hand side), CVODE, q and v projected onto the constraints
       after every step with ``integrator="bdf"`` (CVODE BDF, orders 1-5);
       with ``"adams"`` (Adams-Moulton, orders 1-12) CVODE cannot project,
-      so the constraints drift unless ``baumgarte=(alpha, beta)`` is given.
+      so the constraints drift unless ``baumgarte=(alpha, beta)`` is given;
+      with ``"erk"`` ARKODE's explicit Runge-Kutta methods (ERKStep; order 8,
+      Fehlberg 7(8), by default; ``max_order`` 2-6 or 8 picks another), q
+      and v projected after every accepted step, outputs from a quintic
+      Hermite interpolant: for non-stiff mechanisms, such as long free
+      chains, where a few high-order steps beat many BDF steps.
     - ``"ali3p"``: index-3 augmented Lagrangian with mass-orthogonal
       projections of velocities and accelerations, trapezoidal rule with the
       fixed ``step`` (s; ``max_step`` is taken as the step if ``step`` is
@@ -69,7 +74,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       sets the truncation error (second order; energy error
       O((omega step)^2), no drift).
 
-    ``max_order`` defaults to the method's highest (5 for BDF, 12 for Adams). ``atol`` is one number
+    ``max_order`` defaults to the method's highest (5 for BDF, 12 for Adams, 8 for ERK). ``atol`` is one number
     or one per coordinate (applied to q_i and v_i; e.g. smaller for angles
     than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
