@@ -31,10 +31,41 @@ AugmentedSystem::AugmentedSystem(const Model& model)
   for (int i = 0; i < m_; ++i) reg_slots_.push_back(slot(K_, n_ + i, n_ + i));
   jac_slots_ = embed_slots(J, K_, n_, 0);
   jact_slots_ = embed_slots(J, K_, 0, n_, true);
-  lu_.analyzePattern(K_);
   rhs_.resize(n_ + m_);
   x_.resize(n_ + m_);
   r_.resize(n_ + m_);
+  dx_.resize(n_ + m_);
+  positive_mass_ = (mass_.array() > 0.0).all();
+  if (positive_mass_ && m_ > 0) setup_schur(model);
+}
+
+void AugmentedSystem::setup_schur(const Model& model) {
+  J_ = model.jacobian_pattern();
+  inv_mass_ = mass_.cwiseInverse();
+  w_.resize(n_);
+  lam_.resize(m_);
+  s_rhs_.resize(m_);
+  // S = J M^-1 J^T: entry (r_a, r_b) gathers J(r_a, c) J(r_b, c) / M_c over the columns c
+  SparsityPattern p(m_, m_);
+  for (int i = 0; i < m_; ++i) p.add(i, i);  // eps
+  const int* outer = J_.outerIndexPtr();
+  const int* row = J_.innerIndexPtr();
+  auto each_pair = [&](auto&& f) {
+    for (int c = 0; c < n_; ++c)
+      for (int a = outer[c]; a < outer[c + 1]; ++a)
+        for (int b = outer[c]; b < outer[c + 1]; ++b)
+          if (row[a] >= row[b]) f(c, a, b);
+  };
+  each_pair([&](int, int a, int b) { p.add(row[a], row[b]); });
+  S_ = p.build();
+  each_pair([&](int c, int a, int b) { terms_.push_back({slot(S_, row[a], row[b]), a, b, c}); });
+  for (int i = 0; i < m_; ++i) s_diag_.push_back(slot(S_, i, i));
+  chol_.analyzePattern(S_);
+  ++symbolic_analyses_;
+}
+
+long AugmentedSystem::factor_nonzeros() const {
+  return schur_ ? long(chol_.matrixL().nestedExpression().nonZeros()) : 0;
 }
 
 bool AugmentedSystem::factorize(const Data& d) {
@@ -44,21 +75,56 @@ bool AugmentedSystem::factorize(const Data& d) {
   for (int i = 0; i < m_; ++i) K[reg_slots_[i]] = -eps_;
   for (size_t k = 0; k < jac_slots_.size(); ++k) K[jac_slots_[k]] = K[jact_slots_[k]] = J[k];
   ++factorizations_;
+  factorized_ = false;
+  for (Eigen::Index k = 0; k < K_.nonZeros(); ++k)
+    if (!std::isfinite(K[k])) return false;
+  schur_ = positive_mass_ && m_ > 0;
+  if (schur_) {
+    std::copy(J, J + J_.nonZeros(), J_.valuePtr());
+    double* S = S_.valuePtr();
+    std::fill(S, S + S_.nonZeros(), 0.0);
+    for (int i : s_diag_) S[i] = eps_;
+    for (const Term& t : terms_) S[t.s] += J[t.a] * J[t.b] * inv_mass_[t.c];
+    chol_.factorize(S_);
+    factorized_ = chol_.info() == Eigen::Success;
+    if (factorized_) return true;
+    schur_ = false;  // not positive definite in rounding (extreme scales): the LU decides
+  }
+  if (!lu_analyzed_) {
+    lu_.analyzePattern(K_);
+    lu_analyzed_ = true;
+  }
   factorized_ = factorize_finite(lu_, K_);
   return factorized_;
+}
+
+void AugmentedSystem::solve_regularized(const VecX& b, VecX& x) {
+  if (!schur_) {
+    x = lu_.solve(b);
+    return;
+  }
+  // S lam = J M^-1 b1 - b2,  x1 = M^-1 (b1 - J^T lam)
+  w_ = inv_mass_.cwiseProduct(b.head(n_));
+  s_rhs_.noalias() = J_ * w_;
+  s_rhs_ -= b.tail(m_);
+  lam_ = chol_.solve(s_rhs_);
+  w_.noalias() = J_.transpose() * lam_;
+  x.head(n_) = inv_mass_.cwiseProduct(b.head(n_) - w_);
+  x.tail(m_) = lam_;
 }
 
 void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
   // a solve with a failed factorization is undefined in Eigen: refuse it
   if (!factorized_) throw SimulationError("the augmented matrix [M Phi_q^T; Phi_q 0] is singular or not finite", NAN);
   rhs_ << b1, b2;
-  x_ = lu_.solve(rhs_);
+  solve_regularized(rhs_, x_);
   // refine against eps = 0: K0 x = K x + eps [0; x2]
   for (int it = 0; it < 3; ++it) {
     r_.noalias() = rhs_ - K_ * x_;
     r_.tail(m_) -= eps_ * x_.tail(m_);
     if (r_.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + rhs_.lpNorm<Eigen::Infinity>())) break;
-    x_ += lu_.solve(r_);
+    solve_regularized(r_, dx_);
+    x_ += dx_;
   }
   x1 = x_.head(n_);
   x2 = x_.tail(m_);

@@ -1,6 +1,7 @@
 // The augmented (saddle-point) system of one instant, solved with sparse LU.
 #pragma once
 
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <functional>
 #include <string>
@@ -13,17 +14,27 @@ namespace lagmb {
 /// K = [ M      Phi_q^T  ]
 ///     [ Phi_q  -eps I   ]
 ///
-/// The pattern is fixed by the model, so the ordering (COLAMD) and symbolic
-/// analysis run once per AugmentedSystem; factorize() is numeric only.
 /// eps > 0 keeps K invertible when Phi_q loses rank (redundant constraints,
 /// singular positions); solve() then refines the solution against the
 /// unregularized K, so for a full-rank Phi_q the answer is exact.
+///
+/// With every mass and inertia positive (M, diagonal, is then positive
+/// definite), K is solved through its Schur complement (range-space method):
+///   S = Phi_q M^-1 Phi_q^T + eps I   (symmetric positive definite for any Phi_q),
+///   S lam = Phi_q M^-1 b1 - b2,   x1 = M^-1 (b1 - Phi_q^T lam),
+/// with a sparse Cholesky factorization of S (AMD ordering). Its cost is
+/// linear in a chain's or tree's length; S's entries are sums over the
+/// columns of Phi_q (one per coordinate), precomputed as slot triples.
+/// Otherwise (a massless body, for kinematics) K is factorized by sparse LU
+/// (COLAMD). Either way the pattern is fixed by the model, so the ordering
+/// and symbolic analysis run once per AugmentedSystem; factorize() is
+/// numeric only.
 class AugmentedSystem {
  public:
   explicit AugmentedSystem(const Model& model);
 
-  /// Factorizes K with the current d.Phi_q; false if the LU fails or K is
-  /// not finite.
+  /// Factorizes K with the current d.Phi_q; false if the factorization
+  /// fails or K is not finite.
   bool factorize(const Data& d);
   /// Solves K [x1; x2] = [b1; b2] (sizes n, m), refining against eps = 0.
   /// SimulationError if the last factorization failed.
@@ -31,17 +42,39 @@ class AugmentedSystem {
 
   int factorizations() const { return factorizations_; }
   double regularization() const { return eps_; }
+  /// Whether the last factorization went through the Schur complement.
+  bool range_space() const { return schur_; }
+  /// Nonzeros of the Cholesky factor of S (0 before the first range-space
+  /// factorization): linear in a chain's length.
+  long factor_nonzeros() const;
+  /// How often S's pattern was analyzed (ordering, elimination tree): once.
+  int symbolic_analyses() const { return symbolic_analyses_; }
 
  private:
+  void solve_regularized(const VecX& b, VecX& x);  // K x = b, with eps
+  void setup_schur(const Model& model);
+
   int n_, m_;
   double eps_;
   SpMat K_;
   std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
   const VecX& mass_;
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  bool lu_analyzed_ = false;
   bool factorized_ = false;
-  VecX rhs_, x_, r_;
+  VecX rhs_, x_, r_, dx_;
   int factorizations_ = 0;
+  // the range-space path
+  bool positive_mass_ = false, schur_ = false;
+  SpMat J_, S_;  // Phi_q (values of the last factorization) and S (lower triangle)
+  VecX inv_mass_, w_, lam_, s_rhs_;
+  struct Term {
+    int s, a, b, c;  // S.values[s] += J.values[a] J.values[b] / M[c]
+  };
+  std::vector<Term> terms_;
+  std::vector<int> s_diag_;
+  Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> chol_;
+  int symbolic_analyses_ = 0;
 };
 
 /// q, v, qdd and lam that satisfy Phi = 0, Phi_q v + Phi_t = 0 and the

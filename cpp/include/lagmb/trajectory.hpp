@@ -34,6 +34,12 @@ struct Stats {
   long events = 0;    // event-function crossings handled (stops, contact switches)
   long impacts = 0;   // of which velocity jumps
   long root_evals = 0;  // evaluations of the event functions
+  /// The augmented system's Schur complement S = Phi_q M^-1 Phi_q^T in the
+  /// right-hand sides of the projection formulation: how often its pattern
+  /// was analyzed (once per run) and the nonzeros of its Cholesky factor
+  /// (linear in a chain's length); 0 where the LU path ran.
+  long symbolic_analyses = 0;
+  long factor_nonzeros = 0;
 
   /// f(name, field) for every field, in this order: the one list bindings
   /// and reports read (Python's r.stats is this dict).
@@ -46,7 +52,8 @@ struct Stats {
     f("element_evaluations", element_evaluations), f("last_order", last_order), f("last_step", last_step);
     f("wall_time", wall_time), f("formulation", formulation), f("integrator", integrator);
     f("analysis", analysis), f("kinematic_solves", kinematic_solves), f("events", events);
-    f("impacts", impacts), f("root_evals", root_evals);
+    f("impacts", impacts), f("root_evals", root_evals), f("symbolic_analyses", symbolic_analyses);
+    f("factor_nonzeros", factor_nonzeros);
   }
 };
 

@@ -165,6 +165,8 @@ int ProjectionFormulation::project(double t, double* q, double* v, double* corr,
 void ProjectionFormulation::count(Stats& stats) const {
   stats.lu_factorizations = factorizations_;
   stats.augmented_factorizations = kkt_.factorizations();
+  stats.symbolic_analyses = kkt_.symbolic_analyses();
+  stats.factor_nonzeros = kkt_.factor_nonzeros();
   stats.projections = projections_;
   stats.element_evaluations = d_.element_evaluations;
 }
