@@ -234,14 +234,16 @@ void Model::use_time_function(const TimeFunctionPtr& f) {
 
 std::string Model::describe(const std::string& name) const {
   const ElementRef& r = find(name);
+  std::string kind;
   switch (r.type) {
-    case ElementRef::kBody: return bodies_[r.group].particle ? "a particle" : "a body";
-    case ElementRef::kConstraint: return std::string("a ") + constraints_[r.group]->kind();
-    case ElementRef::kForce: return std::string("a ") + forces_[r.group]->kind();
-    case ElementRef::kFriction: return std::string("a ") + frictions_[r.group]->kind();
-    case ElementRef::kEvent: return std::string("a ") + events_[r.group]->kind();
+    case ElementRef::kBody: kind = bodies_[r.group].particle ? "particle" : "body"; break;
+    case ElementRef::kConstraint: kind = constraints_[r.group]->kind(); break;
+    case ElementRef::kForce: kind = forces_[r.group]->kind(); break;
+    case ElementRef::kFriction: kind = frictions_[r.group]->kind(); break;
+    case ElementRef::kEvent: kind = events_[r.group]->kind(); break;
   }
-  return "an element";
+  std::replace(kind.begin(), kind.end(), '_', ' ');
+  return (kind.find_first_of("aeiou") == 0 ? "an " : "a ") + kind;
 }
 
 }  // namespace lagmb
