@@ -74,7 +74,8 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       sets the truncation error (second order; energy error
       O((omega step)^2), no drift).
 
-    ``max_order`` defaults to the method's highest (5 for BDF, 12 for Adams, 8 for ERK). ``atol`` is one number
+    ``max_order`` defaults to the method's highest (5 for BDF, 12 for Adams,
+    8 for ERK). ``atol`` is one number
     or one per coordinate (applied to q_i and v_i; e.g. smaller for angles
     than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
