@@ -63,13 +63,7 @@ SUNLinearSolver make_saddle_solver(SUNContext ctx, OdeUserData* p) {
   S->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
   S->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
   S->ops->setup = [](SUNLinearSolver S, SUNMatrix A) -> int {
-    auto* p = static_cast<OdeUserData*>(S->content);
-    try {
-      return p->ode.setup(-imat(A).c) ? 0 : SUNLS_LUFACT_FAIL;
-    } catch (...) {
-      p->error = std::current_exception();
-      return -1;
-    }
+    return guarded(S->content, [&](OdeUserData& p) { return p.ode.setup(-imat(A).c) ? 0 : SUNLS_LUFACT_FAIL; });
   };
   S->ops->solve = [](SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) -> int {
     auto* p = static_cast<OdeUserData*>(S->content);
@@ -85,24 +79,14 @@ SUNLinearSolver make_saddle_solver(SUNContext ctx, OdeUserData* p) {
 }
 
 int jac_fn(sunrealtype t, N_Vector y, N_Vector, SUNMatrix, void* data, N_Vector, N_Vector, N_Vector) {
-  auto* p = static_cast<OdeUserData*>(data);
-  try {
-    return p->ode.linearize(t, N_VGetArrayPointer(y)) ? 0 : 1;
-  } catch (...) {
-    p->error = std::current_exception();
-    return -1;
-  }
+  return guarded(data, [&](OdeUserData& p) { return p.ode.linearize(t, N_VGetArrayPointer(y)) ? 0 : 1; });
 }
 
 int proj_fn(sunrealtype t, N_Vector y, N_Vector corr, sunrealtype, N_Vector err, void* data) {
-  auto* p = static_cast<OdeUserData*>(data);
-  try {
+  return guarded(data, [&](OdeUserData& p) {
     double* yy = N_VGetArrayPointer(y);
-    return p->ode.project(t, yy, yy + p->ode.n(), N_VGetArrayPointer(corr), err ? N_VGetArrayPointer(err) : nullptr);
-  } catch (...) {
-    p->error = std::current_exception();
-    return -1;
-  }
+    return p.ode.project(t, yy, yy + p.ode.n(), N_VGetArrayPointer(corr), err ? N_VGetArrayPointer(err) : nullptr);
+  });
 }
 
 struct CvodeSession : OdeSession {
