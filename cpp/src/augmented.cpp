@@ -40,25 +40,48 @@ AugmentedSystem::AugmentedSystem(const Model& model)
 }
 
 void AugmentedSystem::setup_schur(const Model& model) {
-  J_ = model.jacobian_pattern();
+  const SpMat& J = model.jacobian_pattern();
   inv_mass_ = mass_.cwiseInverse();
-  w_.resize(n_);
-  lam_.resize(m_);
   s_rhs_.resize(m_);
+  work_.resize(m_);
+  lam_.resize(m_);
+  lam_prev_.resize(m_);
+  j_values_.resize(J.nonZeros());
+  const int* outer = J.outerIndexPtr();
+  const int* row = J.innerIndexPtr();
+  j_outer_.assign(outer, outer + n_ + 1);
   // S = J M^-1 J^T: entry (r_a, r_b) gathers J(r_a, c) J(r_b, c) / M_c over the columns c
-  SparsityPattern p(m_, m_);
-  for (int i = 0; i < m_; ++i) p.add(i, i);  // eps
-  const int* outer = J_.outerIndexPtr();
-  const int* row = J_.innerIndexPtr();
   auto each_pair = [&](auto&& f) {
     for (int c = 0; c < n_; ++c)
       for (int a = outer[c]; a < outer[c + 1]; ++a)
-        for (int b = outer[c]; b < outer[c + 1]; ++b)
-          if (row[a] >= row[b]) f(c, a, b);
+        for (int b = outer[c]; b <= a; ++b) f(c, a, b);
   };
-  each_pair([&](int, int a, int b) { p.add(row[a], row[b]); });
-  S_ = p.build();
-  each_pair([&](int c, int a, int b) { terms_.push_back({slot(S_, row[a], row[b]), a, b, c}); });
+  // AMD on S's pattern in the constraints' own numbering...
+  SparsityPattern p(m_, m_);
+  for (int i = 0; i < m_; ++i) p.add(i, i);
+  each_pair([&](int, int a, int b) { p.add(std::max(row[a], row[b]), std::min(row[a], row[b])); });
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> new_to_old;
+  Eigen::AMDOrdering<int>()(p.build(), new_to_old);  // (Eigen's orderings give the inverse permutation)
+  old_of_new_.assign(new_to_old.indices().data(), new_to_old.indices().data() + m_);
+  std::vector<int> new_of_old(m_);
+  for (int k = 0; k < m_; ++k) new_of_old[old_of_new_[k]] = k;
+  // ...then S's upper triangle and the slot triples in that order
+  j_row_.resize(J.nonZeros());
+  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row_[k] = new_of_old[row[k]];
+  auto upper = [&](int a, int b) {
+    return std::pair{std::min(j_row_[a], j_row_[b]), std::max(j_row_[a], j_row_[b])};
+  };
+  SparsityPattern u(m_, m_);
+  for (int i = 0; i < m_; ++i) u.add(i, i);  // eps
+  each_pair([&](int, int a, int b) {
+    const auto [r, c] = upper(a, b);
+    u.add(r, c);
+  });
+  S_ = u.build();
+  each_pair([&](int c, int a, int b) {
+    const auto [r, col] = upper(a, b);
+    terms_.push_back({slot(S_, r, col), a, b, c});
+  });
   for (int i = 0; i < m_; ++i) s_diag_.push_back(slot(S_, i, i));
   chol_.analyzePattern(S_);
   ++symbolic_analyses_;
@@ -68,28 +91,32 @@ long AugmentedSystem::factor_nonzeros() const {
   return schur_ ? long(chol_.matrixL().nestedExpression().nonZeros()) : 0;
 }
 
-bool AugmentedSystem::factorize(const Data& d) {
+void AugmentedSystem::fill_lu_matrix(const double* J) {
   double* K = K_.valuePtr();
-  const double* J = d.Phi_q.valuePtr();
   for (int i = 0; i < n_; ++i) K[mass_slots_[i]] = mass_[i];
   for (int i = 0; i < m_; ++i) K[reg_slots_[i]] = -eps_;
   for (size_t k = 0; k < jac_slots_.size(); ++k) K[jac_slots_[k]] = K[jact_slots_[k]] = J[k];
+}
+
+bool AugmentedSystem::factorize(const Data& d) {
+  const double* J = d.Phi_q.valuePtr();
+  const Eigen::Index nnz = d.Phi_q.nonZeros();
   ++factorizations_;
-  factorized_ = false;
-  for (Eigen::Index k = 0; k < K_.nonZeros(); ++k)
-    if (!std::isfinite(K[k])) return false;
-  schur_ = positive_mass_ && m_ > 0;
-  if (schur_) {
-    std::copy(J, J + J_.nonZeros(), J_.valuePtr());
+  factorized_ = schur_ = false;
+  for (Eigen::Index k = 0; k < nnz; ++k)
+    if (!std::isfinite(J[k])) return false;  // (M and eps are finite by construction)
+  if (positive_mass_ && m_ > 0) {
+    std::copy(J, J + nnz, j_values_.data());  // solve() uses the factorized Phi_q
     double* S = S_.valuePtr();
     std::fill(S, S + S_.nonZeros(), 0.0);
     for (int i : s_diag_) S[i] = eps_;
     for (const Term& t : terms_) S[t.s] += J[t.a] * J[t.b] * inv_mass_[t.c];
     chol_.factorize(S_);
-    factorized_ = chol_.info() == Eigen::Success;
+    schur_ = factorized_ = chol_.info() == Eigen::Success;
     if (factorized_) return true;
-    schur_ = false;  // not positive definite in rounding (extreme scales): the LU decides
+    // not positive definite in rounding (extreme scales): the LU decides
   }
+  fill_lu_matrix(J);
   if (!lu_analyzed_) {
     lu_.analyzePattern(K_);
     lu_analyzed_ = true;
@@ -98,32 +125,48 @@ bool AugmentedSystem::factorize(const Data& d) {
   return factorized_;
 }
 
-void AugmentedSystem::solve_regularized(const VecX& b, VecX& x) {
-  if (!schur_) {
-    x = lu_.solve(b);
-    return;
+void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
+  const double* J = j_values_.data();
+  // s = J M^-1 b1 - b2, in S's order
+  for (int k = 0; k < m_; ++k) s_rhs_[k] = -b2[old_of_new_[k]];
+  for (int c = 0; c < n_; ++c) {
+    const double w = inv_mass_[c] * b1[c];
+    for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) s_rhs_[j_row_[k]] += J[k] * w;
   }
-  // S lam = J M^-1 b1 - b2,  x1 = M^-1 (b1 - J^T lam)
-  w_ = inv_mass_.cwiseProduct(b.head(n_));
-  s_rhs_.noalias() = J_ * w_;
-  s_rhs_ -= b.tail(m_);
   lam_ = chol_.solve(s_rhs_);
-  w_.noalias() = J_.transpose() * lam_;
-  x.head(n_) = inv_mass_.cwiseProduct(b.head(n_) - w_);
-  x.tail(m_) = lam_;
+  // refine against eps = 0: the residual of lam_k is eps (lam_k - lam_{k-1}), lam_{-1} = 0
+  const double tol = 1e-15 * (1.0 + std::max(b1.size() ? b1.lpNorm<Eigen::Infinity>() : 0.0,
+                                             b2.lpNorm<Eigen::Infinity>()));
+  double residual = eps_ * lam_.lpNorm<Eigen::Infinity>();
+  for (int it = 0; it < 3 && residual > tol; ++it) {
+    work_ = s_rhs_ + eps_ * lam_;
+    lam_prev_.swap(lam_);
+    lam_ = chol_.solve(work_);
+    residual = eps_ * (lam_ - lam_prev_).lpNorm<Eigen::Infinity>();
+  }
+  // x2 in the constraints' numbering; x1 = M^-1 (b1 - J^T x2)
+  x2.resize(m_);
+  for (int k = 0; k < m_; ++k) x2[old_of_new_[k]] = lam_[k];
+  x1.resize(n_);
+  for (int c = 0; c < n_; ++c) {
+    double f = b1[c];
+    for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) f -= J[k] * lam_[j_row_[k]];
+    x1[c] = inv_mass_[c] * f;
+  }
 }
 
 void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
   // a solve with a failed factorization is undefined in Eigen: refuse it
   if (!factorized_) throw SimulationError("the augmented matrix [M Phi_q^T; Phi_q 0] is singular or not finite", NAN);
+  if (schur_) return solve_range_space(b1, b2, x1, x2);
   rhs_ << b1, b2;
-  solve_regularized(rhs_, x_);
+  x_ = lu_.solve(rhs_);
   // refine against eps = 0: K0 x = K x + eps [0; x2]
   for (int it = 0; it < 3; ++it) {
     r_.noalias() = rhs_ - K_ * x_;
     r_.tail(m_) -= eps_ * x_.tail(m_);
     if (r_.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + rhs_.lpNorm<Eigen::Infinity>())) break;
-    solve_regularized(r_, dx_);
+    dx_ = lu_.solve(r_);
     x_ += dx_;
   }
   x1 = x_.head(n_);

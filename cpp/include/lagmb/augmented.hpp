@@ -22,13 +22,20 @@ namespace lagmb {
 /// definite), K is solved through its Schur complement (range-space method):
 ///   S = Phi_q M^-1 Phi_q^T + eps I   (symmetric positive definite for any Phi_q),
 ///   S lam = Phi_q M^-1 b1 - b2,   x1 = M^-1 (b1 - Phi_q^T lam),
-/// with a sparse Cholesky factorization of S (AMD ordering). Its cost is
-/// linear in a chain's or tree's length; S's entries are sums over the
-/// columns of Phi_q (one per coordinate), precomputed as slot triples.
+/// with a sparse Cholesky factorization of S. Its cost is linear in a
+/// chain's or tree's length; S's entries are sums over the columns of Phi_q
+/// (one per coordinate), precomputed as slot triples. The rows of S are
+/// renumbered once by approximate minimum degree (AMD), and S is assembled
+/// directly in that order, so a factorization copies and permutes nothing.
+/// The refinement against eps = 0 stays in S's space: with S0 = S - eps I,
+///   S lam_{k+1} = s + eps lam_k   has the residual   s - S0 lam_{k+1} = eps (lam_{k+1} - lam_k),
+/// which is exactly the second block row of K0's residual (the first is zero
+/// by construction of x1), so each refinement costs one pair of triangular
+/// solves and no product with K.
 /// Otherwise (a massless body, for kinematics) K is factorized by sparse LU
-/// (COLAMD). Either way the pattern is fixed by the model, so the ordering
-/// and symbolic analysis run once per AugmentedSystem; factorize() is
-/// numeric only.
+/// (COLAMD) and refined with K0's residual. Either way the pattern is fixed
+/// by the model, so the ordering and symbolic analysis run once per
+/// AugmentedSystem; factorize() is numeric only.
 class AugmentedSystem {
  public:
   explicit AugmentedSystem(const Model& model);
@@ -51,8 +58,9 @@ class AugmentedSystem {
   int symbolic_analyses() const { return symbolic_analyses_; }
 
  private:
-  void solve_regularized(const VecX& b, VecX& x);  // K x = b, with eps
   void setup_schur(const Model& model);
+  void fill_lu_matrix(const double* J);
+  void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
 
   int n_, m_;
   double eps_;
@@ -66,14 +74,18 @@ class AugmentedSystem {
   int factorizations_ = 0;
   // the range-space path
   bool positive_mass_ = false, schur_ = false;
-  SpMat J_, S_;  // Phi_q (values of the last factorization) and S (lower triangle)
-  VecX inv_mass_, w_, lam_, s_rhs_;
+  std::vector<int> j_outer_;    // Phi_q's column starts (its pattern)
+  std::vector<int> j_row_;      // each Phi_q entry's row of S (AMD order)
+  std::vector<int> old_of_new_;  // S's row k is constraint row old_of_new_[k]
+  VecX j_values_;               // Phi_q's values at the last factorization
+  SpMat S_;                     // upper triangle, AMD order
+  VecX inv_mass_, s_rhs_, work_, lam_, lam_prev_;
   struct Term {
     int s, a, b, c;  // S.values[s] += J.values[a] J.values[b] / M[c]
   };
   std::vector<Term> terms_;
   std::vector<int> s_diag_;
-  Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> chol_;
+  Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
   int symbolic_analyses_ = 0;
 };
 
