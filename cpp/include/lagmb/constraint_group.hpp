@@ -22,6 +22,7 @@
 #include <array>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "lagmb/sparsity.hpp"
@@ -55,6 +56,17 @@ struct run_state_size_of<Kind, std::void_t<decltype(Kind::run_state_size)>>
     : std::integral_constant<int, Kind::run_state_size> {};
 template <class Kind>
 inline constexpr int run_state_size_v = run_state_size_of<Kind>::value;
+
+/// A kind may give gamma itself, `Rows gamma(c, cdot, t)`, where the
+/// general -cdot^T H_r cdot over full 6 x 6 Hessians costs more than the
+/// kind's closed form (the revolute joint of a long chain); tests check it
+/// against the Hessians.
+template <class Kind, class = void>
+struct has_own_gamma : std::false_type {};
+template <class Kind>
+struct has_own_gamma<Kind, std::void_t<decltype(std::declval<const Kind&>().gamma(
+                               std::declval<const Local6&>(), std::declval<const Local6&>(), 0.0))>>
+    : std::true_type {};
 
 class ConstraintGroupBase {
  public:
@@ -167,9 +179,13 @@ class ConstraintGroup final : public ConstraintGroupBase {
     std::array<Mat6, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
       const Local6 c = gather(q, place_[k].coord), cd = gather(v, place_[k].coord);
-      items[k].hessians(c, t, H.data());
       Rows g;
-      for (int r = 0; r < R; ++r) g[r] = -cd.dot(H[r] * cd);
+      if constexpr (has_own_gamma<Kind>::value) {
+        g = items[k].gamma(c, cd, t);
+      } else {
+        items[k].hessians(c, t, H.data());
+        for (int r = 0; r < R; ++r) g[r] = -cd.dot(H[r] * cd);
+      }
       if constexpr (Kind::time_dependent)
         g -= 2.0 * items[k].phi_tc(c, t) * cd + items[k].phi_tt(c, t);
       for (int r = 0; r < R; ++r) out[place_[k].row0 + r] = g[r];

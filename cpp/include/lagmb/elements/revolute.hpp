@@ -49,6 +49,11 @@ struct RevoluteJoint {
     }
   }
 
+  /// gamma = A_j s_j phid_j^2 - A_i s_i phid_i^2 (the Hessians' closed form)
+  Eigen::Vector2d gamma(const Local6& c, const Local6& cd, double) const {
+    return rotation(c[5]) * s_j * (cd[5] * cd[5]) - rotation(c[2]) * s_i * (cd[2] * cd[2]);
+  }
+
   Mat2 axes(const Local6& c, double) const {
     Vec2 e = -(rotation(c[5]) * s_j);
     if (e.norm() == 0.0) e = rotation(c[2]) * s_i;
