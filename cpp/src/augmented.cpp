@@ -1,6 +1,7 @@
 #include "lagmb/augmented.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -17,7 +18,8 @@ AugmentedSystem::AugmentedSystem(const Model& model)
     : n_(model.n_coordinates()),
       m_(model.n_constraints()),
       eps_(1e-9 / model.mass_scale()),
-      mass_(model.mass_diagonal()) {
+      mass_(model.mass_diagonal()),
+      mass_scale_(model.mass_scale()) {
   const SpMat& J = model.jacobian_pattern();
   SparsityPattern p(n_ + m_, n_ + m_);
   for (int i = 0; i < n_ + m_; ++i) p.add(i, i);
@@ -63,11 +65,11 @@ void AugmentedSystem::setup_schur(const Model& model) {
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> new_to_old;
   Eigen::AMDOrdering<int>()(p.build(), new_to_old);  // (Eigen's orderings give the inverse permutation)
   old_of_new_.assign(new_to_old.indices().data(), new_to_old.indices().data() + m_);
-  std::vector<int> new_of_old(m_);
-  for (int k = 0; k < m_; ++k) new_of_old[old_of_new_[k]] = k;
+  new_of_old_.resize(m_);
+  for (int k = 0; k < m_; ++k) new_of_old_[old_of_new_[k]] = k;
   // ...then S's upper triangle and the slot triples in that order
   j_row_.resize(J.nonZeros());
-  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row_[k] = new_of_old[row[k]];
+  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row_[k] = new_of_old_[row[k]];
   auto upper = [&](int a, int b) {
     return std::pair{std::min(j_row_[a], j_row_[b]), std::max(j_row_[a], j_row_[b])};
   };
@@ -78,10 +80,18 @@ void AugmentedSystem::setup_schur(const Model& model) {
     u.add(r, c);
   });
   S_ = u.build();
-  each_pair([&](int c, int a, int b) {
+  // S's entry e = sum over its terms t of J[a_t] (J[b_t] / M_c), terms grouped by entry
+  std::vector<std::array<int, 3>> terms;  // (entry, a, b)
+  each_pair([&](int, int a, int b) {
     const auto [r, col] = upper(a, b);
-    terms_.push_back({slot(S_, r, col), a, b, c});
+    terms.push_back({slot(S_, r, col), a, b});
   });
+  std::sort(terms.begin(), terms.end());
+  term_begin_.assign(S_.nonZeros() + 1, 0);
+  for (const auto& t : terms) ++term_begin_[t[0] + 1];
+  for (Eigen::Index e = 0; e < S_.nonZeros(); ++e) term_begin_[e + 1] += term_begin_[e];
+  for (const auto& t : terms) term_pairs_.push_back({t[1], t[2]});
+  j_scaled_.resize(J.nonZeros());
   for (int i = 0; i < m_; ++i) s_diag_.push_back(slot(S_, i, i));
   chol_.analyzePattern(S_);
   ++symbolic_analyses_;
@@ -107,13 +117,7 @@ bool AugmentedSystem::factorize(const Data& d) {
     if (!std::isfinite(J[k])) return false;  // (M and eps are finite by construction)
   if (positive_mass_ && m_ > 0) {
     std::copy(J, J + nnz, j_values_.data());  // solve() uses the factorized Phi_q
-    double* S = S_.valuePtr();
-    std::fill(S, S + S_.nonZeros(), 0.0);
-    for (int i : s_diag_) S[i] = eps_;
-    for (const Term& t : terms_) S[t.s] += J[t.a] * J[t.b] * inv_mass_[t.c];
-    chol_.factorize(S_);
-    schur_ = factorized_ = chol_.info() == Eigen::Success;
-    if (factorized_) return true;
+    if (factorize_schur(d)) return schur_ = factorized_ = true;
     // not positive definite in rounding (extreme scales): the LU decides
   }
   fill_lu_matrix(J);
@@ -125,6 +129,46 @@ bool AugmentedSystem::factorize(const Data& d) {
   return factorized_;
 }
 
+bool AugmentedSystem::factorize_schur(const Data& d) {
+  const double* J = j_values_.data();
+  double* S = S_.valuePtr();
+  double* Jw = j_scaled_.data();  // J M^-1
+  for (int c = 0; c < n_; ++c)
+    for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) Jw[k] = J[k] * inv_mass_[c];
+  for (Eigen::Index e = 0; e < S_.nonZeros(); ++e) {
+    double sum = 0.0;
+    for (int t = term_begin_[e]; t < term_begin_[e + 1]; ++t) sum += J[term_pairs_[t][0]] * Jw[term_pairs_[t][1]];
+    S[e] = sum;
+  }
+  // a dropped (redundant) row has no entries; a unit diagonal keeps S definite, and its
+  // right side is zero, so its multiplier stays 0
+  for (int r : d.dropped_rows) S[s_diag_[new_of_old_[r]]] = 1.0 / mass_scale_;
+  // first S0 itself (eps = 0): exact, no refinement...
+  chol_.factorize(S_);
+  if (chol_.info() == Eigen::Success && pivots_above(1e-8)) {
+    regularized_ = false;
+    return true;
+  }
+  // ...unless a row is (nearly) a combination of others: then S0 + eps I and refinement
+  for (int i : s_diag_) S[i] += eps_;
+  chol_.factorize(S_);
+  regularized_ = true;
+  return chol_.info() == Eigen::Success;
+}
+
+/// Whether every pivot of S's Cholesky factor keeps more than `ratio` of its
+/// row's diagonal: L_kk^2 / S_kk is the part of row k that the rows before
+/// it do not explain (1 for an independent row, 0 for a dependent one).
+bool AugmentedSystem::pivots_above(double ratio) const {
+  const SpMat& L = chol_.matrixL().nestedExpression();
+  const double* S = S_.valuePtr();
+  for (int k = 0; k < m_; ++k) {
+    const double l = L.valuePtr()[L.outerIndexPtr()[k]];  // the diagonal leads each column
+    if (!(l * l > ratio * S[s_diag_[k]])) return false;
+  }
+  return true;
+}
+
 void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
   const double* J = j_values_.data();
   // s = J M^-1 b1 - b2, in S's order
@@ -134,10 +178,10 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
     for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) s_rhs_[j_row_[k]] += J[k] * w;
   }
   lam_ = chol_.solve(s_rhs_);
-  // refine against eps = 0: the residual of lam_k is eps (lam_k - lam_{k-1}), lam_{-1} = 0
+  // with S0 + eps I, refine against eps = 0: the residual of lam_k is eps (lam_k - lam_{k-1}), lam_{-1} = 0
   const double tol = 1e-15 * (1.0 + std::max(b1.size() ? b1.lpNorm<Eigen::Infinity>() : 0.0,
                                              b2.lpNorm<Eigen::Infinity>()));
-  double residual = eps_ * lam_.lpNorm<Eigen::Infinity>();
+  double residual = regularized_ ? eps_ * lam_.lpNorm<Eigen::Infinity>() : 0.0;
   for (int it = 0; it < 3 && residual > tol; ++it) {
     work_ = s_rhs_ + eps_ * lam_;
     lam_prev_.swap(lam_);

@@ -3,6 +3,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,15 +24,20 @@ namespace lagmb {
 ///   S = Phi_q M^-1 Phi_q^T + eps I   (symmetric positive definite for any Phi_q),
 ///   S lam = Phi_q M^-1 b1 - b2,   x1 = M^-1 (b1 - Phi_q^T lam),
 /// with a sparse Cholesky factorization of S. Its cost is linear in a
-/// chain's or tree's length; S's entries are sums over the columns of Phi_q
-/// (one per coordinate), precomputed as slot triples. The rows of S are
-/// renumbered once by approximate minimum degree (AMD), and S is assembled
-/// directly in that order, so a factorization copies and permutes nothing.
-/// The refinement against eps = 0 stays in S's space: with S0 = S - eps I,
+/// chain's or tree's length; each entry of S is a sum over the columns of
+/// Phi_q (one per coordinate), listed once as pairs of Jacobian entries.
+/// The rows of S are renumbered once by approximate minimum degree (AMD),
+/// and S is assembled directly in that order, so a factorization copies and
+/// permutes nothing.
+/// S is first factorized with eps = 0, which is exact when every pivot keeps
+/// more than 1e-8 of its row's diagonal (no row nearly a combination of the
+/// others). Otherwise (a singular position) S0 + eps I is factorized and
+/// the solution refined against eps = 0 in S's space:
 ///   S lam_{k+1} = s + eps lam_k   has the residual   s - S0 lam_{k+1} = eps (lam_{k+1} - lam_k),
 /// which is exactly the second block row of K0's residual (the first is zero
-/// by construction of x1), so each refinement costs one pair of triangular
-/// solves and no product with K.
+/// by construction of x1): each refinement costs one pair of triangular
+/// solves and no product with K. Rows dropped as redundant get a unit
+/// diagonal (their right sides are zero, so their multipliers stay 0).
 /// Otherwise (a massless body, for kinematics) K is factorized by sparse LU
 /// (COLAMD) and refined with K0's residual. Either way the pattern is fixed
 /// by the model, so the ordering and symbolic analysis run once per
@@ -60,6 +66,8 @@ class AugmentedSystem {
  private:
   void setup_schur(const Model& model);
   void fill_lu_matrix(const double* J);
+  bool factorize_schur(const Data& d);
+  bool pivots_above(double ratio) const;
   void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
 
   int n_, m_;
@@ -67,23 +75,26 @@ class AugmentedSystem {
   SpMat K_;
   std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
   const VecX& mass_;
+  double mass_scale_;
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
   bool lu_analyzed_ = false;
   bool factorized_ = false;
   VecX rhs_, x_, r_, dx_;
   int factorizations_ = 0;
   // the range-space path
-  bool positive_mass_ = false, schur_ = false;
+  bool positive_mass_ = false, schur_ = false, regularized_ = false;
   std::vector<int> j_outer_;    // Phi_q's column starts (its pattern)
   std::vector<int> j_row_;      // each Phi_q entry's row of S (AMD order)
   std::vector<int> old_of_new_;  // S's row k is constraint row old_of_new_[k]
+  std::vector<int> new_of_old_;
   VecX j_values_;               // Phi_q's values at the last factorization
   SpMat S_;                     // upper triangle, AMD order
   VecX inv_mass_, s_rhs_, work_, lam_, lam_prev_;
-  struct Term {
-    int s, a, b, c;  // S.values[s] += J.values[a] J.values[b] / M[c]
-  };
-  std::vector<Term> terms_;
+  // S.values[e] = sum of J.values[a] J.values[b] / M[c] over the pairs (a, b) in
+  // term_pairs_[term_begin_[e] .. term_begin_[e + 1]) (c: a's and b's column)
+  std::vector<int> term_begin_;
+  std::vector<std::array<int, 2>> term_pairs_;
+  VecX j_scaled_;  // J M^-1, per entry
   std::vector<int> s_diag_;
   Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
   int symbolic_analyses_ = 0;
