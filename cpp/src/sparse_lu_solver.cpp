@@ -37,12 +37,9 @@ SUNLinearSolver make_sparse_lu_solver(SUNContext ctx, SparseLU* st) {
   S->ops->setup = [](SUNLinearSolver S, SUNMatrix A) -> int {
     SparseLU& s = state(S);
     SpMat& J = matrix(A);
-    if (!s.analyzed) {
-      s.lu.analyzePattern(J);
-      s.analyzed = true;
-    }
+    if (!s.lu.analyzed()) s.lu.analyze(J);
     ++s.factorizations;
-    if (!factorize_finite(s.lu, J)) {
+    if (!s.lu.factorize(J)) {
       ++s.failed_factorizations;
       return SUNLS_LUFACT_FAIL;  // > 0: recoverable
     }
@@ -53,12 +50,11 @@ SUNLinearSolver make_sparse_lu_solver(SUNContext ctx, SparseLU* st) {
     Eigen::Map<Eigen::VectorXd> xv(N_VGetArrayPointer(x), n);
     Eigen::Map<const Eigen::VectorXd> bv(N_VGetArrayPointer(b), n);
     SparseLU& s = state(S);
-    if (s.row_scale && s.row_scale->size() == n) {
-      s.scratch = s.row_scale->cwiseProduct(bv);
-      xv = s.lu.solve(s.scratch);
-    } else {
-      xv = s.lu.solve(bv);
-    }
+    if (s.row_scale && s.row_scale->size() == n)
+      xv = s.row_scale->cwiseProduct(bv);
+    else
+      xv = bv;
+    s.lu.solve_in_place(xv.data());
     if (s.col_scale && s.col_scale->size() == n) xv.array() *= s.col_scale->array();
     return 0;
   };

@@ -1,27 +1,23 @@
-// Eigen's SparseLU as a SUNDIALS direct linear solver, on a SUNMatrix that
-// views an Eigen sparse matrix of fixed pattern.
+// A sparse LU (KLU, klu_lu.hpp) as a SUNDIALS direct linear solver, on a
+// SUNMatrix that views an Eigen sparse matrix of fixed pattern.
 #pragma once
 
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
-#include <Eigen/SparseLU>
-
-#include "lagmb/sparsity.hpp"
+#include "klu_lu.hpp"
 
 namespace lagmb::sun {
 
 /// State behind the SUNLinearSolver; owned by the caller, not by SUNDIALS.
 struct SparseLU {
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
-  bool analyzed = false;  // the ordering is computed once per run
+  KluLU lu;  // the ordering is computed once per run
   long factorizations = 0;
   long failed_factorizations = 0;
   /// Equilibration: the matrix holds R J C; solve returns x = C (R J C)^-1 R b.
   /// Null or empty: no scaling.
   const Eigen::VectorXd* row_scale = nullptr;
   const Eigen::VectorXd* col_scale = nullptr;
-  Eigen::VectorXd scratch;
 };
 
 /// A SUNMatrix whose content is `A` (not owned). Only the ops IDA and CVODE

@@ -25,7 +25,7 @@ ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, d
   dq_.resize(n_);
   zero_n_ = VecX::Zero(n_);
   N_ = saddle_.build_square(diag_);
-  lu_.analyzePattern(N_);
+  lu_.analyze(N_);
   rhs_.resize(n_ + nc_);
   sol_.resize(n_ + nc_);
   Kb_.resize(n_);
@@ -99,7 +99,7 @@ bool ProjectionFormulation::setup(double gamma) {
   saddle_.add_tangent(d_, x, q, v, t_lin_, lam_lin_.data(), gamma * gamma, gamma);
   ++factorizations_;
   gamma_setup_ = gamma;
-  return factorize_finite(lu_, N_);
+  return lu_.factorize(N_);
 }
 
 /// The right side and back substitution of setup()'s system.
@@ -115,7 +115,8 @@ void ProjectionFormulation::solve(const double* b, double* x) {
   rhs_.head(n_) = M.cwiseProduct(bv) + g * Kb_;
   rhs_.tail(nc_).setZero();
   add_jacobian_times(d_, bv.data(), rhs_.data() + n_);
-  sol_ = lu_.solve(rhs_);
+  sol_ = rhs_;
+  lu_.solve_in_place(sol_.data());
   xv = sol_.head(n_);
   xq = bq + g * xv;
 }

@@ -4,7 +4,7 @@
 // (cvode_integrator.cpp).
 #pragma once
 
-#include <Eigen/SparseLU>
+#include "../klu_lu.hpp"
 
 #include "saddle_point.hpp"
 #include "lagmb/augmented.hpp"
@@ -58,7 +58,7 @@ class ProjectionFormulation {
   SaddlePoint saddle_;
   SpMat N_;
   std::vector<int> diag_;
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  KluLU lu_;
   long factorizations_ = 0, projections_ = 0;
 };
 
