@@ -13,6 +13,7 @@
 #include "integrators.hpp"
 #include "lagmb/simulate.hpp"
 #include "lagmb/time_function.hpp"
+#include "nvector_ops.hpp"
 #include "sparse_lu_solver.hpp"
 #include "sun_compat.hpp"
 
@@ -155,6 +156,10 @@ void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const Inte
   s.id = N_VNew_Serial(N, s.ctx);
   s.abstol = N_VNew_Serial(N, s.ctx);
   s.out = N_VNew_Serial(N, s.ctx);
+  for (N_Vector v : {s.y, s.yp, s.id, s.abstol, s.out}) {
+    if (!v) throw std::bad_alloc();
+    sun::use_compiled_vector_ops(v);
+  }
   dae.initial(start, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
   dae.ids(N_VGetArrayPointer(s.id));
   dae.tolerances(plan.atol, N_VGetArrayPointer(s.abstol));

@@ -12,6 +12,7 @@
 #include "events.hpp"
 #include "formulations/projection.hpp"
 #include "integrators.hpp"
+#include "nvector_ops.hpp"
 #include "lagmb/errors.hpp"
 #include "sun_compat.hpp"
 
@@ -83,8 +84,10 @@ inline void rethrow_callback_error(const OdeUserData& p, double t) {
 struct OdeSession {
   OdeSession(const ConsistentState& start, const VecX& atol) {
     const int n = int(start.q.size());
-    for (N_Vector* v : {&y, &abstol, &out})
+    for (N_Vector* v : {&y, &abstol, &out}) {
       if (!(*v = N_VNew_Serial(2 * n, ctx))) throw std::bad_alloc();
+      sun::use_compiled_vector_ops(*v);
+    }
     Eigen::Map<VecX>(N_VGetArrayPointer(y), n) = start.q;
     Eigen::Map<VecX>(N_VGetArrayPointer(y) + n, n) = start.v;
     Eigen::Map<VecX>(N_VGetArrayPointer(abstol), n) = atol;
