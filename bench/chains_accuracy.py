@@ -1,7 +1,7 @@
 """Many-link chains: what accuracy costs with each method, N = 8 .. 512.
 
 The chain of bench/chain.py over 1 s. For each N, every variable-step
-method of lagmb.METHODS runs at rtol 1e-4 .. 1e-11 (atol = 1e-2 rtol); its
+method of lagmb.METHODS runs at rtol 1e-2 .. 1e-11 (atol = 1e-2 rtol); its
 error is the tip rod's centre at t = 1 s against the minimal-coordinate
 reference of tests/references.py (RodChain: Lagrange's equations in
 absolute angles, DOP853 at rtol = atol = 1e-12). Wall times are the fastest
@@ -31,7 +31,7 @@ from chain import chain  # noqa: E402  (bench/chain.py)
 from references import RodChain  # noqa: E402
 
 TARGETS = (1e-6, 1e-8)
-RTOLS = tuple(10.0 ** -k for k in range(4, 12))
+RTOLS = tuple(10.0 ** -k for k in range(2, 12))
 
 
 def tip_reference(n):
