@@ -357,6 +357,8 @@ const ConstraintGroupBase& constraint_group(const Model& model, const std::strin
 PYBIND11_MODULE(_core, m) {
   m.doc() = "lagmb C++ core (planar multibody dynamics, SUNDIALS IDA)";
   m.attr("sundials_version") = sundials_version();
+  m.def("compare_vector_operations", &compare_vector_operations, py::arg("n"), py::arg("seed") = 1,
+        "lagmb's SUNDIALS vector operations against SUNDIALS' own (largest relative difference per operation).");
 
   py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError);
   g_simulation_error = PyErr_NewException("lagmb._core.SimulationError", PyExc_RuntimeError, nullptr);

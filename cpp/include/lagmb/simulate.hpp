@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,14 @@ Trajectory simulate(const Model& model, const SimulationOptions& options);
 
 /// Version of the SUNDIALS library lagmb was built with, e.g. "6.4.1".
 std::string sundials_version();
+
+/// lagmb's own operations on SUNDIALS serial vectors (they replace the
+/// library's, which Debian builds without optimization) against SUNDIALS'
+/// serial ones, on random vectors of length n, with the aliasings SUNDIALS
+/// uses (z = x or y in a linear sum; z = X_0 or X_1 in a linear
+/// combination; Z = Y in a scale-add): the largest difference per
+/// operation, relative to the largest entry.
+std::map<std::string, double> compare_vector_operations(int n, unsigned seed);
 
 /// qdd and lam at one instant (the augmented system of docs/design.md section 1.2).
 void solve_accelerations(const Model& model, const VecX& q, const VecX& v, double t, VecX& qdd,
