@@ -1,7 +1,6 @@
 #include "lagmb/augmented.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -67,30 +66,32 @@ void AugmentedSystem::setup_schur(const Model& model) {
   old_of_new_.assign(new_to_old.indices().data(), new_to_old.indices().data() + m_);
   new_of_old_.resize(m_);
   for (int k = 0; k < m_; ++k) new_of_old_[old_of_new_[k]] = k;
-  // ...then S's upper triangle and the slot triples in that order
+  // ...then S's upper triangle in that order
   j_row_.resize(J.nonZeros());
   for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row_[k] = new_of_old_[row[k]];
-  auto upper = [&](int a, int b) {
+  auto entry = [&](int a, int b) {
     return std::pair{std::min(j_row_[a], j_row_[b]), std::max(j_row_[a], j_row_[b])};
   };
   SparsityPattern u(m_, m_);
   for (int i = 0; i < m_; ++i) u.add(i, i);  // eps
   each_pair([&](int, int a, int b) {
-    const auto [r, c] = upper(a, b);
+    const auto [r, c] = entry(a, b);
     u.add(r, c);
   });
   S_ = u.build();
-  // S's entry e = sum over its terms t of J[a_t] (J[b_t] / M_c), terms grouped by entry
-  std::vector<std::array<int, 3>> terms;  // (entry, a, b)
+  // S's entry e = sum of J[a] (J[b] / M_c) over its pairs, grouped by entry (a counting sort)
+  std::vector<int> slot_of_pair;
   each_pair([&](int, int a, int b) {
-    const auto [r, col] = upper(a, b);
-    terms.push_back({slot(S_, r, col), a, b});
+    const auto [r, c] = entry(a, b);
+    slot_of_pair.push_back(slot(S_, r, c));
   });
-  std::sort(terms.begin(), terms.end());
   term_begin_.assign(S_.nonZeros() + 1, 0);
-  for (const auto& t : terms) ++term_begin_[t[0] + 1];
+  for (int e : slot_of_pair) ++term_begin_[e + 1];
   for (Eigen::Index e = 0; e < S_.nonZeros(); ++e) term_begin_[e + 1] += term_begin_[e];
-  for (const auto& t : terms) term_pairs_.push_back({t[1], t[2]});
+  std::vector<int> next(term_begin_.begin(), term_begin_.end() - 1);
+  term_pairs_.resize(slot_of_pair.size());
+  size_t k = 0;
+  each_pair([&](int, int a, int b) { term_pairs_[next[slot_of_pair[k++]]++] = {a, b}; });
   j_scaled_.resize(J.nonZeros());
   for (int i = 0; i < m_; ++i) s_diag_.push_back(slot(S_, i, i));
   chol_.analyzePattern(S_);
