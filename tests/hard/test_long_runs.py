@@ -78,14 +78,17 @@ def run(model, t_end):
 
 
 @pytest.mark.parametrize("t_end, energy_bound, position_bound", [
-    (200.0, 3e-5, 1e-4),
+    (200.0, 3e-5, 3e-4),
     pytest.param(2000.0, 1e-4, 5e-3, marks=pytest.mark.slow),
 ])
 def test_simple_pendulum_a01(t_end, energy_bound, position_bound):
     """A01 for 200 s (default) and 2000 s (slow). Energy within 3e-5 J /
-    1e-4 J (measured 7.1e-6 / 2.6e-5), max|Phi| < 3e-8 m (measured 3.4e-9 /
-    1.0e-8) without secular growth, and the bob on the elliptic-function
-    solution to 1e-4 m / 5e-3 m (measured 2.0e-5 / 1.5e-3: phase error)."""
+    1e-4 J (measured 7.1e-6 to 1.9e-5 / 2.6e-5), max|Phi| < 3e-8 m (measured
+    3.4e-9 / 1.0e-8) without secular growth, and the bob on the
+    elliptic-function solution to 3e-4 m / 5e-3 m (phase error; measured
+    1.5e-3 at 2000 s). After 200 s the phase error depends on the step
+    sequence more than on the tolerance: rtol 0.8e-8 .. 1.25e-8 gave 2.0e-5
+    to 1.4e-4 m with Eigen's SparseLU and 4.1e-5 to 1.8e-4 m with KLU."""
     r, dE, first, last = run(simple_pendulum(), t_end)
     assert dE < energy_bound
     assert r.residual.max() < 3e-8
