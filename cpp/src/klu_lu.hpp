@@ -3,9 +3,10 @@
 //
 // The Newton matrices of the BDF formulations are small-bandwidth saddle-point
 // matrices whose supernodes are one or two columns wide: a left-looking LU
-// without supernodes (KLU) factorizes them several times faster than Eigen's
-// supernodal SparseLU, and once a pivot sequence is known, refactorizes with
-// it and no search at all.
+// without supernodes (KLU) factorizes them with less than half the
+// instructions of Eigen's supernodal SparseLU (GGL on a 128-link chain, with
+// callgrind: 590 -> 256 million), and once a pivot sequence is known,
+// refactorizes with it and no search at all.
 #pragma once
 
 #include <klu.h>
@@ -37,7 +38,6 @@ class KluLU {
   /// fresh factorization with partial pivoting follows when that fails or
   /// its pivots degrade (reciprocal pivot ratio below eps^(2/3)).
   bool factorize(const SpMat& A) {
-    ok_ = false;
     if (!symbolic_) return false;
     const double* x = A.valuePtr();
     for (Eigen::Index k = 0; k < A.nonZeros(); ++k)
@@ -47,17 +47,14 @@ class KluLU {
     double* v = const_cast<double*>(x);
     if (numeric_ && klu_refactor(p, i, v, symbolic_, numeric_, &common_) && klu_rcond(symbolic_, numeric_, &common_) &&
         common_.rcond > 3.7e-11)  // eps^(2/3)
-      return ok_ = true;
+      return true;
     if (numeric_) klu_free_numeric(&numeric_, &common_);
     numeric_ = klu_factor(p, i, v, symbolic_, &common_);
-    return ok_ = numeric_ != nullptr && common_.status == KLU_OK;
+    return numeric_ != nullptr && common_.status == KLU_OK;
   }
-  bool factorized() const { return ok_; }
 
   /// b := A^-1 b (length n), after a successful factorize().
   void solve_in_place(double* b) { klu_solve(symbolic_, numeric_, n_, 1, b, &common_); }
-  /// b := A^-T b.
-  void transpose_solve_in_place(double* b) { klu_tsolve(symbolic_, numeric_, n_, 1, b, &common_); }
 
  private:
   void release() {
@@ -69,7 +66,6 @@ class KluLU {
   klu_symbolic* symbolic_ = nullptr;
   klu_numeric* numeric_ = nullptr;
   int n_ = 0;
-  bool ok_ = false;
 };
 
 }  // namespace lagmb
