@@ -29,6 +29,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
 import lagmb as mb  # noqa: E402
 from chain import chain  # noqa: E402  (bench/chain.py)
 from references import RodChain  # noqa: E402
+from time_to import time_to  # noqa: E402  (bench/time_to.py)
 
 TARGETS = (1e-6, 1e-8)
 RTOLS = tuple(10.0 ** -k for k in range(2, 12))
@@ -61,20 +62,6 @@ def sweep(n, method, options, tip, repeat):
                         "residual_evals": r.stats["residual_evals"]}
         rows.append(best)
     return rows
-
-
-def time_to(rows, target):
-    """Seconds to reach `target` error, interpolated log-log between the
-    loosest run that reaches it and the run before it; None if none does."""
-    ok = [r for r in rows if r["status"] == "ok"]
-    for k, r in enumerate(ok):
-        if r["error"] <= target:
-            if k == 0 or ok[k - 1]["error"] <= target or ok[k - 1]["error"] <= r["error"]:
-                return r["time"]
-            a, b = ok[k - 1], r
-            s = (math.log(target) - math.log(a["error"])) / (math.log(b["error"]) - math.log(a["error"]))
-            return math.exp(math.log(a["time"]) + s * (math.log(b["time"]) - math.log(a["time"])))
-    return None
 
 
 def plot(results, path):

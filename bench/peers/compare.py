@@ -89,21 +89,7 @@ MAX_INNER = 20  # repetitions of one short run at most
 ENGINE_MODULES = ("peer_lagmb", "peer_pinocchio", "peer_mujoco", "peer_exudyn")
 
 
-try:  # bench/chains_accuracy.py's time_to (it imports lagmb)
-    from chains_accuracy import time_to  # noqa: E402
-except ImportError:  # the same rule, for a run without lagmb
-    def time_to(rows, target):
-        """Seconds to reach `target`, interpolated log-log between the first
-        run that reaches it and the run before; None if none does."""
-        ok = [r for r in rows if r["status"] == "ok"]
-        for k, r in enumerate(ok):
-            if r["error"] <= target:
-                if k == 0 or ok[k - 1]["error"] <= target or ok[k - 1]["error"] <= r["error"]:
-                    return r["time"]
-                a, b = ok[k - 1], r
-                s = (math.log(target) - math.log(a["error"])) / (math.log(b["error"]) - math.log(a["error"]))
-                return math.exp(math.log(a["time"]) + s * (math.log(b["time"]) - math.log(a["time"])))
-        return None
+from time_to import time_to  # noqa: E402  (bench/time_to.py)
 
 
 def lower_bound(rows, target):
@@ -470,7 +456,8 @@ def main():
     doc = {"benchmark": "peers", "stiff": args.stiff, "targets": TARGETS, "machine": platform.platform(),
            "processor": platform.processor(), "python": sys.version.split()[0], "args": vars(args),
            "engines": {m.NAME: m.available()[1] for m in engines}, "skipped": skipped}
-    invocations.append({"args": vars(args), "started": time.strftime("%Y-%m-%d %H:%M:%S")})
+    invocations.append({"args": vars(args), "started": time.strftime("%Y-%m-%d %H:%M:%S"),
+                        "engines": doc["engines"]})
     for n in args.n:
         log(f"N = {n}:")
         cached = str(n) in cache["stiff" if args.stiff else "nonstiff"]

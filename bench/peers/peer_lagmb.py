@@ -33,7 +33,23 @@ def available():
         import lagmb as mb
     except ImportError as e:
         return False, f"lagmb not importable: {e}"
-    return True, f"lagmb {mb.__version__} ({os.path.dirname(mb.__file__)}), SUNDIALS {mb.SUNDIALS_VERSION}"
+    return True, (f"lagmb {mb.__version__} ({os.path.dirname(mb.__file__)}, {build_id(mb)}), "
+                  f"SUNDIALS {mb.SUNDIALS_VERSION}")
+
+
+def build_id(mb):
+    """Which build ran: md5 (12 digits) and time of the compiled core, so that
+    results from a rebuilt lagmb can be told apart."""
+    import hashlib
+
+    core = getattr(mb, "_core", None)
+    path = getattr(core, "__file__", None)
+    if not path or not os.path.exists(path):
+        return "core build unknown"
+    with open(path, "rb") as f:
+        digest = hashlib.md5(f.read()).hexdigest()[:12]
+    stamp = time.strftime("%Y-%m-%d %H:%M", time.gmtime(os.path.getmtime(path)))
+    return f"_core md5 {digest}, {stamp} UTC"
 
 
 def lagmb_chain(n, k=0.0, c=0.0):
