@@ -29,10 +29,11 @@ bool SparseQR::ok() const { return impl_->qr.info() == Eigen::Success; }
 int SparseQR::rank() const { return int(impl_->qr.rank()); }
 
 std::vector<int> SparseQR::dependent_columns() const {
-  // SuiteSparseQR moves the columns it finds dependent behind the others
-  const auto& perm = impl_->qr.colsPermutation().indices();
+  // SuiteSparseQR moves the columns it finds dependent behind the others.
+  // (colsPermutation() returns a Map by value: keep it, not a reference into it.)
+  const auto P = impl_->qr.colsPermutation();
   std::vector<int> out;
-  for (int k = rank(); k < impl_->cols; ++k) out.push_back(int(perm[k]));
+  for (int k = rank(); k < impl_->cols; ++k) out.push_back(int(P.indices()[k]));
   std::sort(out.begin(), out.end());
   return out;
 }
