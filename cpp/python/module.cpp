@@ -251,17 +251,24 @@ struct OwnFunction {
   }
 };
 
-/// [(x, y)]: where elements attach to a body (Model::outline).
+/// A point as Python has it: (x, y) in a planar model, (x, y, z) in a spatial one.
+py::tuple point_of(const Model& model, const Vec3& p) {
+  if (model.dimension() == 2) return py::make_tuple(p.x(), p.y());
+  return py::make_tuple(p.x(), p.y(), p.z());
+}
+
+/// [(x, y)] or [(x, y, z)]: where elements attach to a body (Model::outline).
 py::list outline_of(const Model& model, int body) {
   py::list out;
-  for (const Vec2& p : model.outline(body)) out.append(py::make_tuple(p.x(), p.y()));
+  for (const Vec3& p : model.outline(body)) out.append(point_of(model, p));
   return out;
 }
 
-/// [(body index, x, y)]: where an element attaches (Model::attachments).
+/// [(body index, x, y[, z])]: where an element attaches (Model::attachments).
 py::list attachments_of(const Model& model, const std::string& element) {
   py::list out;
-  for (const auto& [body, p] : model.attachments(element)) out.append(py::make_tuple(body, p.x(), p.y()));
+  for (const auto& [body, p] : model.attachments(element))
+    out.append(py::tuple(py::make_tuple(body) + point_of(model, p)));
   return out;
 }
 
@@ -284,6 +291,14 @@ Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
       auto pair = x.cast<std::pair<TimeFunctionPtr, TimeFunctionPtr>>();
       return std::make_pair(own(pair.first), own(pair.second));
     }
+    case ParamType::kVec3: return x.cast<Vec3>();
+    case ParamType::kOrientation:  // (w, x, y, z), or a 3 x 3 matrix (lagmb.model gives nested tuples)
+      if (py::len(x) == 4) return x.cast<Vec4>();
+      return x.cast<Mat3>();
+    case ParamType::kInertia:
+      if (py::len(x) == 3 && !py::isinstance<py::sequence>(py::reinterpret_borrow<py::sequence>(x)[0]))
+        return x.cast<Vec3>();
+      return x.cast<Mat3>();
   }
   return std::monostate{};
 }
@@ -292,6 +307,8 @@ Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
 py::object default_to_python(const Value& v) {
   if (const double* x = std::get_if<double>(&v)) return py::float_(*x);
   if (const Vec2* x = std::get_if<Vec2>(&v)) return py::make_tuple(x->x(), x->y());
+  if (const Vec3* x = std::get_if<Vec3>(&v)) return py::make_tuple(x->x(), x->y(), x->z());
+  if (const Vec4* x = std::get_if<Vec4>(&v)) return py::make_tuple((*x)[0], (*x)[1], (*x)[2], (*x)[3]);
   if (const bool* x = std::get_if<bool>(&v)) return py::bool_(*x);
   if (const std::string* x = std::get_if<std::string>(&v)) return py::str(*x);
   return py::none();
@@ -309,6 +326,9 @@ const char* type_name(ParamType type) {
     case ParamType::kMotion: return "motion";
     case ParamType::kFunction: return "function";
     case ParamType::kFunctionPair: return "function_pair";
+    case ParamType::kVec3: return "vec3";
+    case ParamType::kOrientation: return "orientation";
+    case ParamType::kInertia: return "inertia";
   }
   return "?";
 }
@@ -341,6 +361,7 @@ py::list kinds_to_python() {
     d["role"] = role_name(k.role);
     d["doc"] = k.doc;
     d["params"] = params;
+    d["dimension"] = k.dimension;
     out.append(d);
   }
   return out;
@@ -410,10 +431,18 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<EquilibriumError>(m, "EquilibriumError", m.attr("ModelError"));
 
   py::class_<ModelSpec>(m, "ModelSpec", py::custom_type_setup(collectable<ModelSpec, SpecFunctions>))
-      .def(py::init<>())
+      .def(py::init<int>(), py::arg("dimension") = 2)
       .def("__copy__", [](const ModelSpec& spec) { return spec.copied(own); })
       .def("__len__", [](const ModelSpec& spec) { return spec.elements().size(); })
-      .def("set_gravity", &ModelSpec::set_gravity, py::arg("g"))
+      .def_property_readonly("dimension", &ModelSpec::dimension)
+      .def(
+          "set_gravity",
+          [](ModelSpec& spec, const Eigen::VectorXd& g) {
+            if (g.size() == 2) return spec.set_gravity(Vec2(g[0], g[1]));
+            if (g.size() == 3) return spec.set_gravity(Vec3(g[0], g[1], g[2]));
+            throw ModelError("gravity must have 2 (planar) or 3 (spatial) components, got " + std::to_string(g.size()));
+          },
+          py::arg("g"))
       .def(
           "add",
           [](ModelSpec& spec, const std::string& kind_name, const std::string& name, const py::dict& values) {
@@ -445,6 +474,7 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)
+      .def_property_readonly("dimension", &Model::dimension)
       .def("constraint_name_of_row", &Model::constraint_name_of_row, py::arg("row"))
       .def("has", &Model::has)
       .def("body_coordinates",
@@ -481,14 +511,15 @@ PYBIND11_MODULE(_core, m) {
             require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
             const auto& g = constraint_group(model, name);
             const int k = model.find(name).index;
-            RowMajor out(q.rows(), 3);
+            RowMajor out(q.rows(), g.dimension() == 2 ? 3 : 6);
             for (Eigen::Index s = 0; s < q.rows(); ++s)
               out.row(s) = g.reaction(k, q.row(s).data(), t[s], lam.row(s).data(), joint_axes).transpose();
             return out;
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
-          "Force (x, y) and torque about the centre of mass that the element applies to its second body;\n"
-          "with joint_axes, the force in the element's own axes.")
+          "Force and torque about the centre of mass that the element applies to its second body\n"
+          "((x, y) and the torque in the plane, (x, y, z) and (x, y, z) in space); with joint_axes,\n"
+          "in the element's own axes.")
       .def(
           "friction",
           [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,
@@ -540,7 +571,7 @@ PYBIND11_MODULE(_core, m) {
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
             Eigen::VectorXd E(q.rows());
             for (Eigen::Index k = 0; k < q.rows(); ++k)
-              E[k] = kinetic_energy(model, v.row(k).data()) + potential_energy(model, q.row(k).data(), t[k]);
+              E[k] = kinetic_energy(model, q.row(k).data(), v.row(k).data()) + potential_energy(model, q.row(k).data(), t[k]);
             return E;
           },
           py::arg("t"), py::arg("q"), py::arg("v"))

@@ -15,8 +15,12 @@ Data::Data(const Model& model)
       H(model.hessian_pattern()),
       Q_q(model.force_q_pattern()),
       Q_v(model.force_v_pattern()),
+      M(model.mass_pattern()),
+      M_inv(model.mass_pattern()),
+      M_qa(model.mass_pattern()),
       run_state(std::make_shared<VecX>(VecX::Zero(model.run_state_size()))) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
+  init_mass(model, *this);
   if (!model.friction_groups().empty()) {
     friction_Q_q = model.force_q_pattern();
     friction_Q_v = model.force_v_pattern();
@@ -72,6 +76,7 @@ void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
     d.element_evaluations += g->size();
   }
   drop_rows(d, d.Phi_q);
+  if (!model.constant_mass()) assemble_mass(model, d, q);
 }
 
 void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
@@ -171,13 +176,6 @@ void add_jacobian_times(const Data& d, const double* x, double* y) {
     const double xc = x[c];
     for (int k = outer[c]; k < outer[c + 1]; ++k) y[inner[k]] += val[k] * xc;
   }
-}
-
-double kinetic_energy(const Model& model, const double* v) {
-  const VecX& M = model.mass_diagonal();
-  double T = 0.0;
-  for (int i = 0; i < M.size(); ++i) T += M[i] * v[i] * v[i];
-  return 0.5 * T;
 }
 
 double potential_energy(const Model& model, const double* q, double t) {

@@ -17,18 +17,21 @@ AugmentedSystem::AugmentedSystem(const Model& model)
     : n_(model.n_coordinates()),
       m_(model.n_constraints()),
       eps_(1e-9 / model.mass_scale()),
-      mass_(model.mass_diagonal()),
-      mass_scale_(model.mass_scale()) {
+      mass_scale_(model.mass_scale()),
+      diagonal_mass_(model.constant_mass()) {
   const SpMat& J = model.jacobian_pattern();
   SparsityPattern p(n_ + m_, n_ + m_);
   for (int i = 0; i < n_ + m_; ++i) p.add(i, i);
+  const SpMat& Mp = model.mass_pattern();
+  for (int c = 0; c < n_; ++c)
+    for (SpMat::InnerIterator it(Mp, c); it; ++it) p.add(int(it.row()), c);
   for (int c = 0; c < J.outerSize(); ++c)
     for (SpMat::InnerIterator it(J, c); it; ++it) {
       p.add(n_ + int(it.row()), c);
       p.add(c, n_ + int(it.row()));
     }
   K_ = p.build();
-  for (int i = 0; i < n_; ++i) mass_slots_.push_back(slot(K_, i, i));
+  mass_slots_ = embed_slots(model.mass_pattern(), K_, 0, 0);
   for (int i = 0; i < m_; ++i) reg_slots_.push_back(slot(K_, n_ + i, n_ + i));
   jac_slots_ = embed_slots(J, K_, n_, 0);
   jact_slots_ = embed_slots(J, K_, 0, n_, true);
@@ -36,13 +39,27 @@ AugmentedSystem::AugmentedSystem(const Model& model)
   x_.resize(n_ + m_);
   r_.resize(n_ + m_);
   dx_.resize(n_ + m_);
-  positive_mass_ = (mass_.array() > 0.0).all();
+  positive_mass_ = model.positive_mass();
   if (positive_mass_ && m_ > 0) setup_schur(model);
 }
 
 void AugmentedSystem::setup_schur(const Model& model) {
   const SpMat& J = model.jacobian_pattern();
-  inv_mass_ = mass_.cwiseInverse();
+  m_inv_ = model.mass_pattern();
+  w_n_.resize(n_);
+  // J M^-1 keeps J's pattern where each block of M^-1 joins columns with the
+  // same rows (a spatial body's Euler parameters: every element declares all
+  // four); otherwise the LU takes every solve
+  for (int c = 0; c < n_; ++c)
+    for (SpMat::InnerIterator it(m_inv_, c); it; ++it) {
+      const int a = int(it.row());
+      const int na = J.outerIndexPtr()[a + 1] - J.outerIndexPtr()[a], nc = J.outerIndexPtr()[c + 1] - J.outerIndexPtr()[c];
+      if (na != nc || !std::equal(J.innerIndexPtr() + J.outerIndexPtr()[a], J.innerIndexPtr() + J.outerIndexPtr()[a + 1],
+                                  J.innerIndexPtr() + J.outerIndexPtr()[c])) {
+        positive_mass_ = false;
+        return;
+      }
+    }
   s_rhs_.resize(m_);
   work_.resize(m_);
   lam_.resize(m_);
@@ -102,9 +119,10 @@ long AugmentedSystem::factor_nonzeros() const {
   return schur_ ? long(chol_.matrixL().nestedExpression().nonZeros()) : 0;
 }
 
-void AugmentedSystem::fill_lu_matrix(const double* J) {
+void AugmentedSystem::fill_lu_matrix(const Data& d) {
+  const double* J = d.Phi_q.valuePtr();
   double* K = K_.valuePtr();
-  for (int i = 0; i < n_; ++i) K[mass_slots_[i]] = mass_[i];
+  for (size_t k = 0; k < mass_slots_.size(); ++k) K[mass_slots_[k]] = d.M.valuePtr()[k];
   for (int i = 0; i < m_; ++i) K[reg_slots_[i]] = -eps_;
   for (size_t k = 0; k < jac_slots_.size(); ++k) K[jac_slots_[k]] = K[jact_slots_[k]] = J[k];
 }
@@ -115,13 +133,15 @@ bool AugmentedSystem::factorize(const Data& d) {
   ++factorizations_;
   factorized_ = schur_ = false;
   for (Eigen::Index k = 0; k < nnz; ++k)
-    if (!std::isfinite(J[k])) return false;  // (M and eps are finite by construction)
+    if (!std::isfinite(J[k])) return false;
+  if (!diagonal_mass_ && !d.M.coeffs().allFinite()) return false;  // (a constant M is finite by construction)
   if (positive_mass_ && m_ > 0) {
-    std::copy(J, J + nnz, j_values_.data());  // solve() uses the factorized Phi_q
+    std::copy(J, J + nnz, j_values_.data());  // solve() uses the factorized Phi_q and M^-1
+    m_inv_.coeffs() = d.M_inv.coeffs();
     if (factorize_schur(d)) return schur_ = factorized_ = true;
     // not positive definite in rounding (extreme scales): the LU decides
   }
-  fill_lu_matrix(J);
+  fill_lu_matrix(d);
   if (!lu_analyzed_) {
     lu_.analyzePattern(K_);
     lu_analyzed_ = true;
@@ -133,9 +153,22 @@ bool AugmentedSystem::factorize(const Data& d) {
 bool AugmentedSystem::factorize_schur(const Data& d) {
   const double* J = j_values_.data();
   double* S = S_.valuePtr();
-  double* Jw = j_scaled_.data();  // J M^-1
-  for (int c = 0; c < n_; ++c)
-    for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) Jw[k] = J[k] * inv_mass_[c];
+  double* Jw = j_scaled_.data();  // J M^-1: column c = sum over a of J's column a times M^-1(a, c)
+  const int* mo = m_inv_.outerIndexPtr();
+  const int* mi = m_inv_.innerIndexPtr();
+  const double* mv = m_inv_.valuePtr();
+  for (int c = 0; c < n_; ++c) {
+    const int begin = j_outer_[c], count = j_outer_[c + 1] - begin;
+    if (diagonal_mass_) {
+      for (int k = 0; k < count; ++k) Jw[begin + k] = J[begin + k] * mv[mo[c]];
+      continue;
+    }
+    for (int k = 0; k < count; ++k) Jw[begin + k] = 0.0;
+    for (int e = mo[c]; e < mo[c + 1]; ++e) {
+      const int a = j_outer_[mi[e]];  // (same rows as column c: setup_schur checked)
+      for (int k = 0; k < count; ++k) Jw[begin + k] += J[a + k] * mv[e];
+    }
+  }
   for (Eigen::Index e = 0; e < S_.nonZeros(); ++e) {
     double sum = 0.0;
     for (int t = term_begin_[e]; t < term_begin_[e + 1]; ++t) sum += J[term_pairs_[t][0]] * Jw[term_pairs_[t][1]];
@@ -174,8 +207,14 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
   const double* J = j_values_.data();
   // s = J M^-1 b1 - b2, in S's order
   for (int k = 0; k < m_; ++k) s_rhs_[k] = -b2[old_of_new_[k]];
+  const int* mo = m_inv_.outerIndexPtr();
+  const double* mv = m_inv_.valuePtr();
+  if (diagonal_mass_)
+    for (int c = 0; c < n_; ++c) w_n_[c] = mv[mo[c]] * b1[c];
+  else
+    w_n_.noalias() = m_inv_ * b1;
   for (int c = 0; c < n_; ++c) {
-    const double w = inv_mass_[c] * b1[c];
+    const double w = w_n_[c];
     for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) s_rhs_[j_row_[k]] += J[k] * w;
   }
   lam_ = chol_.solve(s_rhs_);
@@ -196,8 +235,12 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
   for (int c = 0; c < n_; ++c) {
     double f = b1[c];
     for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) f -= J[k] * lam_[j_row_[k]];
-    x1[c] = inv_mass_[c] * f;
+    w_n_[c] = f;
   }
+  if (diagonal_mass_)
+    for (int c = 0; c < n_; ++c) x1[c] = mv[mo[c]] * w_n_[c];
+  else
+    x1.noalias() = m_inv_ * w_n_;
 }
 
 void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
@@ -294,7 +337,8 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
   assemble_jacobian(model, d, q.data(), t);
   if (!kkt.factorize(d)) fail_assembly(model, d, t, INFINITY, "singular augmented matrix");
   assemble_phi_t(model, d, q.data(), t);
-  const VecX Mv = model.mass_diagonal().cwiseProduct(v);
+  VecX Mv(n);
+  mass_times(d, v.data(), Mv.data());
   kkt.solve(Mv, -d.phi_t, v, kappa);
 
   // 3. accelerations and multipliers

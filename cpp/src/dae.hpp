@@ -50,9 +50,10 @@ class DaeFormulation {
 
 /// What the DAE forms of lagmb share: y starts with (q, v, lam), and
 ///   F1 = q' - v (+ ...)            rows 0..n
-///   F2 = M v' + Phi_q^T lam - Q    rows n..2n
-/// with Newton blocks F1: [cj I, -I] on (q, v) and F2: [(Phi_q^T lam)_q - Q_q,
-/// cj M - Q_v, Phi_q^T] on (q, v, lam), and Phi_q in the q columns of the
+///   F2 = M(q) v' + Phi_q^T lam - Q    rows n..2n
+/// with Newton blocks F1: [cj I, -I] on (q, v) and F2: [(Phi_q^T lam)_q +
+/// (M v')_q - Q_q, cj M - Q_v, Phi_q^T] on (q, v, lam) ((M v')_q only with
+/// spatial bodies), and Phi_q in the q columns of the
 /// first constraint rows (F3, from row 2n): the saddle point of
 /// saddle_point.hpp. Each form adds its constraint rows and picks the
 /// equilibration: rows F1, F2 scaled by r1, r2, columns v, lam by cv, cl (see
@@ -83,7 +84,8 @@ class MultiplierDae : public DaeFormulation {
   void momentum_residual(double t, const double* y, const double* yp, double* F);
   /// Zeroes J_, writes the F1, F2 blocks with the given equilibration and
   /// sets the row and column scalings; leaves Phi_q at q in d_.
-  void momentum_jacobian(double t, double cj, const double* y, double r1, double r2, double cv, double cl);
+  void momentum_jacobian(double t, double cj, const double* y, const double* yp, double r1, double r2, double cv,
+                         double cl);
   /// The multipliers of the rows the run dropped as redundant (their equations
   /// read 0 = 0 and their Jacobian rows are zero) get a unit diagonal, so the
   /// Newton matrix stays invertible and their corrections are zero.
@@ -108,7 +110,7 @@ class MultiplierDae : public DaeFormulation {
   SaddlePoint saddle_;
 
  private:
-  std::vector<int> q_diag_, qv_diag_, v_diag_, alg_diag_;
+  std::vector<int> q_diag_, qv_diag_, alg_diag_;
 };
 
 /// Stabilized index-2 form of Gear, Gupta and Leimkuhler, y = (q, v, lam, mu):

@@ -12,7 +12,7 @@ namespace lagmb {
 namespace {
 
 /// Scatters a local row (over c) into a global row (over q).
-VecX global_row(const Eigen::Matrix<double, 1, 6>& local, const std::array<int, 6>& coord, int n) {
+VecX global_row(const Eigen::Matrix<double, 1, 6>& local, const LocalCoords& coord, int n) {
   VecX g = VecX::Zero(n);
   for (int a = 0; a < 6; ++a)
     if (coord[a] >= 0) g[coord[a]] += local[a];
@@ -126,14 +126,13 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     kkt_.solve(C[j], zero_m, x, y);
     X.col(j) = x;
   }
-  const VecX& M = model_.mass_diagonal();
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
     b[i] = -(1.0 + act[i].restitution) * C[i].dot(v);
     // A(i, i) is the mobility along the limit left by the joints; next to the
     // free body's C M^-1 C^T it is 0 when drivers prescribe that motion, and
     // no impulse can change it: a driver pushing through its own stop
-    const double free_mobility = C[i].cwiseAbs2().cwiseQuotient(M).sum();
+    const double free_mobility = C[i].dot(d_.M_inv * C[i]);
     if (!(A(i, i) > 1e-10 * free_mobility)) {
       auto& group = *model_.event_groups()[roots_[which[i]].group];
       IntegratorFailure f(std::string(group.kind()) + " '" + group.name(roots_[which[i]].element) +
@@ -161,7 +160,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd.data(), lam.data());
       have_qdd = true;
     }
-    const Local6 cd = gather(v.data(), group.coordinates(r.element));
+    const Local6 cd = gather_v<6>(v.data(), group.coordinates(r.element));
     const double gdd = C[j].dot(qdd) + cd.dot(act[j].hessian * cd);
     if (gdd < -1e-9 * (1.0 + C[j].norm() * qdd.norm())) {
       records.back().kind = "rest";

@@ -236,7 +236,7 @@ class KinematicSolver {
       if (with_forces) multipliers(q, v, t, a, lam);
       return;
     }
-    const VecX Mv = model_.mass_diagonal().cwiseProduct(v);  // v: the prediction (irrelevant at 0 DOF)
+    const VecX Mv = d_.M * v;  // v: the prediction (irrelevant at 0 DOF); M at q
     solve_exact(t, Mv, -d_.phi_t, v, kappa_, false);
     assemble_gamma(model_, d_, q.data(), v.data(), t);
     if (with_forces) {
@@ -342,7 +342,8 @@ class KinematicSolver {
   /// friction, if any, by fixed point on the load it takes from lam).
   void multipliers(const VecX& q, const VecX& v, double t, const VecX& a, VecX& lam) {
     assemble_forces(model_, d_, q.data(), v.data(), t);
-    const VecX base = d_.Q - model_.mass_diagonal().cwiseProduct(a);
+    const VecX inertia = d_.M * a;  // M at q (rates() assembled Phi_q there)
+    const VecX base = d_.Q - inertia;
     auto solve_for = [&](const VecX& c) {
       square_->solve_transpose(c, lam);
       refine(t, lam, max_abs(c), [&](const VecX& r, VecX& x) { square_->solve_transpose(r, x); },
@@ -354,7 +355,6 @@ class KinematicSolver {
     };
     solve_for(base);
     if (model_.friction_groups().empty()) return;
-    const VecX inertia = model_.mass_diagonal().cwiseProduct(a);
     iterate_friction_load(model_, d_, q.data(), v.data(), t, lam, [&](VecX&) { solve_for(d_.Q - inertia); });
   }
 
@@ -364,7 +364,7 @@ class KinematicSolver {
   /// Without need_x2 only x1 is wanted: at 0 DOF it follows from the second
   /// block row alone (Phi_q x1 = b2), so only that residual is refined.
   void solve_exact(double t, const VecX& b1, const VecX& b2, VecX& x1, VecX& x2, bool need_x2) {
-    const VecX& M = model_.mass_diagonal();
+    const SpMat& M = d_.M;  // at q, with Phi_q
     const double jmax = d_.Phi_q.nonZeros() ? Eigen::Map<const VecX>(d_.Phi_q.valuePtr(), d_.Phi_q.nonZeros())
                                                   .lpNorm<Eigen::Infinity>()
                                             : 0.0;
@@ -372,12 +372,12 @@ class KinematicSolver {
     double previous = INFINITY;
     bool refreshed = false;
     for (int it = 0; it < 16; ++it) {
-      r1_ = b1 - M.cwiseProduct(x1);
+      r1_ = b1 - M * x1;
       add_jacobian_transpose_times(d_, (-x2).eval().data(), r1_.data());
       r2_ = b2;
       add_jacobian_times(d_, (-x1).eval().data(), r2_.data());
       // rounding level of the residual: sizes of the terms it is computed from
-      const double size = max_abs(b1) + max_abs(b2) + max_abs(M.cwiseProduct(x1)) + jmax * (max_abs(x1) + max_abs(x2));
+      const double size = max_abs(b1) + max_abs(b2) + max_abs(M * x1) + jmax * (max_abs(x1) + max_abs(x2));
       const double res = need_x2 ? std::max(max_abs(r1_), max_abs(r2_)) : max_abs(r2_);
       if (!(res > 1e-14 * size)) return;
       if (res > 0.25 * previous || it == 8) {

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
 namespace lagmb {
 
 void Model::require_open(const std::string& what) const {
@@ -40,25 +43,25 @@ int Model::add_body(Body body) {
   return index;
 }
 
-void Model::attach(const std::string& element, int body, Vec2 local) {
+void Model::attach(const std::string& element, int body, Vec3 local) {
   attachments_[element].emplace_back(body, local);
   if (body == kGround) return;
   outlines_.resize(bodies_.size());
-  std::vector<Vec2>& points = outlines_.at(body);
-  for (const Vec2& p : points)
+  std::vector<Vec3>& points = outlines_.at(body);
+  for (const Vec3& p : points)
     if ((p - local).cwiseAbs().sum() <= 1e-12) return;
   points.push_back(local);
 }
 
-const std::vector<Vec2>& Model::outline(int body) const {
-  static const std::vector<Vec2> none;
+const std::vector<Vec3>& Model::outline(int body) const {
+  static const std::vector<Vec3> none;
   if (body < 0 || body >= static_cast<int>(bodies_.size()))
     throw ModelError("outline: no body with index " + std::to_string(body));
   return body < static_cast<int>(outlines_.size()) ? outlines_[body] : none;
 }
 
-const std::vector<std::pair<int, Vec2>>& Model::attachments(const std::string& element) const {
-  static const std::vector<std::pair<int, Vec2>> none;
+const std::vector<std::pair<int, Vec3>>& Model::attachments(const std::string& element) const {
+  static const std::vector<std::pair<int, Vec3>> none;
   find(element);  // ModelError if there is no such element
   auto it = attachments_.find(element);
   return it == attachments_.end() ? none : it->second;
@@ -70,9 +73,35 @@ Vec2 Model::local_point(int body, Vec2 p) const {
   return rotation(b.angle).transpose() * (p - b.position);
 }
 
+Vec3 Model::local_point(int body, Vec3 p) const {
+  if (body == kGround) return p;
+  const Body& b = bodies_[body];
+  return euler::A(b.p0).transpose() * (p - b.r0);
+}
+
+Vec3 Model::local_direction(int body, Vec3 d) const {
+  return body == kGround ? d : Vec3(euler::A(bodies_[body].p0).transpose() * d);
+}
+
+void Model::set_dimension(int dimension) {
+  if (dimension != 2 && dimension != 3) throw ModelError("dimension must be 2 or 3, got " + std::to_string(dimension));
+  if (dimension == dimension_) return;
+  if (!bodies_.empty() || !constraints_.empty() || !forces_.empty() || !events_.empty())
+    throw ModelError("set the dimension before adding bodies, elements or gravity");
+  dimension_ = dimension;
+}
+
 void Model::set_gravity(Vec2 g) {
+  if (dimension_ != 2)
+    throw ModelError("gravity of a spatial model has three components (x, y, z), got " + to_text(g));
+  set_gravity(Vec3(g.x(), g.y(), 0.0));
+}
+
+void Model::set_gravity(Vec3 g) {
   require_open("set gravity");
-  if (!std::isfinite(g.x()) || !std::isfinite(g.y())) throw ModelError("gravity is not finite: " + to_text(g));
+  if (!g.allFinite()) throw ModelError("gravity is not finite: " + to_text(g));
+  if (dimension_ == 2 && g.z() != 0.0)
+    throw ModelError("gravity of a planar model has two components (x, y), got " + to_text(g));
   for (auto& f : forces_)
     if (auto* grav = dynamic_cast<Gravity*>(f.get())) {
       *grav = Gravity(g);
@@ -90,14 +119,10 @@ void Model::finalize() {
     b.first_coord = n_;
     n_ += b.n_coordinates();
   }
-  mass_diag_.resize(n_);
   coord_owner_.assign(n_, 0);
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    const Body& b = bodies_[i];
-    mass_diag_[b.first_coord] = mass_diag_[b.first_coord + 1] = b.mass;
-    if (!b.particle) mass_diag_[b.first_coord + 2] = b.inertia;
-    for (int a = 0; a < b.n_coordinates(); ++a) coord_owner_[b.first_coord + a] = int(i);
-  }
+  for (size_t i = 0; i < bodies_.size(); ++i)
+    for (int a = 0; a < bodies_[i].n_coordinates(); ++a) coord_owner_[bodies_[i].first_coord + a] = int(i);
+  build_mass();
 
   // rows: constraint elements in the order they were added
   m_ = 0;
@@ -149,9 +174,54 @@ void Model::finalize() {
   finalized_ = true;
 }
 
+void Model::build_mass() {
+  mass_diag_ = VecX::Zero(n_);
+  SparsityPattern pattern(n_, n_);
+  for (int i = 0; i < n_; ++i) pattern.add(i, i);
+  positive_mass_ = true;
+  for (const Body& b : bodies_) {
+    const int c = b.first_coord;
+    positive_mass_ = positive_mass_ && b.mass > 0.0;
+    if (b.spatial) {
+      mass_diag_.segment<3>(c).setConstant(b.mass);
+      for (int r = 0; r < 4; ++r)
+        for (int k = 0; k < 4; ++k) pattern.add(c + 3 + r, c + 3 + k);
+      positive_mass_ = positive_mass_ && Eigen::LLT<Mat3>(b.inertia_tensor).info() == Eigen::Success &&
+                       b.inertia_tensor.trace() > 0.0;
+      continue;
+    }
+    mass_diag_[c] = mass_diag_[c + 1] = b.mass;
+    if (!b.particle) {
+      mass_diag_[c + 2] = b.inertia;
+      positive_mass_ = positive_mass_ && b.inertia > 0.0;
+    }
+  }
+  mass_pattern_ = pattern.build();
+  mass_diagonal_slots_.resize(n_);
+  for (int i = 0; i < n_; ++i) mass_diagonal_slots_[i] = slot(mass_pattern_, i, i);
+  spatial_masses_.clear();
+  for (const Body& b : bodies_) {
+    if (!b.spatial) continue;
+    SpatialMass s;
+    s.p = b.first_coord + 3;
+    for (int k = 0; k < 4; ++k)
+      for (int r = 0; r < 4; ++r) s.slots[4 * k + r] = slot(mass_pattern_, s.p + r, s.p + k);
+    s.J = b.inertia_tensor;
+    s.jbar = b.inertia_tensor.trace() / 3.0;
+    // a massless spatial body (kinematics only) has no inverse; M^-1 is then never used
+    s.J_inverse = positive_mass_ ? Mat3(b.inertia_tensor.inverse()) : Mat3::Zero();
+    spatial_masses_.push_back(s);
+  }
+}
+
 VecX Model::initial_q() const {
   VecX q(n_);
   for (const auto& b : bodies_) {
+    if (b.spatial) {
+      q.segment<3>(b.first_coord) = b.r0;
+      q.segment<4>(b.first_coord + 3) = b.p0;
+      continue;
+    }
     q.segment<2>(b.first_coord) = b.position;
     if (!b.particle) q[b.first_coord + 2] = b.angle;
   }
@@ -161,6 +231,12 @@ VecX Model::initial_q() const {
 VecX Model::initial_v() const {
   VecX v(n_);
   for (const auto& b : bodies_) {
+    if (b.spatial) {
+      // p' = E(p)^T omega / 2 (omega = 2 E p', E E^T = I)
+      v.segment<3>(b.first_coord) = b.rdot0;
+      v.segment<4>(b.first_coord + 3) = 0.5 * euler::E(b.p0).transpose() * b.omega0;
+      continue;
+    }
     v.segment<2>(b.first_coord) = b.velocity;
     if (!b.particle) v[b.first_coord + 2] = b.angular_velocity;
   }
@@ -215,12 +291,17 @@ Vec2 Model::initial_position(int body) const {
   return body == kGround ? Vec2::Zero() : bodies_[body].position;
 }
 
-std::array<int, 6> Model::local_coordinates(int body_i, int body_j) const {
-  std::array<int, 6> c{-1, -1, -1, -1, -1, -1};
+LocalCoords Model::local_coordinates(int body_i, int body_j) const {
+  LocalCoords c;
+  c.fill(-1);
   for (int side = 0; side < 2; ++side) {
     const int b = side ? body_j : body_i;
     if (b == kGround) continue;
     const Body& body = bodies_[b];
+    if (body.spatial) {
+      for (int a = 0; a < 7; ++a) c[7 * side + a] = body.first_coord + a;
+      continue;
+    }
     c[3 * side] = body.first_coord;
     c[3 * side + 1] = body.first_coord + 1;
     c[3 * side + 2] = body.angle_coord();
@@ -236,7 +317,7 @@ std::string Model::describe(const std::string& name) const {
   const ElementRef& r = find(name);
   std::string kind;
   switch (r.type) {
-    case ElementRef::kBody: kind = bodies_[r.group].particle ? "particle" : "body"; break;
+    case ElementRef::kBody: kind = bodies_[r.group].particle ? "particle" : "body"; break;  // (spatial too)
     case ElementRef::kConstraint: kind = constraints_[r.group]->kind(); break;
     case ElementRef::kForce: kind = forces_[r.group]->kind(); break;
     case ElementRef::kFriction: kind = frictions_[r.group]->kind(); break;

@@ -56,7 +56,6 @@ Redundancy find_redundancy(const Model& model, Data& d, AugmentedSystem& kkt, co
   const double h = 1e-2 * extent(model, q0);
   assemble_jacobian(model, d, q0.data(), t0);
   if (!kkt.factorize(d)) return out;
-  const VecX& M = model.mass_diagonal();
   VecX zero_n = VecX::Zero(n), zero_m = VecX::Zero(m), kappa(m), drive(n);
   // the driven motion: least-change velocity with Phi_q w = -Phi_t, run for dt
   double dt = 0.0;
@@ -75,7 +74,7 @@ Redundancy find_redundancy(const Model& model, Data& d, AugmentedSystem& kkt, co
   VecX z(n), directions[2];
   for (VecX& dq : directions) {
     for (int i = 0; i < n; ++i) z[i] = uniform(random);
-    kkt.solve(M.cwiseProduct(z), zero_m, dq, kappa);
+    kkt.solve(d.M * z, zero_m, dq, kappa);  // (M at q0, with Phi_q)
     const double size = max_abs(dq);
     dq *= size > 0 ? h / size : 0.0;
   }

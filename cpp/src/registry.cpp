@@ -4,7 +4,11 @@
 
 #include "lagmb/model.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <sstream>
+
+#include "lagmb/spatial.hpp"
 
 namespace lagmb {
 
@@ -46,6 +50,7 @@ KindInfo torque_kind();
 KindInfo joint_friction_kind();
 KindInfo contact_kind();
 KindInfo stop_kind();
+KindInfo spatial_body_kind();
 
 const std::vector<KindInfo>& element_kinds() {
   // the order of scene tables and docs; a new kind adds its line here and above
@@ -59,6 +64,8 @@ const std::vector<KindInfo>& element_kinds() {
       rotational_spring_damper_kind(), force_kind(),
       torque_kind(),        joint_friction_kind(),
       contact_kind(),       stop_kind(),
+      // spatial (dimension 3)
+      spatial_body_kind(),
   };
   return kinds;
 }
@@ -88,6 +95,9 @@ bool fits(ParamType type, const Value& value) {
     case ParamType::kMotion:
     case ParamType::kFunction: return std::holds_alternative<TimeFunctionPtr>(value);
     case ParamType::kFunctionPair: return std::holds_alternative<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(value);
+    case ParamType::kVec3: return std::holds_alternative<Vec3>(value);
+    case ParamType::kOrientation: return std::holds_alternative<Vec4>(value) || std::holds_alternative<Mat3>(value);
+    case ParamType::kInertia: return std::holds_alternative<Vec3>(value) || std::holds_alternative<Mat3>(value);
   }
   return false;
 }
@@ -134,6 +144,46 @@ bool Args::flag(const std::string& key) const { return as<bool>(*this, key); }
 const std::string& Args::text(const std::string& key) const { return as<std::string>(*this, key); }
 int Args::body(const std::string& key) const { return as<BodyIndex>(*this, key).index; }
 
+Vec3 Args::vec3(const std::string& key) const { return as<Vec3>(*this, key); }
+
+Vec4 Args::orientation(const std::string& key) const {
+  const Value& v = get(key);
+  const std::string what = kind_->name + ": " + key;
+  if (const Vec4* p = std::get_if<Vec4>(&v)) {
+    if (std::abs(p->norm() - 1.0) > 1e-6)
+      throw ModelError(what + " must be a unit quaternion (w, x, y, z), got length " + to_text(p->norm()));
+    return p->normalized();
+  }
+  const Mat3& R = as<Mat3>(*this, key);
+  const double off = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
+  if (!(off <= 1e-6) || !(R.determinant() > 0.0))
+    throw ModelError(what + " must be a rotation matrix (orthonormal columns, determinant +1); R^T R - I is off by " +
+                     to_text(off) + ", det R = " + to_text(R.determinant()));
+  return euler::from_matrix(R);
+}
+
+Mat3 Args::inertia(const std::string& key) const {
+  const Value& v = get(key);
+  const std::string what = kind_->name + ": " + key;
+  Mat3 J;
+  if (const Vec3* d = std::get_if<Vec3>(&v))
+    J = d->asDiagonal();
+  else
+    J = as<Mat3>(*this, key);
+  const double scale = J.cwiseAbs().maxCoeff();
+  if (!((J - J.transpose()).cwiseAbs().maxCoeff() <= 1e-9 * scale))
+    throw ModelError(what + " must be a symmetric tensor");
+  J = 0.5 * (J + J.transpose());
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(J);
+  const Vec3 m = eig.eigenvalues();  // ascending
+  if (!(m[0] >= 0.0)) throw ModelError(what + " must be positive semi-definite; its principal moments are " + to_text(m));
+  if (!(m[2] <= (m[0] + m[1]) * (1.0 + 1e-9)))
+    throw ModelError(what + ": principal moments " + to_text(m) +
+                     " break the triangle inequality (no rigid body has them: each must be at most the sum of the "
+                     "other two)");
+  return J;
+}
+
 std::optional<double> Args::optional_real(const std::string& key) const {
   if (!given(key)) return std::nullopt;
   return real(key);
@@ -157,8 +207,21 @@ namespace {
 
 bool finite(const Value& v) {
   if (const double* x = std::get_if<double>(&v)) return std::isfinite(*x);
-  if (const Vec2* p = std::get_if<Vec2>(&v)) return std::isfinite(p->x()) && std::isfinite(p->y());
+  if (const Vec2* p = std::get_if<Vec2>(&v)) return p->allFinite();
+  if (const Vec3* p = std::get_if<Vec3>(&v)) return p->allFinite();
+  if (const Vec4* p = std::get_if<Vec4>(&v)) return p->allFinite();
+  if (const Mat3* p = std::get_if<Mat3>(&v)) return p->allFinite();
   return true;
+}
+
+std::string shown(const Value& v) {
+  if (const double* x = std::get_if<double>(&v)) return to_text(*x);
+  if (const Vec2* p = std::get_if<Vec2>(&v)) return to_text(*p);
+  if (const Vec3* p = std::get_if<Vec3>(&v)) return to_text(*p);
+  std::ostringstream s;
+  if (const Vec4* p = std::get_if<Vec4>(&v)) s << p->transpose();
+  if (const Mat3* p = std::get_if<Mat3>(&v)) s << *p;
+  return "(" + s.str() + ")";
 }
 
 /// The values with each body given by name replaced by its index; ModelError
@@ -192,12 +255,14 @@ Args resolved(const Model& model, const std::string& label, const Args& args) {
 void add_element(Model& model, const std::string& name, const Args& given) {
   const KindInfo& kind = given.kind();
   const std::string label = kind.name + " '" + name + "'";
+  if (kind.dimension != model.dimension())
+    throw ModelError(label + ": a " + (kind.dimension == 2 ? "planar" : "spatial") + " kind does not go in a " +
+                     (model.dimension() == 2 ? "planar" : "spatial") + " model (dimension " +
+                     std::to_string(model.dimension()) + ")");
   for (const Param& p : kind.params) {
     if (p.required && !given.given(p.name)) throw ModelError(label + ": '" + p.name + "' is required");
     const Value& v = given.get(p.name);
-    if (!finite(v))
-      throw ModelError(label + ": " + p.name + " is not finite: " +
-                       (std::holds_alternative<double>(v) ? to_text(std::get<double>(v)) : to_text(std::get<Vec2>(v))));
+    if (!finite(v)) throw ModelError(label + ": " + p.name + " is not finite: " + shown(v));
   }
   const Args args = resolved(model, label, given);
   kind.build(model, name, args);
@@ -213,7 +278,12 @@ void add_element(Model& model, const std::string& name, const Args& given) {
     // where the element's points sit on its bodies: what a drawing of each body joins
     for (const std::string& on : p.on) {
       const int body = args.body(on);
-      model.attach(name, body, p.local ? args.vec2(p.name) : model.local_point(body, args.vec2(p.name)));
+      if (p.type == ParamType::kVec3) {
+        model.attach(name, body, p.local ? args.vec3(p.name) : model.local_point(body, args.vec3(p.name)));
+      } else {
+        const Vec2 s = p.local ? args.vec2(p.name) : model.local_point(body, args.vec2(p.name));
+        model.attach(name, body, Vec3(s.x(), s.y(), 0.0));
+      }
     }
   }
 }
@@ -290,6 +360,38 @@ Param function(const std::string& name, const std::string& unit, const std::stri
 }
 Param function_pair(const std::string& name, const std::string& unit, const std::string& doc) {
   return make(name, ParamType::kFunctionPair, true, {}, unit, doc);
+}
+Param point3(const std::string& name, std::vector<std::string> on, const std::string& doc) {
+  Param p = make(name, ParamType::kVec3, true, {}, "m", doc + " (global, initial configuration)");
+  p.on = std::move(on);
+  return p;
+}
+Param optional_point3(const std::string& name, std::vector<std::string> on, const std::string& doc) {
+  Param p = point3(name, std::move(on), doc);
+  p.required = false;
+  return p;
+}
+Param local_point3(const std::string& name, const std::string& on, const std::string& doc) {
+  Param p = make(name, ParamType::kVec3, false, {}, "m", doc + " (in " + on + "'s axes)");
+  p.on = {on};
+  p.local = true;
+  p.keyword_only = true;
+  return p;
+}
+Param direction3(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kVec3, true, {}, "", doc + " (global, initial configuration; any length)");
+}
+Param optional_direction3(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kVec3, false, {}, "", doc + " (global, initial configuration; any length)");
+}
+Param vec3(const std::string& name, Vec3 fallback, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kVec3, false, fallback, unit, doc);
+}
+Param orientation(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kOrientation, false, Vec4(1.0, 0.0, 0.0, 0.0), "", doc);
+}
+Param inertia(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kInertia, true, {}, "kg m^2", doc);
 }
 
 }  // namespace param

@@ -5,8 +5,20 @@
 
 namespace lagmb {
 
+ModelSpec::ModelSpec(int dimension) : dimension_(dimension) {
+  Model().set_dimension(dimension);  // ModelError unless 2 or 3
+}
+
 void ModelSpec::set_gravity(Vec2 g) {
-  if (!std::isfinite(g.x()) || !std::isfinite(g.y())) throw ModelError("gravity is not finite: " + to_text(g));
+  if (dimension_ != 2)
+    throw ModelError("gravity of a spatial model has three components (x, y, z), got " + to_text(g));
+  set_gravity(Vec3(g.x(), g.y(), 0.0));
+}
+
+void ModelSpec::set_gravity(Vec3 g) {
+  Model check;  // the Model's checks (finite; z = 0 in the plane)
+  check.set_dimension(dimension_);
+  check.set_gravity(g);
   gravity_ = g;
   draft_.reset();
   compiled_.reset();
@@ -33,6 +45,7 @@ Args with_copies(const Args& args, const ModelSpec::FunctionCopy& copy) {
 
 std::shared_ptr<Model> ModelSpec::rebuild(const FunctionCopy& copy) const {
   auto model = std::make_shared<Model>();
+  model->set_dimension(dimension_);
   if (gravity_) model->set_gravity(*gravity_);
   for (const Element& e : elements_) add_element(*model, e.name, with_copies(e.args, copy));
   return model;
@@ -72,7 +85,7 @@ std::shared_ptr<const Model> ModelSpec::compile(const FunctionCopy& copy) const 
 }
 
 ModelSpec ModelSpec::copied(const FunctionCopy& copy) const {
-  ModelSpec out;
+  ModelSpec out(dimension_);
   out.gravity_ = gravity_;
   for (const Element& e : elements_) out.elements_.push_back({e.name, with_copies(e.args, copy)});
   return out;

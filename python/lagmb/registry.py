@@ -44,6 +44,7 @@ class Kind(NamedTuple):
     role: str
     doc: str
     params: Tuple[Param, ...]
+    dimension: int  # 2: planar models, 3: spatial ones
 
     @property
     def what(self):
@@ -59,10 +60,14 @@ def _read():
     return tuple(kinds)
 
 
-#: Every element kind, in the order scenes, messages and docs list them.
-KINDS = _read()
+#: Every element kind of planar models, in the order scenes, messages and docs list them.
+ALL_KINDS = _read()
+KINDS = tuple(k for k in ALL_KINDS if k.dimension == 2)
+#: The kinds of spatial models (Model(dimension=3)).
+SPATIAL_KINDS = tuple(k for k in ALL_KINDS if k.dimension == 3)
 BY_METHOD = {k.method: k for k in KINDS}
-BY_NAME = {k.name: k for k in KINDS}
+SPATIAL_BY_METHOD = {k.method: k for k in SPATIAL_KINDS}
+BY_NAME = {k.name: k for k in ALL_KINDS}
 
 #: What an element may stand for, and how a summary counts each role.
 ROLES = ("body", "joint", "driver", "force", "friction", "stop", "contact")

@@ -42,8 +42,29 @@ void add_jacobian_transpose_times(const Data& d, const double* w, double* y);
 /// y += Phi_q x.
 void add_jacobian_times(const Data& d, const double* x, double* y);
 
-/// Kinetic energy 1/2 v^T M v.
-double kinetic_energy(const Model& model, const double* v);
+// --- the mass matrix (mass.cpp) ---------------------------------------------
+// M is block diagonal: constant diagonal entries for planar bodies,
+// particles and the centre of mass of spatial bodies, and a 4 x 4 block
+// M_p(p) at the Euler parameters of each spatial body
+// (elements/spatial_body.hpp). Its values live in d.M, d.M_inv (pattern
+// Model::mass_pattern()); the constant entries are written once, by Data's
+// constructor (init_mass).
+
+/// Writes the constant entries of d.M and d.M_inv (1/M_ii; 0 where M_ii = 0).
+void init_mass(const Model& model, Data& d);
+/// d.M = M(q), d.M_inv = M(q)^-1: the spatial bodies' blocks (nothing to do
+/// for a planar model). assemble_jacobian calls it: whatever solves with
+/// Phi_q at q (the augmented system) finds M at the same q.
+void assemble_mass(const Model& model, Data& d, const double* q);
+/// y = M a (M as assembled in d).
+void mass_times(const Data& d, const double* a, double* y);
+/// y = M^-1 b (as assembled in d).
+void mass_inverse_times(const Data& d, const double* b, double* y);
+/// d.M_qa = d(M(q) a)/dq (zero for a planar model).
+void assemble_mass_derivative(const Model& model, Data& d, const double* q, const double* a);
+/// Kinetic energy: 1/2 v^T M v for planar bodies, m r'.r' / 2 + omega'^T J'
+/// omega' / 2 for spatial ones.
+double kinetic_energy(const Model& model, const double* q, const double* v);
 /// Potential energy of the conservative forces.
 double potential_energy(const Model& model, const double* q, double t);
 

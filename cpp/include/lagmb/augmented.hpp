@@ -46,8 +46,8 @@ class AugmentedSystem {
  public:
   explicit AugmentedSystem(const Model& model);
 
-  /// Factorizes K with the current d.Phi_q; false if the factorization
-  /// fails or K is not finite.
+  /// Factorizes K with the current d.Phi_q and d.M (d.M_inv); false if the
+  /// factorization fails or K is not finite.
   bool factorize(const Data& d);
   /// Solves K [x1; x2] = [b1; b2] (sizes n, m), refining against eps = 0.
   /// SimulationError if the last factorization failed.
@@ -65,7 +65,7 @@ class AugmentedSystem {
 
  private:
   void setup_schur(const Model& model);
-  void fill_lu_matrix(const double* J);
+  void fill_lu_matrix(const Data& d);
   bool factorize_schur(const Data& d);
   bool pivots_above(double ratio) const;
   void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
@@ -74,8 +74,8 @@ class AugmentedSystem {
   double eps_;
   SpMat K_;
   std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
-  const VecX& mass_;
   double mass_scale_;
+  bool diagonal_mass_;  // M constant and diagonal (a planar model)
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
   bool lu_analyzed_ = false;
   bool factorized_ = false;
@@ -88,13 +88,14 @@ class AugmentedSystem {
   std::vector<int> old_of_new_;  // S's row k is constraint row old_of_new_[k]
   std::vector<int> new_of_old_;
   VecX j_values_;               // Phi_q's values at the last factorization
+  SpMat m_inv_;                 // M^-1 at the last factorization (block diagonal)
   SpMat S_;                     // upper triangle, AMD order
-  VecX inv_mass_, s_rhs_, work_, lam_, lam_prev_;
-  // S.values[e] = sum of J.values[a] J.values[b] / M[c] over the pairs (a, b) in
-  // term_pairs_[term_begin_[e] .. term_begin_[e + 1]) (c: a's and b's column)
+  VecX s_rhs_, work_, lam_, lam_prev_, w_n_;
+  // S.values[e] = sum of J.values[a] (J M^-1).values[b] over the pairs (a, b) in
+  // term_pairs_[term_begin_[e] .. term_begin_[e + 1]) (a and b in one column)
   std::vector<int> term_begin_;
   std::vector<std::array<int, 2>> term_pairs_;
-  VecX j_scaled_;  // J M^-1, per entry
+  VecX j_scaled_;  // J M^-1, per entry (a block of M^-1 mixes columns with the same rows)
   std::vector<int> s_diag_;
   Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
   int symbolic_analyses_ = 0;

@@ -1,17 +1,19 @@
 // One container per constraint kind and the loops that run over it.
 //
 // A constraint kind (e.g. RevoluteJoint) is a plain struct that holds its
-// parameters and gives, in the local coordinates c = (x_i, y_i, phi_i, x_j,
-// y_j, phi_j) of the two bodies it joins:
+// parameters and gives, in the local coordinates c of the two bodies it
+// joins (L of them: (x_i, y_i, phi_i, x_j, y_j, phi_j) in the plane, (r_i,
+// p_i, r_j, p_j) in space; space.hpp):
+//   using Space = Spatial;                     (omitted: Planar)
 //   static constexpr int rows;                 equations per element
 //   static constexpr bool time_dependent;      Phi depends on t explicitly
 //   static constexpr const char* kind;         for messages
 //   Rows phi(c, t)                             Phi
-//   Jac jacobian(c, t)                         Phi_c            (rows x 6)
-//   void hessians(c, t, Mat6 H[rows])          d2 Phi_r / dc2
-//   Mat2 axes(c, t)                            the joint's own axes (columns),
+//   Jac jacobian(c, t)                         Phi_c            (rows x L)
+//   void hessians(c, t, MatL H[rows])          d2 Phi_r / dc2
+//   Space::Axes axes(c, t)                     the joint's own axes (columns),
 //                                              for reactions in joint axes
-//   and, if time dependent: phi_t, phi_tc (rows x 6), phi_tt.
+//   and, if time dependent: phi_t, phi_tc (rows x L), phi_tt.
 // Everything the integrators need beyond that is derived here, once:
 //   gamma_r     = -v^T H_r v - 2 Phi_tc,r v - Phi_tt,r
 //   d(Phi_q v + Phi_t)/dq, row r = (H_r v)^T + Phi_tc,r
@@ -25,23 +27,23 @@
 #include <utility>
 #include <vector>
 
+#include "lagmb/space.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
 
-/// Where an element's local coordinates live in q (-1: ground, or a
-/// particle's missing angle) and the first of its rows in Phi.
+/// Where an element's local coordinates live in q (-1: ground, a particle's
+/// missing angle, or beyond its kind's L) and the first of its rows in Phi.
 struct ElementPlacement {
   int row0 = 0;
-  std::array<int, 6> coord{-1, -1, -1, -1, -1, -1};
+  LocalCoords coord = filled_coords();
+  static LocalCoords filled_coords() {
+    LocalCoords c;
+    c.fill(-1);
+    return c;
+  }
 };
-
-inline Local6 gather(const double* x, const std::array<int, 6>& coord) {
-  Local6 c;
-  for (int a = 0; a < 6; ++a) c[a] = coord[a] >= 0 ? x[coord[a]] : 0.0;
-  return c;
-}
 
 /// Per-run state of an element kind (any group): a kind that keeps values
 /// during a run (a contact's impact speed) declares
@@ -58,14 +60,15 @@ template <class Kind>
 inline constexpr int run_state_size_v = run_state_size_of<Kind>::value;
 
 /// A kind may give gamma itself, `Rows gamma(c, cdot, t)`, where the
-/// general -cdot^T H_r cdot over full 6 x 6 Hessians costs more than the
+/// general -cdot^T H_r cdot over full L x L Hessians costs more than the
 /// kind's closed form (the revolute joint of a long chain); tests check it
 /// against the Hessians.
 template <class Kind, class = void>
 struct has_own_gamma : std::false_type {};
 template <class Kind>
 struct has_own_gamma<Kind, std::void_t<decltype(std::declval<const Kind&>().gamma(
-                               std::declval<const Local6&>(), std::declval<const Local6&>(), 0.0))>>
+                               std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
+                               std::declval<const LocalVec<space_of_t<Kind>::local>&>(), 0.0))>>
     : std::true_type {};
 
 class ConstraintGroupBase {
@@ -94,27 +97,27 @@ class ConstraintGroupBase {
   virtual void velocity_jacobian(const double* q, const double* v, double t,
                                  double* Vq_values) const = 0;
   /// Generalized force -Phi_c^T lam the element applies on its two bodies,
-  /// in local coordinates (force x, y and torque about each centre of mass).
-  virtual Local6 generalized_reaction(int k, const double* q, double t,
-                                      const double* lam) const = 0;
-  /// The element's own axes (columns, global components) at state q.
-  virtual Mat2 axes(int k, const double* q, double t) const = 0;
-  /// The reaction on the element's second body: force (x, y) and torque
-  /// about its centre of mass, the last three of generalized_reaction; with
-  /// joint_axes the force in the element's own axes, A^T F.
-  Eigen::Vector3d reaction(int k, const double* q, double t, const double* lam, bool joint_axes) const {
-    Eigen::Vector3d w = generalized_reaction(k, q, t, lam).tail<3>();
-    if (joint_axes) w.head<2>() = axes(k, q, t).transpose() * w.head<2>();
-    return w;
-  }
+  /// in local coordinates (L of them).
+  virtual VecX generalized_reaction(int k, const double* q, double t, const double* lam) const = 0;
+  /// The reaction on the element's second body from its generalized force
+  /// (space.hpp): in the plane force (x, y) and torque, in space force and
+  /// torque (3 + 3), about its centre of mass in global axes; with
+  /// joint_axes in the element's own axes (the planar torque unchanged).
+  virtual VecX reaction(int k, const double* q, double t, const double* lam, bool joint_axes) const = 0;
+  /// 2 for planar kinds, 3 for spatial ones.
+  virtual int dimension() const = 0;
 };
 
 template <class Kind>
 class ConstraintGroup final : public ConstraintGroupBase {
  public:
+  using S = space_of_t<Kind>;
   static constexpr int R = Kind::rows;
+  static constexpr int L = S::local;
   using Rows = Eigen::Matrix<double, R, 1>;
-  using Jac = Eigen::Matrix<double, R, 6>;
+  using Jac = Eigen::Matrix<double, R, L>;
+  using Loc = LocalVec<L>;
+  using MatL = LocalMat<L>;
 
   std::vector<Kind> items;
 
@@ -124,6 +127,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
   const char* kind() const override { return Kind::kind; }
   bool time_dependent() const override { return Kind::time_dependent; }
   std::array<int, 2> bodies(int k) const override { return {items[k].body_i, items[k].body_j}; }
+  int dimension() const override { return S::dimension; }
   ElementPlacement& placement(int k) override { return place_[k]; }
   const ElementPlacement& placement(int k) const override { return place_[k]; }
 
@@ -134,10 +138,10 @@ class ConstraintGroup final : public ConstraintGroupBase {
 
   void declare(SparsityPattern& jac, SparsityPattern& hess) const override {
     for (const auto& p : place_)
-      for (int a = 0; a < 6; ++a) {
+      for (int a = 0; a < L; ++a) {
         if (p.coord[a] < 0) continue;
         for (int r = 0; r < R; ++r) jac.add(p.row0 + r, p.coord[a]);
-        for (int b = 0; b < 6; ++b) hess.add(p.coord[b], p.coord[a]);
+        for (int b = 0; b < L; ++b) hess.add(p.coord[b], p.coord[a]);
       }
   }
 
@@ -145,23 +149,23 @@ class ConstraintGroup final : public ConstraintGroupBase {
     slots_.resize(items.size());
     for (size_t k = 0; k < items.size(); ++k) {
       const auto& p = place_[k];
-      for (int a = 0; a < 6; ++a) {
+      for (int a = 0; a < L; ++a) {
         for (int r = 0; r < R; ++r) slots_[k].jac[a * R + r] = slot(jac, p.row0 + r, p.coord[a]);
-        for (int b = 0; b < 6; ++b) slots_[k].hess[a * 6 + b] = slot(hess, p.coord[b], p.coord[a]);
+        for (int b = 0; b < L; ++b) slots_[k].hess[a * L + b] = slot(hess, p.coord[b], p.coord[a]);
       }
     }
   }
 
   void phi(const double* q, double t, double* Phi) const override {
     for (size_t k = 0; k < items.size(); ++k) {
-      const Rows f = items[k].phi(gather(q, place_[k].coord), t);
+      const Rows f = items[k].phi(at_q(k, q), t);
       for (int r = 0; r < R; ++r) Phi[place_[k].row0 + r] = f[r];
     }
   }
 
   void jacobian(const double* q, double t, double* values) const override {
     for (size_t k = 0; k < items.size(); ++k) {
-      const Jac J = items[k].jacobian(gather(q, place_[k].coord), t);
+      const Jac J = items[k].jacobian(at_q(k, q), t);
       scatter_jac(k, J, values);
     }
   }
@@ -169,16 +173,16 @@ class ConstraintGroup final : public ConstraintGroupBase {
   void add_phi_t(const double* q, double t, double* out) const override {
     if constexpr (Kind::time_dependent) {
       for (size_t k = 0; k < items.size(); ++k) {
-        const Rows f = items[k].phi_t(gather(q, place_[k].coord), t);
+        const Rows f = items[k].phi_t(at_q(k, q), t);
         for (int r = 0; r < R; ++r) out[place_[k].row0 + r] += f[r];
       }
     }
   }
 
   void gamma(const double* q, const double* v, double t, double* out) const override {
-    std::array<Mat6, R> H;
+    std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
-      const Local6 c = gather(q, place_[k].coord), cd = gather(v, place_[k].coord);
+      const Loc c = at_q(k, q), cd = at_v(k, v);
       Rows g;
       if constexpr (has_own_gamma<Kind>::value) {
         g = items[k].gamma(c, cd, t);
@@ -193,23 +197,23 @@ class ConstraintGroup final : public ConstraintGroupBase {
   }
 
   void add_hessian(const double* q, double t, const double* w, double* values) const override {
-    std::array<Mat6, R> H;
+    std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
-      items[k].hessians(gather(q, place_[k].coord), t, H.data());
-      Mat6 S = Mat6::Zero();
-      for (int r = 0; r < R; ++r) S += w[place_[k].row0 + r] * H[r];
-      for (int a = 0; a < 36; ++a) {
+      items[k].hessians(at_q(k, q), t, H.data());
+      MatL sum = MatL::Zero();
+      for (int r = 0; r < R; ++r) sum += w[place_[k].row0 + r] * H[r];
+      for (int a = 0; a < L * L; ++a) {
         const int s = slots_[k].hess[a];
-        if (s >= 0) values[s] += S.data()[a];
+        if (s >= 0) values[s] += sum.data()[a];
       }
     }
   }
 
   void velocity_jacobian(const double* q, const double* v, double t,
                          double* values) const override {
-    std::array<Mat6, R> H;
+    std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
-      const Local6 c = gather(q, place_[k].coord), cd = gather(v, place_[k].coord);
+      const Loc c = at_q(k, q), cd = at_v(k, v);
       items[k].hessians(c, t, H.data());
       Jac V;
       for (int r = 0; r < R; ++r) V.row(r) = (H[r] * cd).transpose();
@@ -218,25 +222,34 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  Local6 generalized_reaction(int k, const double* q, double t,
-                              const double* lam) const override {
-    const Jac J = items[k].jacobian(gather(q, place_[k].coord), t);
-    const Eigen::Map<const Rows> l(lam + place_[k].row0);
-    return -J.transpose() * l;
+  VecX generalized_reaction(int k, const double* q, double t, const double* lam) const override {
+    return local_reaction(k, q, t, lam);
   }
 
-  Mat2 axes(int k, const double* q, double t) const override {
-    return items[k].axes(gather(q, place_[k].coord), t);
+  VecX reaction(int k, const double* q, double t, const double* lam, bool joint_axes) const override {
+    const Loc c = at_q(k, q);
+    if (!joint_axes) return S::reaction(local_reaction(k, q, t, lam), c, nullptr);
+    const typename S::Axes E = items[k].axes(c, t);
+    return S::reaction(local_reaction(k, q, t, lam), c, &E);
   }
 
  private:
   struct Slots {
-    std::array<int, R * 6> jac;
-    std::array<int, 36> hess;
+    std::array<int, R * L> jac;
+    std::array<int, L * L> hess;
   };
 
+  Loc at_q(size_t k, const double* q) const { return gather_q<S>(q, place_[k].coord); }
+  Loc at_v(size_t k, const double* v) const { return gather_v<L>(v, place_[k].coord); }
+
+  Loc local_reaction(int k, const double* q, double t, const double* lam) const {
+    const Jac J = items[k].jacobian(at_q(k, q), t);
+    const Eigen::Map<const Rows> l(lam + place_[k].row0);
+    return -J.transpose() * l;
+  }
+
   void scatter_jac(size_t k, const Jac& J, double* values) const {
-    for (int a = 0; a < R * 6; ++a) {
+    for (int a = 0; a < R * L; ++a) {
       const int s = slots_[k].jac[a];
       if (s >= 0) values[s] = J.data()[a];
     }

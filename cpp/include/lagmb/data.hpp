@@ -24,6 +24,9 @@ struct Data {
   SpMat H;      // sum_r w_r d2Phi_r/dq2 for a weight vector w    (n x n)
   SpMat Q_q;    // dQ/dq                                          (n x n)
   SpMat Q_v;    // dQ/dv                                          (n x n)
+  SpMat M;      // mass matrix M(q), pattern Model::mass_pattern() (n x n)
+  SpMat M_inv;  // M(q)^-1, the same pattern (block diagonal)      (n x n)
+  SpMat M_qa;   // d(M(q) a)/dq for a vector a, the same pattern   (n x n)
 
   // joint friction Q_f(q, v, lam) (sized only if the model has friction)
   SpMat friction_Q_q;    // dQ_f/dq, pattern of Q_q                 (n x n)

@@ -67,7 +67,7 @@ class EventGroupBase {
   virtual bool bounds_motion() const = 0;
   virtual void place(const Model& model) = 0;
   /// Position of element k's coordinates in q (-1: ground / missing angle).
-  virtual const std::array<int, 6>& coordinates(int k) const = 0;
+  virtual const LocalCoords& coordinates(int k) const = 0;
   /// All event functions of the group, in element order, written at g.
   virtual void values(const double* q, const double* v, double t, double* g) const = 0;
   virtual int direction(int k, int r) const = 0;
@@ -87,16 +87,16 @@ class EventGroup final : public EventGroupBase {
   bool bounds_motion() const override { return Kind::bounds_motion; }
   int roots(int) const override { return Kind::roots; }
   void place(const Model& model) override;
-  const std::array<int, 6>& coordinates(int k) const override { return coord_[k]; }
+  const LocalCoords& coordinates(int k) const override { return coord_[k]; }
   void values(const double* q, const double* v, double t, double* g) const override {
     for (size_t k = 0; k < items.size(); ++k) {
-      const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
+      const Local6 c = gather_q<Planar>(q, coord_[k]), cd = gather_v<6>(v, coord_[k]);
       for (int r = 0; r < Kind::roots; ++r) g[k * Kind::roots + r] = items[k].root(r, c, cd, t);
     }
   }
   int direction(int k, int r) const override { return items[k].direction(r); }
   EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const override {
-    const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
+    const Local6 c = gather_q<Planar>(q, coord_[k]), cd = gather_v<6>(v, coord_[k]);
     if constexpr (run_state_size_v<Kind> > 0)
       return items[k].crossing(r, c, cd, t, run);
     else
@@ -104,7 +104,7 @@ class EventGroup final : public EventGroupBase {
   }
 
  private:
-  std::vector<std::array<int, 6>> coord_;
+  std::vector<LocalCoords> coord_;  // planar kinds: the first 6
 };
 
 }  // namespace lagmb

@@ -39,19 +39,25 @@ class ForceGroupBase {
 };
 
 /// Forces acting on (at most) two bodies, one container per kind. A kind is a
-/// plain struct with, in the local coordinates c and velocities cd of its
-/// bodies (as in constraint_group.hpp):
+/// plain struct with, in the L local coordinates c and velocities cd of its
+/// bodies (as in constraint_group.hpp; space.hpp):
+///   using Space = Spatial;                   (omitted: Planar)
 ///   static constexpr bool state_dependent;   Q depends on c or cd
 ///   static constexpr const char* kind;
 ///   std::string name; int body_i, body_j;    (-1: ground / unused)
-///   Local6 force(c, cd, t)                   generalized force on c
-///   void derivatives(c, cd, t, Mat6& Q_c, Mat6& Q_cd)   if state_dependent
+///   Loc force(c, cd, t)                      generalized force on c (L)
+///   void derivatives(c, cd, t, MatL& Q_c, MatL& Q_cd)   if state_dependent
 ///   double potential(c, t)                   0 for non-conservative kinds
 /// A kind with per-run state (see run_state_size in constraint_group.hpp)
 /// takes the run's state as a last argument of force and derivatives.
 template <class Kind>
 class ForceGroup final : public ForceGroupBase {
  public:
+  using S = space_of_t<Kind>;
+  static constexpr int L = S::local;
+  using Loc = LocalVec<L>;
+  using MatL = LocalMat<L>;
+
   std::vector<Kind> items;
 
   void add(Kind item) { items.push_back(std::move(item)); }
@@ -65,8 +71,8 @@ class ForceGroup final : public ForceGroupBase {
   void declare(SparsityPattern& Q_q, SparsityPattern& Q_v) const override {
     if constexpr (Kind::state_dependent)
       for (const auto& p : coord_)
-        for (int a = 0; a < 6; ++a)
-          for (int b = 0; b < 6; ++b) {
+        for (int a = 0; a < L; ++a)
+          for (int b = 0; b < L; ++b) {
             if (p[a] < 0 || p[b] < 0) continue;
             Q_q.add(p[b], p[a]);
             Q_v.add(p[b], p[a]);
@@ -78,23 +84,23 @@ class ForceGroup final : public ForceGroupBase {
       slots_q_.resize(items.size());
       slots_v_.resize(items.size());
       for (size_t k = 0; k < items.size(); ++k)
-        for (int a = 0; a < 6; ++a)
-          for (int b = 0; b < 6; ++b) {
-            slots_q_[k][a * 6 + b] = slot(Q_q, coord_[k][b], coord_[k][a]);
-            slots_v_[k][a * 6 + b] = slot(Q_v, coord_[k][b], coord_[k][a]);
+        for (int a = 0; a < L; ++a)
+          for (int b = 0; b < L; ++b) {
+            slots_q_[k][a * L + b] = slot(Q_q, coord_[k][b], coord_[k][a]);
+            slots_v_[k][a * L + b] = slot(Q_v, coord_[k][b], coord_[k][a]);
           }
     }
   }
 
   void add_forces(const double* q, const double* v, double t, const double* run, double* Q) const override {
     for (size_t k = 0; k < items.size(); ++k) {
-      const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
-      Local6 f;
+      const Loc c = gather_q<S>(q, coord_[k]), cd = gather_v<L>(v, coord_[k]);
+      Loc f;
       if constexpr (run_state_size_v<Kind> > 0)
         f = items[k].force(c, cd, t, run);
       else
         f = items[k].force(c, cd, t);
-      for (int a = 0; a < 6; ++a)
+      for (int a = 0; a < L; ++a)
         if (coord_[k][a] >= 0) Q[coord_[k][a]] += f[a];
     }
   }
@@ -102,14 +108,14 @@ class ForceGroup final : public ForceGroupBase {
   void add_derivatives(const double* q, const double* v, double t, const double* run, double* Qq,
                        double* Qv) const override {
     if constexpr (Kind::state_dependent) {
-      Mat6 dq, dv;
+      MatL dq, dv;
       for (size_t k = 0; k < items.size(); ++k) {
-        const Local6 c = gather(q, coord_[k]), cd = gather(v, coord_[k]);
+        const Loc c = gather_q<S>(q, coord_[k]), cd = gather_v<L>(v, coord_[k]);
         if constexpr (run_state_size_v<Kind> > 0)
           items[k].derivatives(c, cd, t, run, dq, dv);
         else
           items[k].derivatives(c, cd, t, dq, dv);
-        for (int a = 0; a < 36; ++a) {
+        for (int a = 0; a < L * L; ++a) {
           if (slots_q_[k][a] >= 0) Qq[slots_q_[k][a]] += dq.data()[a];
           if (slots_v_[k][a] >= 0) Qv[slots_v_[k][a]] += dv.data()[a];
         }
@@ -119,13 +125,13 @@ class ForceGroup final : public ForceGroupBase {
 
   double potential(const double* q, double t) const override {
     double V = 0.0;
-    for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather(q, coord_[k]), t);
+    for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather_q<S>(q, coord_[k]), t);
     return V;
   }
 
  private:
-  std::vector<std::array<int, 6>> coord_;
-  std::vector<std::array<int, 36>> slots_q_, slots_v_;
+  std::vector<LocalCoords> coord_;
+  std::vector<std::array<int, L * L>> slots_q_, slots_v_;
 };
 
 }  // namespace lagmb

@@ -90,7 +90,7 @@ class FrictionGroup final : public FrictionGroupBase {
   void add_forces(const double* q, const double* v, const double* lam, double* Q) const override {
     for (size_t k = 0; k < items.size(); ++k) {
       const auto& p = place_[k];
-      const Local6 c = gather(q, p.coord), cd = gather(v, p.coord);
+      const Local6 c = gather_q<Planar>(q, p.coord), cd = gather_v<6>(v, p.coord);
       const Local6 g = items[k].direction(c);
       double dN[R], dF_dN, dF_dsd;
       const double N = items[k].load(lam + p.row0, dN);
@@ -104,7 +104,7 @@ class FrictionGroup final : public FrictionGroupBase {
                        double* Ql) const override {
     for (size_t k = 0; k < items.size(); ++k) {
       const auto& p = place_[k];
-      const Local6 c = gather(q, p.coord), cd = gather(v, p.coord);
+      const Local6 c = gather_q<Planar>(q, p.coord), cd = gather_v<6>(v, p.coord);
       const Local6 g = items[k].direction(c);
       double dN[R], dF_dN, dF_dsd;
       const double N = items[k].load(lam + p.row0, dN);
@@ -130,7 +130,7 @@ class FrictionGroup final : public FrictionGroupBase {
   std::array<double, 2> friction(int k, const double* q, const double* v,
                                  const double* lam) const override {
     const auto& p = place_[k];
-    const Local6 c = gather(q, p.coord), cd = gather(v, p.coord);
+    const Local6 c = gather_q<Planar>(q, p.coord), cd = gather_v<6>(v, p.coord);
     const Local6 g = items[k].direction(c);
     double dN[R], dF_dN, dF_dsd;
     const double sd = g.dot(cd);

@@ -42,8 +42,15 @@ class Model {
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
 
-  /// Uniform gravity acceleration g (m/s^2) on every body.
+  /// The model's space: 2 (planar, the default) or 3 (spatial). Every body
+  /// and element kind must be of it (add_element checks); set before any is added.
+  void set_dimension(int dimension);
+  int dimension() const { return dimension_; }
+
+  /// Uniform gravity acceleration g (m/s^2) on every body (a planar model
+  /// takes (x, y), a spatial one (x, y, z)).
   void set_gravity(Vec2 g);
+  void set_gravity(Vec3 g);
 
   // --- for the builders of element kinds (registry.hpp) -----------------
   // Users add elements through a ModelSpec (spec.hpp); each kind's builder
@@ -53,11 +60,14 @@ class Model {
   /// Adds a body or particle (its values already checked); returns its index.
   int add_body(Body body);
   /// Adds a constraint element of any kind (see constraint_group.hpp).
+  /// `named` = false: a body's own element (a spatial body's normalization),
+  /// whose name is for messages only and is not looked up.
   template <class Kind>
-  void add_constraint(Kind element);
-  /// Adds a force element of any kind (see force_group.hpp).
+  void add_constraint(Kind element, bool named = true);
+  /// Adds a force element of any kind (see force_group.hpp); `named` as for
+  /// constraints.
   template <class Kind>
-  void add_force_element(Kind element);
+  void add_force_element(Kind element, bool named = true);
   /// Adds an event element of any kind (see event_group.hpp); an element
   /// that is also a force is added as a force first and not named again.
   template <class Kind>
@@ -86,15 +96,20 @@ class Model {
   std::string describe(const std::string& name) const;
 
   /// Records that `element` attaches at `local` (body axes; global for the
-  /// ground) on `body` (add_element does it for every point parameter).
-  void attach(const std::string& element, int body, Vec2 local);
+  /// ground) on `body` (add_element does it for every point parameter); a
+  /// planar point has z = 0.
+  void attach(const std::string& element, int body, Vec3 local);
+  void attach(const std::string& element, int body, Vec2 local) { attach(element, body, Vec3(local.x(), local.y(), 0.0)); }
   /// Local points where elements attach to a body, in the order added,
   /// each once: what a drawing of the body joins.
-  const std::vector<Vec2>& outline(int body) const;
+  const std::vector<Vec3>& outline(int body) const;
   /// (body, local point) where an element attaches, in the order recorded.
-  const std::vector<std::pair<int, Vec2>>& attachments(const std::string& element) const;
+  const std::vector<std::pair<int, Vec3>>& attachments(const std::string& element) const;
   /// A global point of the initial configuration in the body's axes.
   Vec2 local_point(int body, Vec2 global_point) const;
+  Vec3 local_point(int body, Vec3 global_point) const;
+  /// A global direction of the initial configuration in a spatial body's axes.
+  Vec3 local_direction(int body, Vec3 global_direction) const;
   /// Initial position of a body's centre of mass (the origin for the ground).
   Vec2 initial_position(int body) const;
   double initial_angle(int body) const;
@@ -111,8 +126,28 @@ class Model {
   int n_constraints() const { return m_; }
   const std::vector<Body>& bodies() const { return bodies_; }
   const Body& body(int i) const { return bodies_.at(i); }
-  /// Diagonal of the constant mass matrix M.
+  /// Diagonal of the constant part of M: all of M for a planar model; 0 at
+  /// the Euler parameters of spatial bodies, whose block depends on q
+  /// (mass.cpp, elements/spatial_body.hpp).
   const VecX& mass_diagonal() const { return mass_diag_; }
+  /// Whether M is constant (no spatial body): M = diag(mass_diagonal()).
+  bool constant_mass() const { return spatial_masses_.empty(); }
+  /// Whether M is definite: every mass positive (and every inertia tensor
+  /// positive definite); a massless body is for kinematic analysis only.
+  bool positive_mass() const { return positive_mass_; }
+  /// Pattern of M (n x n): its diagonal, and a 4 x 4 block at the Euler
+  /// parameters of each spatial body.
+  const SpMat& mass_pattern() const { return mass_pattern_; }
+  /// Where each diagonal entry of M sits in mass_pattern()'s values.
+  const std::vector<int>& mass_diagonal_slots() const { return mass_diagonal_slots_; }
+  /// The state-dependent blocks of M: one per spatial body.
+  struct SpatialMass {
+    int p = 0;                  // position of its Euler parameters in q
+    std::array<int, 16> slots;  // its 4 x 4 block in mass_pattern() (column-major)
+    Mat3 J, J_inverse;          // inertia tensor J' (body axes) and its inverse
+    double jbar = 0.0;          // trace(J') / 3
+  };
+  const std::vector<SpatialMass>& spatial_masses() const { return spatial_masses_; }
   /// Initial coordinates and velocities as given (not yet consistent).
   VecX initial_q() const;
   VecX initial_v() const;
@@ -152,8 +187,10 @@ class Model {
   std::string constraint_name_of_row(int row) const;
   /// Body owning coordinate `coord` of q.
   const Body& body_of_coordinate(int coord) const;
-  /// Positions in q of the local coordinates (x_i, y_i, phi_i, x_j, y_j, phi_j).
-  std::array<int, 6> local_coordinates(int body_i, int body_j) const;
+  /// Positions in q of the local coordinates of a pair of bodies:
+  /// (x_i, y_i, phi_i, x_j, y_j, phi_j) in the plane, (r_i, p_i, r_j, p_j) in
+  /// space (space.hpp); -1 for the ground, a missing angle and the rest.
+  LocalCoords local_coordinates(int body_i, int body_j) const;
 
   /// Sorted times where a time function of the model has a breakpoint.
   std::vector<double> breakpoints() const;
@@ -167,13 +204,15 @@ class Model {
 
  private:
   void require_open(const std::string& what) const;
+  void build_mass();
   void check_new_name(const std::string& name) const;
   void register_name(const std::string& name, ElementRef ref);
 
   bool finalized_ = false;
+  int dimension_ = 2;
   std::vector<Body> bodies_;
-  std::vector<std::vector<Vec2>> outlines_;  // per body
-  std::map<std::string, std::vector<std::pair<int, Vec2>>> attachments_;  // per element
+  std::vector<std::vector<Vec3>> outlines_;  // per body
+  std::map<std::string, std::vector<std::pair<int, Vec3>>> attachments_;  // per element
   std::vector<std::unique_ptr<ConstraintGroupBase>> constraints_;
   std::map<std::type_index, int> constraint_group_of_kind_, force_group_of_kind_;
   std::vector<std::pair<int, int>> constraint_order_;  // (group, index) in insertion order
@@ -190,6 +229,10 @@ class Model {
 
   int n_ = 0, m_ = 0;
   VecX mass_diag_;
+  SpMat mass_pattern_;
+  std::vector<int> mass_diagonal_slots_;
+  std::vector<SpatialMass> spatial_masses_;
+  bool positive_mass_ = false;
   SpMat jacobian_pattern_, hessian_pattern_, force_q_pattern_, force_v_pattern_;
   std::vector<int> row_owner_;  // row -> index into constraint_order_
   std::vector<int> coord_owner_;
@@ -198,30 +241,30 @@ class Model {
 };
 
 template <class Kind>
-void Model::add_constraint(Kind element) {
+void Model::add_constraint(Kind element, bool named) {
   require_open("add " + std::string(Kind::kind) + " '" + element.name + "'");
-  check_new_name(element.name);
+  if (named) check_new_name(element.name);
   check_pair(element.name, element.body_i, element.body_j);
   auto [it, inserted] =
       constraint_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(constraints_.size()));
   if (inserted) constraints_.push_back(std::make_unique<ConstraintGroup<Kind>>());
   auto& group = static_cast<ConstraintGroup<Kind>&>(*constraints_[it->second]);
-  register_name(element.name, {ElementRef::kConstraint, it->second, group.size()});
+  if (named) register_name(element.name, {ElementRef::kConstraint, it->second, group.size()});
   constraint_order_.emplace_back(it->second, group.size());
   group.add(std::move(element));
 }
 
 template <class Kind>
-void Model::add_force_element(Kind element) {
+void Model::add_force_element(Kind element, bool named) {
   require_open("add " + std::string(Kind::kind) + " '" + element.name + "'");
-  check_new_name(element.name);
+  if (named) check_new_name(element.name);
   check_pair(element.name, element.body_i, element.body_j);  // single-body forces: body_j = ground
   auto [it, inserted] =
       force_group_of_kind_.try_emplace(std::type_index(typeid(Kind)), int(forces_.size()));
   if (inserted) forces_.push_back(std::make_unique<ForceGroup<Kind>>());
   auto& group = static_cast<ForceGroup<Kind>&>(*forces_[it->second]);
   reserve_run_state(element);
-  register_name(element.name, {ElementRef::kForce, it->second, group.size()});
+  if (named) register_name(element.name, {ElementRef::kForce, it->second, group.size()});
   group.add(std::move(element));
 }
 

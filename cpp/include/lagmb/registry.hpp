@@ -32,6 +32,9 @@ enum class ParamType {
   kMotion,        // f(t) with f' and f'' (a driver's prescribed motion)
   kFunction,      // f(t), values only (an actuator force or torque)
   kFunctionPair,  // (fx(t), fy(t))
+  kVec3,          // (x, y, z): a point, a direction, a velocity in space
+  kOrientation,   // a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix
+  kInertia,       // principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor
 };
 
 /// The body index of a kBody value (kGround for the ground).
@@ -41,7 +44,7 @@ struct BodyIndex {
 
 /// A parameter's value; std::monostate: absent (Python's None).
 using Value = std::variant<std::monostate, double, Vec2, bool, std::string, BodyIndex, TimeFunctionPtr,
-                           std::pair<TimeFunctionPtr, TimeFunctionPtr>>;
+                           std::pair<TimeFunctionPtr, TimeFunctionPtr>, Vec3, Vec4, Mat3>;
 
 /// One parameter of an element kind.
 struct Param {
@@ -79,6 +82,9 @@ struct KindInfo {
   std::vector<Param> params;  // after the name, in the order of the Python signature
   /// Adds an element of this kind: checks the values and calls the Model.
   std::function<void(Model&, const std::string& name, const Args&)> build;
+  /// The space of the models it goes in: 2 (planar) or 3 (spatial). A
+  /// method name (add_revolute) may have a kind in each.
+  int dimension = 2;
 
   const Param* param(const std::string& key) const;
 };
@@ -98,6 +104,13 @@ class Args {
   std::optional<double> optional_real(const std::string& key) const;
   Vec2 vec2(const std::string& key) const;
   std::optional<Vec2> optional_vec2(const std::string& key) const;
+  Vec3 vec3(const std::string& key) const;
+  /// Unit Euler parameters (w, x, y, z) from a quaternion (of length 1 to
+  /// 1e-6, normalized) or a rotation matrix (orthonormal, det +1, to 1e-6).
+  Vec4 orientation(const std::string& key) const;
+  /// A symmetric positive semi-definite inertia tensor that satisfies the
+  /// triangle inequalities, from principal moments or a 3 x 3 tensor.
+  Mat3 inertia(const std::string& key) const;
   bool flag(const std::string& key) const;
   const std::string& text(const std::string& key) const;
   int body(const std::string& key) const;
@@ -144,6 +157,17 @@ Param motion(const std::string& name, const std::string& unit, const std::string
 Param function(const std::string& name, const std::string& unit, const std::string& doc,
                bool required = false);
 Param function_pair(const std::string& name, const std::string& unit, const std::string& doc);
+// spatial kinds
+/// A global point of the initial configuration on the bodies `on` (x, y, z).
+Param point3(const std::string& name, std::vector<std::string> on, const std::string& doc);
+Param optional_point3(const std::string& name, std::vector<std::string> on, const std::string& doc);
+/// A point in the axes of body `on` (optional, keyword-only).
+Param local_point3(const std::string& name, const std::string& on, const std::string& doc);
+Param direction3(const std::string& name, const std::string& doc);
+Param optional_direction3(const std::string& name, const std::string& doc);
+Param vec3(const std::string& name, Vec3 fallback, const std::string& unit, const std::string& doc);
+Param orientation(const std::string& name, const std::string& doc);
+Param inertia(const std::string& name, const std::string& doc);
 }  // namespace param
 
 }  // namespace lagmb

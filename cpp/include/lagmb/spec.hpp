@@ -33,6 +33,9 @@ struct Given {
   Given(std::string key, double x) : key(std::move(key)), value(x) {}
   Given(std::string key, int x) : key(std::move(key)), value(double(x)) {}
   Given(std::string key, Vec2 x) : key(std::move(key)), value(x) {}
+  Given(std::string key, Vec3 x) : key(std::move(key)), value(x) {}
+  Given(std::string key, Vec4 x) : key(std::move(key)), value(x) {}
+  Given(std::string key, Mat3 x) : key(std::move(key)), value(x) {}
   Given(std::string key, bool x) : key(std::move(key)), value(x) {}
   Given(std::string key, const char* text) : key(std::move(key)), value(std::string(text)) {}
   Given(std::string key, std::string text) : key(std::move(key)), value(std::move(text)) {}
@@ -50,9 +53,16 @@ class ModelSpec {
     Args args;  // knows its kind
   };
 
-  /// Uniform gravity g (m/s^2); absent until set.
+  /// A planar (2, the default) or spatial (3) model: every element kind
+  /// must be of its space.
+  explicit ModelSpec(int dimension = 2);
+  int dimension() const { return dimension_; }
+
+  /// Uniform gravity g (m/s^2); absent until set. (x, y) for a planar model,
+  /// (x, y, z) for a spatial one (a planar one takes z = 0).
   void set_gravity(Vec2 g);
-  const std::optional<Vec2>& gravity() const { return gravity_; }
+  void set_gravity(Vec3 g);
+  const std::optional<Vec3>& gravity() const { return gravity_; }
 
   /// Adds an element of args.kind() called `name`; ModelError if the
   /// element does not fit the model so far (the spec is then unchanged).
@@ -87,7 +97,8 @@ class ModelSpec {
   // a new open Model from the description
   std::shared_ptr<Model> rebuild(const FunctionCopy& copy = nullptr) const;
 
-  std::optional<Vec2> gravity_;
+  int dimension_ = 2;
+  std::optional<Vec3> gravity_;
   std::vector<Element> elements_;
   // The open Model holding every element so far (checks each add; a copy of
   // the spec shares it until either adds), and the compiled model.

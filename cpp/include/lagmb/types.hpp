@@ -1,7 +1,8 @@
-// Basic types of lagmb: planar vectors, rotations, the error classes.
+// Basic types of lagmb: vectors, planar rotations, the error classes.
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -11,13 +12,23 @@ namespace lagmb {
 
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Vec4 = Eigen::Vector4d;
 using VecX = Eigen::VectorXd;
 
-/// Local coordinates of the (at most) two bodies an element connects:
-/// (x_i, y_i, phi_i, x_j, y_j, phi_j). The ground, and the missing angle of a
-/// particle, read as zero there.
+/// Local coordinates of the (at most) two bodies an element connects. A
+/// planar element has (x_i, y_i, phi_i, x_j, y_j, phi_j); the ground, and the
+/// missing angle of a particle, read as zero there. A spatial element has 14
+/// (space.hpp).
 using Local6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+/// The most local coordinates an element has (a spatial pair: 2 x 7).
+constexpr int kMaxLocal = 14;
+/// Positions in q of an element's local coordinates; -1 where the ground, or
+/// a particle's missing angle, stands.
+using LocalCoords = std::array<int, kMaxLocal>;
 
 /// Rotation matrix A(phi) of a body's local axes into global axes.
 inline Mat2 rotation(double phi) {
@@ -42,6 +53,9 @@ inline std::string to_text(double x) {
   return s.str();
 }
 inline std::string to_text(const Vec2& v) { return "(" + to_text(v.x()) + ", " + to_text(v.y()) + ")"; }
+inline std::string to_text(const Vec3& v) {
+  return "(" + to_text(v.x()) + ", " + to_text(v.y()) + ", " + to_text(v.z()) + ")";
+}
 
 /// 2-D cross product a x b (the z component).
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }

@@ -26,7 +26,6 @@ Ali3pFormulation::Ali3pFormulation(const Model& model, const ConsistentState& st
       m_(model.n_constraints()),
       rtol_(rtol),
       atol_(atol),
-      mass_(model.mass_diagonal()),
       eps_(regularization / model.mass_scale()),
       saddle_(model, {0, 0, 0, n_, n_}) {
   r_.resize(m_);
@@ -77,10 +76,9 @@ bool Ali3pFormulation::newton(double t1, double h, int& it, double& err) {
     assemble_forces(model_, d_, q.data(), v.data(), t1);
     ++residual_evals_;
     // rhs = -[ h^2/4 (M a - Q + Phi_q^T lam);  Phi ]
-    rhs_.head(n_) = d_.Q - mass_.cwiseProduct(a);
-    f_.setZero();
+    mass_times(d_, a.data(), f_.data());  // (M at q: assemble_jacobian)
     add_jacobian_transpose_times(d_, lam.data(), f_.data());
-    rhs_.head(n_) -= f_;
+    rhs_.head(n_) = d_.Q - f_;
     rhs_.head(n_) *= b;
     rhs_.tail(m_) = -d_.Phi;
     if (!rhs_.allFinite()) return false;
@@ -106,7 +104,7 @@ bool Ali3pFormulation::newton(double t1, double h, int& it, double& err) {
 }
 
 /// The Newton matrix K of newton():
-///   [ T0      Phi_q^T ]    T0 = M - h/2 Q_v + b [ (Phi_q^T lam)_q - Q_q ],
+///   [ T0      Phi_q^T ]    T0 = M - h/2 Q_v + b [ (Phi_q^T lam)_q + (M a)_q - Q_q ],
 ///   [ Phi_q   -eps I  ]    b = h^2/4, eps = 1e-12 / (mean body mass).
 /// eps keeps K invertible when Phi_q loses rank (a parallelogram passing its
 /// horizontal, redundant constraints) and is removed by the iteration itself,
@@ -116,9 +114,9 @@ void Ali3pFormulation::tangent(double t, double h) {
   const double b = 0.25 * h * h;
   double* x = K_.valuePtr();
   K_.coeffs().setZero();
-  for (int i = 0; i < n_; ++i) x[diag_[i]] = mass_[i];
+  saddle_.add_mass(d_, x, 1.0);
   for (int i = 0; i < m_; ++i) x[diag_[n_ + i]] = -eps_;
-  saddle_.add_tangent(d_, x, q.data(), v.data(), t, lam.data(), b, 0.5 * h);
+  saddle_.add_tangent(d_, x, q.data(), v.data(), t, lam.data(), a.data(), b, 0.5 * h);
   const std::vector<int>&G = saddle_.jacobian, &GT = saddle_.jacobian_t;
   for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d_.Phi_q.valuePtr()[k];
 }
@@ -177,7 +175,7 @@ void Ali3pFormulation::restart(double t) {
 }
 
 double Ali3pFormulation::force_scale() const {
-  return (mass_.cwiseProduct(a)).lpNorm<Eigen::Infinity>() + d_.Q.lpNorm<Eigen::Infinity>();
+  return VecX(d_.M * a).lpNorm<Eigen::Infinity>() + d_.Q.lpNorm<Eigen::Infinity>();
 }
 
 void Ali3pFormulation::count(Stats& s) const {

@@ -76,7 +76,7 @@ class Ali3pFormulation {
   AugmentedSystem kkt_;
   int n_, m_;
   double rtol_;
-  VecX atol_, mass_;
+  VecX atol_;
   double eps_;
   VecX r_, f_, x_, rhs_;  // scratch
   SaddlePoint saddle_;

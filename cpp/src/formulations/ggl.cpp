@@ -54,10 +54,10 @@ int GglFormulation::residual(double t, const double* y, const double* yp, double
   return check_finite(F, size_);
 }
 
-void GglFormulation::newton_matrix(double t, double cj, const double* y, const double*) {
+void GglFormulation::newton_matrix(double t, double cj, const double* y, const double* yp) {
   const double *q = y, *v = y + n_, *mu = y + 2 * n_ + m_;
   const double h = 1.0 / cj;
-  momentum_jacobian(t, cj, y, h, h, 1.0, cj);
+  momentum_jacobian(t, cj, y, yp, h, h, 1.0, cj);
   col_scale_.tail(m_).setConstant(cj);
   double* J = J_.valuePtr();
   put_jacobian(saddle_.jacobian, 1.0);  // F3 x q

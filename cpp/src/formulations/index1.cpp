@@ -52,7 +52,7 @@ int Index1Formulation::residual(double t, const double* y, const double* yp, dou
 void Index1Formulation::newton_matrix(double t, double cj, const double* y, const double* yp) {
   const double *q = y, *v = y + n_, *vp = yp + n_;
   const double h = 1.0 / cj;
-  momentum_jacobian(t, cj, y, h, h, 1.0, cj);
+  momentum_jacobian(t, cj, y, yp, h, h, 1.0, cj);
   row_scale_.tail(m_).setConstant(h);
   double* J = J_.valuePtr();
   const std::vector<int>& F3q = saddle_.jacobian;

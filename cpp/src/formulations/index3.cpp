@@ -37,9 +37,9 @@ int Index3Formulation::residual(double t, const double* y, const double* yp, dou
   return check_finite(F, size_);
 }
 
-void Index3Formulation::newton_matrix(double t, double cj, const double* y, const double*) {
+void Index3Formulation::newton_matrix(double t, double cj, const double* y, const double* yp) {
   const double h = 1.0 / cj;
-  momentum_jacobian(t, cj, y, h, h * h, cj, cj * cj);
+  momentum_jacobian(t, cj, y, yp, h, h * h, cj, cj * cj);
   put_jacobian(saddle_.jacobian, 1.0);  // F3 x q
   pin_dropped_multipliers();
 }

@@ -20,7 +20,6 @@ void MultiplierDae::declare_common(SparsityPattern& p) const {
   for (int i = 0; i < n_; ++i) {
     p.add(i, i);
     p.add(i, V + i);
-    p.add(V + i, V + i);
   }
   for (int i = 2 * n_; i < size_; ++i) p.add(i, i);  // zero diagonal: room for pivoting
   saddle_.declare(p);
@@ -32,7 +31,6 @@ void MultiplierDae::bind_common(const SparsityPattern& p) {
   for (int i = 0; i < n_; ++i) {
     q_diag_.push_back(slot(J_, i, i));
     qv_diag_.push_back(slot(J_, i, V + i));
-    v_diag_.push_back(slot(J_, V + i, V + i));
   }
   for (int i = 2 * n_; i < size_; ++i) alg_diag_.push_back(slot(J_, i, i));
   saddle_.bind(J_);
@@ -57,21 +55,20 @@ std::vector<int> MultiplierDae::jacobian_slots(int row0, int col0, bool transpos
 void MultiplierDae::momentum_residual(double t, const double* y, const double* yp, double* F) {
   const double *q = y, *v = y + n_, *lam = y + 2 * n_, *qp = yp, *vp = yp + n_;
   double *F1 = F, *F2 = F + n_;
-  const VecX& M = model_.mass_diagonal();
-  assemble_jacobian(model_, d_, q, t);
+  assemble_jacobian(model_, d_, q, t);  // (and M(q))
   assemble_forces(model_, d_, q, v, t);
   if (!model_.friction_groups().empty()) add_friction_forces(model_, d_, q, v, lam);  // Q_f(q, v, lam)
+  mass_times(d_, vp, F2);
   for (int i = 0; i < n_; ++i) {
     F1[i] = qp[i] - v[i];
-    F2[i] = M[i] * vp[i] - d_.Q[i];
+    F2[i] -= d_.Q[i];
   }
   add_jacobian_transpose_times(d_, lam, F2);
 }
 
-void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, double r1, double r2, double cv,
-                                      double cl) {
-  const double *q = y, *v = y + n_, *lam = y + 2 * n_;
-  const VecX& M = model_.mass_diagonal();
+void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, const double* yp, double r1, double r2,
+                                      double cv, double cl) {
+  const double *q = y, *v = y + n_, *lam = y + 2 * n_, *vp = yp + n_;
   double* J = J_.valuePtr();
   J_.coeffs().setZero();
   row_scale_.head(n_).setConstant(r1);
@@ -81,14 +78,14 @@ void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, doub
   for (int i = 0; i < n_; ++i) {
     J[q_diag_[i]] = r1 * cj;
     J[qv_diag_[i]] = -r1 * cv;
-    J[v_diag_[i]] = r2 * cv * cj * M[i];
   }
-  assemble_jacobian(model_, d_, q, t);
+  assemble_jacobian(model_, d_, q, t);  // (and M(q))
+  saddle_.add_mass(d_, J, r2 * cv * cj);
   put_jacobian(saddle_.jacobian_t, r2 * cl);
-  // (Phi_q^T lam)_q - Q_q - Q_v, with joint friction Q_f(q, v, lam)'s -Q_f,q
-  // and -Q_f,v; its -Q_f,lam goes beside Phi_q^T (a joint's friction depends
-  // only on that joint's multipliers)
-  saddle_.add_tangent(d_, J, q, v, t, lam, r2, r2 * cv);
+  // (Phi_q^T lam)_q + (M v')_q - Q_q - Q_v, with joint friction Q_f(q, v,
+  // lam)'s -Q_f,q and -Q_f,v; its -Q_f,lam goes beside Phi_q^T (a joint's
+  // friction depends only on that joint's multipliers)
+  saddle_.add_tangent(d_, J, q, v, t, lam, vp, r2, r2 * cv);
   if (!model_.friction_groups().empty()) add_scaled(J, saddle_.jacobian_t, d_.friction_Q_lam, -r2 * cl);
 }
 

@@ -21,6 +21,7 @@ ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, d
   lam_lin_ = VecX::Zero(nc_);
   q_lin_.resize(n_);
   v_lin_.resize(n_);
+  qdd_lin_ = VecX::Zero(n_);
   kappa_.resize(nc_);
   dq_.resize(n_);
   zero_n_ = VecX::Zero(n_);
@@ -72,6 +73,7 @@ bool ProjectionFormulation::linearize(double t, const double* y) {
   q_lin_ = Eigen::Map<const VecX>(y, n_);
   v_lin_ = Eigen::Map<const VecX>(y + n_, n_);
   lam_lin_ = lam_;
+  qdd_lin_ = qdd_;
   return true;
 }
 
@@ -84,19 +86,18 @@ bool ProjectionFormulation::linearize(double t, const double* y) {
 /// saddle-point system of the size of the augmented matrix, factorized here:
 ///   [ M - gamma Q_v - gamma^2 K   Phi_q^T ] [ x_v ]   [ M b_v + gamma K b_q ]
 ///   [ Phi_q                       0       ] [ mu  ] = [ Phi_q b_v           ]
-///   x_q = b_q + gamma x_v,    K = Q_q - (Phi_q^T lam)_q.
+///   x_q = b_q + gamma x_v,    K = Q_q - (Phi_q^T lam)_q - (M(q) qdd)_q.
 bool ProjectionFormulation::setup(double gamma) {
   const double* q = q_lin_.data();
   const double* v = v_lin_.data();
-  const VecX& M = model_.mass_diagonal();
   double* x = N_.valuePtr();
   N_.coeffs().setZero();
-  for (int i = 0; i < n_; ++i) x[diag_[i]] = M[i];
-  assemble_jacobian(model_, d_, q, t_lin_);
+  assemble_jacobian(model_, d_, q, t_lin_);  // (and M(q))
+  saddle_.add_mass(d_, x, 1.0);
   const std::vector<int>&G = saddle_.jacobian, &GT = saddle_.jacobian_t;
   for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d_.Phi_q.valuePtr()[k];
   // -gamma^2 K - gamma Q_v; K's values stay in d_ for solve()
-  saddle_.add_tangent(d_, x, q, v, t_lin_, lam_lin_.data(), gamma * gamma, gamma);
+  saddle_.add_tangent(d_, x, q, v, t_lin_, lam_lin_.data(), qdd_lin_.data(), gamma * gamma, gamma);
   ++factorizations_;
   gamma_setup_ = gamma;
   return lu_.factorize(N_);
@@ -105,14 +106,12 @@ bool ProjectionFormulation::setup(double gamma) {
 /// The right side and back substitution of setup()'s system.
 void ProjectionFormulation::solve(const double* b, double* x) {
   const double g = gamma_setup_;
-  const VecX& M = model_.mass_diagonal();
   Eigen::Map<const VecX> bq(b, n_), bv(b + n_, n_);
   Eigen::Map<VecX> xq(x, n_), xv(x + n_, n_);
-  // K b_q = (Q_q - H) b_q, from the values still in d_ (same linearization)
-  Kb_.noalias() = -(d_.H * bq);
-  if (!model_.state_dependent_forces().empty()) Kb_.noalias() += d_.Q_q * bq;
-  if (!model_.friction_groups().empty()) Kb_.noalias() += d_.friction_Q_q * bq;
-  rhs_.head(n_) = M.cwiseProduct(bv) + g * Kb_;
+  // K b_q = (Q_q - H - (M a)_q) b_q, from the values still in d_ (same linearization)
+  stiffness_times(model_, d_, bq.data(), Kb_.data());
+  mass_times(d_, bv.data(), rhs_.data());
+  rhs_.head(n_) += g * Kb_;
   rhs_.tail(nc_).setZero();
   add_jacobian_times(d_, bv.data(), rhs_.data() + n_);
   sol_ = rhs_;
@@ -143,7 +142,7 @@ int ProjectionFormulation::project(double t, double* q, double* v, double* corr,
   assemble_jacobian(model_, d_, q, t);
   if (!kkt_.factorize(d_)) return 1;
   assemble_phi_t(model_, d_, q, t);
-  Mv_ = model_.mass_diagonal().cwiseProduct(V);
+  mass_times(d_, v, Mv_.data());
   d_.phi_t = -d_.phi_t;
   kkt_.solve(Mv_, d_.phi_t, vnew_, kappa_);
   V = vnew_;

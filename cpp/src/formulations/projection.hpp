@@ -52,7 +52,7 @@ class ProjectionFormulation {
   AugmentedSystem kkt_;
   int n_, nc_;
   double alpha_, beta_;
-  VecX qdd_, lam_, lam_lin_, q_lin_, v_lin_, kappa_, dq_, zero_n_, rhs_, sol_;
+  VecX qdd_, lam_, lam_lin_, q_lin_, v_lin_, qdd_lin_, kappa_, dq_, zero_n_, rhs_, sol_;
   VecX Kb_, q0_, v0_, vnew_, Mv_, w_;  // scratch, sized once: no allocation per solve or projection
   double t_lin_ = 0.0, gamma_setup_ = 0.0;
   SaddlePoint saddle_;

@@ -16,7 +16,19 @@ void add_scaled(double* J, const std::vector<int>& slots, const SpMat& values, d
   for (size_t k = 0; k < slots.size(); ++k) J[slots[k]] += scale * x[k];
 }
 
+void stiffness_times(const Model& model, const Data& d, const double* x, double* y) {
+  const int n = model.n_coordinates();
+  Eigen::Map<const VecX> X(x, n);
+  Eigen::Map<VecX> Y(y, n);
+  Y.noalias() = -(d.H * X);
+  if (!model.state_dependent_forces().empty()) Y.noalias() += d.Q_q * X;
+  if (!model.friction_groups().empty()) Y.noalias() += d.friction_Q_q * X;
+  if (!model.constant_mass()) Y.noalias() -= d.M_qa * X;
+}
+
 void SaddlePoint::declare(SparsityPattern& p) const {
+  add_block(p, model_.mass_pattern(), at_.momentum_row, at_.v_col);
+  if (!model_.constant_mass()) add_block(p, model_.mass_pattern(), at_.momentum_row, at_.q_col);
   add_block(p, model_.hessian_pattern(), at_.momentum_row, at_.q_col);
   add_block(p, model_.force_q_pattern(), at_.momentum_row, at_.q_col);
   add_block(p, model_.force_v_pattern(), at_.momentum_row, at_.v_col);
@@ -25,6 +37,9 @@ void SaddlePoint::declare(SparsityPattern& p) const {
 }
 
 void SaddlePoint::bind(const SpMat& J) {
+  mass = embed_slots(model_.mass_pattern(), J, at_.momentum_row, at_.v_col);
+  mass_q.clear();
+  if (!model_.constant_mass()) mass_q = embed_slots(model_.mass_pattern(), J, at_.momentum_row, at_.q_col);
   hessian = embed_slots(model_.hessian_pattern(), J, at_.momentum_row, at_.q_col);
   force_q = embed_slots(model_.force_q_pattern(), J, at_.momentum_row, at_.q_col);
   force_v = embed_slots(model_.force_v_pattern(), J, at_.momentum_row, at_.v_col);
@@ -45,10 +60,14 @@ SpMat SaddlePoint::build_square(std::vector<int>& diagonal) {
 }
 
 void SaddlePoint::add_tangent(Data& d, double* J, const double* q, const double* v, double t, const double* lam,
-                              double s, double c) const {
+                              const double* a, double s, double c) const {
   // the blocks overlap (diagonals of H, Q_q, Q_v): the order of the sums is fixed
   assemble_constraint_hessian(model_, d, q, t, lam);
   add_scaled(J, hessian, d.H, s);
+  if (!model_.constant_mass()) {
+    assemble_mass_derivative(model_, d, q, a);
+    add_scaled(J, mass_q, d.M_qa, s);
+  }
   if (!model_.state_dependent_forces().empty()) {
     assemble_force_derivatives(model_, d, q, v, t);
     add_scaled(J, force_q, d.Q_q, -s);

@@ -13,6 +13,9 @@ namespace lagmb {
 /// Declares the entries of A in p, shifted by (row0, col0), transposed if asked.
 void add_block(SparsityPattern& p, const SpMat& A, int row0, int col0, bool transpose = false);
 
+/// J[slots[k]] += scale * values[k], values stored in the slots' order.
+void add_scaled(double* J, const std::vector<int>& slots, const SpMat& values, double scale);
+
 /// Where the blocks sit: the first row or column of each.
 struct SaddlePointLayout {
   int momentum_row;    // rows of T0 and Phi_q^T (the momentum equations)
@@ -22,12 +25,14 @@ struct SaddlePointLayout {
 };
 
 /// The blocks
-///   [ T0      Phi_q^T ]      T0 = s ((Phi_q^T lam)_q - Q_q) - c Q_v
+///   [ T0      Phi_q^T ]      T0 = s ((Phi_q^T lam)_q + (M(q) a)_q - Q_q) - c Q_v
 ///   [ Phi_q   .       ]
 /// of a Newton matrix, in the patterns of the Model (hessian_pattern,
-/// force_q_pattern, force_v_pattern, jacobian_pattern), placed by a layout.
-/// Each formulation adds its own entries (diagonals, further rows) around
-/// them and chooses s and c.
+/// force_q_pattern, force_v_pattern, jacobian_pattern, mass_pattern),
+/// placed by a layout, and room for M itself in the momentum rows and the
+/// v columns (`mass`; where the formulation puts a multiple of it). (M a)_q
+/// is there only where M depends on q (spatial bodies). Each formulation adds
+/// its own entries (diagonals, further rows) around them and chooses s and c.
 class SaddlePoint {
  public:
   SaddlePoint(const Model& model, SaddlePointLayout layout) : model_(model), at_(layout) {}
@@ -39,22 +44,26 @@ class SaddlePoint {
   /// n): builds it with its whole diagonal (D gives room to a regularization
   /// or to pivoting), binds the slots and returns the diagonal's slots.
   SpMat build_square(std::vector<int>& diagonal);
-  /// J[T0] += s ((Phi_q^T lam)_q - Q_q) - c Q_v at (q, v, t, lam), the joint
-  /// friction's Q_f,q and Q_f,v (at lam) counted in Q_q and Q_v. Leaves H,
-  /// Q_q, Q_v and the friction derivatives (Q_f,lam too) in d.
-  void add_tangent(Data& d, double* J, const double* q, const double* v, double t, const double* lam, double s,
-                   double c) const;
+  /// J[T0] += s ((Phi_q^T lam)_q + (M(q) a)_q - Q_q) - c Q_v at (q, v, t,
+  /// lam, a), the joint friction's Q_f,q and Q_f,v (at lam) counted in Q_q
+  /// and Q_v. Leaves H, M_qa, Q_q, Q_v and the friction derivatives (Q_f,lam
+  /// too) in d.
+  void add_tangent(Data& d, double* J, const double* q, const double* v, double t, const double* lam,
+                   const double* a, double s, double c) const;
+  /// J[mass] += scale M (M as assembled in d).
+  void add_mass(const Data& d, double* J, double scale) const { add_scaled(J, mass, d.M, scale); }
 
   /// Slots in J's values of each block's entries, in the storage order of
   /// the Model's pattern (and of the matching values in Data).
-  std::vector<int> hessian, force_q, force_v, jacobian, jacobian_t;
+  std::vector<int> hessian, force_q, force_v, jacobian, jacobian_t, mass, mass_q;
 
  private:
   const Model& model_;
   SaddlePointLayout at_;
 };
 
-/// J[slots[k]] += scale * values[k], values stored in the slots' order.
-void add_scaled(double* J, const std::vector<int>& slots, const SpMat& values, double scale);
+/// y = (Q_q - (Phi_q^T lam)_q - (M a)_q) x from the derivatives add_tangent
+/// left in d (Q_f,q included).
+void stiffness_times(const Model& model, const Data& d, const double* x, double* y);
 
 }  // namespace lagmb

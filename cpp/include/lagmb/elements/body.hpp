@@ -1,4 +1,5 @@
-// Bodies: a planar rigid body (x, y, phi) or a particle (x, y).
+// Bodies: a planar rigid body (x, y, phi), a particle (x, y), or a spatial
+// rigid body (r, p).
 #pragma once
 
 #include <string>
@@ -8,9 +9,11 @@
 namespace lagmb {
 
 /// A planar rigid body (3 coordinates: x, y of the centre of mass and the
-/// angle phi) or a particle (2 coordinates: x, y). SI units. Each adds a
-/// constant diagonal block to the mass matrix M: diag(m, m, J) for a rigid
-/// body, diag(m, m) for a particle.
+/// angle phi), a particle (2 coordinates: x, y), or a spatial rigid body (7:
+/// its centre of mass r and Euler parameters p, elements/spatial_body.hpp).
+/// SI units. Each adds a block to the mass matrix M: diag(m, m, J) for a
+/// planar rigid body, diag(m, m) for a particle (both constant), and
+/// diag(m, m, m, M_p(p)) for a spatial one.
 struct Body {
   std::string name;
   double mass = 1.0;     // kg
@@ -20,11 +23,17 @@ struct Body {
   Vec2 velocity = Vec2::Zero();
   double angular_velocity = 0.0;
   bool particle = false;
+  // a spatial rigid body (spatial = true): the initial state in global axes,
+  // and the inertia tensor J' about the centre of mass in body axes
+  bool spatial = false;
+  Vec3 r0 = Vec3::Zero(), rdot0 = Vec3::Zero(), omega0 = Vec3::Zero();
+  Vec4 p0 = Vec4::UnitX();  // (1, 0, 0, 0): body axes along the global ones
+  Mat3 inertia_tensor = Mat3::Identity();
   int first_coord = -1;  // set by finalize()
 
-  int n_coordinates() const { return particle ? 2 : 3; }
-  /// Index of the angle coordinate in q, or -1 for a particle.
-  int angle_coord() const { return particle ? -1 : first_coord + 2; }
+  int n_coordinates() const { return spatial ? 7 : particle ? 2 : 3; }
+  /// Index of the planar angle coordinate in q, or -1 (particle, spatial body).
+  int angle_coord() const { return particle || spatial ? -1 : first_coord + 2; }
 };
 
 }  // namespace lagmb

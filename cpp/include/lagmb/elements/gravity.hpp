@@ -8,13 +8,13 @@
 
 namespace lagmb {
 
-/// Q_i += m_i g on the centre-of-mass coordinates of every body and particle;
-/// potential V = -sum_i m_i g . r_i. Q does not depend on the state, so it
-/// adds nothing to the Newton matrix.
+/// Q_i += m_i g on the centre-of-mass coordinates of every body and particle
+/// (x, y in the plane, x, y, z in space); potential V = -sum_i m_i g . r_i.
+/// Q does not depend on the state, so it adds nothing to the Newton matrix.
 class Gravity final : public ForceGroupBase {
  public:
-  explicit Gravity(Vec2 g) : g_(g) {}
-  const Vec2& g() const { return g_; }
+  explicit Gravity(Vec3 g) : g_(g) {}
+  const Vec3& g() const { return g_; }
 
   int size() const override { return 1; }
   const std::string& name(int) const override { return name_; }
@@ -26,15 +26,14 @@ class Gravity final : public ForceGroupBase {
   void bind(const SpMat&, const SpMat&) override {}
 
   void add_forces(const double*, const double*, double, const double*, double* Q) const override {
-    for (const auto& b : bodies_) {
-      Q[b.ix] += b.mass * g_.x();
-      Q[b.ix + 1] += b.mass * g_.y();
-    }
+    for (const auto& b : bodies_)
+      for (int a = 0; a < b.dimension; ++a) Q[b.ix + a] += b.mass * g_[a];
   }
   void add_derivatives(const double*, const double*, double, const double*, double*, double*) const override {}
   double potential(const double* q, double) const override {
     double V = 0.0;
-    for (const auto& b : bodies_) V -= b.mass * (g_.x() * q[b.ix] + g_.y() * q[b.ix + 1]);
+    for (const auto& b : bodies_)
+      for (int a = 0; a < b.dimension; ++a) V -= b.mass * g_[a] * q[b.ix + a];
     return V;
   }
 
@@ -42,8 +41,9 @@ class Gravity final : public ForceGroupBase {
   struct Placed {
     int ix;
     double mass;
+    int dimension;  // centre-of-mass coordinates: 2 or 3
   };
-  Vec2 g_;
+  Vec3 g_;
   std::string name_ = "gravity";
   std::vector<Placed> bodies_;
 };
