@@ -133,9 +133,64 @@ def _add_everything(m):
     }
 
 
-def _public_add_and_drive_methods():
-    return sorted(name for name, f in inspect.getmembers(mb.Model, inspect.isfunction)
-                  if name.startswith(("add_", "drive_")))
+def _add_everything_spatial(m):
+    """The same for a spatial model (Model(dimension=3))."""
+    g = m.ground
+    bodies = {}
+
+    def body(name, x):
+        bodies[name] = m.add_body(name, mass=1.0, inertia=(0.1, 0.1, 0.1), position=(x, 0.0, 0.0))
+        return bodies[name]
+
+    a, b, c, d, e, f = (body(n, x) for n, x in zip("abcdef", range(1, 7)))
+    return {
+        "add_body": lambda: body("body", 9.0),
+        "add_spherical": lambda: m.add_spherical("spherical", g, a, at=(0.0, 0.0, 0.0)),
+        "add_revolute": lambda: m.add_revolute("revolute", a, b, at=(1.5, 0.0, 0.0), axis=(0.0, 0.0, 1.0)),
+        "add_translational": lambda: m.add_translational("translational", g, c, at=(3.0, 0.0, 0.0),
+                                                         axis=(1.0, 0.0, 0.0)),
+        "add_cylindrical": lambda: m.add_cylindrical("cylindrical", c, d, at=(3.5, 0.0, 0.0), axis=(1.0, 0.0, 0.0)),
+        "add_universal": lambda: m.add_universal("universal", d, e, at=(4.5, 0.0, 0.0), axis_i=(0.0, 1.0, 0.0),
+                                                 axis_j=(0.0, 0.0, 1.0)),
+        "add_planar": lambda: m.add_planar("planar", g, f, at=(6.0, 0.0, 0.0), normal=(0.0, 0.0, 1.0)),
+        "add_weld": lambda: m.add_weld("weld", e, bodies["body"]),
+        "add_distance": lambda: m.add_distance("distance", a, (1.0, 0.0, 0.0), f, (6.0, 0.0, 0.0)),
+        "drive_joint": lambda: m.drive_joint("joint_driver", "revolute", 0.0),
+        "drive_body": lambda: m.drive_body("body_driver", f, "z", 0.0),
+        "add_spring_damper": lambda: m.add_spring_damper("spring_damper", g, (0.0, 1.0, 0.0), a,
+                                                         (1.0, 0.0, 0.0), stiffness=10.0),
+        "add_rotational_spring_damper": lambda: m.add_rotational_spring_damper(
+            "rotational_spring_damper", "revolute", stiffness=1.0),
+        "add_bushing": lambda: m.add_bushing("bushing", b, c, at=(2.5, 0.0, 0.0), stiffness=(1.0, 1.0, 1.0)),
+        "add_force": lambda: m.add_force("force", a, (0.0, 1.0, 0.0)),
+        "add_torque": lambda: m.add_torque("torque", a, (1.0, 0.0, 0.0)),
+    }
+
+
+def _public_add_and_drive_methods(dimension=2):
+    """Model's add_* / drive_* methods that take elements in a model of this dimension."""
+    from lagmb.registry import BY_METHOD, SPATIAL_BY_METHOD
+
+    kinds = BY_METHOD if dimension == 2 else SPATIAL_BY_METHOD
+    names = [name for name, f in inspect.getmembers(mb.Model, inspect.isfunction)
+             if name.startswith(("add_", "drive_"))]
+    assert set(names) == set(BY_METHOD) | set(SPATIAL_BY_METHOD)  # each from the registry
+    return sorted(name for name in names if name in kinds)
+
+
+def test_every_spatial_add_and_drive_method_returns_a_handle_and_planar_ones_are_refused():
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -9.81))
+    examples = _add_everything_spatial(m)
+    methods = _public_add_and_drive_methods(3)
+    assert set(examples) == set(methods)
+    for method in examples:
+        h = examples[method]()
+        assert isinstance(h, mb.Handle) and h.model is m and m.elements()[-1][0] == method
+        assert repr(h) == f"<lagmb {h.kind} {h.name!r}>"
+    with pytest.raises(mb.ModelError, match="add_gear: gear elements are planar only; this model has dimension 3"):
+        m.add_gear("gear", "a", "b", ratio=2.0)
+    with pytest.raises(mb.ModelError, match="spherical elements are spatial only; this model has dimension 2"):
+        mb.Model().add_spherical("ball", "ground", "a", at=(0.0, 0.0, 0.0))
 
 
 def test_every_add_and_drive_method_returns_a_handle_printed_as_its_name(capsys):

@@ -114,9 +114,14 @@ struct PythonCall {
 class PythonTimeFunction final : public TimeFunction {
  public:
   /// component: -1 for f(t) -> (y, dy, ddy) (derivatives) or f(t) -> y;
-  /// 0 or 1 for the x or y entry of f(t) -> (fx, fy).
-  PythonTimeFunction(py::object f, std::string where, bool derivatives, int component)
-      : f_(std::move(f)), where_(std::move(where)), derivatives_(derivatives), component_(component) {}
+  /// 0, 1 (or 2) for an entry of f(t) -> (fx, fy) (or (fx, fy, fz):
+  /// components = 3).
+  PythonTimeFunction(py::object f, std::string where, bool derivatives, int component, int components = 2)
+      : f_(std::move(f)),
+        where_(std::move(where)),
+        derivatives_(derivatives),
+        component_(component),
+        components_(components) {}
   ~PythonTimeFunction() override {
     py::gil_scoped_acquire gil;
     f_ = py::object();
@@ -124,7 +129,7 @@ class PythonTimeFunction final : public TimeFunction {
   /// Another instance with its own reference (for a new owner).
   std::shared_ptr<PythonTimeFunction> clone() const {
     py::gil_scoped_acquire gil;
-    return std::make_shared<PythonTimeFunction>(f_, where_, derivatives_, component_);
+    return std::make_shared<PythonTimeFunction>(f_, where_, derivatives_, component_, components_);
   }
   PyObject* callable() const { return f_.ptr(); }
   /// Drops the reference (the garbage collector breaking a cycle).
@@ -141,7 +146,8 @@ class PythonTimeFunction final : public TimeFunction {
         v = {seq[0], seq[1], seq[2]};
       } else if (component_ >= 0) {
         auto seq = r.cast<std::vector<double>>();
-        if (seq.size() != 2) throw py::value_error("must return (fx, fy)");
+        if (int(seq.size()) != components_)
+          throw py::value_error(components_ == 2 ? "must return (fx, fy)" : "must return (x, y, z)");
         v.f = seq[component_];
       } else {
         v.f = r.cast<double>();
@@ -170,7 +176,7 @@ class PythonTimeFunction final : public TimeFunction {
   py::object f_;
   std::string where_;
   bool derivatives_;
-  int component_;
+  int component_, components_;
 };
 
 /// The function a Model keeps: a Python function is cloned, so that the
@@ -224,6 +230,8 @@ struct SpecFunctions {
           each_python_function(fs->first, visit);
           each_python_function(fs->second, visit);
         }
+        if (const auto* f3 = std::get_if<std::array<TimeFunctionPtr, 3>>(&value))
+          for (const TimeFunctionPtr& f : *f3) each_python_function(f, visit);
       }
   }
   static void clear(ModelSpec& spec) {
@@ -292,6 +300,10 @@ Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
       return std::make_pair(own(pair.first), own(pair.second));
     }
     case ParamType::kVec3: return x.cast<Vec3>();
+    case ParamType::kFunctionTriple: {
+      auto fs = x.cast<std::array<TimeFunctionPtr, 3>>();
+      return std::array<TimeFunctionPtr, 3>{own(fs[0]), own(fs[1]), own(fs[2])};
+    }
     case ParamType::kOrientation:  // (w, x, y, z), or a 3 x 3 matrix (lagmb.model gives nested tuples)
       if (py::len(x) == 4) return x.cast<Vec4>();
       return x.cast<Mat3>();
@@ -329,6 +341,7 @@ const char* type_name(ParamType type) {
     case ParamType::kVec3: return "vec3";
     case ParamType::kOrientation: return "orientation";
     case ParamType::kInertia: return "inertia";
+    case ParamType::kFunctionTriple: return "function_triple";
   }
   return "?";
 }
@@ -616,6 +629,33 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("q"), py::arg("t") = 0.0)
       .def(
+          "mass_matrix",
+          [](const Model& model, const Eigen::VectorXd& q) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            Data d(model);
+            assemble_mass(model, d, q.data());
+            return py::make_tuple(Eigen::MatrixXd(d.M), Eigen::MatrixXd(d.M_inv));
+          },
+          py::arg("q"), "M(q) and M(q)^-1 (dense; block diagonal).")
+      .def(
+          "mass_derivative",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& a) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, a.transpose(), model.n_coordinates(), "a");
+            Data d(model);
+            assemble_mass_derivative(model, d, q.data(), a.data());
+            return Eigen::MatrixXd(d.M_qa);
+          },
+          py::arg("q"), py::arg("a"), "d(M(q) a)/dq (dense).")
+      .def(
+          "kinetic_energy",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            return kinetic_energy(model, q.data(), v.data());
+          },
+          py::arg("q"), py::arg("v"))
+      .def(
           "constraint_values",
           [](const Model& model, const Eigen::VectorXd& q, double t) {
             require_rows(model, q.transpose(), model.n_coordinates(), "q");
@@ -687,10 +727,13 @@ PYBIND11_MODULE(_core, m) {
   m.def("spline", &spline, py::arg("times"), py::arg("values"));
   m.def(
       "python_function",
-      [](py::function f, std::string where, bool derivatives, int component) -> TimeFunctionPtr {
-        return std::make_shared<PythonTimeFunction>(std::move(f), std::move(where), derivatives, component);
+      [](py::function f, std::string where, bool derivatives, int component, int components) -> TimeFunctionPtr {
+        if (component >= components) throw ModelError(where + ": component " + std::to_string(component) + " of " +
+                                                       std::to_string(components));
+        return std::make_shared<PythonTimeFunction>(std::move(f), std::move(where), derivatives, component,
+                                                    components);
       },
-      py::arg("f"), py::arg("where"), py::arg("derivatives"), py::arg("component") = -1);
+      py::arg("f"), py::arg("where"), py::arg("derivatives"), py::arg("component") = -1, py::arg("components") = 2);
 
   m.def(
       "assemble",

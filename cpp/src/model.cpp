@@ -83,6 +83,12 @@ Vec3 Model::local_direction(int body, Vec3 d) const {
   return body == kGround ? d : Vec3(euler::A(bodies_[body].p0).transpose() * d);
 }
 
+Vec3 Model::body_direction(int body, Vec3 d) const {
+  return body == kGround ? d : Vec3(euler::A(bodies_[body].p0) * d);
+}
+
+Vec3 Model::body_position(int body) const { return body == kGround ? Vec3::Zero() : bodies_[body].r0; }
+
 void Model::set_dimension(int dimension) {
   if (dimension != 2 && dimension != 3) throw ModelError("dimension must be 2 or 3, got " + std::to_string(dimension));
   if (dimension == dimension_) return;

@@ -51,6 +51,21 @@ KindInfo joint_friction_kind();
 KindInfo contact_kind();
 KindInfo stop_kind();
 KindInfo spatial_body_kind();
+KindInfo spherical_kind();
+KindInfo spatial_revolute_kind();
+KindInfo cylindrical_kind();
+KindInfo spatial_translational_kind();
+KindInfo universal_kind();
+KindInfo planar_joint_kind();
+KindInfo spatial_weld_kind();
+KindInfo spatial_distance_kind();
+KindInfo spatial_joint_driver_kind();
+KindInfo spatial_body_driver_kind();
+KindInfo spatial_spring_damper_kind();
+KindInfo spatial_rotational_spring_damper_kind();
+KindInfo bushing_kind();
+KindInfo spatial_force_kind();
+KindInfo spatial_torque_kind();
 
 const std::vector<KindInfo>& element_kinds() {
   // the order of scene tables and docs; a new kind adds its line here and above
@@ -65,7 +80,14 @@ const std::vector<KindInfo>& element_kinds() {
       torque_kind(),        joint_friction_kind(),
       contact_kind(),       stop_kind(),
       // spatial (dimension 3)
-      spatial_body_kind(),
+      spatial_body_kind(),  spherical_kind(),
+      spatial_revolute_kind(), cylindrical_kind(),
+      spatial_translational_kind(), universal_kind(),
+      planar_joint_kind(),  spatial_weld_kind(),
+      spatial_distance_kind(), spatial_joint_driver_kind(),
+      spatial_body_driver_kind(), spatial_spring_damper_kind(),
+      spatial_rotational_spring_damper_kind(), bushing_kind(),
+      spatial_force_kind(), spatial_torque_kind(),
   };
   return kinds;
 }
@@ -98,6 +120,7 @@ bool fits(ParamType type, const Value& value) {
     case ParamType::kVec3: return std::holds_alternative<Vec3>(value);
     case ParamType::kOrientation: return std::holds_alternative<Vec4>(value) || std::holds_alternative<Mat3>(value);
     case ParamType::kInertia: return std::holds_alternative<Vec3>(value) || std::holds_alternative<Mat3>(value);
+    case ParamType::kFunctionTriple: return std::holds_alternative<std::array<TimeFunctionPtr, 3>>(value);
   }
   return false;
 }
@@ -203,6 +226,10 @@ std::pair<TimeFunctionPtr, TimeFunctionPtr> Args::function_pair(const std::strin
   return as<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(*this, key);
 }
 
+std::array<TimeFunctionPtr, 3> Args::function_triple(const std::string& key) const {
+  return as<std::array<TimeFunctionPtr, 3>>(*this, key);
+}
+
 namespace {
 
 bool finite(const Value& v) {
@@ -275,6 +302,8 @@ void add_element(Model& model, const std::string& name, const Args& given) {
       model.use_time_function(f);
       model.use_time_function(g);
     }
+    if (p.type == ParamType::kFunctionTriple)
+      for (const TimeFunctionPtr& f : args.function_triple(p.name)) model.use_time_function(f);
     // where the element's points sit on its bodies: what a drawing of each body joins
     for (const std::string& on : p.on) {
       const int body = args.body(on);
@@ -389,6 +418,9 @@ Param vec3(const std::string& name, Vec3 fallback, const std::string& unit, cons
 }
 Param orientation(const std::string& name, const std::string& doc) {
   return make(name, ParamType::kOrientation, false, Vec4(1.0, 0.0, 0.0, 0.0), "", doc);
+}
+Param function_triple(const std::string& name, const std::string& unit, const std::string& doc) {
+  return make(name, ParamType::kFunctionTriple, true, {}, unit, doc);
 }
 Param inertia(const std::string& name, const std::string& doc) {
   return make(name, ParamType::kInertia, true, {}, "kg m^2", doc);

@@ -35,6 +35,8 @@ Args with_copies(const Args& args, const ModelSpec::FunctionCopy& copy) {
       out.set(key, copy(*f));
     else if (const auto* fs = std::get_if<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(&value))
       out.set(key, std::make_pair(copy(fs->first), copy(fs->second)));
+    else if (const auto* f3 = std::get_if<std::array<TimeFunctionPtr, 3>>(&value))
+      out.set(key, std::array<TimeFunctionPtr, 3>{copy((*f3)[0]), copy((*f3)[1]), copy((*f3)[2])});
     else
       out.set(key, value);
   }

@@ -82,6 +82,33 @@ def vec2(value, name):
     return x
 
 
+def vec3(value, name):
+    """Three finite numbers (x, y, z) as a float array."""
+    try:
+        x = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        raise ModelError(f"{name} must be three finite numbers (x, y, z), got {show(value)}") from None
+    if x.shape != (3,):
+        raise ModelError(f"{name} must be three numbers (x, y, z), got {show(value)}")
+    if not np.all(np.isfinite(x)):
+        raise ModelError(f"{name} is not finite: {show(value)}")
+    return x
+
+
+def matrix_or_vector(value, name, length, what):
+    """A vector of `length` finite numbers or a 3 x 3 matrix, as a float
+    array of that shape (the core checks what the numbers mean)."""
+    try:
+        x = np.asarray(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ModelError(f"{name} must be {what}, got {show(value)}") from None
+    if x.shape not in ((length,), (3, 3)):
+        raise ModelError(f"{name} must be {what}, got {show(value)}")
+    if not np.all(np.isfinite(x)):
+        raise ModelError(f"{name} is not finite: {show(value)}")
+    return x
+
+
 def text(value, name):
     if not isinstance(value, str):
         raise ModelError(f"{name} must be a string, got {show(value)}")

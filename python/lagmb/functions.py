@@ -149,15 +149,16 @@ def time_function_from_dict(d):
         raise ModelError(f"time function '{kind}': {e}") from None
 
 
-def as_time_function(value, where, derivatives=True, component=-1):
+def as_time_function(value, where, derivatives=True, component=-1, components=2):
     """The C++ time function for a number, a TimeFunction or a callable.
 
     A callable is f(t) -> (y, dy, ddy) when derivatives are needed (drivers),
-    else f(t) -> y, or f(t) -> (fx, fy) with component 0 or 1 (forces)."""
+    else f(t) -> y, or f(t) -> (fx, fy) with component 0 or 1 (forces), or
+    f(t) -> (x, y, z) with component 0, 1 or 2 and components=3."""
     if isinstance(value, TimeFunction):
         return value._impl
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return Constant(value)._impl
     if callable(value):
-        return _core.python_function(value, where, derivatives, component)
+        return _core.python_function(value, where, derivatives, component, components)
     raise ModelError(f"{where}: expected a number, a time function or a callable, got {value!r}")

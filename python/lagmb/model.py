@@ -5,7 +5,8 @@ import numbers
 
 from . import _core
 from . import registry
-from ._checks import real as _number, show, text as _text, vec2 as _vec2
+from ._checks import matrix_or_vector as _matrix_or_vector, real as _number, show
+from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
 from .errors import ModelError
 from .functions import TimeFunction, as_time_function
 from .handles import Body, Handle, name_of
@@ -16,12 +17,16 @@ def _tuple(x):
 
 
 class Model:
-    """A planar mechanism: rigid bodies, particles and the elements between them.
+    """A mechanism: rigid bodies, particles and the elements between them,
+    planar (``dimension=2``, the default) or spatial (``dimension=3``).
 
-    Coordinates are Cartesian: (x, y, phi) of each body's centre of mass and
-    angle, (x, y) of each particle. Points are global, in the initial
-    configuration, unless the argument name says ``local``. Every body and
-    element has a unique name. Gravity is absent unless given.
+    Coordinates are Cartesian. In the plane: (x, y, phi) of each body's
+    centre of mass and angle, (x, y) of each particle. In space: (x, y, z)
+    of each body's centre of mass and its Euler parameters (w, x, y, z), a
+    unit quaternion kept so by one constraint equation per body. Points are
+    global, in the initial configuration, unless the argument name says
+    ``local``. Every body and element has a unique name. Gravity is absent
+    unless given: (gx, gy) in the plane, (gx, gy, gz) in space.
 
     Every add_* and drive_* method returns the handle of what it added
     (mb.Handle; mb.Body for bodies and particles, ``ground`` for the
@@ -30,17 +35,21 @@ class Model:
     r.reaction(pin)``.
     """
 
-    def __init__(self, gravity=None):
-        self._spec = _core.ModelSpec()  # the description; compiled() gives the immutable core Model
+    def __init__(self, gravity=None, dimension=2):
+        if isinstance(dimension, bool) or dimension not in (2, 3):
+            raise ModelError(f"dimension must be 2 (planar) or 3 (spatial), got {show(dimension)}")
+        self.dimension = int(dimension)
+        # the description; compiled() gives the immutable core Model
+        self._spec = _core.ModelSpec(self.dimension)
         self._compiled = None  # kept until the description changes
         self._bodies = {}
         self._elements = []  # (method, kwargs) in user terms: see elements()
         self.ground = Body("ground", self, -1)
         self.gravity = None
         if gravity is not None:
-            g = _vec2(gravity, "gravity")
+            g = _vec2(gravity, "gravity") if self.dimension == 2 else _vec3(gravity, "gravity")
             self._spec.set_gravity(g)
-            self.gravity = (float(g[0]), float(g[1]))
+            self.gravity = tuple(float(x) for x in g)
 
     def copy(self):
         """An independent copy to edit: the same bodies and elements (time
@@ -53,6 +62,7 @@ class Model:
         other._elements = [(method, dict(kw)) for method, kw in self._elements]
         other.ground = Body("ground", other, -1)
         other.gravity = self.gravity
+        other.dimension = self.dimension
         return other
 
     __copy__ = copy
@@ -94,6 +104,15 @@ class Model:
         if t == "vec2":
             x = _tuple(_vec2(value, label))
             return x, x
+        if t == "vec3":
+            x = tuple(float(c) for c in _vec3(value, label))
+            return x, x
+        if t in ("orientation", "inertia"):
+            length, what = ((4, "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix") if t == "orientation"
+                            else (3, "principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor"))
+            x = _matrix_or_vector(value, label, length, what)
+            x = tuple(float(c) for c in x) if x.ndim == 1 else tuple(tuple(float(c) for c in row) for row in x)
+            return x, x
         if t == "bool":
             return bool(value), bool(value)
         if t == "text":
@@ -123,6 +142,16 @@ class Model:
             pair = (as_time_function(value[0], f"{what}: fx", derivatives=False),
                     as_time_function(value[1], f"{what}: fy", derivatives=False))
             return pair, tuple(float(f) if isinstance(f, numbers.Real) else f for f in value)
+        if t == "function_triple":
+            if callable(value) and not isinstance(value, TimeFunction):
+                return tuple(as_time_function(value, what, derivatives=False, component=k, components=3)
+                             for k in range(3)), value
+            if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 3:
+                raise ModelError(f"{what}: {param.name} must be (x, y, z) components or a callable "
+                                 f"t -> (x, y, z), got {show(value)}")
+            triple = tuple(as_time_function(f, f"{what}: {param.name}[{k}]", derivatives=False)
+                           for k, f in enumerate(value))
+            return triple, tuple(float(f) if isinstance(f, numbers.Real) else f for f in value)
         raise AssertionError(f"parameter type {t!r} of {what} has no check")  # a new ParamType
 
     def _add(self, kind, name, values):
@@ -174,7 +203,8 @@ class Model:
     def elements(self):
         """Everything added, in order: (method name, keyword arguments) with
         bodies by name, points as tuples and time functions as given.
-        Replaying them on Model(gravity=self.gravity) rebuilds this model."""
+        Replaying them on Model(gravity=self.gravity, dimension=self.dimension)
+        rebuilds this model."""
         return [(m, dict(kw)) for m, kw in self._elements]
 
     def outline(self, body):
@@ -255,25 +285,34 @@ class Model:
         return f"<lagmb.Model: {len(self._bodies)} bodies, {n_elements} other elements>"
 
 
-def _method(kind):
-    """Model.<kind.method>: its signature and docstring from the registry,
-    its checks in Model._add."""
-    sig = registry.signature(kind)
+def _method(method):
+    """Model.<method>: the kind it adds is the one of the model's dimension
+    (add_revolute: a planar or a spatial revolute); its signature and
+    docstring from the registry, its checks in Model._add."""
+    kinds = {2: registry.BY_METHOD.get(method), 3: registry.SPATIAL_BY_METHOD.get(method)}
+    signatures = {d: registry.signature(k) for d, k in kinds.items() if k is not None}
 
     def add(self, *args, **kwargs):
-        values = sig.bind(self, *args, **kwargs)
+        kind = kinds[self.dimension]
+        if kind is None:
+            where = "planar" if self.dimension == 3 else "spatial"
+            raise ModelError(f"{method}: {kinds[5 - self.dimension].name.replace('_', ' ')} elements are "
+                             f"{where} only; this model has dimension {self.dimension}")
+        values = signatures[self.dimension].bind(self, *args, **kwargs)
         values.apply_defaults()
         values = dict(values.arguments)
         del values["self"]
         return self._add(kind, values.pop("name"), values)
 
-    add.__name__ = kind.method
-    add.__qualname__ = f"Model.{kind.method}"
-    add.__signature__ = sig
-    add.__doc__ = registry.docstring(kind)
+    add.__name__ = method
+    add.__qualname__ = f"Model.{method}"
+    add.__signature__ = signatures.get(2, signatures.get(3))
+    add.__doc__ = "\n\n".join((f"In a {'planar' if d == 2 else 'spatial'} model (dimension={d}):\n\n" if
+                                len(signatures) > 1 else "") + registry.docstring(k)
+                               for d, k in kinds.items() if k is not None)
     return add
 
 
-for _kind in registry.KINDS:
-    setattr(Model, _kind.method, _method(_kind))
-del _kind
+for _method_name in dict.fromkeys(k.method for k in registry.ALL_KINDS):
+    setattr(Model, _method_name, _method(_method_name))
+del _method_name

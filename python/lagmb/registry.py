@@ -21,7 +21,8 @@ class Param(NamedTuple):
     """One parameter of an element kind (see registry.hpp, struct Param)."""
 
     name: str
-    type: str  # text, real, vec2, bool, body, joint, choice, motion, function, function_pair
+    type: str  # text, real, vec2, bool, body, joint, choice, motion, function, function_pair,
+    # vec3, orientation, inertia, function_triple
     required: bool
     default: object  # None, a float, a tuple or a bool
     unit: str
@@ -92,7 +93,10 @@ _TYPE_WORDS = {"text": "text", "real": "number", "vec2": "(x, y)", "bool": "bool
                "body": "body handle or name", "joint": "joint handle or name", "choice": "one of",
                "motion": "number, time function or callable t -> (y, dy, ddy)",
                "function": "number, time function or callable t -> y",
-               "function_pair": "(fx, fy) of numbers or time functions, or a callable t -> (fx, fy)"}
+               "function_pair": "(fx, fy) of numbers or time functions, or a callable t -> (fx, fy)",
+               "vec3": "(x, y, z)", "orientation": "(w, x, y, z) or 3 x 3 rotation matrix",
+               "inertia": "(Ixx, Iyy, Izz) or 3 x 3 tensor",
+               "function_triple": "(x, y, z) of numbers or time functions, or a callable t -> (x, y, z)"}
 
 
 def describe(param):

@@ -28,15 +28,52 @@ def element_name(model, core, item, accepts, what, context):
 _CONSTRAINTS = ("joint", "driver")  # the elements with multipliers
 
 
+def _E(p):
+    """E(p) (k, 3, 4) of Euler parameters p (k, 4): omega = 2 E(p) p'
+    (global axes; lagmb/spatial.hpp)."""
+    e0, e1, e2, e3 = p[:, 0], p[:, 1], p[:, 2], p[:, 3]
+    return np.stack([np.stack([-e1, e0, -e3, e2], axis=1),
+                     np.stack([-e2, e3, e0, -e1], axis=1),
+                     np.stack([-e3, -e2, e1, e0], axis=1)], axis=1)
+
+
+def rotation_matrices(p):
+    """A(p) (k, 3, 3), body axes into global axes, of unit Euler parameters
+    p (k, 4) (w, x, y, z)."""
+    p = np.asarray(p, dtype=float).reshape(-1, 4)
+    w, x, y, z = p.T
+    return np.stack([
+        np.stack([w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=1),
+        np.stack([2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)], axis=1),
+        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z], axis=1)], axis=1)
+
+
 class BodyPath:
-    """The motion of one body: position (k, 2) of its centre of mass, angle
-    (k,), velocity (k, 2), angular_velocity (k,), acceleration (k, 2),
-    angular_acceleration (k,). A particle has no angle (zeros)."""
+    """The motion of one body.
+
+    Planar: position (k, 2) of its centre of mass, angle (k,), velocity
+    (k, 2), angular_velocity (k,), acceleration (k, 2), angular_acceleration
+    (k,). A particle has no angle (zeros).
+
+    Spatial: position, velocity, acceleration (k, 3); orientation (k, 4),
+    the Euler parameters (w, x, y, z); rotation (k, 3, 3), body axes into
+    global axes; angular_velocity and angular_acceleration (k, 3) in global
+    axes (omega = 2 E(p) p', omega' = 2 E(p) p'')."""
 
     def __init__(self, result, first, count):
         def cols(x, a, b):
             return x[:, first + a:first + b]
 
+        if count == 7:
+            self.position = cols(result.q, 0, 3)
+            self.velocity = cols(result.v, 0, 3)
+            self.acceleration = cols(result.a, 0, 3)
+            self.orientation = cols(result.q, 3, 7)
+            E = _E(self.orientation)
+            self.angular_velocity = 2.0 * np.einsum("kij,kj->ki", E, cols(result.v, 3, 7))
+            self.angular_acceleration = 2.0 * np.einsum("kij,kj->ki", E, cols(result.a, 3, 7))
+            self.rotation = rotation_matrices(self.orientation)
+            return
         self.position = cols(result.q, 0, 2)
         self.velocity = cols(result.v, 0, 2)
         self.acceleration = cols(result.a, 0, 2)
@@ -99,14 +136,21 @@ class Result:
         return BodyPath(self, first, count)
 
     def point(self, body, local_point):
-        """(k, 2) global path of a point given in the body's own axes."""
+        """(k, 2) global path of a point given in the body's own axes ((k, 3)
+        in a spatial model)."""
         b = self.body(body)
+        size = getattr(self.model, "dimension", 2)
         try:
-            s = np.asarray(local_point, dtype=float).reshape(2)
+            s = np.asarray(local_point, dtype=float).reshape(size)
         except (TypeError, ValueError, OverflowError):
-            raise ModelError(f"local_point must be a pair of numbers, got {local_point!r}") from None
+            words = "a pair of numbers" if size == 2 else "three numbers (x, y, z)"
+            raise ModelError(f"local_point must be {words}, got {local_point!r}") from None
         if not np.all(np.isfinite(s)):
             raise ModelError(f"local_point must be finite, got {local_point!r}")
+        if size == 3:
+            if not hasattr(b, "rotation"):  # the ground
+                return np.tile(s, (len(self), 1))
+            return b.position + np.einsum("kij,j->ki", b.rotation, s)
         c, sn = np.cos(b.angle), np.sin(b.angle)
         return b.position + np.column_stack((c * s[0] - sn * s[1], sn * s[0] + c * s[1]))
 
@@ -119,7 +163,9 @@ class Result:
     def reaction(self, element, frame="global"):
         """(k, 3): force (x, y) in N on the element's second body, and the
         torque in N m about that body's centre of mass, from the element.
-        frame="joint": the force in the element's own axes (docs/modelling.md)."""
+        frame="joint": the force in the element's own axes (docs/modelling.md).
+        In a spatial model (k, 6): force (x, y, z) and torque (x, y, z), both
+        in the element's axes with frame="joint"."""
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
         name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")

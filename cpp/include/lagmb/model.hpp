@@ -110,6 +110,10 @@ class Model {
   Vec3 local_point(int body, Vec3 global_point) const;
   /// A global direction of the initial configuration in a spatial body's axes.
   Vec3 local_direction(int body, Vec3 global_direction) const;
+  /// A direction in a spatial body's axes in global axes (initial configuration).
+  Vec3 body_direction(int body, Vec3 local_direction) const;
+  /// Initial position of a spatial body's centre of mass (the origin for the ground).
+  Vec3 body_position(int body) const;
   /// Initial position of a body's centre of mass (the origin for the ground).
   Vec2 initial_position(int body) const;
   double initial_angle(int body) const;

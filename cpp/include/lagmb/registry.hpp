@@ -5,6 +5,7 @@
 // of docs/modelling.md are all read from here (docs/design.md, section 3).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <optional>
@@ -35,6 +36,7 @@ enum class ParamType {
   kVec3,          // (x, y, z): a point, a direction, a velocity in space
   kOrientation,   // a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix
   kInertia,       // principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor
+  kFunctionTriple,  // (fx(t), fy(t), fz(t))
 };
 
 /// The body index of a kBody value (kGround for the ground).
@@ -44,7 +46,8 @@ struct BodyIndex {
 
 /// A parameter's value; std::monostate: absent (Python's None).
 using Value = std::variant<std::monostate, double, Vec2, bool, std::string, BodyIndex, TimeFunctionPtr,
-                           std::pair<TimeFunctionPtr, TimeFunctionPtr>, Vec3, Vec4, Mat3>;
+                           std::pair<TimeFunctionPtr, TimeFunctionPtr>, Vec3, Vec4, Mat3,
+                           std::array<TimeFunctionPtr, 3>>;
 
 /// One parameter of an element kind.
 struct Param {
@@ -116,6 +119,7 @@ class Args {
   int body(const std::string& key) const;
   TimeFunctionPtr function(const std::string& key) const;  // null if None
   std::pair<TimeFunctionPtr, TimeFunctionPtr> function_pair(const std::string& key) const;
+  std::array<TimeFunctionPtr, 3> function_triple(const std::string& key) const;
 
   const KindInfo& kind() const { return *kind_; }
   const std::map<std::string, Value>& values() const { return values_; }
@@ -168,6 +172,7 @@ Param optional_direction3(const std::string& name, const std::string& doc);
 Param vec3(const std::string& name, Vec3 fallback, const std::string& unit, const std::string& doc);
 Param orientation(const std::string& name, const std::string& doc);
 Param inertia(const std::string& name, const std::string& doc);
+Param function_triple(const std::string& name, const std::string& unit, const std::string& doc);
 }  // namespace param
 
 }  // namespace lagmb

@@ -1,0 +1,182 @@
+// The building blocks of spatial joints: vectors and points fixed in a body,
+// their differences and dot products, each with its exact first and second
+// derivatives in the element's local coordinates c = (r_i, p_i, r_j, p_j)
+// (space.hpp). Every spatial joint is a few rows of these (Haug's "basic
+// constraints": dot-1, dot-2, spherical; Haug, "Computer-Aided Kinematics and
+// Dynamics of Mechanical Systems", sec. 9.4).
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include "lagmb/space.hpp"
+#include "lagmb/spatial.hpp"
+
+namespace lagmb::spatial {
+
+using Loc = LocalVec<14>;
+using Mat14 = LocalMat<14>;
+using Row14 = Eigen::Matrix<double, 1, 14>;
+using Jac3 = Eigen::Matrix<double, 3, 14>;
+
+/// A vector function u(c): value, Jacobian du/dc and, if `second`, the
+/// Hessian of each component.
+struct VectorTerm {
+  Vec3 value = Vec3::Zero();
+  Jac3 jacobian = Jac3::Zero();
+  bool second = false;
+  std::array<Mat14, 3> hessian;
+};
+
+/// A scalar function f(c): value, gradient and (if `second`) Hessian.
+struct ScalarTerm {
+  double value = 0.0;
+  Row14 gradient = Row14::Zero();
+  Mat14 hessian;
+};
+
+/// The side of an element a body stands on: its r at 7 side, p at 7 side + 3.
+enum Side { kBodyI = 0, kBodyJ = 1 };
+
+/// A(p) a: the vector `a` fixed in the body on `side` (its axes), in
+/// global axes. d/dp = point_jacobian(p, a); d2/dp2 constant (spatial.hpp).
+inline VectorTerm body_vector(const Loc& c, Side side, const Vec3& a, bool second) {
+  const int at = 7 * side + 3;
+  const Vec4 p = c.segment<4>(at);
+  VectorTerm u;
+  u.value = euler::rotate(p, a);
+  u.jacobian.block<3, 4>(0, at) = euler::point_jacobian(p, a);
+  u.second = second;
+  if (second)
+    for (int k = 0; k < 3; ++k) {
+      u.hessian[k].setZero();
+      u.hessian[k].block<4, 4>(at, at) = euler::point_hessian(a, Vec3::Unit(k));
+    }
+  return u;
+}
+
+/// r + A(p) s: the point `s` (body axes) of the body on `side`, in global
+/// coordinates.
+inline VectorTerm body_point(const Loc& c, Side side, const Vec3& s, bool second) {
+  VectorTerm u = body_vector(c, side, s, second);
+  u.value += c.segment<3>(7 * side);
+  u.jacobian.block<3, 3>(0, 7 * side).setIdentity();
+  return u;
+}
+
+/// u - v.
+inline VectorTerm minus(const VectorTerm& u, const VectorTerm& v) {
+  VectorTerm w;
+  w.value = u.value - v.value;
+  w.jacobian = u.jacobian - v.jacobian;
+  w.second = u.second && v.second;
+  if (w.second)
+    for (int k = 0; k < 3; ++k) w.hessian[k] = u.hessian[k] - v.hessian[k];
+  return w;
+}
+
+/// u . v: gradient u^T v_c + v^T u_c, Hessian u_c^T v_c + v_c^T u_c +
+/// sum_k (u_k v_k,cc + v_k u_k,cc).
+inline ScalarTerm dot(const VectorTerm& u, const VectorTerm& v) {
+  ScalarTerm f;
+  f.value = u.value.dot(v.value);
+  f.gradient = u.value.transpose() * v.jacobian + v.value.transpose() * u.jacobian;
+  if (u.second && v.second) {
+    const Mat14 cross = u.jacobian.transpose() * v.jacobian;
+    f.hessian = cross + cross.transpose();
+    for (int k = 0; k < 3; ++k) f.hessian += u.value[k] * v.hessian[k] + v.value[k] * u.hessian[k];
+  }
+  return f;
+}
+
+/// Component k of u as a scalar term.
+inline ScalarTerm component(const VectorTerm& u, int k) {
+  ScalarTerm f;
+  f.value = u.value[k];
+  f.gradient = u.jacobian.row(k);
+  if (u.second) f.hessian = u.hessian[k];
+  return f;
+}
+
+/// |u| (u != 0): gradient u^T u_c / |u|, Hessian (u_c^T u_c + sum_k u_k
+/// u_k,cc) / |u| - grad^T grad / |u|.
+inline ScalarTerm length(const VectorTerm& u) {
+  ScalarTerm f = dot(u, u);
+  const double l = std::sqrt(f.value);
+  f.value = l;
+  f.gradient /= 2.0 * l;
+  if (u.second) f.hessian = f.hessian / (2.0 * l) - f.gradient.transpose() * f.gradient / l;
+  return f;
+}
+
+/// The angle atan2(u, w) in (-pi, pi]: with D = u^2 + w^2,
+///   grad = (w u_c - u w_c) / D,
+///   Hess = (u_c^T w_c - w_c^T u_c + w u_cc - u w_cc) / D - 2 grad^T (u u_c + w w_c) / D
+/// (symmetric, though its parts are not).
+inline ScalarTerm angle(const ScalarTerm& u, const ScalarTerm& w, bool second) {
+  ScalarTerm f;
+  const double D = u.value * u.value + w.value * w.value;
+  f.value = std::atan2(u.value, w.value);
+  f.gradient = (w.value * u.gradient - u.value * w.gradient) / D;
+  if (second) {
+    const Mat14 cross = u.gradient.transpose() * w.gradient;
+    f.hessian = (cross - cross.transpose() + w.value * u.hessian - u.value * w.hessian) / D -
+                2.0 * f.gradient.transpose() * (u.value * u.gradient + w.value * w.gradient) / D;
+  }
+  return f;
+}
+
+/// A spring-damper-actuator on a scalar coordinate s(c) with rate s' = s_c cd:
+///   F = -k (s - s0) - c s' + f,   Q = F s_c^T,
+///   Q_c = s_c^T (-k s_c - c (s_cc cd)^T) + F s_cc,   Q_cd = -c s_c^T s_c,
+/// added to Q (and, if given, to Q_c and Q_cd). Potential k (s - s0)^2 / 2.
+inline void add_spring_damper(const ScalarTerm& s, const Loc& cd, double k, double c, double s0, double f, Loc& Q,
+                              Mat14* Q_c = nullptr, Mat14* Q_cd = nullptr) {
+  const double rate = s.gradient.dot(cd);
+  const double F = -k * (s.value - s0) - c * rate + f;
+  Q += F * s.gradient.transpose();
+  if (Q_c) *Q_c += s.gradient.transpose() * (-k * s.gradient - c * (s.hessian * cd).transpose()) + F * s.hessian;
+  if (Q_cd) *Q_cd -= c * s.gradient.transpose() * s.gradient;
+}
+
+/// Rows of a joint as scalar terms, for the kinds' phi, jacobian and
+/// hessians: each kind lists its rows once (terms(c, second)) and these give
+/// the three views of them.
+template <int R>
+using Terms = std::array<ScalarTerm, R>;
+
+template <int R>
+Eigen::Matrix<double, R, 1> values(const Terms<R>& t) {
+  Eigen::Matrix<double, R, 1> v;
+  for (int r = 0; r < R; ++r) v[r] = t[r].value;
+  return v;
+}
+
+template <int R>
+Eigen::Matrix<double, R, 14> gradients(const Terms<R>& t) {
+  Eigen::Matrix<double, R, 14> J;
+  for (int r = 0; r < R; ++r) J.row(r) = t[r].gradient;
+  return J;
+}
+
+template <int R>
+void hessians(const Terms<R>& t, Mat14* H) {
+  for (int r = 0; r < R; ++r) H[r] = t[r].hessian;
+}
+
+/// The spatial joint kinds' three views of their rows, from the kind's
+///   Terms<rows> terms(const Loc& c, bool second) const;
+/// (a base by CRTP: each kind states its rows once).
+template <class Kind, int R>
+struct TermJoint {
+  using Space = Spatial;
+  static constexpr int rows = R;
+  Eigen::Matrix<double, R, 1> phi(const Loc& c, double) const { return values<R>(self().terms(c, false)); }
+  Eigen::Matrix<double, R, 14> jacobian(const Loc& c, double) const { return gradients<R>(self().terms(c, false)); }
+  void hessians(const Loc& c, double, Mat14* H) const { spatial::hessians<R>(self().terms(c, true), H); }
+
+ private:
+  const Kind& self() const { return static_cast<const Kind&>(*this); }
+};
+
+}  // namespace lagmb::spatial

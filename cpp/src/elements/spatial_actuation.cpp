@@ -1,0 +1,219 @@
+// Spatial drivers and force elements: how users add them (registry.hpp).
+#include "build.hpp"
+#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/elements/spatial_forces.hpp"
+#include "lagmb/elements/spatial_joints.hpp"
+
+namespace lagmb {
+
+namespace {
+
+KindInfo in_space(KindInfo k) {
+  k.dimension = 3;
+  return k;
+}
+
+/// What drivers and rotational springs take from a spatial joint: its
+/// bodies, its point and triple in body i, body j's copy of f, and whether
+/// it turns (revolute, cylindrical) and slides (translational, cylindrical).
+struct SpatialJointCoordinate {
+  const SpatialJointBase* joint = nullptr;
+  Vec3 f_j = Vec3::UnitX();
+  bool turns = false, slides = false;
+};
+
+SpatialJointCoordinate spatial_joint(const Model& m, const std::string& joint, const std::string& element) {
+  if (!m.has(joint)) throw ModelError(element + ": '" + joint + "' is not a joint of this model");
+  SpatialJointCoordinate c;
+  if (const auto* j = m.find_constraint<SpatialRevoluteJoint>(joint)) {
+    c = {j, j->f_j, true, false};
+  } else if (const auto* j = m.find_constraint<CylindricalJoint>(joint)) {
+    c = {j, j->f_j, true, true};
+  } else if (const auto* j = m.find_constraint<SpatialTranslationalJoint>(joint)) {
+    c = {j, Vec3::UnitX(), false, true};
+  } else {
+    throw ModelError(element + ": '" + joint + "' is " + m.describe(joint) +
+                     ", not a revolute, cylindrical or translational joint");
+  }
+  return c;
+}
+
+/// A revolute's driver holds its angle, a translational's or cylindrical's
+/// its slide.
+void build_joint_driver(Model& m, const std::string& name, const Args& a) {
+  const SpatialJointCoordinate c = spatial_joint(m, a.text("joint"), build::label(a, name));
+  if (c.slides) {
+    auto d = build::joining<SpatialSlideDriver>(m, name, c.joint->body_i, c.joint->body_j);
+    d.s_i = c.joint->s_i;
+    d.s_j = c.joint->s_j;
+    d.a_i = c.joint->a_i;
+    d.f = a.function("f");
+    m.add_constraint(std::move(d));
+  } else {
+    auto d = build::joining<SpatialAngleDriver>(m, name, c.joint->body_i, c.joint->body_j);
+    d.f_i = c.joint->f_i;
+    d.g_i = c.joint->g_i;
+    d.f_j = c.f_j;
+    d.f = a.function("f");
+    m.add_constraint(std::move(d));
+  }
+}
+
+void build_body_driver(Model& m, const std::string& name, const Args& a) {
+  auto d = build::joining<SpatialPositionDriver>(m, name, kGround, a.body("body"));
+  const std::string& coordinate = a.text("coordinate");
+  d.axis = coordinate == "x" ? 0 : coordinate == "y" ? 1 : 2;
+  d.f = a.function("f");
+  m.add_constraint(std::move(d));
+}
+
+void build_spring_damper(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  auto e = build::joining<SpatialSpringDamper>(m, name, a.body("body_i"), a.body("body_j"));
+  const Vec3 pi = a.vec3("point_i"), pj = a.vec3("point_j");
+  e.s_i = m.local_point(e.body_i, pi);
+  e.s_j = m.local_point(e.body_j, pj);
+  e.stiffness = a.real("stiffness");
+  e.damping = a.real("damping");
+  build::require_nonnegative(e.stiffness, label, "stiffness");
+  build::require_nonnegative(e.damping, label, "damping");
+  e.free_length = a.given("free_length") ? a.real("free_length") : (pj - pi).norm();
+  build::require_nonnegative(e.free_length, label, "free_length");
+  if (!((pj - pi).norm() > 0.0))
+    throw ModelError(label + ": point_i and point_j coincide; the spring's direction is undefined there");
+  e.actuator = a.function("force");
+  m.add_force_element(std::move(e));
+}
+
+void build_rotational_spring_damper(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  const SpatialJointCoordinate c = spatial_joint(m, a.text("joint"), label);
+  if (!c.turns) throw ModelError(label + ": '" + a.text("joint") + "' does not turn (a translational joint)");
+  auto e = build::joining<SpatialRotationalSpringDamper>(m, name, c.joint->body_i, c.joint->body_j);
+  e.f_i = c.joint->f_i;
+  e.g_i = c.joint->g_i;
+  e.f_j = c.f_j;
+  e.stiffness = a.real("stiffness");
+  e.damping = a.real("damping");
+  build::require_nonnegative(e.stiffness, label, "stiffness");
+  build::require_nonnegative(e.damping, label, "damping");
+  e.free_angle = a.real("free_angle");
+  e.actuator = a.function("torque");
+  m.add_force_element(std::move(e));
+}
+
+void build_bushing(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  auto e = build::joining<Bushing>(m, name, a.body("body_i"), a.body("body_j"));
+  const Vec3 at = a.vec3("at");
+  e.s_i = m.local_point(e.body_i, at);
+  e.s_j = m.local_point(e.body_j, at);
+  for (int k = 0; k < 3; ++k) {
+    e.axes_i[k] = m.local_direction(e.body_i, Vec3::Unit(k));
+    e.axes_j[k] = m.local_direction(e.body_j, Vec3::Unit(k));
+  }
+  e.stiffness = a.vec3("stiffness");
+  e.damping = a.vec3("damping");
+  e.rotational_stiffness = a.vec3("rotational_stiffness");
+  e.rotational_damping = a.vec3("rotational_damping");
+  for (const auto& [v, what] : {std::pair{e.stiffness, "stiffness"}, {e.damping, "damping"},
+                                {e.rotational_stiffness, "rotational_stiffness"},
+                                {e.rotational_damping, "rotational_damping"}})
+    if (!((v.array() >= 0.0).all())) throw ModelError(label + ": " + what + " must be >= 0, got " + to_text(v));
+  m.add_force_element(std::move(e));
+}
+
+void build_force(Model& m, const std::string& name, const Args& a) {
+  auto e = build::joining<SpatialAppliedForce>(m, name, a.body("body"), kGround);
+  if (a.given("point")) e.s = m.local_point(e.body_i, a.vec3("point"));
+  e.components = a.function_triple("force");
+  e.local = a.flag("local");
+  m.add_force_element(std::move(e));
+}
+
+void build_torque(Model& m, const std::string& name, const Args& a) {
+  auto e = build::joining<SpatialAppliedTorque>(m, name, a.body("body"), kGround);
+  e.components = a.function_triple("torque");
+  e.local = a.flag("local");
+  m.add_force_element(std::move(e));
+}
+
+}  // namespace
+
+KindInfo spatial_joint_driver_kind() {
+  return in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
+                   "Prescribes a revolute's angle (0 in the initial configuration, about its axis), or a "
+                   "translational's or cylindrical's slide along its axis, as f(t).",
+                   {param::joint("the revolute, cylindrical or translational joint driven"),
+                    param::motion("f", "rad or m", "the joint coordinate as a function of time", "function")},
+                   build_joint_driver});
+}
+
+KindInfo spatial_body_driver_kind() {
+  return in_space({"spatial_body_driver", "drive_body", "drivers", "body", Role::kDriver,
+                   "Prescribes a coordinate \"x\", \"y\" or \"z\" of a body's centre of mass as f(t).",
+                   {param::body("body", "the body driven"),
+                    param::choice("coordinate", {"x", "y", "z"}, "the coordinate driven"),
+                    param::motion("f", "m", "the coordinate as a function of time", "function")},
+                   build_body_driver});
+}
+
+KindInfo spatial_spring_damper_kind() {
+  return in_space({"spatial_spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
+                   "Translational spring-damper-actuator between point_i on body_i and point_j on body_j: "
+                   "F = -k (l - l0) - c l' + f(t) along the line, F > 0 pushing the points apart.",
+                   {param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "attachment on body_i"),
+                    param::body("body_j", "the second body"), param::point3("point_j", {"body_j"}, "attachment on body_j"),
+                    param::real("stiffness", 0.0, "N/m", "spring stiffness k"),
+                    param::real("damping", 0.0, "N s/m", "damping coefficient c"),
+                    param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
+                    param::function("force", "N", "actuator force f(t), positive pushes the points apart")},
+                   build_spring_damper});
+}
+
+KindInfo spatial_rotational_spring_damper_kind() {
+  return in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
+                   "rotational_spring_damper", Role::kForce,
+                   "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (0 in "
+                   "the initial configuration, in (-pi, pi]): torque -k (theta - theta0) - c theta' + tau(t) "
+                   "about the axis on body_j.",
+                   {param::joint("the revolute or cylindrical joint"),
+                    param::real("stiffness", 0.0, "N m/rad", "torsion stiffness k"),
+                    param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
+                    param::real("free_angle", 0.0, "rad", "free angle theta0"),
+                    param::function("torque", "N m", "actuator torque tau(t) on body_j")},
+                   build_rotational_spring_damper});
+}
+
+KindInfo bushing_kind() {
+  return in_space({"bushing", "add_bushing", "forces", "bushing", Role::kForce,
+                   "Six-axis spring-damper between frames at `at` fixed in body_i and body_j (global axes of "
+                   "the initial configuration): force -k delta - c delta' along each axis, torque -k rho - c "
+                   "rho' about each (rho: the relative rotation, sin of the angle for a turn about one axis).",
+                   {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+                    param::point3("at", {"body_i", "body_j"}, "the frames' origin"),
+                    param::vec3("stiffness", Vec3::Zero(), "N/m", "translational stiffness (x, y, z)"),
+                    param::vec3("damping", Vec3::Zero(), "N s/m", "translational damping (x, y, z)"),
+                    param::vec3("rotational_stiffness", Vec3::Zero(), "N m/rad", "rotational stiffness (x, y, z)"),
+                    param::vec3("rotational_damping", Vec3::Zero(), "N m s/rad", "rotational damping (x, y, z)")},
+                   build_bushing});
+}
+
+KindInfo spatial_force_kind() {
+  return in_space({"spatial_force", "add_force", "forces", "force", Role::kForce,
+                   "A force on a body at a point, each component a number or a function of time.",
+                   {param::body("body", "the body pushed"), param::function_triple("force", "N", "(fx, fy, fz)"),
+                    param::optional_point3("point", {"body"}, "where it acts (default: the centre of mass)"),
+                    param::flag("local", false, "components in the body's axes, turning with it")},
+                   build_force});
+}
+
+KindInfo spatial_torque_kind() {
+  return in_space({"spatial_torque", "add_torque", "forces", "torque", Role::kForce,
+                   "A torque on a body, each component a number or a function of time.",
+                   {param::body("body", "the body turned"), param::function_triple("torque", "N m", "(tx, ty, tz)"),
+                    param::flag("local", false, "components in the body's axes, turning with it")},
+                   build_torque});
+}
+
+}  // namespace lagmb
