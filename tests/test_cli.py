@@ -366,3 +366,19 @@ def test_run_kinematic_scene_writes_what_it_computed(tmp_path, suffix):
         assert rows[0] == "t,rod.x,rod.y,rod.angle"
         t, angle = (float(x) for x in rows[-1].split(",")[::3])
         assert abs(angle - t) < 1e-12
+
+
+def test_run_a_spatial_scene_with_its_animation_seen_from_a_viewpoint(tmp_path):
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("PIL")
+    scene = os.path.join(EXAMPLES, "heavy_top.toml")
+    out = tmp_path / "top.npz"
+    p = lagmb("run", scene, "-o", out, "--animate", tmp_path / "top.gif", "--view", "10,30", "--n-out", "11")
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "top.gif").exists()
+    with np.load(out) as data:
+        assert data["q"].shape == (11, 7)
+    info = lagmb("info", scene)
+    assert "dimension: 3" in info.stdout and "joints: 1 (spherical 1)" in info.stdout
+    bad = lagmb("run", scene, "--animate", tmp_path / "x.gif", "--view", "10")
+    assert bad.returncode != 0 and "--view 10: must be two numbers ELEV,AZIM" in bad.stderr

@@ -273,3 +273,14 @@ def test_cam_follower(outputs):
     assert abs(v["lift"] - 0.04) <= 1e-5
     assert v["max deviation from e sin(omega t)"] <= 1e-5
     assert v["contact events"] == 0
+
+
+def test_scene_heavy_top_conserves_energy_and_spin():
+    """examples/heavy_top.toml: a spatial scene; no torque acts about the
+    top's axis, so its spin stays at 10 rad/s, and its energy stays put."""
+    r = mb.load_scene(os.path.join(EXAMPLES, "heavy_top.toml")).run()
+    top = r.body("top")
+    spin = np.einsum("ki,ki->k", top.angular_velocity, top.rotation[:, :, 2])
+    assert np.abs(spin - 10.0).max() < 1e-7
+    assert np.ptp(r.energy) < 1e-7 * np.abs(r.energy).max()
+    assert r.reaction("tip").shape == (len(r), 6)

@@ -27,6 +27,8 @@ WORDS = {
     schema.BOOL: "true or false", schema.VEC2: "[x, y]", schema.BODY: "body name",
     schema.JOINT: "joint name", schema.FUNCTION: "time function", schema.FUNCTION_PAIR: "[fx, fy]",
     schema.NUMBERS: "array of numbers", schema.STRINGS: "array of strings",
+    schema.VEC3: "[x, y, z]", schema.VECTOR: "[x, y] or [x, y, z]", schema.ORIENTATION: "orientation",
+    schema.INERTIA: "inertia", schema.FUNCTION_TRIPLE: "[fx, fy, fz]",
 }
 
 
@@ -95,6 +97,33 @@ def test_every_element_kind_has_its_key_table(method):
         check_default(f"{method} {key}", default, p)
     heading = next(line for line in DOC.split("\n") if line.startswith("#") and f"`{method}`" in line)
     assert f"[[{element.table}]]" in heading or f'type = "{element.type}"' in heading
+
+
+@pytest.mark.parametrize("method", list(schema.SPATIAL_ELEMENTS))
+def test_every_spatial_element_kind_has_its_key_table(method):
+    from lagmb.registry import SPATIAL_BY_METHOD, signature
+
+    element = schema.SPATIAL_ELEMENTS[method]
+    rows = key_table(f"spatial `{method}`")
+    params = list(signature(SPATIAL_BY_METHOD[method]).parameters.values())[1:]
+    assert list(rows) == [element.renamed.get(p.name, p.name) for p in params]
+    for p in params:
+        key = element.renamed.get(p.name, p.name)
+        value, default = rows[key]
+        assert value == WORDS[element.arguments[p.name]], f"{method} {key}"
+        check_default(f"spatial {method} {key}", default, p)
+    heading = next(line for line in DOC.split("\n") if line.startswith("#") and f"spatial `{method}`" in line)
+    assert f"[[{element.table}]]" in heading and (element.type is None or f'type = "{element.type}"' in heading)
+
+
+def test_the_spatial_example_loads_and_runs(tmp_path):
+    text = DOC.split("## Spatial scenes")[1].split("```toml\n")[1].split("```")[0]
+    path = tmp_path / "top.toml"
+    path.write_text(text)
+    scene = mb.load_scene(path)
+    assert scene.model.dimension == 3
+    r = scene.run(t_end=0.1)
+    assert r.body("top").position.shape[1] == 3
 
 
 def test_simulation_keys_and_defaults():

@@ -307,3 +307,162 @@ def test_free_redundant_parallelogram_turns_through_its_flat_positions():
     p = r.body("crank").orientation
     assert np.unwrap(2 * np.arctan2(p[:, 3], p[:, 0]))[-1] > 2 * np.pi
     assert np.ptp(r.energy) < 1e-4 * np.abs(r.energy).max()
+
+
+# --- every method, reactions ------------------------------------------------
+
+def double_pendulum_with_spring():
+    """Two bodies in general orientations: a spherical joint to the ground, a
+    universal joint between them, a spring-damper to the ground."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    a = m.add_body("a", 1.0, (0.02, 0.03, 0.01), (0.3, 0.0, -0.2), orientation=about((1, 2, 3), 0.4),
+                   velocity=(0.0, 1.0, 0.0), angular_velocity=(0.5, 1.0, -2.0))
+    b = m.add_body("b", 0.7, (0.01, 0.02, 0.02), (0.8, 0.1, -0.5), orientation=about((0, 1, 0), 0.7))
+    m.add_spherical("ball", m.ground, a, (0.0, 0.0, 0.0))
+    m.add_universal("cross", a, b, (0.6, 0.05, -0.35), axis_i=(0.0, 0.0, 1.0), axis_j=(1.0, 0.0, 0.0))
+    m.add_spring_damper("spring", m.ground, (0.5, 0.5, 0.0), b, (0.8, 0.1, -0.5), stiffness=50.0, damping=0.5)
+    return m
+
+
+@pytest.fixture(scope="module")
+def double_pendulum_reference():
+    return mb.simulate(double_pendulum_with_spring(), 2.0, rtol=1e-12, atol=1e-14, formulation="projection",
+                       integrator="erk", n_out=11)
+
+
+BOUNDS = {"ggl": 1e-6, "index3": 1e-3, "index1": 1e-6, "projection-bdf": 1e-5, "projection-adams": 1e-5,
+          "projection-erk": 1e-6, "ali3p": 1e-5}
+
+
+@pytest.mark.parametrize("method", [m["name"] for m in mb.methods()])
+def test_every_method_runs_a_spatial_mechanism(method, double_pendulum_reference):
+    """Each formulation and integrator of the planar library integrates the
+    spatial double pendulum (rtol 1e-8) close to a tight reference, and keeps
+    the constraints, the normalization of the Euler parameters among them."""
+    assert set(BOUNDS) == {m["name"] for m in mb.methods()}
+    spec = next(m for m in mb.methods() if m["name"] == method)
+    options = dict(formulation=spec["formulation"], integrator=spec["integrator"])
+    if spec["fixed_step"]:
+        options["step"] = 1e-4
+    if spec["drifts"]:
+        options["baumgarte"] = (10.0, 10.0)
+    r = mb.simulate(double_pendulum_with_spring(), 2.0, rtol=1e-8, atol=1e-10, n_out=11, **options)
+    assert np.abs(r.q - double_pendulum_reference.q).max() < BOUNDS[method]
+    assert np.abs(r.residual).max() < 1e-7
+    p = r.q[:, 3:7]
+    assert np.abs(np.linalg.norm(p, axis=1) - 1.0).max() < 1e-7
+
+
+def hinge_pendulum():
+    """A body on a revolute with a tilted axis through (0, 0, 0)."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    m.add_body("arm", 2.0, (0.05, 0.02, 0.04), (0.4, 0.1, -0.3), orientation=about((1, 1, 1), 0.5))
+    m.add_revolute("hinge", m.ground, "arm", (0.0, 0.0, 0.0), axis=(0.2, 1.0, 0.3))
+    return m
+
+
+def test_hinge_reaction_moves_the_body_and_has_no_moment_about_its_axis():
+    """The reaction on the arm (k, 6) is its force m (a - g) and a moment about
+    its centre; about the hinge point that moment has no part along the axis,
+    the third of the joint's axes (frame="joint")."""
+    r = mb.simulate(hinge_pendulum(), 1.0, rtol=1e-10, atol=1e-12, n_out=21)
+    arm = r.body("arm")
+    reaction = r.reaction("hinge")
+    assert reaction.shape == (21, 6)
+    assert np.abs(reaction[:, :3] - 2.0 * (arm.acceleration - (0.0, 0.0, -G))).max() < 1e-8
+    couple = reaction[:, 3:] - np.cross(-arm.position, reaction[:, :3])  # moment about the hinge point
+    axis = np.array([0.2, 1.0, 0.3]) / np.linalg.norm([0.2, 1.0, 0.3])
+    assert np.abs(couple @ axis).max() < 1e-8 * np.abs(couple).max()
+    in_joint = r.reaction("hinge", frame="joint")
+    assert np.abs(np.linalg.norm(in_joint[:, :3], axis=1) - np.linalg.norm(reaction[:, :3], axis=1)).max() < 1e-10
+    assert np.abs(in_joint[:, 2] - reaction[:, :3] @ axis).max() < 1e-10  # the ground's axes do not turn
+
+
+def test_spatial_equilibrium_of_a_spring_hung_body():
+    """A bar on a spherical joint held by a spring from a fixed point:
+    equilibrium finds the position where, at rest, it stays at rest."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    m.add_body("bar", 1.0, (0.01, 0.08, 0.08), (0.5, 0.0, 0.0))
+    m.add_spherical("pivot", m.ground, "bar", (0.0, 0.0, 0.0))
+    m.add_spring_damper("spring", m.ground, (1.0, 0.0, 1.0), "bar", (1.0, 0.0, 0.0), stiffness=100.0,
+                        free_length=0.5)
+    eq = mb.equilibrium(m)
+    qdd = mb.solve_accelerations(m, eq.q, np.zeros_like(eq.q))[0]
+    assert np.abs(qdd).max() < 1e-9  # at rest it stays at rest
+    assert abs(eq.q[1]) < 1e-12  # in the plane of the pivot, the anchor and gravity
+    assert eq.q[2] != 0.0  # not where it started: the spring and gravity moved it
+
+
+# --- bad input ----------------------------------------------------------------
+
+@pytest.mark.parametrize("call, message", [
+    (lambda m: m.add_body("b", 1.0, (0.1, 0.1, 0.1), orientation=(1.0, 0.1, 0.0, 0.0)), "unit quaternion"),
+    (lambda m: m.add_body("b", 1.0, (0.1, 0.1, 0.1), orientation=np.diag([1.0, 1.0, -1.0])), "rotation matrix"),
+    (lambda m: m.add_body("b", 1.0, (0.1, 0.1, 0.1), orientation=(1.0, 0.0, 0.0)), "unit quaternion"),
+    (lambda m: m.add_body("b", 1.0, (0.1, 0.1, 0.5)), "triangle inequality"),
+    (lambda m: m.add_body("b", 1.0, (-0.1, 0.1, 0.1)), "positive semi-definite"),
+    (lambda m: m.add_body("b", 1.0, ((0.1, 0.2, 0.0), (0.0, 0.1, 0.0), (0.0, 0.0, 0.1))), "symmetric"),
+    (lambda m: m.add_body("b", -1.0, (0.1, 0.1, 0.1)), "mass must be positive"),
+    (lambda m: m.add_body("b", 1.0, (0.1, 0.1, 0.1), position=(0.0, 0.0)), r"three numbers \(x, y, z\)"),
+    (lambda m: m.add_body("b", 1.0, (0.1, 0.1, 0.1), velocity=(0.0, np.nan, 0.0)), "not finite"),
+    (lambda m: m.add_revolute("r", m.ground, "a", (0.0, 0.0, 0.0), axis=(0.0, 0.0, 0.0)), "non-zero vector"),
+    (lambda m: m.add_universal("u", m.ground, "a", (0.0, 0.0, 0.0), axis_i=(1.0, 0.0, 0.0),
+                               axis_j=(1.0, 1.0, 0.0)), "perpendicular"),
+    (lambda m: m.add_distance("d", m.ground, (1.0, 0.0, 0.0), "a", (1.0, 0.0, 0.0)), "length must be positive"),
+    (lambda m: m.drive_joint("motor", "ball", 0.0), "not a revolute, cylindrical or translational joint"),
+    (lambda m: m.add_rotational_spring_damper("t", "nothing", stiffness=1.0), "not a joint of this model"),
+    (lambda m: m.add_force("f", "a", (1.0, 2.0)), r"\(x, y, z\) components"),
+    (lambda m: m.add_bushing("bu", m.ground, "a", (0.0, 0.0, 0.0), stiffness=(-1.0, 0.0, 0.0)), "must be >= 0"),
+    (lambda m: m.add_revolute("r", "a", "a", (0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0)), "to itself"),
+])
+def test_bad_spatial_input_is_a_model_error_naming_it(call, message):
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    m.add_body("a", 1.0, (0.1, 0.1, 0.1), (0.0, 0.0, -1.0))
+    m.add_spherical("ball", m.ground, "a", (0.0, 0.0, 0.0))
+    with pytest.raises(mb.ModelError, match=message):
+        call(m)
+    assert [kw["name"] for _, kw in m.elements()] == ["a", "ball"]  # nothing half added
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(dimension=4), "dimension must be 2"), (dict(dimension=True), "dimension must be 2"),
+    (dict(dimension=3, gravity=(0.0, -9.81)), r"three numbers \(x, y, z\)"),
+    (dict(gravity=(0.0, -9.81, 0.0)), "pair of numbers"),
+])
+def test_bad_model_dimension_or_gravity(kwargs, message):
+    with pytest.raises(mb.ModelError, match=message):
+        mb.Model(**kwargs)
+
+
+# --- a long chain -----------------------------------------------------------
+
+def spatial_chain(n, link=0.1):
+    """n links along x, a spherical joint at the ground and universal joints
+    between links, each link's own z axis along it."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    previous = m.ground
+    for k in range(n):
+        body = m.add_body(f"l{k}", 0.1, (1e-4, 1e-4, 1e-5), ((k + 0.5) * link, 0.0, 0.0),
+                          orientation=about((0, 1, 0), np.pi / 2))
+        if k == 0:
+            m.add_spherical("j0", previous, body, (0.0, 0.0, 0.0))
+        else:
+            m.add_universal(f"j{k}", previous, body, (k * link, 0.0, 0.0), axis_i=(0.0, 1.0, 0.0),
+                            axis_j=(0.0, 0.0, 1.0))
+        previous = body
+    return m
+
+
+def test_a_thousand_body_spatial_chain_costs_the_same_per_body():
+    """What a step costs, counted: the Cholesky factor of the range-space
+    system grows by the same 35 entries per link from 100 to 1,000 links, and
+    an explicit run evaluates each element the same number of times per
+    right-hand side. (Times per step and link: bench/spatial_chain.py.)"""
+    runs = {n: mb.simulate(spatial_chain(n), 0.005, formulation="projection", integrator="erk", n_out=2)
+            for n in (100, 1000)}
+    nonzeros = {n: r.stats["factor_nonzeros"] for n, r in runs.items()}
+    assert nonzeros[1000] - nonzeros[100] == 35 * 900
+    per_element = {n: r.stats["element_evaluations"] / (r.stats["residual_evals"] * (3 * n)) for n, r in runs.items()}
+    assert per_element[1000] == pytest.approx(per_element[100], rel=0.05)
+    z = runs[1000].body("l999").position[-1, 2]
+    assert z == pytest.approx(-0.5 * G * 0.005**2, rel=1e-3)  # the free end falls freely at first

@@ -173,13 +173,14 @@ Vec4 Args::orientation(const std::string& key) const {
   const Value& v = get(key);
   const std::string what = kind_->name + ": " + key;
   if (const Vec4* p = std::get_if<Vec4>(&v)) {
-    if (std::abs(p->norm() - 1.0) > 1e-6)
+    // written by hand to a few digits it is a little off: normalized within 1e-3
+    if (!(std::abs(p->norm() - 1.0) <= 1e-3))
       throw ModelError(what + " must be a unit quaternion (w, x, y, z), got length " + to_text(p->norm()));
     return p->normalized();
   }
   const Mat3& R = as<Mat3>(*this, key);
   const double off = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
-  if (!(off <= 1e-6) || !(R.determinant() > 0.0))
+  if (!(off <= 1e-6) || !(R.determinant() > 0.0))  // (a matrix is not normalized: it must be one)
     throw ModelError(what + " must be a rotation matrix (orthonormal columns, determinant +1); R^T R - I is off by " +
                      to_text(off) + ", det R = " + to_text(R.determinant()));
   return euler::from_matrix(R);

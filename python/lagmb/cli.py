@@ -24,8 +24,8 @@ import warnings
 
 from . import __version__
 from .errors import ModelError, SimulationError
-from .registry import BY_METHOD, markdown
-from .scene.schema import ELEMENT_TABLES, ELEMENTS, METHODS
+from .registry import BY_METHOD, SPATIAL_BY_METHOD, markdown
+from .scene.schema import ELEMENT_TABLES, elements, methods
 
 OK, FAILED, USAGE, INTERNAL = 0, 1, 2, 3
 
@@ -51,6 +51,8 @@ def _parser():
     run.add_argument("--plot", metavar="PNG", help="plot the results (default: [output] plot)")
     run.add_argument("--animate", metavar="GIF",
                      help="animate the mechanism (default: [output] animate)")
+    run.add_argument("--view", metavar="ELEV,AZIM",
+                     help="viewpoint of a spatial animation, degrees (default: [output] view, else 25,-60)")
     run.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
     run.add_argument("--rtol", type=float, metavar="R", help="relative tolerance, instead of the scene's")
     run.add_argument("--n-out", type=int, metavar="N", help="number of output times, instead of the scene's")
@@ -263,6 +265,14 @@ def _run(args):
     if args.animate or scene.output.get("animate"):
         _need_matplotlib("animating")
     animate = _output(scene, args.animate, "--animate", "animate", animation_format_problem)
+    view = tuple(scene.output.get("view", (25.0, -60.0)))
+    if args.view is not None:
+        try:
+            view = tuple(float(x) for x in args.view.split(","))
+        except ValueError:
+            view = ()
+        if len(view) != 2 or not all(math.isfinite(x) for x in view):
+            raise _Exit(USAGE, f"--view {args.view}: must be two numbers ELEV,AZIM (degrees)")
 
     overrides = {}
     if args.t_end is not None:
@@ -321,7 +331,7 @@ def _run(args):
             _plotting().plot_result(result, plot)
             say(f"  plot written to {plot}")
         if animate:
-            _plotting().animate(result, animate)
+            _plotting().animate(result, animate, view=view)
             say(f"  animation written to {animate}")
     except OSError as e:
         raise _Exit(USAGE, f"cannot write {e.filename or ''}: {e.strerror or e}") from None
@@ -464,10 +474,17 @@ def _info(args):
                                 if els else "")
 
     gravity = getattr(model, "gravity", None)
+    dimension = getattr(model, "dimension", 2)
+    kinds_here, methods_here = elements(dimension), methods(dimension)
+    by_method = BY_METHOD if dimension == 2 else SPATIAL_BY_METHOD
     say(f"scene: {scene.path}")
+    if dimension != 2:
+        say(f"dimension: {dimension}")
     say(f"gravity: {'none' if gravity is None else tuple(float(g) for g in gravity)}")
     for table in ELEMENT_TABLES:  # from the registry of element kinds
-        typed = any(e.table == table and e.type for e in ELEMENTS.values())
+        if not methods_here[table]:
+            continue  # no such elements in this dimension
+        typed = any(e.table == table and e.type for e in kinds_here.values())
         say(f"{table}: {kinds(table) if typed else listing(table)}")
     try:
         core = model.compiled()
@@ -487,7 +504,7 @@ def _info(args):
         say(f"redundant equations: {len(dependent)}")
         owners = []
         for e in scene.elements:
-            if BY_METHOD[METHODS[e.table][e.type]].role in ("joint", "driver"):  # they have rows
+            if by_method[methods_here[e.table][e.type]].role in ("joint", "driver"):  # they have rows
                 row0, rows = core.constraint_rows(e.name)
                 owners.append((row0, rows, e))
         for row in dependent:

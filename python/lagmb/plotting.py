@@ -22,7 +22,7 @@ import os
 import numpy as np
 
 from .handles import Handle, name_of
-from .registry import BY_METHOD, ROLE_WORDS, ROLES
+from .registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD
 
 _HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
 
@@ -68,19 +68,21 @@ class _Scene:
     def __init__(self, result):
         self.result = result
         model, core = result.model, result._core  # core: the compiled model the run used
+        self.dimension = getattr(model, "dimension", 2)
+        kinds = BY_METHOD if self.dimension == 2 else SPATIAL_BY_METHOD
         # what the run simulated: the model may have grown since
         self.elements = [(method, kw) for method, kw in model.elements() if core.has(kw["name"])]
         bodies = [b for b in model.bodies if core.has(b.name)]
         self.bodies = [b.name for b in bodies]
         self.kind_of = {kw["name"]: method for method, kw in self.elements}
         self.particles = {b.name for b in bodies if b.kind == "particle"}
-        self.by_role = {role: [kw["name"] for method, kw in self.elements if BY_METHOD[method].role == role]
+        self.by_role = {role: [kw["name"] for method, kw in self.elements if kinds[method].role == role]
                         for role in ROLES}
         self.joints, self.drivers = self.by_role["joint"], self.by_role["driver"]
         names = ["ground"] + self.bodies  # by core body index + 1
         self._attachments = {
-            kw["name"]: [(names[b + 1], np.array([x, y])) for b, x, y in core.attachments(kw["name"])]
-            for method, kw in self.elements if BY_METHOD[method].role != "body"}
+            kw["name"]: [(names[b + 1], np.array(point, dtype=float)) for b, *point in core.attachments(kw["name"])]
+            for method, kw in self.elements if kinds[method].role != "body"}
         self.outlines = {b.name: [np.asarray(p, dtype=float) for p in core.outline(b.index)] for b in bodies}
 
     def attachments(self, name):
@@ -88,9 +90,10 @@ class _Scene:
         return self._attachments.get(name, [])
 
     def path(self, body, local, index=slice(None)):
-        """(k, 2) global path of a body's local point (fixed for the ground)."""
+        """(k, 2) global path of a body's local point (fixed for the ground);
+        (k, 3) in space."""
         if body == "ground":
-            return np.broadcast_to(np.asarray(local, dtype=float), (len(self.result.t), 2))[index]
+            return np.broadcast_to(np.asarray(local, dtype=float), (len(self.result.t), self.dimension))[index]
         return self.result.point(body, local)[index]
 
     def summary(self):
@@ -104,7 +107,7 @@ class _Scene:
         if kind == "drive_body":
             return "N m" if kw.get("coordinate") == "angle" else "N"
         if kind == "drive_joint":
-            return "N" if self.kind_of.get(kw.get("joint")) == "add_translational" else "N m"
+            return "N" if self.kind_of.get(kw.get("joint")) in ("add_translational", "add_cylindrical") else "N m"
         return "N or N m"
 
 
@@ -136,8 +139,9 @@ def _colour(i):
 def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     """Time histories of a run, one subplot under the other on a shared time axis.
 
-    ``what`` picks among "coordinates" (centre-of-mass x, y in m, and the
-    angles in rad, on two subplots), "reactions" (magnitude of each joint's
+    ``what`` picks among "coordinates" (centre-of-mass x, y (z) in m, and the
+    angles in rad, on two subplots; in space the angle each body has turned
+    from its initial orientation), "reactions" (magnitude of each joint's
     reaction force, N), "efforts" (the drivers' forces or torques),
     "energy" (change E - E(0) in J, with E(0) given) and "residual"
     (max |Phi| on a log scale). Subplots with nothing to show are left out.
@@ -165,7 +169,8 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
         if any(b not in scene.particles for b in scene.bodies):
             panels.append(lambda ax: _angles(ax, result, scene))
     if "reactions" in what:
-        reactions = _series(scene.joints, lambda n: np.hypot(*result.reaction(n)[:, :2].T))
+        reactions = _series(scene.joints, lambda n: np.hypot(*result.reaction(n)[:, :2].T) if scene.dimension == 2
+                            else np.linalg.norm(result.reaction(n)[:, :3], axis=1))
         if reactions:
             panels.append(lambda ax: _lines(ax, t, reactions, len(scene.joints), "joints",
                                             "reaction |F| (N)"))
@@ -249,14 +254,15 @@ def _positions(ax, result, scene):
 
     shown = scene.bodies[:_MAX_BODIES]
     handles = []
+    styles = ("-", "--", ":")[:scene.dimension]
     for i, b in enumerate(shown):
         pos = result.body(b).position
-        ax.plot(result.t, pos[:, 0], color=_colour(i), lw=1.4)
-        ax.plot(result.t, pos[:, 1], color=_colour(i), lw=1.4, ls="--")
+        for axis, style in enumerate(styles):
+            ax.plot(result.t, pos[:, axis], color=_colour(i), lw=1.4, ls=style)
         handles.append(Line2D([], [], color=_colour(i), lw=2, label=b))
-    handles += [Line2D([], [], color="0.3", lw=1.4, label="x"),
-                Line2D([], [], color="0.3", lw=1.4, ls="--", label="y")]
-    ax.set_ylabel("centre of mass\nx, y (m)")
+    handles += [Line2D([], [], color="0.3", lw=1.4, ls=style, label="xyz"[axis])
+                for axis, style in enumerate(styles)]
+    ax.set_ylabel("centre of mass\n" + ", ".join("xyz"[:scene.dimension]) + " (m)")
     _legend(ax, _shown(shown, len(scene.bodies), "bodies"), handles)
 
 
@@ -264,9 +270,20 @@ def _angles(ax, result, scene):
     rigid = [(i, b) for i, b in enumerate(scene.bodies) if b not in scene.particles]
     shown = rigid[:_MAX_BODIES]
     for i, b in shown:
-        ax.plot(result.t, result.body(b).angle, color=_colour(i), lw=1.4, label=b)
-    ax.set_ylabel("angle φ (rad)")
+        ax.plot(result.t, _angle(result, b), color=_colour(i), lw=1.4, label=b)
+    ax.set_ylabel("angle φ (rad)" if scene.dimension == 2 else "turned from the start\n(rad)")
     _legend(ax, _shown(shown, len(rigid), "bodies"))
+
+
+def _angle(result, body):
+    """A planar body's angle; a spatial body's angle of turn from its
+    initial orientation (that of the relative rotation p0* p, in [0, pi])."""
+    b = result.body(body)
+    if not hasattr(b, "orientation"):
+        return b.angle
+    p = b.orientation
+    cos_half = np.abs(p @ p[0])  # the w of p0* p
+    return 2.0 * np.arccos(np.clip(cos_half, 0.0, 1.0))
 
 
 def _lines(ax, t, series, total, what, ylabel):
@@ -373,8 +390,12 @@ def _time_format(times):
     return f"t = {{:.{digits}f}} s"
 
 
-def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480), dpi=100):
+def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480), dpi=100, view=(25.0, -60.0)):
     """Write a GIF of the mechanism moving.
+
+    A spatial model (dimension 3) is drawn in perspective by matplotlib's
+    mplot3d, seen from ``view`` = (elevation, azimuth) in degrees (see
+    _animate_spatial); what follows is the planar drawing.
 
     Each body is drawn through the points where its joints and forces attach
     (``model.outline(body)``): a line for two points, a shaded convex polygon
@@ -410,7 +431,9 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
             and np.ndim(trace[1]) == 1:
         trace = [trace]  # one (body, point) pair
     trace = [(name_of(result.model, b, ("body",), "body", "animate: trace"),
-              np.asarray(p, dtype=float).reshape(2)) for b, p in (trace or [])]
+              np.asarray(p, dtype=float).reshape(scene.dimension)) for b, p in (trace or [])]
+    if scene.dimension == 3:
+        return _animate_spatial(scene, path, frames, trace, fps, size, dpi, view)
 
     # global paths of everything drawn, over all outputs (for the limits);
     # traced points belong to their bodies' shapes too (a pendulum's free tip)
@@ -532,6 +555,91 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
             art.set_data(xy[:, 0], xy[:, 1])
         for art, path_ in zip(trace_done, traces):
             art.set_data(path_[:k + 1, 0], path_[:k + 1, 1])
+        stamp.set_text(stamp_format.format(t[k]))
+
+    path = os.fspath(path)
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    writer = PillowWriter(fps=fps)
+    with writer.saving(fig, path, dpi):
+        for k in frames:
+            draw(k)
+            writer.grab_frame()
+    return path
+
+
+def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
+    """The spatial drawing: each body as lines from its centre of mass to the
+    points where elements attach to it (a dot alone if none), white circles
+    at the joints, triangles at joints to the ground, grey lines for
+    spring-dampers and distance links, traced points' paths; equal scales on
+    the three axes, in m, seen from view = (elevation, azimuth) in degrees."""
+    from matplotlib.animation import PillowWriter
+
+    result = scene.result
+    t = np.asarray(result.t)
+    elevation, azimuth = (float(x) for x in view)
+    outlines = {b: list(scene.outlines[b]) + [p for tb, p in trace if tb == b] for b in scene.bodies}
+    centres = {b: result.body(b).position for b in scene.bodies}
+    spokes = {b: [scene.path(b, p) for p in outlines[b]] for b in scene.bodies}
+    traces = [scene.path(b, p) for b, p in trace]
+    joints, supports, links = [], [], []
+    for kind, kw in scene.elements:
+        att = scene.attachments(kw["name"])
+        if kind in ("add_spring_damper", "add_distance") and len(att) == 2:
+            links.append((scene.path(*att[0]), scene.path(*att[1])))
+        elif scene.kind_of.get(kw["name"]) and kw["name"] in scene.joints and att:
+            moving = [(b, p) for b, p in att if b != "ground"]
+            if moving:
+                joints.append(scene.path(*moving[-1]))
+            supports += [p for b, p in att if b == "ground"]
+    clouds = list(centres.values()) + [s for paths in spokes.values() for s in paths] + traces + joints \
+        + [p for link in links for p in link] + [np.asarray(p)[None, :] for p in supports]
+    pts = np.concatenate([np.asarray(c).reshape(-1, 3) for c in clouds]) if clouds else np.zeros((1, 3))
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(3)
+    half = 0.55 * max(float(np.max(np.ptp(pts, axis=0))) if len(pts) else 0.0, 1e-3)
+
+    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    ax = fig.add_subplot(projection="3d")
+    ax.view_init(elev=elevation, azim=azimuth)
+    for axis, set_lim, label in zip(range(3), (ax.set_xlim, ax.set_ylim, ax.set_zlim), "xyz"):
+        set_lim(centre[axis] - half, centre[axis] + half)
+        getattr(ax, f"set_{label}label")(f"{label} (m)")
+    if hasattr(ax, "set_box_aspect"):
+        ax.set_box_aspect((1, 1, 1))
+    ax.set_title(f"lagmb: {scene.summary()}", fontsize=10)
+    if supports:
+        s = np.array(supports, dtype=float)
+        ax.plot(s[:, 0], s[:, 1], s[:, 2], "^", ms=9, color="0.75", mec="0.2")
+    for n, ((b, _), path_) in enumerate(zip(trace, traces)):
+        c = _colour(scene.bodies.index(b)) if b in scene.bodies else "k"
+        ax.plot(*path_.T, color=c, lw=1, alpha=0.2)
+    trace_done = [ax.plot([], [], [], color=_colour(scene.bodies.index(b)) if b in scene.bodies else "k",
+                          lw=1.3)[0] for b, _ in trace]
+    link_art = [ax.plot([], [], [], color="0.35", lw=1.2)[0] for _ in links]
+    body_art = [ax.plot([], [], [], color=_colour(i), lw=4, solid_capstyle="round")[0]
+                for i, _ in enumerate(scene.bodies)]
+    centre_art = ax.plot([], [], [], "o", ms=3.5, color="0.1")[0]
+    joint_art = ax.plot([], [], [], "o", ms=5.5, mfc="white", mec="0.15", mew=1.2)[0]
+    stamp = ax.text2D(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
+                      family="monospace")
+    stamp_format = _time_format(t[frames])
+
+    def draw(k):
+        for b, art in zip(scene.bodies, body_art):
+            c = centres[b][k]
+            xyz = np.array([c] + [p for s in spokes[b] for p in (s[k], c)]) if spokes[b] else c[None, :]
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+            art.set_marker("" if spokes[b] else "o")
+        c = np.array([centres[b][k] for b in scene.bodies]).reshape(-1, 3)
+        centre_art.set_data_3d(c[:, 0], c[:, 1], c[:, 2])
+        j = np.array([p[k] for p in joints]).reshape(-1, 3)
+        joint_art.set_data_3d(j[:, 0], j[:, 1], j[:, 2])
+        for art, (p, q) in zip(link_art, links):
+            xyz = np.array([p[k], q[k]])
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+        for art, path_ in zip(trace_done, traces):
+            art.set_data_3d(path_[:k + 1, 0], path_[:k + 1, 1], path_[:k + 1, 2])
         stamp.set_text(stamp_format.format(t[k]))
 
     path = os.fspath(path)

@@ -118,11 +118,13 @@ def docstring(kind):
 
 
 def markdown():
-    """The parameter tables of docs/modelling.md ("Element reference")."""
+    """The parameter tables of docs/modelling.md ("Element reference"):
+    the planar kinds, then the spatial ones."""
     out = []
-    for k in KINDS:
+    for k in ALL_KINDS:
         where = f"[[{k.table}]]" + (f" type = \"{k.type}\"" if k.type else "")
-        out += [f"### `{k.method}` ({k.name}: {k.role}; scene `{where}`)", "", k.doc, "",
+        space = "" if k.dimension == 2 else "spatial "
+        out += [f"### {space}`{k.method}` ({k.name}: {k.role}; {space}scene `{where}`)", "", k.doc, "",
                 "| parameter | takes | unit | default | meaning |", "|---|---|---|---|---|"]
         for p in k.params:
             takes = _TYPE_WORDS[p.type] + (" " + ", ".join(f"`{c}`" for c in p.choices) if p.choices else "")

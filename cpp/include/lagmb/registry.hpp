@@ -109,7 +109,7 @@ class Args {
   std::optional<Vec2> optional_vec2(const std::string& key) const;
   Vec3 vec3(const std::string& key) const;
   /// Unit Euler parameters (w, x, y, z) from a quaternion (of length 1 to
-  /// 1e-6, normalized) or a rotation matrix (orthonormal, det +1, to 1e-6).
+  /// 1e-3, normalized) or a rotation matrix (orthonormal, det +1, to 1e-6).
   Vec4 orientation(const std::string& key) const;
   /// A symmetric positive semi-definite inertia tensor that satisfies the
   /// triangle inequalities, from principal moments or a 3 x 3 tensor.

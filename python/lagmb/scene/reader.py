@@ -21,10 +21,10 @@ except ImportError:  # pragma: no cover - older Pythons
 from ..errors import ModelError
 from ..model import Model
 from .lines import Lines
-from .schema import (BODY, BOOL, CHOICES, ELEMENT_TABLES, ELEMENTS, FUNCTION, FUNCTION_PAIR,
-                     INTEGER, JOINT, MAX_NESTING, MAX_OUTPUTS, MAX_SCENE_BYTES, MAX_STEPS,
-                     METHODS, NUMBER, NUMBERS, OUTPUT_FILE_TYPES, SETTINGS, STRING, STRINGS,
-                     TABLES, VEC2)
+from .schema import (BODY, BOOL, CHOICES, ELEMENT_TABLES, FUNCTION, FUNCTION_PAIR, FUNCTION_TRIPLE,
+                     INERTIA, INTEGER, JOINT, MAX_NESTING, MAX_OUTPUTS, MAX_SCENE_BYTES, MAX_STEPS,
+                     NUMBER, NUMBERS, ORIENTATION, OUTPUT_FILE_TYPES, SETTINGS, STRING, STRINGS,
+                     TABLES, VEC2, VEC3, VECTOR, elements, methods)
 from .values import show, toml_type
 
 
@@ -105,6 +105,34 @@ def _vec2(where, key, value):
     return (_float(where, key, value[0]), _float(where, key, value[1]))
 
 
+def _numbers(where, key, value, count, what):
+    if (not isinstance(value, list) or len(value) != count
+            or any(isinstance(x, bool) or not isinstance(x, (int, float)) for x in value)):
+        raise where.error(f"must be {what}, got {toml_type(value)} ({show(value)})", key)
+    return tuple(_float(where, key, x) for x in value)
+
+
+def _vec3(where, key, value):
+    return _numbers(where, key, value, 3, "three numbers [x, y, z]")
+
+
+def _vector(where, key, value):
+    """[x, y] or [x, y, z]: the model checks it against its dimension."""
+    count = len(value) if isinstance(value, list) and len(value) in (2, 3) else 2
+    return _numbers(where, key, value, count, "[x, y] (planar) or [x, y, z] (spatial)")
+
+
+def _vector_or_matrix(length, what):
+    """[a, b, ...] of `length` numbers, or a 3 x 3 matrix [[...], [...], [...]]."""
+    def check(where, key, value):
+        if isinstance(value, list) and value and all(isinstance(row, list) for row in value):
+            if len(value) != 3:
+                raise where.error(f"must be {what}, got {show(value)}", key)
+            return tuple(_numbers(where, key, row, 3, f"{what} (each row three numbers)") for row in value)
+        return _numbers(where, key, value, length, what)
+    return check
+
+
 def _list_of(where, key, value, check, what):
     if not isinstance(value, list):
         raise where.error(f"must be an array of {what}, got {toml_type(value)} "
@@ -115,6 +143,13 @@ def _list_of(where, key, value, check, what):
 def _function_pair(where, key, value):
     if not isinstance(value, list) or len(value) != 2:
         raise where.error("must be a pair [fx, fy] of numbers or time functions, got "
+                          f"{toml_type(value)} ({show(value)})", key)
+    return tuple(_time_function(where, key, x) for x in value)
+
+
+def _function_triple(where, key, value):
+    if not isinstance(value, list) or len(value) != 3:
+        raise where.error("must be [fx, fy, fz], three numbers or time functions, got "
                           f"{toml_type(value)} ({show(value)})", key)
     return tuple(_time_function(where, key, x) for x in value)
 
@@ -156,8 +191,13 @@ _CHECKS = {
     STRING: _string,
     BOOL: _bool,
     VEC2: _vec2,
+    VEC3: _vec3,
+    VECTOR: _vector,
+    ORIENTATION: _vector_or_matrix(4, "a unit quaternion [w, x, y, z] or a rotation matrix [[...], [...], [...]]"),
+    INERTIA: _vector_or_matrix(3, "principal moments [Ixx, Iyy, Izz] or an inertia tensor [[...], [...], [...]]"),
     FUNCTION: _time_function,
     FUNCTION_PAIR: _function_pair,
+    FUNCTION_TRIPLE: _function_triple,
     NUMBERS: lambda where, key, value: _list_of(where, key, value, _number, "numbers"),
     STRINGS: lambda where, key, value: _list_of(where, key, value, _string, "strings"),
 }
@@ -170,12 +210,15 @@ def _message(e):
     return text
 
 
-def _parameters(method_name):
-    """(all keyword names, required names) of a Model method, or None."""
-    method = getattr(Model, method_name, None)
-    if method is None:
+def _parameters(method_name, dimension=2):
+    """(all keyword names, required names) of a Model method in a model of
+    this dimension, or None."""
+    from ..registry import BY_METHOD, SPATIAL_BY_METHOD, signature
+
+    kind = (BY_METHOD if dimension == 2 else SPATIAL_BY_METHOD).get(method_name)
+    if kind is None or getattr(Model, method_name, None) is None:
         return None
-    params = list(inspect.signature(method).parameters.values())[1:]  # without self
+    params = list(signature(kind).parameters.values())[1:]  # without self
     names = [p.name for p in params if p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
     required = [p.name for p in params
                 if p.default is p.empty and p.kind not in (p.VAR_POSITIONAL, p.VAR_KEYWORD)]
@@ -221,6 +264,7 @@ def _words(text):
 class Reader:
     def __init__(self, path, text):
         self.path = path
+        self.dimension = 2  # until [model] says otherwise (read_model)
         self.lines = Lines(text)  # first: it finds the nesting that tomllib recurses into
         if self.lines.too_deep is not None:
             line, key = self.lines.too_deep
@@ -298,9 +342,11 @@ class Reader:
         w = self.where(("model",), "[model]")
         kwargs = self.read_keys(w, "model", table)
         try:
-            return Model(**kwargs)
-        except ModelError as e:  # gravity, its one key, is what it can refuse
-            raise w.error(str(e), "gravity") from None
+            model = Model(**kwargs)
+        except ModelError as e:  # the dimension or gravity
+            raise w.error(str(e), "dimension" if "dimension" in str(e) else "gravity") from None
+        self.dimension = model.dimension
+        return model
 
     @staticmethod
     def read_keys(w, name, table):
@@ -324,7 +370,10 @@ class Reader:
         if "enabled" in entry:  # any element table: false reads and checks it, adds nothing
             enabled = _bool(w, "enabled", entry["enabled"])
             entry = {k: v for k, v in entry.items() if k != "enabled"}
-        types = METHODS[table]
+        types = methods(self.dimension)[table]
+        if not types:
+            raise w.error(f"a {'planar' if self.dimension == 3 else 'spatial'} table: a scene of dimension "
+                          f"{self.dimension} has no [[{table}]]")
         if None in types:
             typ, method_name = None, types[None]
             if "type" in entry:
@@ -337,12 +386,12 @@ class Reader:
                 raise w.error(f"unknown {ELEMENT_TABLES[table]} type {typ!r}; known: "
                               f"{', '.join(types)}", "type")
             method_name = types[typ]
-        params = _parameters(method_name)
+        params = _parameters(method_name, self.dimension)
         if params is None:
             raise w.error(f"this lagmb has no Model.{method_name}", "type" if typ else None)
         names, required = params
         what = f"a {typ.replace('_', ' ')} {ELEMENT_TABLES[table]}" if typ else f"[[{table}]]"
-        renamed = ELEMENTS[method_name].renamed
+        renamed = elements(self.dimension)[method_name].renamed
         scene_key = {arg: renamed.get(arg, arg) for arg in names}
         arg_of = {k: a for a, k in scene_key.items()}
         for key in entry:
@@ -408,7 +457,7 @@ class Reader:
         return f"{what} {name!r} is defined later ({found[0]}, line {found[1]}); {hint}"
 
     def convert(self, w, method, arg, key, value):
-        kind = ELEMENTS[method].arguments.get(arg)
+        kind = elements(self.dimension)[method].arguments.get(arg)
         if kind == BODY:
             name = _string(w, key, value)
             if name not in self.bodies:
@@ -509,6 +558,9 @@ class Reader:
             reason = problem(out[key]) if key in out else None
             if reason:
                 raise w.error(f"{out[key]!r} {reason}", key)
+        if "view" in out and (len(out["view"]) != 2 or not all(math.isfinite(x) for x in out["view"])):
+            raise w.error(f"must be [elevation, azimuth] in degrees (the 3D animation's viewpoint), got "
+                          f"{show(out['view'])}", "view")
         frames = CHOICES["output", "reaction_frame"]
         if out.get("reaction_frame", frames[0]) not in frames:
             names = " or ".join(f'"{x}"' for x in frames)

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..handles import name_of
 from .reader import Reader, SceneError
-from .schema import ELEMENTS
+from .schema import elements
 from .values import NotWritable, show, toml_key, toml_string, toml_value
 
 
@@ -35,13 +35,16 @@ def scene_text(model, settings=None, output=None):
 
     out = [f"# lagmb {__version__} scene", ""]
     gravity = getattr(model, "gravity", None)
-    if gravity is not None:
-        out += ["[model]", f"gravity = {toml_value(tuple(gravity))}", ""]
+    dimension = getattr(model, "dimension", 2)
+    if gravity is not None or dimension != 2:
+        out += ["[model]"] + ([f"dimension = {dimension}"] if dimension != 2 else [])
+        out += ([f"gravity = {toml_value(tuple(gravity))}"] if gravity is not None else []) + [""]
+    kinds = elements(dimension)
     for method, kwargs in model.elements():
         name = kwargs.get("name")
-        if method not in ELEMENTS:
+        if method not in kinds:
             raise SceneError(f"cannot write element {name!r}: {method} has no scene table")
-        element = ELEMENTS[method]
+        element = kinds[method]
         table = element.table
         out.append(f"[[{table}]]")
         if element.type is not None:
