@@ -1,7 +1,8 @@
 """lagmb is a C++ library too: install it with CMake (no Python), build the
-example in examples/cpp against the installed package with
-find_package(lagmb), run it, and check the pin force of the seed pendulum
-at release: m g / 4 upward on the rod (closed form, see test_pendulum.py).
+examples in examples/cpp against the installed package with
+find_package(lagmb), run them, and check the pin force at release of the
+seed pendulum and of the same rod on a spherical joint in a spatial model:
+m g / 4 upward on the rod (closed form, see test_pendulum.py).
 """
 
 import os
@@ -41,3 +42,14 @@ def test_installed_cpp_library_runs_the_seed_pendulum(tmp_path):
     assert abs(fx) < 1e-9 * mg
     assert abs(fy - mg / 4) < 1e-9 * mg
     assert re.search(r"\d+ steps", out)
+
+    # the same rod in space: force (x, y, z) on it at release, m g / 4 up
+    out = _run([str(ex_build / "spatial_pendulum")])
+    first = out.splitlines()[0]
+    force = [float(x) for x in re.search(r"force on rod = \(([^)]*)\)", first).group(1).split(",")]
+    assert abs(force[0]) < 1e-9 * mg and abs(force[1]) < 1e-9 * mg
+    assert abs(force[2] - mg / 4) < 1e-9 * mg
+    last = out.splitlines()[-2]
+    p = [float(x) for x in re.search(r"p = \(([^)]*)\)", last).group(1).split(",")]
+    assert abs(sum(x * x for x in p) - 1.0) < 1e-5  # (printed to 6 digits)
+    assert p[1] == 0.0 and p[3] == 0.0  # it turns about y only

@@ -2,6 +2,8 @@
 closed-form motion (the heavy symmetric top), conservation laws, and the
 same mechanisms built in the plane."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -466,3 +468,70 @@ def test_a_thousand_body_spatial_chain_costs_the_same_per_body():
     assert per_element[1000] == pytest.approx(per_element[100], rel=0.05)
     z = runs[1000].body("l999").position[-1, 2]
     assert z == pytest.approx(-0.5 * G * 0.005**2, rel=1e-3)  # the free end falls freely at first
+
+
+def test_work_precision_of_a_spatial_mechanism():
+    """The work-precision sweep runs on a spatial model: each method's error
+    against the shared reference falls as the tolerance does."""
+    wp = mb.work_precision(double_pendulum_with_spring(), 1.0, methods=["ggl", "projection-erk"],
+                           tolerances=[1e-4, 1e-6, 1e-8])
+    for method in ("ggl", "projection-erk"):
+        errors = [row["error"] for row in wp.rows if row["method"] == method]
+        assert len(errors) == 3 and errors[2] < 1e-2 * errors[0]
+
+
+def test_random_spatial_input_is_taken_or_refused_by_name_never_crashes():
+    """Every spatial add_* and drive_* method with random values (finite,
+    huge, NaN, zero vectors, wrong shapes): each call adds its element or
+    raises ModelError; what was added compiles and starts (or is refused by
+    an AssemblyError / SimulationError naming why), never anything else."""
+    from lagmb.registry import SPATIAL_KINDS
+
+    rng = np.random.default_rng(20261124)
+    junk = [np.nan, np.inf, 1e308, -1.0, 0.0, (0.0, 0.0, 0.0), (1.0, 2.0), "x", None, ((1, 0, 0), (0, 1, 0)),
+            ((1, 0, 0), (0, 1, 0), (0, 0, 1)), (1.0, 0.0, 0.0, 0.0)]
+
+    def value(param, bodies, joints):
+        if param.type == "body":
+            return rng.choice(["ground"] + bodies) if bodies else "ground"
+        if param.type == "joint":
+            return rng.choice(joints) if joints else "none"
+        if rng.random() < 0.1:
+            return junk[rng.integers(len(junk))]
+        if param.type in ("vec3", "inertia"):
+            return tuple(rng.uniform(0.01, 1.0, 3))
+        if param.type == "orientation":
+            q = rng.standard_normal(4)
+            return tuple(q / np.linalg.norm(q))
+        if param.type == "function_triple":
+            return tuple(rng.uniform(-1, 1, 3))
+        if param.type == "choice":
+            return rng.choice(param.choices)
+        if param.type == "bool":
+            return bool(rng.integers(2))
+        return float(rng.uniform(0.01, 2.0))
+
+    outcomes = {"added": 0, "refused": 0}
+    for trial in range(30):
+        m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+        bodies, joints = [], []
+        for i in range(12):
+            kind = SPATIAL_KINDS[rng.integers(len(SPATIAL_KINDS))] if i >= 3 else SPATIAL_KINDS[0]
+            args = {p.name: value(p, bodies, joints) for p in kind.params if p.required or rng.random() < 0.5}
+            try:
+                getattr(m, kind.method)(f"e{i}", **args)
+            except mb.ModelError:
+                outcomes["refused"] += 1
+                continue
+            outcomes["added"] += 1
+            if kind.role == "body":
+                bodies.append(f"e{i}")
+            elif kind.role == "joint":
+                joints.append(f"e{i}")
+        try:
+            with warnings.catch_warnings():  # random loops repeat equations: dropped and named, fine here
+                warnings.simplefilter("ignore", mb.RedundantConstraintWarning)
+                mb.simulate(m, 0.01, n_out=2, max_steps=2000)
+        except (mb.ModelError, mb.SimulationError):
+            pass  # refused by name (AssemblyError is a SimulationError): not a crash
+    assert outcomes["added"] > 100 and outcomes["refused"] > 50

@@ -416,7 +416,7 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     """
     _matplotlib()
     try:
-        from matplotlib.animation import PillowWriter
+        from matplotlib.animation import PillowWriter  # noqa: F401 - there before anything is drawn
         from matplotlib.patches import Polygon
     except ImportError as e:
         raise ImportError(_HINT) from e
@@ -557,6 +557,13 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
             art.set_data(path_[:k + 1, 0], path_[:k + 1, 1])
         stamp.set_text(stamp_format.format(t[k]))
 
+    return _write_gif(fig, path, frames, draw, fps, dpi)
+
+
+def _write_gif(fig, path, frames, draw, fps, dpi):
+    """Draws each frame k (draw(k)) of fig into a GIF at path; returns the path."""
+    from matplotlib.animation import PillowWriter
+
     path = os.fspath(path)
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     writer = PillowWriter(fps=fps)
@@ -573,8 +580,6 @@ def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
     at the joints, triangles at joints to the ground, grey lines for
     spring-dampers and distance links, traced points' paths; equal scales on
     the three axes, in m, seen from view = (elevation, azimuth) in degrees."""
-    from matplotlib.animation import PillowWriter
-
     result = scene.result
     t = np.asarray(result.t)
     elevation, azimuth = (float(x) for x in view)
@@ -642,11 +647,4 @@ def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
             art.set_data_3d(path_[:k + 1, 0], path_[:k + 1, 1], path_[:k + 1, 2])
         stamp.set_text(stamp_format.format(t[k]))
 
-    path = os.fspath(path)
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    writer = PillowWriter(fps=fps)
-    with writer.saving(fig, path, dpi):
-        for k in frames:
-            draw(k)
-            writer.grab_frame()
-    return path
+    return _write_gif(fig, path, frames, draw, fps, dpi)

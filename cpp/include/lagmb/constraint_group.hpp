@@ -71,6 +71,18 @@ struct has_own_gamma<Kind, std::void_t<decltype(std::declval<const Kind&>().gamm
                                std::declval<const LocalVec<space_of_t<Kind>::local>&>(), 0.0))>>
     : std::true_type {};
 
+/// A kind may give the rows (H_r cd)^T itself, `Jac rates(c, cd, t)`: the
+/// velocity Jacobian's part and, times cd, minus gamma, for far less than the
+/// Hessians cost (the spatial kinds, spatial_terms.hpp); tests check it
+/// against the Hessians.
+template <class Kind, class = void>
+struct has_rates : std::false_type {};
+template <class Kind>
+struct has_rates<Kind, std::void_t<decltype(std::declval<const Kind&>().rates(
+                           std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
+                           std::declval<const LocalVec<space_of_t<Kind>::local>&>(), 0.0))>>
+    : std::true_type {};
+
 class ConstraintGroupBase {
  public:
   virtual ~ConstraintGroupBase() = default;
@@ -186,6 +198,8 @@ class ConstraintGroup final : public ConstraintGroupBase {
       Rows g;
       if constexpr (has_own_gamma<Kind>::value) {
         g = items[k].gamma(c, cd, t);
+      } else if constexpr (has_rates<Kind>::value) {
+        g = -items[k].rates(c, cd, t) * cd;
       } else {
         items[k].hessians(c, t, H.data());
         for (int r = 0; r < R; ++r) g[r] = -cd.dot(H[r] * cd);
@@ -214,9 +228,13 @@ class ConstraintGroup final : public ConstraintGroupBase {
     std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
       const Loc c = at_q(k, q), cd = at_v(k, v);
-      items[k].hessians(c, t, H.data());
       Jac V;
-      for (int r = 0; r < R; ++r) V.row(r) = (H[r] * cd).transpose();
+      if constexpr (has_rates<Kind>::value) {
+        V = items[k].rates(c, cd, t);
+      } else {
+        items[k].hessians(c, t, H.data());
+        for (int r = 0; r < R; ++r) V.row(r) = (H[r] * cd).transpose();
+      }
       if constexpr (Kind::time_dependent) V += items[k].phi_tc(c, t);
       scatter_jac(k, V, values);
     }

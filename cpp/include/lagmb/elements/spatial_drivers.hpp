@@ -37,45 +37,55 @@ struct SpatialAngleDriver : SpatialDriverBase {
   static constexpr const char* kind = "spatial_angle_driver";
   Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();
 
-  void sides(const spatial::Loc& c, bool second, spatial::ScalarTerm& u, spatial::ScalarTerm& w) const {
+  void sides(const spatial::Loc& c, const spatial::Want& want, spatial::ScalarTerm& u,
+             spatial::ScalarTerm& w) const {
     using namespace spatial;
-    const VectorTerm fj = body_vector(c, kBodyJ, f_j, second);
-    u = dot(fj, body_vector(c, kBodyI, g_i, second));
-    w = dot(fj, body_vector(c, kBodyI, f_i, second));
+    const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
+    u = dot(fj, body_vector(c, kBodyI, g_i, want), want);
+    w = dot(fj, body_vector(c, kBodyI, f_i, want), want);
   }
   Row phi(const spatial::Loc& c, double t) const {
     spatial::ScalarTerm u, w;
-    sides(c, false, u, w);
+    sides(c, {}, u, w);
     const double a = f->eval(t).f;
     return Row(u.value * std::cos(a) - w.value * std::sin(a));
   }
   Grad jacobian(const spatial::Loc& c, double t) const {
     spatial::ScalarTerm u, w;
-    sides(c, false, u, w);
+    sides(c, {}, u, w);
     const double a = f->eval(t).f;
     return u.gradient * std::cos(a) - w.gradient * std::sin(a);
   }
   void hessians(const spatial::Loc& c, double t, spatial::Mat14* H) const {
     spatial::ScalarTerm u, w;
-    sides(c, true, u, w);
+    sides(c, {true}, u, w);
     const double a = f->eval(t).f;
     H[0] = u.hessian * std::cos(a) - w.hessian * std::sin(a);
   }
+  /// (H cd)^T, for gamma and the velocity Jacobian (TermJoint::rates).
+  Grad rates(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
+    spatial::Want want;
+    want.rate = &cd;
+    spatial::ScalarTerm u, w;
+    sides(c, want, u, w);
+    const double a = f->eval(t).f;
+    return u.gradient_rate * std::cos(a) - w.gradient_rate * std::sin(a);
+  }
   Row phi_t(const spatial::Loc& c, double t) const {
     spatial::ScalarTerm u, w;
-    sides(c, false, u, w);
+    sides(c, {}, u, w);
     const TimeValue v = f->eval(t);
     return Row(-(u.value * std::sin(v.f) + w.value * std::cos(v.f)) * v.df);
   }
   Grad phi_tc(const spatial::Loc& c, double t) const {
     spatial::ScalarTerm u, w;
-    sides(c, false, u, w);
+    sides(c, {}, u, w);
     const TimeValue v = f->eval(t);
     return -(u.gradient * std::sin(v.f) + w.gradient * std::cos(v.f)) * v.df;
   }
   Row phi_tt(const spatial::Loc& c, double t) const {
     spatial::ScalarTerm u, w;
-    sides(c, false, u, w);
+    sides(c, {}, u, w);
     const TimeValue v = f->eval(t);
     const double s = std::sin(v.f), co = std::cos(v.f);
     return Row(-(u.value * co - w.value * s) * v.df * v.df - (u.value * s + w.value * co) * v.ddf);
@@ -86,9 +96,14 @@ struct SpatialAngleDriver : SpatialDriverBase {
 /// Phi_t = -f', Phi_tc = 0, Phi_tt = -f''.
 template <class Kind>
 struct SpatialCoordinateDriverBase : SpatialDriverBase {
-  Row phi(const spatial::Loc& c, double t) const { return Row(self().coordinate(c, false).value - f->eval(t).f); }
-  Grad jacobian(const spatial::Loc& c, double) const { return self().coordinate(c, false).gradient; }
-  void hessians(const spatial::Loc& c, double, spatial::Mat14* H) const { H[0] = self().coordinate(c, true).hessian; }
+  Row phi(const spatial::Loc& c, double t) const { return Row(self().coordinate(c, {}).value - f->eval(t).f); }
+  Grad jacobian(const spatial::Loc& c, double) const { return self().coordinate(c, {}).gradient; }
+  void hessians(const spatial::Loc& c, double, spatial::Mat14* H) const { H[0] = self().coordinate(c, {true}).hessian; }
+  Grad rates(const spatial::Loc& c, const spatial::Loc& cd, double) const {
+    spatial::Want want;
+    want.rate = &cd;
+    return self().coordinate(c, want).gradient_rate;
+  }
   Row phi_t(const spatial::Loc&, double t) const { return Row(-f->eval(t).df); }
   Grad phi_tc(const spatial::Loc&, double) const { return Grad::Zero(); }
   Row phi_tt(const spatial::Loc&, double t) const { return Row(-f->eval(t).ddf); }
@@ -103,10 +118,10 @@ struct SpatialCoordinateDriverBase : SpatialDriverBase {
 struct SpatialSlideDriver : SpatialCoordinateDriverBase<SpatialSlideDriver> {
   static constexpr const char* kind = "spatial_slide_driver";
   Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero(), a_i = Vec3::UnitZ();
-  spatial::ScalarTerm coordinate(const spatial::Loc& c, bool second) const {
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    return dot(body_vector(c, kBodyI, a_i, second),
-               minus(body_point(c, kBodyJ, s_j, second), body_point(c, kBodyI, s_i, second)));
+    return dot(body_vector(c, kBodyI, a_i, want),
+               minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)), want);
   }
 };
 
@@ -115,7 +130,7 @@ struct SpatialSlideDriver : SpatialCoordinateDriverBase<SpatialSlideDriver> {
 struct SpatialPositionDriver : SpatialCoordinateDriverBase<SpatialPositionDriver> {
   static constexpr const char* kind = "spatial_position_driver";
   int axis = 0;
-  spatial::ScalarTerm coordinate(const spatial::Loc& c, bool) const {
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want&) const {
     spatial::ScalarTerm g;
     g.value = c[7 + axis];
     g.gradient[7 + axis] = 1.0;

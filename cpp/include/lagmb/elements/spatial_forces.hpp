@@ -28,14 +28,14 @@ struct SpatialSpringDamper : SpatialForceBase {
   double stiffness = 0.0, damping = 0.0, free_length = 0.0;
   TimeFunctionPtr actuator;  // may be null
 
-  spatial::ScalarTerm length(const spatial::Loc& c, bool second) const {
+  spatial::ScalarTerm length(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    return spatial::length(minus(body_point(c, kBodyJ, s_j, second), body_point(c, kBodyI, s_i, second)));
+    return spatial::length(minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)));
   }
   double act(double t) const { return actuator ? actuator->eval(t).f : 0.0; }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
     spatial::Loc Q = spatial::Loc::Zero();
-    spatial::add_spring_damper(length(c, false), cd, stiffness, damping, free_length, act(t), Q);
+    spatial::add_spring_damper(length(c, {}), cd, stiffness, damping, free_length, act(t), Q);
     return Q;
   }
   void derivatives(const spatial::Loc& c, const spatial::Loc& cd, double t, spatial::Mat14& dq,
@@ -43,10 +43,10 @@ struct SpatialSpringDamper : SpatialForceBase {
     spatial::Loc Q = spatial::Loc::Zero();
     dq.setZero();
     dv.setZero();
-    spatial::add_spring_damper(length(c, true), cd, stiffness, damping, free_length, act(t), Q, &dq, &dv);
+    spatial::add_spring_damper(length(c, {true}), cd, stiffness, damping, free_length, act(t), Q, &dq, &dv);
   }
   double potential(const spatial::Loc& c, double) const {
-    const double e = length(c, false).value - free_length;
+    const double e = length(c, {}).value - free_length;
     return 0.5 * stiffness * e * e;
   }
 };
@@ -61,16 +61,16 @@ struct SpatialRotationalSpringDamper : SpatialForceBase {
   double stiffness = 0.0, damping = 0.0, free_angle = 0.0;
   TimeFunctionPtr actuator;
 
-  spatial::ScalarTerm angle(const spatial::Loc& c, bool second) const {
+  spatial::ScalarTerm angle(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm fj = body_vector(c, kBodyJ, f_j, second);
-    return spatial::angle(dot(fj, body_vector(c, kBodyI, g_i, second)), dot(fj, body_vector(c, kBodyI, f_i, second)),
-                          second);
+    const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
+    return spatial::angle(dot(fj, body_vector(c, kBodyI, g_i, want)), dot(fj, body_vector(c, kBodyI, f_i, want)),
+                          want.hessian);
   }
   double act(double t) const { return actuator ? actuator->eval(t).f : 0.0; }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
     spatial::Loc Q = spatial::Loc::Zero();
-    spatial::add_spring_damper(angle(c, false), cd, stiffness, damping, free_angle, act(t), Q);
+    spatial::add_spring_damper(angle(c, {}), cd, stiffness, damping, free_angle, act(t), Q);
     return Q;
   }
   void derivatives(const spatial::Loc& c, const spatial::Loc& cd, double t, spatial::Mat14& dq,
@@ -78,10 +78,10 @@ struct SpatialRotationalSpringDamper : SpatialForceBase {
     spatial::Loc Q = spatial::Loc::Zero();
     dq.setZero();
     dv.setZero();
-    spatial::add_spring_damper(angle(c, true), cd, stiffness, damping, free_angle, act(t), Q, &dq, &dv);
+    spatial::add_spring_damper(angle(c, {true}), cd, stiffness, damping, free_angle, act(t), Q, &dq, &dv);
   }
   double potential(const spatial::Loc& c, double) const {
-    const double e = angle(c, false).value - free_angle;
+    const double e = angle(c, {}).value - free_angle;
     return 0.5 * stiffness * e * e;
   }
 };
@@ -102,13 +102,13 @@ struct Bushing : SpatialForceBase {
   Vec3 stiffness = Vec3::Zero(), damping = Vec3::Zero();
   Vec3 rotational_stiffness = Vec3::Zero(), rotational_damping = Vec3::Zero();
 
-  std::array<spatial::ScalarTerm, 6> coordinates(const spatial::Loc& c, bool second) const {
+  std::array<spatial::ScalarTerm, 6> coordinates(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm d = minus(body_point(c, kBodyJ, s_j, second), body_point(c, kBodyI, s_i, second));
+    const VectorTerm d = minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want));
     std::array<VectorTerm, 3> ei, ej;
     for (int k = 0; k < 3; ++k) {
-      ei[k] = body_vector(c, kBodyI, axes_i[k], second);
-      ej[k] = body_vector(c, kBodyJ, axes_j[k], second);
+      ei[k] = body_vector(c, kBodyI, axes_i[k], want);
+      ej[k] = body_vector(c, kBodyJ, axes_j[k], want);
     }
     std::array<ScalarTerm, 6> s;
     for (int k = 0; k < 3; ++k) {
@@ -117,7 +117,7 @@ struct Bushing : SpatialForceBase {
       ScalarTerm p = dot(ei[b], ej[a]), m = dot(ei[a], ej[b]);
       s[3 + k].value = 0.5 * (p.value - m.value);
       s[3 + k].gradient = 0.5 * (p.gradient - m.gradient);
-      if (second) s[3 + k].hessian = 0.5 * (p.hessian - m.hessian);
+      if (want.hessian) s[3 + k].hessian = 0.5 * (p.hessian - m.hessian);
     }
     return s;
   }
@@ -125,7 +125,7 @@ struct Bushing : SpatialForceBase {
   double c(int a) const { return a < 3 ? damping[a] : rotational_damping[a - 3]; }
   spatial::Loc force(const spatial::Loc& q, const spatial::Loc& qd, double) const {
     spatial::Loc Q = spatial::Loc::Zero();
-    const auto s = coordinates(q, false);
+    const auto s = coordinates(q, {});
     for (int a = 0; a < 6; ++a) spatial::add_spring_damper(s[a], qd, k(a), c(a), 0.0, 0.0, Q);
     return Q;
   }
@@ -134,11 +134,11 @@ struct Bushing : SpatialForceBase {
     spatial::Loc Q = spatial::Loc::Zero();
     dq.setZero();
     dv.setZero();
-    const auto s = coordinates(q, true);
+    const auto s = coordinates(q, {true});
     for (int a = 0; a < 6; ++a) spatial::add_spring_damper(s[a], qd, k(a), c(a), 0.0, 0.0, Q, &dq, &dv);
   }
   double potential(const spatial::Loc& q, double) const {
-    const auto s = coordinates(q, false);
+    const auto s = coordinates(q, {});
     double V = 0.0;
     for (int a = 0; a < 6; ++a) V += 0.5 * k(a) * s[a].value * s[a].value;
     return V;

@@ -35,9 +35,9 @@ struct SpatialJointBase {
   Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero();
   Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), a_i = Vec3::UnitZ();
 
-  spatial::VectorTerm offset(const spatial::Loc& c, bool second) const {
-    return spatial::minus(spatial::body_point(c, spatial::kBodyJ, s_j, second),
-                          spatial::body_point(c, spatial::kBodyI, s_i, second));
+  spatial::VectorTerm offset(const spatial::Loc& c, const spatial::Want& want) const {
+    return spatial::minus(spatial::body_point(c, spatial::kBodyJ, s_j, want),
+                          spatial::body_point(c, spatial::kBodyI, s_i, want));
   }
   Mat3 axes(const spatial::Loc& c, double) const { return spatial::joint_axes(c, f_i, g_i, a_i); }
 };
@@ -45,8 +45,8 @@ struct SpatialJointBase {
 /// Spherical joint: d = 0 (3 rows). lam: the force on body i.
 struct SphericalJoint : SpatialJointBase, spatial::TermJoint<SphericalJoint, 3> {
   static constexpr const char* kind = "spherical";
-  spatial::Terms<3> terms(const spatial::Loc& c, bool second) const {
-    const spatial::VectorTerm d = offset(c, second);
+  spatial::Terms<3> terms(const spatial::Loc& c, const spatial::Want& want) const {
+    const spatial::VectorTerm d = offset(c, want);
     return {spatial::component(d, 0), spatial::component(d, 1), spatial::component(d, 2)};
   }
 };
@@ -59,11 +59,11 @@ struct SphericalJoint : SpatialJointBase, spatial::TermJoint<SphericalJoint, 3> 
 struct SpatialRevoluteJoint : SpatialJointBase, spatial::TermJoint<SpatialRevoluteJoint, 5> {
   static constexpr const char* kind = "spatial_revolute";
   Vec3 a_j = Vec3::UnitZ(), f_j = Vec3::UnitX();  // the axis and f in body j's axes
-  spatial::Terms<5> terms(const spatial::Loc& c, bool second) const {
+  spatial::Terms<5> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm d = offset(c, second), aj = body_vector(c, kBodyJ, a_j, second);
-    return {component(d, 0), component(d, 1), component(d, 2), dot(body_vector(c, kBodyI, f_i, second), aj),
-            dot(body_vector(c, kBodyI, g_i, second), aj)};
+    const VectorTerm d = offset(c, want), aj = body_vector(c, kBodyJ, a_j, want);
+    return {component(d, 0), component(d, 1), component(d, 2), dot(body_vector(c, kBodyI, f_i, want), aj, want),
+            dot(body_vector(c, kBodyI, g_i, want), aj, want)};
   }
 };
 
@@ -73,11 +73,11 @@ struct SpatialRevoluteJoint : SpatialJointBase, spatial::TermJoint<SpatialRevolu
 struct CylindricalJoint : SpatialJointBase, spatial::TermJoint<CylindricalJoint, 4> {
   static constexpr const char* kind = "cylindrical";
   Vec3 a_j = Vec3::UnitZ(), f_j = Vec3::UnitX();
-  spatial::Terms<4> terms(const spatial::Loc& c, bool second) const {
+  spatial::Terms<4> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm d = offset(c, second), aj = body_vector(c, kBodyJ, a_j, second);
-    const VectorTerm fi = body_vector(c, kBodyI, f_i, second), gi = body_vector(c, kBodyI, g_i, second);
-    return {dot(fi, aj), dot(gi, aj), dot(fi, d), dot(gi, d)};
+    const VectorTerm d = offset(c, want), aj = body_vector(c, kBodyJ, a_j, want);
+    const VectorTerm fi = body_vector(c, kBodyI, f_i, want), gi = body_vector(c, kBodyI, g_i, want);
+    return {dot(fi, aj, want), dot(gi, aj, want), dot(fi, d, want), dot(gi, d, want)};
   }
 };
 
@@ -86,11 +86,12 @@ struct CylindricalJoint : SpatialJointBase, spatial::TermJoint<CylindricalJoint,
 struct SpatialTranslationalJoint : SpatialJointBase, spatial::TermJoint<SpatialTranslationalJoint, 5> {
   static constexpr const char* kind = "spatial_translational";
   Vec3 a_j = Vec3::UnitZ(), g_j = Vec3::UnitY();
-  spatial::Terms<5> terms(const spatial::Loc& c, bool second) const {
+  spatial::Terms<5> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm d = offset(c, second), aj = body_vector(c, kBodyJ, a_j, second);
-    const VectorTerm fi = body_vector(c, kBodyI, f_i, second), gi = body_vector(c, kBodyI, g_i, second);
-    return {dot(fi, aj), dot(gi, aj), dot(fi, d), dot(gi, d), dot(fi, body_vector(c, kBodyJ, g_j, second))};
+    const VectorTerm d = offset(c, want), aj = body_vector(c, kBodyJ, a_j, want);
+    const VectorTerm fi = body_vector(c, kBodyI, f_i, want), gi = body_vector(c, kBodyI, g_i, want);
+    return {dot(fi, aj, want), dot(gi, aj, want), dot(fi, d, want), dot(gi, d, want),
+            dot(fi, body_vector(c, kBodyJ, g_j, want), want)};
   }
 };
 
@@ -101,11 +102,11 @@ struct SpatialTranslationalJoint : SpatialJointBase, spatial::TermJoint<SpatialT
 struct UniversalJoint : SpatialJointBase, spatial::TermJoint<UniversalJoint, 4> {
   static constexpr const char* kind = "universal";
   Vec3 b_j = Vec3::UnitY();
-  spatial::Terms<4> terms(const spatial::Loc& c, bool second) const {
+  spatial::Terms<4> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm d = offset(c, second);
+    const VectorTerm d = offset(c, want);
     return {component(d, 0), component(d, 1), component(d, 2),
-            dot(body_vector(c, kBodyI, a_i, second), body_vector(c, kBodyJ, b_j, second))};
+            dot(body_vector(c, kBodyI, a_i, want), body_vector(c, kBodyJ, b_j, want), want)};
   }
 };
 
@@ -115,11 +116,11 @@ struct UniversalJoint : SpatialJointBase, spatial::TermJoint<UniversalJoint, 4> 
 struct PlanarJoint : SpatialJointBase, spatial::TermJoint<PlanarJoint, 3> {
   static constexpr const char* kind = "planar";
   Vec3 n_j = Vec3::UnitZ();
-  spatial::Terms<3> terms(const spatial::Loc& c, bool second) const {
+  spatial::Terms<3> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm nj = body_vector(c, kBodyJ, n_j, second);
-    return {dot(body_vector(c, kBodyI, f_i, second), nj), dot(body_vector(c, kBodyI, g_i, second), nj),
-            dot(body_vector(c, kBodyI, a_i, second), offset(c, second))};
+    const VectorTerm nj = body_vector(c, kBodyJ, n_j, want);
+    return {dot(body_vector(c, kBodyI, f_i, want), nj, want), dot(body_vector(c, kBodyI, g_i, want), nj, want),
+            dot(body_vector(c, kBodyI, a_i, want), offset(c, want), want)};
   }
 };
 
@@ -131,15 +132,15 @@ struct PlanarJoint : SpatialJointBase, spatial::TermJoint<PlanarJoint, 3> {
 struct SpatialWeldJoint : SpatialJointBase, spatial::TermJoint<SpatialWeldJoint, 6> {
   static constexpr const char* kind = "spatial_weld";
   Vec3 x_j = Vec3::UnitX(), y_j = Vec3::UnitY(), z_j = Vec3::UnitZ();
-  spatial::Terms<6> terms(const spatial::Loc& c, bool second) const {
+  spatial::Terms<6> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
-    const VectorTerm d = offset(c, second);
+    const VectorTerm d = offset(c, want);
     return {component(d, 0),
             component(d, 1),
             component(d, 2),
-            dot(body_vector(c, kBodyI, f_i, second), body_vector(c, kBodyJ, y_j, second)),
-            dot(body_vector(c, kBodyI, g_i, second), body_vector(c, kBodyJ, z_j, second)),
-            dot(body_vector(c, kBodyI, a_i, second), body_vector(c, kBodyJ, x_j, second))};
+            dot(body_vector(c, kBodyI, f_i, want), body_vector(c, kBodyJ, y_j, want), want),
+            dot(body_vector(c, kBodyI, g_i, want), body_vector(c, kBodyJ, z_j, want), want),
+            dot(body_vector(c, kBodyI, a_i, want), body_vector(c, kBodyJ, x_j, want), want)};
   }
 };
 
@@ -150,16 +151,17 @@ struct SpatialWeldJoint : SpatialJointBase, spatial::TermJoint<SpatialWeldJoint,
 struct SpatialDistanceJoint : SpatialJointBase, spatial::TermJoint<SpatialDistanceJoint, 1> {
   static constexpr const char* kind = "spatial_distance";
   double length = 1.0;
-  spatial::Terms<1> terms(const spatial::Loc& c, bool second) const {
-    const spatial::VectorTerm d = offset(c, second);
-    spatial::ScalarTerm f = spatial::dot(d, d);
+  spatial::Terms<1> terms(const spatial::Loc& c, const spatial::Want& want) const {
+    const spatial::VectorTerm d = offset(c, want);
+    spatial::ScalarTerm f = spatial::dot(d, d, want);
     f.value = (f.value - length * length) / (2.0 * length);
     f.gradient /= 2.0 * length;
-    if (second) f.hessian /= 2.0 * length;
+    f.gradient_rate /= 2.0 * length;
+    if (want.hessian) f.hessian /= 2.0 * length;
     return {f};
   }
   Mat3 axes(const spatial::Loc& c, double) const {
-    Vec3 e = offset(c, false).value;
+    Vec3 e = offset(c, {}).value;
     e = e.norm() > 0.0 ? Vec3(e.normalized()) : Vec3::UnitZ();
     Vec3 f, g;
     euler::complete_basis(e, f, g);

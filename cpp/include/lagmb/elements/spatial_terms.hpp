@@ -19,46 +19,62 @@ using Mat14 = LocalMat<14>;
 using Row14 = Eigen::Matrix<double, 1, 14>;
 using Jac3 = Eigen::Matrix<double, 3, 14>;
 
-/// A vector function u(c): value, Jacobian du/dc and, if `second`, the
-/// Hessian of each component.
+/// What a term is asked for beyond its value and gradient: the Hessians
+/// (the Newton matrix's sum_r w_r H_r, and force derivatives), and/or the
+/// rate of the gradient along cd, (H cd)^T = d(grad)/dt, which is all that
+/// gamma = -cd^T H cd and the velocity Jacobian need: far cheaper than H.
+struct Want {
+  bool hessian = false;
+  const Loc* rate = nullptr;  // cd, or null
+};
+
+/// A vector function u(c): value, Jacobian du/dc and, as wanted, the
+/// Hessian of each component and the Jacobian's rate along cd.
 struct VectorTerm {
   Vec3 value = Vec3::Zero();
   Jac3 jacobian = Jac3::Zero();
   bool second = false;
   std::array<Mat14, 3> hessian;
+  bool rated = false;
+  Jac3 jacobian_rate = Jac3::Zero();  // d(du/dc)/dt along cd
 };
 
-/// A scalar function f(c): value, gradient and (if `second`) Hessian.
+/// A scalar function f(c): value, gradient and (as wanted) Hessian and the
+/// gradient's rate (H cd)^T.
 struct ScalarTerm {
   double value = 0.0;
   Row14 gradient = Row14::Zero();
   Mat14 hessian;
+  Row14 gradient_rate = Row14::Zero();
 };
 
 /// The side of an element a body stands on: its r at 7 side, p at 7 side + 3.
 enum Side { kBodyI = 0, kBodyJ = 1 };
 
 /// A(p) a: the vector `a` fixed in the body on `side` (its axes), in
-/// global axes. d/dp = point_jacobian(p, a); d2/dp2 constant (spatial.hpp).
-inline VectorTerm body_vector(const Loc& c, Side side, const Vec3& a, bool second) {
+/// global axes. d/dp = point_jacobian(p, a), linear in p, so its rate along
+/// p' is point_jacobian(p', a); d2/dp2 constant (spatial.hpp).
+inline VectorTerm body_vector(const Loc& c, Side side, const Vec3& a, const Want& want) {
   const int at = 7 * side + 3;
   const Vec4 p = c.segment<4>(at);
   VectorTerm u;
   u.value = euler::rotate(p, a);
   u.jacobian.block<3, 4>(0, at) = euler::point_jacobian(p, a);
-  u.second = second;
-  if (second)
+  u.second = want.hessian;
+  if (want.hessian)
     for (int k = 0; k < 3; ++k) {
       u.hessian[k].setZero();
       u.hessian[k].block<4, 4>(at, at) = euler::point_hessian(a, Vec3::Unit(k));
     }
+  u.rated = want.rate != nullptr;
+  if (u.rated) u.jacobian_rate.block<3, 4>(0, at) = euler::point_jacobian(want.rate->segment<4>(at), a);
   return u;
 }
 
 /// r + A(p) s: the point `s` (body axes) of the body on `side`, in global
 /// coordinates.
-inline VectorTerm body_point(const Loc& c, Side side, const Vec3& s, bool second) {
-  VectorTerm u = body_vector(c, side, s, second);
+inline VectorTerm body_point(const Loc& c, Side side, const Vec3& s, const Want& want) {
+  VectorTerm u = body_vector(c, side, s, want);
   u.value += c.segment<3>(7 * side);
   u.jacobian.block<3, 3>(0, 7 * side).setIdentity();
   return u;
@@ -72,12 +88,15 @@ inline VectorTerm minus(const VectorTerm& u, const VectorTerm& v) {
   w.second = u.second && v.second;
   if (w.second)
     for (int k = 0; k < 3; ++k) w.hessian[k] = u.hessian[k] - v.hessian[k];
+  w.rated = u.rated && v.rated;
+  if (w.rated) w.jacobian_rate = u.jacobian_rate - v.jacobian_rate;
   return w;
 }
 
 /// u . v: gradient u^T v_c + v^T u_c, Hessian u_c^T v_c + v_c^T u_c +
-/// sum_k (u_k v_k,cc + v_k u_k,cc).
-inline ScalarTerm dot(const VectorTerm& u, const VectorTerm& v) {
+/// sum_k (u_k v_k,cc + v_k u_k,cc); the gradient's rate along cd
+/// u'^T v_c + u^T v_c' + v'^T u_c + v^T u_c' (u' = u_c cd).
+inline ScalarTerm dot(const VectorTerm& u, const VectorTerm& v, const Want& want = {}) {
   ScalarTerm f;
   f.value = u.value.dot(v.value);
   f.gradient = u.value.transpose() * v.jacobian + v.value.transpose() * u.jacobian;
@@ -85,6 +104,11 @@ inline ScalarTerm dot(const VectorTerm& u, const VectorTerm& v) {
     const Mat14 cross = u.jacobian.transpose() * v.jacobian;
     f.hessian = cross + cross.transpose();
     for (int k = 0; k < 3; ++k) f.hessian += u.value[k] * v.hessian[k] + v.value[k] * u.hessian[k];
+  }
+  if (u.rated && v.rated && want.rate) {
+    const Vec3 ud = u.jacobian * *want.rate, vd = v.jacobian * *want.rate;
+    f.gradient_rate = ud.transpose() * v.jacobian + u.value.transpose() * v.jacobian_rate +
+                      vd.transpose() * u.jacobian + v.value.transpose() * u.jacobian_rate;
   }
   return f;
 }
@@ -95,11 +119,12 @@ inline ScalarTerm component(const VectorTerm& u, int k) {
   f.value = u.value[k];
   f.gradient = u.jacobian.row(k);
   if (u.second) f.hessian = u.hessian[k];
+  if (u.rated) f.gradient_rate = u.jacobian_rate.row(k);
   return f;
 }
 
 /// |u| (u != 0): gradient u^T u_c / |u|, Hessian (u_c^T u_c + sum_k u_k
-/// u_k,cc) / |u| - grad^T grad / |u|.
+/// u_k,cc) / |u| - grad^T grad / |u|. (No rate: forces need the Hessian.)
 inline ScalarTerm length(const VectorTerm& u) {
   ScalarTerm f = dot(u, u);
   const double l = std::sqrt(f.value);
@@ -164,16 +189,30 @@ void hessians(const Terms<R>& t, Mat14* H) {
   for (int r = 0; r < R; ++r) H[r] = t[r].hessian;
 }
 
-/// The spatial joint kinds' three views of their rows, from the kind's
-///   Terms<rows> terms(const Loc& c, bool second) const;
-/// (a base by CRTP: each kind states its rows once).
+template <int R>
+Eigen::Matrix<double, R, 14> gradient_rates(const Terms<R>& t) {
+  Eigen::Matrix<double, R, 14> V;
+  for (int r = 0; r < R; ++r) V.row(r) = t[r].gradient_rate;
+  return V;
+}
+
+/// The spatial joint kinds' views of their rows, from the kind's
+///   Terms<rows> terms(const Loc& c, const Want& want) const;
+/// (a base by CRTP: each kind states its rows once). rates(c, cd) gives
+/// the rows (H_r cd)^T, from which the group takes gamma and the velocity
+/// Jacobian without forming the Hessians (constraint_group.hpp).
 template <class Kind, int R>
 struct TermJoint {
   using Space = Spatial;
   static constexpr int rows = R;
-  Eigen::Matrix<double, R, 1> phi(const Loc& c, double) const { return values<R>(self().terms(c, false)); }
-  Eigen::Matrix<double, R, 14> jacobian(const Loc& c, double) const { return gradients<R>(self().terms(c, false)); }
-  void hessians(const Loc& c, double, Mat14* H) const { spatial::hessians<R>(self().terms(c, true), H); }
+  Eigen::Matrix<double, R, 1> phi(const Loc& c, double) const { return values<R>(self().terms(c, {})); }
+  Eigen::Matrix<double, R, 14> jacobian(const Loc& c, double) const { return gradients<R>(self().terms(c, {})); }
+  void hessians(const Loc& c, double, Mat14* H) const { spatial::hessians<R>(self().terms(c, {true}), H); }
+  Eigen::Matrix<double, R, 14> rates(const Loc& c, const Loc& cd, double) const {
+    Want want;
+    want.rate = &cd;
+    return gradient_rates<R>(self().terms(c, want));
+  }
 
  private:
   const Kind& self() const { return static_cast<const Kind&>(*this); }
