@@ -77,8 +77,8 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
   e.damping = a.real("damping");
   build::require_nonnegative(e.stiffness, label, "stiffness");
   build::require_nonnegative(e.damping, label, "damping");
-  e.free_length = a.given("free_length") ? a.real("free_length") : (pj - pi).norm();
-  build::require_nonnegative(e.free_length, label, "free_length");
+  e.free_value = a.given("free_length") ? a.real("free_length") : (pj - pi).norm();
+  build::require_nonnegative(e.free_value, label, "free_length");
   if (!((pj - pi).norm() > 0.0))
     throw ModelError(label + ": point_i and point_j coincide; the spring's direction is undefined there");
   e.actuator = a.function("force");
@@ -97,7 +97,7 @@ void build_rotational_spring_damper(Model& m, const std::string& name, const Arg
   e.damping = a.real("damping");
   build::require_nonnegative(e.stiffness, label, "stiffness");
   build::require_nonnegative(e.damping, label, "damping");
-  e.free_angle = a.real("free_angle");
+  e.free_value = a.real("free_angle");
   e.actuator = a.function("torque");
   m.add_force_element(std::move(e));
 }

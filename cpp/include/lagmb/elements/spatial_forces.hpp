@@ -19,23 +19,18 @@ struct SpatialForceBase {
   int body_i = -1, body_j = -1;
 };
 
-/// Translational spring-damper-actuator between the points s_i and s_j:
-/// on l = |d|, F = -k (l - l0) - c l' + f(t) (F > 0 pushes the points
-/// apart). Potential k (l - l0)^2 / 2.
-struct SpatialSpringDamper : SpatialForceBase {
-  static constexpr const char* kind = "spatial_spring_damper";
-  Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero();
-  double stiffness = 0.0, damping = 0.0, free_length = 0.0;
-  TimeFunctionPtr actuator;  // may be null
+/// A spring-damper-actuator on one scalar coordinate s(c) of the kind
+/// (`coordinate(c, want)`): F = -k (s - s0) - c s' + f(t) along s
+/// (spatial::add_spring_damper), potential k (s - s0)^2 / 2.
+template <class Kind>
+struct ScalarSpringDamper : SpatialForceBase {
+  double stiffness = 0.0, damping = 0.0, free_value = 0.0;  // k, c, s0
+  TimeFunctionPtr actuator;  // f(t); may be null
 
-  spatial::ScalarTerm length(const spatial::Loc& c, const spatial::Want& want) const {
-    using namespace spatial;
-    return spatial::length(minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)));
-  }
   double act(double t) const { return actuator ? actuator->eval(t).f : 0.0; }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
     spatial::Loc Q = spatial::Loc::Zero();
-    spatial::add_spring_damper(length(c, {}), cd, stiffness, damping, free_length, act(t), Q);
+    spatial::add_spring_damper(self().coordinate(c, {}), cd, stiffness, damping, free_value, act(t), Q);
     return Q;
   }
   void derivatives(const spatial::Loc& c, const spatial::Loc& cd, double t, spatial::Mat14& dq,
@@ -43,46 +38,42 @@ struct SpatialSpringDamper : SpatialForceBase {
     spatial::Loc Q = spatial::Loc::Zero();
     dq.setZero();
     dv.setZero();
-    spatial::add_spring_damper(length(c, {true}), cd, stiffness, damping, free_length, act(t), Q, &dq, &dv);
+    spatial::add_spring_damper(self().coordinate(c, {true}), cd, stiffness, damping, free_value, act(t), Q, &dq,
+                               &dv);
   }
   double potential(const spatial::Loc& c, double) const {
-    const double e = length(c, {}).value - free_length;
+    const double e = self().coordinate(c, {}).value - free_value;
     return 0.5 * stiffness * e * e;
+  }
+
+ private:
+  const Kind& self() const { return static_cast<const Kind&>(*this); }
+};
+
+/// Translational spring-damper-actuator between the points s_i and s_j, on
+/// l = |d| (s0: the free length): F > 0 pushes the points apart.
+struct SpatialSpringDamper : ScalarSpringDamper<SpatialSpringDamper> {
+  static constexpr const char* kind = "spatial_spring_damper";
+  Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero();
+
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
+    using namespace spatial;
+    return length(minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)));
   }
 };
 
 /// Rotational spring-damper-actuator on a revolute's (or cylindrical
-/// joint's) angle theta (spatial_drivers.hpp: theta = atan2(f_j . g_i, f_j .
-/// f_i), in (-pi, pi]): torque on body j about the axis
-/// T = -k (theta - theta0) - c theta' + tau(t). Potential k (theta - theta0)^2 / 2.
-struct SpatialRotationalSpringDamper : SpatialForceBase {
+/// joint's) angle theta = atan2(f_j . g_i, f_j . f_i) in (-pi, pi]
+/// (spatial_drivers.hpp; s0: the free angle): the torque on body j about the
+/// axis is T = -k (theta - theta0) - c theta' + tau(t).
+struct SpatialRotationalSpringDamper : ScalarSpringDamper<SpatialRotationalSpringDamper> {
   static constexpr const char* kind = "spatial_rotational_spring_damper";
   Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();
-  double stiffness = 0.0, damping = 0.0, free_angle = 0.0;
-  TimeFunctionPtr actuator;
 
-  spatial::ScalarTerm angle(const spatial::Loc& c, const spatial::Want& want) const {
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
     const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
-    return spatial::angle(dot(fj, body_vector(c, kBodyI, g_i, want)), dot(fj, body_vector(c, kBodyI, f_i, want)),
-                          want.hessian);
-  }
-  double act(double t) const { return actuator ? actuator->eval(t).f : 0.0; }
-  spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
-    spatial::Loc Q = spatial::Loc::Zero();
-    spatial::add_spring_damper(angle(c, {}), cd, stiffness, damping, free_angle, act(t), Q);
-    return Q;
-  }
-  void derivatives(const spatial::Loc& c, const spatial::Loc& cd, double t, spatial::Mat14& dq,
-                   spatial::Mat14& dv) const {
-    spatial::Loc Q = spatial::Loc::Zero();
-    dq.setZero();
-    dv.setZero();
-    spatial::add_spring_damper(angle(c, {true}), cd, stiffness, damping, free_angle, act(t), Q, &dq, &dv);
-  }
-  double potential(const spatial::Loc& c, double) const {
-    const double e = angle(c, {}).value - free_angle;
-    return 0.5 * stiffness * e * e;
+    return angle(dot(fj, body_vector(c, kBodyI, g_i, want)), dot(fj, body_vector(c, kBodyI, f_i, want)), want.hessian);
   }
 };
 
