@@ -1,4 +1,4 @@
-"""lagmb: planar multibody dynamics with Lagrange multipliers.
+"""lagmb: planar and spatial multibody dynamics with Lagrange multipliers.
 
 Bodies keep Cartesian coordinates; joints add constraints Phi(q, t) = 0;
 the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.

@@ -37,7 +37,7 @@ class _Exit(Exception):
 
 
 def _parser():
-    parser = argparse.ArgumentParser(prog="lagmb", description="Planar multibody dynamics")
+    parser = argparse.ArgumentParser(prog="lagmb", description="Planar and spatial multibody dynamics")
     parser.add_argument("--version", action="version", version=f"lagmb {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
