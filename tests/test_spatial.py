@@ -567,3 +567,15 @@ def test_extreme_mass_ratio_double_pendulum_conserves_energy():
     r = mb.simulate(m, 2.0, rtol=1e-10, atol=1e-12)
     assert np.ptp(r.energy) < 1e-6 * np.abs(r.energy).max()
     assert np.ptp(r.body("light").position[:, 2]) > 0.1
+
+
+def test_a_body_without_a_moment_about_one_axis_is_refused_for_dynamics():
+    """A thin rod given no moment about its own axis leaves that spin
+    undetermined: a dynamic run refuses it by name (it may still be moved by
+    drivers in a kinematic analysis)."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    m.add_body("rod", 1.0, (0.0, 0.1, 0.1), (1.0, 0.0, 0.0))
+    m.add_spherical("pivot", m.ground, "rod", (0.0, 0.0, 0.0))
+    with pytest.raises(mb.ModelError, match=r"body 'rod' is massless \(mass 1, principal moments of inertia "
+                                            r"\(0, 0.1, 0.1\)\)"):
+        mb.simulate(m, 0.1)

@@ -1,5 +1,7 @@
 #include "lagmb/kinematics.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,11 +17,18 @@
 
 namespace lagmb {
 
+namespace {
+Vec3 principal_moments(const Mat3& J) { return Eigen::SelfAdjointEigenSolver<Mat3>(J).eigenvalues(); }
+}  // namespace
+
 std::vector<int> massless_bodies(const Model& model) {
   std::vector<int> out;
   for (size_t i = 0; i < model.bodies().size(); ++i) {
     const Body& b = model.bodies()[i];
-    if (!(b.mass > 0) || (!b.particle && !(b.inertia > 0))) out.push_back(int(i));
+    // a spatial body needs every principal moment > 0 (a rod without a moment about its axis
+    // leaves that spin undetermined)
+    const bool no_inertia = b.spatial ? !(principal_moments(b.inertia_tensor).minCoeff() > 0) : !(b.inertia > 0);
+    if (!(b.mass > 0) || (!b.particle && no_inertia)) out.push_back(int(i));
   }
   return out;
 }
@@ -52,9 +61,13 @@ std::string resolve_analysis(const Model& model, const SimulationOptions& o) {
     const Body& b = model.body(massless.front());
     std::ostringstream s;
     s << "simulate: body '" << b.name << "' is massless (mass " << b.mass;
-    if (!b.particle) s << ", inertia " << b.inertia;
+    if (b.spatial)
+      s << ", principal moments of inertia " << to_text(principal_moments(b.inertia_tensor));
+    else if (!b.particle)
+      s << ", inertia " << b.inertia;
     s << "), so its accelerations are not determined by forces: a dynamic analysis needs every mass and "
-      << "inertia > 0. For a mechanism whose motion is fully prescribed by drivers use analysis=\"kinematic\".";
+      << "inertia > 0 (in space every principal moment). For a mechanism whose motion is fully prescribed by "
+      << "drivers use analysis=\"kinematic\".";
     throw ModelError(s.str());
   };
   if (a == "dynamic") {
