@@ -101,6 +101,14 @@ class Ali3pStepper final : public Stepper {
     t_ = t_prev_ = t;
   }
 
+  void reset(double t, const ConsistentState& state) override {
+    form_.q = form_.q_prev = state.q;
+    form_.v = form_.v_prev = state.v;
+    form_.a = form_.a_prev = state.qdd;
+    form_.lam = form_.lam_prev = state.lam;
+    t_ = t_prev_ = t;
+  }
+
   const double* positions() const override { return form_.q.data(); }
 
   void fill_stats(Stats& s) override {
@@ -136,11 +144,9 @@ class Ali3pStepper final : public Stepper {
 
 }  // namespace
 
-void integrate_ali3p(const Model& model, double step, const ConsistentState& start,
-                     const IntegrationPlan& plan,
-                     const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
-  Ali3pStepper stepper(model, start, plan, step);
-  run_steps(stepper, plan, start, record, stats);
+std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, double step, const ConsistentState& start,
+                                            const IntegrationPlan& plan) {
+  return std::make_unique<Ali3pStepper>(model, start, plan, step);
 }
 
 }  // namespace lagmb

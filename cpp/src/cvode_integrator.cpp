@@ -101,90 +101,101 @@ struct CvodeSession : OdeSession {
   }
 };
 
+/// What a CVODE stepper owns, built before its OdeStepper base (which
+/// refers to the state vector and the callbacks' data).
+struct CvodeParts {
+  CvodeParts(const Model& model, double alpha, double beta, const ConsistentState& start, const IntegrationPlan& plan)
+      : ode_(model, alpha, beta), user_(ode_), s(start, plan.atol) {
+    if (plan.run) ode_.join_run(*plan.run);
+  }
+  ProjectionFormulation ode_;
+  OdeUserData user_;
+  CvodeSession s;
+};
+
+/// CVODE behind the shared stepping loop.
+class CvodeStepper final : CvodeParts, public OdeStepper {
+ public:
+  CvodeStepper(const Model& model, bool adams, double alpha, double beta, const ConsistentState& start,
+               const IntegrationPlan& plan)
+      : CvodeParts(model, alpha, beta, start, plan), OdeStepper(s.y, user_), plan_(plan) {
+    s.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, s.ctx);
+    if (!s.mem) throw std::runtime_error("lagmb: CVodeCreate failed");
+    s.ctx.attach_cvode(s.mem);
+    check(CVodeInit(s.mem, ode_rhs, plan.t0, s.y), "CVodeInit", s.ctx);
+    check(CVodeSVtolerances(s.mem, plan.rtol, s.abstol), "CVodeSVtolerances", s.ctx);
+    check(CVodeSetUserData(s.mem, &user_), "CVodeSetUserData", s.ctx);
+    check(CVodeSetMaxOrd(s.mem, plan.max_order), "CVodeSetMaxOrd", s.ctx);
+    if (plan.max_step > 0) check(CVodeSetMaxStep(s.mem, plan.max_step), "CVodeSetMaxStep", s.ctx);
+    check(CVodeSetMinStep(s.mem, minimum_step(plan)), "CVodeSetMinStep", s.ctx);
+    s.A = make_implicit_matrix(s.ctx);
+    s.LS = make_saddle_solver(s.ctx, &user_);
+    if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the CVODE linear solver");
+    check(CVodeSetLinearSolver(s.mem, s.LS, s.A), "CVodeSetLinearSolver", s.ctx);
+    check(CVodeSetJacFn(s.mem, jac_fn), "CVodeSetJacFn", s.ctx);
+    if (ode_.n_constraints() > 0 && !adams) {  // CVODE's projection works with BDF only
+      check(CVodeSetProjFn(s.mem, proj_fn), "CVodeSetProjFn", s.ctx);
+      // keep the error estimate as it is: projected onto the manifold it
+      // vanishes for a fully driven mechanism and the steps run away
+      check(CVodeSetProjErrEst(s.mem, SUNFALSE), "CVodeSetProjErrEst", s.ctx);
+    }
+    if (plan.events && plan.events->size() > 0) {  // only models with event elements
+      user_.events = plan.events;
+      check(CVodeRootInit(s.mem, plan.events->size(), ode_roots), "CVodeRootInit", s.ctx);
+      check(CVodeSetRootDirection(s.mem, plan.events->directions()), "CVodeSetRootDirection", s.ctx);
+    }
+  }
+  const char* name() const override { return "CVODE"; }
+  void set_stop(double stop) override { check(CVodeSetStopTime(s.mem, stop), "CVodeSetStopTime", s.ctx); }
+  double step(bool& at_stop) override {
+    sunrealtype t = 0.0;
+    const int flag = CVode(s.mem, plan_.t_end, s.y, &t, CV_ONE_STEP);
+    rethrow_callback_error(p, t);
+    if (flag < 0) {
+      sunrealtype h = 0;
+      CVodeGetCurrentStep(s.mem, &h);
+      throw solver_failure("CVODE", t, h, flag, CVodeGetReturnFlagName(flag), s.ctx.sink().message);
+    }
+    at_stop = flag == CV_TSTOP_RETURN;
+    at_root = flag == CV_ROOT_RETURN;
+    return t;
+  }
+  void root_info(int* fired) override { check(CVodeGetRootInfo(s.mem, fired), "CVodeGetRootInfo", s.ctx); }
+  void interpolate(double t, const double*& q, const double*& v) override {
+    check(CVodeGetDky(s.mem, t, 0, s.out), "CVodeGetDky", s.ctx);
+    q = N_VGetArrayPointer(s.out);
+    v = q + n;
+  }
+  void restart(double t) override {
+    fill_stats(before_);
+    check(CVodeReInit(s.mem, t, s.y), "CVodeReInit", s.ctx);
+  }
+  void fill_stats(Stats& stats) override {
+    const Stats b = before_;
+    long v = 0;
+    CVodeGetNumSteps(s.mem, &v), stats.steps = b.steps + v;
+    CVodeGetNumRhsEvals(s.mem, &v), stats.residual_evals = b.residual_evals + v;
+    CVodeGetNumJacEvals(s.mem, &v), stats.jacobian_evals = b.jacobian_evals + v;
+    CVodeGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = b.newton_iterations + v;
+    CVodeGetNumErrTestFails(s.mem, &v), stats.error_test_failures = b.error_test_failures + v;
+    CVodeGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = b.convergence_failures + v;
+    int order = 0;
+    CVodeGetLastOrder(s.mem, &order), stats.last_order = order;
+    sunrealtype h = 0;
+    CVodeGetLastStep(s.mem, &h), stats.last_step = h;
+    p.ode.count(stats);
+  }
+
+ private:
+  const IntegrationPlan& plan_;
+  Stats before_;  // counts of the segments before the last CVodeReInit (which zeroes them)
+};
+
 }  // namespace
 
-void integrate_cvode(const Model& model, bool adams, double alpha, double beta, const ConsistentState& start,
-                     const IntegrationPlan& plan,
-                     const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
-  ProjectionFormulation ode(model, alpha, beta);
-  if (plan.run) ode.join_run(*plan.run);
-  OdeUserData p{ode};
-  CvodeSession s(start, plan.atol);
-
-  s.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, s.ctx);
-  if (!s.mem) throw std::runtime_error("lagmb: CVodeCreate failed");
-  s.ctx.attach_cvode(s.mem);
-  check(CVodeInit(s.mem, ode_rhs, plan.t0, s.y), "CVodeInit", s.ctx);
-  check(CVodeSVtolerances(s.mem, plan.rtol, s.abstol), "CVodeSVtolerances", s.ctx);
-  check(CVodeSetUserData(s.mem, &p), "CVodeSetUserData", s.ctx);
-  check(CVodeSetMaxOrd(s.mem, plan.max_order), "CVodeSetMaxOrd", s.ctx);
-  if (plan.max_step > 0) check(CVodeSetMaxStep(s.mem, plan.max_step), "CVodeSetMaxStep", s.ctx);
-  check(CVodeSetMinStep(s.mem, minimum_step(plan)), "CVodeSetMinStep", s.ctx);
-  s.A = make_implicit_matrix(s.ctx);
-  s.LS = make_saddle_solver(s.ctx, &p);
-  if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the CVODE linear solver");
-  check(CVodeSetLinearSolver(s.mem, s.LS, s.A), "CVodeSetLinearSolver", s.ctx);
-  check(CVodeSetJacFn(s.mem, jac_fn), "CVodeSetJacFn", s.ctx);
-  if (ode.n_constraints() > 0 && !adams) {  // CVODE's projection works with BDF only
-    check(CVodeSetProjFn(s.mem, proj_fn), "CVodeSetProjFn", s.ctx);
-    // keep the error estimate as it is: projected onto the manifold it
-    // vanishes for a fully driven mechanism and the steps run away
-    check(CVodeSetProjErrEst(s.mem, SUNFALSE), "CVodeSetProjErrEst", s.ctx);
-  }
-  if (plan.events && plan.events->size() > 0) {  // only models with event elements
-    p.events = plan.events;
-    check(CVodeRootInit(s.mem, plan.events->size(), ode_roots), "CVodeRootInit", s.ctx);
-    check(CVodeSetRootDirection(s.mem, plan.events->directions()), "CVodeSetRootDirection", s.ctx);
-  }
-
-  /// CVODE behind the shared stepping loop.
-  struct CvodeStepper final : OdeStepper {
-    CvodeSession& s;
-    double t_end;
-    Stats before;  // counts of the segments before the last CVodeReInit (which zeroes them)
-    CvodeStepper(CvodeSession& s_, OdeUserData& p_, double t_end_) : OdeStepper(s_.y, p_), s(s_), t_end(t_end_) {}
-    const char* name() const override { return "CVODE"; }
-    void set_stop(double stop) override { check(CVodeSetStopTime(s.mem, stop), "CVodeSetStopTime", s.ctx); }
-    double step(bool& at_stop) override {
-      sunrealtype t = 0.0;
-      const int flag = CVode(s.mem, t_end, s.y, &t, CV_ONE_STEP);
-      rethrow_callback_error(p, t);
-      if (flag < 0) {
-        sunrealtype h = 0;
-        CVodeGetCurrentStep(s.mem, &h);
-        throw solver_failure("CVODE", t, h, flag, CVodeGetReturnFlagName(flag), s.ctx.sink().message);
-      }
-      at_stop = flag == CV_TSTOP_RETURN;
-      at_root = flag == CV_ROOT_RETURN;
-      return t;
-    }
-    void root_info(int* fired) override { check(CVodeGetRootInfo(s.mem, fired), "CVodeGetRootInfo", s.ctx); }
-    void interpolate(double t, const double*& q, const double*& v) override {
-      check(CVodeGetDky(s.mem, t, 0, s.out), "CVodeGetDky", s.ctx);
-      q = N_VGetArrayPointer(s.out);
-      v = q + n;
-    }
-    void restart(double t) override {
-      fill_stats(before);
-      check(CVodeReInit(s.mem, t, s.y), "CVodeReInit", s.ctx);
-    }
-    void fill_stats(Stats& stats) override {
-      const Stats b = before;
-      long v = 0;
-      CVodeGetNumSteps(s.mem, &v), stats.steps = b.steps + v;
-      CVodeGetNumRhsEvals(s.mem, &v), stats.residual_evals = b.residual_evals + v;
-      CVodeGetNumJacEvals(s.mem, &v), stats.jacobian_evals = b.jacobian_evals + v;
-      CVodeGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = b.newton_iterations + v;
-      CVodeGetNumErrTestFails(s.mem, &v), stats.error_test_failures = b.error_test_failures + v;
-      CVodeGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = b.convergence_failures + v;
-      int order = 0;
-      CVodeGetLastOrder(s.mem, &order), stats.last_order = order;
-      sunrealtype h = 0;
-      CVodeGetLastStep(s.mem, &h), stats.last_step = h;
-      p.ode.count(stats);
-    }
-  } stepper(s, p, plan.t_end);
-  run_steps(stepper, plan, start, record, stats);
+std::unique_ptr<Stepper> make_cvode_stepper(const Model& model, bool adams, double alpha, double beta,
+                                            const ConsistentState& start, const IntegrationPlan& plan) {
+  return std::make_unique<CvodeStepper>(model, adams, alpha, beta, start, plan);
 }
 
 }  // namespace lagmb

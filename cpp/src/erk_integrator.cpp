@@ -56,10 +56,21 @@ void quintic_hermite(double s, double h, int n, const double* q0, const double* 
   }
 }
 
+/// What an ERKStep stepper owns, built before its OdeStepper base (which
+/// refers to the state vector and the callbacks' data).
+struct ErkParts {
+  ErkParts(const Model& model, const ConsistentState& start, const IntegrationPlan& plan)
+      : ode_(model, 0.0, 0.0), user_(ode_), s(start, plan.atol) {
+    if (plan.run) ode_.join_run(*plan.run);
+  }
+  ProjectionFormulation ode_;
+  OdeUserData user_;
+  ErkSession s;
+};
+
 /// ERKStep behind the shared stepping loop.
-struct ErkStepper final : OdeStepper {
-  ErkSession& s;
-  double t_end;
+struct ErkStepper final : ErkParts, OdeStepper {
+  const IntegrationPlan& plan;
   Stats before;  // counts of the segments before the last ERKStepReInit (which zeroes them)
   // the last step's ends, (q, v) and their accelerations (computed when an
   // output falls inside the step), for the interpolant
@@ -71,9 +82,24 @@ struct ErkStepper final : OdeStepper {
   VecX out_;
   long extra_rhs_ = 0;  // accelerations at step ends for outputs
 
-  ErkStepper(ErkSession& s_, OdeUserData& p_, double t0, double t_end_)
-      : OdeStepper(s_.y, p_), s(s_), t_end(t_end_), out_(2 * p_.ode.n()) {
-    mark(t0);
+  ErkStepper(const Model& model, const ConsistentState& start, const IntegrationPlan& plan_)
+      : ErkParts(model, start, plan_), OdeStepper(s.y, user_), plan(plan_), out_(2 * n) {
+    s.mem = ERKStepCreate(ode_rhs, plan.t0, s.y, s.ctx);
+    if (!s.mem) throw std::runtime_error("lagmb: ERKStepCreate failed");
+    s.ctx.attach_erkstep(s.mem);
+    check(ERKStepSVtolerances(s.mem, plan.rtol, s.abstol), "ERKStepSVtolerances", s.ctx);
+    check(ERKStepSetUserData(s.mem, &user_), "ERKStepSetUserData", s.ctx);
+    check(ERKStepSetOrder(s.mem, plan.max_order), "ERKStepSetOrder", s.ctx);
+    if (plan.max_step > 0) check(ERKStepSetMaxStep(s.mem, plan.max_step), "ERKStepSetMaxStep", s.ctx);
+    check(ERKStepSetMinStep(s.mem, minimum_step(plan)), "ERKStepSetMinStep", s.ctx);
+    if (ode_.n_constraints() > 0)
+      check(ERKStepSetPostprocessStepFn(s.mem, erk_project), "ERKStepSetPostprocessStepFn", s.ctx);
+    if (plan.events && plan.events->size() > 0) {  // only models with event elements
+      user_.events = plan.events;
+      check(ERKStepRootInit(s.mem, plan.events->size(), ode_roots), "ERKStepRootInit", s.ctx);
+      check(ERKStepSetRootDirection(s.mem, plan.events->directions()), "ERKStepSetRootDirection", s.ctx);
+    }
+    mark(plan.t0);
   }
   /// The current state of s.y at t becomes the end of the last step.
   void mark(double t) {
@@ -93,7 +119,7 @@ struct ErkStepper final : OdeStepper {
   void set_stop(double stop) override { check(ERKStepSetStopTime(s.mem, stop), "ERKStepSetStopTime", s.ctx); }
   double step(bool& at_stop) override {
     sunrealtype t = 0.0;
-    const int flag = ERKStepEvolve(s.mem, t_end, s.y, &t, ARK_ONE_STEP);
+    const int flag = ERKStepEvolve(s.mem, plan.t_end, s.y, &t, ARK_ONE_STEP);
     rethrow_callback_error(p, t);
     if (flag < 0) {
       sunrealtype h = 0;
@@ -149,34 +175,13 @@ struct ErkStepper final : OdeStepper {
 
 }  // namespace
 
-void integrate_erk(const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
-                   const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
+std::unique_ptr<Stepper> make_erk_stepper(const Model& model, const ConsistentState& start,
+                                          const IntegrationPlan& plan) {
   // ERKStep's tables (SUNDIALS 6 and 7): orders 2 to 6 and 8
   if (plan.max_order < 2 || plan.max_order == 7 || plan.max_order > 8)
     throw ModelError("simulate: the explicit Runge-Kutta methods have orders 2, 3, 4, 5, 6 and 8, not " +
                      std::to_string(plan.max_order) + " (max_order)");
-  ProjectionFormulation ode(model, 0.0, 0.0);
-  if (plan.run) ode.join_run(*plan.run);
-  OdeUserData p{ode};
-  ErkSession s(start, plan.atol);
-
-  s.mem = ERKStepCreate(ode_rhs, plan.t0, s.y, s.ctx);
-  if (!s.mem) throw std::runtime_error("lagmb: ERKStepCreate failed");
-  s.ctx.attach_erkstep(s.mem);
-  check(ERKStepSVtolerances(s.mem, plan.rtol, s.abstol), "ERKStepSVtolerances", s.ctx);
-  check(ERKStepSetUserData(s.mem, &p), "ERKStepSetUserData", s.ctx);
-  check(ERKStepSetOrder(s.mem, plan.max_order), "ERKStepSetOrder", s.ctx);
-  if (plan.max_step > 0) check(ERKStepSetMaxStep(s.mem, plan.max_step), "ERKStepSetMaxStep", s.ctx);
-  check(ERKStepSetMinStep(s.mem, minimum_step(plan)), "ERKStepSetMinStep", s.ctx);
-  if (ode.n_constraints() > 0)
-    check(ERKStepSetPostprocessStepFn(s.mem, erk_project), "ERKStepSetPostprocessStepFn", s.ctx);
-  if (plan.events && plan.events->size() > 0) {  // only models with event elements
-    p.events = plan.events;
-    check(ERKStepRootInit(s.mem, plan.events->size(), ode_roots), "ERKStepRootInit", s.ctx);
-    check(ERKStepSetRootDirection(s.mem, plan.events->directions()), "ERKStepSetRootDirection", s.ctx);
-  }
-  ErkStepper stepper(s, p, plan.t0, plan.t_end);
-  run_steps(stepper, plan, start, record, stats);
+  return std::make_unique<ErkStepper>(model, start, plan);
 }
 
 }  // namespace lagmb

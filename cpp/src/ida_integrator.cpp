@@ -104,7 +104,6 @@ struct IdaSession {
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
   sun::SparseLU lu;
-  double t_end = 0.0;
   ~IdaSession() {
     if (mem) IDAFree(&mem);
     if (LS) SUNLinSolFree(LS);
@@ -141,151 +140,154 @@ double initial_step(const IntegrationPlan& plan, const double* y, const double* 
   return h;
 }
 
+/// IDA behind the shared stepping loop; owns the formulation and the session.
+class IdaStepper final : public Stepper {
+ public:
+  IdaStepper(std::unique_ptr<DaeFormulation> formulation, const ConsistentState& start, const IntegrationPlan& plan)
+      : dae_(std::move(formulation)), plan(plan) {
+    DaeFormulation& dae = *dae_;
+    if (plan.run) dae.join_run(*plan.run);
+    const int N = dae.size();
+    s.y = N_VNew_Serial(N, s.ctx);
+    s.yp = N_VNew_Serial(N, s.ctx);
+    s.id = N_VNew_Serial(N, s.ctx);
+    s.abstol = N_VNew_Serial(N, s.ctx);
+    s.out = N_VNew_Serial(N, s.ctx);
+    for (N_Vector v : {s.y, s.yp, s.id, s.abstol, s.out}) {
+      if (!v) throw std::bad_alloc();
+      sun::use_compiled_vector_ops(v);
+    }
+    dae.initial(start, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
+    dae.ids(N_VGetArrayPointer(s.id));
+    dae.tolerances(plan.atol, N_VGetArrayPointer(s.abstol));
+
+    cb.dae = &dae;
+    s.mem = IDACreate(s.ctx);
+    if (!s.mem) throw std::runtime_error("lagmb: IDACreate failed");
+    cb.mem = s.mem;
+    cb.rtol = plan.rtol;
+    cb.abstol = N_VGetArrayPointer(s.abstol);
+    cb.id = N_VGetArrayPointer(s.id);
+    cb.level.resize(N);
+    dae.index_levels(cb.level.data());
+    cb.scale_relative = dae.scale_relative_tolerance();
+    cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, N);
+    s.ctx.attach_ida(s.mem);
+    check(IDAInit(s.mem, residual_fn, plan.t0, s.y, s.yp), "IDAInit", s.ctx);
+    check(IDAWFtolerances(s.mem, weights_fn), "IDAWFtolerances", s.ctx);
+    check(IDASetUserData(s.mem, &cb), "IDASetUserData", s.ctx);
+    check(IDASetId(s.mem, s.id), "IDASetId", s.ctx);
+    check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
+    check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
+    if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
+    check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
+    // a step shorter than a few ulps of t cannot make progress: fail there
+    // (a lock-up or a singular passage) instead of shrinking h for ever
+    check(IDASetMinStep(s.mem, minimum_step(plan)), "IDASetMinStep", s.ctx);
+
+    s.lu.row_scale = &dae.row_scale();
+    s.lu.col_scale = &dae.col_scale();
+    s.A = sun::make_matrix_view(s.ctx, &dae.matrix());
+    s.LS = sun::make_sparse_lu_solver(s.ctx, &s.lu);
+    if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the linear solver");
+    check(IDASetLinearSolver(s.mem, s.LS, s.A), "IDASetLinearSolver", s.ctx);
+    check(IDASetJacFn(s.mem, jacobian_fn), "IDASetJacFn", s.ctx);
+    if (plan.events && plan.events->size() > 0) {  // only models with event elements
+      cb.events = plan.events;
+      check(IDARootInit(s.mem, plan.events->size(), root_fn), "IDARootInit", s.ctx);
+      check(IDASetRootDirection(s.mem, plan.events->directions()), "IDASetRootDirection", s.ctx);
+    }
+  }
+
+  const char* name() const override { return "IDA"; }
+  void set_stop(double stop) override { check(IDASetStopTime(s.mem, stop), "IDASetStopTime", s.ctx); }
+  double step(bool& at_stop) override {
+    sun::real t = 0.0;
+    // in one-step mode tout only gives the direction (and, at the start, a scale)
+    const int flag = IDASolve(s.mem, plan.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
+    if (cb.error) {
+      try {
+        std::rethrow_exception(cb.error);
+      } catch (const UserFunctionError& e) {
+        throw IntegratorFailure(e.what(), t);  // keeps the partial result
+      }
+    }
+    if (flag < 0) {
+      sun::real h = 0;
+      IDAGetCurrentStep(s.mem, &h);
+      std::ostringstream msg;
+      msg << "IDA failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
+          << IDAGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
+      throw IntegratorFailure(msg.str(), t);
+    }
+    at_stop = flag == IDA_TSTOP_RETURN;
+    at_root_ = flag == IDA_ROOT_RETURN;
+    cb.fresh = false;
+    return t;
+  }
+  bool root_found(std::vector<int>& fired) override {
+    if (!at_root_) return false;
+    fired.assign(cb.events->size(), 0);
+    check(IDAGetRootInfo(s.mem, fired.data()), "IDAGetRootInfo", s.ctx);
+    return true;
+  }
+  const double* velocities() const override { return dae_->v(N_VGetArrayPointer(s.y)); }
+  void reset(double t, const ConsistentState& state) override {
+    dae_->initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
+    // a new first step, and weights for it (as at the start): the index-2
+    // and index-3 weights scale with 1/h, and the last step before the
+    // event says nothing about the step the new state needs. The rule's
+    // 1e-3 of the whole run, not of the time left: events on every step
+    // would otherwise creep toward t_end in ever smaller steps
+    cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae_->size());
+    cb.fresh = true;
+    check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
+    restart(t);
+  }
+  void interpolate(double t, const double*& q, const double*& v) override {
+    check(IDAGetDky(s.mem, t, 0, s.out), "IDAGetDky", s.ctx);
+    const double* yo = N_VGetArrayPointer(s.out);
+    q = dae_->q(yo);
+    v = dae_->v(yo);
+  }
+  const double* positions() const override { return dae_->q(N_VGetArrayPointer(s.y)); }
+  void restart(double t) override {
+    fill_stats(before_);
+    check(IDAReInit(s.mem, t, s.y, s.yp), "IDAReInit", s.ctx);
+  }
+  void fill_stats(Stats& stats) override {
+    const Stats b = before_;
+    long v = 0;
+    IDAGetNumSteps(s.mem, &v), stats.steps = b.steps + v;
+    IDAGetNumResEvals(s.mem, &v), stats.residual_evals = b.residual_evals + v;
+    IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = b.jacobian_evals + v;
+    IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = b.newton_iterations + v;
+    IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = b.error_test_failures + v;
+    IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = b.convergence_failures + v;
+    int order = 0;
+    IDAGetLastOrder(s.mem, &order), stats.last_order = order;
+    sun::real h = 0;
+    IDAGetLastStep(s.mem, &h), stats.last_step = h;
+    stats.lu_factorizations = s.lu.factorizations;
+    stats.element_evaluations = dae_->element_evaluations();
+  }
+
+ private:
+  std::unique_ptr<DaeFormulation> dae_;
+  const IntegrationPlan& plan;
+  IdaSession s;
+  Callbacks cb;
+  Stats before_;  // counts of the segments before the last IDAReInit (which zeroes them)
+  bool at_root_ = false;
+};
+
 }  // namespace
 
 std::string sundials_version() { return SUNDIALS_VERSION; }
 
-void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const IntegrationPlan& plan,
-                   const std::function<void(const double* q, const double* v)>& record,
-                   Stats& stats) {
-  if (plan.run) dae.join_run(*plan.run);
-  IdaSession s;
-  const int N = dae.size();
-  s.y = N_VNew_Serial(N, s.ctx);
-  s.yp = N_VNew_Serial(N, s.ctx);
-  s.id = N_VNew_Serial(N, s.ctx);
-  s.abstol = N_VNew_Serial(N, s.ctx);
-  s.out = N_VNew_Serial(N, s.ctx);
-  for (N_Vector v : {s.y, s.yp, s.id, s.abstol, s.out}) {
-    if (!v) throw std::bad_alloc();
-    sun::use_compiled_vector_ops(v);
-  }
-  dae.initial(start, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
-  dae.ids(N_VGetArrayPointer(s.id));
-  dae.tolerances(plan.atol, N_VGetArrayPointer(s.abstol));
-
-  Callbacks cb;
-  cb.dae = &dae;
-  s.mem = IDACreate(s.ctx);
-  if (!s.mem) throw std::runtime_error("lagmb: IDACreate failed");
-  cb.mem = s.mem;
-  cb.rtol = plan.rtol;
-  cb.abstol = N_VGetArrayPointer(s.abstol);
-  cb.id = N_VGetArrayPointer(s.id);
-  cb.level.resize(N);
-  dae.index_levels(cb.level.data());
-  cb.scale_relative = dae.scale_relative_tolerance();
-  cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, N);
-  s.ctx.attach_ida(s.mem);
-  check(IDAInit(s.mem, residual_fn, plan.t0, s.y, s.yp), "IDAInit", s.ctx);
-  check(IDAWFtolerances(s.mem, weights_fn), "IDAWFtolerances", s.ctx);
-  check(IDASetUserData(s.mem, &cb), "IDASetUserData", s.ctx);
-  check(IDASetId(s.mem, s.id), "IDASetId", s.ctx);
-  check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
-  check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
-  if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
-  check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
-  // a step shorter than a few ulps of t cannot make progress: fail there
-  // (a lock-up or a singular passage) instead of shrinking h for ever
-  check(IDASetMinStep(s.mem, minimum_step(plan)), "IDASetMinStep", s.ctx);
-
-  s.lu.row_scale = &dae.row_scale();
-  s.lu.col_scale = &dae.col_scale();
-  s.A = sun::make_matrix_view(s.ctx, &dae.matrix());
-  s.LS = sun::make_sparse_lu_solver(s.ctx, &s.lu);
-  if (!s.A || !s.LS) throw std::runtime_error("lagmb: cannot create the linear solver");
-  check(IDASetLinearSolver(s.mem, s.LS, s.A), "IDASetLinearSolver", s.ctx);
-  check(IDASetJacFn(s.mem, jacobian_fn), "IDASetJacFn", s.ctx);
-  if (plan.events && plan.events->size() > 0) {  // only models with event elements
-    cb.events = plan.events;
-    check(IDARootInit(s.mem, plan.events->size(), root_fn), "IDARootInit", s.ctx);
-    check(IDASetRootDirection(s.mem, plan.events->directions()), "IDASetRootDirection", s.ctx);
-  }
-
-  /// IDA behind the shared stepping loop.
-  struct IdaStepper final : Stepper {
-    IdaSession& s;
-    Callbacks& cb;
-    DaeFormulation& dae;
-    Stats before;  // counts of the segments before the last IDAReInit (which zeroes them)
-    const IntegrationPlan& plan;
-    IdaStepper(IdaSession& s_, Callbacks& cb_, DaeFormulation& dae_, const IntegrationPlan& plan_)
-        : s(s_), cb(cb_), dae(dae_), plan(plan_) {}
-    const char* name() const override { return "IDA"; }
-    void set_stop(double stop) override { check(IDASetStopTime(s.mem, stop), "IDASetStopTime", s.ctx); }
-    double step(bool& at_stop) override {
-      sun::real t = 0.0;
-      const int flag = IDASolve(s.mem, s.t_end, &t, s.y, s.yp, IDA_ONE_STEP);
-      if (cb.error) {
-        try {
-          std::rethrow_exception(cb.error);
-        } catch (const UserFunctionError& e) {
-          throw IntegratorFailure(e.what(), t);  // keeps the partial result
-        }
-      }
-      if (flag < 0) {
-        sun::real h = 0;
-        IDAGetCurrentStep(s.mem, &h);
-        std::ostringstream msg;
-        msg << "IDA failed at t = " << t << " (step size " << h << "), flag " << flag << " ("
-            << IDAGetReturnFlagName(flag) << "): " << s.ctx.sink().message;
-        throw IntegratorFailure(msg.str(), t);
-      }
-      at_stop = flag == IDA_TSTOP_RETURN;
-      at_root = flag == IDA_ROOT_RETURN;
-      cb.fresh = false;
-      return t;
-    }
-    bool at_root = false;
-    bool root_found(std::vector<int>& fired) override {
-      if (!at_root) return false;
-      fired.assign(cb.events->size(), 0);
-      check(IDAGetRootInfo(s.mem, fired.data()), "IDAGetRootInfo", s.ctx);
-      return true;
-    }
-    const double* velocities() const override { return dae.v(N_VGetArrayPointer(s.y)); }
-    void reset(double t, const ConsistentState& state) override {
-      dae.initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
-      // a new first step, and weights for it (as at the start): the index-2
-      // and index-3 weights scale with 1/h, and the last step before the
-      // event says nothing about the step the new state needs. The rule's
-      // 1e-3 of the whole run, not of the time left: events on every step
-      // would otherwise creep toward t_end in ever smaller steps
-      cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae.size());
-      cb.fresh = true;
-      check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
-      restart(t);
-    }
-    void interpolate(double t, const double*& q, const double*& v) override {
-      check(IDAGetDky(s.mem, t, 0, s.out), "IDAGetDky", s.ctx);
-      const double* yo = N_VGetArrayPointer(s.out);
-      q = dae.q(yo);
-      v = dae.v(yo);
-    }
-    const double* positions() const override { return dae.q(N_VGetArrayPointer(s.y)); }
-    void restart(double t) override {
-      fill_stats(before);
-      check(IDAReInit(s.mem, t, s.y, s.yp), "IDAReInit", s.ctx);
-    }
-    void fill_stats(Stats& stats) override {
-      const Stats b = before;
-      long v = 0;
-      IDAGetNumSteps(s.mem, &v), stats.steps = b.steps + v;
-      IDAGetNumResEvals(s.mem, &v), stats.residual_evals = b.residual_evals + v;
-      IDAGetNumJacEvals(s.mem, &v), stats.jacobian_evals = b.jacobian_evals + v;
-      IDAGetNumNonlinSolvIters(s.mem, &v), stats.newton_iterations = b.newton_iterations + v;
-      IDAGetNumErrTestFails(s.mem, &v), stats.error_test_failures = b.error_test_failures + v;
-      IDAGetNumNonlinSolvConvFails(s.mem, &v), stats.convergence_failures = b.convergence_failures + v;
-      int order = 0;
-      IDAGetLastOrder(s.mem, &order), stats.last_order = order;
-      sun::real h = 0;
-      IDAGetLastStep(s.mem, &h), stats.last_step = h;
-      stats.lu_factorizations = s.lu.factorizations;
-      stats.element_evaluations = dae.element_evaluations();
-    }
-  } stepper(s, cb, dae, plan);
-  s.t_end = plan.t_end;
-  run_steps(stepper, plan, start, record, stats);
+std::unique_ptr<Stepper> make_ida_stepper(std::unique_ptr<DaeFormulation> dae, const ConsistentState& start,
+                                          const IntegrationPlan& plan) {
+  return std::make_unique<IdaStepper>(std::move(dae), start, plan);
 }
 
 }  // namespace lagmb

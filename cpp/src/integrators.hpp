@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -76,42 +77,80 @@ class Stepper {
   virtual void reset(double t, const ConsistentState& s) { (void)s; restart(t); }
 };
 
-/// The loop both drivers share: outputs interpolated at plan.t_out (the
-/// steps are not stopped there), a stop and restart at every breakpoint of
-/// the time functions, the max_steps bound and progress reports.
-void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start,
-               const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+using Record = std::function<void(const double* q, const double* v)>;
 
-/// Integrates `dae` with IDA from `start`; calls record(q, v) at each output
-/// time, interpolated by IDA (the steps are not stopped at outputs).
-void integrate_ida(DaeFormulation& dae, const ConsistentState& start, const IntegrationPlan& plan,
-                   const std::function<void(const double* q, const double* v)>& record,
-                   Stats& stats);
+/// The loop every run shares (simulate in one call, a Simulator in chunks):
+/// outputs interpolated where asked (the steps are not stopped there), a
+/// stop and restart at every breakpoint of the time functions, the events'
+/// actions, the max_steps bound and progress reports.
+class StepLoop {
+ public:
+  /// `stepper` starts at time t; the stop times are the breakpoints after t,
+  /// then plan.t_end if `stop_at_end` (simulate), else none (a Simulator:
+  /// the steps may pass the time asked for, outputs are interpolated).
+  StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end = true);
+  /// Steps until the time reached is at least `target`; calls record(q, v)
+  /// for each t_out[k] up to the time reached, k counting on. At most
+  /// plan.max_steps steps per call (IntegratorFailure beyond).
+  void run(double target, const std::vector<double>& t_out, size_t& k, const Record& record);
+  /// The stepper was reset to time t from outside (a Simulator's input
+  /// change): the breakpoints from there on.
+  void restarted(double t);
+  /// Time the stepper reached (its last step's end).
+  double t() const { return t_; }
+  /// Restarts at breakpoints and after events' actions so far.
+  long restarts() const { return restarts_; }
 
-/// Integrates the ODE in accelerations (qdd, lam from the augmented system at
-/// every right-hand side) with CVODE. BDF: q and v are projected onto Phi = 0
-/// and Phi_q v + Phi_t = 0 after every step. Adams-Moulton: CVODE cannot
-/// project, so only Baumgarte terms (alpha, beta) hold the constraints.
-void integrate_cvode(const Model& model, bool adams, double alpha, double beta, const ConsistentState& start,
-                     const IntegrationPlan& plan,
-                     const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+ private:
+  double stop_time() const;
+  Stepper& stepper_;
+  const IntegrationPlan& plan_;
+  double t_;
+  bool stop_at_end_;
+  size_t next_break_ = 0;
+  long restarts_ = 0;
+  std::vector<int> fired_;
+  VecX q_event_, v_event_;
+};
 
-/// Integrates the ODE in accelerations with ARKODE's explicit Runge-Kutta
-/// methods (ERKStep, order plan.max_order: 2 to 6 or 8), projecting q and v
-/// onto Phi = 0 and Phi_q v + Phi_t = 0 after every accepted step.
-void integrate_erk(const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
-                   const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+/// simulate's run: the outputs at t0 from `start`, then StepLoop to
+/// plan.t_end; stats filled whatever happens (q of an IntegratorFailure set).
+void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start, const Record& record,
+               Stats& stats);
 
-/// Integrates with ALI3-P (ali3p_integrator.cpp): index-3 equations,
-/// trapezoidal rule with the fixed step `step`, Newton on (q, lam) with a
-/// regularized multiplier block, mass-orthogonal projections of v and a.
-void integrate_ali3p(const Model& model, double step, const ConsistentState& start,
-                     const IntegrationPlan& plan,
-                     const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+/// The steppers of the integrators, each started at `start` at time plan.t0
+/// and owning its solver session; `plan` must outlive the stepper (its
+/// tolerances, bounds and event functions are read from there, and its t0
+/// and t_end set the scale of the first step after a reset).
+///
+/// IDA (ida_integrator.cpp) on a DAE formulation.
+std::unique_ptr<Stepper> make_ida_stepper(std::unique_ptr<DaeFormulation> dae, const ConsistentState& start,
+                                          const IntegrationPlan& plan);
+/// CVODE (cvode_integrator.cpp) on the ODE in accelerations (qdd, lam from
+/// the augmented system at every right-hand side). BDF: q and v are
+/// projected onto Phi = 0 and Phi_q v + Phi_t = 0 after every step.
+/// Adams-Moulton: CVODE cannot project, so only Baumgarte terms (alpha,
+/// beta) hold the constraints.
+std::unique_ptr<Stepper> make_cvode_stepper(const Model& model, bool adams, double alpha, double beta,
+                                            const ConsistentState& start, const IntegrationPlan& plan);
+/// ARKODE's explicit Runge-Kutta methods (erk_integrator.cpp; ERKStep, order
+/// plan.max_order: 2 to 6 or 8) on the ODE in accelerations, q and v
+/// projected onto Phi = 0 and Phi_q v + Phi_t = 0 after every accepted step.
+std::unique_ptr<Stepper> make_erk_stepper(const Model& model, const ConsistentState& start,
+                                          const IntegrationPlan& plan);
+/// ALI3-P (ali3p_integrator.cpp): index-3 equations, trapezoidal rule with
+/// the fixed step `step`, Newton on (q, lam) with a regularized multiplier
+/// block, mass-orthogonal projections of v and a.
+std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, double step, const ConsistentState& start,
+                                            const IntegrationPlan& plan);
 
-/// Runs a method of the table (methods.cpp) from `start` with `plan`.
+/// The stepper of a method of the table (methods.cpp), started at `start`.
+std::unique_ptr<Stepper> make_stepper(const Method& method, const Model& model, const SimulationOptions& options,
+                                      const ConsistentState& start, const IntegrationPlan& plan);
+
+/// Runs a method of the table from `start` with `plan` to plan.t_end.
 void integrate(const Method& method, const Model& model, const SimulationOptions& options,
                const ConsistentState& start, const IntegrationPlan& plan,
-               const std::function<void(const double* q, const double* v)>& record, Stats& stats);
+               const Record& record, Stats& stats);
 
 }  // namespace lagmb

@@ -7,6 +7,7 @@
 
 #include "events.hpp"
 #include "integrators.hpp"
+#include "run.hpp"
 #include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
 #include "lagmb/equilibrium.hpp"
@@ -19,31 +20,12 @@ namespace lagmb {
 
 namespace {
 
+/// The options of simulate's outputs; the rest as validate_run_options.
 void validate(const Model& model, const SimulationOptions& o) {
-  if (!model.finalized()) throw ModelError("simulate: the model is not finalized");
-  if (model.n_coordinates() == 0) throw ModelError("simulate: the model has no bodies");
-  auto positive = [](double x, const char* name) {
-    if (!(std::isfinite(x) && x > 0))
-      throw ModelError(std::string("simulate: ") + name + " must be positive and finite, got " +
-                       std::to_string(x));
-  };
-  if (!std::isfinite(o.t0)) throw ModelError("simulate: t0 is not finite");
+  validate_run_options(model, o, "simulate");
   if (!(std::isfinite(o.t_end) && o.t_end > o.t0))
     throw ModelError("simulate: t_end must be finite and greater than t0 = " + std::to_string(o.t0) +
                      ", got " + std::to_string(o.t_end));
-  positive(o.rtol, "rtol");
-  if (o.rtol < 1e-14)
-    throw ModelError("simulate: rtol = " + std::to_string(o.rtol) +
-                     " is below 1e-14, which double precision cannot deliver");
-  positive(o.atol, "atol");
-  if (!o.atol_coordinates.empty()) {
-    if (int(o.atol_coordinates.size()) != model.n_coordinates())
-      throw ModelError("simulate: atol needs one entry per coordinate (" + std::to_string(model.n_coordinates()) +
-                       "), got " + std::to_string(o.atol_coordinates.size()));
-    for (double a : o.atol_coordinates) positive(a, "every atol entry");
-  }
-  if (o.max_step != 0.0) positive(o.max_step, "max_step");
-  if (o.max_steps < 0) throw ModelError("simulate: max_steps must be >= 0 (0: no limit)");
   // a step bound that needs more steps than allowed would run for hours: refuse it now
   if (o.max_step > 0 && o.max_steps > 0 && (o.t_end - o.t0) / o.max_step > double(o.max_steps)) {
     std::ostringstream s;
@@ -71,6 +53,32 @@ void validate(const Model& model, const SimulationOptions& o) {
       throw ModelError("simulate: t_out must be strictly increasing (t_out[" + std::to_string(k) +
                        "] = " + std::to_string(tk) + ")");
   }
+}
+
+}  // namespace
+
+void validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who) {
+  const std::string at = who + ": ";
+  if (!model.finalized()) throw ModelError(at + "the model is not finalized");
+  if (model.n_coordinates() == 0) throw ModelError(at + "the model has no bodies");
+  auto positive = [&](double x, const char* name) {
+    if (!(std::isfinite(x) && x > 0))
+      throw ModelError(at + name + " must be positive and finite, got " + std::to_string(x));
+  };
+  if (!std::isfinite(o.t0)) throw ModelError(at + "t0 is not finite");
+  positive(o.rtol, "rtol");
+  if (o.rtol < 1e-14)
+    throw ModelError(at + "rtol = " + std::to_string(o.rtol) +
+                     " is below 1e-14, which double precision cannot deliver");
+  positive(o.atol, "atol");
+  if (!o.atol_coordinates.empty()) {
+    if (int(o.atol_coordinates.size()) != model.n_coordinates())
+      throw ModelError(at + "atol needs one entry per coordinate (" + std::to_string(model.n_coordinates()) +
+                       "), got " + std::to_string(o.atol_coordinates.size()));
+    for (double a : o.atol_coordinates) positive(a, "every atol entry");
+  }
+  if (o.max_step != 0.0) positive(o.max_step, "max_step");
+  if (o.max_steps < 0) throw ModelError(at + "max_steps must be >= 0 (0: no limit)");
   const Method& method = find_method(o.formulation, o.integrator);
   // what a method does not model is refused, not ignored
   auto those = [](bool Method::*has) {
@@ -80,29 +88,31 @@ void validate(const Model& model, const SimulationOptions& o) {
     return s;
   };
   if (method.fixed_step && o.max_step == 0.0)
-    throw ModelError("simulate: formulation '" + method.formulation +
+    throw ModelError(at + "formulation '" + method.formulation +
                      "' takes fixed steps: give the step as max_step (step= in Python)");
   if (!method.friction && !model.friction_groups().empty())
-    throw ModelError("simulate: formulation '" + method.formulation + "' does not include joint friction ('" +
+    throw ModelError(at + "formulation '" + method.formulation + "' does not include joint friction ('" +
                      model.friction_groups().front()->name(0) + "'); the methods that do: " +
                      those(&Method::friction));
   if (!method.events && !model.event_groups().empty())
-    throw ModelError("simulate: formulation '" + method.formulation +
+    throw ModelError(at + "formulation '" + method.formulation +
                      "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
                      "'); the methods that have: " + those(&Method::events));
   if (o.max_order < 0 || o.max_order > method.max_order)
-    throw ModelError("simulate: max_order must be in 1.." + std::to_string(method.max_order) + " for " +
+    throw ModelError(at + "max_order must be in 1.." + std::to_string(method.max_order) + " for " +
                      method.name + " (integrator " + method.integrator + "; 0: its highest order), got " +
                      std::to_string(o.max_order));
   if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && !method.baumgarte)
-    throw ModelError("simulate: Baumgarte terms apply to the methods " + those(&Method::baumgarte) +
+    throw ModelError(at + "Baumgarte terms apply to the methods " + those(&Method::baumgarte) +
                      ", not to formulation '" + o.formulation + "' with integrator '" + method.integrator + "'");
   if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
       o.baumgarte_beta < 0)
-    throw ModelError("simulate: Baumgarte alpha and beta must be finite and >= 0");
+    throw ModelError(at + "Baumgarte alpha and beta must be finite and >= 0");
   if (o.start != "given" && o.start != "equilibrium")
-    throw ModelError("simulate: unknown start '" + o.start + "' (available: given, equilibrium)");
+    throw ModelError(at + "unknown start '" + o.start + "' (available: given, equilibrium)");
 }
+
+namespace {
 
 std::vector<double> output_times(const SimulationOptions& o) {
   if (!o.t_out.empty()) return o.t_out;
@@ -112,12 +122,9 @@ std::vector<double> output_times(const SimulationOptions& o) {
   return t;
 }
 
-/// a and lam at the recorded outputs from `first` on, from the augmented
-/// system, appended output by output (tr.a holds size_t(k) * n values once k
-/// are solved). Returns "" or why an output could not be solved (a user
-/// function failing there, joint friction whose load does not converge, a
-/// non-finite result); the outputs from that one on are then unsolved.
-std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first = 0) {
+}  // namespace
+
+std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first) {
   const int n = tr.n, m = tr.m, k = tr.size();
   for (int i = first; i < k; ++i) {
     tr.a.resize(size_t(i + 1) * n);
@@ -145,10 +152,46 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
   return "";
 }
 
-/// Outputs whose a and lam were solved.
 int solved_outputs(const Trajectory& tr) { return tr.n > 0 ? int(tr.a.size() / size_t(tr.n)) : tr.size(); }
 
-}  // namespace
+
+ConsistentState dynamic_start(const Model& model, const SimulationOptions& o, Data& d, AugmentedSystem& kkt,
+                              Redundancy& redundancy) {
+  VecX q_start = model.initial_q(), v_start = model.initial_v();
+  try {
+    if (o.start == "equilibrium") {  // at rest in the static equilibrium at t0
+      EquilibriumOptions eo;
+      eo.t = o.t0;
+      q_start = find_equilibrium(model, eo).q;
+      v_start.setZero();
+    }
+    return start_state(model, d, kkt, q_start, v_start, o.t0, &redundancy);
+  } catch (const UserFunctionError& e) {
+    throw SimulationError(e.what(), o.t0);
+  }
+}
+
+IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const Method& method, const Data& run) {
+  const int n = model.n_coordinates();
+  VecX atol = VecX::Constant(n, o.atol);
+  if (!o.atol_coordinates.empty()) atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
+  IntegrationPlan plan{o.t0,       o.t_end,    o.rtol, atol, o.max_step, o.max_order ? o.max_order : method.max_order,
+                       o.max_steps, {},        {},     o.progress, o.progress_interval};
+  plan.run = &run;
+  return plan;
+}
+
+std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start) {
+  if (model.event_groups().empty()) return nullptr;
+  auto events = std::make_unique<EventRunner>(model, run);
+  // a joint that starts at a limit, moving into it, gets its impact at t
+  try {
+    if (events->start(t, start.q, start.v)) start = events->consistent(t, start.q, start.v);
+  } catch (const IntegratorFailure& e) {
+    throw SimulationError(e.what(), e.t);
+  }
+  return events;
+}
 
 ConsistentState assemble(const Model& model, double t) {
   if (!model.finalized()) throw ModelError("assemble: the model is not finalized");
@@ -215,42 +258,16 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   Data d(model);
   AugmentedSystem kkt(model);
-  ConsistentState start;
   Redundancy redundancy;
-  VecX q_start = model.initial_q(), v_start = model.initial_v();
-  try {
-    if (o.start == "equilibrium") {  // at rest in the static equilibrium at t0
-      EquilibriumOptions eo;
-      eo.t = o.t0;
-      q_start = find_equilibrium(model, eo).q;
-      v_start.setZero();
-    }
-    start = start_state(model, d, kkt, q_start, v_start, o.t0, &redundancy);
-  } catch (const UserFunctionError& e) {
-    throw SimulationError(e.what(), o.t0);
-  }
-
-  VecX atol = VecX::Constant(n, o.atol);
-  if (!o.atol_coordinates.empty()) atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
+  ConsistentState start = dynamic_start(model, o, d, kkt, redundancy);
   const Method& method = find_method(o.formulation, o.integrator);
-  IntegrationPlan plan{o.t0,        o.t_end,     o.rtol,      atol,
-                       o.max_step,  o.max_order ? o.max_order : method.max_order, o.max_steps, output_times(o),
-                       {},          o.progress,  o.progress_interval};
-  plan.run = &d;
+  IntegrationPlan plan = run_plan(model, o, method, d);
+  plan.t_out = output_times(o);
   for (double b : model.breakpoints())
     if (b > o.t0 && b < o.t_end) plan.breakpoints.push_back(b);
   // event elements (stops, contacts): root functions for the integrators
-  std::unique_ptr<EventRunner> events;
-  if (!model.event_groups().empty()) {
-    events = std::make_unique<EventRunner>(model, d);
-    plan.events = events.get();
-    // a joint that starts at a limit, moving into it, gets its impact at t0
-    try {
-      if (events->start(o.t0, start.q, start.v)) start = events->consistent(o.t0, start.q, start.v);
-    } catch (const IntegratorFailure& e) {
-      throw SimulationError(e.what(), e.t);
-    }
-  }
+  std::unique_ptr<EventRunner> events = start_events(model, d, o.t0, start);
+  plan.events = events.get();
   Trajectory tr;
   tr.n = n;
   tr.m = m;

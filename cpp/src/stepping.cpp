@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <chrono>
+#include <limits>
 #include <sstream>
 
 #include "events.hpp"
@@ -9,92 +11,108 @@
 
 namespace lagmb {
 
-void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start,
-               const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
-  size_t next_break = 0;
-  auto stop_time = [&] {
-    return next_break < plan.breakpoints.size() ? plan.breakpoints[next_break] : plan.t_end;
-  };
-  stepper.set_stop(stop_time());
+StepLoop::StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end)
+    : stepper_(stepper), plan_(plan), t_(t), stop_at_end_(stop_at_end) {
+  restarted(t);
+}
 
-  const auto& t_out = plan.t_out;
-  size_t k = 0;
-  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
+void StepLoop::restarted(double t) {
+  t_ = t;
+  const auto& b = plan_.breakpoints;
+  next_break_ = size_t(std::upper_bound(b.begin(), b.end(), t) - b.begin());
+  stepper_.set_stop(stop_time());
+}
 
+double StepLoop::stop_time() const {
+  if (next_break_ < plan_.breakpoints.size()) return plan_.breakpoints[next_break_];
+  // no stop: the largest time (SUNDIALS 6 cannot clear a stop time)
+  return stop_at_end_ ? plan_.t_end : std::numeric_limits<double>::max();
+}
+
+void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {
   auto clock = std::chrono::steady_clock::now();
   long steps = 0;
-  std::vector<int> fired;
-  VecX q_event, v_event;
-  try {
-    while (k < t_out.size()) {
-      poll_interrupt();
-      bool at_stop = false;
-      const double t = stepper.step(at_stop);
-      for (; k < t_out.size() && t_out[k] <= t; ++k) {
-        const double *q = nullptr, *v = nullptr;
-        stepper.interpolate(t_out[k], q, v);
-        record(q, v);
-      }
-      if (plan.max_steps > 0 && ++steps >= plan.max_steps && t < plan.t_end) {
-        std::ostringstream msg;
-        msg << stepper.name() << " reached max_steps = " << plan.max_steps << " at t = " << t
-            << " before t_end = " << plan.t_end << ".";
-        throw IntegratorFailure(msg.str(), t);
-      }
-      if (plan.events) {
-        // a root of the event functions (or a crossing the integrator
-        // stepped over): the elements act, and the run restarts from the
-        // state they leave, at order 1
-        const bool root = stepper.root_found(fired);
-        if (root || plan.events->missed(t, stepper.positions(), stepper.velocities(), fired)) {
-          q_event = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
-          v_event = Eigen::Map<const VecX>(stepper.velocities(), start.v.size());
-          bool acted = false;
-          try {
-            acted = plan.events->handle(t, q_event, v_event, fired);
-            if (acted) stepper.reset(t, plan.events->consistent(t, q_event, v_event));
-          } catch (const SimulationError& e) {  // keep the outputs so far
-            throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
-          } catch (const UserFunctionError& e) {
-            throw IntegratorFailure(e.what(), t);
-          }
-          if (acted) {
-            if (at_stop) {  // the event fell on a breakpoint or t_end: pass it
-              if (next_break >= plan.breakpoints.size()) break;
-              ++next_break;
-            }
-            stepper.set_stop(stop_time());
-            continue;
-          }
+  while (t_ < target) {
+    poll_interrupt();
+    bool at_stop = false;
+    const double t = t_ = stepper_.step(at_stop);
+    for (; k < t_out.size() && t_out[k] <= t; ++k) {
+      const double *q = nullptr, *v = nullptr;
+      stepper_.interpolate(t_out[k], q, v);
+      record(q, v);
+    }
+    if (plan_.max_steps > 0 && ++steps >= plan_.max_steps && t < target) {
+      std::ostringstream msg;
+      msg << stepper_.name() << " reached max_steps = " << plan_.max_steps << " at t = " << t << " before t = " << target
+          << ".";
+      throw IntegratorFailure(msg.str(), t);
+    }
+    if (plan_.events) {
+      // a root of the event functions (or a crossing the integrator
+      // stepped over): the elements act, and the run restarts from the
+      // state they leave, at order 1
+      const bool root = stepper_.root_found(fired_);
+      if (root || plan_.events->missed(t, stepper_.positions(), stepper_.velocities(), fired_)) {
+        const int n = int(plan_.atol.size());
+        q_event_ = Eigen::Map<const VecX>(stepper_.positions(), n);
+        v_event_ = Eigen::Map<const VecX>(stepper_.velocities(), n);
+        bool acted = false;
+        try {
+          acted = plan_.events->handle(t, q_event_, v_event_, fired_);
+          if (acted) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
+        } catch (const SimulationError& e) {  // keep the outputs so far
+          throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
+        } catch (const UserFunctionError& e) {
+          throw IntegratorFailure(e.what(), t);
         }
-      }
-      if (at_stop) {
-        if (next_break >= plan.breakpoints.size()) break;  // t_end
-        // a derivative of a time function jumps here: restart at order 1
-        // from the (continuous, consistent) state instead of stepping across
-        ++next_break;
-        stepper.restart(t);
-        stepper.set_stop(stop_time());
-        continue;
-      }
-      if (plan.progress) {
-        auto now = std::chrono::steady_clock::now();
-        if (std::chrono::duration<double>(now - clock).count() >= plan.progress_interval) {
-          clock = now;
-          stepper.fill_stats(stats);
-          plan.progress(t);
+        if (acted) {
+          ++restarts_;
+          if (at_stop && next_break_ < plan_.breakpoints.size()) ++next_break_;  // the event fell on a breakpoint: pass it
+          stepper_.set_stop(stop_time());
+          continue;
         }
       }
     }
-  } catch (IntegratorFailure& e) {
+    if (at_stop && next_break_ < plan_.breakpoints.size()) {
+      // a derivative of a time function jumps here: restart at order 1
+      // from the (continuous, consistent) state instead of stepping across
+      ++next_break_;
+      ++restarts_;
+      stepper_.restart(t);
+      stepper_.set_stop(stop_time());
+      continue;
+    }
+    if (plan_.progress) {
+      auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - clock).count() >= plan_.progress_interval) {
+        clock = now;
+        plan_.progress(t);
+      }
+    }
+  }
+}
+
+void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start, const Record& record,
+               Stats& stats) {
+  const auto& t_out = plan.t_out;
+  size_t k = 0;
+  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
+  StepLoop loop(stepper, plan, plan.t0);
+  auto finish = [&] {
     stepper.fill_stats(stats);
+    stats.restarts = loop.restarts();
+  };
+  try {
+    loop.run(plan.t_end, t_out, k, record);
+  } catch (IntegratorFailure& e) {
+    finish();
     e.q = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
     throw;
   } catch (...) {
-    stepper.fill_stats(stats);
+    finish();
     throw;
   }
-  stepper.fill_stats(stats);
+  finish();
 }
 
 }  // namespace lagmb

@@ -34,6 +34,11 @@ struct Stats {
   long events = 0;    // event-function crossings handled (stops, contact switches)
   long impacts = 0;   // of which velocity jumps
   long root_evals = 0;  // evaluations of the event functions
+  /// Restarts of the integrator at order 1: at breakpoints of the time
+  /// functions, after events' actions, and (a Simulator) at input changes
+  /// and fresh starts from a saved state.
+  long restarts = 0;
+  long input_changes = 0;  // a Simulator's: values set that differ from the ones before
   /// The augmented system's Schur complement S = Phi_q M^-1 Phi_q^T in the
   /// right-hand sides of the projection formulation: how often its pattern
   /// was analyzed (once per run) and the nonzeros of its Cholesky factor
@@ -52,7 +57,8 @@ struct Stats {
     f("element_evaluations", element_evaluations), f("last_order", last_order), f("last_step", last_step);
     f("wall_time", wall_time), f("formulation", formulation), f("integrator", integrator);
     f("analysis", analysis), f("kinematic_solves", kinematic_solves), f("events", events);
-    f("impacts", impacts), f("root_evals", root_evals), f("symbolic_analyses", symbolic_analyses);
+    f("impacts", impacts), f("root_evals", root_evals), f("restarts", restarts), f("input_changes", input_changes);
+    f("symbolic_analyses", symbolic_analyses);
     f("factor_nonzeros", factor_nonzeros);
   }
 };
