@@ -1,8 +1,10 @@
 """lagmb is a C++ library too: install it with CMake (no Python), build the
 examples in examples/cpp against the installed package with
-find_package(lagmb), run them, and check the pin force at release of the
-seed pendulum and of the same rod on a spherical joint in a spatial model:
-m g / 4 upward on the rod (closed form, see test_pendulum.py).
+find_package(lagmb) in a clean build directory, run them, and check the pin
+force at release of the seed pendulum and of the same rod on a spherical
+joint in a spatial model: m g / 4 upward on the rod (closed form, see
+test_pendulum.py); and the cart-pole controller of examples/cpp/cart_pole.cpp
+(lagmb::Simulator, an input force set every 10 ms) holding the pole upright.
 """
 
 import os
@@ -53,3 +55,11 @@ def test_installed_cpp_library_runs_the_seed_pendulum(tmp_path):
     p = [float(x) for x in re.search(r"p = \(([^)]*)\)", last).group(1).split(",")]
     assert abs(sum(x * x for x in p) - 1.0) < 1e-5  # (printed to 6 digits)
     assert p[1] == 0.0 and p[3] == 0.0  # it turns about y only
+
+    # the controller loop in C++: the pole, started 0.1 rad off, is righted
+    out = _run([str(ex_build / "cart_pole")])
+    numbers = re.search(r"t = ([\d.]+) s: largest tilt = ([\d.e-]+) rad, after 1 s = ([\d.e-]+) rad", out)
+    t, largest, after = map(float, numbers.groups())
+    assert t == 10.0 and largest <= 0.1 + 1e-9 and after < 0.05
+    changes, restarts = map(int, re.search(r"(\d+) input changes, (\d+) restarts", out).groups())
+    assert changes >= 990 and restarts == changes

@@ -50,6 +50,25 @@ py::dict to_python(Trajectory&& tr) {
   return out;
 }
 
+/// SimulationOptions from their fields by name (checked in Python, and
+/// again by the run).
+SimulationOptions options_from(const py::dict& options, const std::string& who) {
+  SimulationOptions o;
+  size_t used = 0;
+  o.for_each_field([&](const char* name, auto& field) {
+    if (!options.contains(name)) return;
+    field = options[name].template cast<std::decay_t<decltype(field)>>();
+    ++used;
+  });
+  if (used != options.size())
+    for (const auto& item : options) {
+      bool known = false;
+      o.for_each_field([&](const char* name, auto&) { known = known || py::str(item.first).equal(py::str(name)); });
+      if (!known) throw ModelError(who + ": unknown option '" + std::string(py::str(item.first)) + "'");
+    }
+  return o;
+}
+
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 void require_rows(const Model& model, const RowMajor& x, int cols, const char* what) {
@@ -488,6 +507,20 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)
       .def_property_readonly("dimension", &Model::dimension)
+      .def_property_readonly("inputs",
+                             [](const Model& model) {
+                               py::list out;
+                               for (const InputInfo& in : model.inputs()) {
+                                 py::dict d;
+                                 d["name"] = in.name;
+                                 d["element"] = in.element;
+                                 d["parameter"] = in.parameter;
+                                 d["unit"] = in.unit;
+                                 d["initial"] = in.initial;
+                                 out.append(d);
+                               }
+                               return out;
+                             })
       .def("constraint_name_of_row", &Model::constraint_name_of_row, py::arg("row"))
       .def("has", &Model::has)
       .def("body_coordinates",
@@ -725,6 +758,10 @@ PYBIND11_MODULE(_core, m) {
   m.def("harmonic", &harmonic, py::arg("amplitude"), py::arg("omega"), py::arg("phase"), py::arg("offset"));
   m.def("smooth_step", &smooth_step, py::arg("t0"), py::arg("t1"), py::arg("y0"), py::arg("y1"));
   m.def("spline", &spline, py::arg("times"), py::arg("values"));
+  py::class_<Input, TimeFunction, std::shared_ptr<Input>>(m, "Input")
+      .def_property_readonly("initial", &Input::initial)
+      .def_property_readonly("name", &Input::name);
+  m.def("input", &input, py::arg("initial"), py::arg("name") = "");
   m.def(
       "python_function",
       [](py::function f, std::string where, bool derivatives, int component, int components) -> TimeFunctionPtr {
@@ -771,20 +808,7 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "simulate",
       [](const Model& model, const py::dict& options, py::object progress) {
-        // the fields of SimulationOptions by name (checked in Python, and again by simulate)
-        SimulationOptions o;
-        size_t used = 0;
-        o.for_each_field([&](const char* name, auto& field) {
-          if (!options.contains(name)) return;
-          field = options[name].template cast<std::decay_t<decltype(field)>>();
-          ++used;
-        });
-        if (used != options.size())
-          for (const auto& item : options) {
-            bool known = false;
-            o.for_each_field([&](const char* name, auto&) { known = known || py::str(item.first).equal(py::str(name)); });
-            if (!known) throw ModelError("simulate: unknown option '" + std::string(py::str(item.first)) + "'");
-          }
+        SimulationOptions o = options_from(options, "simulate");
         // between steps: let Ctrl-C through, and report progress if asked
         // (a borrowed pointer: the std::function is copied without the GIL)
         PyObject* report = progress.ptr();
@@ -814,6 +838,63 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("model"), py::arg("options"), py::arg("progress") = py::none(),
       "Runs simulate(model, options): options by the names of SimulationOptions' fields.");
+
+  py::class_<SimulatorState>(m, "SimulatorState")
+      .def_property_readonly("t", [](const SimulatorState& s) { return s.t; })
+      .def_property_readonly("q", [](const SimulatorState& s) { return Eigen::VectorXd(s.q); })
+      .def_property_readonly("v", [](const SimulatorState& s) { return Eigen::VectorXd(s.v); })
+      .def_property_readonly("inputs", [](const SimulatorState& s) { return Eigen::VectorXd(s.inputs); });
+
+  // the model is kept alive by the simulator's Python object (keep_alive)
+  py::class_<Simulator>(m, "Simulator")
+      .def(py::init([](const Model& model, const py::dict& options, double output_interval) {
+             SimulationOptions o = options_from(options, "Simulator");
+             PythonCall call;
+             py::gil_scoped_release release;
+             return std::make_unique<Simulator>(model, o, output_interval);
+           }),
+           py::arg("model"), py::arg("options"), py::arg("output_interval") = 0.0, py::keep_alive<1, 2>())
+      .def_property_readonly("t", &Simulator::t)
+      .def_property_readonly("q", [](const Simulator& s) { return Eigen::VectorXd(s.q()); })
+      .def_property_readonly("v", [](const Simulator& s) { return Eigen::VectorXd(s.v()); })
+      .def_property_readonly("a",
+                             [](Simulator& s) {
+                               PythonCall call;
+                               return Eigen::VectorXd(s.a());
+                             })
+      .def_property_readonly("lam",
+                             [](Simulator& s) {
+                               PythonCall call;
+                               return Eigen::VectorXd(s.lam());
+                             })
+      .def(
+          "advance",
+          [](Simulator& s, double t) {
+            PythonCall call;
+            py::gil_scoped_release release;
+            s.advance(t);
+          },
+          py::arg("t"))
+      .def("set_input", &Simulator::set_input, py::arg("name"), py::arg("value"))
+      .def("input", &Simulator::input, py::arg("name"))
+      .def_property_readonly("inputs", [](const Simulator& s) { return Eigen::VectorXd(s.inputs()); })
+      .def("state", &Simulator::state)
+      .def(
+          "set_state",
+          [](Simulator& s, const SimulatorState& state) {
+            PythonCall call;
+            py::gil_scoped_release release;
+            s.set_state(state);
+          },
+          py::arg("state"))
+      .def("result", [](const Simulator& s) { return to_python(s.result()); })
+      .def_property_readonly("stats",
+                             [](const Simulator& s) {
+                               py::dict stats;
+                               s.stats().for_each_field([&](const char* name, const auto& value) { stats[name] = value; });
+                               return stats;
+                             })
+      .def_property_readonly("failure", &Simulator::failure);
 
   m.def(
       "equilibrium",

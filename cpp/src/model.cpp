@@ -319,6 +319,23 @@ void Model::use_time_function(const TimeFunctionPtr& f) {
   if (f && time_function_set_.insert(f.get()).second) time_functions_.push_back(f);
 }
 
+void Model::add_input(InputInfo info) {
+  require_open("add an input");
+  for (const Input* f : input_functions_)
+    if (f == info.function) return;  // one input feeding several parameters
+  if (input_index(info.name) >= 0)
+    throw ModelError("input '" + info.name + "' of " + info.element + ": another input has that name (of " +
+                     inputs_[input_index(info.name)].element + ")");
+  input_functions_.push_back(info.function);
+  inputs_.push_back(std::move(info));
+}
+
+int Model::input_index(const std::string& name) const {
+  for (size_t k = 0; k < inputs_.size(); ++k)
+    if (inputs_[k].name == name) return int(k);
+  return -1;
+}
+
 std::string Model::describe(const std::string& name) const {
   const ElementRef& r = find(name);
   std::string kind;

@@ -294,17 +294,33 @@ void add_element(Model& model, const std::string& name, const Args& given) {
   }
   const Args args = resolved(model, label, given);
   kind.build(model, name, args);
+  // the functions of time: their breakpoints are the run's; its inputs are
+  // named after the element (with the parameter where it has several)
+  std::vector<InputInfo> inputs;
   for (const Param& p : kind.params) {
     if (!args.given(p.name)) continue;
-    // the functions of time: their breakpoints are the run's
-    if (p.type == ParamType::kMotion || p.type == ParamType::kFunction) model.use_time_function(args.function(p.name));
+    std::vector<std::pair<TimeFunctionPtr, std::string>> functions;  // with the parameter's name
+    if (p.type == ParamType::kMotion || p.type == ParamType::kFunction) functions.push_back({args.function(p.name), p.name});
     if (p.type == ParamType::kFunctionPair) {
       auto [f, g] = args.function_pair(p.name);
-      model.use_time_function(f);
-      model.use_time_function(g);
+      functions = {{f, p.name + ".x"}, {g, p.name + ".y"}};
     }
-    if (p.type == ParamType::kFunctionTriple)
-      for (const TimeFunctionPtr& f : args.function_triple(p.name)) model.use_time_function(f);
+    if (p.type == ParamType::kFunctionTriple) {
+      const auto f = args.function_triple(p.name);
+      functions = {{f[0], p.name + ".x"}, {f[1], p.name + ".y"}, {f[2], p.name + ".z"}};
+    }
+    for (const auto& [f, parameter] : functions) {
+      model.use_time_function(f);
+      if (const auto* in = dynamic_cast<const Input*>(f.get()))
+        inputs.push_back({in->name(), name, parameter, p.unit, in->initial(), in});
+    }
+  }
+  for (InputInfo& in : inputs) {
+    if (in.name.empty()) in.name = inputs.size() == 1 ? name : name + "." + in.parameter;
+    model.add_input(std::move(in));
+  }
+  for (const Param& p : kind.params) {
+    if (!args.given(p.name)) continue;
     // where the element's points sit on its bodies: what a drawing of each body joins
     for (const std::string& on : p.on) {
       const int body = args.body(on);

@@ -14,13 +14,14 @@ the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
 from . import _core
 from .accuracy import METHODS, WorkPrecision, work_precision
 from .errors import AssemblyError, ModelError, RedundantConstraintWarning, SimulationError
-from .functions import (Constant, Harmonic, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
+from .functions import (Constant, Harmonic, Input, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
                         time_function_from_dict)
 from .handles import Body, Handle
 from .model import Model
 from .result import BodyPath, Result
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import methods, simulate, solve_accelerations
+from .simulator import Simulator
 from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
 
@@ -34,6 +35,7 @@ __all__ = [
     "Constant",
     "Handle",
     "Harmonic",
+    "Input",
     "Linear",
     "METHODS",
     "Model",
@@ -44,6 +46,7 @@ __all__ = [
     "Scene",
     "SceneError",
     "SimulationError",
+    "Simulator",
     "SmoothStep",
     "Spline",
     "TimeFunction",

@@ -128,7 +128,38 @@ class Spline(TimeFunction):
         return _core.spline(list(self.times), list(self.values))
 
 
-_TYPES = {cls._type: cls for cls in (Constant, Linear, Polynomial, Harmonic, SmoothStep, Spline)}
+class Input(TimeFunction):
+    """A value set from outside while the model runs: give ``mb.Input(initial)``
+    where a force, torque, actuator or driver takes a function of time, then
+    set it with :meth:`lagmb.Simulator.set_input` (by ``name``, or by the
+    element's name when not given; ``"<element>.<parameter>.x"`` where an
+    element has several inputs). It holds its value between changes; a
+    change is a jump, where the integrator restarts. :func:`lagmb.simulate`
+    runs it at its initial value."""
+
+    _type, _fields = "input", ("initial", "name")
+
+    def __init__(self, initial=0.0, name=None):
+        if name is not None and (not isinstance(name, str) or not name):
+            raise ModelError(f"Input: name must be a non-empty string or None, got {name!r}")
+        super().__init__(_num(initial, "Input: initial"), name)
+
+    def _build(self):
+        return _core.input(self.initial, self.name or "")
+
+    def to_dict(self):
+        out = {"type": self._type, "initial": self.initial}
+        if self.name is not None:
+            out["name"] = self.name
+        return out
+
+    def __eq__(self, other):  # one input is one object: two with the same values are two inputs
+        return self is other
+
+    __hash__ = object.__hash__
+
+
+_TYPES = {cls._type: cls for cls in (Constant, Linear, Polynomial, Harmonic, SmoothStep, Spline, Input)}
 
 
 def time_function_from_dict(d):

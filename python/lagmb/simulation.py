@@ -134,6 +134,35 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     t_end = _real(t_end, "t_end")
     if not t_end > t0:
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
+    options = _run_options(t0=t0, rtol=rtol, atol=atol, formulation=formulation, integrator=integrator,
+                           max_step=max_step, step=step, max_order=max_order, baumgarte=baumgarte,
+                           max_steps=max_steps, start=start)
+    if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
+        raise ModelError("t_out must be strictly increasing")
+    if t_out is not None and t_out.size > _INT_MAX:
+        raise ModelError(f"t_out has {t_out.size} entries, more than {_INT_MAX}")
+    if t_out is None:
+        n_out = _integer(n_out, "n_out", 2, _INT_MAX)
+    else:
+        n_out = 2  # unused
+    if progress is not None and not callable(progress):
+        raise ModelError(f"progress must be a callable t -> None, got {progress!r}")
+    analysis = _choice(analysis, "analysis", _ANALYSES)
+    core = model.compiled()
+    with _translate(model, core):
+        options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
+        raw = _core.simulate(core, options, progress)
+    model._warn_redundant(raw.get("dropped_rows", []), stacklevel=3)
+    return Result(model, core, raw)
+
+
+_ANALYSES = ("auto", "dynamic", "kinematic", "inverse_dynamics")
+
+
+def _run_options(*, t0, rtol, atol, formulation, integrator, max_step, step, max_order, baumgarte, max_steps,
+                 start):
+    """The options every dynamic run takes, checked, by the names of the
+    core's SimulationOptions (simulate and Simulator)."""
     rtol = _positive(rtol, "rtol")
     formulation = _text(formulation, "formulation")
     integrator = "" if integrator is None else _text(integrator, "integrator")  # "": the formulation's first
@@ -160,31 +189,10 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
         alpha, beta = _real(alpha, "baumgarte alpha"), _real(beta, "baumgarte beta")
     # None: no bound (Ctrl-C still stops the run)
     max_steps = 0 if max_steps is None else _integer(max_steps, "max_steps", 1, 2**62)
-    if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
-        raise ModelError("t_out must be strictly increasing")
-    if t_out is not None and t_out.size > _INT_MAX:
-        raise ModelError(f"t_out has {t_out.size} entries, more than {_INT_MAX}")
-    if t_out is None:
-        n_out = _integer(n_out, "n_out", 2, _INT_MAX)
-    else:
-        n_out = 2  # unused
-    if progress is not None and not callable(progress):
-        raise ModelError(f"progress must be a callable t -> None, got {progress!r}")
-    analysis = _choice(analysis, "analysis", _ANALYSES)
     start = _choice(start, "start", ("given", "equilibrium"))
-    core = model.compiled()
-    with _translate(model, core):
-        options = dict(t0=t0, t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out,
-                       rtol=rtol, atol=atol, atol_coordinates=atol_coordinates, max_step=max_step,
-                       max_steps=max_steps, max_order=max_order, formulation=formulation,
-                       integrator=integrator, baumgarte_alpha=alpha, baumgarte_beta=beta,
-                       analysis=analysis, start=start)
-        raw = _core.simulate(core, options, progress)
-    model._warn_redundant(raw.get("dropped_rows", []), stacklevel=3)
-    return Result(model, core, raw)
-
-
-_ANALYSES = ("auto", "dynamic", "kinematic", "inverse_dynamics")
+    return dict(t0=t0, rtol=rtol, atol=atol, atol_coordinates=atol_coordinates, max_step=max_step,
+                max_steps=max_steps, max_order=max_order, formulation=formulation, integrator=integrator,
+                baumgarte_alpha=alpha, baumgarte_beta=beta, start=start)
 
 
 def _choice(value, name, allowed):

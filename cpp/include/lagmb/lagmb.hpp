@@ -1,4 +1,4 @@
-// lagmb: planar multibody dynamics in Cartesian coordinates with Lagrange
+// lagmb: planar and spatial multibody dynamics in Cartesian coordinates with Lagrange
 // multipliers. Include this header to use the library from C++.
 #pragma once
 
@@ -9,6 +9,7 @@
 #include "lagmb/errors.hpp"
 #include "lagmb/model.hpp"
 #include "lagmb/simulate.hpp"
+#include "lagmb/simulator.hpp"
 #include "lagmb/trajectory.hpp"
 #include "lagmb/types.hpp"
 #include "lagmb/kinematics.hpp"

@@ -25,6 +25,16 @@ namespace lagmb {
 constexpr int kGround = -1;
 
 /// What a name refers to.
+/// An input of a model (time_function.hpp, Input): its name and what it feeds.
+struct InputInfo {
+  std::string name;       // what Simulator::set_input takes
+  std::string element;    // the element it feeds
+  std::string parameter;  // the element's parameter: "force", "torque", "f"; ".x", ".y", ".z" for a component
+  std::string unit;       // SI unit of the value
+  double initial = 0.0;
+  const Input* function = nullptr;
+};
+
 struct ElementRef {
   enum Type { kBody, kConstraint, kForce, kFriction, kEvent } type;
   int group;  // constraint, force, friction or event group; body index for kBody
@@ -87,6 +97,10 @@ class Model {
   }
   /// Notes a time function of a driver or force (for breakpoints()).
   void use_time_function(const TimeFunctionPtr& f);
+  /// Records an input (time_function.hpp) of an element; the same Input
+  /// given to several parameters is one input. ModelError if another input
+  /// has the name already.
+  void add_input(InputInfo info);
   /// ModelError naming `element` unless both bodies exist and differ.
   void check_pair(const std::string& element, int body_i, int body_j) const;
   /// The constraint element of kind Kind called `name`, or null.
@@ -201,6 +215,14 @@ class Model {
   /// The time functions of drivers and forces, each once.
   const std::vector<TimeFunctionPtr>& time_functions() const { return time_functions_; }
 
+  /// The inputs of the model's elements, in the order added; a Simulator
+  /// holds one value per entry.
+  const std::vector<InputInfo>& inputs() const { return inputs_; }
+  /// Their functions, in the same order (what an InputScope binds).
+  const std::vector<const Input*>& input_functions() const { return input_functions_; }
+  /// The index of the input called `name` in inputs(), -1 if none.
+  int input_index(const std::string& name) const;
+
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
   /// Doubles of per-run element state (Data::run_state); 0 for most models.
@@ -227,6 +249,8 @@ class Model {
   std::vector<const ForceGroupBase*> state_dependent_;
   std::vector<TimeFunctionPtr> time_functions_;  // of drivers and forces, for breakpoints
   std::set<const TimeFunction*> time_function_set_;  // the same, to add each once
+  std::vector<InputInfo> inputs_;
+  std::vector<const Input*> input_functions_;
   std::map<std::string, ElementRef> names_;
   std::vector<std::unique_ptr<FrictionGroupBase>> frictions_;
   std::map<std::type_index, int> friction_group_of_kind_;

@@ -42,4 +42,43 @@ TimeFunctionPtr smooth_step(double t0, double t1, double y0, double y1);
 /// Natural cubic spline through (times, values), C2; linear beyond the ends.
 TimeFunctionPtr spline(std::vector<double> times, std::vector<double> values);
 
+/// A value set from outside while the model runs (Simulator::set_input): a
+/// force, torque or driver value given as an input instead of a function of
+/// time. It holds its value between changes (f' = f'' = 0); a change is a
+/// jump, where the integrator restarts. The Model lists the inputs of its
+/// elements (Model::inputs); a Simulator binds its own values to them while
+/// it integrates (InputScope), so one Model runs with different inputs on
+/// several threads. Anywhere else (simulate, assemble, equilibrium) an input
+/// reads its initial value.
+class Input final : public TimeFunction {
+ public:
+  /// `name` "": named after the element it feeds (Model::inputs).
+  explicit Input(double initial, std::string name = "") : initial_(initial), name_(std::move(name)) {}
+  TimeValue eval(double t) const override;
+  double initial() const { return initial_; }
+  const std::string& name() const { return name_; }
+
+ private:
+  double initial_;
+  std::string name_;
+};
+std::shared_ptr<Input> input(double initial, std::string name = "");
+
+/// While alive, the Input functions in `inputs` read the matching entries
+/// of `values` on the calling thread (the values of one Simulator's run);
+/// scopes nest, the innermost binding counts.
+class InputScope {
+ public:
+  InputScope(const std::vector<const Input*>& inputs, const double* values);
+  ~InputScope();
+  InputScope(const InputScope&) = delete;
+  InputScope& operator=(const InputScope&) = delete;
+
+ private:
+  const std::vector<const Input*>* inputs_;
+  const double* values_;
+  const InputScope* outer_;
+  friend class Input;
+};
+
 }  // namespace lagmb

@@ -168,7 +168,7 @@ def _time_function(where, key, value):
         return number
     if "type" not in value:
         raise where.error("a time function needs a 'type' (constant, linear, polynomial, "
-                          "harmonic, smooth_step or spline)", key)
+                          "harmonic, smooth_step, spline or input)", key)
     try:
         from ..functions import time_function_from_dict
     except ImportError:

@@ -60,7 +60,7 @@ def scene_text(model, settings=None, output=None):
                 raise SceneError(
                     f"{method}: {e} cannot go in a scene file, which holds numbers and time "
                     "functions (mb.Constant, mb.Linear, mb.Polynomial, mb.Harmonic, "
-                    "mb.SmoothStep, mb.Spline)", table=f"{table} {name!r}", key=key) from None
+                    "mb.SmoothStep, mb.Spline, mb.Input)", table=f"{table} {name!r}", key=key) from None
             out.append(f"{key} = {text}")
         out.append("")
     if settings:

@@ -1,0 +1,337 @@
+#include "lagmb/simulator.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "integrators.hpp"
+#include "lagmb/analysis.hpp"
+#include "lagmb/interrupt.hpp"
+#include "lagmb/kinematics.hpp"
+#include "lagmb/methods.hpp"
+#include "run.hpp"
+
+namespace lagmb {
+
+namespace {
+
+/// Adds the counts of a stepper's segment to a run's.
+void add_counts(Stats& total, const Stats& part) {
+  total.steps += part.steps;
+  total.residual_evals += part.residual_evals;
+  total.jacobian_evals += part.jacobian_evals;
+  total.lu_factorizations += part.lu_factorizations;
+  total.augmented_factorizations += part.augmented_factorizations;
+  total.projections += part.projections;
+  total.newton_iterations += part.newton_iterations;
+  total.error_test_failures += part.error_test_failures;
+  total.convergence_failures += part.convergence_failures;
+  total.element_evaluations += part.element_evaluations;
+}
+
+}  // namespace
+
+Simulator::Simulator(const Model& model, const SimulationOptions& options, double output_interval)
+    : model_(model), options_(options), output_interval_(output_interval) {
+  validate_run_options(model, options_, "Simulator");
+  if (!(std::isfinite(output_interval) && output_interval >= 0.0))
+    throw ModelError("Simulator: output_interval must be finite and >= 0 (0: outputs at the ends of advances), got " +
+                     to_text(output_interval));
+  if (options_.analysis != "auto" && options_.analysis != "dynamic")
+    throw ModelError("Simulator: a simulator integrates the equations of motion (analysis 'dynamic'); for a '" +
+                     options_.analysis + "' analysis call simulate");
+  if (const auto massless = massless_bodies(model); !massless.empty())
+    throw ModelError("Simulator: body '" + model.body(massless.front()).name +
+                     "' is massless, so its motion does not follow from forces (a fully driven model with "
+                     "massless bodies is solved by simulate's kinematic analysis)");
+  method_ = &find_method(options_.formulation, options_.integrator);
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  inputs_.resize(int(model.inputs().size()));
+  for (size_t k = 0; k < model.inputs().size(); ++k) inputs_[int(k)] = model.inputs()[k].initial;
+  inputs_integrated_ = inputs_;
+
+  d_ = std::make_unique<Data>(model);
+  kkt_ = std::make_unique<AugmentedSystem>(model);
+  Redundancy redundancy;
+  ConsistentState start;
+  {
+    InputScope scope(model.input_functions(), inputs_.data());
+    start = dynamic_start(model, options_, *d_, *kkt_, redundancy);
+    events_ = start_events(model, *d_, options_.t0, start);
+  }
+  plan_ = std::make_unique<IntegrationPlan>(run_plan(model, options_, *method_, *d_));
+  plan_->breakpoints = model.breakpoints();  // the loop takes those after its start
+  plan_->events = events_.get();
+  watch_ = std::make_unique<RedundancyWatch>(model, std::move(redundancy));
+
+  t_ = options_.t0;
+  q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
+  solved_ = true;
+  record_.n = n;
+  record_.m = m;
+  record_.dropped_rows = start.dropped_rows;
+  record_.stats.formulation = method_->formulation;
+  record_.stats.integrator = method_->integrator;
+  record_.stats.analysis = "dynamic";
+  record_.t.push_back(t_);
+  record_.q.insert(record_.q.end(), q_.data(), q_.data() + n);
+  record_.v.insert(record_.v.end(), v_.data(), v_.data() + n);
+  record_.a.insert(record_.a.end(), a_.data(), a_.data() + n);
+  record_.lam.insert(record_.lam.end(), lam_.data(), lam_.data() + m);
+}
+
+Simulator::~Simulator() = default;
+
+void Simulator::check_usable(const char* what) const {
+  if (!failure_.empty())
+    throw SimulationError(std::string("Simulator.") + what + ": the simulator failed at t = " + to_text(t_) +
+                              " and cannot go on (" + failure_ + "); set_state goes back to a saved state",
+                          t_);
+}
+
+const VecX& Simulator::a() {
+  if (!solved_) {
+    InputScope scope(model_.input_functions(), inputs_.data());
+    a_.resize(q_.size());
+    lam_.resize(model_.n_constraints());
+    solve_accelerations(model_, *d_, *kkt_, q_.data(), v_.data(), t_, a_.data(), lam_.data());
+    solved_ = true;
+  }
+  return a_;
+}
+
+const VecX& Simulator::lam() {
+  a();
+  return lam_;
+}
+
+int Simulator::input_slot(const std::string& name) const {
+  const int k = model_.input_index(name);
+  if (k >= 0) return k;
+  std::string names;
+  for (const InputInfo& in : model_.inputs()) names += (names.empty() ? "'" : ", '") + in.name + "'";
+  const std::string theirs = names.empty() ? "the model has no inputs (give a force, torque or driver value as an "
+                                             "Input to make one)"
+                                           : "the inputs are " + names;
+  if (model_.has(name))
+    throw ModelError("Simulator: '" + name + "' is " + model_.describe(name) + ", not an input; " + theirs);
+  throw ModelError("Simulator: no input called '" + name + "'; " + theirs);
+}
+
+void Simulator::set_input(const std::string& name, double value) {
+  check_usable("set_input");
+  const int k = input_slot(name);
+  if (!std::isfinite(value))
+    throw ModelError("Simulator: input '" + name + "' must be finite, got " + to_text(value));
+  inputs_[k] = value;
+  solved_ = solved_ && inputs_ == inputs_integrated_;
+}
+
+double Simulator::input(const std::string& name) const { return inputs_[input_slot(name)]; }
+
+void Simulator::new_stepper() {
+  // the finished stepper's counts are kept; the new one starts at order 1
+  if (stepper_) {
+    Stats s;
+    stepper_->fill_stats(s);
+    add_counts(finished_, s);
+    finished_.restarts += loop_->restarts();
+    ++restarts_;
+  }
+  loop_.reset();
+  stepper_.reset();
+  const ConsistentState start = make_consistent(model_, *d_, *kkt_, q_, v_, t_);
+  plan_->t0 = t_;
+  stepper_ = make_stepper(*method_, model_, options_, start, *plan_);
+  loop_ = std::make_unique<StepLoop>(*stepper_, *plan_, t_, false);
+  q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
+  solved_ = true;
+  inputs_integrated_ = inputs_;
+  fresh_ = false;
+}
+
+void Simulator::restart_for_inputs() {
+  // a jump in a force, or in a driver's value (positions assembled anew)
+  const ConsistentState start = make_consistent(model_, *d_, *kkt_, q_, v_, t_);
+  plan_->t0 = t_;  // the first step's scale: the advance in progress
+  stepper_->reset(t_, start);
+  loop_->restarted(t_);
+  q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
+  solved_ = true;
+  inputs_integrated_ = inputs_;
+  ++restarts_;
+  ++input_changes_;
+}
+
+void Simulator::record_output(double t, const double* q, const double* v) {
+  const int n = record_.n;
+  if (watch_->active()) {
+    const std::string why = watch_->violation(q, t);
+    if (!why.empty()) {
+      IntegratorFailure f(why, t);
+      f.diagnose = false;
+      throw f;
+    }
+  }
+  record_.t.push_back(t);
+  record_.q.insert(record_.q.end(), q, q + n);
+  record_.v.insert(record_.v.end(), v, v + n);
+  const std::string why = solve_outputs(model_, *d_, *kkt_, record_, record_.size() - 1);
+  if (!why.empty()) {
+    record_.truncate(solved_outputs(record_));
+    IntegratorFailure f(why, t);
+    f.diagnose = false;
+    throw f;
+  }
+}
+
+void Simulator::advance(double target) {
+  check_usable("advance");
+  if (!std::isfinite(target)) throw ModelError("Simulator.advance: t is not finite (" + to_text(target) + ")");
+  if (target < t_)
+    throw ModelError("Simulator.advance: t = " + to_text(target) + " is before the simulator's time " + to_text(t_) +
+                     "; a simulator only goes forward (set_state goes back to a saved state)");
+  if (target == t_) return;
+  // the outputs: the multiples of output_interval after t_, then target
+  std::vector<double> t_out;
+  if (output_interval_ > 0.0) {
+    const double t0 = options_.t0, dt = output_interval_;
+    for (double k = std::floor((t_ - t0) / dt) + 1;; ++k) {
+      const double tk = t0 + k * dt;
+      if (!(tk < target - 1e-9 * dt)) break;
+      if (tk > t_) t_out.push_back(tk);
+    }
+  }
+  t_out.push_back(target);
+
+  InputScope scope(model_.input_functions(), inputs_.data());
+  const int first_new = record_.size();
+  size_t k = 0;
+  auto record = [&](const double* q, const double* v) { record_output(t_out[k], q, v); };
+  try {
+    plan_->t_end = target;  // the steppers' tout, and the scale of a first step
+    if (fresh_ || !stepper_)
+      new_stepper();
+    else if (inputs_ != inputs_integrated_)
+      restart_for_inputs();
+    loop_->run(target, t_out, k, record);
+    // outputs inside a step taken before (the steps may pass the time asked for)
+    for (; k < t_out.size(); ++k) {
+      const double *q = nullptr, *v = nullptr;
+      stepper_->interpolate(t_out[k], q, v);
+      record(q, v);
+    }
+  } catch (const IntegratorFailure& e) {
+    std::ostringstream msg;
+    msg << e.what();
+    if (e.diagnose && stepper_)
+      msg << diagnose_failure(model_, Eigen::Map<const VecX>(stepper_->positions(), q_.size()), e.t,
+                              record_.dropped_rows);
+    failure_ = msg.str();
+  } catch (const UserFunctionError& e) {
+    failure_ = e.what();
+  } catch (const SimulationError& e) {  // a solve inside a step or restart
+    failure_ = e.what();
+  } catch (Interrupted&) {  // Ctrl-C: the outputs of this advance are dropped, the run can go on
+    record_.truncate(first_new);
+    fresh_ = true;
+    throw;
+  }
+  if (!failure_.empty()) {
+    // the outputs reached stay; the state is the last one recorded in full
+    const int last = record_.size() - 1;
+    const int n = record_.n, m = record_.m;
+    t_ = record_.t[last];
+    q_ = Eigen::Map<const VecX>(&record_.q[size_t(last) * n], n);
+    v_ = Eigen::Map<const VecX>(&record_.v[size_t(last) * n], n);
+    a_ = Eigen::Map<const VecX>(&record_.a[size_t(last) * n], n);
+    lam_ = Eigen::Map<const VecX>(&record_.lam[size_t(last) * m], m);
+    solved_ = true;
+    fresh_ = true;
+    std::ostringstream s;
+    s << failure_ << " Outputs up to t = " << t_ << " are kept in the simulator's result.";
+    throw SimulationError(s.str(), t_, result());
+  }
+  const int last = record_.size() - 1, n = record_.n, m = record_.m;
+  t_ = target;
+  q_ = Eigen::Map<const VecX>(&record_.q[size_t(last) * n], n);
+  v_ = Eigen::Map<const VecX>(&record_.v[size_t(last) * n], n);
+  a_ = Eigen::Map<const VecX>(&record_.a[size_t(last) * n], n);
+  lam_ = Eigen::Map<const VecX>(&record_.lam[size_t(last) * m], m);
+  solved_ = true;
+}
+
+SimulatorState Simulator::state() {
+  SimulatorState s;
+  s.t = t_;
+  s.q = q_;
+  s.v = v_;
+  s.inputs = inputs_;
+  s.run_state = *d_->run_state;
+  s.events = events_ ? long(events_->records.size()) : 0;
+  s.owner = &model_;
+  fresh_ = true;  // the run goes on from here as a restored copy would
+  return s;
+}
+
+void Simulator::set_state(const SimulatorState& s) {
+  const int n = model_.n_coordinates();
+  if (s.owner != &model_ || s.q.size() != n || s.v.size() != n || s.inputs.size() != inputs_.size() ||
+      s.run_state.size() != d_->run_state->size())
+    throw ModelError("Simulator.set_state: the state was saved from a simulator of another model");
+  if (!std::isfinite(s.t) || !s.q.allFinite() || !s.v.allFinite() || !s.inputs.allFinite())
+    throw ModelError("Simulator.set_state: the state is not finite");
+  t_ = s.t;
+  q_ = s.q;
+  v_ = s.v;
+  inputs_ = s.inputs;
+  *d_->run_state = s.run_state;
+  if (events_ && long(events_->records.size()) > s.events) events_->records.resize(size_t(s.events));
+  // the outputs of this branch: those up to t, then t itself
+  int keep = 0;
+  while (keep < record_.size() && record_.t[keep] <= t_) ++keep;
+  record_.truncate(keep);
+  solved_ = false;
+  failure_.clear();
+  fresh_ = true;
+  if (record_.t.empty() || record_.t.back() != t_) {
+    InputScope scope(model_.input_functions(), inputs_.data());
+    try {
+      record_output(t_, q_.data(), v_.data());
+    } catch (const IntegratorFailure& e) {
+      failure_ = e.what();
+      throw SimulationError("Simulator.set_state: " + failure_, t_, result());
+    }
+  }
+}
+
+Trajectory Simulator::result() const {
+  Trajectory tr = record_;
+  tr.stats = stats();
+  if (events_) tr.events = events_->records;
+  return tr;
+}
+
+Stats Simulator::stats() const {
+  Stats s = finished_;
+  if (stepper_) {
+    Stats now;
+    stepper_->fill_stats(now);
+    add_counts(s, now);
+    s.last_order = now.last_order;
+    s.last_step = now.last_step;
+    s.restarts += loop_->restarts();
+  }
+  s.restarts += restarts_;
+  s.input_changes = input_changes_;
+  s.formulation = method_->formulation;
+  s.integrator = method_->integrator;
+  s.analysis = "dynamic";
+  if (events_) {
+    s.events = events_->events;
+    s.impacts = events_->impacts;
+    s.root_evals = events_->root_evals;
+  }
+  return s;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,148 @@
+"""A run driven from outside: advanced in chunks, its inputs set between them,
+saved and restored (docs/modelling.md, "Driving a run from outside")."""
+
+from types import SimpleNamespace
+
+from . import _core
+from ._checks import real as _real, show as _show
+from .errors import ModelError
+from .result import BodyPath, Result, element_name
+from .simulation import _run_options, _translate
+
+
+class Simulator:
+    """A dynamic run of ``model`` that advances when asked::
+
+        sim = mb.Simulator(model, rtol=1e-8)
+        while sim.t < 10.0:
+            sim.set_input("push", controller(sim.q, sim.v))   # from sim.t on
+            sim.advance(sim.t + 0.01)
+        r = sim.result()
+
+    The options are :func:`lagmb.simulate`'s without the outputs (``t_end``,
+    ``t_out``, ``n_out``), ``analysis`` (a simulator always integrates the
+    equations of motion) and ``progress``; ``max_steps`` bounds each
+    advance. The integrator keeps its steps and history from one advance to
+    the next: its steps may pass the time asked for, and the state there is
+    its interpolant, so many short advances take the steps of one long run.
+    It restarts (order 1) at breakpoints and events as simulate does, at a
+    change of an input (a jump; a driver's positions are assembled anew), and
+    from a saved or restored state.
+
+    ``result()`` holds the state at ``t0``, at the end of every advance and,
+    with ``output_interval`` (s), at each of its multiples after ``t0``.
+    """
+
+    def __init__(self, model, *, t0=0.0, rtol=1e-6, atol=1e-8, formulation="ggl", integrator=None,
+                 max_step=None, step=None, max_steps=500_000, max_order=None, baumgarte=None, start="given",
+                 output_interval=None):
+        options = _run_options(t0=_real(t0, "t0"), rtol=rtol, atol=atol, formulation=formulation,
+                               integrator=integrator, max_step=max_step, step=step, max_order=max_order,
+                               baumgarte=baumgarte, max_steps=max_steps, start=start)
+        interval = 0.0 if output_interval is None else _real(output_interval, "output_interval")
+        if interval < 0:
+            raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
+        self.model = model
+        self._core_model = model.compiled()
+        with _translate(model, self._core_model):
+            self._sim = _core.Simulator(self._core_model, options, interval)
+        model._warn_redundant(self._sim.result().get("dropped_rows", []), stacklevel=2)
+
+    # the current state, consistent: copies
+    @property
+    def t(self):
+        """Time reached (s)."""
+        return self._sim.t
+
+    @property
+    def q(self):
+        """Coordinates at :attr:`t` (a copy)."""
+        return self._sim.q
+
+    @property
+    def v(self):
+        """Velocities at :attr:`t`."""
+        return self._sim.v
+
+    @property
+    def a(self):
+        """Accelerations at :attr:`t`, from the augmented system."""
+        with self._translated():
+            return self._sim.a
+
+    @property
+    def lam(self):
+        """Lagrange multipliers at :attr:`t`."""
+        with self._translated():
+            return self._sim.lam
+
+    def body(self, body):
+        """A body's state now (handle or name), as :meth:`lagmb.Result.body`
+        gives it at one instant: .position, .velocity, .acceleration, and
+        .angle, .angular_velocity (planar) or .orientation, .rotation,
+        .angular_velocity (spatial)."""
+        name = element_name(self.model, self._core_model, body, ("body",), "body", "Simulator.body")
+        first, count = self._core_model.body_coordinates(name)
+        now = SimpleNamespace(t=[self.t], q=self.q[None], v=self.v[None], a=self.a[None])
+        return SimpleNamespace(**{key: value[0] for key, value in vars(BodyPath(now, first, count)).items()})
+
+    def advance(self, t):
+        """Integrate to time ``t`` (>= :attr:`t`). Raises SimulationError if
+        the integrator fails: :meth:`result` keeps the outputs reached, and
+        the simulator refuses to go on until :meth:`set_state`."""
+        t = _real(t, "t")
+        with self._translated():
+            self._sim.advance(t)
+
+    def set_input(self, name, value):
+        """Set an input (:attr:`inputs`) from :attr:`t` on. ``name``: the
+        input's name, or a handle of the element it feeds."""
+        value = _real(value, f"input {name!r}")
+        with self._translated():
+            self._sim.set_input(self._input_name(name), value)
+
+    def input(self, name):
+        """The value of an input now."""
+        with self._translated():
+            return self._sim.input(self._input_name(name))
+
+    @property
+    def inputs(self):
+        """{name: value} of the model's inputs."""
+        return {d["name"]: float(value) for d, value in zip(self._core_model.inputs, self._sim.inputs)}
+
+    def state(self):
+        """The state to come back to with :meth:`set_state`. The integrator
+        restarts here on the next advance, so advancing from a restored copy
+        repeats the run from here bit for bit."""
+        return self._sim.state()
+
+    def set_state(self, state):
+        """Go back (or forward) to a saved state: the outputs after its time
+        are dropped; the integrator restarts there; a failure is cleared."""
+        if not isinstance(state, _core.SimulatorState):
+            raise ModelError(f"set_state takes what state() returned, got {_show(state)}")
+        with self._translated():
+            self._sim.set_state(state)
+
+    def result(self):
+        """Everything recorded so far, as a :class:`lagmb.Result`."""
+        return Result(self.model, self._core_model, self._sim.result())
+
+    @property
+    def stats(self):
+        """Solver counts summed over the run (``restarts``, ``input_changes``, ...)."""
+        return dict(self._sim.stats)
+
+    def __repr__(self):
+        return f"Simulator(t={self.t!r}, inputs={self.inputs!r})"
+
+    def _input_name(self, name):
+        if not isinstance(name, str):
+            name = getattr(name, "name", name)  # a handle
+        if not isinstance(name, str):
+            raise ModelError(f"an input is named by a string or a handle, got {_show(name)}")
+        return name
+
+    def _translated(self):
+        return _translate(self.model, self._core_model)
