@@ -5,7 +5,7 @@
 #
 # It leaves the normal build and the installed package alone: the sanitized
 # module is built in build/asan (configured by CMake directly, only the _core
-# target and the static lagmb_core it links) and staged in build/asan/pkg/lagmb
+# and FMU runtime targets and the static lagmb_core they link) and staged in build/asan/pkg/lagmb
 # next to symlinks to python/lagmb/*.py and its subpackages (scene/);
 # PYTHONPATH puts that directory ahead of site-packages. Any sanitizer report
 # fails the run: UB aborts (-fno-sanitize-recover), as do out-of-range
@@ -34,7 +34,7 @@ cmake -S . -B $BUILD -DLAGMB_PYTHON=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_SHARED_LINKER_FLAGS="$SAN" -DCMAKE_MODULE_LINKER_FLAGS="$SAN" \
   -DCMAKE_EXE_LINKER_FLAGS="$SAN" -DCMAKE_INTERPROCEDURAL_OPTIMIZATION=OFF \
   -DPython_EXECUTABLE="$PY" -Dpybind11_DIR="$("$PY" -m pybind11 --cmakedir)" >/dev/null
-cmake --build $BUILD --target _core -j "$JOBS"
+cmake --build $BUILD --target _core lagmb_fmu -j "$JOBS"
 t1=$(date +%s)
 
 so=$(ls $BUILD/_core*.so)
@@ -42,6 +42,8 @@ rm -rf $PKG && mkdir -p $PKG/lagmb
 for f in python/lagmb/*.py; do ln -s "$ROOT/$f" $PKG/lagmb/; done
 for f in python/lagmb/*/__init__.py; do ln -s "$ROOT/${f%/__init__.py}" $PKG/lagmb/; done
 ln -s "$ROOT/$so" $PKG/lagmb/
+mkdir -p $PKG/lagmb/fmu_runtime  # what `lagmb fmu` puts in an FMU (tests/test_fmu.py)
+for f in $BUILD/liblagmb_fmu.so cpp/fmu/fmi3.c cpp/fmu/lagmb_fmu.h; do ln -s "$ROOT/$f" $PKG/lagmb/fmu_runtime/; done
 
 # Python is not instrumented, so the ASan runtime has to be loaded first,
 # before the module (the UBSan runtime too: the module needs both). Tests that

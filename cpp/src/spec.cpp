@@ -11,7 +11,7 @@ ModelSpec::ModelSpec(int dimension) : dimension_(dimension) {
 
 void ModelSpec::set_gravity(Vec2 g) {
   if (dimension_ != 2)
-    throw ModelError("gravity of a spatial model has three components (x, y, z), got " + to_text(g));
+    throw ModelError("gravity of a spatial model has three components (x, y, z), got " + lagmb::to_text(g));
   set_gravity(Vec3(g.x(), g.y(), 0.0));
 }
 

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <istream>
+#include <sstream>
 
 #include "lagmb/types.hpp"
 
@@ -13,10 +16,20 @@ void require_finite(double x, const char* what) {
   if (!std::isfinite(x)) throw ModelError(std::string("time function: ") + what + " is not finite");
 }
 
+/// Numbers as text that reads back to the same doubles.
+std::string numbers(std::initializer_list<double> xs, const std::vector<double>& more = {}) {
+  std::ostringstream s;
+  s << std::setprecision(17);
+  for (double x : xs) s << ' ' << x;
+  for (double x : more) s << ' ' << x;
+  return s.str();
+}
+
 struct Constant final : TimeFunction {
   double c;
   explicit Constant(double c_) : c(c_) {}
   TimeValue eval(double) const override { return {c, 0.0, 0.0}; }
+  std::string text() const override { return "constant" + numbers({c}); }
 };
 
 struct Polynomial final : TimeFunction {
@@ -32,6 +45,7 @@ struct Polynomial final : TimeFunction {
     }
     return v;
   }
+  std::string text() const override { return "polynomial" + numbers({double(c.size())}, c); }
 };
 
 struct Harmonic final : TimeFunction {
@@ -41,12 +55,14 @@ struct Harmonic final : TimeFunction {
     const double s = std::sin(w * t + p), c = std::cos(w * t + p);
     return {o + a * s, a * w * c, -a * w * w * s};
   }
+  std::string text() const override { return "harmonic" + numbers({a, w, p, o}); }
 };
 
 struct SmoothStep final : TimeFunction {
   double t0, t1, y0, y1;
   SmoothStep(double a, double b, double c, double d) : t0(a), t1(b), y0(c), y1(d) {}
   std::vector<double> breakpoints() const override { return {t0, t1}; }
+  std::string text() const override { return "smooth_step" + numbers({t0, t1, y0, y1}); }
   TimeValue eval(double t) const override {
     if (t <= t0) return {y0, 0.0, 0.0};
     if (t >= t1) return {y1, 0.0, 0.0};
@@ -76,6 +92,11 @@ struct Spline final : TimeFunction {
     for (size_t i = n - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
   }
   std::vector<double> breakpoints() const override { return x; }
+  std::string text() const override {
+    std::vector<double> xy = x;
+    xy.insert(xy.end(), y.begin(), y.end());
+    return "spline" + numbers({double(x.size())}, xy);
+  }
   TimeValue eval(double t) const override {
     const size_t n = x.size();
     if (n == 1) return {y[0], 0.0, 0.0};
@@ -156,6 +177,54 @@ TimeValue Input::eval(double) const {
     for (size_t k = 0; k < scope->inputs_->size(); ++k)
       if ((*scope->inputs_)[k] == this) return {scope->values_[k], 0.0, 0.0};
   return {initial_, 0.0, 0.0};
+}
+
+std::string Input::text() const {
+  std::ostringstream s;
+  s << "input" << numbers({initial_}) << ' ' << std::quoted(name_);
+  return s.str();
+}
+
+TimeFunctionPtr time_function_from_text(std::istream& in) {
+  std::string type;
+  in >> type;
+  auto read = [&](const char* what) {
+    double x = 0.0;
+    if (!(in >> x)) throw ModelError("time function '" + type + "': " + what + " is missing or not a number");
+    return x;
+  };
+  auto list = [&](const char* what) {
+    const double count = read("the count");
+    if (!(count >= 1 && count <= 1e7 && count == std::floor(count)))
+      throw ModelError("time function '" + type + "': a count of " + to_text(count));
+    std::vector<double> xs(static_cast<size_t>(count));
+    for (double& x : xs) x = read(what);
+    return xs;
+  };
+  if (type == "constant") return constant(read("c"));
+  if (type == "polynomial") return polynomial(list("a coefficient"));
+  if (type == "harmonic") {
+    const double a = read("amplitude"), w = read("omega"), p = read("phase");
+    return harmonic(a, w, p, read("offset"));
+  }
+  if (type == "smooth_step") {
+    const double t0 = read("t0"), t1 = read("t1"), y0 = read("y0");
+    return smooth_step(t0, t1, y0, read("y1"));
+  }
+  if (type == "spline") {
+    std::vector<double> xy = list("a time");
+    const size_t n = xy.size();
+    for (size_t k = 0; k < n; ++k) xy.push_back(read("a value"));
+    return spline(std::vector<double>(xy.begin(), xy.begin() + n), std::vector<double>(xy.begin() + n, xy.end()));
+  }
+  if (type == "input") {
+    const double initial = read("initial");
+    std::string name;
+    if (!(in >> std::quoted(name))) throw ModelError("time function 'input': the name is missing");
+    return input(initial, name);
+  }
+  throw ModelError("unknown time function '" + type +
+                   "' (known: constant, polynomial, harmonic, smooth_step, spline, input)");
 }
 
 std::shared_ptr<Input> input(double initial, std::string name) {

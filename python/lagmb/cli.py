@@ -84,6 +84,18 @@ def _parser():
     acc.add_argument("--plot", metavar="PNG", help="draw error vs CPU time and drift vs time")
     acc.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
 
+    fmu = sub.add_parser("fmu", help="build an FMI 3.0 co-simulation FMU of a scene",
+                         description="Build a binary FMI 3.0 co-simulation FMU for this platform "
+                                     "that embeds the scene: its inputs are the scene's inputs, its "
+                                     "outputs the body coordinates and rates and the reactions and "
+                                     "efforts of [output], its parameters the numbers given to the "
+                                     "elements (docs/modelling.md). Needs FMPy's FMI headers "
+                                     "(pip install 'lagmb[fmu]') and a C compiler.")
+    fmu.add_argument("scene", help="the scene file (.toml)")
+    fmu.add_argument("-o", "--output", metavar="FMU", help="the FMU file (default: the scene's name .fmu)")
+    fmu.add_argument("--name", help="the model's name in the FMU (default: the scene file's name)")
+    fmu.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+
     demo = sub.add_parser("demo", help="simulate the seed pendulum and check it against closed forms")
     demo.add_argument("--plot", metavar="PNG", help="write a plot of angle and pin force")
     demo.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
@@ -114,6 +126,8 @@ def _main(args):
             return _info(args)
         if args.command == "accuracy":
             return _accuracy(args)
+        if args.command == "fmu":
+            return _fmu(args)
         return _run(args)
     except _Exit as e:
         print(f"lagmb {args.command}: " + " ".join(str(e).splitlines()), file=sys.stderr)
@@ -129,6 +143,23 @@ def _main(args):
               + (f": {text[:300]}" if text else "")
               + " (a bug in lagmb; LAGMB_TRACEBACK=1 shows where)", file=sys.stderr)
         return INTERNAL
+
+
+def _fmu(args):
+    from .fmu import build_fmu
+
+    scene = _load(args.scene)
+    stem = os.path.splitext(os.path.basename(args.scene))[0]
+    path = args.output or stem + ".fmu"
+    try:
+        build_fmu(scene, path, name=args.name or stem)
+    except ModelError as e:
+        raise _Exit(FAILED, str(e)) from None
+    except OSError as e:
+        raise _Exit(FAILED, f"cannot write {path}: {e.strerror or e}") from None
+    if not args.quiet:
+        print(f"wrote {path}")
+    return OK
 
 
 def _method_names():

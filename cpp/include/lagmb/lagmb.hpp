@@ -5,6 +5,7 @@
 #include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
 #include "lagmb/augmented.hpp"
+#include "lagmb/cosimulation.hpp"
 #include "lagmb/data.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/model.hpp"

@@ -89,6 +89,14 @@ class ModelSpec {
   /// The description with `copy` applied to its time functions.
   ModelSpec copied(const FunctionCopy& copy) const;
 
+  /// The description as text, the values as given (numbers to 17 digits),
+  /// that from_text reads back to a spec that compiles to the same model:
+  /// what an FMU carries. ModelError naming the element whose time function
+  /// has no text (a Python callable).
+  std::string to_text() const;
+  /// Reads what to_text wrote; ModelError naming the line that is wrong.
+  static ModelSpec from_text(const std::string& text);
+
   /// The model being built, not compiled: the checks of add() and what an
   /// element attaches to (Model::outline, Model::attachments).
   const Model& draft() const;

@@ -1,6 +1,7 @@
 // Functions of time with exact first and second derivatives (drivers, actuators).
 #pragma once
 
+#include <iosfwd>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,9 @@ class TimeFunction {
   /// Times where a derivative of f jumps (smooth-step ends, spline knots).
   /// The integrator stops and restarts there instead of stepping across.
   virtual std::vector<double> breakpoints() const { return {}; }
+  /// The function as text that time_function_from_text reads back exactly
+  /// ("harmonic 0.5 6.28 0 0"); "" for one that has none (a Python callable).
+  virtual std::string text() const { return ""; }
 };
 using TimeFunctionPtr = std::shared_ptr<TimeFunction>;
 
@@ -42,6 +46,10 @@ TimeFunctionPtr smooth_step(double t0, double t1, double y0, double y1);
 /// Natural cubic spline through (times, values), C2; linear beyond the ends.
 TimeFunctionPtr spline(std::vector<double> times, std::vector<double> values);
 
+/// Reads one function written by TimeFunction::text from `in`; ModelError
+/// naming what is wrong.
+TimeFunctionPtr time_function_from_text(std::istream& in);
+
 /// A value set from outside while the model runs (Simulator::set_input): a
 /// force, torque or driver value given as an input instead of a function of
 /// time. It holds its value between changes (f' = f'' = 0); a change is a
@@ -55,6 +63,7 @@ class Input final : public TimeFunction {
   /// `name` "": named after the element it feeds (Model::inputs).
   explicit Input(double initial, std::string name = "") : initial_(initial), name_(std::move(name)) {}
   TimeValue eval(double t) const override;
+  std::string text() const override;
   double initial() const { return initial_; }
   const std::string& name() const { return name_; }
 

@@ -1,0 +1,257 @@
+"""A scene as an FMI 3.0 co-simulation FMU (`lagmb fmu`), checked with FMPy
+as the importer: the model description validates, FMPy runs the FMU, its
+outputs match lagmb.simulate of the same scene, parameters change before
+initialization, and a controller closes the loop through the FMU's input.
+The co-simulation the FMU wraps (lagmb._core.CoSimulation) is tested here
+too, without FMPy."""
+
+import math
+import os
+import re
+import shutil
+import sys
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+from lagmb.cli import main as cli
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "examples"))
+import cart_pole as cp  # noqa: E402
+
+try:
+    import fmpy
+    from fmpy import read_model_description, simulate_fmu
+    from fmpy.fmi3 import FMU3Slave
+    from fmpy.validation import validate_fmu
+except ImportError:
+    fmpy = None
+needs_fmpy = pytest.mark.skipif(fmpy is None, reason="FMPy is not installed (pip install 'lagmb[fmu]'): "
+                                                      "it provides the FMI headers and is the test importer")
+needs_cc = pytest.mark.skipif(not any(shutil.which(c) for c in ("cc", "gcc", "clang")), reason="needs a C compiler")
+
+
+@pytest.fixture(scope="module")
+def cart_pole_scene(tmp_path_factory):
+    """examples/cart_pole.py's model as a scene, with the hinge's reaction
+    as an output and tight tolerances."""
+    path = tmp_path_factory.mktemp("scene") / "cart_pole.toml"
+    mb.save_scene(cp.cart_pole(), str(path), settings=dict(t_end=2.0, rtol=1e-9, atol=1e-11),
+                  output=dict(reactions=["hinge"]))
+    return str(path)
+
+
+@pytest.fixture(scope="module")
+def cart_pole_fmu(cart_pole_scene, tmp_path_factory):
+    if fmpy is None:
+        pytest.skip("FMPy is not installed")
+    path = str(tmp_path_factory.mktemp("fmu") / "cart_pole.fmu")
+    assert cli(["fmu", cart_pole_scene, "-o", path, "-q"]) == 0
+    return path
+
+
+# --- the co-simulation behind the FMU (no FMPy needed) --------------------------
+
+
+def cosimulation(scene_path):
+    from lagmb.fmu import setup_text
+
+    return mb._core.CoSimulation(setup_text(mb.load_scene(scene_path)))
+
+
+def test_the_variables_of_a_cosimulation(cart_pole_scene):
+    """Time, the input, each number given to an element as a parameter (a
+    body's initial angle as "<body>.angle.start"), the coordinates and
+    their rates, the reaction asked for: each with its unit."""
+    variables = {v["name"]: v for v in cosimulation(cart_pole_scene).variables}
+    assert variables["time"]["causality"] == "independent" and variables["time"]["unit"] == "s"
+    assert variables["push"]["causality"] == "input" and variables["push"]["unit"] == "N"
+    assert variables["pole.mass"]["causality"] == "parameter" and variables["pole.mass"]["unit"] == "kg"
+    assert variables["pole.mass"]["start"] == 0.1
+    assert variables["pole.angle.start"]["start"] == pytest.approx(math.pi / 2 + 0.1)
+    assert variables["pole.angle"]["causality"] == "output" and variables["pole.angle"]["unit"] == "rad"
+    assert variables["der(pole.angle)"]["unit"] == "rad/s" and variables["der(cart.x)"]["unit"] == "m/s"
+    assert [variables[f"hinge.reaction.{c}"]["unit"] for c in ("x", "y", "torque")] == ["N", "N", "N m"]
+
+
+def test_a_driver_effort_has_the_unit_of_what_it_drives():
+    """examples/slider_crank.toml: the motor drives an angle, its effort is a
+    torque (N m); the guide's reaction a force."""
+    variables = {v["name"]: v for v in cosimulation(os.path.join(ROOT, "examples", "slider_crank.toml")).variables}
+    assert variables["motor.effort"]["unit"] == "N m"
+    assert variables["guide.reaction.y"]["unit"] == "N"
+
+
+def test_a_cosimulation_refuses_what_it_cannot_do(cart_pole_scene):
+    c = cosimulation(cart_pole_scene)
+    names = [v["name"] for v in c.variables]
+    with pytest.raises(mb.ModelError, match="from initialization on"):
+        c.get(names.index("pole.angle"))
+    with pytest.raises(mb.ModelError, match="'pole.angle' is an output"):
+        c.set(names.index("pole.angle"), 1.0)
+    with pytest.raises(mb.ModelError, match="must be finite"):
+        c.set(names.index("push"), float("nan"))
+    with pytest.raises(mb.ModelError, match="no variable with value reference 999"):
+        c.get(999)
+    c.enter_initialization(0.0)
+    c.exit_initialization()
+    with pytest.raises(mb.ModelError, match="'pole.mass' is fixed once initialization has ended"):
+        c.set(names.index("pole.mass"), 0.2)
+    with pytest.raises(mb.ModelError, match="a step from t = 1"):
+        c.do_step(1.0, 0.01)
+    c.do_step(0.0, 0.01)
+    assert c.get(0) == pytest.approx(0.01)
+
+
+def test_a_python_callable_cannot_go_in_an_fmu():
+    from lagmb.fmu import setup_text
+
+    model = cp.cart_pole()
+    model.add_torque("wobble", "pole", torque=lambda t: 0.0)
+    with pytest.raises(mb.ModelError, match="'wobble'.*Python callable"):
+        setup_text(SimpleNamespace(model=model, settings={}, output={}))
+
+
+def test_an_fmu_integrates_the_dynamics():
+    from lagmb.fmu import setup_text
+
+    with pytest.raises(mb.ModelError, match="analysis 'kinematic' is not for an FMU"):
+        setup_text(SimpleNamespace(model=cp.cart_pole(), settings=dict(analysis="kinematic"), output={}))
+
+
+def test_the_model_text_reads_back_to_the_same_run():
+    """Every example scene written as text (what an FMU carries) and read
+    back runs bit for bit as the original."""
+    for name in ("slider_crank", "four_bar", "double_pendulum", "spring_damper", "heavy_top", "bouncing_ball"):
+        scene = mb.load_scene(os.path.join(ROOT, "examples", name + ".toml"))
+        text = scene.model._spec.to_text()
+        again = mb._core.ModelSpec.from_text(text)
+        assert again.to_text() == text
+        options = dict(t_end=0.2, n_out=5)
+        a = mb._core.simulate(scene.model.compiled(), options)
+        b = mb._core.simulate(again.compile(), options)
+        np.testing.assert_array_equal(a["q"], b["q"])
+
+
+def test_a_wrong_model_text_names_its_line():
+    with pytest.raises(mb.ModelError, match="not lagmb's"):
+        mb._core.ModelSpec.from_text("hello")
+    with pytest.raises(mb.ModelError, match="line 3: .*mass"):
+        mb._core.ModelSpec.from_text('lagmb-spec 1\nelement body "b"\nmass r oops\nend\n')
+
+
+# --- the FMU through FMPy ---------------------------------------------------------
+
+
+@needs_fmpy
+@needs_cc
+def test_fmpy_finds_no_problem_in_the_fmu(cart_pole_fmu):
+    assert validate_fmu(cart_pole_fmu) == []
+    md = read_model_description(cart_pole_fmu)
+    assert md.fmiVersion == "3.0" and md.coSimulation is not None
+    units = {v.name: v.declaredType or v.unit for v in md.modelVariables}
+    assert units["pole.angle"] == "rad" and units["hinge.reaction.torque"] == "N m"
+
+
+@needs_fmpy
+@needs_cc
+def test_the_fmu_runs_as_lagmb_simulate_does(cart_pole_fmu, cart_pole_scene):
+    """FMPy runs the FMU for 2 s (one co-simulation step per 20 ms output):
+    coordinates, rates and the hinge reaction equal lagmb.simulate's on the
+    same scene to 1e-6."""
+    r = simulate_fmu(cart_pole_fmu, stop_time=2.0, output_interval=0.02)
+    scene = mb.load_scene(cart_pole_scene)
+    ref = mb.simulate(scene.model, t_out=r["time"], rtol=1e-9, atol=1e-11)
+    pole, cart = ref.body("pole"), ref.body("cart")
+    assert np.max(np.abs(r["pole.angle"] - pole.angle)) < 1e-6
+    assert np.max(np.abs(r["der(pole.angle)"] - pole.angular_velocity)) < 1e-6
+    assert np.max(np.abs(r["cart.x"] - cart.position[:, 0])) < 1e-6
+    reaction = ref.reaction("hinge")
+    for k, c in enumerate(("x", "y", "torque")):
+        assert np.max(np.abs(r[f"hinge.reaction.{c}"] - reaction[:, k])) < 1e-6
+    assert abs(r["pole.angle"][-1] - math.pi / 2) > 1.0  # with no force the pole has fallen
+
+
+@needs_fmpy
+@needs_cc
+def test_parameters_change_before_initialization(cart_pole_fmu, cart_pole_scene):
+    """A heavier pole (0.3 kg) set as a start value runs as the scene with
+    that mass does."""
+    r = simulate_fmu(cart_pole_fmu, stop_time=1.0, output_interval=0.05, start_values={"pole.mass": 0.3})
+    ref = mb.simulate(_with_pole_mass(cart_pole_scene, 0.3), t_out=r["time"], rtol=1e-9, atol=1e-11)
+    assert np.max(np.abs(r["cart.x"] - ref.body("cart").position[:, 0])) < 1e-6
+    light = simulate_fmu(cart_pole_fmu, stop_time=1.0, output_interval=0.05)
+    assert np.max(np.abs(r["cart.x"] - light["cart.x"])) > 1e-3  # the mass mattered
+
+
+def _with_pole_mass(scene_path, mass):
+    """The scene's model with the pole's mass changed in the file."""
+    text = open(scene_path).read()
+    text = re.sub(r'(name = "pole"\nmass = )[0-9.e-]+', lambda m: m.group(1) + repr(mass), text)
+    path = scene_path.replace(".toml", f"_{mass}.toml")
+    open(path, "w").write(text)
+    return mb.load_scene(path).model
+
+
+@needs_fmpy
+@needs_cc
+def test_an_input_signal_drives_the_fmu(cart_pole_fmu, cart_pole_scene):
+    """A force of 2 N from t = 0.5 s on (a step in FMPy's input table): the
+    FMU ends where a lagmb Simulator ends with that input."""
+    signal = np.array([(0.0, 0.0), (0.5, 0.0), (0.5, 2.0), (1.0, 2.0)],
+                      dtype=[("time", np.float64), ("push", np.float64)])
+    r = simulate_fmu(cart_pole_fmu, stop_time=1.0, output_interval=0.05, input=signal)
+    sim = mb.Simulator(mb.load_scene(cart_pole_scene).model, rtol=1e-9, atol=1e-11)
+    sim.advance(0.5)
+    sim.set_input("push", 2.0)
+    sim.advance(1.0)
+    assert r["cart.x"][-1] == pytest.approx(sim.body("cart").position[0], abs=1e-6)
+    assert r["pole.angle"][-1] == pytest.approx(sim.body("pole").angle, abs=1e-6)
+
+
+@needs_fmpy
+@needs_cc
+def test_a_controller_balances_the_pole_through_fmpy(cart_pole_fmu):
+    """The PD controller of examples/cart_pole.py, on the other side of the
+    FMI: FMPy instantiates the FMU, the loop reads its outputs and sets its
+    input every 10 ms; the pole stays within 0.05 rad after 1 s. Setting a
+    parameter after initialization is refused (fmi3Error)."""
+    md = read_model_description(cart_pole_fmu)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    unzipped = fmpy.extract(cart_pole_fmu)
+    fmu = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
+                    instanceName="controller")
+    try:
+        fmu.instantiate()
+        fmu.enterInitializationMode(startTime=0.0, stopTime=10.0)
+        fmu.exitInitializationMode()
+        g = cp.GAINS
+        t, worst_after_1s = 0.0, 0.0
+        for k in range(1000):
+            angle, rate, x, xdot = fmu.getFloat64([vr["pole.angle"], vr["der(pole.angle)"], vr["cart.x"],
+                                                   vr["der(cart.x)"]])
+            theta = angle - math.pi / 2
+            if t >= 1.0:
+                worst_after_1s = max(worst_after_1s, abs(theta))
+            force = -(g["k_p"] * theta + g["k_d"] * rate) + g["k_x"] * x + g["k_v"] * xdot
+            fmu.setFloat64([vr["push"]], [force])
+            fmu.doStep(currentCommunicationPoint=t, communicationStepSize=0.01)
+            t = (k + 1) * 0.01
+        assert worst_after_1s < 0.05
+        with pytest.raises(fmpy.fmi1.FMICallException):
+            fmu.setFloat64([vr["pole.mass"]], [1.0])
+        fmu.terminate()
+    finally:
+        fmu.freeInstance()
+        shutil.rmtree(unzipped, ignore_errors=True)
+
+
+def test_without_fmpy_the_fmu_command_says_what_is_missing(cart_pole_scene, tmp_path, monkeypatch, capsys):
+    """`lagmb fmu` without FMPy: exit 1 and the pip command that brings it."""
+    monkeypatch.setitem(sys.modules, "fmpy", None)  # import fmpy raises ImportError
+    assert cli(["fmu", cart_pole_scene, "-o", str(tmp_path / "x.fmu")]) == 1
+    assert "pip install 'lagmb[fmu]'" in capsys.readouterr().err
+    assert not (tmp_path / "x.fmu").exists()
