@@ -30,18 +30,9 @@ import lagmb as mb
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "examples"))
 import cart_pole  # noqa: E402
+from spatial_chain import planar_chain  # noqa: E402 - the chain of bench/spatial_chain.py
 
 METHODS = {"ggl": dict(formulation="ggl"), "projection-erk": dict(formulation="projection", integrator="erk")}
-
-
-def chain(n=10, link=0.1):
-    m = mb.Model(gravity=(0.0, -9.81))
-    previous = m.ground
-    for k in range(n):
-        rod = m.add_body(f"l{k}", 0.1, 0.1 * link**2 / 12, ((k + 0.5) * link, 0.0))
-        m.add_revolute(f"j{k}", previous, rod, at=(k * link, 0.0))
-        previous = rod
-    return m
 
 
 def best_of(repeat, run):
@@ -54,7 +45,7 @@ def best_of(repeat, run):
 
 
 def chunks(repeat):
-    model, rows = chain(), []
+    model, rows = planar_chain(10), []
     for method, options in METHODS.items():
         options = dict(options, rtol=1e-8, atol=1e-10)
         wall, one = best_of(repeat, lambda: mb.simulate(model, t_end=1.0, n_out=2, **options))

@@ -381,3 +381,27 @@ t_end = 1.0
     mb.save_scene(scene.model, str(tmp_path / "again.toml"))
     again = mb.load_scene(str(tmp_path / "again.toml")).model.compiled().inputs
     assert [(d["name"], d["initial"]) for d in again] == [("push", 4.0)]
+
+
+def test_events_and_breakpoints_in_chunks():
+    """The bouncing ball of examples/bouncing_ball.toml (impacts found as
+    roots) advanced in 100 chunks has the impacts simulate has, at the same
+    times; a smooth-step torque on the pendulum restarts the integrator at
+    its two ends, and nowhere else."""
+    scene = mb.load_scene(os.path.join(EXAMPLES, "bouncing_ball.toml"))
+    t_end = scene.settings["t_end"]
+    one_run = mb.simulate(scene.model, t_end=t_end, rtol=1e-8, atol=1e-10)
+    sim = mb.Simulator(scene.model, rtol=1e-8, atol=1e-10)
+    for k in range(100):
+        sim.advance(t_end * (k + 1) / 100)
+    impacts = [e["t"] for e in sim.result().events]
+    assert len(impacts) == len(one_run.events) > 0
+    np.testing.assert_allclose(impacts, [e["t"] for e in one_run.events], atol=1e-6)
+    assert sim.stats["events"] == one_run.stats["events"]
+
+    model = seed_pendulum()
+    model.add_torque("kick", "rod", torque=mb.SmoothStep(0.2, 0.4, 0.0, 1.0))
+    sim = mb.Simulator(model, rtol=1e-8)
+    for k in range(10):
+        sim.advance(0.1 * (k + 1))
+    assert sim.stats["restarts"] == 2 and sim.stats["input_changes"] == 0

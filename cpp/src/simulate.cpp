@@ -152,6 +152,26 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
   return "";
 }
 
+void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
+                   double t, const double* q, const double* v, bool solve) {
+  auto stop = [&](const std::string& why) {
+    IntegratorFailure f(why, t);
+    f.diagnose = false;  // the message is complete
+    throw f;
+  };
+  if (watch.active())
+    if (const std::string why = watch.violation(q, t); !why.empty()) stop(why);
+  const int n = tr.n;
+  tr.t.push_back(t);
+  tr.q.insert(tr.q.end(), q, q + n);
+  tr.v.insert(tr.v.end(), v, v + n);
+  if (solve)
+    if (const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1); !why.empty()) {
+      tr.truncate(solved_outputs(tr));
+      stop(why);
+    }
+}
+
 int solved_outputs(const Trajectory& tr) { return tr.n > 0 ? int(tr.a.size() / size_t(tr.n)) : tr.size(); }
 
 
@@ -282,27 +302,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   // an output is recorded, not from the final state after the run
   const bool solve_when_recorded = !model.event_groups().empty();
   auto record = [&](const double* q, const double* v) {
-    const double t = plan.t_out[tr.t.size()];
-    if (watch.active()) {
-      const std::string why = watch.violation(q, t);
-      if (!why.empty()) {
-        IntegratorFailure f(why, t);
-        f.diagnose = false;
-        throw f;
-      }
-    }
-    tr.t.push_back(t);
-    tr.q.insert(tr.q.end(), q, q + n);
-    tr.v.insert(tr.v.end(), v, v + n);
-    if (solve_when_recorded) {
-      const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1);
-      if (!why.empty()) {
-        tr.truncate(solved_outputs(tr));
-        IntegratorFailure f(why, t);
-        f.diagnose = false;
-        throw f;
-      }
-    }
+    record_output(model, d, kkt, watch, tr, plan.t_out[tr.t.size()], q, v, solve_when_recorded);
   };
   tr.stats.formulation = method.formulation;
   tr.stats.integrator = method.integrator;

@@ -162,28 +162,6 @@ void Simulator::restart_for_inputs() {
   ++input_changes_;
 }
 
-void Simulator::record_output(double t, const double* q, const double* v) {
-  const int n = record_.n;
-  if (watch_->active()) {
-    const std::string why = watch_->violation(q, t);
-    if (!why.empty()) {
-      IntegratorFailure f(why, t);
-      f.diagnose = false;
-      throw f;
-    }
-  }
-  record_.t.push_back(t);
-  record_.q.insert(record_.q.end(), q, q + n);
-  record_.v.insert(record_.v.end(), v, v + n);
-  const std::string why = solve_outputs(model_, *d_, *kkt_, record_, record_.size() - 1);
-  if (!why.empty()) {
-    record_.truncate(solved_outputs(record_));
-    IntegratorFailure f(why, t);
-    f.diagnose = false;
-    throw f;
-  }
-}
-
 void Simulator::advance(double target) {
   check_usable("advance");
   if (!std::isfinite(target)) throw ModelError("Simulator.advance: t is not finite (" + to_text(target) + ")");
@@ -206,7 +184,9 @@ void Simulator::advance(double target) {
   InputScope scope(model_.input_functions(), inputs_.data());
   const int first_new = record_.size();
   size_t k = 0;
-  auto record = [&](const double* q, const double* v) { record_output(t_out[k], q, v); };
+  auto record = [&](const double* q, const double* v) {
+    record_output(model_, *d_, *kkt_, *watch_, record_, t_out[k], q, v, true);
+  };
   try {
     plan_->t_end = target;  // the steppers' tout, and the scale of a first step
     if (fresh_ || !stepper_)
@@ -236,28 +216,20 @@ void Simulator::advance(double target) {
     fresh_ = true;
     throw;
   }
-  if (!failure_.empty()) {
-    // the outputs reached stay; the state is the last one recorded in full
-    const int last = record_.size() - 1;
-    const int n = record_.n, m = record_.m;
-    t_ = record_.t[last];
-    q_ = Eigen::Map<const VecX>(&record_.q[size_t(last) * n], n);
-    v_ = Eigen::Map<const VecX>(&record_.v[size_t(last) * n], n);
-    a_ = Eigen::Map<const VecX>(&record_.a[size_t(last) * n], n);
-    lam_ = Eigen::Map<const VecX>(&record_.lam[size_t(last) * m], m);
-    solved_ = true;
-    fresh_ = true;
-    std::ostringstream s;
-    s << failure_ << " Outputs up to t = " << t_ << " are kept in the simulator's result.";
-    throw SimulationError(s.str(), t_, result());
-  }
+  // the state: the last output (at target; after a failure, the last one reached)
   const int last = record_.size() - 1, n = record_.n, m = record_.m;
-  t_ = target;
+  t_ = record_.t[last];
   q_ = Eigen::Map<const VecX>(&record_.q[size_t(last) * n], n);
   v_ = Eigen::Map<const VecX>(&record_.v[size_t(last) * n], n);
   a_ = Eigen::Map<const VecX>(&record_.a[size_t(last) * n], n);
   lam_ = Eigen::Map<const VecX>(&record_.lam[size_t(last) * m], m);
   solved_ = true;
+  if (!failure_.empty()) {
+    fresh_ = true;
+    std::ostringstream s;
+    s << failure_ << " Outputs up to t = " << t_ << " are kept in the simulator's result.";
+    throw SimulationError(s.str(), t_, result());
+  }
 }
 
 SimulatorState Simulator::state() {
@@ -296,7 +268,7 @@ void Simulator::set_state(const SimulatorState& s) {
   if (record_.t.empty() || record_.t.back() != t_) {
     InputScope scope(model_.input_functions(), inputs_.data());
     try {
-      record_output(t_, q_.data(), v_.data());
+      record_output(model_, *d_, *kkt_, *watch_, record_, t_, q_.data(), v_.data(), true);
     } catch (const IntegratorFailure& e) {
       failure_ = e.what();
       throw SimulationError("Simulator.set_state: " + failure_, t_, result());

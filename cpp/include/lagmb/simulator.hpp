@@ -96,7 +96,6 @@ class Simulator {
  private:
   void new_stepper();
   void restart_for_inputs();
-  void record_output(double t, const double* q, const double* v);
   void check_usable(const char* what) const;
   int input_slot(const std::string& name) const;
 
