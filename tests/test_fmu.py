@@ -255,3 +255,27 @@ def test_without_fmpy_the_fmu_command_says_what_is_missing(cart_pole_scene, tmp_
     assert cli(["fmu", cart_pole_scene, "-o", str(tmp_path / "x.fmu")]) == 1
     assert "pip install 'lagmb[fmu]'" in capsys.readouterr().err
     assert not (tmp_path / "x.fmu").exists()
+
+
+@needs_fmpy
+@needs_cc
+def test_a_spatial_scene_as_an_fmu(tmp_path):
+    """examples/heavy_top.toml as an FMU: positions and Euler parameters
+    (e0..e3, no unit) of the top over 0.5 s, as lagmb.simulate has them, and
+    the spherical joint's reaction in six components."""
+    scene = os.path.join(ROOT, "examples", "heavy_top.toml")
+    path = str(tmp_path / "top.fmu")
+    assert cli(["fmu", scene, "-o", path, "-q"]) == 0
+    assert validate_fmu(path) == []
+    units = {v.name: v.unit for v in read_model_description(path).modelVariables}
+    assert units["top.e0"] is None and units["top.z"] == "m" and units["der(top.e1)"] == "1/s"
+    assert units["tip.reaction.z"] == "N" and units["tip.reaction.torque.z"] == "N m"
+    r = simulate_fmu(path, stop_time=0.5, output_interval=0.05)
+    s = mb.load_scene(scene)
+    settings = {k: v for k, v in s.settings.items() if k not in ("t_end", "n_out", "t_out")}
+    ref = mb.simulate(s.model, t_out=r["time"], **settings)
+    top = ref.body("top")
+    for k, c in enumerate("xyz"):
+        assert np.max(np.abs(r[f"top.{c}"] - top.position[:, k])) < 1e-6
+    for k in range(4):
+        assert np.max(np.abs(r[f"top.e{k}"] - top.orientation[:, k])) < 1e-6

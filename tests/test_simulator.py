@@ -405,3 +405,42 @@ def test_events_and_breakpoints_in_chunks():
     for k in range(10):
         sim.advance(0.1 * (k + 1))
     assert sim.stats["restarts"] == 2 and sim.stats["input_changes"] == 0
+
+
+def test_an_output_interval_that_cannot_fit_is_refused():
+    """1e-12 s between outputs over 1 s would be 1e12 outputs: refused with
+    the count, before any is made; a shorter advance goes."""
+    sim = mb.Simulator(seed_pendulum(), output_interval=1e-12)
+    with pytest.raises(mb.ModelError, match=r"asks for 1e\+12 outputs"):
+        sim.advance(1.0)
+    sim.advance(1e-11)
+    assert len(sim.result().t) == 11
+
+
+def test_simulators_on_two_threads_keep_their_inputs():
+    """Two simulators of one model on two threads at once (the GIL is
+    released while they integrate), pushed opposite ways: each ends where
+    it ends alone. The input values are bound per thread and run."""
+    import threading
+
+    model = motor_pendulum()
+    ends = {}
+
+    def run(torque):
+        sim = mb.Simulator(model, rtol=1e-8)
+        sim.set_input("motor", torque)
+        for k in range(200):
+            sim.advance(0.005 * (k + 1))
+        ends[torque] = sim.q
+
+    threads = [threading.Thread(target=run, args=(t,)) for t in (1.0, -1.0)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for torque in (1.0, -1.0):
+        alone = mb.Simulator(model, rtol=1e-8)
+        alone.set_input("motor", torque)
+        for k in range(200):
+            alone.advance(0.005 * (k + 1))
+        np.testing.assert_array_equal(ends[torque], alone.q)

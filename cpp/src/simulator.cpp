@@ -173,6 +173,11 @@ void Simulator::advance(double target) {
   std::vector<double> t_out;
   if (output_interval_ > 0.0) {
     const double t0 = options_.t0, dt = output_interval_;
+    // kept in memory: refuse what cannot fit rather than fail half way
+    if ((target - t_) / dt > 1e7)
+      throw ModelError("Simulator.advance: from t = " + to_text(t_) + " to " + to_text(target) +
+                       " the output_interval of " + to_text(dt) + " s asks for " + to_text((target - t_) / dt) +
+                       " outputs (at most 1e7 per advance): advance in shorter steps or record less often");
     for (double k = std::floor((t_ - t0) / dt) + 1;; ++k) {
       const double tk = t0 + k * dt;
       if (!(tk < target - 1e-9 * dt)) break;
