@@ -260,7 +260,7 @@ class Ctx:
         (a def op is added and its name returned)."""
         d = self.draw
         kind = d(st.sampled_from(["number", "constant", "linear", "harmonic", "smooth_step", "polynomial",
-                                  "spline", "callable", "callable", "bad_callable"]))
+                                  "spline", "callable", "callable", "bad_callable", "input"]))
         if kind == "bad_callable" and not _chance(d, 0.3 + self.h):
             kind = "callable"
         if pair:
@@ -271,6 +271,9 @@ class Ctx:
             return self.num(base + d(st.sampled_from([0.0, 0.5, -1.0, 2.0])))
         if kind == "constant":
             return Expr(call("mb.Constant", self.num(base)))
+        if kind == "input":  # set by a Simulator (_runs), at its initial value elsewhere
+            name = d(st.sampled_from([None, "u", "ground", "", 3])) if self.hostile() else None
+            return Expr(call("mb.Input", self.num(base)) if name is None else call("mb.Input", self.num(base), name=name))
         if kind == "linear":
             return Expr(call("mb.Linear", self.num(d(st.sampled_from([1.0, -10.0, 0.0]))), start=self.num(base)))
         if kind == "harmonic":
@@ -556,7 +559,7 @@ def _runs(ctx):
     bodies = [b[0] for b in ctx.bodies]
     n_sim = 0
     ops = d(st.lists(st.sampled_from(["dof", "assemble", "solve", "simulate", "simulate", "simulate",
-                                      "equilibrium", "rank"]), min_size=1, max_size=4))
+                                      "equilibrium", "rank", "simulator"]), min_size=1, max_size=4))
     if "simulate" not in ops:
         ops.append("simulate")
     for what in ops:
@@ -627,6 +630,8 @@ def _runs(ctx):
             ctx.add(f"{var} = {call('mb.simulate', Expr('m'), **kw)}", "simulate", check=f"result:{var}")
             for _ in range(d(st.integers(0, 3))):
                 _accessor(ctx, var, bodies)
+        elif what == "simulator":
+            _simulator(ctx)
         elif what == "equilibrium":
             kw = {}
             _maybe(ctx, kw, "t", st.sampled_from([0.0, 0.02]), HOSTILE_TIME, 0.2)
@@ -640,6 +645,42 @@ def _runs(ctx):
             if d(st.booleans()):
                 ctx.add(f"x = eq.reaction({lit(ctx.joint_ref())})", "eq.reaction",
                         check="finite:x")
+
+
+def _simulator(ctx):
+    """A Simulator advanced in chunks, its inputs set (by the names of any
+    element: most are not inputs), its state saved and restored."""
+    d = ctx.draw
+    kw = {}
+    formulation = d(st.sampled_from(FORMULATIONS)) if not ctx.hostile() else d(st.sampled_from(HOSTILE_FORMULATIONS))
+    if formulation != "ggl":
+        kw["formulation"] = formulation
+    if formulation == "ali3p":
+        kw["step"] = d(st.sampled_from([1e-3, 5e-3]))
+    _maybe(ctx, kw, "rtol", st.builds(lambda e: _round(10.0 ** e), st.floats(-9, -3)), HOSTILE_TOL)
+    _maybe(ctx, kw, "output_interval", st.sampled_from([0.01, 0.004]), HOSTILE_STEP + [-0.01], 0.3)
+    kw["max_steps"] = 2000  # per advance: a huge time must still stop
+    ctx.add(f"sim = {call('mb.Simulator', Expr('m'), **kw)}", "Simulator")
+    names = ctx.drivers + ctx.others + ["nosuch"]
+    t, saved = 0.0, False
+    for _ in range(d(st.integers(1, 5))):
+        what = d(st.sampled_from(["advance", "advance", "set_input", "state", "restore"]))
+        if what == "restore" and not saved:
+            what = "state"
+        saved = saved or what == "state"
+        if what == "advance":
+            t = _round(t + d(st.sampled_from([0.005, 0.01, 0.02])))
+            target = d(st.sampled_from(HOSTILE_TIME + [1e6])) if ctx.hostile() else t
+            ctx.add(f"sim.advance({lit(target)})", "Simulator.advance")
+        elif what == "set_input":
+            value = ctx.num(d(st.sampled_from([0.0, 1.0, -5.0])))
+            ctx.add(f"sim.set_input({lit(d(st.sampled_from(names)))}, {lit(value)})", "Simulator.set_input")
+        elif what == "state":
+            ctx.add("saved = sim.state()", "Simulator.state")
+        else:
+            ctx.add("sim.set_state(saved)", "Simulator.set_state")
+    ctx.add("x = np.concatenate([sim.q, sim.v, sim.a, sim.lam, [sim.t]])", "Simulator.state_now", check="finite:x")
+    ctx.add("rs = sim.result()", "Simulator.result", check="result:rs")
 
 
 def _scene(ctx):

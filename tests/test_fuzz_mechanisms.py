@@ -4,7 +4,8 @@ Hypothesis draws cases (tests/fuzz_mechanisms.py: chains and closed loops of
 1-5 bodies and particles, random joints, drivers, forces, stops, contacts,
 parameters from wide and hostile ranges, then what a user runs:
 degrees_of_freedom, assemble, solve_accelerations, simulate with random
-options, equilibrium, result accessors). Each case runs in a worker
+options, equilibrium, result accessors, a Simulator advanced in chunks with
+its inputs set and its state saved and restored). Each case runs in a worker
 subprocess, so a crash or a hang fails that case instead of pytest.
 
 The property: every call either returns numbers that are all finite (and a

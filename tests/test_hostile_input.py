@@ -558,3 +558,26 @@ def test_the_core_takes_options_by_name_and_refuses_unknown_ones():
     assert raw["t"].shape == (3,) and raw["stats"]["formulation"] == "ggl"
     with pytest.raises(_core.ModelError, match="unknown option 'rtoll'"):
         _core.simulate(core, dict(t_end=0.1, rtoll=1e-8))
+
+
+def test_an_equilibrium_whose_forces_overflow_is_refused():
+    """A body of 1e308 kg under gravity (a fuzzed model): its weight
+    overflows, and equilibrium returned a force residual of inf. It is an
+    EquilibriumError naming the body's force instead."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    m.add_body("b0", mass=1e308, inertia=1e-12, position=(0.45, -0.23))
+    m.add_body("b4", mass=1.0, inertia=2e-4, position=(-0.65, -0.05), angle=1e308)
+    with pytest.raises(mb.EquilibriumError, match="applied force on body 'b0' y is not finite"):
+        mb.equilibrium(m, allow_unstable=True)
+
+
+def test_ali3p_outputs_of_a_body_turned_1e308_rad_are_finite():
+    """A free body at an angle of 1e308 rad (a fuzzed model): ALI3-P's
+    outputs between steps took (6 s^2 - 6 s)/h q_prev + ... + (-6 s^2 + 6 s)/h q,
+    each term overflowing to inf, the sum NaN; in differences they are the
+    body's (zero) angular velocity."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    m.add_body("b3", mass=1.0, inertia=0.08333, position=(0.7557, -0.3569), angle=1e308)
+    r = mb.simulate(m, t_end=0.05, formulation="ali3p", step=0.001)
+    assert np.all(np.isfinite(r.v)) and np.all(r.v[:, 2] == 0.0)
+    assert r.v[-1, 1] == pytest.approx(-9.81 * 0.05, rel=1e-9)

@@ -141,6 +141,9 @@ def test_a_driver_input_moves_the_driven_joint():
     sim.set_input("motor", 0.3)
     sim.advance(0.5)
     rod = sim.body("rod")
+    r = sim.result()
+    np.testing.assert_array_equal(r.input("motor"), [0.0, 0.0, 0.3])  # at t = 0, 0.2, 0.5
+    assert np.max(r.residual) < 1e-9  # each output against the driver value it had then
     assert rod.angle == pytest.approx(0.3, abs=1e-9)
     assert rod.position == pytest.approx([0.5 * math.cos(0.3), 0.5 * math.sin(0.3)], abs=1e-9)
     assert rod.angular_velocity == pytest.approx(0.0, abs=1e-9)
@@ -153,6 +156,9 @@ def test_simulate_runs_an_input_at_its_initial_value():
     constant = seed_pendulum()
     constant.add_torque("motor", "rod", torque=2.0)
     np.testing.assert_array_equal(with_input.q, mb.simulate(constant, t_end=1.0, rtol=1e-8).q)
+    assert np.all(with_input.input("motor") == 2.0)
+    with pytest.raises(mb.ModelError, match="no input called 'torque'; the inputs are 'motor'"):
+        with_input.input("torque")
 
 
 def test_two_simulators_of_one_model_keep_their_own_inputs():
@@ -344,7 +350,7 @@ def test_after_a_failure_the_outputs_stay_and_the_simulator_stops():
     assert sim.t == 0.25
 
 
-def test_a_scene_declares_inputs(tmp_path):
+def test_a_scene_declares_inputs(tmp_path, capsys):
     """A scene gives an input as { type = "input", initial = ... }: its run
     holds the initial value, a simulator sets it, and the scene is written
     back with it."""
@@ -374,6 +380,10 @@ t_end = 1.0
 """)
     scene = mb.load_scene(str(path))
     assert scene.run().body("block").position[-1, 0] == pytest.approx(1.0, abs=1e-6)  # 2 m/s^2 for 1 s
+    from lagmb.cli import main as cli
+
+    assert cli(["info", str(path)]) == 0
+    assert "inputs: 1 (push 4 N)" in capsys.readouterr().out
     sim = mb.Simulator(scene.model)
     sim.set_input("push", -4.0)
     sim.advance(1.0)

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "lagmb/interrupt.hpp"
 #include "lagmb/lagmb.hpp"
@@ -31,6 +32,7 @@ py::dict to_python(Trajectory&& tr) {
   out["v"] = to_numpy(std::move(tr.v), {k, tr.n});
   out["a"] = to_numpy(std::move(tr.a), {k, tr.n});
   out["lam"] = to_numpy(std::move(tr.lam), {k, tr.m});
+  if (tr.inputs.size() == size_t(k) * size_t(tr.p)) out["inputs"] = to_numpy(std::move(tr.inputs), {k, tr.p});
   py::dict stats;
   tr.stats.for_each_field([&](const char* name, const auto& value) { stats[name] = value; });
   out["stats"] = stats;
@@ -70,6 +72,20 @@ SimulationOptions options_from(const py::dict& options, const std::string& who) 
 }
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Binds row s of `inputs` (the values of Model::inputs at each output, as
+/// a run recorded them) while that output is evaluated; an empty matrix
+/// leaves the inputs at their initial values.
+void bind_inputs(std::optional<InputScope>& scope, const Model& model, const RowMajor& inputs, Eigen::Index s) {
+  scope.reset();
+  if (inputs.size()) scope.emplace(model.input_functions(), inputs.row(s).data());
+}
+
+void require_inputs(const Model& model, const RowMajor& inputs, Eigen::Index outputs) {
+  if (inputs.size() && (inputs.rows() != outputs || inputs.cols() != Eigen::Index(model.inputs().size())))
+    throw ModelError("inputs must have one row per output and one column per input of the model (" +
+                     std::to_string(model.inputs().size()) + ")");
+}
 
 void require_rows(const Model& model, const RowMajor& x, int cols, const char* what) {
   if (!model.finalized()) throw ModelError("the model is not finalized");
@@ -553,18 +569,23 @@ PYBIND11_MODULE(_core, m) {
       .def(
           "reaction",
           [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
-             const RowMajor& lam, bool joint_axes) {
+             const RowMajor& lam, bool joint_axes, const RowMajor& inputs) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, lam, model.n_constraints(), "lam");
             require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
+            require_inputs(model, inputs, q.rows());
             const auto& g = constraint_group(model, name);
             const int k = model.find(name).index;
             RowMajor out(q.rows(), g.dimension() == 2 ? 3 : 6);
-            for (Eigen::Index s = 0; s < q.rows(); ++s)
+            std::optional<InputScope> scope;
+            for (Eigen::Index s = 0; s < q.rows(); ++s) {
+              bind_inputs(scope, model, inputs, s);
               out.row(s) = g.reaction(k, q.row(s).data(), t[s], lam.row(s).data(), joint_axes).transpose();
+            }
             return out;
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
+          py::arg("inputs") = RowMajor(),
           "Force and torque about the centre of mass that the element applies to its second body\n"
           "((x, y) and the torque in the plane, (x, y, z) and (x, y, z) in space); with joint_axes,\n"
           "in the element's own axes.")
@@ -613,39 +634,51 @@ PYBIND11_MODULE(_core, m) {
           py::arg("q"), py::arg("v"), py::arg("lam"), "(Q_f, dQ_f/dq, dQ_f/dv, dQ_f/dlam) of joint friction")
       .def(
           "energy",
-          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v,
+             const RowMajor& inputs) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
+            require_inputs(model, inputs, q.rows());
             Eigen::VectorXd E(q.rows());
-            for (Eigen::Index k = 0; k < q.rows(); ++k)
+            std::optional<InputScope> scope;
+            for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              bind_inputs(scope, model, inputs, k);
               E[k] = kinetic_energy(model, q.row(k).data(), v.row(k).data()) + potential_energy(model, q.row(k).data(), t[k]);
+            }
             return E;
           },
-          py::arg("t"), py::arg("q"), py::arg("v"))
+          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor())
       .def(
           "residual",
-          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q) {
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& inputs) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_outputs(t, {{&q, "q"}});
+            require_inputs(model, inputs, q.rows());
             Data d(model);  // every row, including those a run dropped as redundant
             Eigen::VectorXd r(q.rows());
+            std::optional<InputScope> scope;
             for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              bind_inputs(scope, model, inputs, k);
               assemble_constraints(model, d, q.row(k).data(), t[k]);
               r[k] = d.Phi.size() ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
             }
             return r;
           },
-          py::arg("t"), py::arg("q"), "max |Phi| at each state")
+          py::arg("t"), py::arg("q"), py::arg("inputs") = RowMajor(), "max |Phi| at each state")
       .def(
           "velocity_residual",
-          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v) {
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v,
+             const RowMajor& inputs) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
+            require_inputs(model, inputs, q.rows());
             Data d(model);
             Eigen::VectorXd r(q.rows());
+            std::optional<InputScope> scope;
             for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              bind_inputs(scope, model, inputs, k);
               assemble_jacobian(model, d, q.row(k).data(), t[k]);
               assemble_phi_t(model, d, q.row(k).data(), t[k]);
               add_jacobian_times(d, v.row(k).data(), d.phi_t.data());
@@ -653,7 +686,8 @@ PYBIND11_MODULE(_core, m) {
             }
             return r;
           },
-          py::arg("t"), py::arg("q"), py::arg("v"), "max |Phi_q v + Phi_t| at each state")
+          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor(),
+          "max |Phi_q v + Phi_t| at each state")
       .def(
           "constraint_jacobian",
           [](const Model& model, const Eigen::VectorXd& q, double t) {

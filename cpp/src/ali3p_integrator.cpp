@@ -86,11 +86,13 @@ class Ali3pStepper final : public Stepper {
       v_out_ = form_.v;
     } else {
       const double s = std::clamp((t - t_prev_) / h, 0.0, 1.0), s2 = s * s, s3 = s2 * s;
-      const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-      const double d00 = (6 * s2 - 6 * s) / h, d10 = 3 * s2 - 4 * s + 1, d01 = (-6 * s2 + 6 * s) / h,
-                   d11 = 3 * s2 - 2 * s;
-      q_out_ = h00 * form_.q_prev + h * h10 * form_.v_prev + h01 * form_.q + h * h11 * form_.v;
-      v_out_ = d00 * form_.q_prev + d10 * form_.v_prev + d01 * form_.q + d11 * form_.v;
+      const double h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+      const double d10 = 3 * s2 - 4 * s + 1, d01 = (-6 * s2 + 6 * s) / h, d11 = 3 * s2 - 2 * s;
+      // h00 = 1 - h01 and d00 = -d01: in differences, which neither cancel
+      // nor overflow where q is large (an angle of 1e308 rad)
+      const VecX dq = form_.q - form_.q_prev;
+      q_out_ = form_.q_prev + h01 * dq + h * (h10 * form_.v_prev + h11 * form_.v);
+      v_out_ = d01 * dq + d10 * form_.v_prev + d11 * form_.v;
     }
     q = q_out_.data();
     v = v_out_.data();

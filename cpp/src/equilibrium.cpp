@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "lagmb/analysis.hpp"
 #include "lagmb/assembly.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/redundancy.hpp"
@@ -284,6 +285,13 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
   e.iterations = it;
   e.force_residual = max_abs(r.f1);
   e.constraint_residual = max_abs(r.f2);
+  // what is returned holds finite numbers (a force of 1e308 kg x g overflows)
+  if (!std::isfinite(e.force_residual) || !std::isfinite(e.constraint_residual) || !q.allFinite() ||
+      !lam.allFinite()) {
+    const VecX rest = VecX::Zero(model.n_coordinates());
+    throw EquilibriumError("equilibrium: the forces at the position found are not finite: " +
+                           non_finite_source(model, q.data(), rest.data(), o.t));
+  }
   stability(model, solver.data(), o.t, e);
   // resting against a stop is not modelled: an equilibrium beyond a limit is
   // not one the mechanism can reach

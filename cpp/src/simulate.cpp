@@ -153,7 +153,7 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
 }
 
 void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
-                   double t, const double* q, const double* v, bool solve) {
+                   double t, const double* q, const double* v, const VecX& inputs, bool solve) {
   auto stop = [&](const std::string& why) {
     IntegratorFailure f(why, t);
     f.diagnose = false;  // the message is complete
@@ -165,6 +165,7 @@ void record_output(const Model& model, Data& d, AugmentedSystem& kkt, Redundancy
   tr.t.push_back(t);
   tr.q.insert(tr.q.end(), q, q + n);
   tr.v.insert(tr.v.end(), v, v + n);
+  tr.inputs.insert(tr.inputs.end(), inputs.data(), inputs.data() + inputs.size());
   if (solve)
     if (const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1); !why.empty()) {
       tr.truncate(solved_outputs(tr));
@@ -301,8 +302,12 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   // progress (event state): with event elements, a and lam are solved when
   // an output is recorded, not from the final state after the run
   const bool solve_when_recorded = !model.event_groups().empty();
+  // outside a Simulator the inputs hold their initial values
+  VecX initial_inputs(int(model.inputs().size()));
+  for (int k = 0; k < initial_inputs.size(); ++k) initial_inputs[k] = model.inputs()[k].initial;
+  tr.p = int(initial_inputs.size());
   auto record = [&](const double* q, const double* v) {
-    record_output(model, d, kkt, watch, tr, plan.t_out[tr.t.size()], q, v, solve_when_recorded);
+    record_output(model, d, kkt, watch, tr, plan.t_out[tr.t.size()], q, v, initial_inputs, solve_when_recorded);
   };
   tr.stats.formulation = method.formulation;
   tr.stats.integrator = method.integrator;

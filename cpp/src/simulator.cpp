@@ -72,6 +72,8 @@ Simulator::Simulator(const Model& model, const SimulationOptions& options, doubl
   record_.stats.formulation = method_->formulation;
   record_.stats.integrator = method_->integrator;
   record_.stats.analysis = "dynamic";
+  record_.p = int(inputs_.size());
+  record_.inputs.assign(inputs_.data(), inputs_.data() + inputs_.size());
   record_.t.push_back(t_);
   record_.q.insert(record_.q.end(), q_.data(), q_.data() + n);
   record_.v.insert(record_.v.end(), v_.data(), v_.data() + n);
@@ -190,7 +192,7 @@ void Simulator::advance(double target) {
   const int first_new = record_.size();
   size_t k = 0;
   auto record = [&](const double* q, const double* v) {
-    record_output(model_, *d_, *kkt_, *watch_, record_, t_out[k], q, v, true);
+    record_output(model_, *d_, *kkt_, *watch_, record_, t_out[k], q, v, inputs_, true);
   };
   try {
     plan_->t_end = target;  // the steppers' tout, and the scale of a first step
@@ -198,13 +200,14 @@ void Simulator::advance(double target) {
       new_stepper();
     else if (inputs_ != inputs_integrated_)
       restart_for_inputs();
-    loop_->run(target, t_out, k, record);
-    // outputs inside a step taken before (the steps may pass the time asked for)
-    for (; k < t_out.size(); ++k) {
+    // outputs inside the step the integrator took last (its steps may pass
+    // the time asked for): before it steps on, while they are inside it
+    for (; k < t_out.size() && t_out[k] <= loop_->t(); ++k) {
       const double *q = nullptr, *v = nullptr;
       stepper_->interpolate(t_out[k], q, v);
       record(q, v);
     }
+    loop_->run(target, t_out, k, record);
   } catch (const IntegratorFailure& e) {
     std::ostringstream msg;
     msg << e.what();
@@ -273,7 +276,7 @@ void Simulator::set_state(const SimulatorState& s) {
   if (record_.t.empty() || record_.t.back() != t_) {
     InputScope scope(model_.input_functions(), inputs_.data());
     try {
-      record_output(model_, *d_, *kkt_, *watch_, record_, t_, q_.data(), v_.data(), true);
+      record_output(model_, *d_, *kkt_, *watch_, record_, t_, q_.data(), v_.data(), inputs_, true);
     } catch (const IntegratorFailure& e) {
       failure_ = e.what();
       throw SimulationError("Simulator.set_state: " + failure_, t_, result());

@@ -521,6 +521,10 @@ def _info(args):
         core = model.compiled()
         say(f"coordinates: {core.n_coordinates}")
         say(f"constraint equations: {core.n_constraints}")
+        inputs = core.inputs
+        say(f"inputs: {len(inputs)}" + (" (" + ", ".join(
+            f"{i['name']} {i['initial']:g}" + (f" {i['unit']}" if i["unit"] else "") for i in inputs) + ")"
+            if inputs else ""))
         rank = model.rank()
     except ModelError as e:
         raise _Exit(USAGE, f"{scene.path}: {e}") from None

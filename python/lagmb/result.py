@@ -104,6 +104,15 @@ class Result:
         # the run's own, with one row per output
         self._t, self._q, self._v, self._a, self._lam = (
             _frozen(raw[key]) for key in ("t", "q", "v", "a", "lam"))
+        # the input values at each output (k, p): what a Simulator was given,
+        # else the initial values; kernels evaluated later read these
+        names = [d["name"] for d in core_model.inputs]
+        inputs = raw.get("inputs")
+        if inputs is None or np.shape(inputs) != (len(self._t), len(names)):
+            inputs = np.broadcast_to(np.array([d["initial"] for d in core_model.inputs], dtype=float),
+                                     (len(self._t), len(names)))
+        self._inputs = _frozen(np.asarray(inputs, dtype=float))
+        self._input_names = names
         self.stats = dict(raw["stats"])
         self.events = [dict(e) for e in raw.get("events", [])]
         self.redundant_rows = list(raw.get("dropped_rows", []))
@@ -126,6 +135,16 @@ class Result:
                 "velocities and accelerations; the multipliers, reactions and driver efforts "
                 "were not computed. Run with analysis='inverse_dynamics' (every mass > 0) for them.")
         return self._lam
+
+    def input(self, name):
+        """(k,) the value of an input (``mb.Input``) at each output: what a
+        Simulator was given, its initial value in simulate."""
+        if not isinstance(name, str):
+            name = getattr(name, "name", name)
+        if name not in self._input_names:
+            listed = ", ".join(repr(n) for n in self._input_names) or "none"
+            raise ModelError(f"Result.input: no input called {name!r}; the inputs are {listed}")
+        return self._inputs[:, self._input_names.index(name)]
 
     def _name(self, item, accepts, what, context):
         return element_name(self.model, self._core, item, accepts, what, context)
@@ -169,7 +188,7 @@ class Result:
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
         name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")
-        return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint")
+        return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint", self._inputs)
 
     def effort(self, driver):
         """(k,) the force (N) or torque (N m) a driver applies to impose its
@@ -199,17 +218,17 @@ class Result:
         """(k,) kinetic + potential energy (J) of the conservative forces.
         SimulationError if it overflows double precision (e.g. a body 1e308 m
         up under gravity), rather than an inf or a NaN."""
-        return self._finite(self._core.energy(self.t, self.q, self.v), "the energy")
+        return self._finite(self._core.energy(self.t, self.q, self.v, self._inputs), "the energy")
 
     @cached_property
     def residual(self):
         """(k,) max |Phi| (position-level constraint violation)."""
-        return self._finite(self._core.residual(self.t, self.q), "the constraint residual")
+        return self._finite(self._core.residual(self.t, self.q, self._inputs), "the constraint residual")
 
     @cached_property
     def velocity_residual(self):
         """(k,) max |Phi_q v + Phi_t| (velocity-level constraint violation)."""
-        return self._finite(self._core.velocity_residual(self.t, self.q, self.v),
+        return self._finite(self._core.velocity_residual(self.t, self.q, self.v, self._inputs),
                             "the velocity residual")
 
     def _finite(self, values, what):

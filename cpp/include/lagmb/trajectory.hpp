@@ -80,6 +80,10 @@ struct EventRecord {
 struct Trajectory {
   int n = 0, m = 0;
   std::vector<double> t, q, v, a, lam;
+  /// The values of the model's inputs (Model::inputs) at each output, row-major
+  /// (p per output): what a Simulator was given; their initial values in simulate.
+  int p = 0;
+  std::vector<double> inputs;
   Stats stats;
   std::vector<EventRecord> events;
   /// Rows of Phi left out as redundant (found where the run started); they
@@ -94,6 +98,7 @@ struct Trajectory {
     v.resize(std::min(v.size(), kk * size_t(n)));
     a.resize(std::min(a.size(), kk * size_t(n)));
     lam.resize(std::min(lam.size(), kk * size_t(m)));
+    inputs.resize(std::min(inputs.size(), kk * size_t(p)));
   }
 };
 
