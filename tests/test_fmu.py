@@ -10,6 +10,7 @@ import os
 import re
 import shutil
 import sys
+import zipfile
 from types import SimpleNamespace
 
 import numpy as np
@@ -279,3 +280,42 @@ def test_a_spatial_scene_as_an_fmu(tmp_path):
         assert np.max(np.abs(r[f"top.{c}"] - top.position[:, k])) < 1e-6
     for k in range(4):
         assert np.max(np.abs(r[f"top.e{k}"] - top.orientation[:, k])) < 1e-6
+
+
+@needs_fmpy
+@needs_cc
+def test_an_fmu_state_saved_and_restored_steps_on_bit_for_bit(cart_pole_fmu):
+    """fmi3GetFMUState after 0.5 s, 50 steps of 10 ms with a push, back to
+    the state, the same 50 steps: the same outputs, bit for bit."""
+    with zipfile.ZipFile(cart_pole_fmu) as z:
+        assert 'canGetAndSetFMUState="true"' in z.read("modelDescription.xml").decode()
+    md = read_model_description(cart_pole_fmu)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    unzipped = fmpy.extract(cart_pole_fmu)
+    fmu = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
+                    instanceName="what-if")
+    try:
+        fmu.instantiate()
+        fmu.enterInitializationMode(startTime=0.0)
+        fmu.exitInitializationMode()
+        for k in range(50):
+            fmu.doStep(currentCommunicationPoint=0.01 * k, communicationStepSize=0.01)
+        saved = fmu.getFMUState()
+
+        def branch():
+            path = []
+            for k in range(50, 100):
+                fmu.setFloat64([vr["push"]], [2.0 if k < 75 else -1.0])
+                fmu.doStep(currentCommunicationPoint=0.01 * k, communicationStepSize=0.01)
+                path.append(fmu.getFloat64([vr["pole.angle"], vr["cart.x"], vr["hinge.reaction.y"]]))
+            return np.array(path)
+
+        first = branch()
+        fmu.setFMUState(saved)
+        assert fmu.getFloat64([vr["time"]])[0] == pytest.approx(0.5)
+        assert np.array_equal(branch(), first)
+        fmu.freeFMUState(saved)
+        fmu.terminate()
+    finally:
+        fmu.freeInstance()
+        shutil.rmtree(unzipped, ignore_errors=True)

@@ -3,7 +3,7 @@
  * with the FMI headers FMPy ships and the model's instantiation token
  * (-DLAGMB_FMU_TOKEN="..."). Every fmi3 function is exported, as importers
  * resolve them all; those of Model Exchange, Scheduled Execution, clocks,
- * states and derivatives return fmi3Error with a message. */
+ * serialized states and derivatives return fmi3Error with a message. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,6 +133,28 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 t, fmi3Float64 h, fmi3B
   return status(s);
 }
 
+/* an FMU state: the simulator's (a restored one steps on bit for bit) */
+fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState* state) {
+  if (!state) return unsupported(instance, "fmi3GetFMUState without a place for the state");
+  void* s = lagmb_fmu_get_state(slave(instance), *state);
+  if (!s) return fmi3Error;
+  *state = s;
+  return fmi3OK;
+}
+
+fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState state) {
+  return status(lagmb_fmu_set_state(slave(instance), state));
+}
+
+fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState* state) {
+  (void)instance;
+  if (state) {
+    lagmb_fmu_free_state(*state);
+    *state = NULL;
+  }
+  return fmi3OK;
+}
+
 /* ---- not supported: present because importers resolve every symbol ----- */
 
 fmi3Instance fmi3InstantiateModelExchange(fmi3String a, fmi3String b, fmi3String c, fmi3Boolean d, fmi3Boolean e,
@@ -202,18 +224,7 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance i, fmi3ValueReference d, siz
   (void)d; (void)a; (void)b; (void)c; (void)k; (void)n;
   return unsupported(i, "fmi3GetVariableDependencies");
 }
-fmi3Status fmi3GetFMUState(fmi3Instance i, fmi3FMUState* s) {
-  (void)s;
-  return unsupported(i, "fmi3GetFMUState");
-}
-fmi3Status fmi3SetFMUState(fmi3Instance i, fmi3FMUState s) {
-  (void)s;
-  return unsupported(i, "fmi3SetFMUState");
-}
-fmi3Status fmi3FreeFMUState(fmi3Instance i, fmi3FMUState* s) {
-  (void)s;
-  return unsupported(i, "fmi3FreeFMUState");
-}
+
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance i, fmi3FMUState s, size_t* n) {
   (void)s; (void)n;
   return unsupported(i, "fmi3SerializedFMUStateSize");

@@ -26,6 +26,11 @@ int lagmb_fmu_set(void* slave, const uint32_t* value_references, size_t n, const
 int lagmb_fmu_get(void* slave, const uint32_t* value_references, size_t n, double* values);
 int lagmb_fmu_do_step(void* slave, double t, double h);
 int lagmb_fmu_reset(void* slave);
+/* The slave's state (CoSimulation::state), in `previous` if that is not NULL
+ * (FMI overwrites a state it is given), else in a new one; NULL on error. */
+void* lagmb_fmu_get_state(void* slave, void* previous);
+int lagmb_fmu_set_state(void* slave, const void* state);
+void lagmb_fmu_free_state(void* state);
 
 #ifdef __cplusplus
 }

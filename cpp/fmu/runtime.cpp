@@ -3,6 +3,7 @@
 #include <exception>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "lagmb/cosimulation.hpp"
 #include "lagmb_fmu.h"
@@ -81,3 +82,26 @@ LAGMB_FMU_EXPORT int lagmb_fmu_do_step(void* slave, double t, double h) {
 LAGMB_FMU_EXPORT int lagmb_fmu_reset(void* slave) {
   return guarded(slave, [&](lagmb::CoSimulation& c) { c.reset(); });
 }
+
+LAGMB_FMU_EXPORT void* lagmb_fmu_get_state(void* slave, void* previous) {
+  void* out = nullptr;
+  const int status = guarded(slave, [&](lagmb::CoSimulation& c) {
+    lagmb::CoSimulationState state = c.state();
+    if (previous) {
+      *static_cast<lagmb::CoSimulationState*>(previous) = std::move(state);
+      out = previous;
+    } else {
+      out = new lagmb::CoSimulationState(std::move(state));
+    }
+  });
+  return status == kOK ? out : nullptr;
+}
+
+LAGMB_FMU_EXPORT int lagmb_fmu_set_state(void* slave, const void* state) {
+  return guarded(slave, [&](lagmb::CoSimulation& c) {
+    if (!state) throw std::invalid_argument("no state given");
+    c.set_state(*static_cast<const lagmb::CoSimulationState*>(state));
+  });
+}
+
+LAGMB_FMU_EXPORT void lagmb_fmu_free_state(void* state) { delete static_cast<lagmb::CoSimulationState*>(state); }

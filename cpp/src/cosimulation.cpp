@@ -278,6 +278,18 @@ void CoSimulation::do_step(double t, double h) {
   sim_->advance(now + h);
 }
 
+CoSimulationState CoSimulation::state() {
+  if (mode_ != Mode::kStepping) throw ModelError("a state is taken once initialization has ended");
+  return {sim_->state(), inputs_};
+}
+
+void CoSimulation::set_state(const CoSimulationState& state) {
+  if (mode_ != Mode::kStepping) throw ModelError("a state is restored once initialization has ended");
+  if (state.inputs.size() != inputs_.size()) throw ModelError("the state is of another model");
+  sim_->set_state(state.simulator);
+  inputs_ = state.inputs;
+}
+
 void CoSimulation::reset() {
   sim_.reset();
   model_.reset();

@@ -83,7 +83,7 @@ def model_description(name, identifier, token, variables, description=""):
              f'instantiationToken={quoteattr(token)} generationTool="lagmb {_core_version()}" '
              f'description={quoteattr(description)} variableNamingConvention="flat">',
              f'  <CoSimulation modelIdentifier={quoteattr(identifier)} '
-             'canHandleVariableCommunicationStepSize="true" canGetAndSetFMUState="false" '
+             'canHandleVariableCommunicationStepSize="true" canGetAndSetFMUState="true" '
              'canSerializeFMUState="false" hasEventMode="false"/>']
     if units:
         lines.append("  <UnitDefinitions>")

@@ -34,6 +34,13 @@ struct CoVariable {
   double start = 0.0;       // inputs and parameters
 };
 
+/// A co-simulation's state to come back to (an FMU state): the simulator's
+/// and the input values set.
+struct CoSimulationState {
+  SimulatorState simulator;
+  std::vector<double> inputs;
+};
+
 /// The slave's life, as FMI has it: instantiated (parameters and inputs may
 /// be set), initialization (the same, and outputs may be read), stepping.
 /// Errors are ModelError (a wrong value reference, a parameter set after
@@ -57,6 +64,10 @@ class CoSimulation {
   void do_step(double t, double h);
   /// Back to instantiated, with the setup's parameter and input values.
   void reset();
+  /// The state after initialization (Simulator::state: the next step
+  /// restarts there, so a restored copy steps on bit for bit), and back to it.
+  CoSimulationState state();
+  void set_state(const CoSimulationState& state);
   double time() const;
 
  private:
