@@ -5,6 +5,7 @@ initialization, and a controller closes the loop through the FMU's input.
 The co-simulation the FMU wraps (lagmb._core.CoSimulation) is tested here
 too, without FMPy."""
 
+import contextlib
 import math
 import os
 import re
@@ -213,6 +214,25 @@ def test_an_input_signal_drives_the_fmu(cart_pole_fmu, cart_pole_scene):
     assert r["pole.angle"][-1] == pytest.approx(sim.body("pole").angle, abs=1e-6)
 
 
+@contextlib.contextmanager
+def initialized(path, name):
+    """The FMU at `path` instantiated by FMPy and initialized at t = 0:
+    (the FMU3Slave, {variable name: value reference}); freed afterwards."""
+    md = read_model_description(path)
+    unzipped = fmpy.extract(path)
+    fmu = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
+                    instanceName=name)
+    try:
+        fmu.instantiate()
+        fmu.enterInitializationMode(startTime=0.0)
+        fmu.exitInitializationMode()
+        yield fmu, {v.name: v.valueReference for v in md.modelVariables}
+        fmu.terminate()
+    finally:
+        fmu.freeInstance()
+        shutil.rmtree(unzipped, ignore_errors=True)
+
+
 @needs_fmpy
 @needs_cc
 def test_a_controller_balances_the_pole_through_fmpy(cart_pole_fmu):
@@ -220,15 +240,7 @@ def test_a_controller_balances_the_pole_through_fmpy(cart_pole_fmu):
     FMI: FMPy instantiates the FMU, the loop reads its outputs and sets its
     input every 10 ms; the pole stays within 0.05 rad after 1 s. Setting a
     parameter after initialization is refused (fmi3Error)."""
-    md = read_model_description(cart_pole_fmu)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    unzipped = fmpy.extract(cart_pole_fmu)
-    fmu = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
-                    instanceName="controller")
-    try:
-        fmu.instantiate()
-        fmu.enterInitializationMode(startTime=0.0, stopTime=10.0)
-        fmu.exitInitializationMode()
+    with initialized(cart_pole_fmu, "controller") as (fmu, vr):
         g = cp.GAINS
         t, worst_after_1s = 0.0, 0.0
         for k in range(1000):
@@ -244,10 +256,6 @@ def test_a_controller_balances_the_pole_through_fmpy(cart_pole_fmu):
         assert worst_after_1s < 0.05
         with pytest.raises(fmpy.fmi1.FMICallException):
             fmu.setFloat64([vr["pole.mass"]], [1.0])
-        fmu.terminate()
-    finally:
-        fmu.freeInstance()
-        shutil.rmtree(unzipped, ignore_errors=True)
 
 
 def test_without_fmpy_the_fmu_command_says_what_is_missing(cart_pole_scene, tmp_path, monkeypatch, capsys):
@@ -289,15 +297,7 @@ def test_an_fmu_state_saved_and_restored_steps_on_bit_for_bit(cart_pole_fmu):
     the state, the same 50 steps: the same outputs, bit for bit."""
     with zipfile.ZipFile(cart_pole_fmu) as z:
         assert 'canGetAndSetFMUState="true"' in z.read("modelDescription.xml").decode()
-    md = read_model_description(cart_pole_fmu)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    unzipped = fmpy.extract(cart_pole_fmu)
-    fmu = FMU3Slave(guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
-                    instanceName="what-if")
-    try:
-        fmu.instantiate()
-        fmu.enterInitializationMode(startTime=0.0)
-        fmu.exitInitializationMode()
+    with initialized(cart_pole_fmu, "what-if") as (fmu, vr):
         for k in range(50):
             fmu.doStep(currentCommunicationPoint=0.01 * k, communicationStepSize=0.01)
         saved = fmu.getFMUState()
@@ -315,7 +315,3 @@ def test_an_fmu_state_saved_and_restored_steps_on_bit_for_bit(cart_pole_fmu):
         assert fmu.getFloat64([vr["time"]])[0] == pytest.approx(0.5)
         assert np.array_equal(branch(), first)
         fmu.freeFMUState(saved)
-        fmu.terminate()
-    finally:
-        fmu.freeInstance()
-        shutil.rmtree(unzipped, ignore_errors=True)
