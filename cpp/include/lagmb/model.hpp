@@ -24,7 +24,6 @@ namespace lagmb {
 /// The ground: body index -1, at rest at the origin with angle 0.
 constexpr int kGround = -1;
 
-/// What a name refers to.
 /// An input of a model (time_function.hpp, Input): its name and what it feeds.
 struct InputInfo {
   std::string name;       // what Simulator::set_input takes
@@ -35,6 +34,7 @@ struct InputInfo {
   const Input* function = nullptr;
 };
 
+/// What a name refers to.
 struct ElementRef {
   enum Type { kBody, kConstraint, kForce, kFriction, kEvent } type;
   int group;  // constraint, force, friction or event group; body index for kBody
