@@ -395,6 +395,110 @@ def test_spatial_equilibrium_of_a_spring_hung_body():
     assert eq.q[2] != 0.0  # not where it started: the spring and gravity moved it
 
 
+def test_spatial_equilibrium_of_a_block_on_a_bushing_is_one_newton_step():
+    """A 2 kg block on a bushing of 100 N/m in each direction sags by
+    m g / k = 0.1962 m; the equations are linear in its position, so Newton
+    lands there at once (it used to creep 0.5 mm per iteration, the model's
+    extent being 0, and give up)."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    block = m.add_body("block", 2.0, (0.1, 0.1, 0.1), position=(0.0, 0.0, -1.0))
+    m.add_bushing("mount", m.ground, block, at=(0.0, 0.0, -1.0), stiffness=(100.0,) * 3,
+                  rotational_stiffness=(1.0, 1.0, 1.0))
+    eq = mb.equilibrium(m)
+    pose = eq.body(block)
+    assert pose.position.shape == (3,) and pose.orientation.shape == (4,) and pose.rotation.shape == (3, 3)
+    assert np.allclose(pose.position, (0.0, 0.0, -1.0 - 2.0 * G / 100.0), atol=1e-12)
+    assert np.allclose(pose.orientation, (1.0, 0.0, 0.0, 0.0), atol=1e-12)
+    assert eq.iterations <= 3
+    r = mb.simulate(m, 0.5, start="equilibrium")
+    assert np.abs(r.body(block).position - pose.position).max() < 1e-9  # it stays there
+
+
+def test_spatial_equilibrium_of_a_block_on_a_vertical_slider_with_a_spring():
+    """A 2 kg block on a vertical translational joint, hung from a spring of
+    100 N/m at its free length: it comes to rest m g / k lower."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    block = m.add_body("block", 2.0, (0.1, 0.1, 0.1), position=(0.0, 0.0, 1.0))
+    m.add_translational("slider", m.ground, block, at=(0.0, 0.0, 1.0), axis=(0.0, 0.0, 1.0))
+    m.add_spring_damper("spring", m.ground, (0.0, 0.0, 2.0), block, (0.0, 0.0, 1.0), stiffness=100.0)
+    eq = mb.equilibrium(m)
+    assert np.allclose(eq.body(block).position, (0.0, 0.0, 1.0 - 2.0 * G / 100.0), atol=1e-12)
+    assert eq.iterations <= 3
+    r = mb.simulate(m, 0.5, start="equilibrium")
+    assert abs(r.body(block).position[-1, 2] - (1.0 - 2.0 * G / 100.0)) < 1e-9
+
+
+# --- a revolute driver holds the angle it is given ------------------------------------
+# Its row used to be sin(theta - f) = 0, whose second root theta = f - pi
+# the assembly found from a start more than pi/2 away: the rod settled half
+# a turn off with a residual of 1e-16.
+
+
+def hinge_angle(orientation):
+    """The turn about z of Euler parameters (w, 0, 0, z), in (-pi, pi]."""
+    p = np.atleast_2d(orientation)
+    return 2.0 * np.arctan2(p[:, 3], p[:, 0])
+
+
+def wrapped(angle):
+    return np.remainder(np.asarray(angle) + np.pi, 2.0 * np.pi) - np.pi
+
+
+def driven_rod(f, pendulum=False):
+    """A rod along +x hinged about z at the origin, its angle driven by f;
+    with a pendulum on a spherical joint at its tip (a dynamic model)."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
+    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0))
+    m.drive_joint("motor", "hinge", f)
+    if pendulum:
+        bob = m.add_body("bob", 0.5, (1e-3, 1e-3, 1e-3), position=(1.0, 0.0, -0.5))
+        m.add_spherical("tip", rod, bob, at=(1.0, 0.0, 0.0))
+    return m
+
+
+DRIVER_MOTIONS = {
+    "constant 3": mb.Constant(3.0),
+    "constant -1.7": mb.Constant(-1.7),
+    "constant 4 (past pi)": mb.Constant(4.0),
+    "ramp from 2": mb.Linear(1.0, start=2.0),
+    "harmonic about 2.5": mb.Harmonic(0.5, 3.0, offset=2.5),
+    "spline from 2": mb.Spline([0.0, 0.05, 0.1], [2.0, 2.2, 2.1]),
+}
+
+
+@pytest.mark.parametrize("motion", DRIVER_MOTIONS.values(), ids=DRIVER_MOTIONS.keys())
+def test_a_revolute_driver_holds_its_angle_from_any_start(motion):
+    r = mb.simulate(driven_rod(motion), 0.1, n_out=11)
+    commanded = np.array([motion(t)[0] for t in r.t])
+    assert np.abs(wrapped(hinge_angle(r.body("rod").orientation) - commanded)).max() < 1e-9
+
+
+@pytest.mark.parametrize("formulation, integrator", [("ggl", None), ("projection", "erk")])
+def test_a_revolute_driver_holds_its_angle_in_a_dynamic_run(formulation, integrator):
+    motion = mb.Linear(1.0, start=2.0)
+    r = mb.simulate(driven_rod(motion, pendulum=True), 0.2, n_out=11, formulation=formulation,
+                    integrator=integrator, rtol=1e-8)
+    assert r.stats["steps"] > 0
+    assert np.abs(wrapped(hinge_angle(r.body("rod").orientation) - (2.0 + r.t))).max() < 1e-6
+
+
+def test_a_revolute_driver_input_jumping_by_pi_or_more_is_followed():
+    sim = mb.Simulator(driven_rod(mb.Input(0.0, name="angle"), pendulum=True), rtol=1e-8)
+    sim.advance(0.01)
+    for value in (3.0, 3.5, -3.0, 6.5, -0.2):  # jumps of 3, 0.5, 6.5, 9.5 and 6.7 rad
+        sim.set_input("angle", value)
+        sim.advance(sim.t + 0.01)
+        assert abs(wrapped(hinge_angle(sim.body("rod").orientation)[0] - value)) < 1e-9, value
+
+
+def test_a_driven_angle_no_configuration_reaches_is_an_assembly_error():
+    m = driven_rod(mb.Constant(1.0))
+    m.add_spherical("locked", m.ground, "rod", at=(1.0, 0.0, 0.0))  # the tip held where it is
+    with pytest.raises(mb.AssemblyError):
+        mb.simulate(m, 0.1)
+
+
 # --- bad input ----------------------------------------------------------------
 
 @pytest.mark.parametrize("call, message", [

@@ -19,8 +19,12 @@ namespace lagmb {
 
 std::string coordinate_label(const Model& model, int coord) {
   const Body& b = model.body_of_coordinate(coord);
-  static const char* role[] = {"x", "y", "angle"};
-  return "body '" + b.name + "' " + role[coord - b.first_coord];
+  // planar (x, y, angle), particle (x, y), spatial (r, Euler parameters p)
+  static const char* planar[] = {"x", "y", "angle"};
+  static const char* spatial[] = {"x", "y", "z", "e0", "e1", "e2", "e3"};
+  const int k = coord - b.first_coord;
+  if (k < 0 || k >= b.n_coordinates()) return "coordinate " + std::to_string(coord);
+  return "body '" + b.name + "' " + (b.spatial ? spatial : planar)[k];
 }
 
 namespace {
@@ -215,15 +219,25 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
   VecX lam = solver.balance(q, unbalanced);
 
   // scales: forces by the applied load, lengths by the model's extent
-  std::vector<int> angles;
+  // (centres of mass and the points elements attach to)
+  std::vector<bool> turns(n, false);  // a planar angle or an Euler parameter
   double extent = 0.0;
-  for (const Body& b : model.bodies()) {
-    if (!b.particle) angles.push_back(b.angle_coord());
-    extent = std::max({extent, std::abs(q[b.first_coord]), std::abs(q[b.first_coord + 1])});
+  for (int k = 0; k < int(model.bodies().size()); ++k) {
+    const Body& b = model.body(k);
+    const int positions = b.spatial ? 3 : 2;
+    for (int i = b.first_coord + positions; i < b.first_coord + b.n_coordinates(); ++i) turns[i] = true;
+    extent = std::max(extent, max_abs(q.segment(b.first_coord, positions)));
+    for (const Vec3& s : model.outline(k)) extent = std::max(extent, s.norm());
   }
   solver.force_scale = std::max(max_abs(solver.data().Q), 1e-300);
   solver.length_scale = std::max(extent, 1e-3);
-  const double max_angle_step = 0.5, max_position_step = 0.5 * solver.length_scale;
+  // 0.5 rad in a planar angle; an Euler parameter changes by about half the
+  // angle turned, so 0.25 is the same turn; half the model's extent in a
+  // position (none when everything sits at the origin: no length to go by)
+  auto max_step = [&](int i) {
+    if (!turns[i]) return extent > 0.0 ? 0.5 * extent : INFINITY;
+    return model.body_of_coordinate(i).spatial ? 0.25 : 0.5;
+  };
 
   Residual r, r_try;
   solver.residual(q, lam, r);
@@ -248,8 +262,7 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
     // step limitation
     double limit = 1.0;
     for (int i = 0; i < n; ++i) {
-      const bool angle = std::find(angles.begin(), angles.end(), i) != angles.end();
-      const double cap = angle ? max_angle_step : max_position_step;
+      const double cap = max_step(i);
       if (std::abs(dq[i]) * limit > cap) limit = cap / std::abs(dq[i]);
     }
     const bool tiny = max_abs(dq) <= o.tol * (1.0 + max_abs(q)) &&

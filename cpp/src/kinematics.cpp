@@ -488,14 +488,20 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
 
   // a sub-step turns no body by more than 0.25 rad (predicted): the Newton
   // start then stays near the branch it came from, and angles stay continuous
-  std::vector<int> angles;
-  for (const Body& b : model.bodies())
-    if (!b.particle) angles.push_back(b.angle_coord());
+  // (coordinate, rad per unit): a planar angle, or an Euler parameter, whose
+  // rate is about half the angular velocity (|omega| = 2 |p'| for unit p)
+  std::vector<std::pair<int, double>> angles;
+  for (const Body& b : model.bodies()) {
+    if (b.spatial)
+      for (int i = 3; i < 7; ++i) angles.emplace_back(b.first_coord + i, 2.0);
+    else if (!b.particle)
+      angles.emplace_back(b.angle_coord(), 1.0);
+  }
   auto angle_step = [&](const VecX& vel, const VecX& acc) {
     double w = 0.0, al = 0.0;
-    for (int i : angles) {
-      w = std::max(w, std::abs(vel[i]));
-      al = std::max(al, std::abs(acc[i]));
+    for (const auto& [i, per] : angles) {
+      w = std::max(w, per * std::abs(vel[i]));
+      al = std::max(al, per * std::abs(acc[i]));
     }
     const double root = w + std::sqrt(w * w + 0.5 * al);  // w h + al h^2 / 2 = 0.25
     return root > 0 ? 0.5 / root : INFINITY;
@@ -517,6 +523,8 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
       const double target = times[s];
       const double h_min = 1e-12 * (1.0 + std::abs(target));
       double h = target - t;
+      const double from = t;
+      sub_steps = 0;  // max_steps bounds the sub-steps between two solve times
       while (t < target) {
         h = std::min(h, angle_step(v, a));
         const bool last = t + h >= target;
@@ -530,7 +538,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
         }
         if (max_steps > 0 && ++sub_steps > max_steps) {
           std::ostringstream why;
-          why << "following the drivers from t = " << t0 << " to t = " << target << " takes more than max_steps = "
+          why << "following the drivers from t = " << from << " to t = " << target << " takes more than max_steps = "
               << max_steps << " sub-steps (each turns no body by more than 0.25 rad; the sub-step is now " << dt
               << " s): check the drivers' rates, or raise max_steps.";
           fail(why.str(), false);

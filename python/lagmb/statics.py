@@ -5,20 +5,22 @@ import numpy as np
 
 from . import _core
 from .errors import EquilibriumError, ModelError
-from .result import element_name
+from .result import element_name, rotation_matrices
 
 
 class EquilibriumBody:
-    """Pose of one body in equilibrium: position (2,) of its centre of mass
-    and angle (0 for a particle)."""
+    """Pose of one body in equilibrium. Planar: position (2,) of its centre
+    of mass and angle (0 for a particle). Spatial: position (3,),
+    orientation (4,), its Euler parameters (w, x, y, z), and rotation
+    (3, 3), body axes into global axes."""
 
-    __slots__ = ("position", "angle")
-
-    def __init__(self, position, angle):
-        self.position, self.angle = position, angle
+    def __init__(self, **pose):
+        self.__dict__.update(pose)
 
     def __repr__(self):
-        return f"EquilibriumBody(position={self.position.tolist()}, angle={self.angle!r})"
+        fields = ", ".join(f"{k}={np.asarray(v).tolist() if not isinstance(v, float) else v!r}"
+                           for k, v in self.__dict__.items() if k != "rotation")
+        return f"EquilibriumBody({fields})"
 
 
 class Equilibrium:
@@ -54,10 +56,14 @@ class Equilibrium:
         return element_name(self.model, self._core, item, accepts, what, context)
 
     def body(self, body):
-        """Pose of a body (handle or name): .position (2,), .angle."""
+        """Pose of a body (handle or name): .position (2,) and .angle in the
+        plane; .position (3,), .orientation (4,) and .rotation (3, 3) in space."""
         first, count = self._core.body_coordinates(self._name(body, ("body",), "body", "Equilibrium.body"))
         x = self.q[first:first + count]
-        return EquilibriumBody(x[:2].copy(), float(x[2]) if count == 3 else 0.0)
+        if count == 7:
+            return EquilibriumBody(position=x[:3].copy(), orientation=x[3:].copy(),
+                                   rotation=rotation_matrices(x[None, 3:])[0])
+        return EquilibriumBody(position=x[:2].copy(), angle=float(x[2]) if count == 3 else 0.0)
 
     def reaction(self, element, frame="global"):
         """(3,): force (x, y) in N on the element's second body and the torque
@@ -92,8 +98,9 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     """
     from .simulation import _translate
 
-    from ._checks import integer as _integer, real as _real
+    from ._checks import integer as _integer, model as _model, real as _real
 
+    _model(model, "equilibrium")
     t = _real(t, "t")
     tol = _real(tol, "tol")
     if not 0 < tol < 1:

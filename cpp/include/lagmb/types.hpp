@@ -17,6 +17,8 @@ using Mat3 = Eigen::Matrix3d;
 using Vec4 = Eigen::Vector4d;
 using VecX = Eigen::VectorXd;
 
+constexpr double kPi = 3.14159265358979323846;
+
 /// Local coordinates of the (at most) two bodies an element connects. A
 /// planar element has (x_i, y_i, phi_i, x_j, y_j, phi_j); the ground, and the
 /// missing angle of a particle, read as zero there. A spatial element has 14

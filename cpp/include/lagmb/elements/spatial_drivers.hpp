@@ -24,79 +24,19 @@ struct SpatialDriverBase {
   Mat3 axes(const spatial::Loc&, double) const { return Mat3::Identity(); }
 };
 
-/// The angle of a revolute (or cylindrical) joint: body j's copy f_j of the
-/// joint's f_i, turned about a = f_i x g_i by theta, has u = f_j . g_i =
-/// sin theta and w = f_j . f_i = cos theta (global vectors). The row
-///   Phi = u cos f(t) - w sin f(t)   (= sin(theta - f) on the joint)
-/// holds theta = f(t) with no jump at +-pi, and dPhi/dtheta = 1 there, so
-/// lam is minus the torque about a on body j. With phi = f(t):
-///   Phi_t  = -(u sin phi + w cos phi) f'
-///   Phi_tc = -(u_c sin phi + w_c cos phi) f'
-///   Phi_tt = -(u cos phi - w sin phi) f'^2 - (u sin phi + w cos phi) f''.
-struct SpatialAngleDriver : SpatialDriverBase {
-  static constexpr const char* kind = "spatial_angle_driver";
-  Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();
-
-  void sides(const spatial::Loc& c, const spatial::Want& want, spatial::ScalarTerm& u,
-             spatial::ScalarTerm& w) const {
-    using namespace spatial;
-    const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
-    u = dot(fj, body_vector(c, kBodyI, g_i, want), want);
-    w = dot(fj, body_vector(c, kBodyI, f_i, want), want);
-  }
-  Row phi(const spatial::Loc& c, double t) const {
-    spatial::ScalarTerm u, w;
-    sides(c, {}, u, w);
-    const double a = f->eval(t).f;
-    return Row(u.value * std::cos(a) - w.value * std::sin(a));
-  }
-  Grad jacobian(const spatial::Loc& c, double t) const {
-    spatial::ScalarTerm u, w;
-    sides(c, {}, u, w);
-    const double a = f->eval(t).f;
-    return u.gradient * std::cos(a) - w.gradient * std::sin(a);
-  }
-  void hessians(const spatial::Loc& c, double t, spatial::Mat14* H) const {
-    spatial::ScalarTerm u, w;
-    sides(c, {true}, u, w);
-    const double a = f->eval(t).f;
-    H[0] = u.hessian * std::cos(a) - w.hessian * std::sin(a);
-  }
-  /// (H cd)^T, for gamma and the velocity Jacobian (TermJoint::rates).
-  Grad rates(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
-    spatial::Want want;
-    want.rate = &cd;
-    spatial::ScalarTerm u, w;
-    sides(c, want, u, w);
-    const double a = f->eval(t).f;
-    return u.gradient_rate * std::cos(a) - w.gradient_rate * std::sin(a);
-  }
-  Row phi_t(const spatial::Loc& c, double t) const {
-    spatial::ScalarTerm u, w;
-    sides(c, {}, u, w);
-    const TimeValue v = f->eval(t);
-    return Row(-(u.value * std::sin(v.f) + w.value * std::cos(v.f)) * v.df);
-  }
-  Grad phi_tc(const spatial::Loc& c, double t) const {
-    spatial::ScalarTerm u, w;
-    sides(c, {}, u, w);
-    const TimeValue v = f->eval(t);
-    return -(u.gradient * std::sin(v.f) + w.gradient * std::cos(v.f)) * v.df;
-  }
-  Row phi_tt(const spatial::Loc& c, double t) const {
-    spatial::ScalarTerm u, w;
-    sides(c, {}, u, w);
-    const TimeValue v = f->eval(t);
-    const double s = std::sin(v.f), co = std::cos(v.f);
-    return Row(-(u.value * co - w.value * s) * v.df * v.df - (u.value * s + w.value * co) * v.ddf);
-  }
-};
-
 /// Shared by drivers whose row is g(c) - f(t) with g a scalar term:
-/// Phi_t = -f', Phi_tc = 0, Phi_tt = -f''.
+/// Phi_t = -f', Phi_tc = 0, Phi_tt = -f''. A kind whose g is an angle
+/// (periodic = true) takes the difference into (-pi, pi]: g and g + 2 pi are
+/// one configuration, and the row then has the one root g = f (mod 2 pi),
+/// whatever f's start and however far it jumps; the wrap is constant near
+/// the root, so the derivatives are those of g - f.
 template <class Kind>
 struct SpatialCoordinateDriverBase : SpatialDriverBase {
-  Row phi(const spatial::Loc& c, double t) const { return Row(self().coordinate(c, {}).value - f->eval(t).f); }
+  static constexpr bool periodic = false;
+  Row phi(const spatial::Loc& c, double t) const {
+    const double difference = self().coordinate(c, {}).value - f->eval(t).f;
+    return Row(Kind::periodic ? std::remainder(difference, 2.0 * kPi) : difference);
+  }
   Grad jacobian(const spatial::Loc& c, double) const { return self().coordinate(c, {}).gradient; }
   void hessians(const spatial::Loc& c, double, spatial::Mat14* H) const { H[0] = self().coordinate(c, {true}).hessian; }
   Grad rates(const spatial::Loc& c, const spatial::Loc& cd, double) const {
@@ -110,6 +50,25 @@ struct SpatialCoordinateDriverBase : SpatialDriverBase {
 
  private:
   const Kind& self() const { return static_cast<const Kind&>(*this); }
+};
+
+/// The angle of a revolute (or cylindrical) joint: body j's copy f_j of the
+/// joint's f_i, turned about a = f_i x g_i by theta, has f_j . g_i =
+/// sin theta and f_j . f_i = cos theta (global vectors), so
+///   g = theta = atan2(f_j . g_i, f_j . f_i)   (spatial_terms.hpp, angle)
+/// and the row theta - f(t), wrapped (periodic), holds theta = f(t) mod 2 pi.
+/// dPhi/dtheta = 1, so lam is minus the torque about a on body j.
+struct SpatialAngleDriver : SpatialCoordinateDriverBase<SpatialAngleDriver> {
+  static constexpr const char* kind = "spatial_angle_driver";
+  static constexpr bool periodic = true;
+  Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();
+
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
+    using namespace spatial;
+    const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
+    return angle(dot(fj, body_vector(c, kBodyI, g_i, want), want), dot(fj, body_vector(c, kBodyI, f_i, want), want),
+                 want);
+  }
 };
 
 /// The slide of a translational or cylindrical joint: g = (A_i a_i) . d,

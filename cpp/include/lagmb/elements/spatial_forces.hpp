@@ -73,7 +73,7 @@ struct SpatialRotationalSpringDamper : ScalarSpringDamper<SpatialRotationalSprin
   spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
     const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
-    return angle(dot(fj, body_vector(c, kBodyI, g_i, want)), dot(fj, body_vector(c, kBodyI, f_i, want)), want.hessian);
+    return angle(dot(fj, body_vector(c, kBodyI, g_i, want)), dot(fj, body_vector(c, kBodyI, f_i, want)), want);
   }
 };
 

@@ -137,16 +137,22 @@ inline ScalarTerm length(const VectorTerm& u) {
 /// The angle atan2(u, w) in (-pi, pi]: with D = u^2 + w^2,
 ///   grad = (w u_c - u w_c) / D,
 ///   Hess = (u_c^T w_c - w_c^T u_c + w u_cc - u w_cc) / D - 2 grad^T (u u_c + w w_c) / D
-/// (symmetric, though its parts are not).
-inline ScalarTerm angle(const ScalarTerm& u, const ScalarTerm& w, bool second) {
+/// (symmetric, though its parts are not), and along cd (u' = u_c cd)
+///   (Hess cd)^T = (w' u_c - u' w_c + w (u_cc cd)^T - u (w_cc cd)^T) / D - 2 (u u' + w w') grad / D.
+inline ScalarTerm angle(const ScalarTerm& u, const ScalarTerm& w, const Want& want) {
   ScalarTerm f;
   const double D = u.value * u.value + w.value * w.value;
   f.value = std::atan2(u.value, w.value);
   f.gradient = (w.value * u.gradient - u.value * w.gradient) / D;
-  if (second) {
+  if (want.hessian) {
     const Mat14 cross = u.gradient.transpose() * w.gradient;
     f.hessian = (cross - cross.transpose() + w.value * u.hessian - u.value * w.hessian) / D -
                 2.0 * f.gradient.transpose() * (u.value * u.gradient + w.value * w.gradient) / D;
+  }
+  if (want.rate) {
+    const double ud = u.gradient.dot(*want.rate), wd = w.gradient.dot(*want.rate);
+    f.gradient_rate = (wd * u.gradient - ud * w.gradient + w.value * u.gradient_rate - u.value * w.gradient_rate) / D -
+                      2.0 * (u.value * ud + w.value * wd) / D * f.gradient;
   }
   return f;
 }
