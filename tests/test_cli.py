@@ -245,7 +245,8 @@ def test_usage_errors_exit_2(four_bar, tmp_path):
 
 
 def test_failed_run_exits_1_and_writes_partial_results(four_bar, tmp_path):
-    four_bar.write_text(four_bar.read_text().replace("n_out = 401", "n_out = 2001\nmax_steps = 60"))
+    # 60 steps between outputs 0.5 s apart are too few at rtol 1e-8
+    four_bar.write_text(four_bar.read_text().replace("n_out = 401", "n_out = 5\nmax_steps = 60"))
     out = tmp_path / "partial.npz"
     p = lagmb("run", four_bar, "-o", out)
     assert p.returncode == 1, p.stderr
@@ -253,9 +254,9 @@ def test_failed_run_exits_1_and_writes_partial_results(four_bar, tmp_path):
     assert str(out) in p.stderr and "Traceback" not in p.stderr
     with np.load(out) as d:
         k = len(d["t"])
-        assert 1 <= k < 2001 and d["t"][-1] < 2.0
+        assert 1 <= k < 5 and d["t"][-1] < 2.0
         assert d["q"].shape == (k, 9) and d["reaction_A"].shape == (k, 3)
-        assert np.allclose(d["t"], np.linspace(0.0, 2.0, 2001)[:k], rtol=0, atol=1e-15)
+        assert np.allclose(d["t"], np.linspace(0.0, 2.0, 5)[:k], rtol=0, atol=1e-15)
 
 
 def test_run_summary(four_bar):

@@ -173,8 +173,9 @@ class PythonTimeFunction final : public TimeFunction {
   TimeValue eval(double t) const override {
     py::gil_scoped_acquire gil;
     TimeValue v;
+    py::object r;
     try {
-      py::object r = f_(t);
+      r = f_(t);
       if (derivatives_) {
         auto seq = r.cast<std::vector<double>>();
         if (seq.size() != 3) throw py::value_error("must return (y, dy, ddy)");
@@ -199,6 +200,20 @@ class PythonTimeFunction final : public TimeFunction {
       const std::string type = py::str(e.type().attr("__name__"));
       const std::string text = py::str(e.value());
       throw UserFunctionError(where_ + " raised " + type + ": " + text + " (at t = " + std::to_string(t) + ")");
+    } catch (const py::cast_error&) {  // its message names no Python type ('?')
+      const std::string wanted = derivatives_    ? "(y, dy, ddy), three numbers"
+                                 : component_ < 0 ? "a number"
+                                 : components_ == 2 ? "(fx, fy), two numbers"
+                                                    : "(x, y, z), three numbers";
+      std::string got = "an object", shown;
+      try {
+        got = py::str(py::type::of(r).attr("__name__"));
+        shown = py::repr(r);
+        if (shown.size() > 60) shown = shown.substr(0, 57) + "...";
+      } catch (py::error_already_set&) {  // a repr that fails: the type is enough
+      }
+      throw UserFunctionError(where_ + ": the function must return " + wanted + ", got " + got + " " + shown +
+                              " (at t = " + std::to_string(t) + ")");
     } catch (const std::exception& e) {
       throw UserFunctionError(where_ + ": the function " + e.what() + " (at t = " + std::to_string(t) + ")");
     }
@@ -879,9 +894,20 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("t", [](const SimulatorState& s) { return s.t; })
       .def_property_readonly("q", [](const SimulatorState& s) { return Eigen::VectorXd(s.q); })
       .def_property_readonly("v", [](const SimulatorState& s) { return Eigen::VectorXd(s.v); })
-      .def_property_readonly("inputs", [](const SimulatorState& s) { return Eigen::VectorXd(s.inputs); });
+      .def_property_readonly("inputs", [](const SimulatorState& s) { return Eigen::VectorXd(s.inputs); })
+      .def("__copy__", [](const SimulatorState& s) { return s; })
+      .def("__deepcopy__", [](const SimulatorState& s, const py::dict&) { return s; }, py::arg("memo"))
+      .def("__reduce__", [](const SimulatorState&) -> py::tuple {
+        throw ModelError(
+            "a SimulatorState cannot be pickled: it belongs to its model's simulators in this process. To carry a "
+            "run elsewhere, pickle the Model and the state's t, q, v and inputs, and start a Simulator there "
+            "from them (set the model's initial state, or advance a new simulator to t)");
+      });
 
-  // the model is kept alive by the simulator's Python object (keep_alive)
+  // the model is kept alive by the simulator's Python object (keep_alive).
+  // A Simulator takes one call at a time (simulator.hpp): every call waits
+  // for it without the GIL, so that the call in progress can call Python.
+  using Release = py::call_guard<py::gil_scoped_release>;
   py::class_<Simulator>(m, "Simulator")
       .def(py::init([](const Model& model, const py::dict& options, double output_interval) {
              SimulationOptions o = options_from(options, "Simulator");
@@ -890,19 +916,21 @@ PYBIND11_MODULE(_core, m) {
              return std::make_unique<Simulator>(model, o, output_interval);
            }),
            py::arg("model"), py::arg("options"), py::arg("output_interval") = 0.0, py::keep_alive<1, 2>())
-      .def_property_readonly("t", &Simulator::t)
-      .def_property_readonly("q", [](const Simulator& s) { return Eigen::VectorXd(s.q()); })
-      .def_property_readonly("v", [](const Simulator& s) { return Eigen::VectorXd(s.v()); })
-      .def_property_readonly("a",
-                             [](Simulator& s) {
-                               PythonCall call;
-                               return Eigen::VectorXd(s.a());
-                             })
-      .def_property_readonly("lam",
-                             [](Simulator& s) {
-                               PythonCall call;
-                               return Eigen::VectorXd(s.lam());
-                             })
+      .def_property_readonly("t", py::cpp_function(&Simulator::t, Release()))
+      .def_property_readonly("q", py::cpp_function(&Simulator::q, Release()))
+      .def_property_readonly("v", py::cpp_function(&Simulator::v, Release()))
+      .def_property_readonly("a", py::cpp_function(
+                                      [](Simulator& s) {
+                                        PythonCall call;
+                                        py::gil_scoped_release release;
+                                        return s.a();
+                                      }))
+      .def_property_readonly("lam", py::cpp_function(
+                                        [](Simulator& s) {
+                                          PythonCall call;
+                                          py::gil_scoped_release release;
+                                          return s.lam();
+                                        }))
       .def(
           "advance",
           [](Simulator& s, double t) {
@@ -911,10 +939,10 @@ PYBIND11_MODULE(_core, m) {
             s.advance(t);
           },
           py::arg("t"))
-      .def("set_input", &Simulator::set_input, py::arg("name"), py::arg("value"))
-      .def("input", &Simulator::input, py::arg("name"))
-      .def_property_readonly("inputs", [](const Simulator& s) { return Eigen::VectorXd(s.inputs()); })
-      .def("state", &Simulator::state)
+      .def("set_input", &Simulator::set_input, py::arg("name"), py::arg("value"), Release())
+      .def("input", &Simulator::input, py::arg("name"), Release())
+      .def_property_readonly("inputs", py::cpp_function(&Simulator::inputs, Release()))
+      .def("state", &Simulator::state, Release())
       .def(
           "set_state",
           [](Simulator& s, const SimulatorState& state) {
@@ -923,14 +951,27 @@ PYBIND11_MODULE(_core, m) {
             s.set_state(state);
           },
           py::arg("state"))
-      .def("result", [](const Simulator& s) { return to_python(s.result()); })
+      .def("result",
+           [](const Simulator& s) {
+             Trajectory tr;
+             {
+               py::gil_scoped_release release;
+               tr = s.result();
+             }
+             return to_python(std::move(tr));
+           })
       .def_property_readonly("stats",
                              [](const Simulator& s) {
+                               Stats now;
+                               {
+                                 py::gil_scoped_release release;
+                                 now = s.stats();
+                               }
                                py::dict stats;
-                               s.stats().for_each_field([&](const char* name, const auto& value) { stats[name] = value; });
+                               now.for_each_field([&](const char* name, const auto& value) { stats[name] = value; });
                                return stats;
                              })
-      .def_property_readonly("failure", &Simulator::failure);
+      .def_property_readonly("failure", py::cpp_function(&Simulator::failure, Release()));
 
   m.def(
       "cosimulation_setup",

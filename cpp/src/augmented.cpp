@@ -351,6 +351,13 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
   s.q = std::move(q);
   s.v = std::move(v);
   s.dropped_rows = d.dropped_rows;
+  // a start, a restart after an input's jump or an event: never hand an
+  // integrator what it cannot weigh
+  if (!(s.q.allFinite() && s.v.allFinite() && s.qdd.allFinite() && s.lam.allFinite())) {
+    std::ostringstream why;
+    why << "the consistent start at t = " << t << " is not finite: " << non_finite_source(model, s.q.data(), s.v.data(), t);
+    throw AssemblyError(why.str(), t, {});
+  }
   return s;
 }
 
@@ -384,12 +391,6 @@ ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, V
   Redundancy r = find_redundancy(model, d, kkt, q, t);
   d.drop_rows(model, r.rows);
   ConsistentState s = make_consistent(model, d, kkt, std::move(q), std::move(v), t);
-  if (!(s.q.allFinite() && s.v.allFinite() && s.qdd.allFinite() && s.lam.allFinite()))
-  {
-    std::ostringstream why;
-    why << "the consistent start at t = " << t << " is not finite: " << non_finite_source(model, s.q.data(), s.v.data(), t);
-    throw AssemblyError(why.str(), t, {});
-  }
   if (!r.rows.empty()) {
     // kkt holds the kept rows at s.q; the dropped ones from a full evaluation
     Data full(model);

@@ -2,7 +2,9 @@
 
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdio>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -13,8 +15,48 @@ void Model::require_open(const std::string& what) const {
   if (finalized_) throw ModelError("cannot " + what + ": the model is finalized");
 }
 
+std::uint64_t Model::next_model_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+
+namespace {
+
+/// What a name of a body, element or input may be: printable UTF-8, no
+/// control characters (a newline or NUL cannot go in a scene line or the
+/// FMU's XML), no space at either end (lost where names are read back).
+void check_name_text(const std::string& name, const std::string& what) {
+  if (name.empty()) throw ModelError("every " + what + " needs a non-empty name");
+  auto refuse = [&](const std::string& why) {
+    std::string shown;
+    for (unsigned char ch : name) {
+      if (ch < 0x20 || ch == 0x7f || ch >= 0x80) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02x", ch);
+        shown += hex;
+      } else {
+        shown += char(ch);
+      }
+    }
+    throw ModelError(what + " name '" + shown + "' " + why);
+  };
+  if (name.front() == ' ' || name.back() == ' ') refuse("begins or ends with a space");
+  for (size_t i = 0; i < name.size();) {
+    const unsigned char ch = name[i];
+    if (ch < 0x20 || ch == 0x7f) refuse("holds a control character (names must be printable)");
+    // UTF-8: a lead byte and its continuation bytes
+    const int more = ch < 0x80 ? 0 : (ch >> 5) == 0x6 ? 1 : (ch >> 4) == 0xe ? 2 : (ch >> 3) == 0x1e ? 3 : -1;
+    if (more < 0 || i + more > name.size() - 1) refuse("is not valid UTF-8 text");
+    for (int k = 1; k <= more; ++k)
+      if ((static_cast<unsigned char>(name[i + k]) >> 6) != 0x2) refuse("is not valid UTF-8 text");
+    i += 1 + more;
+  }
+}
+
+}  // namespace
+
 void Model::check_new_name(const std::string& name) const {
-  if (name.empty()) throw ModelError("every body and element needs a non-empty name");
+  check_name_text(name, "body or element");
   if (name == "ground") throw ModelError("the name 'ground' is reserved for the ground");
   if (names_.count(name)) throw ModelError("duplicate name '" + name + "': names must be unique");
 }
@@ -323,6 +365,7 @@ void Model::add_input(InputInfo info) {
   require_open("add an input");
   for (const Input* f : input_functions_)
     if (f == info.function) return;  // one input feeding several parameters
+  check_name_text(info.name, "input");
   if (input_index(info.name) >= 0)
     throw ModelError("input '" + info.name + "' of " + info.element + ": another input has that name (of " +
                      inputs_[input_index(info.name)].element + ")");

@@ -24,16 +24,37 @@ namespace {
 void validate(const Model& model, const SimulationOptions& o) {
   validate_run_options(model, o, "simulate");
   if (!(std::isfinite(o.t_end) && o.t_end > o.t0))
-    throw ModelError("simulate: t_end must be finite and greater than t0 = " + std::to_string(o.t0) +
-                     ", got " + std::to_string(o.t_end));
-  // a step bound that needs more steps than allowed would run for hours: refuse it now
-  if (o.max_step > 0 && o.max_steps > 0 && (o.t_end - o.t0) / o.max_step > double(o.max_steps)) {
-    std::ostringstream s;
-    s << "simulate: " << (o.formulation == "ali3p" ? "step" : "max_step") << " = " << o.max_step
-      << " s needs at least " << (o.t_end - o.t0) / o.max_step << " steps from t0 = " << o.t0
-      << " to t_end = " << o.t_end << ", more than max_steps = " << o.max_steps
-      << ": take a longer step or raise max_steps";
-    throw ModelError(s.str());
+    throw ModelError("simulate: t_end must be finite and greater than t0 = " + to_text(o.t0) + ", got " +
+                     to_text(o.t_end));
+  check_time(o.t_end, "simulate", "t_end");
+  if (o.t_end - o.t0 < shortest_span(o.t0, o.t_end))
+    throw ModelError("simulate: t_end = " + to_text(o.t_end) + " is within " + to_text(shortest_span(o.t0, o.t_end)) +
+                     " s of t0 = " + to_text(o.t0) + ", below the time resolution there (" + to_text(kTimeResolution) +
+                     " max(|t|, 1 s))");
+  // a step bound that needs more steps between two outputs than allowed
+  // would run for hours: refuse it now
+  if (o.max_step > 0 && o.max_steps > 0) {
+    double gap = 0.0, from = o.t0, to = o.t0;
+    if (o.t_out.empty()) {
+      gap = (o.t_end - o.t0) / std::max(o.n_out - 1, 1);
+      to = o.t0 + gap;
+    } else {
+      double last = o.t0;
+      for (double tk : o.t_out) {
+        if (tk - last > gap) gap = tk - last, from = last, to = tk;
+        last = tk;
+      }
+      if (o.t_end - last > gap) gap = o.t_end - last, from = last, to = o.t_end;
+    }
+    if (gap / o.max_step > double(o.max_steps)) {
+      std::ostringstream s;
+      s << "simulate: " << (o.formulation == "ali3p" ? "step" : "max_step") << " = " << o.max_step
+        << " s needs at least " << gap / o.max_step << " steps between the outputs at t = " << from << " and "
+        << to << ", more than max_steps = " << o.max_steps
+        << " (the bound on the steps between outputs): take a longer step, ask for outputs more often or raise "
+           "max_steps";
+      throw ModelError(s.str());
+    }
   }
   if (o.t_out.empty() && o.n_out < 2)
     throw ModelError("simulate: n_out must be at least 2, got " + std::to_string(o.n_out));
@@ -66,7 +87,11 @@ void validate_run_options(const Model& model, const SimulationOptions& o, const 
       throw ModelError(at + name + " must be positive and finite, got " + std::to_string(x));
   };
   if (!std::isfinite(o.t0)) throw ModelError(at + "t0 is not finite");
+  check_time(o.t0, who, "t0");
   positive(o.rtol, "rtol");
+  if (o.rtol >= 1.0)
+    throw ModelError(at + "rtol = " + to_text(o.rtol) +
+                     " must be below 1: a relative error of 100 % or more bounds nothing (typical: 1e-3 to 1e-10)");
   if (o.rtol < 1e-14)
     throw ModelError(at + "rtol = " + std::to_string(o.rtol) +
                      " is below 1e-14, which double precision cannot deliver");

@@ -83,6 +83,41 @@ Simulator::Simulator(const Model& model, const SimulationOptions& options, doubl
 
 Simulator::~Simulator() = default;
 
+Simulator::Call::Call(const Simulator& s, const char* what) : s_(s), lock_(s.busy_), outer_(!s.running_) {
+  if (!outer_)
+    throw ModelError(std::string("Simulator.") + what +
+                     ": called from inside the simulator's own run (a force, torque or driver function?); a "
+                     "simulator's functions are called between its calls, not from them");
+  s_.running_ = true;
+}
+
+Simulator::Call::~Call() { s_.running_ = false; }
+
+double Simulator::t() const {
+  Call call(*this, "t");
+  return t_;
+}
+
+VecX Simulator::q() const {
+  Call call(*this, "q");
+  return q_;
+}
+
+VecX Simulator::v() const {
+  Call call(*this, "v");
+  return v_;
+}
+
+VecX Simulator::inputs() const {
+  Call call(*this, "inputs");
+  return inputs_;
+}
+
+std::string Simulator::failure() const {
+  Call call(*this, "failure");
+  return failure_;
+}
+
 void Simulator::check_usable(const char* what) const {
   if (!failure_.empty())
     throw SimulationError(std::string("Simulator.") + what + ": the simulator failed at t = " + to_text(t_) +
@@ -90,7 +125,12 @@ void Simulator::check_usable(const char* what) const {
                           t_);
 }
 
-const VecX& Simulator::a() {
+VecX Simulator::a() {
+  Call call(*this, "a");
+  return solved_a();
+}
+
+const VecX& Simulator::solved_a() {
   if (!solved_) {
     InputScope scope(model_.input_functions(), inputs_.data());
     a_.resize(q_.size());
@@ -101,8 +141,9 @@ const VecX& Simulator::a() {
   return a_;
 }
 
-const VecX& Simulator::lam() {
-  a();
+VecX Simulator::lam() {
+  Call call(*this, "lam");
+  solved_a();
   return lam_;
 }
 
@@ -120,6 +161,7 @@ int Simulator::input_slot(const std::string& name) const {
 }
 
 void Simulator::set_input(const std::string& name, double value) {
+  Call call(*this, "set_input");
   check_usable("set_input");
   const int k = input_slot(name);
   if (!std::isfinite(value))
@@ -128,7 +170,10 @@ void Simulator::set_input(const std::string& name, double value) {
   solved_ = solved_ && inputs_ == inputs_integrated_;
 }
 
-double Simulator::input(const std::string& name) const { return inputs_[input_slot(name)]; }
+double Simulator::input(const std::string& name) const {
+  Call call(*this, "input");
+  return inputs_[input_slot(name)];
+}
 
 void Simulator::new_stepper() {
   // the finished stepper's counts are kept; the new one starts at order 1
@@ -165,16 +210,28 @@ void Simulator::restart_for_inputs() {
 }
 
 void Simulator::advance(double target) {
+  Call call(*this, "advance");
   check_usable("advance");
   if (!std::isfinite(target)) throw ModelError("Simulator.advance: t is not finite (" + to_text(target) + ")");
   if (target < t_)
     throw ModelError("Simulator.advance: t = " + to_text(target) + " is before the simulator's time " + to_text(t_) +
                      "; a simulator only goes forward (set_state goes back to a saved state)");
   if (target == t_) return;
+  check_time(target, "Simulator.advance", "t");
+  // a span time cannot resolve is no step an integrator can take
+  if (const double shortest = shortest_span(t_, target); target - t_ < shortest)
+    throw ModelError("Simulator.advance: t = " + to_text(target) + " is within " + to_text(shortest) +
+                     " s of the simulator's time " + to_text(t_) + ", below the time resolution there (" +
+                     to_text(kTimeResolution) + " max(|t|, 1 s)): advance further");
   // the outputs: the multiples of output_interval after t_, then target
   std::vector<double> t_out;
   if (output_interval_ > 0.0) {
     const double t0 = options_.t0, dt = output_interval_;
+    // outputs closer than time can resolve would repeat one time
+    if (dt < shortest_span(t_, target))
+      throw ModelError("Simulator.advance: the output_interval of " + to_text(dt) + " s is below the time "
+                       "resolution near t = " + to_text(target) + " (" + to_text(shortest_span(t_, target)) +
+                       " s): record less often");
     // kept in memory: refuse what cannot fit rather than fail half way
     if ((target - t_) / dt > 1e7)
       throw ModelError("Simulator.advance: from t = " + to_text(t_) + " to " + to_text(target) +
@@ -183,10 +240,10 @@ void Simulator::advance(double target) {
     for (double k = std::floor((t_ - t0) / dt) + 1;; ++k) {
       const double tk = t0 + k * dt;
       if (!(tk < target - 1e-9 * dt)) break;
-      if (tk > t_) t_out.push_back(tk);
+      if (tk > t_ && (t_out.empty() || tk > t_out.back())) t_out.push_back(tk);
     }
   }
-  t_out.push_back(target);
+  if (t_out.empty() || target > t_out.back()) t_out.push_back(target);
 
   InputScope scope(model_.input_functions(), inputs_.data());
   const int first_new = record_.size();
@@ -236,11 +293,12 @@ void Simulator::advance(double target) {
     fresh_ = true;
     std::ostringstream s;
     s << failure_ << " Outputs up to t = " << t_ << " are kept in the simulator's result.";
-    throw SimulationError(s.str(), t_, result());
+    throw SimulationError(s.str(), t_, result_now());
   }
 }
 
 SimulatorState Simulator::state() {
+  Call call(*this, "state");
   SimulatorState s;
   s.t = t_;
   s.q = q_;
@@ -248,14 +306,15 @@ SimulatorState Simulator::state() {
   s.inputs = inputs_;
   s.run_state = *d_->run_state;
   s.events = events_ ? long(events_->records.size()) : 0;
-  s.owner = &model_;
+  s.model_id = model_.id();
   fresh_ = true;  // the run goes on from here as a restored copy would
   return s;
 }
 
 void Simulator::set_state(const SimulatorState& s) {
+  Call call(*this, "set_state");
   const int n = model_.n_coordinates();
-  if (s.owner != &model_ || s.q.size() != n || s.v.size() != n || s.inputs.size() != inputs_.size() ||
+  if (s.model_id != model_.id() || s.q.size() != n || s.v.size() != n || s.inputs.size() != inputs_.size() ||
       s.run_state.size() != d_->run_state->size())
     throw ModelError("Simulator.set_state: the state was saved from a simulator of another model");
   if (!std::isfinite(s.t) || !s.q.allFinite() || !s.v.allFinite() || !s.inputs.allFinite())
@@ -279,19 +338,29 @@ void Simulator::set_state(const SimulatorState& s) {
       record_output(model_, *d_, *kkt_, *watch_, record_, t_, q_.data(), v_.data(), inputs_, true);
     } catch (const IntegratorFailure& e) {
       failure_ = e.what();
-      throw SimulationError("Simulator.set_state: " + failure_, t_, result());
+      throw SimulationError("Simulator.set_state: " + failure_, t_, result_now());
     }
   }
 }
 
 Trajectory Simulator::result() const {
+  Call call(*this, "result");
+  return result_now();
+}
+
+Trajectory Simulator::result_now() const {
   Trajectory tr = record_;
-  tr.stats = stats();
+  tr.stats = stats_now();
   if (events_) tr.events = events_->records;
   return tr;
 }
 
 Stats Simulator::stats() const {
+  Call call(*this, "stats");
+  return stats_now();
+}
+
+Stats Simulator::stats_now() const {
   Stats s = finished_;
   if (stepper_) {
     Stats now;

@@ -40,11 +40,15 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
       const double *q = nullptr, *v = nullptr;
       stepper_.interpolate(t_out[k], q, v);
       record(q, v);
+      steps = 0;
     }
+    // max_steps bounds the steps between outputs (as SUNDIALS' mxstep):
+    // a run that cannot end stops, an accurate long one does not
     if (plan_.max_steps > 0 && ++steps >= plan_.max_steps && t < target) {
       std::ostringstream msg;
-      msg << stepper_.name() << " reached max_steps = " << plan_.max_steps << " at t = " << t << " before t = " << target
-          << ".";
+      msg << stepper_.name() << " took max_steps = " << plan_.max_steps << " steps without reaching the next output "
+          << "(at t = " << (k < t_out.size() ? t_out[k] : target) << "; now at t = " << t
+          << "): max_steps bounds the steps between outputs; raise it, or ask for outputs more often.";
       throw IntegratorFailure(msg.str(), t);
     }
     if (plan_.events) {

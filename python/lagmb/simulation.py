@@ -6,7 +6,7 @@ import numpy as np
 
 from . import _core
 from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
-from ._checks import positive as _positive, real as _real, text as _text
+from ._checks import model as _model, positive as _positive, real as _real, text as _text
 from .errors import AssemblyError, ModelError, SimulationError
 from .result import Result
 
@@ -80,11 +80,12 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     than for positions measured in km). Outputs: ``n_out`` equally spaced times from t0 to
     t_end, or the explicit increasing times ``t_out`` (t_end defaults to its
     last entry), interpolated by the integrator. ``max_step`` bounds the step
-    size (s), ``max_steps`` the number of steps (in a kinematic analysis, of
-    the sub-steps that follow the drivers; default 500,000; None: no
-    bound; reaching it raises SimulationError with the outputs so far, and a
-    ``max_step`` or ``step`` that would need more steps than that over
-    [t0, t_end] is refused up front with ModelError). ``progress``, if given,
+    size (s), ``max_steps`` the number of steps between two outputs, as
+    SUNDIALS' mxstep (in a kinematic analysis, of the sub-steps that follow
+    the drivers; default 500,000; None: no bound; reaching it raises
+    SimulationError with the outputs so far, and a ``max_step`` or ``step``
+    that would need more steps than that between two outputs is refused up
+    front with ModelError). ``rtol`` is 1e-14 to below 1. ``progress``, if given,
     is called with the time reached about every 0.2 s of wall time.
     Ctrl-C stops a run within a second: the KeyboardInterrupt comes through
     unchanged and carries the outputs so far as ``.result`` (also when a
@@ -122,6 +123,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     violated later (naming the conflicting elements); EquilibriumError
     if ``start="equilibrium"`` finds none.
     """
+    _model(model, "simulate")
     t0 = _real(t0, "t0")
     if t_out is not None:
         t_out = _array(t_out, "t_out")

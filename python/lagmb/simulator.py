@@ -3,9 +3,10 @@ saved and restored (docs/modelling.md, "Driving a run from outside")."""
 
 from types import SimpleNamespace
 
-from . import _core
-from ._checks import real as _real, show as _show
+from . import _core, registry
+from ._checks import model as _model, real as _real, show as _show
 from .errors import ModelError
+from .handles import name_of
 from .result import BodyPath, Result, element_name
 from .simulation import _run_options, _translate
 
@@ -21,8 +22,9 @@ class Simulator:
 
     The options are :func:`lagmb.simulate`'s without the outputs (``t_end``,
     ``t_out``, ``n_out``), ``analysis`` (a simulator always integrates the
-    equations of motion) and ``progress``; ``max_steps`` bounds each
-    advance. The integrator keeps its steps and history from one advance to
+    equations of motion) and ``progress``; ``max_steps`` bounds the steps
+    between two outputs. One simulator takes one call at a time: calls from
+    other threads wait for the one in progress. The integrator keeps its steps and history from one advance to
     the next: its steps may pass the time asked for, and the state there is
     its interpolant, so many short advances take the steps of one long run.
     It restarts (order 1) at breakpoints and events as simulate does, at a
@@ -39,6 +41,7 @@ class Simulator:
         options = _run_options(t0=_real(t0, "t0"), rtol=rtol, atol=atol, formulation=formulation,
                                integrator=integrator, max_step=max_step, step=step, max_order=max_order,
                                baumgarte=baumgarte, max_steps=max_steps, start=start)
+        _model(model, "Simulator")
         interval = 0.0 if output_interval is None else _real(output_interval, "output_interval")
         if interval < 0:
             raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
@@ -138,11 +141,14 @@ class Simulator:
         return f"Simulator(t={self.t!r}, inputs={self.inputs!r})"
 
     def _input_name(self, name):
-        if not isinstance(name, str):
-            name = getattr(name, "name", name)  # a handle
-        if not isinstance(name, str):
-            raise ModelError(f"an input is named by a string or a handle, got {_show(name)}")
-        return name
+        """An input's name, given as its name or the handle of the element it feeds."""
+        if isinstance(name, str):
+            return name
+        from .handles import Handle
+
+        if isinstance(name, Handle):
+            return name_of(self.model, name, registry.ROLES, "input", "Simulator")
+        raise ModelError(f"an input is named by a string or a handle, got {_show(name)}")
 
     def _translated(self):
         return _translate(self.model, self._core_model)

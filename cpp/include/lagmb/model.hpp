@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <set>
@@ -138,6 +139,9 @@ class Model {
   /// decides it (redundancy.hpp) and keeps it in its Data.
   void finalize();
   bool finalized() const { return finalized_; }
+  /// A number no other model of this process has had: what a saved run
+  /// state names as its model (an address may be reused once freed).
+  std::uint64_t id() const { return id_; }
 
   // --- after finalize() -------------------------------------------------
   int n_coordinates() const { return n_; }
@@ -235,6 +239,8 @@ class Model {
   void register_name(const std::string& name, ElementRef ref);
 
   bool finalized_ = false;
+  std::uint64_t id_ = next_model_id();
+  static std::uint64_t next_model_id();
   int dimension_ = 2;
   std::vector<Body> bodies_;
   std::vector<std::vector<Vec3>> outlines_;  // per body

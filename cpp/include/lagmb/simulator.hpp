@@ -3,7 +3,9 @@
 // what-if runs).
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -26,7 +28,7 @@ struct SimulatorState {
   VecX inputs;     // one per Model::inputs()
   VecX run_state;  // Data::run_state (a contact's impact speed)
   long events = 0;  // event records up to t
-  const void* owner = nullptr;  // the model it belongs to
+  std::uint64_t model_id = 0;  // Model::id() of the model it belongs to
 };
 
 /// A dynamic run of `model` (the DAE integrated by the method of the
@@ -46,11 +48,15 @@ struct SimulatorState {
 /// value; a driver's positions are then assembled anew), and from a state
 /// saved or restored. The options are simulate's, without the outputs
 /// (t_end, t_out, n_out), the analysis (always the dynamic one) and the
-/// progress report; max_steps bounds each advance.
+/// progress report; max_steps bounds the steps between two outputs.
 ///
 /// Outputs: the state at t0, at the end of every advance and, with
 /// output_interval > 0, at every multiple of it after t0 (result()).
 /// The model must outlive the simulator.
+///
+/// Calls from several threads are taken one at a time (a call waits for the
+/// one in progress); a call from inside the simulator's own run (a force or
+/// driver function calling advance) is a ModelError.
 class Simulator {
  public:
   Simulator(const Model& model, const SimulationOptions& options = {}, double output_interval = 0.0);
@@ -58,12 +64,12 @@ class Simulator {
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
 
-  double t() const { return t_; }
-  const VecX& q() const { return q_; }
-  const VecX& v() const { return v_; }
+  double t() const;
+  VecX q() const;
+  VecX v() const;
   /// Accelerations and multipliers at (t, q, v), from the augmented system.
-  const VecX& a();
-  const VecX& lam();
+  VecX a();
+  VecX lam();
 
   /// Integrates to time t (>= t(); equal: nothing to do). ModelError for a
   /// time before t() or not finite; SimulationError if the integrator fails
@@ -76,7 +82,7 @@ class Simulator {
   /// that is not finite.
   void set_input(const std::string& name, double value);
   double input(const std::string& name) const;
-  const VecX& inputs() const { return inputs_; }
+  VecX inputs() const;
 
   /// The state to come back to. The integrator restarts here on the next
   /// advance, so that advancing from a restored copy repeats the run from
@@ -91,9 +97,24 @@ class Simulator {
   Trajectory result() const;
   Stats stats() const;
   /// Why the last advance failed ("" if it did not).
-  const std::string& failure() const { return failure_; }
+  std::string failure() const;
 
  private:
+  /// Holds the simulator for one call: waits for a call in progress on
+  /// another thread; refuses one from inside a run on this thread.
+  class Call {
+   public:
+    Call(const Simulator& s, const char* what);
+    ~Call();
+
+   private:
+    const Simulator& s_;
+    std::unique_lock<std::recursive_mutex> lock_;
+    bool outer_;
+  };
+  const VecX& solved_a();
+  Trajectory result_now() const;
+  Stats stats_now() const;
   void new_stepper();
   void restart_for_inputs();
   void check_usable(const char* what) const;
@@ -120,6 +141,8 @@ class Simulator {
   std::string failure_;
   Trajectory record_;
   long restarts_ = 0, input_changes_ = 0;
+  mutable std::recursive_mutex busy_;
+  mutable bool running_ = false;  // inside a call that runs model functions
 };
 
 }  // namespace lagmb
