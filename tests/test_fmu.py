@@ -104,8 +104,31 @@ def test_a_cosimulation_refuses_what_it_cannot_do(cart_pole_scene):
         c.set(names.index("pole.mass"), 0.2)
     with pytest.raises(mb.ModelError, match="a step from t = 1"):
         c.do_step(1.0, 0.01)
+    with pytest.raises(mb.ModelError, match="a step from t = nan"):
+        c.do_step(float("nan"), 0.01)  # was taken, and reported lastSuccessfulTime NaN
     c.do_step(0.0, 0.01)
     assert c.get(0) == pytest.approx(0.01)
+
+
+@pytest.mark.parametrize("input_name, other", [
+    ("pole.x", "the output (coordinate of body pole)"),
+    ("pole.mass", "the parameter (mass"),
+    ("der(cart.x)", "the output (its rate)"),
+    ("time", "the independent (simulation time)"),
+])
+def test_names_that_would_collide_in_an_fmu_are_refused_naming_both(input_name, other):
+    """An input named like another variable gave an FMU with two variables
+    of one name, which FMPy rejects."""
+    from lagmb.fmu import setup_text
+
+    m = mb.Model(gravity=(0.0, -9.81))
+    cart = m.add_body("cart", 1.0, 0.01)
+    pole = m.add_body("pole", 0.1, 1e-3, position=(0.0, 0.5))
+    m.add_revolute("hinge", cart, pole, at=(0.0, 0.0))
+    m.add_force("push", cart, force=(mb.Input(0.0, name=input_name), 0.0))
+    with pytest.raises(mb.ModelError, match=f"two variables would be called '{re.escape(input_name)}'") as e:
+        mb._core.CoSimulation(setup_text(SimpleNamespace(model=m, settings={}, output={})))
+    assert other in str(e.value) and "input to push" in str(e.value)
 
 
 def test_a_python_callable_cannot_go_in_an_fmu():

@@ -581,3 +581,259 @@ def test_ali3p_outputs_of_a_body_turned_1e308_rad_are_finite():
     r = mb.simulate(m, t_end=0.05, formulation="ali3p", step=0.001)
     assert np.all(np.isfinite(r.v)) and np.all(r.v[:, 2] == 0.0)
     assert r.v[-1, 1] == pytest.approx(-9.81 * 0.05, rel=1e-9)
+
+
+# --- round 3 (issue 23): spatial models, the Simulator, names, tolerances ----------
+
+
+def spatial_block(**body):
+    m = mb.Model(dimension=3)
+    m.add_body("b", 1.0, (0.1, 0.1, 0.1), **body)
+    return m
+
+
+@pytest.mark.parametrize("body, element", [
+    (dict(angular_velocity=(1e308, 0.0, 0.0)), None),
+    ({}, ("add_torque", dict(body="b", torque=(1e308, 0.0, 0.0)))),
+    ({}, ("add_torque", dict(body="b", torque=(mb.Linear(1e308), 0.0, 0.0)))),
+])
+def test_an_overflowing_spatial_body_is_named_by_its_coordinates(body, element):
+    """Messages named spatial coordinates from a planar table {x, y, angle}:
+    z was called "angle" and e0..e3 read past the table (a UnicodeDecodeError
+    of garbage bytes, or "St16_Sp_counted_base")."""
+    out = in_subprocess(f"""
+        import lagmb as mb
+        from lagmb import Linear
+        m = mb.Model(dimension=3)
+        m.add_body("b", 1.0, (0.1, 0.1, 0.1), **{body!r})
+        element = {element!r}
+        if element:
+            getattr(m, element[0])("push", **element[1])
+        try:
+            mb.simulate(m, 0.1)
+        except (mb.ModelError, mb.SimulationError) as e:
+            print(type(e).__name__, e)
+    """)
+    assert out.split()[0] in ("SimulationError", "AssemblyError") and "angle" not in out
+    if "body 'b' " in out:  # a coordinate named: one of a spatial body's
+        assert any(f"body 'b' {c} " in out for c in ("x", "y", "z", "e0", "e1", "e2", "e3"))
+
+
+def test_tolerances_must_mean_something():
+    with pytest.raises(mb.ModelError, match="rtol = 1e\\+10 must be below 1"):
+        mb.simulate(pendulum(), 1.0, rtol=1e10)
+    with pytest.raises(mb.ModelError, match="rtol = 1 must be below 1"):
+        mb.Simulator(pendulum(), rtol=1.0)
+
+
+def test_times_finer_than_double_precision_resolves_are_refused():
+    """At t = 1e8 s consecutive doubles are 1.5e-8 s apart: an output every
+    1e-9 s gave 985 outputs with 68 distinct, non-increasing times."""
+    sim = mb.Simulator(pendulum(), t0=1e8, output_interval=1e-9)
+    with pytest.raises(mb.ModelError, match="below the time resolution"):
+        sim.advance(1e8 + 1e-6)
+    sim = mb.Simulator(pendulum())
+    for t in (5e-324, 1e-310):  # used to fail inside IDA and stop the simulator
+        with pytest.raises(mb.ModelError, match="time resolution"):
+            sim.advance(t)
+        with pytest.raises(mb.ModelError, match="time resolution"):
+            mb.simulate(pendulum(), t_end=t)
+    sim.advance(0.01)  # still usable
+    with pytest.raises(mb.ModelError, match="beyond the times a run can resolve"):
+        sim.advance(1e300)  # used to fail at t = 0 with a first step of 2.2e286 s
+    with pytest.raises(mb.ModelError, match="t_end = 1e\\+12 is beyond"):
+        mb.simulate(pendulum(), t_end=1e12)
+
+
+def test_outputs_of_a_simulator_always_increase():
+    sim = mb.Simulator(pendulum(), output_interval=0.003)
+    for k in range(1, 40):
+        sim.advance(k * 0.001 + 1e-17 * k)
+    t = sim.result().t
+    assert np.all(np.diff(t) > 0)
+
+
+def test_max_steps_bounds_the_steps_between_outputs_not_the_run():
+    """The IFToMM pendulum to 2000 s at rtol 1e-11 takes about 1.5 million
+    steps and was refused at t = 685 s by max_steps = 500,000 over the run.
+    Now the bound is per output interval (as SUNDIALS' mxstep): a run with
+    outputs spaced as usual goes on; one that cannot reach its next output
+    within max_steps stops, naming the option."""
+    r = mb.simulate(pendulum(), t_end=2.0, n_out=201, rtol=1e-10, max_steps=300)
+    assert r.stats["steps"] > 300  # more steps in all than the bound
+    with pytest.raises(mb.SimulationError, match="max_steps = 300 .*between outputs"):
+        mb.simulate(pendulum(), t_end=2.0, n_out=2, rtol=1e-10, max_steps=300)
+
+
+def test_a_spline_driver_evaluated_outside_its_times_is_safe():
+    """ASan found the spline reading its second derivatives out of range
+    (a time that is not a number fell in no interval)."""
+    f = mb.Spline([0.0, 0.02, 0.04, 0.06], [0.0, 0.1, 0.3, 0.2])
+    for t in (-1.0, 0.0, 0.06, 1.0):
+        assert all(math.isfinite(x) for x in f(t))
+    assert math.isnan(f(float("nan"))[0])
+
+
+def test_names_must_be_printable():
+    """A NUL or other control character in a name wrote invalid XML into an
+    FMU; a newline broke the scene and `lagmb fmu`."""
+    for bad in ("k\x00", "a\nb", "tab\there", " padded", "padded "):
+        with pytest.raises(mb.ModelError, match="name"):
+            mb.Model().add_body(bad, 1.0, 1.0)
+    m = mb.Model()
+    body = m.add_body("b", 1.0, 1.0)
+    with pytest.raises(mb.ModelError, match="input name"):
+        m.add_torque("t", body, mb.Input(0.0, name="bad\x01"))
+    mb.Model().add_body("Ünïcode ok", 1.0, 1.0)  # printable text is fine
+
+
+def test_bool_parameters_take_bools_only():
+    """bool() turned local="False" into True, and an array into numpy's
+    "truth value ... is ambiguous"."""
+    m = spatial_block()
+    for bad in ("False", np.array([1, 0]), 1, "yes"):
+        with pytest.raises(mb.ModelError, match="local must be True or False"):
+            m.add_torque("t", "b", (1.0, 0.0, 0.0), local=bad)
+    m.add_torque("t", "b", (1.0, 0.0, 0.0), local=np.bool_(False))
+
+
+@pytest.mark.parametrize("returned, expected", [("abc", "got str 'abc'"), (None, "got NoneType None"),
+                                                ([1.0, 2.0], "\\(x, y, z\\)")])
+def test_a_force_function_returning_no_number_is_named(returned, expected):
+    m = spatial_block()
+    m.add_torque("t", "b", lambda t: returned)
+    with pytest.raises(mb.SimulationError, match=f"torque 't': the function must return .*{expected}"):
+        mb.simulate(m, 0.1)
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda m: m.add_body("c", 1.0, (1e308,) * 3, position=(2.0, 0.0, 0.0)), "inertia is too large"),
+    (lambda m: m.add_distance("d", "ground", (0.0, 0.0, 1.0), "b", (0.0, 0.0, 0.0), length=1e308),
+     "length 1e\\+308 is too large"),
+])
+def test_numbers_whose_squares_overflow_are_refused_when_added(make, message):
+    """Inertia (1e308,)*3 gave "moments (-nan, ...)"; a distance of 1e308
+    was "left out as redundant ... |Phi| = nan"."""
+    with pytest.raises(mb.ModelError, match=message):
+        make(spatial_block())
+
+
+def test_an_input_that_overflows_the_state_is_named():
+    """A torque input of 1e308 gave IDA's "EwtSet function failed"."""
+    m = spatial_block()
+    m.add_torque("t", "b", (mb.Input(0.0), 0.0, 0.0))
+    sim = mb.Simulator(m)
+    sim.set_input("t", 1e308)
+    with pytest.raises(mb.SimulationError, match="not finite.*body 'b'"):
+        sim.advance(0.1)
+
+
+def test_one_simulator_called_from_two_threads_serializes_the_calls():
+    """advance releases the GIL, and nothing serialized a Simulator: two
+    threads advancing one 30-link chain crashed (SIGSEGV) or failed with
+    "IDAGetDky failed (-26)". Now one call waits for the other."""
+    out = in_subprocess("""
+        import threading
+        import lagmb as mb
+        for dimension in (2, 3):
+            m = mb.Model(gravity=(0.0, -9.81) if dimension == 2 else (0.0, 0.0, -9.81), dimension=dimension)
+            previous = m.ground
+            for k in range(30):
+                if dimension == 2:
+                    b = m.add_body(f"l{k}", 1.0, 1.0 / 12.0, position=(k + 0.5, 0.0))
+                    m.add_revolute(f"j{k}", previous, b, at=(float(k), 0.0))
+                else:
+                    b = m.add_body(f"l{k}", 1.0, (1e-3, 1 / 12, 1 / 12), position=(k + 0.5, 0.0, 0.0))
+                    m.add_revolute(f"j{k}", previous, b, at=(float(k), 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+                previous = b
+            sim = mb.Simulator(m)
+            errors = []
+            def work():
+                try:
+                    for _ in range(40):
+                        sim.advance(sim.t + 0.002)
+                        sim.q, sim.a, sim.result()
+                except Exception as e:
+                    errors.append(e)
+            threads = [threading.Thread(target=work) for _ in range(2)]
+            for t in threads:
+                t.start()
+            for t in threads:
+                t.join()
+            assert not errors, errors
+            r = sim.result()
+            assert abs(r.t[-1] - 80 * 0.002) < 1e-12 and (r.t[1:] > r.t[:-1]).all()
+            print(dimension, len(r.t))
+    """, timeout=300)
+    assert out.split() == ["2", "81", "3", "81"]
+
+
+def test_a_simulator_called_from_its_own_force_function_is_refused():
+    m = spatial_block()
+    holder = {}
+
+    def torque(t):
+        if "sim" in holder:  # (not while the simulator starts)
+            holder["sim"].advance(1.0)  # from inside the run
+        return 0.0
+
+    m.add_torque("t", "b", (torque, 0.0, 0.0))
+    holder["sim"] = mb.Simulator(m)
+    with pytest.raises(mb.SimulationError) as failure:
+        holder["sim"].advance(0.1)
+    assert "called from inside the simulator's own run" in str(failure.value.__cause__)
+
+
+def test_a_saved_state_does_not_load_into_a_model_at_the_same_address():
+    """SimulatorState named its model by address: a new model allocated
+    where a freed one was accepted its state (a pendulum's state in a free
+    body)."""
+    import gc
+
+    for _ in range(30):
+        m = pendulum()
+        state = mb.Simulator(m).state()
+        del m
+        gc.collect()
+        other = mb.Model()
+        other.add_body("free", 1.0, 1.0)
+        with pytest.raises(mb.ModelError, match="another model"):
+            mb.Simulator(other).set_state(state)
+
+
+def test_set_input_refuses_a_handle_of_another_model():
+    def motor():
+        m = mb.Model()
+        body = m.add_body("b", 1.0, 1.0)
+        return m, m.add_torque("t", body, mb.Input(0.0))
+
+    (a, handle_a), (b, _) = motor(), motor()
+    with pytest.raises(mb.ModelError, match="another model"):
+        mb.Simulator(b).set_input(handle_a, 1.0)
+
+
+def test_a_wrong_argument_type_is_said_at_the_call():
+    for call in (lambda: mb.Simulator("model"), lambda: mb.simulate("model", 1.0),
+                 lambda: mb.equilibrium(None)):
+        with pytest.raises(mb.ModelError, match="model must be a lagmb.Model"):
+            call()
+
+
+def test_models_pickle_and_deep_copy_and_states_say_what_to_do():
+    import copy
+    import pickle
+
+    m = pendulum()
+    push = mb.Input(0.5)  # one input feeding two places stays one input
+    m.add_torque("push", "rod", push)
+    m.add_force("shove", "rod", (push, mb.Harmonic(1.0, 3.0)))
+    for other in (pickle.loads(pickle.dumps(m)), copy.deepcopy(m)):
+        assert other is not m and [name for name, _ in other.elements()] == [name for name, _ in m.elements()]
+        assert [d["name"] for d in other.compiled().inputs] == ["push"]
+        a, b = mb.simulate(m, 0.5), mb.simulate(other, 0.5)
+        assert np.array_equal(a.q, b.q)  # the same model, to the last bit
+    sim = mb.Simulator(m)
+    state = sim.state()
+    sim.set_state(copy.deepcopy(state))  # a copy in this process is the same state
+    with pytest.raises(mb.ModelError, match="cannot be pickled.*pickle the Model"):
+        pickle.dumps(state)

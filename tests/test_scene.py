@@ -214,6 +214,33 @@ def test_round_trip_exact_floats(tmp_path):
     assert tuple(load_scene(path).model.gravity) == (0.1, -9.80665)
 
 
+def test_an_input_shared_by_two_elements_stays_one_input_through_a_scene(tmp_path):
+    """One unnamed mb.Input fed two torques: one input "t1" before the round
+    trip, two ("t1", "t2") after it, so set_input("t1", 1) drove both bodies
+    before and one after. The scene names a shared input in each place, and
+    the reader joins inputs by name."""
+    m = mb.Model(dimension=3)
+    a = m.add_body("a", 1.0, (0.1, 0.1, 0.1))
+    b = m.add_body("b", 1.0, (0.1, 0.1, 0.1), position=(1.0, 0.0, 0.0))
+    push = mb.Input(0.0)
+    m.add_torque("t1", a, (push, 0.0, 0.0))
+    m.add_torque("t2", b, (0.0, 0.0, push))
+    path = tmp_path / "shared.toml"
+    m.to_scene(path)
+    back = load_scene(path).model
+    assert [d["name"] for d in back.compiled().inputs] == [d["name"] for d in m.compiled().inputs] == ["t1"]
+    for model in (m, back):
+        sim = mb.Simulator(model)
+        sim.set_input("t1", 1.0)
+        sim.advance(0.1)
+        assert sim.body("a").angular_velocity[0] > 0.9 and sim.body("b").angular_velocity[2] > 0.9
+    text = path.read_text()
+    assert text.count('{ type = "input", initial = 0.0, name = "t1" }') == 2
+    path.write_text(text.replace("initial = 0.0", "initial = 2.0", 1))
+    with pytest.raises(SceneError, match="input 't1' is given again with another initial value"):
+        load_scene(path)
+
+
 def test_writing_a_callable_names_the_element(tmp_path):
     require("elements", "add_torque")
     m = mb.Model()

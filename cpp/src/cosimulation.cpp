@@ -2,6 +2,8 @@
 // by a Simulator.
 #include "lagmb/cosimulation.hpp"
 
+#include <map>
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -168,6 +170,17 @@ CoSimulation::CoSimulation(CoSimulationSetup setup)
     if (p.causality == "parameter")
       for (const CoVariable& o : variables_)
         if (o.causality == "output" && o.name == p.name) p.name += ".start";
+  // an FMU names each variable once: names made from element and input
+  // names can collide (an input "a.x" and body a's coordinate x)
+  std::map<std::string, size_t> seen;
+  for (size_t vr = 0; vr < variables_.size(); ++vr) {
+    const auto [at, fresh] = seen.emplace(variables_[vr].name, vr);
+    if (fresh) continue;
+    const CoVariable &first = variables_[at->second], &second = variables_[vr];
+    throw ModelError("co-simulation: two variables would be called '" + second.name + "': the " + first.causality +
+                     " (" + first.description + ") and the " + second.causality + " (" + second.description +
+                     "); rename the element or input one of them comes from");
+  }
 }
 
 CoSimulation::~CoSimulation() = default;
@@ -272,7 +285,7 @@ void CoSimulation::exit_initialization() {
 void CoSimulation::do_step(double t, double h) {
   if (mode_ != Mode::kStepping) throw ModelError("a step needs initialization to have ended");
   const double now = sim_->t();
-  if (std::abs(t - now) > 1e-9 * std::max(1.0, std::abs(now)))
+  if (!(std::abs(t - now) <= 1e-9 * std::max(1.0, std::abs(now))))  // NaN too
     throw ModelError("a step from t = " + to_text(t) + ", but the model is at t = " + to_text(now));
   if (!(std::isfinite(h) && h > 0.0)) throw ModelError("the step size must be positive and finite, got " + to_text(h));
   sim_->advance(now + h);

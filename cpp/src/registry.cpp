@@ -2,6 +2,8 @@
 // for one element, and the one way every element is added.
 #include "lagmb/registry.hpp"
 
+#include <limits>
+
 #include "lagmb/model.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -198,8 +200,12 @@ Mat3 Args::inertia(const std::string& key) const {
   if (!((J - J.transpose()).cwiseAbs().maxCoeff() <= 1e-9 * scale))
     throw ModelError(what + " must be a symmetric tensor");
   J = 0.5 * (J + J.transpose());
-  Eigen::SelfAdjointEigenSolver<Mat3> eig(J);
-  const Vec3 m = eig.eigenvalues();  // ascending
+  // the mass matrix holds 4 G^T J G (elements/spatial_body.hpp): keep it finite
+  if (!(8.0 * scale <= std::numeric_limits<double>::max()))
+    throw ModelError(what + " is too large: its largest entry " + to_text(scale) + " kg m^2 overflows the mass matrix");
+  // solved scaled: the solver squares entries
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(scale > 0.0 ? Mat3(J / scale) : J);
+  const Vec3 m = eig.eigenvalues() * (scale > 0.0 ? scale : 1.0);  // ascending
   if (!(m[0] >= 0.0)) throw ModelError(what + " must be positive semi-definite; its principal moments are " + to_text(m));
   if (!(m[2] <= (m[0] + m[1]) * (1.0 + 1e-9)))
     throw ModelError(what + ": principal moments " + to_text(m) +

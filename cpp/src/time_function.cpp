@@ -100,9 +100,10 @@ struct Spline final : TimeFunction {
   TimeValue eval(double t) const override {
     const size_t n = x.size();
     if (n == 1) return {y[0], 0.0, 0.0};
-    // linear extrapolation with the end slopes
-    if (t <= x[0] || t >= x[n - 1]) {
-      const bool left = t <= x[0];
+    // linear extrapolation with the end slopes (and a t that is not a
+    // number, which no interval holds, gives NaN here)
+    if (!(t > x[0] && t < x[n - 1])) {
+      const bool left = !(t >= x[n - 1]);
       const size_t k = left ? 0 : n - 2;
       const double h = x[k + 1] - x[k];
       const double slope = (y[k + 1] - y[k]) / h +

@@ -25,6 +25,9 @@ class TimeFunction:
     def __call__(self, t):
         return self._impl(float(t))
 
+    def __reduce__(self):  # pickled and copied by its fields; the C++ function is built anew
+        return type(self), tuple(getattr(self, name) for name in self._fields)
+
     def to_dict(self):
         """Plain data, e.g. {"type": "linear", "rate": 1.0, "start": 0.0}."""
         out = {"type": self._type}

@@ -5,7 +5,7 @@ import numbers
 
 from . import _core
 from . import registry
-from ._checks import matrix_or_vector as _matrix_or_vector, real as _number, show
+from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
 from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
 from .errors import ModelError
 from .functions import TimeFunction, as_time_function
@@ -67,6 +67,13 @@ class Model:
 
     __copy__ = copy
 
+    def __reduce__(self):
+        """Pickled (and deep-copied) as its description: gravity, dimension
+        and the elements, replayed on a new Model (time functions by their
+        fields, a Python callable by pickle's rules: a module-level function
+        travels, a lambda does not). Handles and results stay with this one."""
+        return _rebuilt, (self.gravity, self.dimension, self.elements())
+
     # --- building --------------------------------------------------------
 
     def _body(self, body, what, context):
@@ -114,7 +121,8 @@ class Model:
             x = tuple(float(c) for c in x) if x.ndim == 1 else tuple(tuple(float(c) for c in row) for row in x)
             return x, x
         if t == "bool":
-            return bool(value), bool(value)
+            x = _flag(value, label)
+            return x, x
         if t == "text":
             return _text(value, label), value
         if t == "body":
@@ -283,6 +291,14 @@ class Model:
     def __repr__(self):
         n_elements = len(self._spec) - len(self._bodies)
         return f"<lagmb.Model: {len(self._bodies)} bodies, {n_elements} other elements>"
+
+
+def _rebuilt(gravity, dimension, elements):
+    """A Model from what Model.__reduce__ gives."""
+    model = Model(gravity=gravity, dimension=dimension)
+    for method, kwargs in elements:
+        getattr(model, method)(**kwargs)
+    return model
 
 
 def _method(method):

@@ -20,6 +20,12 @@ void require_positive(double x, const std::string& element, const char* what) {
     throw ModelError(element + ": " + what + " must be positive and finite, got " + to_text(x));
 }
 
+void require_squarable(double x, const std::string& element, const char* what) {
+  if (!std::isfinite(4.0 * x * x))
+    throw ModelError(element + ": " + what + " " + to_text(x) +
+                     " is too large: the equations hold its square, which overflows a double");
+}
+
 void require_nonnegative(double x, const std::string& element, const char* what) {
   if (!(std::isfinite(x) && x >= 0))
     throw ModelError(element + ": " + what + " must be finite and >= 0, got " + to_text(x));

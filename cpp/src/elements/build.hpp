@@ -30,6 +30,8 @@ Kind joining(const Model& m, const std::string& name, int body_i, int body_j) {
 
 /// ModelError "'<element>': <what>" unless x is finite and positive.
 void require_positive(double x, const std::string& element, const char* what);
+/// ModelError naming `element` unless 4 x^2 is finite (a length squared in an equation).
+void require_squarable(double x, const std::string& element, const char* what);
 /// ModelError "'<element>': <what>" unless x is finite and >= 0.
 void require_nonnegative(double x, const std::string& element, const char* what);
 

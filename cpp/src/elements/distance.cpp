@@ -13,6 +13,7 @@ void build_distance(Model& m, const std::string& name, const Args& a) {
   const Vec2 p_i = a.vec2("point_i"), p_j = a.vec2("point_j");
   j.length = a.optional_real("length").value_or((p_j - p_i).norm());
   build::require_positive(j.length, label, "length");
+  build::require_squarable(j.length, label, "length");
   build::require_on_particle(m, j.body_i, p_i, label);
   build::require_on_particle(m, j.body_j, p_j, label);
   j.s_i = m.local_point(j.body_i, p_i);

@@ -109,6 +109,7 @@ void build_distance(Model& m, const std::string& name, const Args& a) {
   j.s_j = m.local_point(j.body_j, pj);
   j.length = a.given("length") ? a.real("length") : (pj - pi).norm();
   build::require_positive(j.length, label, "the length");
+  build::require_squarable(j.length, label, "the length");
   m.add_constraint(std::move(j));
 }
 

@@ -55,8 +55,9 @@ class SceneError(ModelError):
 class _Where:
     """Where a table is, to name it in errors."""
 
-    def __init__(self, path, lines, table_path, label):
+    def __init__(self, path, lines, table_path, label, inputs=None):
         self.path, self.lines, self.table_path, self.label = path, lines, tuple(table_path), label
+        self.inputs = {} if inputs is None else inputs  # the scene's named inputs: name -> mb.Input
 
     def line(self, key=None):
         return self.lines.line(self.table_path + ((key,) if key is not None else ()))
@@ -181,6 +182,13 @@ def _time_function(where, key, value):
     if unknown:
         raise where.error(f"unknown key '{unknown[0]}' in a {value['type']!r} time function; "
                           f"its keys: {', '.join(f.to_dict())}", key)
+    if f.to_dict()["type"] == "input" and getattr(f, "name", None) is not None:
+        # one input feeding several elements: each place names it
+        known = where.inputs.setdefault(f.name, f)
+        if known.initial != f.initial:
+            raise where.error(f"input {f.name!r} is given again with another initial value ({f.initial!r}; "
+                              f"first {known.initial!r}): one name is one input", key)
+        return known
     return f
 
 
@@ -289,6 +297,7 @@ class Reader:
         except RecursionError:  # nesting the check above did not see
             raise SceneError("values nested too deeply to read", path) from None
         self.names = {}  # element or body name -> (label, line)
+        self.inputs = {}  # input name -> mb.Input: one name is one input, wherever it feeds
         self.bodies = {"ground"}
         self.joints = set()
         self.elements = []
@@ -299,7 +308,7 @@ class Reader:
         return SceneError(message, self.path, line, table, key)
 
     def where(self, table_path, label):
-        return _Where(self.path, self.lines, table_path, label)
+        return _Where(self.path, self.lines, table_path, label, self.inputs)
 
     def read(self):
         data = self.data

@@ -29,6 +29,38 @@ def _table_lines(header, table):
     return lines
 
 
+def _shared_inputs(model):
+    """{id(input): the name the model knows it by} for each unnamed mb.Input
+    that feeds more than one place: the scene names it in each, so that it
+    reads back as one input (the reader joins inputs by name)."""
+    from ..functions import Input
+
+    places = {}  # id -> (input, [(element, parameter)])
+    for _, kwargs in model.elements():
+        for param, value in kwargs.items():
+            parts = value if isinstance(value, tuple) and len(value) in (2, 3) else (value,)
+            for k, part in enumerate(parts):
+                if isinstance(part, Input) and part.name is None:
+                    parameter = param if len(parts) == 1 else f"{param}.{'xyz'[k]}"
+                    places.setdefault(id(part), (part, []))[1].append((kwargs["name"], parameter))
+    shared = {key: where for key, (_, where) in places.items() if len(where) > 1}
+    if not shared:
+        return {}
+    core = {(d["element"], d["parameter"]): d["name"] for d in model.compiled().inputs}
+    return {key: core[where[0]] for key, where in shared.items()}
+
+
+def _named(value, names):
+    """value with each shared unnamed input replaced by a named copy (for writing)."""
+    from ..functions import Input
+
+    if isinstance(value, Input) and id(value) in names:
+        return Input(value.initial, names[id(value)])
+    if isinstance(value, tuple):
+        return tuple(_named(v, names) for v in value)
+    return value
+
+
 def scene_text(model, settings=None, output=None):
     """The scene file of a model (and settings, output) as a string."""
     from .. import __version__
@@ -40,6 +72,7 @@ def scene_text(model, settings=None, output=None):
         out += ["[model]"] + ([f"dimension = {dimension}"] if dimension != 2 else [])
         out += ([f"gravity = {toml_value(tuple(gravity))}"] if gravity is not None else []) + [""]
     kinds = elements(dimension)
+    shared = _shared_inputs(model)
     for method, kwargs in model.elements():
         name = kwargs.get("name")
         if method not in kinds:
@@ -55,7 +88,7 @@ def scene_text(model, settings=None, output=None):
                 continue
             key = element.renamed.get(arg, arg)
             try:
-                text = toml_value(value)
+                text = toml_value(_named(value, shared))
             except NotWritable as e:
                 raise SceneError(
                     f"{method}: {e} cannot go in a scene file, which holds numbers and time "
