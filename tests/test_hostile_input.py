@@ -837,3 +837,53 @@ def test_models_pickle_and_deep_copy_and_states_say_what_to_do():
     sim.set_state(copy.deepcopy(state))  # a copy in this process is the same state
     with pytest.raises(mb.ModelError, match="cannot be pickled.*pickle the Model"):
         pickle.dumps(state)
+
+
+def four_bar(dimension, crank_angle, rocker_angle, ground=1.0, crank=0.5, rocker=1.0, coupler=1.2):
+    """A crank (revolute at the origin) and a rocker (revolute at (ground,
+    0)) whose tips a distance element `coupler` joins; built at the given
+    angles, where the tips are generally not `coupler` apart."""
+    m = mb.Model(dimension=dimension)
+    a = crank * np.array([np.cos(crank_angle), np.sin(crank_angle), 0.0])
+    o = np.array([ground, 0.0, 0.0])
+    b = o + rocker * np.array([np.cos(rocker_angle), np.sin(rocker_angle), 0.0])
+    if dimension == 3:
+        m.add_body("crank", 1.0, (0.05, 0.05, 0.01), position=tuple(a / 2))
+        m.add_body("rocker", 1.0, (0.05, 0.05, 0.01), position=tuple((o + b) / 2))
+        m.add_revolute("pin_c", m.ground, "crank", at=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0))
+        m.add_revolute("pin_r", m.ground, "rocker", at=tuple(o), axis=(0.0, 0.0, 1.0))
+        m.add_distance("coupler", "crank", tuple(a), "rocker", tuple(b), length=coupler)
+    else:
+        m.add_body("crank", 1.0, 0.01, position=tuple(a[:2] / 2), angle=crank_angle)
+        m.add_body("rocker", 1.0, 0.01, position=tuple((o + b)[:2] / 2), angle=rocker_angle)
+        m.add_revolute("pin_c", m.ground, "crank", at=(0.0, 0.0))
+        m.add_revolute("pin_r", m.ground, "rocker", at=tuple(o[:2]))
+        m.add_distance("coupler", "crank", tuple(a[:2]), "rocker", tuple(b[:2]), length=coupler)
+    return m
+
+
+@pytest.mark.parametrize("dimension", [2, 3])
+def test_a_four_bar_that_can_close_assembles_from_any_start(dimension):
+    """A Grashof crank-rocker (ground 1, crank 0.5, rocker 1, coupler 1.2 m)
+    closes at every crank angle. Started with its links on one line, Newton
+    stalled where the linear model cannot close the loop (and in space
+    stretched the Euler parameters, then blamed "rocker (Euler parameters)",
+    |Phi| 0.17); started at (60, 350) degrees a full step overshot to the
+    collinear position. Now every start on a 30 degree grid assembles, to the
+    coupler's length and unit Euler parameters."""
+    starts = [(c, r) for c in range(0, 360, 30) for r in range(0, 360, 30)] + [(60, 350), (180, 180)]
+    for crank_angle, rocker_angle in starts:
+        m = four_bar(dimension, np.radians(crank_angle), np.radians(rocker_angle))
+        q = m.assemble()[0]
+        r = mb.simulate(m, 1e-3, n_out=2, analysis="dynamic")
+        assert r.residual.max() < 1e-9, (crank_angle, rocker_angle)
+        if dimension == 3:
+            assert np.allclose([np.linalg.norm(q[3:7]), np.linalg.norm(q[10:14])], 1.0, atol=1e-12)
+
+
+def test_a_four_bar_that_cannot_close_blames_its_coupler_not_euler_parameters():
+    m = four_bar(3, 0.3, 2.0, ground=3.0, crank=0.5, rocker=0.5)  # 0.5 + 1.2 + 0.5 < 3
+    with pytest.raises(mb.AssemblyError) as failure:
+        m.assemble()
+    assert failure.value.violated[0][0] == "coupler"
+    assert not any("Euler" in name for name, _ in failure.value.violated)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "lagmb/analysis.hpp"
@@ -287,17 +288,61 @@ double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 
 
 }  // namespace
 
+/// Newton least-change on Phi(q, t) = 0 in the M-metric,
+///   [M Phi_q^T; Phi_q 0] [dq; kappa] = [0; -Phi],
+/// each step halved until max |Phi| decreases, with three safeguards:
+///  - a step turns no body by more than 0.5 rad (an Euler parameter by 0.25),
+///    so that a long way round is taken in turns the linear model still
+///    describes (a full step could land at a collinear, singular position);
+///  - each trial's Euler parameters are scaled back to unit length: a step
+///    along p itself "stretches" the body (A(p) s grows with p^T p), which the
+///    linear model of a distance row takes for a motion, and the rest of the
+///    violation then sat in the normalization rows, blamed for it;
+///  - where no step reduces |Phi| short of a solution (a singular position
+///    where the linear model cannot close the loop: a four-bar started with
+///    all its links on one line), the configuration is moved by 1 % of its
+///    size along a random direction the joints allow (M-orthogonal to the
+///    rows, from a fixed seed: the same model assembles the same way) and
+///    Newton goes on; at most 8 times.
 VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, double t) {
   const int n = model.n_coordinates(), m = model.n_constraints();
-  VecX zero_n = VecX::Zero(n), dq(n), kappa(m), q_try(n);
+  VecX zero_n = VecX::Zero(n), zero_m = VecX::Zero(m), dq(n), kappa(m), q_try(n), z(n);
   const double scale = 1.0 + (n ? q.lpNorm<Eigen::Infinity>() : 0.0);
   const double tol = 1e-12 * scale;
+  // (coordinate, largest change per step): planar angles, Euler parameters
+  std::vector<std::pair<int, double>> turns;
+  for (const Body& b : model.bodies()) {
+    if (b.spatial)
+      for (int i = 3; i < 7; ++i) turns.emplace_back(b.first_coord + i, 0.25);
+    else if (!b.particle)
+      turns.emplace_back(b.angle_coord(), 0.5);
+  }
+  auto unit_euler_parameters = [&](VecX& x) {
+    for (const Body& b : model.bodies())
+      if (b.spatial) {
+        auto p = x.segment<4>(b.first_coord + 3);
+        const double norm = p.norm();
+        if (norm > 0.0 && std::isfinite(norm)) p /= norm;
+      }
+  };
+  // the size of the mechanism: the spread of the bodies' centres and the origin
+  auto spread = [&](const VecX& x) {
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+    for (const Body& b : model.bodies())
+      for (int k = 0; k < (b.spatial ? 3 : 2); ++k) {
+        lo[k] = std::min(lo[k], x[b.first_coord + k]);
+        hi[k] = std::max(hi[k], x[b.first_coord + k]);
+      }
+    const double e = (hi - lo).maxCoeff();
+    return std::isfinite(e) ? std::max(e, 0.1) : 0.1;
+  };
+  std::mt19937 random(20261124u);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
 
-  // Newton least-change, with backtracking on |Phi|
   assemble_constraints(model, d, q.data(), t);
   double err = max_abs(d.Phi);
-  const int max_iter = 50;
-  int iterations = 0;
+  const int max_iter = 100, max_moves = 8;
+  int iterations = 0, moves = 0;
   while (err > tol) {
     poll_interrupt();
     if (iterations++ >= max_iter || !std::isfinite(err))
@@ -306,17 +351,34 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
     if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix");
     kkt.solve(zero_n, -d.Phi, dq, kappa);
     double step = 1.0, err_try = INFINITY;
+    for (const auto& [i, cap] : turns)
+      if (std::abs(dq[i]) * step > cap) step = cap / std::abs(dq[i]);
     for (int halving = 0; halving < 12; ++halving, step *= 0.5) {
       q_try = q + step * dq;
+      unit_euler_parameters(q_try);
       assemble_constraints(model, d, q_try.data(), t);
       err_try = max_abs(d.Phi);
       if (err_try < err) break;
     }
     if (!(err_try < err)) {
-      assemble_constraints(model, d, q.data(), t);
       // converged as far as rounding allows?
-      if (err <= 1e-9 * scale) break;
-      fail_assembly(model, d, t, 1e3 * tol, "no Newton step reduces |Phi|");
+      if (err <= 1e-9 * scale) {
+        assemble_constraints(model, d, q.data(), t);
+        break;
+      }
+      // stuck where the linear model cannot close the loop: move along the
+      // joints (kkt and M are those at q) and try again
+      for (int i = 0; i < n; ++i) z[i] = uniform(random);
+      kkt.solve(d.M * z, zero_m, dq, kappa);
+      const double size = max_abs(dq);
+      if (moves++ >= max_moves || !(size > 0.0) || !std::isfinite(size)) {
+        assemble_constraints(model, d, q.data(), t);
+        fail_assembly(model, d, t, 1e3 * tol, "no Newton step reduces |Phi|");
+      }
+      q_try = q + (1e-2 * spread(q) / size) * dq;
+      unit_euler_parameters(q_try);
+      assemble_constraints(model, d, q_try.data(), t);
+      err_try = max_abs(d.Phi);
     }
     q = q_try;
     err = err_try;
