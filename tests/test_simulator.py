@@ -417,6 +417,33 @@ def test_events_and_breakpoints_in_chunks():
     assert sim.stats["restarts"] == 2 and sim.stats["input_changes"] == 0
 
 
+@pytest.mark.parametrize("method", mb.methods(), ids=[m["name"] for m in mb.methods()])
+def test_advances_ending_just_before_a_breakpoint_are_inside_the_last_step(method):
+    """A step that ends on a breakpoint past the time asked for restarted the
+    integrator at once, discarding the step; the next advance, still before
+    the breakpoint, then asked for a time the integrator no longer held:
+    CVodeGetDky / IDAGetDky "Illegal value for t" (a RuntimeError), and
+    ali3p gave outputs 0.075 off the constraints. The restart now waits until
+    a run steps past the breakpoint, and the outputs are those of simulate
+    at the same times."""
+    m = mb.Model(dimension=3)
+    arm = m.add_body("arm", 1.0, (0.1, 0.1, 0.1), position=(0.5, 0.0, 0.0))
+    m.add_revolute("hinge", m.ground, arm, at=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0))
+    m.add_spherical("tip", arm, m.add_body("bob", 1.0, (0.1, 0.1, 0.1), position=(1.0, 0.0, -0.5)),
+                    at=(1.0, 0.0, 0.0))
+    m.drive_joint("motor", "hinge", mb.Spline([0.0, 0.02, 0.04], [0.0, 0.5, 0.0]))
+    options = dict(formulation=method["formulation"], integrator=method["integrator"])
+    if method["fixed_step"]:
+        options["step"] = 0.005
+    sim = mb.Simulator(m, **options)
+    for k in range(1, 41):
+        sim.advance(k * 0.001)
+    chunks = sim.result()
+    one_run = mb.simulate(m, t_out=chunks.t, analysis="dynamic", **options)
+    assert chunks.residual.max() < 10 * max(one_run.residual.max(), 1e-9)
+    assert np.abs(chunks.q - one_run.q).max() < 1e-4
+
+
 def test_an_output_interval_that_cannot_fit_is_refused():
     """1e-12 s between outputs over 1 s would be 1e12 outputs: refused with
     the count, before any is made; a shorter advance goes."""

@@ -91,10 +91,14 @@ class StepLoop {
   StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end = true);
   /// Steps until the time reached is at least `target`; calls record(q, v)
   /// for each t_out[k] up to the time reached, k counting on. At most
-  /// plan.max_steps steps per call (IntegratorFailure beyond).
+  /// plan.max_steps steps between two outputs (IntegratorFailure beyond).
+  /// Without stop_at_end, a breakpoint or event that ends a step past
+  /// `target` is acted on when a later run has to step on: until then the
+  /// step's interpolant holds the times before it, which a Simulator's next
+  /// advances may ask for (a restart discards it).
   void run(double target, const std::vector<double>& t_out, size_t& k, const Record& record);
   /// The stepper was reset to time t from outside (a Simulator's input
-  /// change): the breakpoints from there on.
+  /// change): the breakpoints from there on (a pending action is void).
   void restarted(double t);
   /// Time the stepper reached (its last step's end).
   double t() const { return t_; }
@@ -103,12 +107,16 @@ class StepLoop {
 
  private:
   double stop_time() const;
+  /// After a step to t: an event's action, or the restart at a breakpoint
+  /// (at_stop). True if the stepper was restarted.
+  bool act(double t, bool at_stop);
   Stepper& stepper_;
   const IntegrationPlan& plan_;
   double t_;
   bool stop_at_end_;
   size_t next_break_ = 0;
   long restarts_ = 0;
+  bool pending_ = false, pending_at_stop_ = false;  // act() deferred to the next run
   std::vector<int> fired_;
   VecX q_event_, v_event_;
 };
