@@ -887,3 +887,21 @@ def test_a_four_bar_that_cannot_close_blames_its_coupler_not_euler_parameters():
         m.assemble()
     assert failure.value.violated[0][0] == "coupler"
     assert not any("Euler" in name for name, _ in failure.value.violated)
+
+
+def test_a_driven_chain_with_a_heavy_body_assembles():
+    """Found by the spatial fuzzer: a cylindrical joint driven 0.5 m, a
+    universal joint to a 1,000 kg body; with a mass of 1 it assembled, with
+    1,000 the assembly refused it; the safeguards of assemble_positions
+    (unit Euler parameters at every trial, bounded turns) close it."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    a = m.add_body("a", 0.69, (0.02875, 0.01725, 0.02875), position=(1.383, 1.038, 1.006),
+                   orientation=(0.6641, 0.6104, -0.3052, 0.3052))
+    m.add_cylindrical("slide", m.ground, a, at=(0.9744, 1.242, 0.8018), axis=(2.0, -1.0, 1.0))
+    b = m.add_body("b", 1000.0, (41.67, 66.67, 108.3), position=(2.144, 1.187, 1.21),
+                   orientation=(0.3371, 0.0, -0.6657, 0.6657))
+    m.add_universal("cross", a, b, at=(1.791, 0.8338, 1.21), axis_i=(0.0, 0.0, 1.0), axis_j=(1.0, 0.0, 0.0))
+    m.drive_joint("d", "slide", -0.5)
+    q = m.assemble()[0]
+    r = mb.simulate(m, 1e-3, n_out=2, analysis="dynamic")
+    assert r.residual.max() < 1e-9 and np.isfinite(q).all()
