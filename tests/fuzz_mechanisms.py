@@ -5,13 +5,18 @@ command-line tool:
 
     python3 tests/fuzz_mechanisms.py --worker          # the worker (reads cases on stdin)
     python3 tests/fuzz_mechanisms.py --replay FILE.py   # run one reproducer in a worker
+    python3 tests/fuzz_mechanisms.py --generate N [planar|spatial|threads]   # N cases as JSON
 
 A *case* is plain data: a list of *ops*, each a dict
 
     {"code": "<python statements>", "kind": "simulate",
      "check": None | "finite:x" | "result:r1" | "equilibrium:eq"}
 
-The strategy ``cases()`` draws them with hypothesis in the parent process;
+The strategies ``cases()`` (planar mechanisms), ``spatial_cases()``
+(Model(dimension=3): spatial bodies, joints, drivers that start far from
+their joints' initial coordinates and jump by pi or more in a Simulator,
+bushings, forces) and ``threaded_cases()`` (a Simulator that two threads
+advance at once) draw them with hypothesis in the parent process;
 the code of every op is plain Python over ``mb`` (lagmb), ``np``, ``nan`` and
 ``inf``, so ``reproducer(ops)`` is a script that does exactly what the worker
 did. The worker (a subprocess, so that a segfault, an abort or a hang in the
@@ -23,10 +28,19 @@ was refused), and reports per op one of:
 - refused: it raised one of lagmb's own exceptions (mb.ModelError and its
   subclasses, mb.SimulationError and its subclasses, mb.SceneError);
 - a problem: any other exception, non-finite numbers in a returned result,
-  or a successful run whose max |Phi| exceeds 1e-4 (1 + max |q|).
+  a successful run whose max |Phi| exceeds 1e-4 (1 + max |q|) or whose
+  output times go back, or (spatial) a driver not at what it commands: a
+  revolute's angle about its axis (body_j relative to body_i, 0 as built)
+  must equal f modulo 2 pi, a cylindrical's or translational's slide and a
+  body's coordinate must equal f, at every output (_driver_problems); or a
+  refusal of an op marked "must succeed" (after ops that all returned):
+  assembling a well-posed open chain of driven joints, which reaches any
+  values of its drivers.
 
 The parent (``Worker``) adds crashes (the worker died on op k: signal) and
-hangs (op k took longer than the timeout: the worker is killed).
+hangs (op k took longer than the timeout: the worker is killed). A worker
+that ran threads (two_threads_op) is replaced after the case: a crash on its
+way out (a heap the threads corrupted) is that case's.
 """
 
 import json
@@ -160,6 +174,9 @@ class Ctx:
         self.drivers = []
         self.others = []  # names of other elements
         self.counter = 0
+        self.dim = 2  # 3: a spatial model (bodies are then (name, var, False, position (x, y, z), None))
+        self.inputs = {}  # spatial: {input name of a driver: its value now}, for jumps in a Simulator
+        self.well_posed = False  # True: no callables that fail (the model must then assemble)
 
     # values
     def hostile(self):
@@ -184,6 +201,31 @@ class Ctx:
             x += _round(self.draw(st.floats(-spread, spread)))
             y += _round(self.draw(st.floats(-spread, spread)))
         return (_round(x), _round(y))
+
+    def vec3(self, x, y, z, spread=0.0):
+        """Spatial: a point or vector near (x, y, z), or extreme, or hostile."""
+        if self.hostile():
+            return self.draw(st.sampled_from(HOSTILE_VEC3))
+        if self.e > 0 and self.coin.random() < self.e:
+            return tuple(self.draw(st.sampled_from(EXTREME + [x, y, z])) for _ in range(3))
+        if spread:
+            x, y, z = (c + _round(self.draw(st.floats(-spread, spread))) for c in (x, y, z))
+        return (_round(x), _round(y), _round(z))
+
+    def axis3(self, along=None):
+        """Spatial: an axis, one of AXES or the direction ``along`` (e.g. a link's), or hostile."""
+        if self.hostile():
+            return self.draw(st.sampled_from(HOSTILE_VEC3))
+        if along is not None and self.draw(st.booleans()):
+            return _fvec(along)
+        return _fvec(self.draw(st.sampled_from(AXES)))
+
+    def point_on3(self, ref):
+        """Spatial: a global point near body ``ref`` (its centre of mass within 0.5), or near the origin."""
+        for name, var, _, pos, _ in self.bodies:
+            if ref in (Expr(var), name):
+                return self.vec3(*pos, spread=0.5)
+        return self.vec3(0.0, 0.0, 0.0, spread=1.0)
 
     def unit(self):
         if self.hostile():
@@ -255,18 +297,24 @@ class Ctx:
     def add(self, code, kind, check=None):
         self.ops.append({"code": code, "kind": kind, "check": check})
 
-    def time_function(self, derivatives=True, pair=False, base=0.0):
+    def time_function(self, derivatives=True, pair=False, base=0.0, triple=False):
         """A number, an mb time function, or the source of a Python callable
-        (a def op is added and its name returned)."""
+        (a def op is added and its name returned). pair / triple: (x, y) /
+        (x, y, z) components of forces, or a callable returning them."""
         d = self.draw
         kind = d(st.sampled_from(["number", "constant", "linear", "harmonic", "smooth_step", "polynomial",
                                   "spline", "callable", "callable", "bad_callable", "input"]))
-        if kind == "bad_callable" and not _chance(d, 0.3 + self.h):
+        if kind == "bad_callable" and (not _chance(d, 0.3 + self.h) or self.well_posed):
             kind = "callable"
         if pair:
             kind = d(st.sampled_from(["pair", "callable", "bad_callable"]))
+        if triple:
+            kind = d(st.sampled_from(["triple", "triple", "callable", "bad_callable"]))
         if kind == "pair":
             return (self.time_function(False), self.time_function(False))
+        if kind == "triple":
+            return tuple(self.time_function(False) if d(st.booleans()) else self.num(_round(d(st.floats(-20, 20))))
+                         for _ in range(3))
         if kind == "number":
             return self.num(base + d(st.sampled_from([0.0, 0.5, -1.0, 2.0])))
         if kind == "constant":
@@ -301,6 +349,8 @@ class Ctx:
         amp = _round(d(st.floats(-1, 1)))
         if derivatives:
             good = f"({base!r} + {amp} * t, {amp}, 0.0)" if base else f"({amp} * t, {amp}, 0.0)"
+        elif triple:
+            good = f"({amp} * t, -{amp}, 0.5)"
         elif pair:
             good = f"({amp} * t, -{amp})"
         else:
@@ -309,7 +359,8 @@ class Ctx:
         if kind == "bad_callable":
             tb = d(st.sampled_from([0.0, 0.01, 0.03]))
             bad = d(st.sampled_from([
-                "raise ZeroDivisionError('boom')", "return nan" if not (derivatives or pair) else "return (nan, 0.0, 0.0)",
+                "raise ZeroDivisionError('boom')",
+                "return nan" if not (derivatives or pair or triple) else "return (nan, 0.0, 0.0)",
                 "return (inf, inf, inf)", "return None", "return 'abc'", "return (1.0,)",
                 "return [1.0, 2.0, 3.0, 4.0]", "return 10**400", "return np.array([nan, nan, nan])",
                 "raise ValueError('user value')", "return (1.0, 'x', 0.0)", "raise RuntimeError('user')",
@@ -538,6 +589,297 @@ def _element(ctx, kind):
     ctx.others.append(name)
 
 
+# ---------------------------------------------------------------------------
+# Spatial mechanisms (Model(dimension=3))
+# ---------------------------------------------------------------------------
+
+#: anything a careless caller might pass where (x, y, z) belongs
+HOSTILE_VEC3 = HOSTILE_SCALARS + [
+    (nan, 0.0, 0.0), (0.0, 0.0, inf), (-inf, inf, 0.0), (1e300, -1e300, 1e300), (1e308, 1e308, 1e308),
+    (1e-300, 1e-300, 1e-300), (5e-324, 0.0, 0.0), (0.0, 0.0, 0.0), (1.0, 2.0), [1.0, 2.0, 3.0, 4.0],
+    [[1.0, 2.0, 3.0]], "abc", ("1", "2", "3"), (None, None, None), (True, False, True), (BIG, 0.0, 0.0),
+    (2 ** 40, 2 ** 40, 2 ** 40), Expr("np.array([[1.0, 2.0, 3.0]])"), Expr("np.array([1+1j, 0, 0])"),
+    Expr("iter([1.0, 2.0, 3.0])"), Expr("range(3)"), Expr("np.array([1.0, 2.0, 3.0], dtype=object)"),
+    Expr("np.array([np.nan, 1.0, 0.0], dtype=np.float32)"), Expr("np.eye(3)"),
+]
+#: ... where an orientation (unit quaternion or rotation matrix) belongs
+HOSTILE_ORIENTATIONS = [
+    (1.0, 0.0, 0.0), (2.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), (nan, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0, inf),
+    (1.0005, 0.0, 0.0, 0.0), (0.9989, 0.0, 0.0, 0.0), Expr("np.diag([1.0, 1.0, -1.0])"), Expr("np.eye(3) * 1.0001"),
+    Expr("np.ones((3, 3))"), Expr("np.eye(4)"), Expr("np.full((3, 3), nan)"), ((1, 0, 0), (0, 1, 0)),
+    Expr("-np.eye(3)"), [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], "abc", None, 1.0, (1e308,) * 4,
+]
+#: ... where an inertia (principal moments or a 3 x 3 tensor) belongs
+HOSTILE_INERTIAS = [
+    (0.1, 0.1, 0.5), (-0.1, 0.1, 0.1), (0.0, 0.0, 0.0), (0.0, 0.1, 0.1), (nan, 0.1, 0.1), (inf, inf, inf),
+    (1e-300, 1e-300, 1e-300), (1e300, 1e300, 1e300), ((0.1, 0.2, 0.0), (0.0, 0.1, 0.0), (0.0, 0.0, 0.1)),
+    Expr("np.eye(3) * -1.0"), Expr("np.full((3, 3), 0.1)"), 0.1, (0.1, 0.1), "abc", None,
+]
+
+#: integer axes (any length is taken): exact, and perpendicular pairs stay exactly perpendicular
+AXES = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (0, -1, 1), (1, 2, 3), (2, -1, 1), (-1, 0, 2), (3, 1, -2),
+        (0, 0, -1)]
+SPATIAL_JOINT_KINDS = ["revolute", "revolute", "revolute", "spherical", "spherical", "cylindrical", "translational",
+                       "universal", "planar", "weld", "distance", "none"]
+#: where a spatial driver starts (its joint coordinate is 0 in the initial configuration: far from 0,
+#: assembly must turn or slide the joint there; the revolute's angle +-pi away from f is a known trap)
+ANGLE_STARTS = [3.0, -1.7, 2.0, round(math.pi, 6), -3.0, 0.5, 0.0, 6.5, -4.4, 2.5]
+SLIDE_STARTS = [0.0, 0.3, -0.5, 1.5]
+#: spatial runs stop after this many steps between two outputs (max_steps is per output
+#: interval): a stiff random model (a 1 mg body under a torque of newtons, 0.3 ms a step) takes
+#: minutes at the default 500,000 (measured: 225,000 steps in 66 s at 2,250 per interval) and
+#: would count as a hang; healthy runs of 0.05 s take a few dozen steps per interval
+SPATIAL_MAX_STEPS = 500
+#: marks an op that lagmb must not refuse (a reproducer keeps it, script_ops reads it)
+MUST_SUCCEED = "# must succeed"
+#: a driver input's jumps in a Simulator (pi or more)
+INPUT_JUMPS = [("np.pi", math.pi), ("-np.pi", -math.pi), ("3.5", 3.5), ("-4.0", -4.0), ("2 * np.pi", 2 * math.pi),
+               ("7.0", 7.0), ("(np.pi + 0.25)", math.pi + 0.25)]
+
+
+def _round9(x):
+    return float(f"{x:.9g}")
+
+
+def _fvec(v):
+    return tuple(float(c) for c in v)
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _rotation(axis, angle):
+    """(quaternion (w, x, y, z), rotation matrix as rows) of a turn by angle about axis."""
+    n = math.sqrt(sum(c * c for c in axis))
+    x, y, z = (c / n for c in axis)
+    c, s = math.cos(angle / 2), math.sin(angle / 2)
+    w, x, y, z = c, s * x, s * y, s * z
+    R = ((w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)),
+         (2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)),
+         (2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z))
+    return (w, x, y, z), R
+
+
+def _orientation(ctx):
+    """A body's orientation: None (the default, identity), a quaternion to a
+    few digits (lagmb normalizes within 1e-3), a rotation matrix to 9 digits,
+    or hostile."""
+    d = ctx.draw
+    if ctx.hostile():
+        return d(st.sampled_from(HOSTILE_ORIENTATIONS))
+    how = d(st.sampled_from(["identity", "quaternion", "quaternion", "matrix"]))
+    if how == "identity":
+        return None
+    p, R = _rotation(d(st.sampled_from(AXES)), _round(d(st.floats(-math.pi, math.pi))))
+    if how == "quaternion":
+        return tuple(_round(c) for c in p)
+    return tuple(tuple(_round9(c) for c in row) for row in R)
+
+
+def _inertia(ctx, mass, L):
+    """Principal moments (a, b, c) that meet the triangle inequalities, or a
+    3 x 3 tensor (a turned diagonal, exactly symmetric), or hostile."""
+    d = ctx.draw
+    if ctx.hostile():
+        return d(st.sampled_from(HOSTILE_INERTIAS))
+    base = mass * L * L / 12.0 if ctx.coin.random() > ctx.e else d(st.sampled_from(EXTREME))
+    a = _round(base * d(st.sampled_from([1.0, 0.5, 0.2])))
+    b = _round(base * d(st.sampled_from([1.0, 0.8, 0.3])))
+    c = d(st.sampled_from([max(a, b), max(a, b) + 0.5 * min(a, b), a + b]))  # a + b: a flat plate
+    moments = (a, b, c)
+    if d(st.integers(0, 3)) < 3:
+        return moments
+    moments = (a, b, max(a, b) + 0.5 * min(a, b))  # (turned and rounded, a flat plate's may break the inequality)
+    _, R = _rotation(d(st.sampled_from(AXES)), _round(d(st.floats(-math.pi, math.pi))))
+    J = [[sum(R[i][k] * moments[k] * R[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
+    return tuple(tuple(_round9(J[min(i, j)][max(i, j)]) for j in range(3)) for i in range(3))
+
+
+def _build3(ctx, driven_chain=None):
+    """A spatial chain of 1-4 bodies from the ground at the origin (each link
+    from point p to point nxt, its body at the middle), sometimes closed back
+    to the ground, couplings between bodies, drivers that start far from the
+    joints' initial coordinates, and forces. driven_chain (None: one in three)
+    builds an open chain with every revolute, cylindrical and translational
+    joint driven and nothing else constraining it."""
+    d = ctx.draw
+    ctx.dim = 3
+    if ctx.hostile():
+        ctx.add(f"mb.Model(dimension=3, gravity={lit(d(st.sampled_from(HOSTILE_VEC3)))})", "Model")
+    g = d(st.sampled_from([None, (0.0, 0.0, -9.81), (0.0, 0.0, -9.81), (0.0, -9.81, 0.0), (1.0, 2.0, -9.0)]))
+    ctx.add(f"m = mb.Model(dimension=3, gravity={lit(g)})", "Model")
+    if driven_chain is None:
+        driven_chain = d(st.integers(0, 2)) == 2
+    n = d(st.integers(1, 4))
+    closed = d(st.integers(0, 2)) == 2 if n >= 2 and not driven_chain else False
+    mass_scale = d(st.sampled_from([1.0, 1.0, 1e-6, 1e6]))
+    kinds = SPATIAL_JOINT_KINDS if not driven_chain else \
+        ["revolute", "revolute", "revolute", "cylindrical", "translational", "spherical", "universal"]
+    p = (0.0, 0.0, 0.0)
+    for i in range(n):
+        L = _log_uniform(d, 0.01, 10.0) if d(st.integers(0, 3)) == 3 else 1.0
+        u = _fvec(d(st.sampled_from(AXES)))
+        norm = math.sqrt(sum(c * c for c in u))
+        nxt = tuple(_round(p[k] + L * u[k] / norm) for k in range(3))
+        c = tuple(_round((p[k] + nxt[k]) / 2) for k in range(3))
+        name = var = f"b{i}"
+        mass = _round(_log_uniform(d, 0.01, 100.0) * (mass_scale if i % 2 else 1.0))
+        orientation = _orientation(ctx)
+        kw = dict(mass=ctx.num(mass), inertia=_inertia(ctx, mass, L), position=ctx.vec3(*c))
+        if orientation is not None:
+            kw["orientation"] = orientation
+        if d(st.booleans()):
+            kw["velocity"] = ctx.vec3(0.0, 0.0, 0.0, spread=1.0)
+            kw["angular_velocity"] = ctx.vec3(0.0, 0.0, 0.0, spread=5.0)
+        ctx.add(f"{var} = " + call("m.add_body", name, **kw), "add_body")
+        ctx.bodies.append((name, var, False, c, None))
+        prev = Expr("m.ground") if i == 0 else Expr(ctx.bodies[i - 1][1])
+        _joint3(ctx, prev, Expr(var), p, c, d(st.sampled_from(kinds)), along=u)
+        p = nxt
+    if closed:
+        _joint3(ctx, Expr("m.ground"), Expr(ctx.bodies[-1][1]), p, ctx.bodies[-1][3],
+                d(st.sampled_from(["spherical", "distance", "revolute", "universal", "cylindrical"])))
+    # couplings between bodies
+    for _ in range(d(st.integers(0, 2)) if not driven_chain else 0):
+        bi, bj = ctx.body_pair()
+        k = d(st.integers(0, n - 1))
+        at = ctx.bodies[k][3]
+        at = tuple(_round(x + d(st.floats(-0.5, 0.5))) for x in at)
+        _joint3(ctx, bi, bj, at, at, d(st.sampled_from(["spherical", "distance", "revolute", "universal",
+                                                         "planar", "cylindrical"])))
+    # drivers: sometimes every revolute, cylindrical and translational joint
+    # (a fully driven model: kinematic analysis, inverse dynamics), else a few
+    drivable = [j for j in ctx.joints if j[1] in ("revolute", "cylindrical", "translational")]
+    if driven_chain or d(st.integers(0, 2)) == 2:
+        ctx.well_posed = driven_chain and ctx.h == 0 and ctx.e == 0
+        for joint, kind, _ in drivable:
+            _drive_joint3(ctx, joint, kind)
+        drivable = []
+        if ctx.well_posed:
+            # an open chain reaches any value of its drivers: assembly must not refuse it
+            ctx.ops.append({"code": f"st0 = m.assemble()  {MUST_SUCCEED}\n", "kind": "assemble (open driven chain)",
+                            "check": "finite:st0", "must_succeed": True})
+            ctx.well_posed = False
+    for _ in range(d(st.integers(0, 2)) if not driven_chain else 0):
+        if d(st.booleans()) and drivable:  # (a joint driven twice: seldom, and then from all drivable joints)
+            joint = d(st.sampled_from(drivable))
+            drivable.remove(joint)
+            _drive_joint3(ctx, joint[0], joint[1])
+        else:
+            name = ctx.name("d")
+            coord = d(st.sampled_from(["x", "y", "z"])) if not ctx.hostile() else \
+                d(st.sampled_from(["angle", "X", None, 0, "", ["x"], "w"]))
+            body = ctx.body_ref(False)
+            base = 0.0
+            for bname, var, _, pos, _ in ctx.bodies:
+                if body in (Expr(var), bname) and coord in ("x", "y", "z"):
+                    base = pos["xyz".index(coord)]
+            base = _round(base + d(st.sampled_from([0.0, 0.0, 0.0, 0.2, -1.0])))
+            ctx.add(call("m.drive_body", name, body, coord, _drive_function(ctx, name, base)), "drive_body")
+            ctx.drivers.append(name)
+    # forces
+    for _ in range(d(st.integers(0, 4))):
+        _element3(ctx, d(st.sampled_from(["spring_damper", "rotational_spring_damper", "bushing", "bushing",
+                                          "force", "torque"])))
+
+
+def _joint3(ctx, bi, bj, p, c, kind, along=None):
+    """A spatial joint between bi and bj at point p (c: a point on bj, the far end of a distance)."""
+    d = ctx.draw
+    if kind == "none":
+        return
+    name = ctx.name("j")
+    if kind == "spherical":
+        code = call("m.add_spherical", name, bi, bj, at=ctx.vec3(*p))
+    elif kind in ("revolute", "cylindrical", "translational"):
+        code = call(f"m.add_{kind}", name, bi, bj, at=ctx.vec3(*p), axis=ctx.axis3(along))
+    elif kind == "universal":
+        axis_i = d(st.sampled_from(AXES))
+        axis_j = _cross(axis_i, d(st.sampled_from([a for a in AXES if any(_cross(axis_i, a))])))
+        hostile = ctx.hostile()
+        code = call("m.add_universal", name, bi, bj, at=ctx.vec3(*p),
+                    axis_i=d(st.sampled_from(HOSTILE_VEC3)) if hostile else _fvec(axis_i), axis_j=_fvec(axis_j))
+    elif kind == "planar":
+        code = call("m.add_planar", name, bi, bj, at=ctx.vec3(*p), normal=ctx.axis3(along))
+    elif kind == "weld":
+        code = call("m.add_weld", name, bi, bj)
+    elif kind == "distance":
+        kw = {}
+        if d(st.integers(0, 2)) == 2:
+            kw["length"] = ctx.num(_log_uniform(d, 0.01, 5.0))
+        code = call("m.add_distance", name, bi, ctx.vec3(*p), bj, ctx.vec3(*c), **kw)
+    else:
+        raise AssertionError(kind)
+    ctx.add(code, f"add_{kind}")
+    ctx.joints.append((name, kind, 0.0))
+
+
+def _drive_function(ctx, name, base):
+    """What a spatial driver prescribes, starting at ``base``: often an
+    mb.Input (a Simulator then makes it jump), else any time function."""
+    if ctx.draw(st.integers(0, 2)) == 2:
+        f = Expr(call("mb.Input", ctx.num(base)))
+    else:
+        f = ctx.time_function(base=base)
+    if isinstance(f, Expr) and f.startswith("mb.Input(") and "name=" not in f:
+        ctx.inputs[name] = base  # the input is named after the driver
+    return f
+
+
+def _drive_joint3(ctx, joint, kind):
+    name = ctx.name("d")
+    base = ctx.draw(st.sampled_from(ANGLE_STARTS if kind == "revolute" else SLIDE_STARTS))
+    ctx.add(call("m.drive_joint", name, joint if not ctx.hostile() else ctx.joint_ref(),
+                 _drive_function(ctx, name, base)), "drive_joint")
+    ctx.drivers.append(name)
+
+
+def _element3(ctx, kind):
+    d = ctx.draw
+    name = ctx.name(kind[:2])
+    if kind == "spring_damper":
+        kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e6)), damping=ctx.num(_log_uniform(d, 1e-3, 1e3)))
+        if d(st.booleans()):
+            kw["free_length"] = ctx.num(_log_uniform(d, 0.01, 3.0))
+        if d(st.integers(0, 2)) == 2:
+            kw["force"] = ctx.time_function(derivatives=False)
+        bi, bj = ctx.body_pair()
+        code = call("m.add_spring_damper", name, bi, ctx.point_on3(bi), bj, ctx.point_on3(bj), **kw)
+    elif kind == "rotational_spring_damper":
+        kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e5)), damping=ctx.num(_log_uniform(d, 1e-3, 1e2)))
+        if d(st.booleans()):
+            kw["free_angle"] = ctx.num(_round(d(st.floats(-3, 3))))
+        if d(st.integers(0, 2)) == 2:
+            kw["torque"] = ctx.time_function(derivatives=False)
+        code = call("m.add_rotational_spring_damper", name, ctx.joint_ref(("revolute", "cylindrical")), **kw)
+    elif kind == "bushing":
+        bi, bj = ctx.body_pair()
+        kw = {}
+        for key, lo, hi in (("stiffness", 1.0, 1e8), ("damping", 1e-2, 1e4), ("rotational_stiffness", 1e-1, 1e6),
+                            ("rotational_damping", 1e-3, 1e3)):
+            if d(st.integers(0, 3)) < 3:
+                kw[key] = ctx.vec3(*(_log_uniform(d, lo, hi) if d(st.integers(0, 4)) else 0.0 for _ in range(3)))
+        code = call("m.add_bushing", name, bi, bj, ctx.point_on3(bi), **kw)
+    elif kind in ("force", "torque"):
+        body = ctx.body_ref(False)
+        kw = {}
+        if kind == "force" and d(st.booleans()):
+            kw["point"] = ctx.point_on3(body)
+        if d(st.booleans()):
+            kw["local"] = d(st.sampled_from([True, False])) if not ctx.hostile() else \
+                d(st.sampled_from(["yes", None, 0, 2]))
+        if d(st.booleans()):
+            value = ctx.vec3(0.0, 0.0, 0.0, spread=50.0 if kind == "force" else 5.0)
+        else:
+            value = ctx.time_function(derivatives=False, triple=True)
+        code = call(f"m.add_{kind}", name, body, value, **kw)
+    else:
+        raise AssertionError(kind)
+    ctx.add(code, f"add_{kind}")
+    ctx.others.append(name)
+
+
 def _maybe(ctx, kw, key, good, pool, p_present=0.5):
     """Put kw[key] = a good value (drawn from the strategy) or a hostile one."""
     d = ctx.draw
@@ -559,7 +901,8 @@ def _runs(ctx):
     bodies = [b[0] for b in ctx.bodies]
     n_sim = 0
     ops = d(st.lists(st.sampled_from(["dof", "assemble", "solve", "simulate", "simulate", "simulate",
-                                      "equilibrium", "rank", "simulator"]), min_size=1, max_size=4))
+                                      "equilibrium", "rank", "simulator"] +
+                                     ([] if ctx.dim == 2 else ["simulator", "equilibrium"])), min_size=1, max_size=4))
     if "simulate" not in ops:
         ops.append("simulate")
     for what in ops:
@@ -620,13 +963,16 @@ def _runs(ctx):
                        [(nan, 1.0), (1e300, 1e300), (-10.0, -10.0), "ab", (1.0,), None, 5.0, (BIG, 1.0)], 0.3)
             _maybe(ctx, kw, "analysis", st.sampled_from(["auto", "dynamic", "kinematic", "inverse_dynamics"]),
                    ["AUTO", None, 1, ""], 0.2)
-            _maybe(ctx, kw, "start", st.sampled_from(["given", "equilibrium"]), ["eq", None, True], 0.2)
+            _maybe(ctx, kw, "start", st.sampled_from(["given", "equilibrium"]), ["eq", None, True],
+                   0.2 if ctx.dim == 2 else 0.4)
             _maybe(ctx, kw, "t0", st.sampled_from([0.0, 0.01, -0.02]), HOSTILE_TIME, 0.1)
             _maybe(ctx, kw, "t_out", st.sampled_from([[0.0, 0.01, 0.05], [0.03]]),
                    [[0.05, 0.01], [nan], [], "abc", [[0.01, 0.02]], [0.0, 0.0], [0.0, inf], [0.0, 1e300]], 0.1)
             if isinstance(t_end, (int, float)) and not isinstance(t_end, bool) and abs(t_end) > 1 \
                     and "max_steps" not in kw:
                 kw["max_steps"] = 100  # a huge t_end must still stop within max_steps
+            if ctx.dim == 3 and "max_steps" not in kw:
+                kw["max_steps"] = SPATIAL_MAX_STEPS
             ctx.add(f"{var} = {call('mb.simulate', Expr('m'), **kw)}", "simulate", check=f"result:{var}")
             for _ in range(d(st.integers(0, 3))):
                 _accessor(ctx, var, bodies)
@@ -647,9 +993,12 @@ def _runs(ctx):
                         check="finite:x")
 
 
-def _simulator(ctx):
+def _simulator(ctx, threads=False):
     """A Simulator advanced in chunks, its inputs set (by the names of any
-    element: most are not inputs), its state saved and restored."""
+    element: most are not inputs), its state saved and restored. Spatial:
+    driver inputs also jump by pi or more. threads: two threads also advance
+    it at once (_two_threads), at a random point of the sequence or last.
+    Spatial: also many short advances in a row."""
     d = ctx.draw
     kw = {}
     formulation = d(st.sampled_from(FORMULATIONS)) if not ctx.hostile() else d(st.sampled_from(HOSTILE_FORMULATIONS))
@@ -663,11 +1012,39 @@ def _simulator(ctx):
     ctx.add(f"sim = {call('mb.Simulator', Expr('m'), **kw)}", "Simulator")
     names = ctx.drivers + ctx.others + ["nosuch"]
     t, saved = 0.0, False
-    for _ in range(d(st.integers(1, 5))):
-        what = d(st.sampled_from(["advance", "advance", "set_input", "state", "restore"]))
+    whats = ["advance", "advance", "set_input", "state", "restore"]
+    if ctx.dim == 3:
+        whats += ["advance_many"] + (["jump", "jump"] if ctx.inputs else [])
+    if threads:
+        whats += ["two_threads"]
+    n_steps = d(st.integers(1, 5))
+    threaded = False
+    for k in range(n_steps + 1):
+        if k == n_steps:  # one more step: the two threads a threaded case is for
+            if not threads or threaded:
+                break
+            what = "two_threads"
+        else:
+            what = d(st.sampled_from(whats))
         if what == "restore" and not saved:
             what = "state"
         saved = saved or what == "state"
+        if what == "jump":
+            name = d(st.sampled_from(sorted(ctx.inputs)))
+            now, (jump, size) = ctx.inputs[name], d(st.sampled_from(INPUT_JUMPS))
+            if isinstance(now, float):
+                ctx.inputs[name] = now + size
+                ctx.add(f"sim.set_input({name!r}, {now!r} + {jump})", "Simulator.set_input (jump)")
+            continue
+        if what == "two_threads":
+            threaded = True
+            t = _two_threads(ctx, t)
+            continue
+        if what == "advance_many":  # many short advances: outputs inside steps, up to breakpoints
+            n, dt = d(st.sampled_from([20, 50])), d(st.sampled_from([1e-4, 1e-3]))
+            ctx.add(f"for _ in range({n}):\n    sim.advance(sim.t + {dt!r})", "Simulator.advance (many)")
+            t = _round(t + n * dt + dt)
+            continue
         if what == "advance":
             t = _round(t + d(st.sampled_from([0.005, 0.01, 0.02])))
             target = d(st.sampled_from(HOSTILE_TIME + [1e6])) if ctx.hostile() else t
@@ -683,6 +1060,87 @@ def _simulator(ctx):
     ctx.add("rs = sim.result()", "Simulator.result", check="result:rs")
 
 
+THREADS_KIND = "Simulator.advance (2 threads)"
+#: the functions the threads of _two_threads run (one def op)
+THREAD_HELPERS = '''import threading
+
+
+def advance_repeatedly(sim, dt, n, errors, jumps=()):
+    """n times sim.advance(sim.t + dt); every 10th time also each (input,
+    step) of jumps: sim.set_input(input, sim.input(input) + step). A call
+    the other thread overtook (sim.t already past its target) is refused
+    by lagmb: that is fine. Any other exception ends the thread, kept in
+    errors."""
+    try:
+        for k in range(n):
+            target = sim.t + dt
+            try:
+                sim.advance(target)
+            except mb.ModelError:
+                if not sim.t > target:
+                    raise
+            if k % 10 == 5:
+                for name, step in jumps:
+                    sim.set_input(name, sim.input(name) + step)
+    except BaseException as e:
+        errors.append(e)
+
+
+def read_repeatedly(sim, n, errors):
+    """n times what a monitor reads while the simulator runs: the state now and the result so far."""
+    try:
+        for _ in range(n):
+            np.concatenate([sim.q, sim.v, sim.a, sim.lam, [sim.t]])
+            len(sim.result())
+    except BaseException as e:
+        errors.append(e)
+'''
+
+
+def two_threads_op(n, dt, jumps=(), reader=False):
+    """The op in which two threads advance ``sim`` at once, each by
+    sim.advance(sim.t + dt), n times (the second also adds each (input, step)
+    of jumps to that input every 10th time; with reader, a third thread reads
+    the state meanwhile). It raises what a thread raised, and asserts that
+    together they advanced sim by at least n dt. Needs THREAD_HELPERS."""
+    targets = [f"threading.Thread(target=advance_repeatedly, args=(sim, {dt!r}, {n}, errors))",
+               f"threading.Thread(target=advance_repeatedly, args=(sim, {dt!r}, {n}, errors"
+               + (f", {lit(list(jumps))}))" if jumps else "))")]
+    if reader:
+        targets.append(f"threading.Thread(target=read_repeatedly, args=(sim, {n}, errors))")
+    code = ("errors = []\n"
+            "threads = [" + ",\n           ".join(targets) + "]\n"
+            "t_before = sim.t\n"
+            "for th in threads:\n"
+            "    th.start()\n"
+            "for th in threads:\n"
+            "    th.join()\n"
+            "if errors:\n"
+            "    raise errors[0]\n"
+            f"assert sim.t >= t_before + {n} * {dt!r} * (1 - 1e-9), "
+            f"f'two threads advanced by {n} x {dt!r} each, but the simulator went from t = {{t_before}} "
+            f"only to {{sim.t}}'\n")
+    return {"code": code, "kind": THREADS_KIND, "check": None}
+
+
+def _two_threads(ctx, t):
+    """Two threads on one Simulator at once (two_threads_op), n advances of dt
+    each; sometimes the second also makes the driver inputs jump, or a third
+    reads the state meanwhile. Expected: the calls are serialized (no crash,
+    no foreign exception) and together they advance it by at least n dt.
+    -> an upper bound of sim.t after it."""
+    d = ctx.draw
+    if not any(op["code"] == THREAD_HELPERS for op in ctx.ops):
+        ctx.add(THREAD_HELPERS, "def")
+    n = d(st.sampled_from([50, 100, 200]))
+    dt = d(st.sampled_from([1e-4, 1e-3, 5e-3]))
+    jumps = []
+    if ctx.inputs and d(st.booleans()):
+        jumps = [(name, d(st.sampled_from(INPUT_JUMPS))[1]) for name in sorted(ctx.inputs)]
+    ctx.ops.append(two_threads_op(n, dt, jumps, reader=d(st.integers(0, 3)) == 3))
+    return _round(t + 2 * n * dt + dt)
+
+
 def _scene(ctx):
     """Write the model as a scene file, load it back and run it."""
     ctx.add("import os, tempfile\nscene_path = os.path.join(tempfile.mkdtemp(), 'fuzz.toml')", "setup")
@@ -693,10 +1151,13 @@ def _scene(ctx):
         if ctx.hostile():
             settings = ctx.draw(st.sampled_from([{"t_end": nan}, {"t_end": "x"}, {"nonsense": 1}, {"t_end": BIG},
                                                  {"t_end": 0.05, "n_out": 2 ** 40}, {"t_end": None}]))
+    if ctx.dim == 3 and settings is not None and "t_end" in settings:
+        settings = dict(settings, max_steps=SPATIAL_MAX_STEPS)
     ctx.add(f"m.to_scene(scene_path{'' if settings is None else ', settings=' + lit(settings)})\n"
             "written = scene_path", "to_scene")
     ctx.add("scene = mb.load_scene(written)", "load_scene")  # only if it was written
-    ctx.add("r9 = scene.run()" if settings is not None else "r9 = mb.simulate(scene.model, t_end=0.05)",
+    bound = "" if ctx.dim == 2 else f", max_steps={SPATIAL_MAX_STEPS}"
+    ctx.add("r9 = scene.run()" if settings is not None else f"r9 = mb.simulate(scene.model, t_end=0.05{bound})",
             "scene.run", check="result:r9")
 
 
@@ -716,9 +1177,12 @@ def _accessor(ctx, var, bodies):
     elif what == "velocity_residual":
         code, kind = f"x = {var}.velocity_residual", "r.velocity_residual"
     elif what == "point":
-        code, kind = f"x = {var}.point({lit(ctx.body_ref(allow_ground=False))}, {lit(ctx.vec(0.5, 0.0))})", "r.point"
+        body = ctx.body_ref(allow_ground=False)
+        local = ctx.vec(0.5, 0.0) if ctx.dim == 2 else ctx.vec3(0.5, 0.0, 0.0)
+        code, kind = f"x = {var}.point({lit(body)}, {lit(local)})", "r.point"
     elif what == "body":
-        attr = d(st.sampled_from(["position", "angle", "velocity", "angular_acceleration"]))
+        attr = d(st.sampled_from(["position", "angle", "velocity", "angular_acceleration"] if ctx.dim == 2 else
+                                 ["position", "orientation", "rotation", "angular_velocity", "angular_acceleration"]))
         code, kind = f"x = {var}.body({lit(ctx.body_ref(allow_ground=False))}).{attr}", "r.body"
     elif what == "effort":
         ref = d(st.sampled_from(ctx.drivers)) if ctx.drivers and not ctx.hostile() else ctx.joint_ref()
@@ -749,6 +1213,39 @@ if st is not None:
         if draw(st.integers(0, 4)) == 4:
             _scene(ctx)
         return ctx.ops
+
+    @st.composite
+    def spatial_cases(draw):
+        """A case: the ops that build a random spatial mechanism (Model(dimension=3)) and run it."""
+        hostility = draw(st.sampled_from([0.0, 0.0, 0.0, 0.0, 0.01, 0.04]))
+        extremity = draw(st.sampled_from([0.0, 0.0, 0.0, 0.03]))
+        coin = random.Random(draw(st.integers(0, 2 ** 32 - 1)))
+        ctx = Ctx(draw, hostility, extremity, coin)
+        _build3(ctx)
+        _runs(ctx)
+        if draw(st.integers(0, 4)) == 4:
+            for _ in range(draw(st.integers(1, 2))):
+                _element3(ctx, draw(st.sampled_from(["spring_damper", "bushing", "force", "torque",
+                                                     "rotational_spring_damper"])))
+            _runs(ctx)
+        if draw(st.integers(0, 5)) == 5:
+            _scene(ctx)
+        return ctx.ops
+
+    @st.composite
+    def threaded_cases(draw):
+        """A case: a random mechanism (3 in 4 spatial, half of them open driven
+        chains; no hostile values) and a Simulator of it that two threads
+        advance at once."""
+        ctx = Ctx(draw, 0.0, 0.0, random.Random(draw(st.integers(0, 2 ** 32 - 1))))
+        if draw(st.integers(0, 3)) == 3:
+            _build(ctx)
+        else:
+            _build3(ctx, driven_chain=True if draw(st.booleans()) else None)
+        _simulator(ctx, threads=True)
+        return ctx.ops
+
+    FAMILIES = {"planar": cases, "spatial": spatial_cases, "threads": threaded_cases}
 
 
 def _indent(code, n=4):
@@ -822,6 +1319,9 @@ def _result_problems(mb, np, r, m, allowed):
             bad.append(("nonfinite", "." + name))
     if arrays["t"] is not None and len(arrays["t"]) == 0:
         bad.append(("empty", "t"))
+    if arrays["t"] is not None and np.any(np.diff(arrays["t"]) < 0):
+        k = int(np.flatnonzero(np.diff(arrays["t"]) < 0)[0])
+        bad.append(("t decreasing", f"r.t[{k + 1}] = {arrays['t'][k + 1]:.6g} < r.t[{k}] = {arrays['t'][k]:.6g}"))
     res, q = arrays["residual"], arrays["q"]
     # index1 integrates Phi'' = 0 only: its drift is documented (README, formulations)
     drifts = r.stats.get("formulation") == "index1"
@@ -831,11 +1331,18 @@ def _result_problems(mb, np, r, m, allowed):
         if worst > bound:
             k = int(np.argmax(res))
             bad.append(("residual", f"max |Phi| = {worst:.3g} > {bound:.3g} at t = {float(r.t[k]):.4g}"))
+    if not drifts and not bad and m.dimension == 3:
+        bad += _driver_problems(np, m, r._core, r.t, r.q, r.input)
     return bad
 
 
 def _equilibrium_problems(np, eq):
     bad = []
+    if eq.model.dimension == 3 and math.isfinite(eq.constraint_residual) and \
+            eq.constraint_residual <= RESIDUAL_BOUND * (1.0 + float(np.max(np.abs(eq.q), initial=0.0))):
+        initial = {d["name"]: d["initial"] for d in eq._core.inputs}
+        bad += _driver_problems(np, eq.model, eq._core, np.array([eq.t]), eq.q[None],
+                                lambda name: np.array([initial[name]]))
     for name in ("q", "lam", "stiffness_eigenvalues", "softest_mode"):
         if not np.all(np.isfinite(getattr(eq, name))):
             bad.append(("nonfinite", "." + name))
@@ -847,6 +1354,105 @@ def _equilibrium_problems(np, eq):
         bound = RESIDUAL_BOUND * (1.0 + (float(np.max(np.abs(q))) if q.size else 0.0))
         if eq.constraint_residual > bound:
             bad.append(("residual", f"constraint_residual = {eq.constraint_residual:.3g} > {bound:.3g}"))
+    return bad
+
+
+def _rotations(p):
+    """(k, 3, 3) rotation matrices (body axes into global axes) of Euler parameters p (k, 4), normalized."""
+    import numpy as np
+
+    p = np.asarray(p, dtype=float)
+    w, x, y, z = (p / np.linalg.norm(p, axis=1)[:, None]).T
+    return np.stack([
+        np.stack([w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=1),
+        np.stack([2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)], axis=1),
+        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z], axis=1)], axis=1)
+
+
+def _commanded(f, times, input_values):
+    """(k,) what a driver's f commands at times: input_values for an mb.Input,
+    else f(t) (a number, a time function or a callable t -> (y, dy, ddy));
+    None if it cannot be told (a callable that fails or returns junk)."""
+    import numpy as np
+
+    if input_values is not None:
+        return np.asarray(input_values, dtype=float)
+    if isinstance(f, (int, float)) and not isinstance(f, bool):
+        return np.full(len(times), float(f))
+    try:
+        out = []
+        for t in times:
+            y = f(float(t))
+            out.append(float(y[0] if isinstance(y, (tuple, list, np.ndarray)) else y))
+        out = np.asarray(out)
+    except Exception:  # noqa: BLE001 - a bad callable: nothing to compare with
+        return None
+    return out if np.all(np.isfinite(out)) else None
+
+
+def _driver_problems(np, model, core, times, Q, input_of):
+    """Spatial drivers hold what they command, at every output (times (k,),
+    coordinates Q (k, n)): a revolute's angle about its axis (0 in the initial
+    configuration, body_j relative to body_i) equals f modulo 2 pi; a
+    cylindrical's or translational's slide along its axis, and a driven
+    coordinate of a body, equal f. input_of(name) -> (k,) values of an input.
+    -> [(tag, detail)], the first output that misses of each driver."""
+    bad = []
+    if model.dimension != 3 or Q.ndim != 2 or len(times) == 0 or not np.all(np.isfinite(Q)):
+        return bad
+    elements = {kw["name"]: (method, kw) for method, kw in model.elements()}
+    inputs = {d["element"]: d["name"] for d in core.inputs if d["parameter"] == "f"}
+    q0 = np.asarray(core.initial_state()[0], dtype=float)
+    tol = RESIDUAL_BOUND * (1.0 + float(np.max(np.abs(Q))))
+    k_out = len(times)
+
+    def frame(body, q):  # (rotations (k, 3, 3), positions (k, 3)) of a body along rows q
+        if body == "ground":
+            return np.broadcast_to(np.eye(3), (len(q), 3, 3)), np.zeros((len(q), 3))
+        first, _ = core.body_coordinates(body)
+        return _rotations(q[:, first + 3:first + 7]), q[:, first:first + 3]
+
+    for name, (method, kw) in elements.items():
+        if method not in ("drive_joint", "drive_body"):
+            continue
+        f = _commanded(kw["f"], times, input_of(inputs[name]) if name in inputs else None)
+        if f is None:
+            continue
+        if method == "drive_body":
+            _, r = frame(kw["body"], Q)
+            what, value = f"{kw['coordinate']} of body '{kw['body']}'", r[:, "xyz".index(kw["coordinate"])]
+            off = value - f
+            tag = "body driver"
+        else:
+            jmethod, j = elements[kw["joint"]]
+            Ai, ri = frame(j["body_i"], Q)
+            Aj, rj = frame(j["body_j"], Q)
+            Ai0, ri0 = (x[0] for x in frame(j["body_i"], q0[None]))
+            Aj0, rj0 = (x[0] for x in frame(j["body_j"], q0[None]))
+            axis = np.asarray(j["axis"], dtype=float)
+            axis_i = Ai0.T @ (axis / np.linalg.norm(axis))  # fixed in body i
+            if core.element_kind(kw["joint"]) == "spatial_revolute":
+                # the turn of body j relative to body i since the initial configuration, in body i's axes
+                D = np.einsum("kji,kjl->kil", Ai, Aj) @ (Ai0.T @ Aj0).T
+                sin = np.stack([D[:, 2, 1] - D[:, 1, 2], D[:, 0, 2] - D[:, 2, 0], D[:, 1, 0] - D[:, 0, 1]], 1) / 2
+                value = np.arctan2(sin @ axis_i, (np.trace(D, axis1=1, axis2=2) - 1) / 2)
+                off = np.mod(value - f + np.pi, 2 * np.pi) - np.pi
+                what, tag = f"angle of revolute '{kw['joint']}'", "revolute driver"
+            else:
+                at = np.asarray(j["at"], dtype=float)
+                si, sj = Ai0.T @ (at - ri0), Aj0.T @ (at - rj0)
+                d = (rj + Aj @ sj) - (ri + Ai @ si)
+                value = np.einsum("ki,ki->k", Ai @ axis_i, d)
+                off = value - f
+                what, tag = f"slide of {jmethod[4:]} '{kw['joint']}'", "slide driver"
+        miss = np.flatnonzero(~(np.abs(off) <= tol))
+        if miss.size:
+            k = int(miss[0])
+            by_pi = tag == "revolute driver" and abs(abs(off[k]) - np.pi) < 1e-3
+            bad.append((tag + (" off by pi" if by_pi else " off"),
+                        f"driver '{name}': {what} = {value[k]:.6g} at t = {float(times[k]):.4g} (output {k} of "
+                        f"{k_out}), commanded {f[k]:.6g}{' (mod 2 pi)' if tag == 'revolute driver' else ''}: "
+                        f"off by {off[k]:.3g}"))
     return bad
 
 
@@ -915,6 +1521,7 @@ def worker_main():
         case = json.loads(line)
         problems = []
         ns = {"mb": mb, "np": np, "nan": math.nan, "inf": math.inf, "__name__": "__fuzz__"}
+        all_ok = True  # every op so far returned (a "must succeed" op is well posed only then)
         names = [_names(op["code"]) for op in case["ops"]]
         own = set().union(*(s for s, _ in names)) if names else set()
         for k, op in enumerate(case["ops"]):
@@ -935,22 +1542,30 @@ def worker_main():
                     elif what == "result":
                         found = _result_problems(mb, np, value, value.model, allowed)
                         form = re.search(r"formulation='(\w+)'", op["code"])
-                        kind = f"simulate[{form.group(1) if form else 'ggl'}]"
+                        if kind != "Simulator.result":
+                            kind = f"simulate[{form.group(1) if form else 'ggl'}]"
                     else:
                         found = _equilibrium_problems(np, value)
                     for tag, detail in found:
                         status = "problem"
-                        problems.append({"op": k, "key": f"{kind}: {tag}" + (f" {detail}" if tag != "residual" else ""),
+                        # the key names which array is non-finite or empty; other tags carry numbers
+                        keyed = tag in ("nonfinite", "empty")
+                        problems.append({"op": k, "key": f"{kind}: {tag}" + (f" {detail}" if keyed else ""),
                                          "detail": f"{tag}: {var}{detail}" if tag == "nonfinite" else
                                          f"{tag}: {detail}"})
             except allowed as e:
                 status = "refused " + type(e).__name__ + ": " + " ".join(str(e).split())[:150]
+                if op.get("must_succeed") and all_ok:  # a well-posed call: a refusal is a wrong result
+                    status = "problem"
+                    problems.append({"op": k, "key": f"{kind}: refused ({type(e).__name__}) though well posed",
+                                     "detail": f"{type(e).__name__} in {kind}: {str(e)[:300]}"})
             except BaseException as e:  # noqa: B902 - everything else is a finding
                 status = "problem"
                 typ = f"{type(e).__module__}.{type(e).__qualname__}".replace("builtins.", "")
                 msg = str(e)
                 problems.append({"op": k, "key": f"{typ} @ {_where(e.__traceback__)}: {_normalize(msg)}",
                                  "detail": f"{typ} in {op['kind']}: {msg[:300]}"})
+            all_ok = all_ok and status == "ok"
             proto.write(f"T {k} {time.monotonic() - t_start:.4f}\n")
             proto.write(f"E {k} {status}\n")
         proto.write("R " + json.dumps(problems) + "\n")
@@ -1062,7 +1677,29 @@ class Worker:
                 _, k, s = line.split(" ", 2)
                 statuses[k] = s
             elif line.startswith("R "):
-                return json.loads(line[2:]), statuses
+                problems = json.loads(line[2:])
+                threaded = [k for k, op in enumerate(ops)
+                            if op["kind"] == THREADS_KIND and statuses.get(str(k), "skipped") != "skipped"]
+                if threaded:
+                    # threads racing in the core may have corrupted the heap: a fresh worker
+                    # for the next case, and a crash on the way out is this case's
+                    problems += self._exit(ops, threaded[-1])
+                return problems, statuses
+
+    def _exit(self, ops, k):
+        """Stop the worker; [a crash of op k] if it died of a signal on the way out."""
+        self.proc.stdin.close()
+        try:
+            rc = self.proc.wait(10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            rc = self.proc.wait()
+        tail = self._stderr_tail()
+        self.close()
+        if rc >= 0:
+            return []
+        what = f"crash at exit (signal {signal.Signals(-rc).name})"
+        return [{"op": k, "key": f"{ops[k]['kind']}: {what}", "detail": what + (f"; stderr: {tail}" if tail else "")}]
 
 
 def run_cases(cases_, timeout, n_workers=2):
@@ -1099,20 +1736,30 @@ def _crashlike(key):
 
 def minimize(worker, ops, key, budget_s):
     """Drop ops one at a time (from the end) while the same problem key still
-    occurs, within budget_s seconds. -> (ops, statuses, problem)."""
+    occurs, and no other problem before it (a NameError where a dropped op
+    bound a name), within budget_s seconds. -> (ops, statuses, problem)."""
     start = time.monotonic()
+    had = set()  # (op code, key) of the problems of the whole case
 
     def hit(trial):
         problems, statuses = worker.run(trial)
         for p in problems:
             if p["key"] == key:
+                new = [o for o in problems if o["op"] is not None and p["op"] is not None and o["op"] < p["op"]
+                       and (trial[o["op"]]["code"], o["key"]) not in had]
+                if new:
+                    return None
                 return trial[:p["op"] + 1] if p["op"] is not None else trial, statuses, p
         return None
 
+    problems, _ = worker.run(ops)
+    had.update((ops[p["op"]]["code"], p["key"]) for p in problems if p["op"] is not None)
     found = hit(ops)
     if found is None:
         return None
     ops = found[0]
+    if ops[-1].get("must_succeed"):
+        return found  # without the ops before it, it may no longer be well posed
     i = len(ops) - 2  # the last op is the one that fails
     while i >= 0 and time.monotonic() - start < budget_s:
         again = hit(ops[:i] + ops[i + 1:])
@@ -1178,26 +1825,8 @@ def replay(path, timeout=30.0):
     """Run a reproducer script (as printed in a report) op by op in a worker:
     each top-level statement is an op; simulate/equilibrium results are
     checked as in the fuzz run."""
-    import ast
-
     with open(path) as f:
-        text = f.read()
-    tree = ast.parse(text)
-    lines = text.splitlines()
-    ops = []
-    for node in tree.body:
-        code = "\n".join(lines[node.lineno - 1:node.end_lineno]) + "\n"
-        if isinstance(node, (ast.Import, ast.ImportFrom)):
-            continue
-        if isinstance(node, ast.Try):  # a refused op, as written by reproducer()
-            node = node.body[0]
-            code = "\n".join(ln[4:] for ln in lines[node.lineno - 1:node.end_lineno]) + "\n"
-        check = None
-        m = re.match(r"(\w+) = mb\.(simulate|equilibrium)\(", code)
-        if m:
-            check = ("result:" if m.group(2) == "simulate" else "equilibrium:") + m.group(1)
-        kind = re.sub(r"^\w+ = ", "", code).split("(")[0].strip()
-        ops.append({"code": code, "kind": kind, "check": check})
+        ops = script_ops(f.read())
     w = Worker(timeout)
     try:
         return w.run(ops)
@@ -1205,8 +1834,39 @@ def replay(path, timeout=30.0):
         w.close()
 
 
-def generate(n, derandomize, rng_seed=None):
-    """n cases drawn by hypothesis (generation only: they are plain data)."""
+def script_ops(text):
+    """The ops of a script: each top-level statement one op (the header's
+    imports left out, a try: block of a refused op unwrapped); the results of
+    mb.simulate, mb.equilibrium and sim.result() are checked as in the fuzz
+    run."""
+    import ast
+
+    tree = ast.parse(text)
+    lines = text.splitlines()
+    ops = []
+    for node in tree.body:
+        code = "\n".join(lines[node.lineno - 1:node.end_lineno]) + "\n"
+        if isinstance(node, (ast.Import, ast.ImportFrom)) and code in HEADER:
+            continue
+        if isinstance(node, ast.Try):  # a refused op, as written by reproducer()
+            node = node.body[0]
+            code = "\n".join(ln[4:] for ln in lines[node.lineno - 1:node.end_lineno]) + "\n"
+        check = None
+        m = re.match(r"(\w+) = (mb\.simulate|mb\.equilibrium|sim\.result)\(", code)
+        if m:
+            check = ("equilibrium:" if m.group(2) == "mb.equilibrium" else "result:") + m.group(1)
+        kind = re.sub(r"^\w+ = ", "", code).split("(")[0].strip()
+        kind = {"sim.result": "Simulator.result"}.get(kind, kind)
+        ops.append({"code": code, "kind": kind, "check": check})
+        if MUST_SUCCEED in code:
+            ops[-1]["must_succeed"] = True
+    return ops
+
+
+def generate(n, derandomize, rng_seed=None, family="planar"):
+    """n cases drawn by hypothesis (generation only: they are plain data);
+    family: "planar" (cases), "spatial" (spatial_cases) or "threads"
+    (threaded_cases)."""
     from hypothesis import HealthCheck, Phase, given, seed, settings
 
     drawn = []
@@ -1214,7 +1874,7 @@ def generate(n, derandomize, rng_seed=None):
     def collect(case):
         drawn.append(case)
 
-    test = given(cases())(collect)
+    test = given(FAMILIES[family]())(collect)
     test = settings(max_examples=n, derandomize=derandomize, database=None, deadline=None,
                     phases=[Phase.generate], suppress_health_check=list(HealthCheck))(test)
     if rng_seed is not None:
@@ -1226,8 +1886,8 @@ def generate(n, derandomize, rng_seed=None):
 if __name__ == "__main__":
     if sys.argv[1:] == ["--worker"]:
         worker_main()
-    elif len(sys.argv) == 3 and sys.argv[1] == "--generate":  # deterministic, as JSON
-        json.dump(generate(int(sys.argv[2]), derandomize=True), sys.stdout)
+    elif len(sys.argv) in (3, 4) and sys.argv[1] == "--generate":  # deterministic, as JSON
+        json.dump(generate(int(sys.argv[2]), derandomize=True, family=(sys.argv[3:] or ["planar"])[0]), sys.stdout)
     elif len(sys.argv) == 3 and sys.argv[1] == "--replay":
         problems, _ = replay(sys.argv[2])
         for p in problems:
