@@ -751,7 +751,13 @@ def test_one_simulator_called_from_two_threads_serializes_the_calls():
             def work():
                 try:
                     for _ in range(40):
-                        sim.advance(sim.t + 0.002)
+                        target = sim.t + 0.002
+                        try:
+                            sim.advance(target)
+                        except mb.ModelError:
+                            if target > sim.t:
+                                raise
+                            continue  # the other thread went past it first: fine
                         sim.q, sim.a, sim.result()
                 except Exception as e:
                     errors.append(e)
@@ -762,10 +768,11 @@ def test_one_simulator_called_from_two_threads_serializes_the_calls():
                 t.join()
             assert not errors, errors
             r = sim.result()
-            assert abs(r.t[-1] - 80 * 0.002) < 1e-12 and (r.t[1:] > r.t[:-1]).all()
-            print(dimension, len(r.t))
+            assert r.t[-1] >= 40 * 0.002 - 1e-9 and (r.t[1:] > r.t[:-1]).all()
+            assert r.residual.max() < 1e-6
+            print(dimension, "ok")
     """, timeout=300)
-    assert out.split() == ["2", "81", "3", "81"]
+    assert out.split() == ["2", "ok", "3", "ok"]
 
 
 def test_a_simulator_called_from_its_own_force_function_is_refused():

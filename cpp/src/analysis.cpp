@@ -13,6 +13,18 @@
 
 namespace lagmb {
 
+std::vector<std::pair<int, double>> turning_coordinates(const Model& model) {
+  std::vector<std::pair<int, double>> out;
+  for (const Body& b : model.bodies()) {
+    if (b.spatial)
+      for (int i = 3; i < 7; ++i) out.emplace_back(b.first_coord + i, 2.0);
+    else if (!b.particle)
+      out.emplace_back(b.angle_coord(), 1.0);
+  }
+  return out;
+}
+
+
 ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol) {
   if (!model.finalized()) throw ModelError("constraint_rank: the model is not finalized");
   if (q.size() != model.n_coordinates())

@@ -309,14 +309,8 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
   VecX zero_n = VecX::Zero(n), zero_m = VecX::Zero(m), dq(n), kappa(m), q_try(n), z(n);
   const double scale = 1.0 + (n ? q.lpNorm<Eigen::Infinity>() : 0.0);
   const double tol = 1e-12 * scale;
-  // (coordinate, largest change per step): planar angles, Euler parameters
-  std::vector<std::pair<int, double>> turns;
-  for (const Body& b : model.bodies()) {
-    if (b.spatial)
-      for (int i = 3; i < 7; ++i) turns.emplace_back(b.first_coord + i, 0.25);
-    else if (!b.particle)
-      turns.emplace_back(b.angle_coord(), 0.5);
-  }
+  const std::vector<std::pair<int, double>> turns = turning_coordinates(model);
+  const double max_turn = 0.5;  // rad per Newton step
   auto unit_euler_parameters = [&](VecX& x) {
     for (const Body& b : model.bodies())
       if (b.spatial) {
@@ -351,8 +345,8 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
     if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix");
     kkt.solve(zero_n, -d.Phi, dq, kappa);
     double step = 1.0, err_try = INFINITY;
-    for (const auto& [i, cap] : turns)
-      if (std::abs(dq[i]) * step > cap) step = cap / std::abs(dq[i]);
+    for (const auto& [i, per_unit] : turns)
+      if (per_unit * std::abs(dq[i]) * step > max_turn) step = max_turn / (per_unit * std::abs(dq[i]));
     for (int halving = 0; halving < 12; ++halving, step *= 0.5) {
       q_try = q + step * dq;
       unit_euler_parameters(q_try);

@@ -220,23 +220,22 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
 
   // scales: forces by the applied load, lengths by the model's extent
   // (centres of mass and the points elements attach to)
-  std::vector<bool> turns(n, false);  // a planar angle or an Euler parameter
+  VecX per_unit = VecX::Zero(n);  // angle per unit of a coordinate that turns
+  for (const auto& [i, angle] : turning_coordinates(model)) per_unit[i] = angle;
   double extent = 0.0;
   for (int k = 0; k < int(model.bodies().size()); ++k) {
     const Body& b = model.body(k);
     const int positions = b.spatial ? 3 : 2;
-    for (int i = b.first_coord + positions; i < b.first_coord + b.n_coordinates(); ++i) turns[i] = true;
     extent = std::max(extent, max_abs(q.segment(b.first_coord, positions)));
     for (const Vec3& s : model.outline(k)) extent = std::max(extent, s.norm());
   }
   solver.force_scale = std::max(max_abs(solver.data().Q), 1e-300);
   solver.length_scale = std::max(extent, 1e-3);
-  // 0.5 rad in a planar angle; an Euler parameter changes by about half the
-  // angle turned, so 0.25 is the same turn; half the model's extent in a
-  // position (none when everything sits at the origin: no length to go by)
+  // a turn of 0.5 rad; half the model's extent in a position (none when
+  // everything sits at the origin: no length to go by)
   auto max_step = [&](int i) {
-    if (!turns[i]) return extent > 0.0 ? 0.5 * extent : INFINITY;
-    return model.body_of_coordinate(i).spatial ? 0.25 : 0.5;
+    if (per_unit[i] > 0.0) return 0.5 / per_unit[i];
+    return extent > 0.0 ? 0.5 * extent : INFINITY;
   };
 
   Residual r, r_try;

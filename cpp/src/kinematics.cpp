@@ -488,15 +488,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
 
   // a sub-step turns no body by more than 0.25 rad (predicted): the Newton
   // start then stays near the branch it came from, and angles stay continuous
-  // (coordinate, rad per unit): a planar angle, or an Euler parameter, whose
-  // rate is about half the angular velocity (|omega| = 2 |p'| for unit p)
-  std::vector<std::pair<int, double>> angles;
-  for (const Body& b : model.bodies()) {
-    if (b.spatial)
-      for (int i = 3; i < 7; ++i) angles.emplace_back(b.first_coord + i, 2.0);
-    else if (!b.particle)
-      angles.emplace_back(b.angle_coord(), 1.0);
-  }
+  const std::vector<std::pair<int, double>> angles = turning_coordinates(model);
   auto angle_step = [&](const VecX& vel, const VecX& acc) {
     double w = 0.0, al = 0.0;
     for (const auto& [i, per] : angles) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagmb/model.hpp"
@@ -22,6 +23,12 @@ struct ConstraintRank {
 /// Phi_q^T; a column (equation) whose remaining norm falls below
 /// tol * (largest column norm) counts as dependent.
 ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol = 1e-9);
+
+/// The coordinates of q that turn, with the angle per unit of each: a
+/// planar body's angle (1) and a spatial body's Euler parameters (2: a turn
+/// by theta moves p by about theta / 2). What the step limits of assembly,
+/// equilibrium and kinematic analysis bound.
+std::vector<std::pair<int, double>> turning_coordinates(const Model& model);
 
 /// Why a run may have stopped at (q, t), in terms of the model: if Phi_q is
 /// (nearly) singular there (the ratio of its smallest to largest singular
