@@ -284,10 +284,12 @@ void Simulator::advance(double target) {
   // the state: the last output (at target; after a failure, the last one reached)
   const int last = record_.size() - 1, n = record_.n, m = record_.m;
   t_ = record_.t[last];
-  q_ = Eigen::Map<const VecX>(&record_.q[size_t(last) * n], n);
-  v_ = Eigen::Map<const VecX>(&record_.v[size_t(last) * n], n);
-  a_ = Eigen::Map<const VecX>(&record_.a[size_t(last) * n], n);
-  lam_ = Eigen::Map<const VecX>(&record_.lam[size_t(last) * m], m);
+  // (data() + offset: a model without constraints has no multipliers, and
+  // &lam[0] of an empty vector is out of range)
+  q_ = Eigen::Map<const VecX>(record_.q.data() + size_t(last) * n, n);
+  v_ = Eigen::Map<const VecX>(record_.v.data() + size_t(last) * n, n);
+  a_ = Eigen::Map<const VecX>(record_.a.data() + size_t(last) * n, n);
+  lam_ = Eigen::Map<const VecX>(record_.lam.data() + size_t(last) * m, m);
   solved_ = true;
   if (!failure_.empty()) {
     fresh_ = true;
