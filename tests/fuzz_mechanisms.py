@@ -516,23 +516,37 @@ def _joint(ctx, bi, bj, p, c, kind):
     ctx.joints.append((name, kind, ctx.angle_of(bj) - ctx.angle_of(bi) if kind == "revolute" else 0.0))
 
 
+def _spring_damper_values(ctx):
+    """stiffness, damping, maybe free_length and force: the same draws in the plane and in space."""
+    d = ctx.draw
+    kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e6)), damping=ctx.num(_log_uniform(d, 1e-3, 1e3)))
+    if d(st.booleans()):
+        kw["free_length"] = ctx.num(_log_uniform(d, 0.01, 3.0))
+    if d(st.integers(0, 2)) == 2:
+        kw["force"] = ctx.time_function(derivatives=False)
+    return kw
+
+
+def _rotational_spring_damper_values(ctx):
+    """stiffness, damping, maybe free_angle and torque."""
+    d = ctx.draw
+    kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e5)), damping=ctx.num(_log_uniform(d, 1e-3, 1e2)))
+    if d(st.booleans()):
+        kw["free_angle"] = ctx.num(_round(d(st.floats(-3, 3))))
+    if d(st.integers(0, 2)) == 2:
+        kw["torque"] = ctx.time_function(derivatives=False)
+    return kw
+
+
 def _element(ctx, kind):
     d = ctx.draw
     name = ctx.name(kind[:2])
     if kind == "spring_damper":
-        kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e6)), damping=ctx.num(_log_uniform(d, 1e-3, 1e3)))
-        if d(st.booleans()):
-            kw["free_length"] = ctx.num(_log_uniform(d, 0.01, 3.0))
-        if d(st.integers(0, 2)) == 2:
-            kw["force"] = ctx.time_function(derivatives=False)
+        kw = _spring_damper_values(ctx)
         bi, bj = ctx.body_pair()
         code = call("m.add_spring_damper", name, bi, ctx.point_on(bi), bj, ctx.point_on(bj), **kw)
     elif kind == "rotational_spring_damper":
-        kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e5)), damping=ctx.num(_log_uniform(d, 1e-3, 1e2)))
-        if d(st.booleans()):
-            kw["free_angle"] = ctx.num(_round(d(st.floats(-3, 3))))
-        if d(st.integers(0, 2)) == 2:
-            kw["torque"] = ctx.time_function(derivatives=False)
+        kw = _rotational_spring_damper_values(ctx)
         bi, bj = ctx.body_pair(rigid=True)
         code = call("m.add_rotational_spring_damper", name, bi, bj, **kw)
     elif kind == "force":
@@ -839,19 +853,11 @@ def _element3(ctx, kind):
     d = ctx.draw
     name = ctx.name(kind[:2])
     if kind == "spring_damper":
-        kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e6)), damping=ctx.num(_log_uniform(d, 1e-3, 1e3)))
-        if d(st.booleans()):
-            kw["free_length"] = ctx.num(_log_uniform(d, 0.01, 3.0))
-        if d(st.integers(0, 2)) == 2:
-            kw["force"] = ctx.time_function(derivatives=False)
+        kw = _spring_damper_values(ctx)
         bi, bj = ctx.body_pair()
         code = call("m.add_spring_damper", name, bi, ctx.point_on3(bi), bj, ctx.point_on3(bj), **kw)
     elif kind == "rotational_spring_damper":
-        kw = dict(stiffness=ctx.num(_log_uniform(d, 1e-2, 1e5)), damping=ctx.num(_log_uniform(d, 1e-3, 1e2)))
-        if d(st.booleans()):
-            kw["free_angle"] = ctx.num(_round(d(st.floats(-3, 3))))
-        if d(st.integers(0, 2)) == 2:
-            kw["torque"] = ctx.time_function(derivatives=False)
+        kw = _rotational_spring_damper_values(ctx)
         code = call("m.add_rotational_spring_damper", name, ctx.joint_ref(("revolute", "cylindrical")), **kw)
     elif kind == "bushing":
         bi, bj = ctx.body_pair()
