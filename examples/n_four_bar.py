@@ -67,8 +67,7 @@ def main(argv=None):
     t_end = float(argv[1]) if len(argv) > 1 else 10.0
     step = float(argv[2]) if len(argv) > 2 else 1e-4
     model = build(n_windows)
-    r = mb.simulate(model, t_end=t_end, n_out=1001, formulation="ali3p", step=step,
-                    rtol=1e-10, atol=1e-12)
+    r = mb.simulate(model, t_end=t_end, n_out=1001, formulation="ali3p", step=step)
     b0 = r.point("crank0", (0.5, 0.0))
     theta = np.unwrap(np.arctan2(b0[:, 1], b0[:, 0]))
     passages = int(np.sum(np.diff(np.floor((theta - math.pi / 2) / math.pi)) != 0))

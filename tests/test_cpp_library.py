@@ -3,7 +3,8 @@ examples in examples/cpp against the installed package with
 find_package(lagmb) in a clean build directory, run them, and check the pin
 force at release of the seed pendulum and of the same rod on a spherical
 joint in a spatial model: m g / 4 upward on the rod (closed form, see
-test_pendulum.py); and the cart-pole controller of examples/cpp/cart_pole.cpp
+test_pendulum.py), also for the spatial rod run with its mass as a run-time
+parameter; and the cart-pole controller of examples/cpp/cart_pole.cpp
 (lagmb::Simulator, an input force set every 10 ms) holding the pole upright.
 """
 
@@ -51,7 +52,13 @@ def test_installed_cpp_library_runs_the_seed_pendulum(tmp_path):
     force = [float(x) for x in re.search(r"force on rod = \(([^)]*)\)", first).group(1).split(",")]
     assert abs(force[0]) < 1e-9 * mg and abs(force[1]) < 1e-9 * mg
     assert abs(force[2] - mg / 4) < 1e-9 * mg
-    last = out.splitlines()[-2]
+    # the run with a parameter: a rod of 2 kg with the same moment of
+    # inertia I about its centre: at release the pin carries m g I / (I + m r^2)
+    heavy = [float(x) for x in re.search(r"rod.mass = 2 kg: force on rod at release = \(([^)]*)\)", out)
+             .group(1).split(",")]
+    m2, inertia, r = 2.0, 1.0 / 12.0, 0.5
+    assert abs(heavy[2] - m2 * 9.81 * inertia / (inertia + m2 * r * r)) < 1e-6  # (printed to 6 decimals)
+    last = out.splitlines()[-3]
     p = [float(x) for x in re.search(r"p = \(([^)]*)\)", last).group(1).split(",")]
     assert abs(sum(x * x for x in p) - 1.0) < 1e-5  # (printed to 6 digits)
     assert p[1] == 0.0 and p[3] == 0.0  # it turns about y only

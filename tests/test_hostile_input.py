@@ -386,8 +386,7 @@ def test_a_parallelogram_started_flat_is_not_taken_apart():
         warnings.simplefilter("error", mb.RedundantConstraintWarning)
         with pytest.raises(mb.SimulationError, match=r"singular.*ali3p"):
             mb.simulate(flat_parallelogram(), t_end=1.0)
-        r = mb.simulate(flat_parallelogram(), t_end=1.0, formulation="ali3p", step=1e-3,
-                        rtol=1e-10, atol=1e-12)
+        r = mb.simulate(flat_parallelogram(), t_end=1.0, formulation="ali3p", step=1e-3)
     assert r.residual.max() < 1e-9
     assert r.redundant_rows == []
 

@@ -3,10 +3,12 @@ user-facing list is that table: lagmb.methods(), `lagmb info --methods`,
 the scene reader's formulation/integrator/max_order checks, simulate's
 validation and the work-precision presets (mb.METHODS)."""
 
+import inspect
 import re
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import lagmb as mb
@@ -44,7 +46,9 @@ def test_every_method_swings_the_pendulum_to_the_same_place(method):
     """Each method, as listed, runs the rod pendulum for 0.5 s; its stats
     name the method and its angle agrees with ggl's tight run to 1e-3 rad."""
     reference = mb.simulate(pendulum(), t_end=0.5, rtol=1e-10, atol=1e-12)
-    r = mb.simulate(pendulum(), t_end=0.5, rtol=1e-8, atol=1e-10, **options_of(method))
+    # (a fixed-step method has no error control: no rtol, atol)
+    tolerances = {} if method["fixed_step"] else dict(rtol=1e-8, atol=1e-10)
+    r = mb.simulate(pendulum(), t_end=0.5, **tolerances, **options_of(method))
     assert (r.stats["formulation"], r.stats["integrator"]) == (method["formulation"], method["integrator"])
     assert abs(r.q[-1, 2] - reference.q[-1, 2]) < 1e-3
 
@@ -58,7 +62,8 @@ def test_the_integrator_defaults_to_the_formulations_first():
 
 
 def test_names_outside_the_table_are_refused_listing_it():
-    with pytest.raises(mb.ModelError, match="unknown formulation 'rk4'.*ggl with bdf"):
+    with pytest.raises(mb.ModelError, match=r"unknown formulation 'rk4' \(the choices are ggl, index3, index1, "
+                                            r"projection, ali3p\)"):
         mb.simulate(pendulum(), t_end=0.1, formulation="rk4")
     with pytest.raises(mb.ModelError, match="integrated by 'bdf', not by 'adams'"):
         mb.simulate(pendulum(), t_end=0.1, formulation="ggl", integrator="adams")
@@ -66,6 +71,43 @@ def test_names_outside_the_table_are_refused_listing_it():
         mb.simulate(pendulum(), t_end=0.1, formulation="projection", max_order=6)
     with pytest.raises(mb.ModelError, match="Baumgarte terms apply to the methods index1, projection-adams"):
         mb.simulate(pendulum(), t_end=0.1, baumgarte=(1.0, 1.0))
+    with pytest.raises(mb.ModelError, match=r"unknown start 'rest' \(the choices are given, equilibrium\)"):
+        mb.Simulator(pendulum(), start="rest")
+    with pytest.raises(mb.ModelError, match=r"unknown integrator 'rk4' \(the choices are bdf, adams, erk, "
+                                            r"trapezoidal\)"):
+        mb.simulate(pendulum(), t_end=0.1, integrator="rk4")
+
+
+def test_the_choices_and_defaults_come_from_the_core():
+    """One table names each choice, one struct holds the defaults: Python's
+    signatures read them (lagmb/options.hpp)."""
+    from lagmb import _core
+
+    choices = _core.choices()
+    assert choices["analysis"] == ("auto", "dynamic", "kinematic", "inverse_dynamics")
+    assert choices["start"] == ("given", "equilibrium")
+    assert {m["formulation"] for m in mb.methods()} == set(choices["formulation"])
+    defaults = _core.default_options()
+    for function in (mb.simulate, mb.Simulator):
+        params = inspect.signature(function).parameters
+        for key in ("rtol", "atol", "max_steps", "formulation", "start", "newton_rtol", "newton_atol"):
+            assert params[key].default == defaults[key], (function, key)
+    assert inspect.signature(mb.simulate).parameters["analysis"].default == defaults["analysis"] == "auto"
+
+
+def test_ali3p_takes_its_newton_tolerance_not_rtol():
+    """ali3p has no error control: rtol and atol are refused, its Newton
+    iteration has its own tolerances; a looser one moves the result by
+    about that much."""
+    ali3p = options_of(next(x for x in mb.methods() if x["name"] == "ali3p"))
+    for tolerance in (dict(rtol=1e-10), dict(atol=1e-12)):
+        with pytest.raises(mb.ModelError, match="'ali3p' takes fixed steps without error control.*newton_rtol"):
+            mb.simulate(pendulum(), t_end=0.1, **tolerance, **ali3p)
+    tight = mb.simulate(pendulum(), t_end=0.5, **ali3p)
+    loose = mb.simulate(pendulum(), t_end=0.5, newton_rtol=1e-4, newton_atol=1e-6, **ali3p)
+    assert 0.0 < np.abs(tight.q - loose.q).max() < 1e-3
+    with pytest.raises(mb.ModelError, match="newton_rtol must be positive"):
+        mb.simulate(pendulum(), t_end=0.1, newton_rtol=0.0, **ali3p)
 
 
 def test_what_a_method_does_not_model_is_refused_naming_the_methods_that_do():

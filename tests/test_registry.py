@@ -2,9 +2,10 @@
 
 Every kind is declared once, in C++; the Python methods, the scene schema,
 the plotting roles and the element reference of docs/modelling.md are read
-from that declaration. These tests walk the registry: a kind without an
-example model here, a derivative check, a scene round trip, a plotting
-role or a documentation entry fails them.
+from that declaration. These tests walk the registry, every kind of it,
+planar (dimension 2) and spatial (dimension 3, ``Model(dimension=3)``): a
+kind without an example model here, a derivative check, a scene round trip,
+a plotting role or a documentation entry fails them.
 """
 
 import inspect
@@ -16,12 +17,12 @@ import pytest
 import lagmb as mb
 from lagmb import registry
 from lagmb.scene import load_scene
-from lagmb.scene.schema import ELEMENTS
+from lagmb.scene.schema import ELEMENTS, SPATIAL_ELEMENTS
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
-# --- one small model per kind ------------------------------------------------
+# --- one small model per kind: the planar kinds ----------------------------
 
 
 def _pendulum(m=None):
@@ -148,12 +149,142 @@ def example_stop():
     return m, m.add_stop("limit", pin, lower=-1.0, upper=1.0, restitution=0.5)
 
 
+# --- spatial kinds: Model(dimension=3), gravity along -z --------------------
+# The same method names add the spatial kinds (a spatial Model dispatches by
+# its dimension); each example is named after its registry kind
+# (example_planar: the spatial planar joint).
+
+ROD = (1e-3, 1 / 12, 1 / 12)  # a 1 m, 1 kg rod along its own x axis
+
+
+def _spatial_model():
+    return mb.Model(dimension=3, gravity=(0.0, 0.0, -9.81))
+
+
+def _spatial_pendulum():
+    m = _spatial_model()
+    rod = m.add_body("rod", 1.0, ROD, position=(0.5, 0.0, 0.0))
+    return m, rod
+
+
+def _spatial_hinge():
+    """The rod on a hinge about y at the origin: it swings down from level."""
+    m, rod = _spatial_pendulum()
+    hinge = m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    return m, rod, hinge
+
+
+def _spatial_slider():
+    m = _spatial_model()
+    block = m.add_body("block", 2.0, (0.1, 0.1, 0.1), position=(1.0, 0.0, 0.0))
+    rail = m.add_translational("rail", m.ground, block, at=(1.0, 0.0, 0.0), axis=(1.0, 0.0, 0.0))
+    return m, block, rail
+
+
+def example_spatial_body():
+    m = _spatial_model()
+    return m, m.add_body("brick", 1.0, (0.01, 0.02, 0.03), position=(0.0, 0.0, 1.0),
+                         angular_velocity=(0.5, 1.0, 2.0))
+
+
+def example_spherical():
+    m, rod = _spatial_pendulum()
+    return m, m.add_spherical("ball", m.ground, rod, at=(0.0, 0.0, 0.0))
+
+
+def example_spatial_revolute():
+    m, _, hinge = _spatial_hinge()
+    return m, hinge
+
+
+def example_cylindrical():
+    """A sleeve on an inclined shaft, its centre off the axis: it slides
+    down and swings about the shaft."""
+    m = _spatial_model()
+    sleeve = m.add_body("sleeve", 0.5, (0.01, 0.01, 0.005), position=(0.0, 0.2, 0.0))
+    return m, m.add_cylindrical("shaft", m.ground, sleeve, at=(0.0, 0.0, 0.0), axis=(1.0, 0.0, -0.5))
+
+
+def example_spatial_translational():
+    m, _, rail = _spatial_slider()
+    return m, rail
+
+
+def example_universal():
+    m, rod = _spatial_pendulum()
+    return m, m.add_universal("cross", m.ground, rod, at=(0.0, 0.0, 0.0), axis_i=(1.0, 0.0, 0.0),
+                              axis_j=(0.0, 1.0, 0.0))
+
+
+def example_planar():
+    """A puck on an inclined table (the spatial planar joint): it slides on
+    and down the plane."""
+    m = _spatial_model()
+    puck = m.add_body("puck", 0.5, (0.01, 0.01, 0.02), position=(0.0, 0.0, 0.0), velocity=(1.0, 0.0, 0.0))
+    return m, m.add_planar("table", m.ground, puck, at=(0.0, 0.0, 0.0), normal=(0.0, 0.3, 1.0))
+
+
+def example_spatial_weld():
+    m, rod, _ = _spatial_hinge()
+    tip = m.add_body("tip", 0.2, (1e-3, 1e-3, 1e-3), position=(1.0, 0.0, 0.0))
+    return m, m.add_weld("glue", rod, tip)
+
+
+def example_spatial_distance():
+    m = _spatial_model()
+    bob = m.add_body("bob", 1.0, (1e-3, 1e-3, 1e-3), position=(0.0, 0.0, -1.0), velocity=(0.5, 0.0, 0.0))
+    return m, m.add_distance("string", m.ground, (0.0, 0.0, 0.0), bob, (0.0, 0.0, -1.0), length=1.0)
+
+
+def example_spatial_joint_driver():
+    m, _, hinge = _spatial_hinge()
+    return m, m.drive_joint("motor", hinge, mb.Linear(1.0))
+
+
+def example_spatial_body_driver():
+    m, block, _ = _spatial_slider()
+    return m, m.drive_body("push", block, "x", mb.Harmonic(0.1, 2.0, offset=1.0))
+
+
+def example_spatial_spring_damper():
+    m, block, _ = _spatial_slider()
+    return m, m.add_spring_damper("spring", m.ground, (0.0, 0.0, 0.0), block, (1.0, 0.0, 0.0), stiffness=100.0,
+                                  damping=1.0, free_length=0.8, force=mb.Constant(2.0))
+
+
+def example_spatial_rotational_spring_damper():
+    m, _, hinge = _spatial_hinge()
+    return m, m.add_rotational_spring_damper("coil", hinge, stiffness=20.0, damping=0.5, free_angle=0.1,
+                                             torque=mb.Linear(0.5))
+
+
+def example_bushing():
+    """A block hung from the ground by a bushing above its centre: it sags."""
+    m = _spatial_model()
+    block = m.add_body("block", 2.0, (0.1, 0.1, 0.1), position=(0.0, 0.0, -1.0))
+    return m, m.add_bushing("mount", m.ground, block, at=(0.0, 0.0, -0.9), stiffness=(1e3, 1e3, 1e3),
+                            damping=(10.0, 10.0, 10.0), rotational_stiffness=(50.0, 50.0, 50.0),
+                            rotational_damping=(0.5, 0.5, 0.5))
+
+
+def example_spatial_force():
+    m, block, _ = _spatial_slider()
+    return m, m.add_force("push", block, (1.0, mb.Linear(2.0), 0.0), point=(1.1, 0.0, 0.0), local=True)
+
+
+def example_spatial_torque():
+    m, rod, _ = _spatial_hinge()
+    return m, m.add_torque("twist", rod, (0.0, mb.Harmonic(1.0, 3.0), 0.0))
+
+
 EXAMPLES = {name[len("example_"):]: f for name, f in dict(globals()).items() if name.startswith("example_")}
 
 #: Where each kind's derivatives (Phi_q, its derivatives, gamma, Q_q, Q_v,
 #: or the event function's gradient) are checked against finite
-#: differences. Kinds in tests/test_derivatives.py are found in its
-#: every_kind() model (test_every_kind_has_a_derivative_check).
+#: differences. Kinds in tests/test_derivatives.py are found in the model of
+#: their dimension there, every_kind() (planar) or every_spatial_kind()
+#: (spatial; it holds every spatial kind), with their rows or forces among
+#: those checked (test_every_kind_has_a_derivative_check).
 DERIVATIVE_CHECKS = {
     "joint_friction": "tests/test_friction.py::test_friction_force_derivatives",
     "contact": "tests/test_contact.py::test_contact_derivatives_match_finite_differences",
@@ -166,11 +297,39 @@ DERIVATIVE_CHECKS = {
 
 
 def kinds():
-    return [k.name for k in registry.KINDS]
+    """Every kind's name, planar and spatial."""
+    return [k.name for k in registry.ALL_KINDS]
+
+
+def _derivative_model(dimension):
+    """The model of tests/test_derivatives.py whose derivatives are checked
+    for kinds of this dimension (its `state` fixture runs on each of MODELS)."""
+    import test_derivatives
+
+    build = test_derivatives.every_kind if dimension == 2 else test_derivatives.every_spatial_kind
+    assert build in test_derivatives.MODELS.values()
+    m = build()
+    assert m.dimension == dimension
+    return m
+
+
+def _kind_of(model, method):
+    """The registry kind a method adds to this model (by its dimension)."""
+    return (registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD)[method].name
+
+
+def _without(model, names):
+    """The model rebuilt without the elements named."""
+    other = mb.Model(gravity=model.gravity, dimension=model.dimension)
+    for method, kw in model.elements():
+        if kw["name"] not in names:
+            getattr(other, method)(**kw)
+    return other
 
 
 def test_every_kind_has_an_example():
     assert sorted(EXAMPLES) == sorted(kinds())
+    assert {k.dimension for k in registry.ALL_KINDS} == {2, 3}  # the walk takes both
 
 
 @pytest.mark.parametrize("kind", kinds())
@@ -187,13 +346,29 @@ def test_example_holds_its_kind_and_runs(kind):
 
 @pytest.mark.parametrize("kind", kinds())
 def test_every_kind_has_a_derivative_check(kind):
-    import test_derivatives
-
-    held = {method for method, _ in test_derivatives.every_kind().elements()}
-    if registry.BY_NAME[kind].method in held:
+    """The kind is in the model of its dimension that tests/test_derivatives.py
+    checks against finite differences, its rows among the constraint
+    equations there (joints, drivers) or its force changing the forces
+    there; or DERIVATIVE_CHECKS names the test that checks it."""
+    k = registry.BY_NAME[kind]
+    m = _derivative_model(k.dimension)
+    names = {kw["name"] for method, kw in m.elements() if _kind_of(m, method) == kind}
+    if names:
+        core = m.compiled()
+        if k.role in ("joint", "driver"):
+            assert names & {core.constraint_name_of_row(r) for r in range(core.n_constraints)}, kind
+        elif k.role == "force":  # at a random state, as there
+            q0, _ = core.initial_state()
+            rng = np.random.default_rng(7)
+            q, v = q0 + 0.05 * rng.standard_normal(q0.size), rng.standard_normal(q0.size)
+            Q = core.forces(q, v, 0.37)[0]
+            assert np.abs(Q - _without(m, names).compiled().forces(q, v, 0.37)[0]).max() > 0.0, kind
+        else:
+            assert all(core.has(name) for name in names), kind
         return
     where = DERIVATIVE_CHECKS.get(kind)
-    assert where, f"{kind}: no derivative check (add it to every_kind() in tests/test_derivatives.py)"
+    function = "every_kind()" if k.dimension == 2 else "every_spatial_kind()"
+    assert where, f"{kind}: no derivative check (add it to {function} in tests/test_derivatives.py)"
     path, _, test = where.partition("::")
     source = (ROOT / path.split(":")[0]).read_text()
     assert not test or f"def {test}(" in source, where
@@ -205,6 +380,7 @@ def test_every_kind_round_trips_through_a_scene(kind, tmp_path):
     path = tmp_path / f"{kind}.toml"
     m.to_scene(path)
     back = load_scene(path).model
+    assert (back.dimension, back.gravity) == (m.dimension, m.gravity)
     assert [meth for meth, _ in back.elements()] == [meth for meth, _ in m.elements()]
     mine = dict(m.elements())[registry.BY_NAME[kind].method]
     theirs = dict(back.elements())[registry.BY_NAME[kind].method]
@@ -243,8 +419,8 @@ def test_the_modelling_reference_is_the_registry():
     begin, end = "<!-- element reference: begin -->\n", "<!-- element reference: end -->"
     assert begin in text and end in text
     assert text.split(begin, 1)[1].split(end, 1)[0] == registry.markdown()
-    for k in registry.KINDS:
-        assert f"### `{k.method}`" in text
+    for k in registry.ALL_KINDS:
+        assert f"### {'' if k.dimension == 2 else 'spatial '}`{k.method}` ({k.name}:" in text
 
 
 def test_lagmb_info_kinds_prints_the_reference():
@@ -261,14 +437,19 @@ def test_lagmb_info_kinds_prints_the_reference():
 
 
 def test_methods_scene_schema_and_handles_come_from_the_registry():
-    for k in registry.KINDS:
+    """Planar and spatial kinds share a method where they share a name
+    (add_revolute); its signature shows the planar kind's parameters, its
+    docstring both kinds'."""
+    for k in registry.ALL_KINDS:
         method = getattr(mb.Model, k.method)
+        shown = registry.BY_METHOD.get(k.method, k)
         params = list(inspect.signature(method).parameters)
-        assert params == ["self", "name"] + [p.name for p in k.params]
+        assert params == ["self", "name"] + [p.name for p in shown.params]
         assert " ".join(k.doc.split()) in " ".join(method.__doc__.split())
         for p in k.params:
             assert f"{p.name}: {registry.describe(p)}" in method.__doc__
-        assert ELEMENTS[k.method].table == k.table and ELEMENTS[k.method].type == k.type
+        schema = ELEMENTS if k.dimension == 2 else SPATIAL_ELEMENTS
+        assert schema[k.method].table == k.table and schema[k.method].type == k.type
     assert mb.handles.KINDS == {k.method: (k.name, k.role) for k in registry.KINDS}
 
 

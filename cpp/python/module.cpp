@@ -58,8 +58,12 @@ SimulationOptions options_from(const py::dict& options, const std::string& who) 
   SimulationOptions o;
   size_t used = 0;
   o.for_each_field([&](const char* name, auto& field) {
+    using T = std::decay_t<decltype(field)>;
     if (!options.contains(name)) return;
-    field = options[name].template cast<std::decay_t<decltype(field)>>();
+    if constexpr (is_choice_v<T>)
+      field = choice_from<T>(options[name].template cast<std::string>());  // the one place a name is parsed
+    else
+      field = options[name].template cast<T>();
     ++used;
   });
   if (used != options.size())
@@ -73,18 +77,24 @@ SimulationOptions options_from(const py::dict& options, const std::string& who) 
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-/// Binds row s of `inputs` (the values of Model::inputs at each output, as
-/// a run recorded them) while that output is evaluated; an empty matrix
-/// leaves the inputs at their initial values.
-void bind_inputs(std::optional<InputScope>& scope, const Model& model, const RowMajor& inputs, Eigen::Index s) {
-  scope.reset();
-  if (inputs.size()) scope.emplace(model.input_functions(), inputs.row(s).data());
-}
-
 void require_inputs(const Model& model, const RowMajor& inputs, Eigen::Index outputs) {
   if (inputs.size() && (inputs.rows() != outputs || inputs.cols() != Eigen::Index(model.inputs().size())))
     throw ModelError("inputs must have one row per output and one column per input of the model (" +
                      std::to_string(model.inputs().size()) + ")");
+}
+
+/// The outputs Python holds as a core OutputView (no copy): t, and the
+/// arrays given (null: not read); `inputs` empty: their initial values.
+OutputView view_of(const Eigen::VectorXd& t, const RowMajor* q, const RowMajor* v, const RowMajor* lam,
+                   const RowMajor& inputs) {
+  OutputView out;
+  out.k = int(t.size());
+  out.t = t.data();
+  out.q = q ? q->data() : nullptr;
+  out.v = v ? v->data() : nullptr;
+  out.lam = lam ? lam->data() : nullptr;
+  out.inputs = inputs.size() ? inputs.data() : nullptr;
+  return out;
 }
 
 void require_rows(const Model& model, const RowMajor& x, int cols, const char* what) {
@@ -430,12 +440,6 @@ py::list kinds_to_python() {
   return out;
 }
 
-const ConstraintGroupBase& constraint_group(const Model& model, const std::string& name) {
-  const ElementRef& r = model.find(name);
-  if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
-  return *model.constraint_groups()[r.group];
-}
-
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -554,6 +558,29 @@ PYBIND11_MODULE(_core, m) {
                                }
                                return out;
                              })
+      .def_property_readonly("parameters",
+                             [](const Model& model) {
+                               py::list out;
+                               for (const ParameterInfo& p : parameters(model)) {
+                                 py::dict d;
+                                 d["name"] = p.name;
+                                 d["element"] = p.element;
+                                 d["key"] = p.key;
+                                 d["component"] = p.component;
+                                 d["unit"] = p.unit;
+                                 d["doc"] = p.doc;
+                                 d["value"] = p.value;
+                                 out.append(d);
+                               }
+                               return out;
+                             })
+      .def(
+          "with_parameters",
+          [](const Model& model, const ParameterValues& values) -> std::shared_ptr<Model> {
+            return with_parameters(model, values, own);
+          },
+          py::arg("values"),
+          "This model built with other parameter values (a new compiled Model; None for no values).")
       .def("constraint_name_of_row", &Model::constraint_name_of_row, py::arg("row"))
       .def("has", &Model::has)
       .def("body_coordinates",
@@ -589,15 +616,7 @@ PYBIND11_MODULE(_core, m) {
             require_rows(model, lam, model.n_constraints(), "lam");
             require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
             require_inputs(model, inputs, q.rows());
-            const auto& g = constraint_group(model, name);
-            const int k = model.find(name).index;
-            RowMajor out(q.rows(), g.dimension() == 2 ? 3 : 6);
-            std::optional<InputScope> scope;
-            for (Eigen::Index s = 0; s < q.rows(); ++s) {
-              bind_inputs(scope, model, inputs, s);
-              out.row(s) = g.reaction(k, q.row(s).data(), t[s], lam.row(s).data(), joint_axes).transpose();
-            }
-            return out;
+            return reactions(model, name, view_of(t, &q, nullptr, &lam, inputs), joint_axes);
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
           py::arg("inputs") = RowMajor(),
@@ -614,16 +633,8 @@ PYBIND11_MODULE(_core, m) {
             if (v.rows() != q.rows() || lam.rows() != q.rows())
               throw ModelError("q, v and lam must have one row per output (got " + std::to_string(q.rows()) + ", " +
                                std::to_string(v.rows()) + " and " + std::to_string(lam.rows()) + ")");
-            const ElementRef& r = model.find(name);
-            if (r.type != ElementRef::kFriction) throw ModelError("'" + name + "' is not a joint friction");
-            const auto& g = *model.friction_groups()[r.group];
-            RowMajor out(q.rows(), 2);
-            for (Eigen::Index k = 0; k < q.rows(); ++k) {
-              const auto f = g.friction(r.index, q.row(k).data(), v.row(k).data(), lam.row(k).data());
-              out(k, 0) = f[0];
-              out(k, 1) = f[1];
-            }
-            return out;
+            const Eigen::VectorXd t = Eigen::VectorXd::Zero(q.rows());  // (friction does not depend on t)
+            return friction(model, name, view_of(t, &q, &v, &lam, RowMajor()));
           },
           py::arg("name"), py::arg("q"), py::arg("v"), py::arg("lam"),
           "(friction torque or force on the joint's second body, slip rate) at each state")
@@ -655,13 +666,7 @@ PYBIND11_MODULE(_core, m) {
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
             require_inputs(model, inputs, q.rows());
-            Eigen::VectorXd E(q.rows());
-            std::optional<InputScope> scope;
-            for (Eigen::Index k = 0; k < q.rows(); ++k) {
-              bind_inputs(scope, model, inputs, k);
-              E[k] = kinetic_energy(model, q.row(k).data(), v.row(k).data()) + potential_energy(model, q.row(k).data(), t[k]);
-            }
-            return E;
+            return energy(model, view_of(t, &q, &v, nullptr, inputs));
           },
           py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor())
       .def(
@@ -670,15 +675,7 @@ PYBIND11_MODULE(_core, m) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_outputs(t, {{&q, "q"}});
             require_inputs(model, inputs, q.rows());
-            Data d(model);  // every row, including those a run dropped as redundant
-            Eigen::VectorXd r(q.rows());
-            std::optional<InputScope> scope;
-            for (Eigen::Index k = 0; k < q.rows(); ++k) {
-              bind_inputs(scope, model, inputs, k);
-              assemble_constraints(model, d, q.row(k).data(), t[k]);
-              r[k] = d.Phi.size() ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
-            }
-            return r;
+            return constraint_residual(model, view_of(t, &q, nullptr, nullptr, inputs));
           },
           py::arg("t"), py::arg("q"), py::arg("inputs") = RowMajor(), "max |Phi| at each state")
       .def(
@@ -689,17 +686,7 @@ PYBIND11_MODULE(_core, m) {
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
             require_inputs(model, inputs, q.rows());
-            Data d(model);
-            Eigen::VectorXd r(q.rows());
-            std::optional<InputScope> scope;
-            for (Eigen::Index k = 0; k < q.rows(); ++k) {
-              bind_inputs(scope, model, inputs, k);
-              assemble_jacobian(model, d, q.row(k).data(), t[k]);
-              assemble_phi_t(model, d, q.row(k).data(), t[k]);
-              add_jacobian_times(d, v.row(k).data(), d.phi_t.data());
-              r[k] = d.phi_t.size() ? d.phi_t.lpNorm<Eigen::Infinity>() : 0.0;
-            }
-            return r;
+            return velocity_residual(model, view_of(t, &q, &v, nullptr, inputs));
           },
           py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor(),
           "max |Phi_q v + Phi_t| at each state")
@@ -842,6 +829,40 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(qdd, lam);
       },
       py::arg("model"), py::arg("q"), py::arg("v"), py::arg("t") = 0.0);
+
+  m.def(
+      "choices",
+      [] {
+        py::dict out;
+        auto names = [](auto choice) {
+          py::list l;
+          for (const auto& [value, name] : ChoiceNames<decltype(choice)>::names)
+            if (*name) l.append(name);
+          return py::tuple(l);
+        };
+        out["analysis"] = names(Analysis{});
+        out["start"] = names(Start{});
+        out["formulation"] = names(Formulation{});
+        out["integrator"] = names(Integrator{});
+        return out;
+      },
+      "The names of each choice of SimulationOptions (lagmb/options.hpp), in order.");
+
+  m.def(
+      "default_options",
+      [] {
+        py::dict out;
+        SimulationOptions o;
+        o.for_each_field([&](const char* name, const auto& value) {
+          using T = std::decay_t<decltype(value)>;
+          if constexpr (is_choice_v<T>)
+            out[name] = name_of(value);
+          else
+            out[name] = value;
+        });
+        return out;
+      },
+      "SimulationOptions' defaults by field name (the choices by their names): what every run takes by default.");
 
   m.def(
       "methods",

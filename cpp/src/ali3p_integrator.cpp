@@ -23,10 +23,11 @@ namespace {
 
 class Ali3pStepper final : public Stepper {
  public:
-  Ali3pStepper(const Model& model, const ConsistentState& start, const IntegrationPlan& plan, double step)
-      : form_(model, start, plan.rtol, plan.atol),
+  Ali3pStepper(const Model& model, const ConsistentState& start, const IntegrationPlan& plan)
+      : form_(model, start, plan.options->newton_rtol,
+              VecX::Constant(model.n_coordinates(), plan.options->newton_atol)),
         m_(model.n_constraints()),
-        h_(step),
+        h_(plan.options->max_step),
         t_(plan.t0),
         stop_(plan.t_end),
         t_prev_(plan.t0) {
@@ -146,9 +147,9 @@ class Ali3pStepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, double step, const ConsistentState& start,
+std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, const ConsistentState& start,
                                             const IntegrationPlan& plan) {
-  return std::make_unique<Ali3pStepper>(model, start, plan, step);
+  return std::make_unique<Ali3pStepper>(model, start, plan);
 }
 
 }  // namespace lagmb

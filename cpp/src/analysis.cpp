@@ -115,12 +115,13 @@ std::string diagnose_failure(const Model& model, const VecX& q, double t, const 
   return out.str();
 }
 
-std::string non_finite_source(const Model& model, const double* q, const double* v, double t) {
+std::string non_finite_source(const Model& model, const Data& run, const double* q, const double* v, double t) {
   const int n = model.n_coordinates();
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(q[i]) || !std::isfinite(v[i]))
       return "the state is not finite at " + coordinate_label(model, i);
   Data d(model);
+  d.share_values(run);
   try {
     assemble_forces(model, d, q, v, t);
     for (int i = 0; i < n; ++i)
@@ -128,7 +129,7 @@ std::string non_finite_source(const Model& model, const double* q, const double*
         std::string kinds;
         for (const auto& g : model.force_groups()) {
           VecX Q = VecX::Zero(n);
-          g->add_forces(q, v, t, d.run_state->data(), Q.data());
+          g->add_forces(q, v, d.at(t), d.run->state.data(), Q.data());
           if (!std::isfinite(Q[i])) kinds += std::string(kinds.empty() ? "" : ", ") + g->kind();
         }
         return "the applied force on " + coordinate_label(model, i) + " is not finite (from the " + kinds +

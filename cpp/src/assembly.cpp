@@ -18,9 +18,12 @@ Data::Data(const Model& model)
       M(model.mass_pattern()),
       M_inv(model.mass_pattern()),
       M_qa(model.mass_pattern()),
-      run_state(std::make_shared<VecX>(VecX::Zero(model.run_state_size()))) {
+      run(std::make_shared<RunValues>()) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
   init_mass(model, *this);
+  run->inputs.resize(int(model.inputs().size()));
+  for (int k = 0; k < run->inputs.size(); ++k) run->inputs[k] = model.inputs()[k].initial;
+  run->state = VecX::Zero(model.run_state_size());
   if (!model.friction_groups().empty()) {
     friction_Q_q = model.force_q_pattern();
     friction_Q_v = model.force_v_pattern();
@@ -47,7 +50,7 @@ void Data::drop_rows(const Model& model, std::vector<int> rows) {
 void Data::join_run(const Model& model, const Data& run) {
   if (&run == this) return;
   drop_rows(model, run.dropped_rows);
-  run_state = run.run_state;
+  share_values(run);
 }
 
 namespace {
@@ -64,7 +67,7 @@ void drop_rows(const Data& d, SpMat& A) {
 
 void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
   for (const auto& g : model.constraint_groups()) {
-    g->phi(q, t, d.Phi.data());
+    g->phi(q, d.at(t), d.Phi.data());
     d.element_evaluations += g->size();
   }
   drop_rows(d, d.Phi);
@@ -72,7 +75,7 @@ void assemble_constraints(const Model& model, Data& d, const double* q, double t
 
 void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
   for (const auto& g : model.constraint_groups()) {
-    g->jacobian(q, t, d.Phi_q.valuePtr());
+    g->jacobian(q, d.at(t), d.Phi_q.valuePtr());
     d.element_evaluations += g->size();
   }
   drop_rows(d, d.Phi_q);
@@ -82,7 +85,7 @@ void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
 void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
   d.phi_t.setZero();
   for (const auto* g : model.time_dependent_groups()) {
-    g->add_phi_t(q, t, d.phi_t.data());
+    g->add_phi_t(q, d.at(t), d.phi_t.data());
     d.element_evaluations += g->size();
   }
   drop_rows(d, d.phi_t);
@@ -90,7 +93,7 @@ void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
 
 void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
   for (const auto& g : model.constraint_groups()) {
-    g->gamma(q, v, t, d.gamma.data());
+    g->gamma(q, v, d.at(t), d.gamma.data());
     d.element_evaluations += g->size();
   }
   drop_rows(d, d.gamma);
@@ -99,7 +102,7 @@ void assemble_gamma(const Model& model, Data& d, const double* q, const double* 
 void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
                                 double t) {
   for (const auto& g : model.constraint_groups()) {
-    g->velocity_jacobian(q, v, t, d.Vq.valuePtr());
+    g->velocity_jacobian(q, v, d.at(t), d.Vq.valuePtr());
     d.element_evaluations += g->size();
   }
   drop_rows(d, d.Vq);
@@ -110,7 +113,7 @@ void assemble_constraint_hessian(const Model& model, Data& d, const double* q, d
   // (the weights of dropped rows are their multipliers: zero)
   d.H.coeffs().setZero();
   for (const auto& g : model.constraint_groups()) {
-    g->add_hessian(q, t, w, d.H.valuePtr());
+    g->add_hessian(q, d.at(t), w, d.H.valuePtr());
     d.element_evaluations += g->size();
   }
 }
@@ -118,7 +121,7 @@ void assemble_constraint_hessian(const Model& model, Data& d, const double* q, d
 void assemble_forces(const Model& model, Data& d, const double* q, const double* v, double t) {
   d.Q.setZero();
   for (const auto& f : model.force_groups()) {
-    f->add_forces(q, v, t, d.run_state->data(), d.Q.data());
+    f->add_forces(q, v, d.at(t), d.run->state.data(), d.Q.data());
     d.element_evaluations += f->size();
   }
 }
@@ -129,7 +132,7 @@ void assemble_force_derivatives(const Model& model, Data& d, const double* q, co
   d.Q_q.coeffs().setZero();
   d.Q_v.coeffs().setZero();
   for (const auto* f : model.state_dependent_forces()) {
-    f->add_derivatives(q, v, t, d.run_state->data(), d.Q_q.valuePtr(), d.Q_v.valuePtr());
+    f->add_derivatives(q, v, d.at(t), d.run->state.data(), d.Q_q.valuePtr(), d.Q_v.valuePtr());
     d.element_evaluations += f->size();
   }
 }
@@ -178,9 +181,9 @@ void add_jacobian_times(const Data& d, const double* x, double* y) {
   }
 }
 
-double potential_energy(const Model& model, const double* q, double t) {
+double potential_energy(const Model& model, const double* q, const Instant& at) {
   double V = 0.0;
-  for (const auto& f : model.force_groups()) V += f->potential(q, t);
+  for (const auto& f : model.force_groups()) V += f->potential(q, at);
   return V;
 }
 

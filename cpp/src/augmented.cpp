@@ -411,7 +411,7 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
   // integrator what it cannot weigh
   if (!(s.q.allFinite() && s.v.allFinite() && s.qdd.allFinite() && s.lam.allFinite())) {
     std::ostringstream why;
-    why << "the consistent start at t = " << t << " is not finite: " << non_finite_source(model, s.q.data(), s.v.data(), t);
+    why << "the consistent start at t = " << t << " is not finite: " << non_finite_source(model, d, s.q.data(), s.v.data(), t);
     throw AssemblyError(why.str(), t, {});
   }
   return s;
@@ -450,6 +450,7 @@ ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, V
   if (!r.rows.empty()) {
     // kkt holds the kept rows at s.q; the dropped ones from a full evaluation
     Data full(model);
+    full.share_values(d);
     assemble_jacobian(model, full, s.q.data(), t);
     name_partners(model, full, kkt, r);
     assemble_phi_t(model, full, s.q.data(), t);

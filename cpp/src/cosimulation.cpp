@@ -2,6 +2,9 @@
 // by a Simulator.
 #include "lagmb/cosimulation.hpp"
 
+#include "lagmb/outputs.hpp"
+#include "lagmb/parameters.hpp"
+
 #include <map>
 
 #include <cmath>
@@ -50,6 +53,8 @@ std::string CoSimulationSetup::to_text() const {
     out << "option " << name << ' ';
     if constexpr (std::is_same_v<T, std::string>)
       out << std::quoted(value);
+    else if constexpr (is_choice_v<T>)
+      out << std::quoted(std::string(name_of(value)));
     else if constexpr (std::is_same_v<T, std::vector<double>>) {
       out << value.size();
       for (double x : value) out << ' ' << x;
@@ -94,7 +99,11 @@ CoSimulationSetup CoSimulationSetup::from_text(const std::string& text) {
       using T = std::decay_t<decltype(value)>;
       if constexpr (std::is_same_v<T, std::string>)
         in >> std::quoted(value);
-      else if constexpr (std::is_same_v<T, std::vector<double>>) {
+      else if constexpr (is_choice_v<T>) {
+        std::string text;
+        in >> std::quoted(text);
+        value = choice_from<T>(text);
+      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
         size_t n = 0;
         in >> n;
         value.assign(n, 0.0);
@@ -120,14 +129,10 @@ CoSimulation::CoSimulation(CoSimulationSetup setup)
         {Slot::kInput, int(k)});
     inputs_.push_back(in.initial);
   }
-  for (const auto& e : spec_.elements())
-    for (const auto& [key, value] : e.args.values())
-      if (const double* x = std::get_if<double>(&value)) {
-        const Param* p = e.args.kind().param(key);
-        add({e.name + "." + key, "parameter", "fixed", p ? p->unit : "", p ? p->doc : "", *x},
-            {Slot::kParameter, int(parameters_.size()), 0, e.name, key});
-        parameters_.push_back(*x);
-      }
+  for (const ParameterInfo& p : parameters(*model)) {
+    add({p.name, "parameter", "fixed", p.unit, p.doc, p.value}, {Slot::kParameter, int(parameters_.size())});
+    parameters_.push_back(p.value);
+  }
   for (const Body& b : model->bodies()) {
     static const char* planar[] = {"x", "y", "angle"};
     static const char* spatial[] = {"x", "y", "z", "e0", "e1", "e2", "e3"};
@@ -165,11 +170,6 @@ CoSimulation::CoSimulation(CoSimulationSetup setup)
     add({name + ".effort", "output", "continuous", unit, "what " + name + " applies along what it drives"},
         {Slot::kEffort, row, 0, name});
   }
-  // a body's initial angle is a parameter, its angle an output: "pole.angle.start", "pole.angle"
-  for (CoVariable& p : variables_)
-    if (p.causality == "parameter")
-      for (const CoVariable& o : variables_)
-        if (o.causality == "output" && o.name == p.name) p.name += ".start";
   // an FMU names each variable once: names made from element and input
   // names can collide (an input "a.x" and body a's coordinate x)
   std::map<std::string, size_t> seen;
@@ -233,33 +233,28 @@ double CoSimulation::get(size_t vr) {
     case Slot::kEffort: return -running().lam()[s.index];
     case Slot::kReaction: {
       Simulator& sim = running();
-      const ElementRef& r = model_->find(s.element);
-      return model_->constraint_groups()[r.group]->reaction(r.index, sim.q().data(), sim.t(), sim.lam().data(),
-                                                            false)[s.component];
+      const double t = sim.t();
+      const VecX q = sim.q(), lam = sim.lam(), inputs = sim.inputs();
+      OutputView now;
+      now.k = 1;
+      now.t = &t;
+      now.q = q.data();
+      now.lam = lam.data();
+      now.inputs = inputs.data();
+      return reactions(*model_, s.element, now)(0, s.component);
     }
   }
   return NAN;
 }
 
 void CoSimulation::start_run() {
-  // the parameters set: the spec again with those values (checked as when first added)
-  bool changed = false;
+  // the parameters set: the model built with those values (checked as when first added)
+  ParameterValues changed;
   for (size_t vr = 0; vr < slots_.size(); ++vr)
-    if (slots_[vr].kind == Slot::kParameter) changed = changed || parameters_[slots_[vr].index] != variables_[vr].start;
-  if (changed) {
-    ModelSpec edited(spec_.dimension());
-    if (spec_.gravity()) edited.set_gravity(*spec_.gravity());
-    for (const auto& e : spec_.elements()) {
-      Args args = e.args;
-      for (size_t vr = 0; vr < slots_.size(); ++vr)
-        if (slots_[vr].kind == Slot::kParameter && slots_[vr].element == e.name)
-          args.set(slots_[vr].key, parameters_[slots_[vr].index]);
-      edited.add(e.name, std::move(args));
-    }
-    model_ = edited.compile();
-  } else {
-    model_ = spec_.compile();
-  }
+    if (slots_[vr].kind == Slot::kParameter && parameters_[slots_[vr].index] != variables_[vr].start)
+      changed[variables_[vr].name] = parameters_[slots_[vr].index];
+  model_ = spec_.compile();
+  if (!changed.empty()) model_ = with_parameters(*model_, changed);
   SimulationOptions o = setup_.options;
   o.t0 = t0_;
   if (tolerance_ > 0.0) o.rtol = tolerance_;

@@ -123,10 +123,10 @@ class CvodeStepper final : CvodeParts, public OdeStepper {
     if (!s.mem) throw std::runtime_error("lagmb: CVodeCreate failed");
     s.ctx.attach_cvode(s.mem);
     check(CVodeInit(s.mem, ode_rhs, plan.t0, s.y), "CVodeInit", s.ctx);
-    check(CVodeSVtolerances(s.mem, plan.rtol, s.abstol), "CVodeSVtolerances", s.ctx);
+    check(CVodeSVtolerances(s.mem, plan.options->rtol, s.abstol), "CVodeSVtolerances", s.ctx);
     check(CVodeSetUserData(s.mem, &user_), "CVodeSetUserData", s.ctx);
     check(CVodeSetMaxOrd(s.mem, plan.max_order), "CVodeSetMaxOrd", s.ctx);
-    if (plan.max_step > 0) check(CVodeSetMaxStep(s.mem, plan.max_step), "CVodeSetMaxStep", s.ctx);
+    if (plan.options->max_step > 0) check(CVodeSetMaxStep(s.mem, plan.options->max_step), "CVodeSetMaxStep", s.ctx);
     check(CVodeSetMinStep(s.mem, minimum_step(plan)), "CVodeSetMinStep", s.ctx);
     s.A = make_implicit_matrix(s.ctx);
     s.LS = make_saddle_solver(s.ctx, &user_);

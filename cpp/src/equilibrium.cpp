@@ -302,7 +302,7 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
       !lam.allFinite()) {
     const VecX rest = VecX::Zero(model.n_coordinates());
     throw EquilibriumError("equilibrium: the forces at the position found are not finite: " +
-                           non_finite_source(model, q.data(), rest.data(), o.t));
+                           non_finite_source(model, solver.data(), q.data(), rest.data(), o.t));
   }
   stability(model, solver.data(), o.t, e);
   // resting against a stop is not modelled: an equilibrium beyond a limit is

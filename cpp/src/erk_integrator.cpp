@@ -87,10 +87,10 @@ struct ErkStepper final : ErkParts, OdeStepper {
     s.mem = ERKStepCreate(ode_rhs, plan.t0, s.y, s.ctx);
     if (!s.mem) throw std::runtime_error("lagmb: ERKStepCreate failed");
     s.ctx.attach_erkstep(s.mem);
-    check(ERKStepSVtolerances(s.mem, plan.rtol, s.abstol), "ERKStepSVtolerances", s.ctx);
+    check(ERKStepSVtolerances(s.mem, plan.options->rtol, s.abstol), "ERKStepSVtolerances", s.ctx);
     check(ERKStepSetUserData(s.mem, &user_), "ERKStepSetUserData", s.ctx);
     check(ERKStepSetOrder(s.mem, plan.max_order), "ERKStepSetOrder", s.ctx);
-    if (plan.max_step > 0) check(ERKStepSetMaxStep(s.mem, plan.max_step), "ERKStepSetMaxStep", s.ctx);
+    if (plan.options->max_step > 0) check(ERKStepSetMaxStep(s.mem, plan.options->max_step), "ERKStepSetMaxStep", s.ctx);
     check(ERKStepSetMinStep(s.mem, minimum_step(plan)), "ERKStepSetMinStep", s.ctx);
     if (ode_.n_constraints() > 0)
       check(ERKStepSetPostprocessStepFn(s.mem, erk_project), "ERKStepSetPostprocessStepFn", s.ctx);

@@ -54,7 +54,7 @@ bool EventRunner::start(double t, const VecX& q, VecX& v) {
     if (dir_[i] >= 0 || !(g_[i] < 0.0)) continue;
     auto& group = *model_.event_groups()[roots_[i].group];
     if (g_[i] < -tol) {
-      const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run_state->data());
+      const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data());
       throw ModelError(std::string(group.kind()) + " '" + group.name(roots_[i].element) +
                        "': the initial configuration is beyond its " +
                        (a.label[0] ? a.label : (roots_[i].index == 0 ? "lower" : "upper")) + " limit (by " +
@@ -90,7 +90,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   for (size_t i = 0; i < roots_.size(); ++i) {
     if (!fired[i]) continue;
     auto& group = *model_.event_groups()[roots_[i].group];
-    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run_state->data());
+    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data());
     if (a.type == EventAction::kNone) continue;
     ++events;
     restart = true;

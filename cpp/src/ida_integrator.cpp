@@ -129,14 +129,14 @@ double initial_step(const IntegrationPlan& plan, const double* y, const double* 
   int count = 0;
   for (int i = 0; i < N; ++i) {
     if (!(cb.id[i] > 0.0) || cb.level[i] > 1) continue;
-    const double w = yp[i] / (plan.rtol * std::abs(y[i]) + cb.abstol[i]);
+    const double w = yp[i] / (plan.options->rtol * std::abs(y[i]) + cb.abstol[i]);
     sum += w * w;
     ++count;
   }
   double h = 1e-3 * (plan.t_end - plan.t0);
   const double ypnorm = count ? std::sqrt(sum / count) : 0.0;
   if (ypnorm > 0.5 / h) h = 0.5 / ypnorm;
-  if (plan.max_step > 0.0) h = std::min(h, plan.max_step);
+  if (plan.options->max_step > 0.0) h = std::min(h, plan.options->max_step);
   return h;
 }
 
@@ -165,7 +165,7 @@ class IdaStepper final : public Stepper {
     s.mem = IDACreate(s.ctx);
     if (!s.mem) throw std::runtime_error("lagmb: IDACreate failed");
     cb.mem = s.mem;
-    cb.rtol = plan.rtol;
+    cb.rtol = plan.options->rtol;
     cb.abstol = N_VGetArrayPointer(s.abstol);
     cb.id = N_VGetArrayPointer(s.id);
     cb.level.resize(N);
@@ -179,7 +179,7 @@ class IdaStepper final : public Stepper {
     check(IDASetId(s.mem, s.id), "IDASetId", s.ctx);
     check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg", s.ctx);
     check(IDASetMaxOrd(s.mem, plan.max_order), "IDASetMaxOrd", s.ctx);
-    if (plan.max_step > 0) check(IDASetMaxStep(s.mem, plan.max_step), "IDASetMaxStep", s.ctx);
+    if (plan.options->max_step > 0) check(IDASetMaxStep(s.mem, plan.options->max_step), "IDASetMaxStep", s.ctx);
     check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
     // a step shorter than a few ulps of t cannot make progress: fail there
     // (a lock-up or a singular passage) instead of shrinking h for ever

@@ -16,17 +16,15 @@
 
 namespace lagmb {
 
-/// What every integrator is asked to do.
+/// What every integrator is asked to do: the run's options (tolerances,
+/// step bounds, progress) read where they are, and what the run derives.
 struct IntegrationPlan {
-  double t0, t_end, rtol;
-  VecX atol;  // per coordinate
-  double max_step;
-  int max_order;
-  long max_steps;
+  const SimulationOptions* options = nullptr;  // outlives the plan
+  double t0 = 0.0, t_end = 0.0;  // of this stretch (a Simulator's advance moves them)
+  VecX atol;                     // per coordinate: options->atol or options->atol_coordinates
+  int max_order = 0;             // options->max_order, or the method's highest
   std::vector<double> t_out;
   std::vector<double> breakpoints;  // inside (t0, t_end): stop and restart there
-  std::function<void(double)> progress;
-  double progress_interval;
   class EventRunner* events = nullptr;  // the model's event functions; null: none
   const Data* run = nullptr;  // the run's Data: each integrator's own Data joins it (Data::join_run)
 };
@@ -91,7 +89,7 @@ class StepLoop {
   StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end = true);
   /// Steps until the time reached is at least `target`; calls record(q, v)
   /// for each t_out[k] up to the time reached, k counting on. At most
-  /// plan.max_steps steps between two outputs (IntegratorFailure beyond).
+  /// options->max_steps steps between two outputs (IntegratorFailure beyond).
   /// Without stop_at_end, a breakpoint or event that ends a step past
   /// `target` is acted on when a later run has to step on: until then the
   /// step's interpolant holds the times before it, which a Simulator's next
@@ -147,18 +145,18 @@ std::unique_ptr<Stepper> make_cvode_stepper(const Model& model, bool adams, doub
 std::unique_ptr<Stepper> make_erk_stepper(const Model& model, const ConsistentState& start,
                                           const IntegrationPlan& plan);
 /// ALI3-P (ali3p_integrator.cpp): index-3 equations, trapezoidal rule with
-/// the fixed step `step`, Newton on (q, lam) with a regularized multiplier
-/// block, mass-orthogonal projections of v and a.
-std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, double step, const ConsistentState& start,
+/// the fixed step options->max_step, Newton on (q, lam) with a regularized
+/// multiplier block to options->newton_rtol and newton_atol, mass-orthogonal
+/// projections of v and a.
+std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, const ConsistentState& start,
                                             const IntegrationPlan& plan);
 
 /// The stepper of a method of the table (methods.cpp), started at `start`.
-std::unique_ptr<Stepper> make_stepper(const Method& method, const Model& model, const SimulationOptions& options,
-                                      const ConsistentState& start, const IntegrationPlan& plan);
+std::unique_ptr<Stepper> make_stepper(const Method& method, const Model& model, const ConsistentState& start,
+                                      const IntegrationPlan& plan);
 
 /// Runs a method of the table from `start` with `plan` to plan.t_end.
-void integrate(const Method& method, const Model& model, const SimulationOptions& options,
-               const ConsistentState& start, const IntegrationPlan& plan,
+void integrate(const Method& method, const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
                const Record& record, Stats& stats);
 
 }  // namespace lagmb

@@ -52,10 +52,8 @@ int degrees_of_freedom(const Model& model, double t) {
   return n - (m - int(find_redundancy(model, d, kkt, q, t).rows.size()));
 }
 
-std::string resolve_analysis(const Model& model, const SimulationOptions& o) {
-  const std::string& a = o.analysis;
-  if (a != "auto" && a != "dynamic" && a != "kinematic" && a != "inverse_dynamics")
-    throw ModelError("simulate: unknown analysis '" + a + "' (available: auto, dynamic, kinematic, inverse_dynamics)");
+Analysis resolve_analysis(const Model& model, const SimulationOptions& o) {
+  const Analysis a = o.analysis;
   const std::vector<int> massless = massless_bodies(model);
   auto refuse_massless = [&] {
     const Body& b = model.body(massless.front());
@@ -70,26 +68,26 @@ std::string resolve_analysis(const Model& model, const SimulationOptions& o) {
       << "drivers use analysis=\"kinematic\".";
     throw ModelError(s.str());
   };
-  if (a == "dynamic") {
+  if (a == Analysis::kDynamic) {
     if (!massless.empty()) refuse_massless();
     return a;
   }
   // stops and contact switch on events, which only the integrators find
   const bool events = !model.event_groups().empty();
-  if (events && a != "auto")
-    throw ModelError("simulate: analysis \"" + a + "\" solves the constraints at the output times only and " +
+  if (events && a != Analysis::kAuto)
+    throw ModelError(std::string("simulate: analysis \"") + name_of(a) + "\" solves the constraints at the output times only and " +
                      "would miss the events of '" + model.event_groups().front()->name(0) +
                      "' (stops, contact): use analysis=\"dynamic\"");
   const int dof = degrees_of_freedom(model, o.t0);
-  if (a == "auto") {
+  if (a == Analysis::kAuto) {
     if (dof > 0 || events) {
       if (!massless.empty()) refuse_massless();
-      return "dynamic";
+      return Analysis::kDynamic;
     }
-    return massless.empty() ? "inverse_dynamics" : "kinematic";
+    return massless.empty() ? Analysis::kInverseDynamics : Analysis::kKinematic;
   }
   if (dof > 0)
-    throw ModelError("simulate: analysis \"" + a + "\" needs a mechanism whose motion is fully prescribed " +
+    throw ModelError(std::string("simulate: analysis \"") + name_of(a) + "\" needs a mechanism whose motion is fully prescribed " +
                      "(0 degrees of freedom), but this model has " + std::to_string(dof) +
                      " degree(s) of freedom: drive them, or use analysis=\"dynamic\"");
   return a;  // massless bodies are fine for inverse dynamics too: they carry no inertia force
@@ -273,6 +271,7 @@ class KinematicSolver {
     factorized_ = false;
     if (!redundancy.rows.empty()) {
       Data full(model_);
+      full.share_values(d_);
       assemble_jacobian(model_, full, q.data(), t);
       assemble_jacobian(model_, d_, q.data(), t);
       if (kkt_.factorize(d_)) name_partners(model_, full, kkt_, redundancy);
@@ -431,7 +430,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   Trajectory tr;
   tr.n = n;
   tr.m = m;
-  tr.stats.analysis = inverse_dynamics ? "inverse_dynamics" : "kinematic";
+  tr.stats.analysis = name_of(inverse_dynamics ? Analysis::kInverseDynamics : Analysis::kKinematic);
   tr.stats.formulation = "kinematic";
   tr.stats.integrator = "newton";
   tr.t.reserve(t_out.size());
@@ -474,7 +473,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
     throw SimulationError(e.what(), t0);
   }
   tr.dropped_rows = solver.redundancy.rows;
-  if (!tr.dropped_rows.empty()) watch = std::make_unique<RedundancyWatch>(model, solver.redundancy);
+  if (!tr.dropped_rows.empty()) watch = std::make_unique<RedundancyWatch>(model, Data(model), solver.redundancy);
   double t = t0;
   // diagnose: ask the Jacobian why Newton failed (not when the cause is known)
   auto fail = [&](const std::string& why, bool diagnose = true) {

@@ -150,6 +150,7 @@ void Model::set_gravity(Vec3 g) {
   if (!g.allFinite()) throw ModelError("gravity is not finite: " + to_text(g));
   if (dimension_ == 2 && g.z() != 0.0)
     throw ModelError("gravity of a planar model has two components (x, y), got " + to_text(g));
+  given_gravity_ = g;
   for (auto& f : forces_)
     if (auto* grav = dynamic_cast<Gravity*>(f.get())) {
       *grav = Gravity(g);
@@ -371,6 +372,12 @@ void Model::add_input(InputInfo info) {
                      inputs_[input_index(info.name)].element + ")");
   input_functions_.push_back(info.function);
   inputs_.push_back(std::move(info));
+}
+
+int Model::input_slot(const TimeFunction* f) const {
+  for (size_t k = 0; k < input_functions_.size(); ++k)
+    if (input_functions_[k] == f) return int(k);
+  return -1;
 }
 
 int Model::input_index(const std::string& name) const {

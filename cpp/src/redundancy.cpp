@@ -116,8 +116,10 @@ void name_partners(const Model& model, const Data& full, AugmentedSystem& kkt, R
   }
 }
 
-RedundancyWatch::RedundancyWatch(const Model& model, Redundancy redundancy)
-    : model_(model), r_(std::move(redundancy)), full_(model) {}
+RedundancyWatch::RedundancyWatch(const Model& model, const Data& run, Redundancy redundancy)
+    : model_(model), r_(std::move(redundancy)), full_(model) {
+  full_.share_values(run);
+}
 
 std::string RedundancyWatch::violation(const double* q, double t) {
   if (r_.rows.empty()) return "";

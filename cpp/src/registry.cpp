@@ -299,9 +299,10 @@ void add_element(Model& model, const std::string& name, const Args& given) {
     if (!finite(v)) throw ModelError(label + ": " + p.name + " is not finite: " + shown(v));
   }
   const Args args = resolved(model, label, given);
-  kind.build(model, name, args);
+  model.record_given(name, given);
   // the functions of time: their breakpoints are the run's; its inputs are
-  // named after the element (with the parameter where it has several)
+  // named after the element (with the parameter where it has several) and
+  // added first, so that the builder finds their slots (build::drive)
   std::vector<InputInfo> inputs;
   for (const Param& p : kind.params) {
     if (!args.given(p.name)) continue;
@@ -325,6 +326,7 @@ void add_element(Model& model, const std::string& name, const Args& given) {
     if (in.name.empty()) in.name = inputs.size() == 1 ? name : name + "." + in.parameter;
     model.add_input(std::move(in));
   }
+  kind.build(model, name, args);
   for (const Param& p : kind.params) {
     if (!args.given(p.name)) continue;
     // where the element's points sit on its bodies: what a drawing of each body joins

@@ -32,11 +32,11 @@ inline void check_time(double t, const std::string& who, const char* what) {
 }
 
 /// The options every dynamic run takes (tolerances, method, bounds, start);
-/// ModelError beginning with "who: " for one that is wrong.
-void validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who);
+/// ModelError beginning with "who: " for one that is wrong. Returns the method.
+const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who);
 
 /// The consistent state a dynamic run starts from at o.t0: the model's
-/// initial positions and velocities or, with o.start == "equilibrium", the
+/// initial positions and velocities or, with o.start == Start::kEquilibrium, the
 /// static equilibrium at rest; assembled with the rows found redundant there
 /// left out (start_state; `redundancy` gets them). A failing user function
 /// is a SimulationError at t0.
@@ -70,5 +70,40 @@ void record_output(const Model& model, Data& d, AugmentedSystem& kkt, Redundancy
 
 /// Outputs of `tr` whose a and lam were solved.
 int solved_outputs(const Trajectory& tr);
+
+/// Everything one dynamic run changes, in one place (docs/design.md 2.8):
+/// its Data (the dropped rows, the input values, the elements' run state:
+/// Data::RunValues, which every Data of the run shares), the augmented
+/// system, the event runner, the watch over the rows left out as redundant,
+/// the integration plan and the outputs recorded so far. simulate builds one
+/// and steps it to t_end; a Simulator keeps one and advances it in chunks.
+/// The stepper and its loop are the caller's (simulate's stops at t_end, a
+/// Simulator's steps past the time asked for). Constructing it validates
+/// nothing: the options are the caller's, checked (validate_run_options).
+class Run {
+ public:
+  /// Starts the run at options.t0 (dynamic_start, start_events): the
+  /// consistent state is `start`; outputs holds none yet.
+  Run(const Model& model, const SimulationOptions& options, const Method& method);
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  const Model& model;
+  const SimulationOptions& options;
+  const Method& method;
+  Data data;  // the run's: plan.run and every formulation's Data join it
+  AugmentedSystem kkt;
+  ConsistentState start;
+  std::unique_ptr<EventRunner> events;  // null without event elements
+  IntegrationPlan plan;                 // outputs and breakpoints: the caller's
+  std::unique_ptr<RedundancyWatch> watch;
+  Trajectory outputs;  // n, m, p, dropped rows and the method's names set
+
+  /// Appends the output (t, q, v) with the run's input values (and, with
+  /// `solve`, its a and lam): record_output.
+  void record(double t, const double* q, const double* v, bool solve);
+  /// Copies the event runner's records and counts into `tr`.
+  void report_events(Trajectory& tr) const;
+};
 
 }  // namespace lagmb

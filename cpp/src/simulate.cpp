@@ -20,9 +20,9 @@ namespace lagmb {
 
 namespace {
 
-/// The options of simulate's outputs; the rest as validate_run_options.
-void validate(const Model& model, const SimulationOptions& o) {
-  validate_run_options(model, o, "simulate");
+/// The options of simulate's outputs; the rest as validate_run_options (its method).
+const Method& validate(const Model& model, const SimulationOptions& o) {
+  const Method& method = validate_run_options(model, o, "simulate");
   if (!(std::isfinite(o.t_end) && o.t_end > o.t0))
     throw ModelError("simulate: t_end must be finite and greater than t0 = " + to_text(o.t0) + ", got " +
                      to_text(o.t_end));
@@ -48,7 +48,7 @@ void validate(const Model& model, const SimulationOptions& o) {
     }
     if (gap / o.max_step > double(o.max_steps)) {
       std::ostringstream s;
-      s << "simulate: " << (o.formulation == "ali3p" ? "step" : "max_step") << " = " << o.max_step
+      s << "simulate: " << (o.formulation == Formulation::kAli3p ? "step" : "max_step") << " = " << o.max_step
         << " s needs at least " << gap / o.max_step << " steps between the outputs at t = " << from << " and "
         << to << ", more than max_steps = " << o.max_steps
         << " (the bound on the steps between outputs): take a longer step, ask for outputs more often or raise "
@@ -74,11 +74,12 @@ void validate(const Model& model, const SimulationOptions& o) {
       throw ModelError("simulate: t_out must be strictly increasing (t_out[" + std::to_string(k) +
                        "] = " + std::to_string(tk) + ")");
   }
+  return method;
 }
 
 }  // namespace
 
-void validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who) {
+const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who) {
   const std::string at = who + ": ";
   if (!model.finalized()) throw ModelError(at + "the model is not finalized");
   if (model.n_coordinates() == 0) throw ModelError(at + "the model has no bodies");
@@ -113,28 +114,31 @@ void validate_run_options(const Model& model, const SimulationOptions& o, const 
     return s;
   };
   if (method.fixed_step && o.max_step == 0.0)
-    throw ModelError(at + "formulation '" + method.formulation +
+    throw ModelError(at + "formulation '" + name_of(method.formulation) +
                      "' takes fixed steps: give the step as max_step (step= in Python)");
   if (!method.friction && !model.friction_groups().empty())
-    throw ModelError(at + "formulation '" + method.formulation + "' does not include joint friction ('" +
+    throw ModelError(at + "formulation '" + name_of(method.formulation) + "' does not include joint friction ('" +
                      model.friction_groups().front()->name(0) + "'); the methods that do: " +
                      those(&Method::friction));
   if (!method.events && !model.event_groups().empty())
-    throw ModelError(at + "formulation '" + method.formulation +
+    throw ModelError(at + "formulation '" + name_of(method.formulation) +
                      "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
                      "'); the methods that have: " + those(&Method::events));
   if (o.max_order < 0 || o.max_order > method.max_order)
     throw ModelError(at + "max_order must be in 1.." + std::to_string(method.max_order) + " for " +
-                     method.name + " (integrator " + method.integrator + "; 0: its highest order), got " +
+                     method.name + " (integrator " + name_of(method.integrator) + "; 0: its highest order), got " +
                      std::to_string(o.max_order));
   if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && !method.baumgarte)
-    throw ModelError(at + "Baumgarte terms apply to the methods " + those(&Method::baumgarte) +
-                     ", not to formulation '" + o.formulation + "' with integrator '" + method.integrator + "'");
+    throw ModelError(at + "Baumgarte terms apply to the methods " + those(&Method::baumgarte) + ", not to formulation '" +
+                     name_of(method.formulation) + "' with integrator '" + name_of(method.integrator) + "'");
   if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
       o.baumgarte_beta < 0)
     throw ModelError(at + "Baumgarte alpha and beta must be finite and >= 0");
-  if (o.start != "given" && o.start != "equilibrium")
-    throw ModelError(at + "unknown start '" + o.start + "' (available: given, equilibrium)");
+  if (method.fixed_step) {
+    positive(o.newton_rtol, "newton_rtol");
+    positive(o.newton_atol, "newton_atol");
+  }
+  return method;
 }
 
 namespace {
@@ -160,7 +164,7 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
     try {
       solve_accelerations(model, d, kkt, q, v, tr.t[i], a, lam);
       if (!Eigen::Map<const VecX>(a, n).allFinite() || !Eigen::Map<const VecX>(lam, m).allFinite())
-        why = non_finite_source(model, q, v, tr.t[i]);
+        why = non_finite_source(model, d, q, v, tr.t[i]);
     } catch (const UserFunctionError& e) {
       why = e.what();
     } catch (const SimulationError& e) {
@@ -200,12 +204,42 @@ void record_output(const Model& model, Data& d, AugmentedSystem& kkt, Redundancy
 
 int solved_outputs(const Trajectory& tr) { return tr.n > 0 ? int(tr.a.size() / size_t(tr.n)) : tr.size(); }
 
+Run::Run(const Model& model_, const SimulationOptions& options_, const Method& method_)
+    : model(model_), options(options_), method(method_), data(model_), kkt(model_) {
+  Redundancy redundancy;
+  start = dynamic_start(model, options, data, kkt, redundancy);
+  events = start_events(model, data, options.t0, start);
+  plan = run_plan(model, options, method, data);
+  plan.events = events.get();
+  // the rows left out as redundant are checked at every output
+  watch = std::make_unique<RedundancyWatch>(model, data, std::move(redundancy));
+  outputs.n = model.n_coordinates();
+  outputs.m = model.n_constraints();
+  outputs.p = int(model.inputs().size());
+  outputs.dropped_rows = start.dropped_rows;
+  outputs.stats.formulation = name_of(method.formulation);
+  outputs.stats.integrator = name_of(method.integrator);
+  outputs.stats.analysis = name_of(Analysis::kDynamic);
+}
+
+void Run::record(double t, const double* q, const double* v, bool solve) {
+  record_output(model, data, kkt, *watch, outputs, t, q, v, data.run->inputs, solve);
+}
+
+void Run::report_events(Trajectory& tr) const {
+  if (!events) return;
+  tr.events = events->records;
+  tr.stats.events = events->events;
+  tr.stats.impacts = events->impacts;
+  tr.stats.root_evals = events->root_evals;
+}
+
 
 ConsistentState dynamic_start(const Model& model, const SimulationOptions& o, Data& d, AugmentedSystem& kkt,
                               Redundancy& redundancy) {
   VecX q_start = model.initial_q(), v_start = model.initial_v();
   try {
-    if (o.start == "equilibrium") {  // at rest in the static equilibrium at t0
+    if (o.start == Start::kEquilibrium) {  // at rest in the static equilibrium at t0
       EquilibriumOptions eo;
       eo.t = o.t0;
       q_start = find_equilibrium(model, eo).q;
@@ -219,10 +253,13 @@ ConsistentState dynamic_start(const Model& model, const SimulationOptions& o, Da
 
 IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const Method& method, const Data& run) {
   const int n = model.n_coordinates();
-  VecX atol = VecX::Constant(n, o.atol);
-  if (!o.atol_coordinates.empty()) atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
-  IntegrationPlan plan{o.t0,       o.t_end,    o.rtol, atol, o.max_step, o.max_order ? o.max_order : method.max_order,
-                       o.max_steps, {},        {},     o.progress, o.progress_interval};
+  IntegrationPlan plan;
+  plan.options = &o;
+  plan.t0 = o.t0;
+  plan.t_end = o.t_end;
+  plan.atol = VecX::Constant(n, o.atol);
+  if (!o.atol_coordinates.empty()) plan.atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
+  plan.max_order = o.max_order ? o.max_order : method.max_order;
   plan.run = &run;
   return plan;
 }
@@ -268,22 +305,36 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
   lam.resize(model.n_constraints());
   solve_accelerations(model, d, kkt, q.data(), v.data(), t, qdd.data(), lam.data());
   if (!qdd.allFinite() || !lam.allFinite())
-    throw SimulationError("solve_accelerations: " + non_finite_source(model, q.data(), v.data(), t), t);
+    throw SimulationError("solve_accelerations: " + non_finite_source(model, d, q.data(), v.data(), t), t);
+}
+
+Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters) {
+  const std::shared_ptr<const Model> run_model = with_parameters(model, parameters);
+  if (!run_model) return simulate(model, options);
+  try {
+    Trajectory tr = simulate(*run_model, options);
+    tr.run_model = run_model;
+    return tr;
+  } catch (SimulationError& e) {
+    e.partial.run_model = run_model;
+    throw;
+  }
 }
 
 Trajectory simulate(const Model& model, const SimulationOptions& o) {
-  validate(model, o);
+  const Method& method = validate(model, o);
   const auto wall0 = std::chrono::steady_clock::now();
   // what the scene needs: a fully driven model is solved from its constraints alone
-  const std::string analysis = resolve_analysis(model, o);
-  if (analysis != "dynamic") {
-    if (o.start != "given")
-      throw ModelError("simulate: start '" + o.start + "' applies to a dynamic analysis; the positions of this " +
-                       "fully driven model (0 degrees of freedom) follow from its drivers (" + analysis + ")");
-    Trajectory tr = kinematic_analysis(model, o.t0, output_times(o), analysis == "inverse_dynamics", o.progress,
-                                       o.progress_interval, o.max_steps);
+  const Analysis analysis = resolve_analysis(model, o);
+  if (analysis != Analysis::kDynamic) {
+    if (o.start != Start::kGiven)
+      throw ModelError(std::string("simulate: start '") + name_of(o.start) + "' applies to a dynamic analysis; the " +
+                       "positions of this fully driven model (0 degrees of freedom) follow from its drivers (" +
+                       name_of(analysis) + ")");
+    const bool with_lam = analysis == Analysis::kInverseDynamics;
+    Trajectory tr = kinematic_analysis(model, o.t0, output_times(o), with_lam, o.progress, o.progress_interval,
+                                       o.max_steps);
     // a result holds finite numbers (a kinematic-only run has no multipliers: NaN, never read)
-    const bool with_lam = analysis == "inverse_dynamics";
     for (int i = 0; i < tr.size(); ++i) {
       const size_t n = size_t(tr.n), m = size_t(tr.m);
       const bool finite = Eigen::Map<const VecX>(&tr.q[i * n], tr.n).allFinite() &&
@@ -291,7 +342,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
                           Eigen::Map<const VecX>(&tr.a[i * n], tr.n).allFinite() &&
                           (!with_lam || Eigen::Map<const VecX>(tr.lam.data() + i * m, tr.m).allFinite());
       if (finite) continue;
-      const std::string why = non_finite_source(model, &tr.q[i * n], &tr.v[i * n], tr.t[i]);
+      const std::string why = non_finite_source(model, Data(model), &tr.q[i * n], &tr.v[i * n], tr.t[i]);
       const double t = tr.t[i];
       tr.truncate(i);
       std::ostringstream s;
@@ -301,60 +352,39 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     }
     return tr;
   }
-  const int n = model.n_coordinates(), m = model.n_constraints();
-  Data d(model);
-  AugmentedSystem kkt(model);
-  Redundancy redundancy;
-  ConsistentState start = dynamic_start(model, o, d, kkt, redundancy);
-  const Method& method = find_method(o.formulation, o.integrator);
-  IntegrationPlan plan = run_plan(model, o, method, d);
+  const int n = model.n_coordinates();
+  // the run (its Data with the inputs at their initial values, start,
+  // events, redundancy watch), stepped to t_end
+  Run run(model, o, method);
+  IntegrationPlan& plan = run.plan;
   plan.t_out = output_times(o);
   for (double b : model.breakpoints())
     if (b > o.t0 && b < o.t_end) plan.breakpoints.push_back(b);
-  // event elements (stops, contacts): root functions for the integrators
-  std::unique_ptr<EventRunner> events = start_events(model, d, o.t0, start);
-  plan.events = events.get();
-  Trajectory tr;
-  tr.n = n;
-  tr.m = m;
-  tr.dropped_rows = start.dropped_rows;
+  Trajectory& tr = run.outputs;
   tr.t.reserve(plan.t_out.size());
   tr.q.reserve(plan.t_out.size() * n);
   tr.v.reserve(plan.t_out.size() * n);
-  // the rows left out as redundant are checked at every output
-  RedundancyWatch watch(model, redundancy);
   // a contact's damping depends on the impact speed of the contact in
   // progress (event state): with event elements, a and lam are solved when
   // an output is recorded, not from the final state after the run
   const bool solve_when_recorded = !model.event_groups().empty();
-  // outside a Simulator the inputs hold their initial values
-  VecX initial_inputs(int(model.inputs().size()));
-  for (int k = 0; k < initial_inputs.size(); ++k) initial_inputs[k] = model.inputs()[k].initial;
-  tr.p = int(initial_inputs.size());
   auto record = [&](const double* q, const double* v) {
-    record_output(model, d, kkt, watch, tr, plan.t_out[tr.t.size()], q, v, initial_inputs, solve_when_recorded);
+    run.record(plan.t_out[tr.t.size()], q, v, solve_when_recorded);
   };
-  tr.stats.formulation = method.formulation;
-  tr.stats.integrator = method.integrator;
-  tr.stats.analysis = "dynamic";
   // solves the outputs not yet solved; returns why one failed ("" if none)
   // and keeps only the solved ones
   auto finish = [&]() -> std::string {
     std::string why;
     if (!solve_when_recorded) {
       try {
-        why = solve_outputs(model, d, kkt, tr);
+        why = solve_outputs(model, run.data, run.kkt, tr);
       } catch (Interrupted&) {  // interrupted again: keep what was solved
       }
     }
     tr.truncate(solved_outputs(tr));
-    tr.stats.element_evaluations += d.element_evaluations + watch.element_evaluations();  // start, outputs, checks
-    if (events) {
-      tr.events = events->records;
-      tr.stats.events = events->events;
-      tr.stats.impacts = events->impacts;
-      tr.stats.root_evals = events->root_evals;
-    }
+    // start, outputs, checks
+    tr.stats.element_evaluations += run.data.element_evaluations + run.watch->element_evaluations();
+    run.report_events(tr);
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     return why;
   };
@@ -365,12 +395,12 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   };
 
   try {
-    integrate(method, model, o, start, plan, record, tr.stats);
+    integrate(method, model, run.start, plan, record, tr.stats);
   } catch (const IntegratorFailure& e) {
     const std::string output_failure = finish();
     std::ostringstream msg;
     msg << e.what();
-    if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t, start.dropped_rows);
+    if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t, run.start.dropped_rows);
     if (!output_failure.empty()) msg << " Also, " << output_failure << ".";
     msg << kept();
     throw SimulationError(msg.str(), e.t, std::move(tr));
@@ -394,7 +424,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     const double t = tr.size() < int(plan.t_out.size()) ? plan.t_out[tr.size()] : o.t_end;
     throw SimulationError(output_failure + "." + kept(), t, std::move(tr));
   }
-  return tr;
+  return std::move(tr);  // (tr is the run's: moved out, not copied)
 }
 
 }  // namespace lagmb

@@ -30,55 +30,41 @@ void add_counts(Stats& total, const Stats& part) {
 
 }  // namespace
 
-Simulator::Simulator(const Model& model, const SimulationOptions& options, double output_interval)
-    : model_(model), options_(options), output_interval_(output_interval) {
-  validate_run_options(model, options_, "Simulator");
+Simulator::Simulator(const Model& given, const SimulationOptions& options, double output_interval,
+                     const ParameterValues& parameters)
+    : with_parameters_(lagmb::with_parameters(given, parameters)),
+      model_(with_parameters_ ? *with_parameters_ : given),
+      options_(options),
+      output_interval_(output_interval) {
+  const Model& model = model_;
+  method_ = &validate_run_options(model, options_, "Simulator");
   if (!(std::isfinite(output_interval) && output_interval >= 0.0))
     throw ModelError("Simulator: output_interval must be finite and >= 0 (0: outputs at the ends of advances), got " +
                      to_text(output_interval));
-  if (options_.analysis != "auto" && options_.analysis != "dynamic")
-    throw ModelError("Simulator: a simulator integrates the equations of motion (analysis 'dynamic'); for a '" +
-                     options_.analysis + "' analysis call simulate");
+  if (options_.analysis != Analysis::kAuto && options_.analysis != Analysis::kDynamic)
+    throw ModelError(std::string("Simulator: a simulator integrates the equations of motion (analysis 'dynamic'); ") +
+                     "for a '" + name_of(options_.analysis) + "' analysis call simulate");
   if (const auto massless = massless_bodies(model); !massless.empty())
     throw ModelError("Simulator: body '" + model.body(massless.front()).name +
                      "' is massless, so its motion does not follow from forces (a fully driven model with "
                      "massless bodies is solved by simulate's kinematic analysis)");
-  method_ = &find_method(options_.formulation, options_.integrator);
   const int n = model.n_coordinates(), m = model.n_constraints();
-  inputs_.resize(int(model.inputs().size()));
-  for (size_t k = 0; k < model.inputs().size(); ++k) inputs_[int(k)] = model.inputs()[k].initial;
+  run_ = std::make_unique<Run>(model, options_, *method_);
+  run_->plan.breakpoints = model.breakpoints();  // the loop takes those after its start
+  inputs_ = run_->data.run->inputs;  // the initial values
   inputs_integrated_ = inputs_;
 
-  d_ = std::make_unique<Data>(model);
-  kkt_ = std::make_unique<AugmentedSystem>(model);
-  Redundancy redundancy;
-  ConsistentState start;
-  {
-    InputScope scope(model.input_functions(), inputs_.data());
-    start = dynamic_start(model, options_, *d_, *kkt_, redundancy);
-    events_ = start_events(model, *d_, options_.t0, start);
-  }
-  plan_ = std::make_unique<IntegrationPlan>(run_plan(model, options_, *method_, *d_));
-  plan_->breakpoints = model.breakpoints();  // the loop takes those after its start
-  plan_->events = events_.get();
-  watch_ = std::make_unique<RedundancyWatch>(model, std::move(redundancy));
-
+  const ConsistentState& start = run_->start;
   t_ = options_.t0;
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
   solved_ = true;
-  record_.n = n;
-  record_.m = m;
-  record_.dropped_rows = start.dropped_rows;
-  record_.stats.formulation = method_->formulation;
-  record_.stats.integrator = method_->integrator;
-  record_.stats.analysis = "dynamic";
-  record_.p = int(inputs_.size());
-  record_.inputs.assign(inputs_.data(), inputs_.data() + inputs_.size());
-  record_.t.push_back(t_);
-  record_.q.insert(record_.q.end(), q_.data(), q_.data() + n);
-  record_.v.insert(record_.v.end(), v_.data(), v_.data() + n);
-  record_.a.insert(record_.a.end(), a_.data(), a_.data() + n);
-  record_.lam.insert(record_.lam.end(), lam_.data(), lam_.data() + m);
+  Trajectory& record = run_->outputs;
+  record.inputs.assign(inputs_.data(), inputs_.data() + inputs_.size());
+  record.t.push_back(t_);
+  record.q.insert(record.q.end(), q_.data(), q_.data() + n);
+  record.v.insert(record.v.end(), v_.data(), v_.data() + n);
+  record.a.insert(record.a.end(), a_.data(), a_.data() + n);
+  record.lam.insert(record.lam.end(), lam_.data(), lam_.data() + m);
 }
 
 Simulator::~Simulator() = default;
@@ -132,10 +118,10 @@ VecX Simulator::a() {
 
 const VecX& Simulator::solved_a() {
   if (!solved_) {
-    InputScope scope(model_.input_functions(), inputs_.data());
+    run_->data.run->inputs = inputs_;
     a_.resize(q_.size());
     lam_.resize(model_.n_constraints());
-    solve_accelerations(model_, *d_, *kkt_, q_.data(), v_.data(), t_, a_.data(), lam_.data());
+    solve_accelerations(model_, run_->data, run_->kkt, q_.data(), v_.data(), t_, a_.data(), lam_.data());
     solved_ = true;
   }
   return a_;
@@ -186,10 +172,10 @@ void Simulator::new_stepper() {
   }
   loop_.reset();
   stepper_.reset();
-  const ConsistentState start = make_consistent(model_, *d_, *kkt_, q_, v_, t_);
-  plan_->t0 = t_;
-  stepper_ = make_stepper(*method_, model_, options_, start, *plan_);
-  loop_ = std::make_unique<StepLoop>(*stepper_, *plan_, t_, false);
+  const ConsistentState start = make_consistent(model_, run_->data, run_->kkt, q_, v_, t_);
+  run_->plan.t0 = t_;
+  stepper_ = make_stepper(*method_, model_, start, run_->plan);
+  loop_ = std::make_unique<StepLoop>(*stepper_, run_->plan, t_, false);
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
   solved_ = true;
   inputs_integrated_ = inputs_;
@@ -198,8 +184,8 @@ void Simulator::new_stepper() {
 
 void Simulator::restart_for_inputs() {
   // a jump in a force, or in a driver's value (positions assembled anew)
-  const ConsistentState start = make_consistent(model_, *d_, *kkt_, q_, v_, t_);
-  plan_->t0 = t_;  // the first step's scale: the advance in progress
+  const ConsistentState start = make_consistent(model_, run_->data, run_->kkt, q_, v_, t_);
+  run_->plan.t0 = t_;  // the first step's scale: the advance in progress
   stepper_->reset(t_, start);
   loop_->restarted(t_);
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
@@ -245,14 +231,14 @@ void Simulator::advance(double target) {
   }
   if (t_out.empty() || target > t_out.back()) t_out.push_back(target);
 
-  InputScope scope(model_.input_functions(), inputs_.data());
-  const int first_new = record_.size();
+  run_->data.run->inputs = inputs_;  // what the run's kernels read from here on
+  const int first_new = run_->outputs.size();
   size_t k = 0;
   auto record = [&](const double* q, const double* v) {
-    record_output(model_, *d_, *kkt_, *watch_, record_, t_out[k], q, v, inputs_, true);
+    run_->record(t_out[k], q, v, true);
   };
   try {
-    plan_->t_end = target;  // the steppers' tout, and the scale of a first step
+    run_->plan.t_end = target;  // the steppers' tout, and the scale of a first step
     if (fresh_ || !stepper_)
       new_stepper();
     else if (inputs_ != inputs_integrated_)
@@ -270,26 +256,26 @@ void Simulator::advance(double target) {
     msg << e.what();
     if (e.diagnose && stepper_)
       msg << diagnose_failure(model_, Eigen::Map<const VecX>(stepper_->positions(), q_.size()), e.t,
-                              record_.dropped_rows);
+                              run_->outputs.dropped_rows);
     failure_ = msg.str();
   } catch (const UserFunctionError& e) {
     failure_ = e.what();
   } catch (const SimulationError& e) {  // a solve inside a step or restart
     failure_ = e.what();
   } catch (Interrupted&) {  // Ctrl-C: the outputs of this advance are dropped, the run can go on
-    record_.truncate(first_new);
+    run_->outputs.truncate(first_new);
     fresh_ = true;
     throw;
   }
   // the state: the last output (at target; after a failure, the last one reached)
-  const int last = record_.size() - 1, n = record_.n, m = record_.m;
-  t_ = record_.t[last];
+  const int last = run_->outputs.size() - 1, n = run_->outputs.n, m = run_->outputs.m;
+  t_ = run_->outputs.t[last];
   // (data() + offset: a model without constraints has no multipliers, and
   // &lam[0] of an empty vector is out of range)
-  q_ = Eigen::Map<const VecX>(record_.q.data() + size_t(last) * n, n);
-  v_ = Eigen::Map<const VecX>(record_.v.data() + size_t(last) * n, n);
-  a_ = Eigen::Map<const VecX>(record_.a.data() + size_t(last) * n, n);
-  lam_ = Eigen::Map<const VecX>(record_.lam.data() + size_t(last) * m, m);
+  q_ = Eigen::Map<const VecX>(run_->outputs.q.data() + size_t(last) * n, n);
+  v_ = Eigen::Map<const VecX>(run_->outputs.v.data() + size_t(last) * n, n);
+  a_ = Eigen::Map<const VecX>(run_->outputs.a.data() + size_t(last) * n, n);
+  lam_ = Eigen::Map<const VecX>(run_->outputs.lam.data() + size_t(last) * m, m);
   solved_ = true;
   if (!failure_.empty()) {
     fresh_ = true;
@@ -306,8 +292,8 @@ SimulatorState Simulator::state() {
   s.q = q_;
   s.v = v_;
   s.inputs = inputs_;
-  s.run_state = *d_->run_state;
-  s.events = events_ ? long(events_->records.size()) : 0;
+  s.run_state = run_->data.run->state;
+  s.events = run_->events ? long(run_->events->records.size()) : 0;
   s.model_id = model_.id();
   fresh_ = true;  // the run goes on from here as a restored copy would
   return s;
@@ -317,7 +303,7 @@ void Simulator::set_state(const SimulatorState& s) {
   Call call(*this, "set_state");
   const int n = model_.n_coordinates();
   if (s.model_id != model_.id() || s.q.size() != n || s.v.size() != n || s.inputs.size() != inputs_.size() ||
-      s.run_state.size() != d_->run_state->size())
+      s.run_state.size() != run_->data.run->state.size())
     throw ModelError("Simulator.set_state: the state was saved from a simulator of another model");
   if (!std::isfinite(s.t) || !s.q.allFinite() || !s.v.allFinite() || !s.inputs.allFinite())
     throw ModelError("Simulator.set_state: the state is not finite");
@@ -325,19 +311,19 @@ void Simulator::set_state(const SimulatorState& s) {
   q_ = s.q;
   v_ = s.v;
   inputs_ = s.inputs;
-  *d_->run_state = s.run_state;
-  if (events_ && long(events_->records.size()) > s.events) events_->records.resize(size_t(s.events));
+  run_->data.run->state = s.run_state;
+  if (run_->events && long(run_->events->records.size()) > s.events) run_->events->records.resize(size_t(s.events));
   // the outputs of this branch: those up to t, then t itself
   int keep = 0;
-  while (keep < record_.size() && record_.t[keep] <= t_) ++keep;
-  record_.truncate(keep);
+  while (keep < run_->outputs.size() && run_->outputs.t[keep] <= t_) ++keep;
+  run_->outputs.truncate(keep);
   solved_ = false;
   failure_.clear();
   fresh_ = true;
-  if (record_.t.empty() || record_.t.back() != t_) {
-    InputScope scope(model_.input_functions(), inputs_.data());
+  if (run_->outputs.t.empty() || run_->outputs.t.back() != t_) {
+    run_->data.run->inputs = inputs_;
     try {
-      record_output(model_, *d_, *kkt_, *watch_, record_, t_, q_.data(), v_.data(), inputs_, true);
+      run_->record(t_, q_.data(), v_.data(), true);
     } catch (const IntegratorFailure& e) {
       failure_ = e.what();
       throw SimulationError("Simulator.set_state: " + failure_, t_, result_now());
@@ -351,9 +337,9 @@ Trajectory Simulator::result() const {
 }
 
 Trajectory Simulator::result_now() const {
-  Trajectory tr = record_;
+  Trajectory tr = run_->outputs;
   tr.stats = stats_now();
-  if (events_) tr.events = events_->records;
+  if (run_->events) tr.events = run_->events->records;
   return tr;
 }
 
@@ -374,13 +360,13 @@ Stats Simulator::stats_now() const {
   }
   s.restarts += restarts_;
   s.input_changes = input_changes_;
-  s.formulation = method_->formulation;
-  s.integrator = method_->integrator;
-  s.analysis = "dynamic";
-  if (events_) {
-    s.events = events_->events;
-    s.impacts = events_->impacts;
-    s.root_evals = events_->root_evals;
+  s.formulation = name_of(method_->formulation);
+  s.integrator = name_of(method_->integrator);
+  s.analysis = name_of(Analysis::kDynamic);
+  if (run_->events) {
+    s.events = run_->events->events;
+    s.impacts = run_->events->impacts;
+    s.root_evals = run_->events->root_evals;
   }
   return s;
 }

@@ -24,9 +24,6 @@ void ModelSpec::set_gravity(Vec3 g) {
   compiled_.reset();
 }
 
-namespace {
-
-/// The values of `args` with `copy` applied to each time function.
 Args with_copies(const Args& args, const ModelSpec::FunctionCopy& copy) {
   if (!copy) return args;
   Args out(args.kind());
@@ -42,8 +39,6 @@ Args with_copies(const Args& args, const ModelSpec::FunctionCopy& copy) {
   }
   return out;
 }
-
-}  // namespace
 
 std::shared_ptr<Model> ModelSpec::rebuild(const FunctionCopy& copy) const {
   auto model = std::make_shared<Model>();

@@ -88,9 +88,9 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
     }
     // max_steps bounds the steps between outputs (as SUNDIALS' mxstep):
     // a run that cannot end stops, an accurate long one does not
-    if (plan_.max_steps > 0 && ++steps >= plan_.max_steps && t < target) {
+    if (plan_.options->max_steps > 0 && ++steps >= plan_.options->max_steps && t < target) {
       std::ostringstream msg;
-      msg << stepper_.name() << " took max_steps = " << plan_.max_steps << " steps without reaching the next output "
+      msg << stepper_.name() << " took max_steps = " << plan_.options->max_steps << " steps without reaching the next output "
           << "(at t = " << (k < t_out.size() ? t_out[k] : target) << "; now at t = " << t
           << "): max_steps bounds the steps between outputs; raise it, or ask for outputs more often.";
       throw IntegratorFailure(msg.str(), t);
@@ -101,11 +101,11 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
       break;
     }
     if (act(t, at_stop)) continue;
-    if (plan_.progress) {
+    if (plan_.options->progress) {
       auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - clock).count() >= plan_.progress_interval) {
+      if (std::chrono::duration<double>(now - clock).count() >= plan_.options->progress_interval) {
         clock = now;
-        plan_.progress(t);
+        plan_.options->progress(t);
       }
     }
   }

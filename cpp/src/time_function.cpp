@@ -161,25 +161,6 @@ TimeFunctionPtr spline(std::vector<double> times, std::vector<double> values) {
   return std::make_shared<Spline>(std::move(times), std::move(values));
 }
 
-namespace {
-thread_local const InputScope* bound_inputs = nullptr;  // the innermost InputScope of this thread
-}  // namespace
-
-InputScope::InputScope(const std::vector<const Input*>& inputs, const double* values)
-    : inputs_(&inputs), values_(values), outer_(bound_inputs) {
-  bound_inputs = this;
-}
-
-InputScope::~InputScope() { bound_inputs = outer_; }
-
-TimeValue Input::eval(double) const {
-  // a model has a few inputs: a linear search costs less than a map
-  if (const InputScope* scope = bound_inputs)
-    for (size_t k = 0; k < scope->inputs_->size(); ++k)
-      if ((*scope->inputs_)[k] == this) return {scope->values_[k], 0.0, 0.0};
-  return {initial_, 0.0, 0.0};
-}
-
 std::string Input::text() const {
   std::ostringstream s;
   s << "input" << numbers({initial_}) << ' ' << std::quoted(name_);

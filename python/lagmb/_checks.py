@@ -38,6 +38,25 @@ def real(value, name):
     return value
 
 
+def parameters(model, values, who):
+    """The compiled model `model` runs with the parameter values `values`
+    ({name: number}, model.parameters() names them): model.compiled() for
+    None or {}, else the compiled model built with those values (the core
+    checks each as add_* does; an unknown name is a ModelError listing the
+    parameters)."""
+    core = model.compiled()
+    if values is None:
+        return core
+    if not isinstance(values, dict):
+        raise ModelError(f"{who}: parameters must be a dict {{name: value}}, got {show(values)}")
+    checked = {}
+    for name, value in values.items():
+        if not isinstance(name, str):
+            raise ModelError(f"{who}: a parameter's name must be a string, got {show(name)}")
+        checked[name] = real(value, f"{who}: parameter {name!r}")
+    return core.with_parameters(checked) if checked else core
+
+
 def positive(value, name):
     value = real(value, name)
     if not value > 0:

@@ -57,7 +57,7 @@ def _identifier(name):
 def setup_text(scene):
     """The text the FMU carries: the scene's model, its run options and
     outputs (CoSimulationSetup). ModelError for what an FMU cannot hold."""
-    from .simulation import _run_options
+    from .simulation import DEFAULTS, _run_options
 
     settings = dict(scene.settings)
     analysis = settings.pop("analysis", "auto")
@@ -66,9 +66,11 @@ def setup_text(scene):
     for key in ("t_end", "t_out", "n_out"):  # the importer sets the time span and the steps
         settings.pop(key, None)
     options = _run_options(**{key: settings.get(key, default) for key, default in (
-        ("t0", 0.0), ("rtol", 1e-6), ("atol", 1e-8), ("formulation", "ggl"), ("integrator", None),
-        ("max_step", None), ("step", None), ("max_order", None), ("baumgarte", None),
-        ("max_steps", 500_000), ("start", "given"))})
+        ("t0", DEFAULTS["t0"]), ("rtol", DEFAULTS["rtol"]), ("atol", DEFAULTS["atol"]),
+        ("formulation", DEFAULTS["formulation"]), ("integrator", None), ("max_step", None), ("step", None),
+        ("max_order", None), ("baumgarte", None), ("max_steps", DEFAULTS["max_steps"]),
+        ("start", DEFAULTS["start"]), ("newton_rtol", DEFAULTS["newton_rtol"]),
+        ("newton_atol", DEFAULTS["newton_atol"]))})
     output = getattr(scene, "output", None) or {}
     reactions = [str(r) for r in output.get("reactions", [])]
     efforts = [str(e) for e in output.get("efforts", [])]

@@ -191,6 +191,23 @@ class Model:
             self._compiled = self._spec.compile()
         return self._compiled
 
+    def parameters(self):
+        """{name: value} of every number given to an element that a run may
+        change (``simulate(..., parameters={...})``, ``Simulator``, the FMU's
+        parameters): real parameters ("rod.mass", "spring.stiffness") and the
+        components of points and vectors ("pin.at.x", "rod.velocity.y"),
+        given or the kind's default, element by element in the order added.
+        A body's initial coordinate that shares its name with the coordinate
+        ends in ".start" ("rod.angle.start"). Inertia tensors, orientations,
+        flags and time functions are not parameters."""
+        return {p["name"]: p["value"] for p in self.compiled().parameters}
+
+    def parameter_info(self):
+        """The parameters with what they are: a list of dicts with name,
+        element, key (the add_* argument), component (-1, or 0/1/2 for
+        x/y/z), unit, doc and value."""
+        return [dict(p) for p in self.compiled().parameters]
+
     def _warn_redundant(self, rows, stacklevel=3):
         """RedundantConstraintWarning for the rows a run left out."""
         if not rows:
@@ -227,10 +244,11 @@ class Model:
 
     def attachments(self, element):
         """[(body name, local point)] where an element attaches, in the
-        order of its parameters (a point on the ground is global)."""
+        order of its parameters (a point on the ground is global): (x, y)
+        in a planar model, (x, y, z) in a spatial one."""
         name = name_of(self, element, registry.ROLES, "element", "Model.attachments")
         names = ["ground"] + list(self._bodies)  # by index + 1
-        return [(names[b + 1], (x, y)) for b, x, y in self._spec.attachments(name)]
+        return [(names[b + 1], tuple(point)) for b, *point in self._spec.attachments(name)]
 
     def to_scene(self, path, settings=None, output=None):
         """Write the model (and optional simulation settings) as a TOML scene."""

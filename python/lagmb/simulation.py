@@ -6,9 +6,15 @@ import numpy as np
 
 from . import _core
 from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
-from ._checks import model as _model, positive as _positive, real as _real, text as _text
+from ._checks import model as _model, parameters as _parameters, positive as _positive, real as _real
+from ._checks import text as _text
 from .errors import AssemblyError, ModelError, SimulationError
 from .result import Result
+
+#: What every run takes by default: the core's SimulationOptions, by field
+#: name (the one place the defaults live; the signatures below read it).
+DEFAULTS = _core.default_options()
+_D = DEFAULTS
 
 
 @contextlib.contextmanager
@@ -35,9 +41,10 @@ def _translate(model=None, core=None):
 
 
 
-def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, t0=0.0,
-             max_step=None, max_steps=500_000, formulation="ggl", integrator=None, max_order=None,
-             baumgarte=None, progress=None, analysis="auto", start="given", step=None):
+def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n_out"], t_out=None, t0=_D["t0"],
+             max_step=None, max_steps=_D["max_steps"], formulation=_D["formulation"], integrator=None,
+             max_order=None, baumgarte=None, progress=None, analysis=_D["analysis"], start=_D["start"], step=None,
+             parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"]):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
@@ -69,10 +76,12 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
       constraint Jacobian loses rank, so it runs through singular positions
       (a parallelogram passing its horizontal); a step that lands within
       roundoff of one is retried with another length
-      (``stats["convergence_failures"]``). rtol/atol bound the Newton
-      corrections of q (1e-10 / 1e-12 recommended there); the step alone
-      sets the truncation error (second order; energy error
-      O((omega step)^2), no drift).
+      (``stats["convergence_failures"]``). It has no error control, so
+      rtol/atol do not apply (ModelError if given other than the
+      defaults): ``newton_rtol``/``newton_atol`` (default 1e-10 / 1e-12)
+      bound the Newton corrections of q; the step alone sets the
+      truncation error (second order; energy error O((omega step)^2), no
+      drift).
 
     ``max_order`` defaults to the method's highest (5 for BDF, 12 for Adams,
     8 for ERK). ``atol`` is one number
@@ -114,6 +123,12 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     equilibrium at t0 (``mb.equilibrium``) instead of the given initial
     state (``"given"``).
 
+    ``parameters={"rod.mass": 2.0, ...}`` runs the model with other values
+    of the numbers its elements were given (``model.parameters()`` lists
+    them with their values): the same as a model built with those values,
+    without changing ``model``; the Result's reactions and energy are of
+    that run. Each value is checked as ``add_*`` checks it.
+
     Raises ModelError for bad arguments, AssemblyError if the joints cannot
     be assembled, SimulationError (with ``.t`` and the partial ``.result``)
     if the integrator (or the kinematic Newton solve) fails, or a user
@@ -138,7 +153,7 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
     options = _run_options(t0=t0, rtol=rtol, atol=atol, formulation=formulation, integrator=integrator,
                            max_step=max_step, step=step, max_order=max_order, baumgarte=baumgarte,
-                           max_steps=max_steps, start=start)
+                           max_steps=max_steps, start=start, newton_rtol=newton_rtol, newton_atol=newton_atol)
     if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
         raise ModelError("t_out must be strictly increasing")
     if t_out is not None and t_out.size > _INT_MAX:
@@ -149,8 +164,8 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
         n_out = 2  # unused
     if progress is not None and not callable(progress):
         raise ModelError(f"progress must be a callable t -> None, got {progress!r}")
-    analysis = _choice(analysis, "analysis", _ANALYSES)
-    core = model.compiled()
+    analysis = _text(analysis, "analysis")  # the core parses the choice
+    core = _parameters(model, parameters, "simulate")
     with _translate(model, core):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
         raw = _core.simulate(core, options, progress)
@@ -158,15 +173,20 @@ def simulate(model, t_end=None, *, rtol=1e-6, atol=1e-8, n_out=101, t_out=None, 
     return Result(model, core, raw)
 
 
-_ANALYSES = ("auto", "dynamic", "kinematic", "inverse_dynamics")
-
-
 def _run_options(*, t0, rtol, atol, formulation, integrator, max_step, step, max_order, baumgarte, max_steps,
-                 start):
+                 start, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"]):
     """The options every dynamic run takes, checked, by the names of the
-    core's SimulationOptions (simulate and Simulator)."""
+    core's SimulationOptions (simulate and Simulator). The choices
+    (formulation, integrator, start, analysis) are checked to be strings
+    here and parsed by the core, which lists the valid ones."""
     rtol = _positive(rtol, "rtol")
     formulation = _text(formulation, "formulation")
+    if formulation == "ali3p" and not (np.ndim(atol) == 0 and rtol == _D["rtol"] and atol == _D["atol"]):
+        raise ModelError("formulation 'ali3p' takes fixed steps without error control: rtol and atol do not "
+                         f"apply; its Newton corrections are bounded by newton_rtol (default {_D['newton_rtol']}) "
+                         f"and newton_atol (default {_D['newton_atol']})")
+    newton_rtol = _positive(newton_rtol, "newton_rtol")
+    newton_atol = _positive(newton_atol, "newton_atol")
     integrator = "" if integrator is None else _text(integrator, "integrator")  # "": the formulation's first
     atol_coordinates = []
     if np.ndim(atol) > 0:  # one per coordinate (for q_i and v_i)
@@ -191,16 +211,11 @@ def _run_options(*, t0, rtol, atol, formulation, integrator, max_step, step, max
         alpha, beta = _real(alpha, "baumgarte alpha"), _real(beta, "baumgarte beta")
     # None: no bound (Ctrl-C still stops the run)
     max_steps = 0 if max_steps is None else _integer(max_steps, "max_steps", 1, 2**62)
-    start = _choice(start, "start", ("given", "equilibrium"))
+    start = _text(start, "start")
     return dict(t0=t0, rtol=rtol, atol=atol, atol_coordinates=atol_coordinates, max_step=max_step,
                 max_steps=max_steps, max_order=max_order, formulation=formulation, integrator=integrator,
-                baumgarte_alpha=alpha, baumgarte_beta=beta, start=start)
-
-
-def _choice(value, name, allowed):
-    if not isinstance(value, str) or value not in allowed:
-        raise ModelError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
-    return value
+                baumgarte_alpha=alpha, baumgarte_beta=beta, start=start, newton_rtol=newton_rtol,
+                newton_atol=newton_atol)
 
 
 def solve_accelerations(model, q, v, t=0.0):

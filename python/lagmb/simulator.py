@@ -4,11 +4,11 @@ saved and restored (docs/modelling.md, "Driving a run from outside")."""
 from types import SimpleNamespace
 
 from . import _core, registry
-from ._checks import model as _model, real as _real, show as _show
+from ._checks import model as _model, parameters as _parameters, real as _real, show as _show
 from .errors import ModelError
 from .handles import name_of
 from .result import BodyPath, Result, element_name
-from .simulation import _run_options, _translate
+from .simulation import DEFAULTS as _D, _run_options, _translate
 
 
 class Simulator:
@@ -33,20 +33,24 @@ class Simulator:
 
     ``result()`` holds the state at ``t0``, at the end of every advance and,
     with ``output_interval`` (s), at each of its multiples after ``t0``.
+    ``parameters={name: value}``: as in :func:`lagmb.simulate`, the model
+    runs with those values of its parameters (``model.parameters()``).
     """
 
-    def __init__(self, model, *, t0=0.0, rtol=1e-6, atol=1e-8, formulation="ggl", integrator=None,
-                 max_step=None, step=None, max_steps=500_000, max_order=None, baumgarte=None, start="given",
-                 output_interval=None):
+    def __init__(self, model, *, t0=_D["t0"], rtol=_D["rtol"], atol=_D["atol"], formulation=_D["formulation"],
+                 integrator=None, max_step=None, step=None, max_steps=_D["max_steps"], max_order=None,
+                 baumgarte=None, start=_D["start"], output_interval=None, parameters=None,
+                 newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"]):
         options = _run_options(t0=_real(t0, "t0"), rtol=rtol, atol=atol, formulation=formulation,
                                integrator=integrator, max_step=max_step, step=step, max_order=max_order,
-                               baumgarte=baumgarte, max_steps=max_steps, start=start)
+                               baumgarte=baumgarte, max_steps=max_steps, start=start, newton_rtol=newton_rtol,
+                               newton_atol=newton_atol)
         _model(model, "Simulator")
         interval = 0.0 if output_interval is None else _real(output_interval, "output_interval")
         if interval < 0:
             raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
         self.model = model
-        self._core_model = model.compiled()
+        self._core_model = _parameters(model, parameters, "Simulator")
         with _translate(model, self._core_model):
             self._sim = _core.Simulator(self._core_model, options, interval)
         model._warn_redundant(self._sim.result().get("dropped_rows", []), stacklevel=2)

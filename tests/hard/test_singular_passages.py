@@ -31,9 +31,9 @@ sys.path.insert(0, EXAMPLES)
 from n_four_bar import build, reference_b0  # noqa: E402
 
 
-def run(n_windows, t_end, step, rtol=1e-10):
+def run(n_windows, t_end, step, newton_rtol=1e-10):
     r = mb.simulate(build(n_windows), t_end=t_end, n_out=int(100 * t_end) + 1, formulation="ali3p",
-                    step=step, rtol=rtol, atol=1e-2 * rtol)
+                    step=step, newton_rtol=newton_rtol, newton_atol=1e-2 * newton_rtol)
     b0 = r.point("crank0", (0.5, 0.0))
     theta = np.unwrap(np.arctan2(b0[:, 1], b0[:, 0]))
     passages = int(np.sum(np.diff(np.floor((theta - math.pi / 2) / math.pi)) != 0))
@@ -148,7 +148,7 @@ def test_ali3p_driven_slider_crank_with_a_breakpoint():
     whose crank angle is driven as 90 deg + SmoothStep(0.2, 0.7, 0, 3 rad)
     (breakpoints at 0.2 and 0.7 s). Closed form: slider x = r cos th +
     sqrt(l^2 - r^2 sin^2 th), its velocity the derivative. The motion is
-    fully prescribed, so ali3p (step 1e-3 s, rtol 1e-10) holds it to the
+    fully prescribed, so ali3p (step 1e-3 s, Newton to 1e-10) holds it to the
     Newton tolerance: x within 1e-10 m, x' within 1e-7 m/s (measured
     3.4e-12 m, 1.8e-8 m/s), max |Phi| <= 1e-10 m (measured 2.5e-11: a
     correction may stall within 100 Newton tolerances)."""
@@ -163,7 +163,7 @@ def test_ali3p_driven_slider_crank_with_a_breakpoint():
     m.add_revolute("wrist_pin", rod, slider, at=(x0, 0.0))
     m.add_translational("guide", m.ground, slider, at=(x0, 0.0), axis=(1.0, 0.0))
     m.drive_joint("motor", "pivot", mb.SmoothStep(0.2, 0.7, math.pi / 2, math.pi / 2 + 3.0))
-    res = mb.simulate(m, t_end=1.0, n_out=201, formulation="ali3p", step=1e-3, rtol=1e-10, atol=1e-12)
+    res = mb.simulate(m, t_end=1.0, n_out=201, formulation="ali3p", step=1e-3)
     s = np.clip((res.t - 0.2) / 0.5, 0.0, 1.0)
     th = math.pi / 2 + 3.0 * (10 * s**3 - 15 * s**4 + 6 * s**5)
     dth = np.where((res.t > 0.2) & (res.t < 0.7), 3.0 * (30 * s**2 - 60 * s**3 + 30 * s**4) / 0.5, 0.0)
@@ -188,7 +188,7 @@ def test_ali3p_damped_spring_on_a_guide():
     m.add_translational("guide", m.ground, block, at=(1.1, 0.0), axis=(1.0, 0.0))
     m.add_spring_damper("spring", m.ground, (0.0, 0.0), block, (1.1, 0.0), stiffness=200.0,
                         damping=4.0, free_length=1.0)
-    res = mb.simulate(m, t_end=2.0, n_out=201, formulation="ali3p", step=1e-3, rtol=1e-10, atol=1e-12)
+    res = mb.simulate(m, t_end=2.0, n_out=201, formulation="ali3p", step=1e-3)
     w, zeta = 10.0, 4.0 / (2 * math.sqrt(200.0 * 2.0))
     wd = w * math.sqrt(1 - zeta**2)
     x = 1.0 + 0.1 * np.exp(-zeta * w * res.t) * (np.cos(wd * res.t) + zeta * w / wd * np.sin(wd * res.t))

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "lagmb/model.hpp"
+#include "lagmb/data.hpp"
 
 namespace lagmb {
 
@@ -41,7 +41,8 @@ std::string diagnose_failure(const Model& model, const VecX& q, double t, const 
 
 /// What makes (q, v, t) give non-finite accelerations: a non-finite state,
 /// applied force (naming the body and coordinate and the force kinds) or
-/// constraint term gamma (naming the element).
-std::string non_finite_source(const Model& model, const double* q, const double* v, double t);
+/// constraint term gamma (naming the element), with the inputs and element
+/// state of `run`.
+std::string non_finite_source(const Model& model, const Data& run, const double* q, const double* v, double t);
 
 }  // namespace lagmb

@@ -65,7 +65,7 @@ void assemble_mass_derivative(const Model& model, Data& d, const double* q, cons
 /// Kinetic energy: 1/2 v^T M v for planar bodies, m r'.r' / 2 + omega'^T J'
 /// omega' / 2 for spatial ones.
 double kinetic_energy(const Model& model, const double* q, const double* v);
-/// Potential energy of the conservative forces.
-double potential_energy(const Model& model, const double* q, double t);
+/// Potential energy of the conservative forces at (q, at).
+double potential_energy(const Model& model, const double* q, const Instant& at);
 
 }  // namespace lagmb

@@ -29,6 +29,7 @@
 
 #include "lagmb/space.hpp"
 #include "lagmb/sparsity.hpp"
+#include "lagmb/time_function.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -59,6 +60,26 @@ struct run_state_size_of<Kind, std::void_t<decltype(Kind::run_state_size)>>
 template <class Kind>
 inline constexpr int run_state_size_v = run_state_size_of<Kind>::value;
 
+/// A kind that follows a function of time or an input (a driver, an
+/// actuated force) declares
+///   static constexpr bool reads_inputs = true;
+/// and takes the Instant (the time and the run's input values) wherever
+/// other kinds take the time t; its Drive reads the value from there.
+template <class Kind, class = void>
+struct reads_inputs : std::false_type {};
+template <class Kind>
+struct reads_inputs<Kind, std::void_t<decltype(Kind::reads_inputs)>> : std::bool_constant<Kind::reads_inputs> {};
+template <class Kind>
+using time_argument_t = std::conditional_t<reads_inputs<Kind>::value, Instant, double>;
+/// What Kind's functions take for the time: the Instant, or its t.
+template <class Kind>
+time_argument_t<Kind> time_argument(const Instant& at) {
+  if constexpr (reads_inputs<Kind>::value)
+    return at;
+  else
+    return at.t;
+}
+
 /// A kind may give gamma itself, `Rows gamma(c, cdot, t)`, where the
 /// general -cdot^T H_r cdot over full L x L Hessians costs more than the
 /// kind's closed form (the revolute joint of a long chain); tests check it
@@ -68,8 +89,8 @@ struct has_own_gamma : std::false_type {};
 template <class Kind>
 struct has_own_gamma<Kind, std::void_t<decltype(std::declval<const Kind&>().gamma(
                                std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
-                               std::declval<const LocalVec<space_of_t<Kind>::local>&>(), 0.0))>>
-    : std::true_type {};
+                               std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
+                               std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
 
 /// A kind may give the rows (H_r cd)^T itself, `Jac rates(c, cd, t)`: the
 /// velocity Jacobian's part and, times cd, minus gamma, for far less than the
@@ -80,8 +101,8 @@ struct has_rates : std::false_type {};
 template <class Kind>
 struct has_rates<Kind, std::void_t<decltype(std::declval<const Kind&>().rates(
                            std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
-                           std::declval<const LocalVec<space_of_t<Kind>::local>&>(), 0.0))>>
-    : std::true_type {};
+                           std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
+                               std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
 
 class ConstraintGroupBase {
  public:
@@ -100,22 +121,22 @@ class ConstraintGroupBase {
   virtual void bind(const SpMat& jacobian, const SpMat& hessian) = 0;
 
   // kernels; q, v, lam are global vectors, outputs are written at the
-  // element's rows or slots
-  virtual void phi(const double* q, double t, double* Phi) const = 0;
-  virtual void jacobian(const double* q, double t, double* Phi_q_values) const = 0;
-  virtual void add_phi_t(const double* q, double t, double* phi_t) const = 0;
-  virtual void gamma(const double* q, const double* v, double t, double* gamma) const = 0;
-  virtual void add_hessian(const double* q, double t, const double* w, double* H_values) const = 0;
-  virtual void velocity_jacobian(const double* q, const double* v, double t,
+  // element's rows or slots; `at` is the time and the run's inputs
+  virtual void phi(const double* q, const Instant& at, double* Phi) const = 0;
+  virtual void jacobian(const double* q, const Instant& at, double* Phi_q_values) const = 0;
+  virtual void add_phi_t(const double* q, const Instant& at, double* phi_t) const = 0;
+  virtual void gamma(const double* q, const double* v, const Instant& at, double* gamma) const = 0;
+  virtual void add_hessian(const double* q, const Instant& at, const double* w, double* H_values) const = 0;
+  virtual void velocity_jacobian(const double* q, const double* v, const Instant& at,
                                  double* Vq_values) const = 0;
   /// Generalized force -Phi_c^T lam the element applies on its two bodies,
   /// in local coordinates (L of them).
-  virtual VecX generalized_reaction(int k, const double* q, double t, const double* lam) const = 0;
+  virtual VecX generalized_reaction(int k, const double* q, const Instant& at, const double* lam) const = 0;
   /// The reaction on the element's second body from its generalized force
   /// (space.hpp): in the plane force (x, y) and torque, in space force and
   /// torque (3 + 3), about its centre of mass in global axes; with
   /// joint_axes in the element's own axes (the planar torque unchanged).
-  virtual VecX reaction(int k, const double* q, double t, const double* lam, bool joint_axes) const = 0;
+  virtual VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes) const = 0;
   /// 2 for planar kinds, 3 for spatial ones.
   virtual int dimension() const = 0;
 };
@@ -168,22 +189,25 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void phi(const double* q, double t, double* Phi) const override {
+  void phi(const double* q, const Instant& at, double* Phi) const override {
+    const auto t = time_argument<Kind>(at);
     for (size_t k = 0; k < items.size(); ++k) {
       const Rows f = items[k].phi(at_q(k, q), t);
       for (int r = 0; r < R; ++r) Phi[place_[k].row0 + r] = f[r];
     }
   }
 
-  void jacobian(const double* q, double t, double* values) const override {
+  void jacobian(const double* q, const Instant& at, double* values) const override {
+    const auto t = time_argument<Kind>(at);
     for (size_t k = 0; k < items.size(); ++k) {
       const Jac J = items[k].jacobian(at_q(k, q), t);
       scatter_jac(k, J, values);
     }
   }
 
-  void add_phi_t(const double* q, double t, double* out) const override {
+  void add_phi_t(const double* q, const Instant& at, double* out) const override {
     if constexpr (Kind::time_dependent) {
+      const auto t = time_argument<Kind>(at);
       for (size_t k = 0; k < items.size(); ++k) {
         const Rows f = items[k].phi_t(at_q(k, q), t);
         for (int r = 0; r < R; ++r) out[place_[k].row0 + r] += f[r];
@@ -191,7 +215,8 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void gamma(const double* q, const double* v, double t, double* out) const override {
+  void gamma(const double* q, const double* v, const Instant& at, double* out) const override {
+    const auto t = time_argument<Kind>(at);
     std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
       const Loc c = at_q(k, q), cd = at_v(k, v);
@@ -210,7 +235,8 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void add_hessian(const double* q, double t, const double* w, double* values) const override {
+  void add_hessian(const double* q, const Instant& at, const double* w, double* values) const override {
+    const auto t = time_argument<Kind>(at);
     std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
       items[k].hessians(at_q(k, q), t, H.data());
@@ -223,8 +249,9 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void velocity_jacobian(const double* q, const double* v, double t,
+  void velocity_jacobian(const double* q, const double* v, const Instant& at,
                          double* values) const override {
+    const auto t = time_argument<Kind>(at);
     std::array<MatL, R> H;
     for (size_t k = 0; k < items.size(); ++k) {
       const Loc c = at_q(k, q), cd = at_v(k, v);
@@ -240,15 +267,15 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  VecX generalized_reaction(int k, const double* q, double t, const double* lam) const override {
-    return local_reaction(k, q, t, lam);
+  VecX generalized_reaction(int k, const double* q, const Instant& at, const double* lam) const override {
+    return local_reaction(k, q, at, lam);
   }
 
-  VecX reaction(int k, const double* q, double t, const double* lam, bool joint_axes) const override {
+  VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes) const override {
     const Loc c = at_q(k, q);
-    if (!joint_axes) return S::reaction(local_reaction(k, q, t, lam), c, nullptr);
-    const typename S::Axes E = items[k].axes(c, t);
-    return S::reaction(local_reaction(k, q, t, lam), c, &E);
+    if (!joint_axes) return S::reaction(local_reaction(k, q, at, lam), c, nullptr);
+    const typename S::Axes E = items[k].axes(c, time_argument<Kind>(at));
+    return S::reaction(local_reaction(k, q, at, lam), c, &E);
   }
 
  private:
@@ -260,8 +287,8 @@ class ConstraintGroup final : public ConstraintGroupBase {
   Loc at_q(size_t k, const double* q) const { return gather_q<S>(q, place_[k].coord); }
   Loc at_v(size_t k, const double* v) const { return gather_v<L>(v, place_[k].coord); }
 
-  Loc local_reaction(int k, const double* q, double t, const double* lam) const {
-    const Jac J = items[k].jacobian(at_q(k, q), t);
+  Loc local_reaction(int k, const double* q, const Instant& at, const double* lam) const {
+    const Jac J = items[k].jacobian(at_q(k, q), time_argument<Kind>(at));
     const Eigen::Map<const Rows> l(lam + place_[k].row0);
     return -J.transpose() * l;
   }

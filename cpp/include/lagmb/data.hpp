@@ -8,8 +8,8 @@
 namespace lagmb {
 
 /// Values the kernels write, sized and patterned once from a finalized
-/// Model, and everything a run decides or changes: the dropped rows and the
-/// elements' run state. Kernels never allocate: they write into these arrays
+/// Model, and everything a run decides or changes: the dropped rows, the
+/// input values and the elements' run state. Kernels never allocate: they write into these arrays
 /// in place. A Model is never written by a run: one Model may be run by
 /// several threads at once, each with its own Data.
 struct Data {
@@ -46,14 +46,27 @@ struct Data {
   /// Sets dropped_rows (sorted) and their Jacobian slots.
   void drop_rows(const Model& model, std::vector<int> rows);
 
-  /// Per-run state of the elements that keep one (e.g. the approach speed of
-  /// a contact in progress), at the offsets the Model assigned
-  /// (Model::run_state_size); zero at the start of a run, written by event
-  /// crossings, read by the force kernels.
-  std::shared_ptr<VecX> run_state;
-  /// Makes this Data part of `run`: its dropped rows, and the same run state
-  /// (shared, not copied: what an event records, every kernel of the run sees).
+  /// What the run sets and the kernels read beside q, v and t (cf.
+  /// mjData::ctrl): the input values and the elements' run state. Shared by
+  /// the Data objects of one run (each formulation and solver keeps its own
+  /// Data for scratch): what an event records or a Simulator's set_input
+  /// changes, every kernel of the run sees.
+  struct RunValues {
+    /// One per Model::inputs(), the initial values until a Simulator sets them.
+    VecX inputs;
+    /// Per-run state of the elements that keep one (e.g. the approach speed
+    /// of a contact in progress), at the offsets the Model assigned
+    /// (Model::run_state_size); zero at the start of a run, written by event
+    /// crossings, read by the force kernels.
+    VecX state;
+  };
+  std::shared_ptr<RunValues> run;
+  /// The instant t of this run, as the kernels take it (time and inputs).
+  Instant at(double t) const { return {t, run->inputs.data()}; }
+  /// Makes this Data part of `run`: its dropped rows and the same run values.
   void join_run(const Model& model, const Data& run);
+  /// Reads the run values of `run` (not its dropped rows: every row counts).
+  void share_values(const Data& run) { this->run = run.run; }
 };
 
 }  // namespace lagmb

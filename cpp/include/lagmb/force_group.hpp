@@ -30,12 +30,14 @@ class ForceGroupBase {
   virtual void declare(SparsityPattern& Q_q, SparsityPattern& Q_v) const = 0;
   virtual void bind(const SpMat& Q_q, const SpMat& Q_v) = 0;
 
-  /// run: the run's element state (Data::run_state), read by kinds that keep one.
-  virtual void add_forces(const double* q, const double* v, double t, const double* run, double* Q) const = 0;
-  virtual void add_derivatives(const double* q, const double* v, double t, const double* run,
+  /// at: the time and the run's inputs; run: the run's element state
+  /// (Data::RunValues::state), read by kinds that keep one.
+  virtual void add_forces(const double* q, const double* v, const Instant& at, const double* run,
+                          double* Q) const = 0;
+  virtual void add_derivatives(const double* q, const double* v, const Instant& at, const double* run,
                                double* Q_q_values, double* Q_v_values) const = 0;
   /// Potential energy of the conservative part; 0 for dissipative kinds.
-  virtual double potential(const double* q, double t) const = 0;
+  virtual double potential(const double* q, const Instant& at) const = 0;
 };
 
 /// Forces acting on (at most) two bodies, one container per kind. A kind is a
@@ -49,7 +51,8 @@ class ForceGroupBase {
 ///   void derivatives(c, cd, t, MatL& Q_c, MatL& Q_cd)   if state_dependent
 ///   double potential(c, t)                   0 for non-conservative kinds
 /// A kind with per-run state (see run_state_size in constraint_group.hpp)
-/// takes the run's state as a last argument of force and derivatives.
+/// takes the run's state as a last argument of force and derivatives; a
+/// kind that reads_inputs (an actuator) takes the Instant for t.
 template <class Kind>
 class ForceGroup final : public ForceGroupBase {
  public:
@@ -92,7 +95,9 @@ class ForceGroup final : public ForceGroupBase {
     }
   }
 
-  void add_forces(const double* q, const double* v, double t, const double* run, double* Q) const override {
+  void add_forces(const double* q, const double* v, const Instant& at, const double* run,
+                  double* Q) const override {
+    const auto t = time_argument<Kind>(at);
     for (size_t k = 0; k < items.size(); ++k) {
       const Loc c = gather_q<S>(q, coord_[k]), cd = gather_v<L>(v, coord_[k]);
       Loc f;
@@ -105,9 +110,10 @@ class ForceGroup final : public ForceGroupBase {
     }
   }
 
-  void add_derivatives(const double* q, const double* v, double t, const double* run, double* Qq,
+  void add_derivatives(const double* q, const double* v, const Instant& at, const double* run, double* Qq,
                        double* Qv) const override {
     if constexpr (Kind::state_dependent) {
+      const auto t = time_argument<Kind>(at);
       MatL dq, dv;
       for (size_t k = 0; k < items.size(); ++k) {
         const Loc c = gather_q<S>(q, coord_[k]), cd = gather_v<L>(v, coord_[k]);
@@ -123,7 +129,8 @@ class ForceGroup final : public ForceGroupBase {
     }
   }
 
-  double potential(const double* q, double t) const override {
+  double potential(const double* q, const Instant& at) const override {
+    const auto t = time_argument<Kind>(at);
     double V = 0.0;
     for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather_q<S>(q, coord_[k]), t);
     return V;

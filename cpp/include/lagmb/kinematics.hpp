@@ -49,13 +49,12 @@ int degrees_of_freedom(const Model& model, double t = 0.0);
 /// Bodies with a zero mass or (rigid bodies) a zero inertia, by index.
 std::vector<int> massless_bodies(const Model& model);
 
-/// The analysis options.analysis asks for, resolved: "dynamic", "kinematic"
-/// or "inverse_dynamics". "auto" picks inverse_dynamics at 0 DOF
-/// (kinematic if some body is massless) and dynamic otherwise. Throws
-/// ModelError for an unknown name, a kinematic analysis of a model with
-/// DOF > 0 (naming the count), or a dynamic analysis of a model with a
-/// massless body (naming it).
-std::string resolve_analysis(const Model& model, const SimulationOptions& options);
+/// The analysis options.analysis asks for, resolved: dynamic, kinematic or
+/// inverse dynamics. kAuto picks inverse dynamics at 0 DOF (kinematic if
+/// some body is massless) and dynamic otherwise. Throws ModelError for a
+/// kinematic analysis of a model with DOF > 0 (naming the count), or a
+/// dynamic analysis of a model with a massless body (naming it).
+Analysis resolve_analysis(const Model& model, const SimulationOptions& options);
 
 /// Kinematic analysis (steps 1-3 above) at the times t_out from t0; with
 /// inverse_dynamics also step 4, else lam is NaN (not computed). The model

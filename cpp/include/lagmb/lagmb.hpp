@@ -9,6 +9,8 @@
 #include "lagmb/data.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/model.hpp"
+#include "lagmb/outputs.hpp"
+#include "lagmb/parameters.hpp"
 #include "lagmb/simulate.hpp"
 #include "lagmb/simulator.hpp"
 #include "lagmb/trajectory.hpp"

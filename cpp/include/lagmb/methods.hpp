@@ -7,12 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "lagmb/options.hpp"
+
 namespace lagmb {
 
 struct Method {
   std::string name;         // unique: "ggl", "projection-adams", ...
-  std::string formulation;  // SimulationOptions::formulation
-  std::string integrator;   // SimulationOptions::integrator
+  Formulation formulation = Formulation::kGgl;  // SimulationOptions::formulation
+  Integrator integrator = Integrator::kBdf;      // SimulationOptions::integrator (never kDefault here)
   std::string solver;       // what integrates it: "IDA", "CVODE", "fixed-step trapezoidal rule"
   std::string description;  // one line for users
   int max_order = 0;        // highest order (the default); 2 for the fixed-step trapezoidal rule
@@ -22,10 +24,12 @@ struct Method {
   bool baumgarte = false;   // takes baumgarte=(alpha, beta)
   bool drifts = false;      // positions are not held on Phi = 0 (only Phi'' = 0)
 
-  /// f(name, field) for every field (lagmb.methods() lists them by these names).
+  /// f(name, field) for every field (lagmb.methods() lists them by these
+  /// names; the formulation and integrator by their names).
   template <class F>
   void for_each_field(F&& f) const {
-    f("name", name), f("formulation", formulation), f("integrator", integrator), f("solver", solver);
+    f("name", name), f("formulation", std::string(name_of(formulation)));
+    f("integrator", std::string(name_of(integrator))), f("solver", solver);
     f("description", description), f("max_order", max_order), f("fixed_step", fixed_step);
     f("events", events), f("friction", friction), f("baumgarte", baumgarte), f("drifts", drifts);
   }
@@ -34,8 +38,8 @@ struct Method {
 /// Every method, in the order users see them (the default first).
 const std::vector<Method>& methods();
 
-/// The method of a formulation and integrator; ModelError naming the ones
-/// there are if there is none.
-const Method& find_method(const std::string& formulation, const std::string& integrator);
+/// The method of a formulation and integrator (kDefault: the formulation's
+/// first); ModelError naming the ones there are if there is none.
+const Method& find_method(Formulation formulation, Integrator integrator);
 
 }  // namespace lagmb

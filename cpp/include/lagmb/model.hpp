@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <typeindex>
@@ -16,6 +17,7 @@
 #include "lagmb/event_group.hpp"
 #include "lagmb/force_group.hpp"
 #include "lagmb/friction_group.hpp"
+#include "lagmb/registry.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/types.hpp"
@@ -33,6 +35,12 @@ struct InputInfo {
   std::string unit;       // SI unit of the value
   double initial = 0.0;
   const Input* function = nullptr;
+};
+
+/// An element as it was given: its name and values (the kind's Args).
+struct GivenElement {
+  std::string name;
+  Args args;
 };
 
 /// What a name refers to.
@@ -96,6 +104,13 @@ class Model {
         run_state_size_ += run_state_size_v<Kind>;
       }
   }
+  /// Records an element as given (add_element does): what the model is
+  /// built from again with other parameter values (parameters.hpp).
+  void record_given(const std::string& name, const Args& args) { given_.push_back({name, args}); }
+  /// The elements as given, in the order added.
+  const std::vector<GivenElement>& given_elements() const { return given_; }
+  /// Gravity as set (absent if never set).
+  const std::optional<Vec3>& given_gravity() const { return given_gravity_; }
   /// Notes a time function of a driver or force (for breakpoints()).
   void use_time_function(const TimeFunctionPtr& f);
   /// Records an input (time_function.hpp) of an element; the same Input
@@ -222,10 +237,12 @@ class Model {
   /// The inputs of the model's elements, in the order added; a Simulator
   /// holds one value per entry.
   const std::vector<InputInfo>& inputs() const { return inputs_; }
-  /// Their functions, in the same order (what an InputScope binds).
+  /// Their functions, in the same order (Drive::input indexes both).
   const std::vector<const Input*>& input_functions() const { return input_functions_; }
   /// The index of the input called `name` in inputs(), -1 if none.
   int input_index(const std::string& name) const;
+  /// The index in inputs() of the input whose function is `f`, -1 if none.
+  int input_slot(const TimeFunction* f) const;
 
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
@@ -243,6 +260,8 @@ class Model {
   static std::uint64_t next_model_id();
   int dimension_ = 2;
   std::vector<Body> bodies_;
+  std::vector<GivenElement> given_;
+  std::optional<Vec3> given_gravity_;
   std::vector<std::vector<Vec3>> outlines_;  // per body
   std::map<std::string, std::vector<std::pair<int, Vec3>>> attachments_;  // per element
   std::vector<std::unique_ptr<ConstraintGroupBase>> constraints_;

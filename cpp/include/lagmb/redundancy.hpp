@@ -48,7 +48,8 @@ void name_partners(const Model& model, const Data& full, AugmentedSystem& kkt, R
 /// naming the elements.
 class RedundancyWatch {
  public:
-  RedundancyWatch(const Model& model, Redundancy redundancy);
+  /// The rows are evaluated with the inputs and element state of `run`.
+  RedundancyWatch(const Model& model, const Data& run, Redundancy redundancy);
   bool active() const { return !r_.rows.empty(); }
   std::string violation(const double* q, double t);
   long element_evaluations() const { return full_.element_evaluations; }

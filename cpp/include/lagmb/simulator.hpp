@@ -16,9 +16,7 @@ namespace lagmb {
 
 class Stepper;
 class StepLoop;
-class EventRunner;
-class RedundancyWatch;
-struct IntegrationPlan;
+class Run;
 
 /// Where a Simulator was, to go back to: time, state, inputs and the
 /// elements' run state. Opaque beyond t, q and v.
@@ -59,10 +57,16 @@ struct SimulatorState {
 /// driver function calling advance) is a ModelError.
 class Simulator {
  public:
-  Simulator(const Model& model, const SimulationOptions& options = {}, double output_interval = 0.0);
+  /// `parameters`: run `model` with other parameter values (parameters.hpp;
+  /// the simulator keeps the model built with them, model()).
+  Simulator(const Model& model, const SimulationOptions& options = {}, double output_interval = 0.0,
+            const ParameterValues& parameters = {});
   ~Simulator();
   Simulator(const Simulator&) = delete;
   Simulator& operator=(const Simulator&) = delete;
+
+  /// The model it runs: the one given, or that model with the parameters given.
+  const Model& model() const { return model_; }
 
   double t() const;
   VecX q() const;
@@ -120,15 +124,12 @@ class Simulator {
   void check_usable(const char* what) const;
   int input_slot(const std::string& name) const;
 
+  std::shared_ptr<const Model> with_parameters_;  // the model built with the parameters given (or null)
   const Model& model_;
   SimulationOptions options_;
   double output_interval_;
   const Method* method_;
-  std::unique_ptr<Data> d_;
-  std::unique_ptr<AugmentedSystem> kkt_;
-  std::unique_ptr<IntegrationPlan> plan_;
-  std::unique_ptr<EventRunner> events_;
-  std::unique_ptr<RedundancyWatch> watch_;
+  std::unique_ptr<Run> run_;  // what the run changes: Data and its run values, events, plan, outputs
   std::unique_ptr<Stepper> stepper_;
   std::unique_ptr<StepLoop> loop_;
   Stats finished_;  // counts of the steppers before the current one
@@ -139,7 +140,6 @@ class Simulator {
   VecX inputs_, inputs_integrated_;  // set, and what the integrator runs with
   bool fresh_ = true;  // a new stepper at the next advance
   std::string failure_;
-  Trajectory record_;
   long restarts_ = 0, input_changes_ = 0;
   mutable std::recursive_mutex busy_;
   mutable bool running_ = false;  // inside a call that runs model functions

@@ -46,6 +46,8 @@ struct Given {
   Value value;
 };
 
+class ModelSpec;
+
 class ModelSpec {
  public:
   struct Element {
@@ -113,5 +115,8 @@ class ModelSpec {
   mutable std::shared_ptr<Model> draft_;
   mutable std::shared_ptr<const Model> compiled_;
 };
+
+/// The values of `args` with `copy` applied to each time function (null: as they are).
+Args with_copies(const Args& args, const ModelSpec::FunctionCopy& copy);
 
 }  // namespace lagmb

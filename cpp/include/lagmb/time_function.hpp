@@ -54,15 +54,15 @@ TimeFunctionPtr time_function_from_text(std::istream& in);
 /// force, torque or driver value given as an input instead of a function of
 /// time. It holds its value between changes (f' = f'' = 0); a change is a
 /// jump, where the integrator restarts. The Model lists the inputs of its
-/// elements (Model::inputs); a Simulator binds its own values to them while
-/// it integrates (InputScope), so one Model runs with different inputs on
-/// several threads. Anywhere else (simulate, assemble, equilibrium) an input
-/// reads its initial value.
+/// elements (Model::inputs) and each element reads its input's value from
+/// the run (Data::run, Instant::inputs), so one Model runs with different
+/// inputs on several threads. A run starts with the initial values; only a
+/// Simulator changes them. eval() outside a run gives the initial value.
 class Input final : public TimeFunction {
  public:
   /// `name` "": named after the element it feeds (Model::inputs).
   explicit Input(double initial, std::string name = "") : initial_(initial), name_(std::move(name)) {}
-  TimeValue eval(double t) const override;
+  TimeValue eval(double) const override { return {initial_, 0.0, 0.0}; }
   std::string text() const override;
   double initial() const { return initial_; }
   const std::string& name() const { return name_; }
@@ -73,21 +73,25 @@ class Input final : public TimeFunction {
 };
 std::shared_ptr<Input> input(double initial, std::string name = "");
 
-/// While alive, the Input functions in `inputs` read the matching entries
-/// of `values` on the calling thread (the values of one Simulator's run);
-/// scopes nest, the innermost binding counts.
-class InputScope {
- public:
-  InputScope(const std::vector<const Input*>& inputs, const double* values);
-  ~InputScope();
-  InputScope(const InputScope&) = delete;
-  InputScope& operator=(const InputScope&) = delete;
+/// When a kernel evaluates the model: the time and the run's input values
+/// (Model::inputs order; Data::at makes one). Kernels pass it down to the
+/// elements that follow a function of time or an input; nothing is bound to
+/// a thread.
+struct Instant {
+  double t = 0.0;
+  const double* inputs = nullptr;
+};
 
- private:
-  const std::vector<const Input*>* inputs_;
-  const double* values_;
-  const InputScope* outer_;
-  friend class Input;
+/// What an element follows: a function of time, or an input of the model
+/// (its slot in the run's input values, set when the element is built).
+struct Drive {
+  TimeFunctionPtr f;  // null: none (an optional actuator)
+  int input = -1;     // >= 0: the slot in Instant::inputs that replaces f
+  TimeValue at(const Instant& now) const {
+    if (input >= 0) return {now.inputs[input], 0.0, 0.0};
+    return f->eval(now.t);
+  }
+  explicit operator bool() const { return bool(f); }
 };
 
 }  // namespace lagmb

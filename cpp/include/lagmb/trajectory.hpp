@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace lagmb {
+
+class Model;
 
 /// Solver statistics of one run.
 struct Stats {
@@ -89,6 +92,10 @@ struct Trajectory {
   /// Rows of Phi left out as redundant (found where the run started); they
   /// were checked at every output.
   std::vector<int> dropped_rows;
+  /// The model the run evaluated where it is not the one simulate was given:
+  /// that model with the run's parameter values (parameters.hpp). Reactions,
+  /// energy and residuals of these outputs (outputs.hpp) are of this model.
+  std::shared_ptr<const Model> run_model;
   int size() const { return static_cast<int>(t.size()); }
   /// Keeps the first k outputs (a, lam only as far as they were solved).
   void truncate(int k) {

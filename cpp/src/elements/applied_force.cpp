@@ -14,7 +14,9 @@ void build_force(Model& m, const std::string& name, const Args& a) {
     build::require_on_particle(m, e.body_i, *point, label);
     e.s = m.local_point(e.body_i, *point);
   }
-  std::tie(e.fx, e.fy) = a.function_pair("force");
+  const auto [fx, fy] = a.function_pair("force");
+  e.fx = build::drive(m, fx);
+  e.fy = build::drive(m, fy);
   e.local = a.flag("local");
   m.add_force_element(std::move(e));
 }
@@ -22,7 +24,7 @@ void build_force(Model& m, const std::string& name, const Args& a) {
 void build_torque(Model& m, const std::string& name, const Args& a) {
   AppliedTorque e = build::joining<AppliedTorque>(m, name, a.body("body"), kGround);
   build::require_rigid(m, e.body_i, build::label(a, name), "cannot take a torque");
-  e.torque = a.function("torque");
+  e.torque = build::drive(m, a.function("torque"));
   m.add_force_element(std::move(e));
 }
 

@@ -15,6 +15,17 @@ std::string label(const Args& args, const std::string& name) {
   return kind + " '" + name + "'";
 }
 
+Drive drive(const Model& m, TimeFunctionPtr f) {
+  Drive d;
+  d.input = m.input_slot(f.get());
+  d.f = std::move(f);
+  return d;
+}
+
+std::array<Drive, 3> drive_triple(const Model& m, const std::array<TimeFunctionPtr, 3>& f) {
+  return {drive(m, f[0]), drive(m, f[1]), drive(m, f[2])};
+}
+
 void require_positive(double x, const std::string& element, const char* what) {
   if (!(std::isfinite(x) && x > 0))
     throw ModelError(element + ": " + what + " must be positive and finite, got " + to_text(x));

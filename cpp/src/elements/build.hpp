@@ -4,6 +4,7 @@
 // lives in cpp/src/elements/<kind>.cpp next to its kind's declaration.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
@@ -27,6 +28,11 @@ Kind joining(const Model& m, const std::string& name, int body_i, int body_j) {
   e.body_j = body_j;
   return e;
 }
+
+/// What an element follows: `f`, or the run's value of the model's input
+/// `f` is (added before the builder runs; Drive::input its slot).
+Drive drive(const Model& m, TimeFunctionPtr f);
+std::array<Drive, 3> drive_triple(const Model& m, const std::array<TimeFunctionPtr, 3>& f);
 
 /// ModelError "'<element>': <what>" unless x is finite and positive.
 void require_positive(double x, const std::string& element, const char* what);

@@ -14,11 +14,11 @@ void build_joint_driver(Model& m, const std::string& name, const Args& a) {
   if (c.slide) {
     SlideDriver d = build::joining<SlideDriver>(m, name, c.body_i, c.body_j);
     d.along = c.along;
-    d.f = a.function("f");
+    d.f = build::drive(m, a.function("f"));
     m.add_constraint(std::move(d));
   } else {
     AngleDriver d = build::joining<AngleDriver>(m, name, c.body_i, c.body_j);
-    d.f = a.function("f");
+    d.f = build::drive(m, a.function("f"));
     m.add_constraint(std::move(d));
   }
 }
@@ -28,7 +28,7 @@ void build_body_driver(Model& m, const std::string& name, const Args& a) {
   const std::string& coordinate = a.text("coordinate");  // one of the choices (Args::set)
   d.coordinate = coordinate == "x" ? 0 : coordinate == "y" ? 1 : 2;
   if (d.coordinate == 2) build::require_rigid(m, d.body_j, build::label(a, name), "has no angle to drive");
-  d.f = a.function("f");
+  d.f = build::drive(m, a.function("f"));
   m.add_constraint(std::move(d));
 }
 

@@ -16,7 +16,7 @@ void build_rotational_spring_damper(Model& m, const std::string& name, const Arg
   build::require_nonnegative(e.stiffness, label, "stiffness");
   build::require_nonnegative(e.damping, label, "damping");
   e.free_angle = a.optional_real("free_angle").value_or(m.initial_angle(e.body_j) - m.initial_angle(e.body_i));
-  e.actuator = a.function("torque");
+  e.actuator = build::drive(m, a.function("torque"));
   m.add_force_element(std::move(e));
 }
 

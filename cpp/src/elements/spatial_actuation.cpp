@@ -47,14 +47,14 @@ void build_joint_driver(Model& m, const std::string& name, const Args& a) {
     d.s_i = c.joint->s_i;
     d.s_j = c.joint->s_j;
     d.a_i = c.joint->a_i;
-    d.f = a.function("f");
+    d.f = build::drive(m, a.function("f"));
     m.add_constraint(std::move(d));
   } else {
     auto d = build::joining<SpatialAngleDriver>(m, name, c.joint->body_i, c.joint->body_j);
     d.f_i = c.joint->f_i;
     d.g_i = c.joint->g_i;
     d.f_j = c.f_j;
-    d.f = a.function("f");
+    d.f = build::drive(m, a.function("f"));
     m.add_constraint(std::move(d));
   }
 }
@@ -63,7 +63,7 @@ void build_body_driver(Model& m, const std::string& name, const Args& a) {
   auto d = build::joining<SpatialPositionDriver>(m, name, kGround, a.body("body"));
   const std::string& coordinate = a.text("coordinate");
   d.axis = coordinate == "x" ? 0 : coordinate == "y" ? 1 : 2;
-  d.f = a.function("f");
+  d.f = build::drive(m, a.function("f"));
   m.add_constraint(std::move(d));
 }
 
@@ -81,7 +81,7 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
   build::require_nonnegative(e.free_value, label, "free_length");
   if (!((pj - pi).norm() > 0.0))
     throw ModelError(label + ": point_i and point_j coincide; the spring's direction is undefined there");
-  e.actuator = a.function("force");
+  e.actuator = build::drive(m, a.function("force"));
   m.add_force_element(std::move(e));
 }
 
@@ -98,7 +98,7 @@ void build_rotational_spring_damper(Model& m, const std::string& name, const Arg
   build::require_nonnegative(e.stiffness, label, "stiffness");
   build::require_nonnegative(e.damping, label, "damping");
   e.free_value = a.real("free_angle");
-  e.actuator = a.function("torque");
+  e.actuator = build::drive(m, a.function("torque"));
   m.add_force_element(std::move(e));
 }
 
@@ -126,14 +126,14 @@ void build_bushing(Model& m, const std::string& name, const Args& a) {
 void build_force(Model& m, const std::string& name, const Args& a) {
   auto e = build::joining<SpatialAppliedForce>(m, name, a.body("body"), kGround);
   if (a.given("point")) e.s = m.local_point(e.body_i, a.vec3("point"));
-  e.components = a.function_triple("force");
+  e.components = build::drive_triple(m, a.function_triple("force"));
   e.local = a.flag("local");
   m.add_force_element(std::move(e));
 }
 
 void build_torque(Model& m, const std::string& name, const Args& a) {
   auto e = build::joining<SpatialAppliedTorque>(m, name, a.body("body"), kGround);
-  e.components = a.function_triple("torque");
+  e.components = build::drive_triple(m, a.function_triple("torque"));
   e.local = a.flag("local");
   m.add_force_element(std::move(e));
 }

@@ -23,7 +23,7 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
   build::require_nonnegative(e.damping, label, "damping");
   e.free_length = a.optional_real("free_length").value_or((p_j - p_i).norm());
   build::require_nonnegative(e.free_length, label, "free_length");
-  e.actuator = a.function("force");
+  e.actuator = build::drive(m, a.function("force"));
   m.add_force_element(std::move(e));
 }
 

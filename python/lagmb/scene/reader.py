@@ -508,7 +508,7 @@ class Reader:
             if not math.isfinite(out["t_end"]) or out["t_end"] <= t0:
                 raise w.error(f"must be finite and greater than t0 = {t0!r}, "
                               f"got {out['t_end']!r}", "t_end")
-        for key in ("rtol", "atol", "max_step", "step"):
+        for key in ("rtol", "atol", "max_step", "step", "newton_rtol", "newton_atol"):
             if key in out and not (math.isfinite(out[key]) and out[key] > 0):
                 raise w.error(f"must be positive and finite, got {out[key]!r}", key)
         # integers travel to C as int (n_out, max_order) or long (max_steps)

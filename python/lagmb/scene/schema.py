@@ -11,6 +11,7 @@ of its Model method (the reader asks the method's signature).
 from types import MappingProxyType
 from typing import Mapping, NamedTuple, Optional
 
+from .. import _core
 from ..registry import KINDS, SPATIAL_KINDS
 
 # The kinds of value a key takes (the reader's checks, reader._CHECKS)
@@ -79,17 +80,18 @@ SETTINGS = {
         "t_end": NUMBER, "t0": NUMBER, "rtol": NUMBER, "atol": NUMBER, "n_out": INTEGER,
         "t_out": NUMBERS, "max_step": NUMBER, "max_steps": INTEGER, "formulation": STRING,
         "integrator": STRING, "max_order": INTEGER, "step": NUMBER, "analysis": STRING,
-        "start": STRING,
+        "start": STRING, "newton_rtol": NUMBER, "newton_atol": NUMBER,
     },
     "output": {
         "file": STRING, "reactions": STRINGS, "efforts": STRINGS, "reaction_frame": STRING,
         "energy": BOOL, "plot": STRING, "animate": STRING, "view": NUMBERS,
     },
 }
-# keys that take one of a few strings (formulation and integrator: lagmb.methods())
+# keys that take one of a few strings (formulation and integrator: lagmb.methods();
+# the others as the core names them, lagmb/options.hpp)
 CHOICES = {
-    ("simulation", "analysis"): ("auto", "dynamic", "kinematic", "inverse_dynamics"),
-    ("simulation", "start"): ("given", "equilibrium"),
+    ("simulation", "analysis"): _core.choices()["analysis"],
+    ("simulation", "start"): _core.choices()["start"],
     ("output", "reaction_frame"): ("global", "joint"),
 }
 OUTPUT_FILE_TYPES = (".npz", ".csv")

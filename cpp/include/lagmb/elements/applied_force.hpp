@@ -15,15 +15,16 @@ namespace lagmb {
 struct AppliedForce {
   static constexpr bool state_dependent = true;
   static constexpr const char* kind = "force";
+  static constexpr bool reads_inputs = true;
 
   std::string name;
   int body_i = -1, body_j = -1;  // body_j unused (-1)
   Vec2 s = Vec2::Zero();
-  TimeFunctionPtr fx, fy;
+  Drive fx, fy;
   bool local = false;
 
-  Vec2 value(double t) const { return {fx->eval(t).f, fy->eval(t).f}; }
-  Local6 force(const Local6& c, const Local6&, double t) const {
+  Vec2 value(const Instant& t) const { return {fx.at(t).f, fy.at(t).f}; }
+  Local6 force(const Local6& c, const Local6&, const Instant& t) const {
     const Mat2 A = rotation(c[2]);
     const Vec2 F = local ? Vec2(A * value(t)) : value(t);
     Local6 Q = Local6::Zero();
@@ -31,7 +32,7 @@ struct AppliedForce {
     Q[2] = cross(A * s, F);
     return Q;
   }
-  void derivatives(const Local6& c, const Local6&, double t, Mat6& Q_c, Mat6& Q_cd) const {
+  void derivatives(const Local6& c, const Local6&, const Instant& t, Mat6& Q_c, Mat6& Q_cd) const {
     Q_c.setZero();
     Q_cd.setZero();
     const Vec2 F = value(t);
@@ -40,25 +41,26 @@ struct AppliedForce {
     else
       Q_c(2, 2) = cross(rotation_derivative(c[2]) * s, F);
   }
-  double potential(const Local6&, double) const { return 0.0; }
+  double potential(const Local6&, const Instant&) const { return 0.0; }
 };
 
 /// A pure torque tau(t) on body i.
 struct AppliedTorque {
   static constexpr bool state_dependent = false;
   static constexpr const char* kind = "torque";
+  static constexpr bool reads_inputs = true;
 
   std::string name;
   int body_i = -1, body_j = -1;
-  TimeFunctionPtr torque;
+  Drive torque;
 
-  Local6 force(const Local6&, const Local6&, double t) const {
+  Local6 force(const Local6&, const Local6&, const Instant& t) const {
     Local6 Q = Local6::Zero();
-    Q[2] = torque->eval(t).f;
+    Q[2] = torque.at(t).f;
     return Q;
   }
-  void derivatives(const Local6&, const Local6&, double, Mat6&, Mat6&) const {}
-  double potential(const Local6&, double) const { return 0.0; }
+  void derivatives(const Local6&, const Local6&, const Instant&, Mat6&, Mat6&) const {}
+  double potential(const Local6&, const Instant&) const { return 0.0; }
 };
 
 }  // namespace lagmb

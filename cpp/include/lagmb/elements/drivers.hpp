@@ -16,16 +16,17 @@ struct DriverBase {
   static constexpr bool time_dependent = true;
   std::string name;
   int body_i = -1, body_j = -1;
-  TimeFunctionPtr f;
+  Drive f;  // the prescribed value
+  static constexpr bool reads_inputs = true;
 
-  Eigen::Matrix<double, 1, 1> phi_t(const Local6&, double t) const {
-    return Eigen::Matrix<double, 1, 1>(-f->eval(t).df);
+  Eigen::Matrix<double, 1, 1> phi_t(const Local6&, const Instant& t) const {
+    return Eigen::Matrix<double, 1, 1>(-f.at(t).df);
   }
-  Eigen::Matrix<double, 1, 6> phi_tc(const Local6&, double) const {
+  Eigen::Matrix<double, 1, 6> phi_tc(const Local6&, const Instant&) const {
     return Eigen::Matrix<double, 1, 6>::Zero();
   }
-  Eigen::Matrix<double, 1, 1> phi_tt(const Local6&, double t) const {
-    return Eigen::Matrix<double, 1, 1>(-f->eval(t).ddf);
+  Eigen::Matrix<double, 1, 1> phi_tt(const Local6&, const Instant& t) const {
+    return Eigen::Matrix<double, 1, 1>(-f.at(t).ddf);
   }
 };
 
@@ -33,16 +34,16 @@ struct DriverBase {
 /// Effort: the torque on body j (body i gets the opposite).
 struct AngleDriver : DriverBase {
   static constexpr const char* kind = "angle_driver";
-  Eigen::Matrix<double, 1, 1> phi(const Local6& c, double t) const {
-    return Eigen::Matrix<double, 1, 1>(c[5] - c[2] - f->eval(t).f);
+  Eigen::Matrix<double, 1, 1> phi(const Local6& c, const Instant& t) const {
+    return Eigen::Matrix<double, 1, 1>(c[5] - c[2] - f.at(t).f);
   }
-  Eigen::Matrix<double, 1, 6> jacobian(const Local6&, double) const {
+  Eigen::Matrix<double, 1, 6> jacobian(const Local6&, const Instant&) const {
     Eigen::Matrix<double, 1, 6> J;
     J << 0, 0, -1, 0, 0, 1;
     return J;
   }
-  void hessians(const Local6&, double, Mat6* H) const { H[0].setZero(); }
-  Mat2 axes(const Local6&, double) const { return Mat2::Identity(); }
+  void hessians(const Local6&, const Instant&, Mat6* H) const { H[0].setZero(); }
+  Mat2 axes(const Local6&, const Instant&) const { return Mat2::Identity(); }
 };
 
 /// Slide of a translational joint: Phi = u_i . (p_j - p_i) - f(t).
@@ -50,12 +51,12 @@ struct AngleDriver : DriverBase {
 struct SlideDriver : DriverBase {
   static constexpr const char* kind = "slide_driver";
   ProjectedOffset along;  // w = u'
-  Eigen::Matrix<double, 1, 1> phi(const Local6& c, double t) const {
-    return Eigen::Matrix<double, 1, 1>(along.value(c) - f->eval(t).f);
+  Eigen::Matrix<double, 1, 1> phi(const Local6& c, const Instant& t) const {
+    return Eigen::Matrix<double, 1, 1>(along.value(c) - f.at(t).f);
   }
-  Eigen::Matrix<double, 1, 6> jacobian(const Local6& c, double) const { return along.gradient(c); }
-  void hessians(const Local6& c, double, Mat6* H) const { H[0] = along.hessian(c); }
-  Mat2 axes(const Local6& c, double) const {
+  Eigen::Matrix<double, 1, 6> jacobian(const Local6& c, const Instant&) const { return along.gradient(c); }
+  void hessians(const Local6& c, const Instant&, Mat6* H) const { H[0] = along.hessian(c); }
+  Mat2 axes(const Local6& c, const Instant&) const {
     const Vec2 u = rotation(c[2]) * along.w;
     Mat2 E;
     E << u, Vec2(-u.y(), u.x());
@@ -68,16 +69,16 @@ struct SlideDriver : DriverBase {
 struct CoordinateDriver : DriverBase {
   static constexpr const char* kind = "coordinate_driver";
   int coordinate = 0;
-  Eigen::Matrix<double, 1, 1> phi(const Local6& c, double t) const {
-    return Eigen::Matrix<double, 1, 1>(c[3 + coordinate] - f->eval(t).f);
+  Eigen::Matrix<double, 1, 1> phi(const Local6& c, const Instant& t) const {
+    return Eigen::Matrix<double, 1, 1>(c[3 + coordinate] - f.at(t).f);
   }
-  Eigen::Matrix<double, 1, 6> jacobian(const Local6&, double) const {
+  Eigen::Matrix<double, 1, 6> jacobian(const Local6&, const Instant&) const {
     Eigen::Matrix<double, 1, 6> J = Eigen::Matrix<double, 1, 6>::Zero();
     J(3 + coordinate) = 1.0;
     return J;
   }
-  void hessians(const Local6&, double, Mat6* H) const { H[0].setZero(); }
-  Mat2 axes(const Local6&, double) const { return Mat2::Identity(); }
+  void hessians(const Local6&, const Instant&, Mat6* H) const { H[0].setZero(); }
+  Mat2 axes(const Local6&, const Instant&) const { return Mat2::Identity(); }
 };
 
 }  // namespace lagmb

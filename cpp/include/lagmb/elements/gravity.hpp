@@ -25,12 +25,12 @@ class Gravity final : public ForceGroupBase {
   void declare(SparsityPattern&, SparsityPattern&) const override {}
   void bind(const SpMat&, const SpMat&) override {}
 
-  void add_forces(const double*, const double*, double, const double*, double* Q) const override {
+  void add_forces(const double*, const double*, const Instant&, const double*, double* Q) const override {
     for (const auto& b : bodies_)
       for (int a = 0; a < b.dimension; ++a) Q[b.ix + a] += b.mass * g_[a];
   }
-  void add_derivatives(const double*, const double*, double, const double*, double*, double*) const override {}
-  double potential(const double* q, double) const override {
+  void add_derivatives(const double*, const double*, const Instant&, const double*, double*, double*) const override {}
+  double potential(const double* q, const Instant&) const override {
     double V = 0.0;
     for (const auto& b : bodies_)
       for (int a = 0; a < b.dimension; ++a) V -= b.mass * g_[a] * q[b.ix + a];

@@ -15,21 +15,22 @@ namespace lagmb {
 struct RotationalSpringDamper {
   static constexpr bool state_dependent = true;
   static constexpr const char* kind = "rotational_spring_damper";
+  static constexpr bool reads_inputs = true;
 
   std::string name;
   int body_i = -1, body_j = -1;
   double stiffness = 0.0, damping = 0.0, free_angle = 0.0;
-  TimeFunctionPtr actuator;  // may be null
+  Drive actuator;  // may be null
 
-  Local6 force(const Local6& c, const Local6& cd, double t) const {
+  Local6 force(const Local6& c, const Local6& cd, const Instant& t) const {
     double tau = -stiffness * (c[5] - c[2] - free_angle) - damping * (cd[5] - cd[2]);
-    if (actuator) tau += actuator->eval(t).f;
+    if (actuator) tau += actuator.at(t).f;
     Local6 Q = Local6::Zero();
     Q[2] = -tau;
     Q[5] = tau;
     return Q;
   }
-  void derivatives(const Local6&, const Local6&, double, Mat6& Q_c, Mat6& Q_cd) const {
+  void derivatives(const Local6&, const Local6&, const Instant&, Mat6& Q_c, Mat6& Q_cd) const {
     Q_c.setZero();
     Q_cd.setZero();
     for (auto [M, k] : {std::pair<Mat6*, double>{&Q_c, stiffness}, {&Q_cd, damping}}) {
@@ -37,7 +38,7 @@ struct RotationalSpringDamper {
       (*M)(2, 5) = (*M)(5, 2) = k;
     }
   }
-  double potential(const Local6& c, double) const {
+  double potential(const Local6& c, const Instant&) const {
     const double e = c[5] - c[2] - free_angle;
     return 0.5 * stiffness * e * e;
   }

@@ -20,8 +20,9 @@ struct SpatialDriverBase {
   using Grad = Eigen::Matrix<double, 1, 14>;
   std::string name;
   int body_i = -1, body_j = -1;
-  TimeFunctionPtr f;
-  Mat3 axes(const spatial::Loc&, double) const { return Mat3::Identity(); }
+  Drive f;  // the prescribed value
+  static constexpr bool reads_inputs = true;
+  Mat3 axes(const spatial::Loc&, const Instant&) const { return Mat3::Identity(); }
 };
 
 /// Shared by drivers whose row is g(c) - f(t) with g a scalar term:
@@ -33,20 +34,20 @@ struct SpatialDriverBase {
 template <class Kind>
 struct SpatialCoordinateDriverBase : SpatialDriverBase {
   static constexpr bool periodic = false;
-  Row phi(const spatial::Loc& c, double t) const {
-    const double difference = self().coordinate(c, {}).value - f->eval(t).f;
+  Row phi(const spatial::Loc& c, const Instant& t) const {
+    const double difference = self().coordinate(c, {}).value - f.at(t).f;
     return Row(Kind::periodic ? std::remainder(difference, 2.0 * kPi) : difference);
   }
-  Grad jacobian(const spatial::Loc& c, double) const { return self().coordinate(c, {}).gradient; }
-  void hessians(const spatial::Loc& c, double, spatial::Mat14* H) const { H[0] = self().coordinate(c, {true}).hessian; }
-  Grad rates(const spatial::Loc& c, const spatial::Loc& cd, double) const {
+  Grad jacobian(const spatial::Loc& c, const Instant&) const { return self().coordinate(c, {}).gradient; }
+  void hessians(const spatial::Loc& c, const Instant&, spatial::Mat14* H) const { H[0] = self().coordinate(c, {true}).hessian; }
+  Grad rates(const spatial::Loc& c, const spatial::Loc& cd, const Instant&) const {
     spatial::Want want;
     want.rate = &cd;
     return self().coordinate(c, want).gradient_rate;
   }
-  Row phi_t(const spatial::Loc&, double t) const { return Row(-f->eval(t).df); }
-  Grad phi_tc(const spatial::Loc&, double) const { return Grad::Zero(); }
-  Row phi_tt(const spatial::Loc&, double t) const { return Row(-f->eval(t).ddf); }
+  Row phi_t(const spatial::Loc&, const Instant& t) const { return Row(-f.at(t).df); }
+  Grad phi_tc(const spatial::Loc&, const Instant&) const { return Grad::Zero(); }
+  Row phi_tt(const spatial::Loc&, const Instant& t) const { return Row(-f.at(t).ddf); }
 
  private:
   const Kind& self() const { return static_cast<const Kind&>(*this); }

@@ -25,15 +25,16 @@ struct SpatialForceBase {
 template <class Kind>
 struct ScalarSpringDamper : SpatialForceBase {
   double stiffness = 0.0, damping = 0.0, free_value = 0.0;  // k, c, s0
-  TimeFunctionPtr actuator;  // f(t); may be null
+  Drive actuator;  // f(t); may be null
+  static constexpr bool reads_inputs = true;
 
-  double act(double t) const { return actuator ? actuator->eval(t).f : 0.0; }
-  spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, double t) const {
+  double act(const Instant& t) const { return actuator ? actuator.at(t).f : 0.0; }
+  spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t) const {
     spatial::Loc Q = spatial::Loc::Zero();
     spatial::add_spring_damper(self().coordinate(c, {}), cd, stiffness, damping, free_value, act(t), Q);
     return Q;
   }
-  void derivatives(const spatial::Loc& c, const spatial::Loc& cd, double t, spatial::Mat14& dq,
+  void derivatives(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t, spatial::Mat14& dq,
                    spatial::Mat14& dv) const {
     spatial::Loc Q = spatial::Loc::Zero();
     dq.setZero();
@@ -41,7 +42,7 @@ struct ScalarSpringDamper : SpatialForceBase {
     spatial::add_spring_damper(self().coordinate(c, {true}), cd, stiffness, damping, free_value, act(t), Q, &dq,
                                &dv);
   }
-  double potential(const spatial::Loc& c, double) const {
+  double potential(const spatial::Loc& c, const Instant&) const {
     const double e = self().coordinate(c, {}).value - free_value;
     return 0.5 * stiffness * e * e;
   }
@@ -144,13 +145,14 @@ struct Bushing : SpatialForceBase {
 struct SpatialAppliedForce : SpatialForceBase {
   static constexpr const char* kind = "spatial_force";
   Vec3 s = Vec3::Zero();
-  std::array<TimeFunctionPtr, 3> components;
+  std::array<Drive, 3> components;
+  static constexpr bool reads_inputs = true;
   bool local = false;
 
-  Vec3 given(double t) const {
-    return Vec3(components[0]->eval(t).f, components[1]->eval(t).f, components[2]->eval(t).f);
+  Vec3 given(const Instant& t) const {
+    return Vec3(components[0].at(t).f, components[1].at(t).f, components[2].at(t).f);
   }
-  spatial::Loc force(const spatial::Loc& c, const spatial::Loc&, double t) const {
+  spatial::Loc force(const spatial::Loc& c, const spatial::Loc&, const Instant& t) const {
     const Vec4 p = c.segment<4>(3);
     const Vec3 F = local ? euler::rotate(p, given(t)) : given(t);
     spatial::Loc Q = spatial::Loc::Zero();
@@ -160,7 +162,7 @@ struct SpatialAppliedForce : SpatialForceBase {
   }
   /// dQ/dp: point_hessian(s, F) for a global F; for a local one F = A(p) F'
   /// adds F_p = point_jacobian(p, F') to both parts.
-  void derivatives(const spatial::Loc& c, const spatial::Loc&, double t, spatial::Mat14& dq,
+  void derivatives(const spatial::Loc& c, const spatial::Loc&, const Instant& t, spatial::Mat14& dq,
                    spatial::Mat14& dv) const {
     dq.setZero();
     dv.setZero();
@@ -174,7 +176,7 @@ struct SpatialAppliedForce : SpatialForceBase {
       dq.block<4, 4>(3, 3) += euler::point_jacobian(p, s).transpose() * F_p;
     }
   }
-  double potential(const spatial::Loc&, double) const { return 0.0; }
+  double potential(const spatial::Loc&, const Instant&) const { return 0.0; }
 };
 
 /// A torque n on body i, global or (local) in the body's axes: Q_p =
@@ -182,11 +184,12 @@ struct SpatialAppliedForce : SpatialForceBase {
 ///   E(p)^T n = X(n) p, X(n) = [[0, -n^T], [n, skew(n)]];  G(p)^T n' = W(n') p.
 struct SpatialAppliedTorque : SpatialForceBase {
   static constexpr const char* kind = "spatial_torque";
-  std::array<TimeFunctionPtr, 3> components;
+  std::array<Drive, 3> components;
+  static constexpr bool reads_inputs = true;
   bool local = false;
 
-  Vec3 given(double t) const {
-    return Vec3(components[0]->eval(t).f, components[1]->eval(t).f, components[2]->eval(t).f);
+  Vec3 given(const Instant& t) const {
+    return Vec3(components[0].at(t).f, components[1].at(t).f, components[2].at(t).f);
   }
   Mat4 operator_of(const Vec3& n) const {
     if (local) return euler::W(n);
@@ -197,17 +200,17 @@ struct SpatialAppliedTorque : SpatialForceBase {
     X.block<3, 3>(1, 1) = skew(n);
     return X;
   }
-  spatial::Loc force(const spatial::Loc& c, const spatial::Loc&, double t) const {
+  spatial::Loc force(const spatial::Loc& c, const spatial::Loc&, const Instant& t) const {
     spatial::Loc Q = spatial::Loc::Zero();
     Q.segment<4>(3) = 2.0 * operator_of(given(t)) * c.segment<4>(3);
     return Q;
   }
-  void derivatives(const spatial::Loc&, const spatial::Loc&, double t, spatial::Mat14& dq, spatial::Mat14& dv) const {
+  void derivatives(const spatial::Loc&, const spatial::Loc&, const Instant& t, spatial::Mat14& dq, spatial::Mat14& dv) const {
     dq.setZero();
     dv.setZero();
     dq.block<4, 4>(3, 3) = 2.0 * operator_of(given(t));
   }
-  double potential(const spatial::Loc&, double) const { return 0.0; }
+  double potential(const spatial::Loc&, const Instant&) const { return 0.0; }
 };
 
 }  // namespace lagmb

@@ -20,12 +20,13 @@ namespace lagmb {
 struct SpringDamper {
   static constexpr bool state_dependent = true;
   static constexpr const char* kind = "spring_damper";
+  static constexpr bool reads_inputs = true;
 
   std::string name;
   int body_i = -1, body_j = -1;
   Vec2 s_i = Vec2::Zero(), s_j = Vec2::Zero();
   double stiffness = 0.0, damping = 0.0, free_length = 0.0;
-  TimeFunctionPtr actuator;  // may be null
+  Drive actuator;  // may be null
 
   struct Geometry {
     Vec2 d;
@@ -42,16 +43,16 @@ struct SpringDamper {
     G.g = G.D.transpose() * (G.d / G.l);
     return G;
   }
-  double tension(const Geometry& G, const Local6& cd, double t) const {
+  double tension(const Geometry& G, const Local6& cd, const Instant& t) const {
     double F = -stiffness * (G.l - free_length) - damping * G.g.dot(cd);
-    if (actuator) F += actuator->eval(t).f;
+    if (actuator) F += actuator.at(t).f;
     return F;
   }
-  Local6 force(const Local6& c, const Local6& cd, double t) const {
+  Local6 force(const Local6& c, const Local6& cd, const Instant& t) const {
     const Geometry G = geometry(c);
     return tension(G, cd, t) * G.g;
   }
-  void derivatives(const Local6& c, const Local6& cd, double t, Mat6& Q_c, Mat6& Q_cd) const {
+  void derivatives(const Local6& c, const Local6& cd, const Instant& t, Mat6& Q_c, Mat6& Q_cd) const {
     const Geometry G = geometry(c);
     Mat6 L = G.D.transpose() * G.D - G.g * G.g.transpose();
     L(2, 2) += G.d.dot(rotation(c[2]) * s_i);
@@ -60,7 +61,7 @@ struct SpringDamper {
     Q_cd = -damping * G.g * G.g.transpose();
     Q_c = G.g * (-stiffness * G.g - damping * (L * cd)).transpose() + tension(G, cd, t) * L;
   }
-  double potential(const Local6& c, double) const {
+  double potential(const Local6& c, const Instant&) const {
     const double e = geometry(c).l - free_length;
     return 0.5 * stiffness * e * e;
   }
