@@ -1,7 +1,8 @@
 """Two builds of lagmb side by side: is a change within noise?
 
-Runs the 100-link chain (bench/chain.py's model, 1 s, rtol 1e-6) and the
-work-precision set (bench/work_precision.py's problems, every method of
+Runs the 100-link chain (bench/chain.py's model, 1 s, rtol 1e-6; GGL and the
+explicit method), the 100-link spatial chain (tests/test_spatial.py's, 0.1 s,
+the same two methods) and the work-precision set (bench/work_precision.py's problems, every method of
 lagmb.accuracy.METHODS at rtol 1e-6, atol 1e-8) with each build in turn,
 each in a fresh interpreter, alternating builds round by round so that the
 machine's load falls on both alike. Each build is a directory holding a
@@ -28,7 +29,9 @@ COUNTS = ("steps", "residual_evals", "lu_factorizations")
 def worker():
     """One round in this interpreter: every case once; JSON on stdout."""
     sys.path.insert(0, HERE)
+    sys.path.insert(0, os.path.join(HERE, "..", "tests"))
     import chain as chain_bench
+    from test_spatial import spatial_chain
     import work_precision as wp_bench
     import lagmb as mb
     from lagmb.accuracy import METHODS
@@ -43,7 +46,11 @@ def worker():
             return
         out[case] = {"wall_time": r.stats["wall_time"], **{k: r.stats[k] for k in COUNTS}}
 
+    erk = dict(formulation="projection", integrator="erk")
     record("chain100", chain_bench.chain(100), 1.0)
+    record("chain100/erk", chain_bench.chain(100), 1.0, **erk)
+    record("spatial_chain100", spatial_chain(100), 0.1)
+    record("spatial_chain100/erk", spatial_chain(100), 0.1, **erk)
     for name, make in wp_bench.problems().items():
         model, t_end = make()
         for method, options in METHODS.items():

@@ -1,0 +1,421 @@
+// lagmb._core: the model description (ModelSpec), the compiled Model and the registry of kinds.
+#include "common.hpp"
+
+namespace lagmb::python {
+
+namespace {
+
+/// A point as Python has it: (x, y) in a planar model, (x, y, z) in a spatial one.
+py::tuple point_of(const Model& model, const Vec3& p) {
+  if (model.dimension() == 2) return py::make_tuple(p.x(), p.y());
+  return py::make_tuple(p.x(), p.y(), p.z());
+}
+
+/// [(x, y)] or [(x, y, z)]: where elements attach to a body (Model::outline).
+py::list outline_of(const Model& model, int body) {
+  py::list out;
+  for (const Vec3& p : model.outline(body)) out.append(point_of(model, p));
+  return out;
+}
+
+/// [(body index, x, y[, z])]: where an element attaches (Model::attachments).
+py::list attachments_of(const Model& model, const std::string& element) {
+  py::list out;
+  for (const auto& [body, p] : model.attachments(element))
+    out.append(py::tuple(py::make_tuple(body) + point_of(model, p)));
+  return out;
+}
+
+/// A Python value (already checked by lagmb.model) as the registry's Value.
+Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
+  const Param* p = kind.param(key);
+  if (!p) throw ModelError(kind.name + " has no parameter '" + key + "'");
+  if (x.is_none()) return std::monostate{};
+  switch (p->type) {
+    case ParamType::kText:
+    case ParamType::kJoint:
+    case ParamType::kChoice: return x.cast<std::string>();
+    case ParamType::kReal: return x.cast<double>();
+    case ParamType::kVec2: return x.cast<Vec2>();
+    case ParamType::kBool: return x.cast<bool>();
+    case ParamType::kBody: return BodyIndex{x.cast<int>()};
+    case ParamType::kMotion:
+    case ParamType::kFunction: return own(x.cast<TimeFunctionPtr>());
+    case ParamType::kFunctionPair: {
+      auto pair = x.cast<std::pair<TimeFunctionPtr, TimeFunctionPtr>>();
+      return std::make_pair(own(pair.first), own(pair.second));
+    }
+    case ParamType::kVec3: return x.cast<Vec3>();
+    case ParamType::kFunctionTriple: {
+      auto fs = x.cast<std::array<TimeFunctionPtr, 3>>();
+      return std::array<TimeFunctionPtr, 3>{own(fs[0]), own(fs[1]), own(fs[2])};
+    }
+    case ParamType::kOrientation:  // (w, x, y, z), or a 3 x 3 matrix (lagmb.model gives nested tuples)
+      if (py::len(x) == 4) return x.cast<Vec4>();
+      return x.cast<Mat3>();
+    case ParamType::kInertia:
+      if (py::len(x) == 3 && !py::isinstance<py::sequence>(py::reinterpret_borrow<py::sequence>(x)[0]))
+        return x.cast<Vec3>();
+      return x.cast<Mat3>();
+  }
+  return std::monostate{};
+}
+
+/// A default (a number, a vector, a flag or None) as Python has it.
+py::object default_to_python(const Value& v) {
+  if (const double* x = std::get_if<double>(&v)) return py::float_(*x);
+  if (const Vec2* x = std::get_if<Vec2>(&v)) return py::make_tuple(x->x(), x->y());
+  if (const Vec3* x = std::get_if<Vec3>(&v)) return py::make_tuple(x->x(), x->y(), x->z());
+  if (const Vec4* x = std::get_if<Vec4>(&v)) return py::make_tuple((*x)[0], (*x)[1], (*x)[2], (*x)[3]);
+  if (const bool* x = std::get_if<bool>(&v)) return py::bool_(*x);
+  if (const std::string* x = std::get_if<std::string>(&v)) return py::str(*x);
+  return py::none();
+}
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::kText: return "text";
+    case ParamType::kReal: return "real";
+    case ParamType::kVec2: return "vec2";
+    case ParamType::kBool: return "bool";
+    case ParamType::kBody: return "body";
+    case ParamType::kJoint: return "joint";
+    case ParamType::kChoice: return "choice";
+    case ParamType::kMotion: return "motion";
+    case ParamType::kFunction: return "function";
+    case ParamType::kFunctionPair: return "function_pair";
+    case ParamType::kVec3: return "vec3";
+    case ParamType::kOrientation: return "orientation";
+    case ParamType::kInertia: return "inertia";
+    case ParamType::kFunctionTriple: return "function_triple";
+  }
+  return "?";
+}
+
+/// The registry as plain Python data (lagmb.registry reads it).
+py::list kinds_to_python() {
+  py::list out;
+  for (const KindInfo& k : element_kinds()) {
+    py::list params;
+    for (const Param& p : k.params) {
+      py::dict d;
+      d["name"] = p.name;
+      d["type"] = type_name(p.type);
+      d["required"] = p.required;
+      d["default"] = default_to_python(p.fallback);
+      d["unit"] = p.unit;
+      d["doc"] = p.doc;
+      d["choices"] = py::tuple(py::cast(p.choices));
+      d["on"] = py::tuple(py::cast(p.on));
+      d["local"] = p.local;
+      d["keyword_only"] = p.keyword_only;
+      d["scene_key"] = p.scene_key.empty() ? p.name : p.scene_key;
+      params.append(d);
+    }
+    py::dict d;
+    d["name"] = k.name;
+    d["method"] = k.method;
+    d["table"] = k.table;
+    d["type"] = k.type.empty() ? py::object(py::none()) : py::object(py::str(k.type));
+    d["role"] = role_name(k.role);
+    d["doc"] = k.doc;
+    d["params"] = params;
+    d["dimension"] = k.dimension;
+    out.append(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_model(py::module_& m) {
+  py::class_<ModelSpec>(m, "ModelSpec", py::custom_type_setup(collectable<ModelSpec, SpecFunctions>))
+      .def(py::init<int>(), py::arg("dimension") = 2)
+      .def("__copy__", [](const ModelSpec& spec) { return spec.copied(own); })
+      .def("__len__", [](const ModelSpec& spec) { return spec.elements().size(); })
+      .def_property_readonly("dimension", &ModelSpec::dimension)
+      .def("to_text", &ModelSpec::to_text)
+      .def_static("from_text", &ModelSpec::from_text, py::arg("text"))
+      .def(
+          "set_gravity",
+          [](ModelSpec& spec, const Eigen::VectorXd& g) {
+            if (g.size() == 2) return spec.set_gravity(Vec2(g[0], g[1]));
+            if (g.size() == 3) return spec.set_gravity(Vec3(g[0], g[1], g[2]));
+            throw ModelError("gravity must have 2 (planar) or 3 (spatial) components, got " + std::to_string(g.size()));
+          },
+          py::arg("g"))
+      .def(
+          "add",
+          [](ModelSpec& spec, const std::string& kind_name, const std::string& name, const py::dict& values) {
+            const KindInfo& kind = find_kind(kind_name);
+            Args args(kind);
+            for (auto item : values) {
+              const std::string key = py::str(item.first);
+              args.set(key, to_value(kind, key, item.second));
+            }
+            spec.add(name, std::move(args));
+          },
+          py::arg("kind"), py::arg("name"), py::arg("values"))
+      .def("compile", [](const ModelSpec& spec) { return spec.build(own); },
+           "A new compiled Model with its own references to the Python callables (lagmb.Model keeps it "
+           "until the model changes).")
+      .def(
+          "outline",
+          [](const ModelSpec& spec, int body) { return outline_of(spec.draft(), body); },
+          py::arg("body"))
+      .def(
+          "attachments",
+          [](const ModelSpec& spec, const std::string& element) { return attachments_of(spec.draft(), element); },
+          py::arg("element"));
+
+  // compiled models come from ModelSpec.compile(); nothing here changes one
+  py::class_<Model, std::shared_ptr<Model>>(m, "Model", py::custom_type_setup(collectable<Model, ModelFunctions>))
+      .def("outline", &outline_of, py::arg("body"))
+      .def("attachments", &attachments_of, py::arg("element"))
+      .def_property_readonly("finalized", &Model::finalized)
+      .def_property_readonly("n_coordinates", &Model::n_coordinates)
+      .def_property_readonly("n_constraints", &Model::n_constraints)
+      .def_property_readonly("dimension", &Model::dimension)
+      .def_property_readonly("inputs",
+                             [](const Model& model) {
+                               py::list out;
+                               for (const InputInfo& in : model.inputs()) {
+                                 py::dict d;
+                                 d["name"] = in.name;
+                                 d["element"] = in.element;
+                                 d["parameter"] = in.parameter;
+                                 d["unit"] = in.unit;
+                                 d["initial"] = in.initial;
+                                 out.append(d);
+                               }
+                               return out;
+                             })
+      .def_property_readonly("parameters",
+                             [](const Model& model) {
+                               py::list out;
+                               for (const ParameterInfo& p : parameters(model)) {
+                                 py::dict d;
+                                 d["name"] = p.name;
+                                 d["element"] = p.element;
+                                 d["key"] = p.key;
+                                 d["component"] = p.component;
+                                 d["unit"] = p.unit;
+                                 d["doc"] = p.doc;
+                                 d["value"] = p.value;
+                                 out.append(d);
+                               }
+                               return out;
+                             })
+      .def(
+          "with_parameters",
+          [](const Model& model, const ParameterValues& values) -> std::shared_ptr<Model> {
+            return with_parameters(model, values, own);
+          },
+          py::arg("values"),
+          "This model built with other parameter values (a new compiled Model; None for no values).")
+      .def("constraint_name_of_row", &Model::constraint_name_of_row, py::arg("row"))
+      .def("has", &Model::has)
+      .def("body_coordinates",
+           [](const Model& model, const std::string& name) {
+             const ElementRef& r = model.find(name);
+             if (r.type != ElementRef::kBody) throw ModelError("'" + name + "' is not a body");
+             const Body& b = model.body(r.group);
+             return py::make_tuple(b.first_coord, b.n_coordinates());
+           })
+      .def("constraint_rows",
+           [](const Model& model, const std::string& name) {
+             const ElementRef& r = model.find(name);
+             if (r.type != ElementRef::kConstraint) throw ModelError("'" + name + "' is not a joint or driver");
+             const auto& g = *model.constraint_groups()[r.group];
+             return py::make_tuple(g.placement(r.index).row0, g.rows(r.index));
+           })
+      .def("element_kind",
+           [](const Model& model, const std::string& name) -> std::string {
+             const ElementRef& r = model.find(name);
+             if (r.type == ElementRef::kBody) return "body";
+             if (r.type == ElementRef::kConstraint) return model.constraint_groups()[r.group]->kind();
+             if (r.type == ElementRef::kFriction) return model.friction_groups()[r.group]->kind();
+             if (r.type == ElementRef::kEvent) return model.event_groups()[r.group]->kind();
+             return model.force_groups()[r.group]->kind();
+           })
+      .def("initial_state",
+           [](const Model& model) { return py::make_tuple(model.initial_q(), model.initial_v()); })
+      .def(
+          "reaction",
+          [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
+             const RowMajor& lam, bool joint_axes, const RowMajor& inputs) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, lam, model.n_constraints(), "lam");
+            require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
+            require_inputs(model, inputs, q.rows());
+            return reactions(model, name, view_of(t, &q, nullptr, &lam, inputs), joint_axes);
+          },
+          py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
+          py::arg("inputs") = RowMajor(),
+          "Force and torque about the centre of mass that the element applies to its second body\n"
+          "((x, y) and the torque in the plane, (x, y, z) and (x, y, z) in space); with joint_axes,\n"
+          "in the element's own axes.")
+      .def(
+          "friction",
+          [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,
+             const RowMajor& lam) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_rows(model, lam, model.n_constraints(), "lam");
+            if (v.rows() != q.rows() || lam.rows() != q.rows())
+              throw ModelError("q, v and lam must have one row per output (got " + std::to_string(q.rows()) + ", " +
+                               std::to_string(v.rows()) + " and " + std::to_string(lam.rows()) + ")");
+            const Eigen::VectorXd t = Eigen::VectorXd::Zero(q.rows());  // (friction does not depend on t)
+            return friction(model, name, view_of(t, &q, &v, &lam, RowMajor()));
+          },
+          py::arg("name"), py::arg("q"), py::arg("v"), py::arg("lam"),
+          "(friction torque or force on the joint's second body, slip rate) at each state")
+      .def(
+          "friction_forces",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& lam) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            require_rows(model, lam.transpose(), model.n_constraints(), "lam");
+            Data d(model);
+            d.Q.setZero();
+            add_friction_forces(model, d, q.data(), v.data(), lam.data());
+            assemble_friction_derivatives(model, d, q.data(), v.data(), lam.data());
+            const Eigen::Index n = q.size(), m = lam.size();
+            Eigen::MatrixXd Qq = Eigen::MatrixXd::Zero(n, n), Qv = Qq, Ql = Eigen::MatrixXd::Zero(n, m);
+            if (!model.friction_groups().empty()) {
+              Qq = Eigen::MatrixXd(d.friction_Q_q);
+              Qv = Eigen::MatrixXd(d.friction_Q_v);
+              Ql = Eigen::MatrixXd(d.friction_Q_lam).transpose();
+            }
+            return py::make_tuple(d.Q, Qq, Qv, Ql);
+          },
+          py::arg("q"), py::arg("v"), py::arg("lam"), "(Q_f, dQ_f/dq, dQ_f/dv, dQ_f/dlam) of joint friction")
+      .def(
+          "energy",
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v,
+             const RowMajor& inputs) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}});
+            require_inputs(model, inputs, q.rows());
+            return energy(model, view_of(t, &q, &v, nullptr, inputs));
+          },
+          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor())
+      .def(
+          "residual",
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& inputs) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_outputs(t, {{&q, "q"}});
+            require_inputs(model, inputs, q.rows());
+            return constraint_residual(model, view_of(t, &q, nullptr, nullptr, inputs));
+          },
+          py::arg("t"), py::arg("q"), py::arg("inputs") = RowMajor(), "max |Phi| at each state")
+      .def(
+          "velocity_residual",
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v,
+             const RowMajor& inputs) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}});
+            require_inputs(model, inputs, q.rows());
+            return velocity_residual(model, view_of(t, &q, &v, nullptr, inputs));
+          },
+          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor(),
+          "max |Phi_q v + Phi_t| at each state")
+      .def(
+          "constraint_jacobian",
+          [](const Model& model, const Eigen::VectorXd& q, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            Data d(model);
+            assemble_jacobian(model, d, q.data(), t);
+            return Eigen::MatrixXd(d.Phi_q);
+          },
+          py::arg("q"), py::arg("t") = 0.0)
+      .def(
+          "mass_matrix",
+          [](const Model& model, const Eigen::VectorXd& q) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            Data d(model);
+            assemble_mass(model, d, q.data());
+            return py::make_tuple(Eigen::MatrixXd(d.M), Eigen::MatrixXd(d.M_inv));
+          },
+          py::arg("q"), "M(q) and M(q)^-1 (dense; block diagonal).")
+      .def(
+          "mass_derivative",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& a) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, a.transpose(), model.n_coordinates(), "a");
+            Data d(model);
+            assemble_mass_derivative(model, d, q.data(), a.data());
+            return Eigen::MatrixXd(d.M_qa);
+          },
+          py::arg("q"), py::arg("a"), "d(M(q) a)/dq (dense).")
+      .def(
+          "kinetic_energy",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            return kinetic_energy(model, q.data(), v.data());
+          },
+          py::arg("q"), py::arg("v"))
+      .def(
+          "constraint_values",
+          [](const Model& model, const Eigen::VectorXd& q, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            Data d(model);
+            assemble_constraints(model, d, q.data(), t);
+            assemble_phi_t(model, d, q.data(), t);
+            return py::make_tuple(d.Phi, d.phi_t);
+          },
+          py::arg("q"), py::arg("t") = 0.0, "(Phi, Phi_t) at (q, t)")
+      .def(
+          "constraint_hessian",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& w, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, w.transpose(), model.n_constraints(), "w");
+            Data d(model);
+            assemble_constraint_hessian(model, d, q.data(), t, w.data());
+            return Eigen::MatrixXd(d.H);
+          },
+          py::arg("q"), py::arg("w"), py::arg("t") = 0.0, "sum_r w_r d2Phi_r/dq2")
+      .def(
+          "gamma",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            Data d(model);
+            assemble_gamma(model, d, q.data(), v.data(), t);
+            assemble_velocity_jacobian(model, d, q.data(), v.data(), t);
+            return py::make_tuple(d.gamma, Eigen::MatrixXd(d.Vq));
+          },
+          py::arg("q"), py::arg("v"), py::arg("t") = 0.0, "(gamma, d(Phi_q v + Phi_t)/dq)")
+      .def(
+          "forces",
+          [](const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t) {
+            require_rows(model, q.transpose(), model.n_coordinates(), "q");
+            require_rows(model, v.transpose(), model.n_coordinates(), "v");
+            Data d(model);
+            assemble_forces(model, d, q.data(), v.data(), t);
+            assemble_force_derivatives(model, d, q.data(), v.data(), t);
+            return py::make_tuple(d.Q, Eigen::MatrixXd(d.Q_q), Eigen::MatrixXd(d.Q_v));
+          },
+          py::arg("q"), py::arg("v"), py::arg("t") = 0.0, "(Q, Q_q, Q_v)")
+      .def(
+          "rank",
+          [](const Model& model, const Eigen::VectorXd& q, double t) {
+            PythonCall call;
+            const ConstraintRank r = constraint_rank(model, q, t);
+            py::dict out;
+            out["rank"] = r.rank;
+            out["equations"] = r.equations;
+            out["coordinates"] = r.coordinates;
+            out["degrees_of_freedom"] = r.degrees_of_freedom();
+            out["dependent_rows"] = r.dependent_rows;
+            return out;
+          },
+          py::arg("q"), py::arg("t") = 0.0);
+
+  m.def("kinds", &kinds_to_python, "The registry of element kinds (lagmb/registry.hpp) as plain data.");
+}
+
+}  // namespace lagmb::python

@@ -1,0 +1,44 @@
+// lagmb._core: static equilibrium and degrees of freedom.
+#include "common.hpp"
+
+namespace lagmb::python {
+
+void bind_statics(py::module_& m) {
+  m.def(
+      "equilibrium",
+      [](const Model& model, double t, double tol, int max_iterations, bool allow_unstable) {
+        EquilibriumOptions o;
+        o.t = t;
+        o.tol = tol;
+        o.max_iterations = max_iterations;
+        o.allow_unstable = allow_unstable;
+        PythonCall call;
+        Equilibrium e;
+        {
+          py::gil_scoped_release release;
+          e = find_equilibrium(model, o);
+        }
+        py::dict out;
+        out["q"] = e.q;
+        out["lam"] = e.lam;
+        out["iterations"] = e.iterations;
+        out["stable"] = e.stable;
+        out["stiffness_eigenvalues"] = e.stiffness_eigenvalues;
+        out["softest_mode"] = e.softest_mode;
+        out["force_residual"] = e.force_residual;
+        out["constraint_residual"] = e.constraint_residual;
+        return out;
+      },
+      py::arg("model"), py::arg("t") = 0.0, py::arg("tol") = 1e-12, py::arg("max_iterations") = 100,
+      py::arg("allow_unstable") = false, "Static equilibrium (see equilibrium.hpp) as a dict.");
+
+  m.def(
+      "degrees_of_freedom",
+      [](const Model& model, double t) {
+        PythonCall call;
+        return degrees_of_freedom(model, t);
+      },
+      py::arg("model"), py::arg("t") = 0.0);
+}
+
+}  // namespace lagmb::python
