@@ -144,7 +144,7 @@ def test_every_method_converges(method):
     1.3e4 .. 1.1e5x) and below 1e-6.  index3 converges more slowly by design:
     it enforces Phi = 0 only, v is an index-2 variable whose tolerance is
     scaled by 1/h (RADAU5's strategy, see Index3Formulation in
-    cpp/src/dae.hpp), so the velocity error is O(tol/h) and feeds the
+    cpp/src/formulations/dae.hpp), so the velocity error is O(tol/h) and feeds the
     positions; for it the assertion is 300x and 4e-5 (measured 1.7e3x,
     4.0e-6 at rtol 1e-9: 7.0e-3 at 1e-4)."""
     q_ref, _ = double_pendulum_reference(CONV_T)
@@ -350,7 +350,7 @@ def test_adams_pin_force_matches_closed_form(adams_run):
 # --------------------------------------------------------------------------
 
 @pytest.mark.xfail(strict=True, raises=mb.SimulationError, reason=(
-    "known limit (Index3Formulation in cpp/src/dae.hpp): formulation='index3' stops with IDA_ERR_FAIL (error test failed "
+    "known limit (Index3Formulation in cpp/src/formulations/dae.hpp): formulation='index3' stops with IDA_ERR_FAIL (error test failed "
     "repeatedly, h shrinking to ~2e-8) on the seed pendulum at default tolerances "
     "(rtol 1e-6, atol 1e-8) when t_end = 100 s, at t = 0.92 s; the same model runs "
     "fine with t_end = 1 or 10 s. Also the double pendulum at rtol 1e-5 over 10 s "

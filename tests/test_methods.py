@@ -1,4 +1,4 @@
-"""The integration methods are declared once (cpp/src/methods.cpp) and every
+"""The integration methods are declared once (cpp/src/integrators/methods.cpp) and every
 user-facing list is that table: lagmb.methods(), `lagmb info --methods`,
 the scene reader's formulation/integrator/max_order checks, simulate's
 validation and the work-precision presets (mb.METHODS)."""

@@ -1,4 +1,4 @@
-"""The registry of element kinds (lagmb/registry.hpp, lagmb.registry).
+"""The registry of element kinds (lagmb/model/registry.hpp, lagmb.registry).
 
 Every kind is declared once, in C++; the Python methods, the scene schema,
 the plotting roles and the element reference of docs/modelling.md are read

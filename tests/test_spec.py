@@ -1,4 +1,4 @@
-"""The editable model and the compiled one (lagmb/spec.hpp).
+"""The editable model and the compiled one (lagmb/spec/spec.hpp).
 
 mb.Model is a description (a ModelSpec in the core); compiled() gives the
 immutable core Model that runs read. These tests check the split: the

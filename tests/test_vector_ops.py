@@ -1,7 +1,7 @@
 """lagmb's own operations on SUNDIALS vectors.
 
 Debian's SUNDIALS 6.4 is compiled without optimization, so lagmb sets its
-own element-wise and fused vector operations (cpp/src/nvector_ops.cpp) in
+own element-wise and fused vector operations (cpp/src/solvers/nvector_ops.cpp) in
 every vector the integrators use. They must compute what SUNDIALS' serial
 operations compute, including when the output is also an input (a linear
 combination written over its second vector: an early version overwrote it

@@ -1,5 +1,5 @@
 /* The FMU runtime of lagmb (liblagmb_fmu.so, runtime.cpp): a CoSimulation
- * (lagmb/cosimulation.hpp) behind plain C, which the FMI 3.0 functions of an
+ * (lagmb/fmu/cosimulation.hpp) behind plain C, which the FMI 3.0 functions of an
  * FMU (fmi3.c, compiled by `lagmb fmu` against FMPy's FMI headers) call.
  * Status codes are fmi3Status values: 0 OK, 3 error. */
 #ifndef LAGMB_FMU_H

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "lagmb/cosimulation.hpp"
+#include "lagmb/fmu/cosimulation.hpp"
 #include "lagmb_fmu.h"
 
 #define LAGMB_FMU_EXPORT extern "C" __attribute__((visibility("default")))

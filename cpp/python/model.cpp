@@ -415,7 +415,7 @@ void bind_model(py::module_& m) {
           },
           py::arg("q"), py::arg("t") = 0.0);
 
-  m.def("kinds", &kinds_to_python, "The registry of element kinds (lagmb/registry.hpp) as plain data.");
+  m.def("kinds", &kinds_to_python, "The registry of element kinds (lagmb/model/registry.hpp) as plain data.");
 }
 
 }  // namespace lagmb::python

@@ -69,7 +69,7 @@ void bind_runs(py::module_& m) {
         }
         return out;
       },
-      "The integration methods (lagmb/methods.hpp), one dict each, the default first.");
+      "The integration methods (lagmb/integrators/methods.hpp), one dict each, the default first.");
 
   m.def(
       "simulate",

@@ -1,9 +1,9 @@
 // A spatial model from C++: a uniform rod on a spherical joint at one end,
 // released from horizontal (along x, gravity along -z). Prints the joint's
 // reaction on the rod (force and torque about its centre, global axes; from
-// lagmb/outputs.hpp) at release and at the end, and the rod's Euler
+// lagmb/run/outputs.hpp) at release and at the end, and the rod's Euler
 // parameters; then the pin force at release of the same model run with a
-// rod of 2 kg (a run-time parameter, lagmb/parameters.hpp; its moment of
+// rod of 2 kg (a run-time parameter, lagmb/spec/parameters.hpp; its moment of
 // inertia unchanged, so the force is m g I / (I + m r^2), not m g / 4).
 #include <cstdio>
 

@@ -182,7 +182,7 @@ class Model:
     # --- questions -------------------------------------------------------
 
     def compiled(self):
-        """The compiled, immutable C++ model (lagmb/spec.hpp): built when
+        """The compiled, immutable C++ model (lagmb/spec/spec.hpp): built when
         first asked and again after the model changes. Compiling numbers
         coordinates and rows and builds patterns, in time linear in the
         model's size; it runs no solver (redundant equations are found where

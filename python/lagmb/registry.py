@@ -1,7 +1,7 @@
 """The element kinds of lagmb, as the C++ core declares them.
 
 Each kind (a body, a joint, a driver, a force, ...) is declared once, in C++
-next to its equations (cpp/src/elements/*.cpp, lagmb/registry.hpp): its
+next to its equations (cpp/src/elements/*.cpp, lagmb/model/registry.hpp): its
 name, the Model method that adds it, its scene table and type, its role,
 and each parameter's type, default, unit and one-line documentation. This
 module reads that declaration and derives from it what Python needs: the

@@ -1,4 +1,4 @@
-"""Static equilibrium: mb.equilibrium(model) (cpp/include/lagmb/equilibrium.hpp)."""
+"""Static equilibrium: mb.equilibrium(model) (cpp/include/lagmb/analyses/equilibrium.hpp)."""
 
 
 import numpy as np

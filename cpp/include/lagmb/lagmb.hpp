@@ -1,22 +1,37 @@
 // lagmb: planar and spatial multibody dynamics in Cartesian coordinates with Lagrange
-// multipliers. Include this header to use the library from C++.
+// multipliers. Include this header to use the library from C++. The headers
+// sit in folders by layer, each including only from the layers before it
+// (docs/design.md, section 2): the basic types here, then model/ (with the
+// element kinds, elements/), spec/, solvers/, assembly/, analyses/,
+// integrators/, run/ and fmu/.
 #pragma once
 
-#include "lagmb/analysis.hpp"
-#include "lagmb/assembly.hpp"
-#include "lagmb/augmented.hpp"
-#include "lagmb/cosimulation.hpp"
-#include "lagmb/data.hpp"
 #include "lagmb/errors.hpp"
-#include "lagmb/model.hpp"
-#include "lagmb/outputs.hpp"
-#include "lagmb/parameters.hpp"
-#include "lagmb/simulate.hpp"
-#include "lagmb/simulator.hpp"
+#include "lagmb/options.hpp"
 #include "lagmb/trajectory.hpp"
 #include "lagmb/types.hpp"
-#include "lagmb/kinematics.hpp"
-#include "lagmb/equilibrium.hpp"
-#include "lagmb/methods.hpp"
-#include "lagmb/registry.hpp"
-#include "lagmb/spec.hpp"
+
+#include "lagmb/model/data.hpp"
+#include "lagmb/model/model.hpp"
+#include "lagmb/model/registry.hpp"
+
+#include "lagmb/spec/parameters.hpp"
+#include "lagmb/spec/spec.hpp"
+
+#include "lagmb/solvers/sundials.hpp"
+
+#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/assembly/assembly.hpp"
+#include "lagmb/assembly/augmented.hpp"
+
+#include "lagmb/analyses/equilibrium.hpp"
+#include "lagmb/analyses/kinematics.hpp"
+#include "lagmb/analyses/redundancy.hpp"
+
+#include "lagmb/integrators/methods.hpp"
+
+#include "lagmb/run/outputs.hpp"
+#include "lagmb/run/simulate.hpp"
+#include "lagmb/run/simulator.hpp"
+
+#include "lagmb/fmu/cosimulation.hpp"

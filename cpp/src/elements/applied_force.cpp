@@ -1,7 +1,7 @@
 // Applied forces and torques: how users add them (registry.hpp).
 #include "lagmb/elements/applied_force.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Bodies and particles: how users add them (registry.hpp).
 #include "lagmb/elements/body.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,5 +1,5 @@
 // What the builders of element kinds share (build.hpp).
-#include "build.hpp"
+#include "elements/build.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/model.hpp"
-#include "lagmb/registry.hpp"
+#include "lagmb/model/model.hpp"
+#include "lagmb/model/registry.hpp"
 
 namespace lagmb::build {
 

@@ -1,7 +1,7 @@
 // Circle-line contact: how users add one (registry.hpp).
 #include "lagmb/elements/contact.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Distance (massless link): how users add one (registry.hpp).
 #include "lagmb/elements/distance.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Drivers (prescribed motion): how users add them (registry.hpp).
 #include "lagmb/elements/drivers.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Gear pair: how users add one (registry.hpp).
 #include "lagmb/elements/gear.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

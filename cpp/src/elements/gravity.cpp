@@ -1,6 +1,6 @@
 #include "lagmb/elements/gravity.hpp"
 
-#include "lagmb/model.hpp"
+#include "lagmb/model/model.hpp"
 
 namespace lagmb {
 

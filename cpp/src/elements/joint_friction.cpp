@@ -1,7 +1,7 @@
 // Joint friction: how users add it (registry.hpp).
 #include "lagmb/elements/joint_friction.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

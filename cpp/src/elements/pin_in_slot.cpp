@@ -1,7 +1,7 @@
 // Pin in slot: how users add one (registry.hpp).
 #include "lagmb/elements/pin_in_slot.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

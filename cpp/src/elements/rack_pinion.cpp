@@ -1,7 +1,7 @@
 // Rack and pinion: how users add one (registry.hpp).
 #include "lagmb/elements/rack_pinion.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

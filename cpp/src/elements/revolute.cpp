@@ -1,7 +1,7 @@
 // Revolute joint: how users add one (registry.hpp).
 #include "lagmb/elements/revolute.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Rotational spring-damper-actuator: how users add one (registry.hpp).
 #include "lagmb/elements/rotational_spring_damper.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,5 +1,5 @@
 // Spatial drivers and force elements: how users add them (registry.hpp).
-#include "build.hpp"
+#include "elements/build.hpp"
 #include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/elements/spatial_forces.hpp"
 #include "lagmb/elements/spatial_joints.hpp"

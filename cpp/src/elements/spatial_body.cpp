@@ -1,7 +1,7 @@
 // Spatial rigid bodies: how users add them (registry.hpp).
 #include "lagmb/elements/spatial_body.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 #include "lagmb/elements/body.hpp"
 
 namespace lagmb {

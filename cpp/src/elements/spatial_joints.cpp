@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

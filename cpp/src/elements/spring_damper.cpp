@@ -1,7 +1,7 @@
 // Spring-damper-actuator: how users add one (registry.hpp).
 #include "lagmb/elements/spring_damper.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

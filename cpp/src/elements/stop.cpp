@@ -1,7 +1,7 @@
 // Joint stop: how users add one (registry.hpp).
 #include "lagmb/elements/stop.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Translational joint: how users add one (registry.hpp).
 #include "lagmb/elements/translational.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // Weld: how users add one (registry.hpp).
 #include "lagmb/elements/weld.hpp"
 
-#include "build.hpp"
+#include "elements/build.hpp"
 
 namespace lagmb {
 

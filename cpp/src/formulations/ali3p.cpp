@@ -1,12 +1,12 @@
 // The "ali3p" formulation (ali3p.hpp): the trapezoidal step of the index-3
 // equations, its Newton iteration with the augmented-Lagrangian multiplier
 // update, and the projections of v and a.
-#include "ali3p.hpp"
+#include "formulations/ali3p.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "lagmb/assembly.hpp"
+#include "lagmb/assembly/assembly.hpp"
 #include "lagmb/trajectory.hpp"
 
 namespace lagmb {

@@ -7,8 +7,8 @@
 
 #include <Eigen/SparseLU>
 
-#include "lagmb/augmented.hpp"
-#include "saddle_point.hpp"
+#include "lagmb/assembly/augmented.hpp"
+#include "formulations/saddle_point.hpp"
 
 namespace lagmb {
 

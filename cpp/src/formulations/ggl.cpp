@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../dae.hpp"
-#include "lagmb/assembly.hpp"
+#include "formulations/dae.hpp"
+#include "lagmb/assembly/assembly.hpp"
 
 namespace lagmb {
 

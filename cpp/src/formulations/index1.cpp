@@ -1,8 +1,8 @@
 // The index-1 form with Baumgarte terms (Index1Formulation, dae.hpp).
 #include <algorithm>
 
-#include "../dae.hpp"
-#include "lagmb/assembly.hpp"
+#include "formulations/dae.hpp"
+#include "lagmb/assembly/assembly.hpp"
 
 namespace lagmb {
 

@@ -1,8 +1,8 @@
 // The index-3 form (Index3Formulation, dae.hpp).
 #include <algorithm>
 
-#include "../dae.hpp"
-#include "lagmb/assembly.hpp"
+#include "formulations/dae.hpp"
+#include "lagmb/assembly/assembly.hpp"
 
 namespace lagmb {
 

@@ -1,8 +1,8 @@
 // The "projection" formulation (projection.hpp): the ODE in accelerations,
 // its Newton system and the coordinate projection.
-#include "projection.hpp"
+#include "formulations/projection.hpp"
 
-#include "lagmb/assembly.hpp"
+#include "lagmb/assembly/assembly.hpp"
 #include "lagmb/trajectory.hpp"
 
 namespace lagmb {

@@ -4,10 +4,10 @@
 // (cvode_integrator.cpp).
 #pragma once
 
-#include "../klu_lu.hpp"
+#include "solvers/klu_lu.hpp"
 
-#include "saddle_point.hpp"
-#include "lagmb/augmented.hpp"
+#include "formulations/saddle_point.hpp"
+#include "lagmb/assembly/augmented.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // The saddle-point block of the formulations' Newton matrices (saddle_point.hpp).
-#include "saddle_point.hpp"
+#include "formulations/saddle_point.hpp"
 
-#include "lagmb/assembly.hpp"
+#include "lagmb/assembly/assembly.hpp"
 
 namespace lagmb {
 

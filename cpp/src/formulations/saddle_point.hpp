@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "lagmb/data.hpp"
+#include "lagmb/model/data.hpp"
 #include "lagmb/sparsity.hpp"
 
 namespace lagmb {

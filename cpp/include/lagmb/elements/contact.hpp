@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "lagmb/event_group.hpp"
+#include "lagmb/model/event_group.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "lagmb/force_group.hpp"
+#include "lagmb/model/force_group.hpp"
 
 namespace lagmb {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "lagmb/elements/projected_offset.hpp"
-#include "lagmb/event_group.hpp"
+#include "lagmb/model/event_group.hpp"
 
 namespace lagmb {
 

@@ -1,0 +1,144 @@
+// The augmented (saddle-point) system of one instant, solved with sparse LU.
+#pragma once
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "lagmb/model/data.hpp"
+
+namespace lagmb {
+
+/// K = [ M      Phi_q^T  ]
+///     [ Phi_q  -eps I   ]
+///
+/// eps > 0 keeps K invertible when Phi_q loses rank (redundant constraints,
+/// singular positions); solve() then refines the solution against the
+/// unregularized K, so for a full-rank Phi_q the answer is exact.
+///
+/// With every mass and inertia positive (M, diagonal, is then positive
+/// definite), K is solved through its Schur complement (range-space method):
+///   S = Phi_q M^-1 Phi_q^T + eps I   (symmetric positive definite for any Phi_q),
+///   S lam = Phi_q M^-1 b1 - b2,   x1 = M^-1 (b1 - Phi_q^T lam),
+/// with a sparse Cholesky factorization of S. Its cost is linear in a
+/// chain's or tree's length; each entry of S is a sum over the columns of
+/// Phi_q (one per coordinate), listed once as pairs of Jacobian entries.
+/// The rows of S are renumbered once by approximate minimum degree (AMD),
+/// and S is assembled directly in that order, so a factorization copies and
+/// permutes nothing.
+/// S is first factorized with eps = 0, which is exact when every pivot keeps
+/// more than 1e-8 of its row's diagonal (no row nearly a combination of the
+/// others). Otherwise (a singular position) S0 + eps I is factorized and
+/// the solution refined against eps = 0 in S's space:
+///   S lam_{k+1} = s + eps lam_k   has the residual   s - S0 lam_{k+1} = eps (lam_{k+1} - lam_k),
+/// which is exactly the second block row of K0's residual (the first is zero
+/// by construction of x1): each refinement costs one pair of triangular
+/// solves and no product with K. Rows dropped as redundant get a unit
+/// diagonal (their right sides are zero, so their multipliers stay 0).
+/// Otherwise (a massless body, for kinematics) K is factorized by sparse LU
+/// (COLAMD) and refined with K0's residual. Either way the pattern is fixed
+/// by the model, so the ordering and symbolic analysis run once per
+/// AugmentedSystem; factorize() is numeric only.
+class AugmentedSystem {
+ public:
+  explicit AugmentedSystem(const Model& model);
+
+  /// Factorizes K with the current d.Phi_q and d.M (d.M_inv); false if the
+  /// factorization fails or K is not finite.
+  bool factorize(const Data& d);
+  /// Solves K [x1; x2] = [b1; b2] (sizes n, m), refining against eps = 0.
+  /// SimulationError if the last factorization failed.
+  void solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
+
+  int factorizations() const { return factorizations_; }
+  double regularization() const { return eps_; }
+  /// Whether the last factorization went through the Schur complement.
+  bool range_space() const { return schur_; }
+  /// Nonzeros of the Cholesky factor of S (0 before the first range-space
+  /// factorization): linear in a chain's length.
+  long factor_nonzeros() const;
+  /// How often S's pattern was analyzed (ordering, elimination tree): once.
+  int symbolic_analyses() const { return symbolic_analyses_; }
+
+ private:
+  void setup_schur(const Model& model);
+  void fill_lu_matrix(const Data& d);
+  bool factorize_schur(const Data& d);
+  bool pivots_above(double ratio) const;
+  void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
+
+  int n_, m_;
+  double eps_;
+  SpMat K_;
+  std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
+  double mass_scale_;
+  bool diagonal_mass_;  // M constant and diagonal (a planar model)
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  bool lu_analyzed_ = false;
+  bool factorized_ = false;
+  VecX rhs_, x_, r_, dx_;
+  int factorizations_ = 0;
+  // the range-space path
+  bool positive_mass_ = false, schur_ = false, regularized_ = false;
+  std::vector<int> j_outer_;    // Phi_q's column starts (its pattern)
+  std::vector<int> j_row_;      // each Phi_q entry's row of S (AMD order)
+  std::vector<int> old_of_new_;  // S's row k is constraint row old_of_new_[k]
+  std::vector<int> new_of_old_;
+  VecX j_values_;               // Phi_q's values at the last factorization
+  SpMat m_inv_;                 // M^-1 at the last factorization (block diagonal)
+  SpMat S_;                     // upper triangle, AMD order
+  VecX s_rhs_, work_, lam_, lam_prev_, w_n_;
+  // S.values[e] = sum of J.values[a] (J M^-1).values[b] over the pairs (a, b) in
+  // term_pairs_[term_begin_[e] .. term_begin_[e + 1]) (a and b in one column)
+  std::vector<int> term_begin_;
+  std::vector<std::array<int, 2>> term_pairs_;
+  VecX j_scaled_;  // J M^-1, per entry (a block of M^-1 mixes columns with the same rows)
+  std::vector<int> s_diag_;
+  Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
+  int symbolic_analyses_ = 0;
+};
+
+/// q, v, qdd and lam that satisfy Phi = 0, Phi_q v + Phi_t = 0 and the
+/// augmented system at time t.
+struct ConsistentState {
+  VecX q, v, qdd, lam;
+  std::vector<int> dropped_rows;  // the rows left out (Data::dropped_rows)
+};
+
+/// Makes (q, v) consistent at time t:
+///  1. positions by Newton least-change in the M-metric:
+///       [M Phi_q^T; Phi_q 0] [dq; kappa] = [0; -Phi],  q += dq, until |Phi| small;
+///  2. velocities by M-orthogonal projection:
+///       [M Phi_q^T; Phi_q 0] [v; kappa] = [M v0; -Phi_t];
+///  3. accelerations and multipliers: [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma].
+/// The rows d drops stay dropped (see start_state, redundancy.hpp). Throws AssemblyError
+/// naming the constraint elements still violated.
+ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
+                                VecX v, double t);
+
+/// Step 1 alone: positions satisfying Phi(q, t) = 0, by least change from q.
+VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, double t);
+
+/// Step 3 alone: qdd and lam at the state (q, v, t).
+void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,
+                         const double* v, double t, double* qdd, double* lam);
+
+/// Joint friction Q_f(q, v, lam) takes its load from the multipliers, so the
+/// equations that give lam become nonlinear in it. From d.Q (forces without
+/// friction) and the frictionless lam, iterates: d.Q = Q + Q_f(lam_k), then
+/// solve(lam) gives lam_{k+1} from that d.Q, until |lam_{k+1} - lam_k|_inf
+/// <= 1e-12 (|lam|_inf + mass scale), at most 2000 times (the convergence is
+/// linear); throws SimulationError if it does not converge (friction so large
+/// that the load-friction loop locks). Leaves d.Q with friction.
+void iterate_friction_load(const Model& model, Data& d, const double* q, const double* v, double t, VecX& lam,
+                           const std::function<void(VecX& lam)>& solve);
+
+/// iterate_friction_load on the augmented system: kkt factorized at q,
+/// d.gamma, and the frictionless (qdd, lam) in; both updated.
+void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
+                    double t, VecX& qdd, VecX& lam);
+
+}  // namespace lagmb

@@ -1,0 +1,72 @@
+// Data: the state-dependent values and scratch of one model (cf. mjData).
+#pragma once
+
+#include <memory>
+
+#include "lagmb/model/model.hpp"
+
+namespace lagmb {
+
+/// Values the kernels write, sized and patterned once from a finalized
+/// Model, and everything a run decides or changes: the dropped rows, the
+/// input values and the elements' run state. Kernels never allocate: they write into these arrays
+/// in place. A Model is never written by a run: one Model may be run by
+/// several threads at once, each with its own Data.
+struct Data {
+  explicit Data(const Model& model);
+
+  VecX Phi;     // constraint residual Phi(q, t)                   (m)
+  VecX phi_t;   // partial time derivative Phi_t                  (m)
+  VecX gamma;   // right side of Phi_q qdd = gamma                (m)
+  VecX Q;       // applied generalized forces Q(q, v, t)          (n)
+  SpMat Phi_q;  // constraint Jacobian                            (m x n)
+  SpMat Vq;     // d(Phi_q v + Phi_t)/dq, same pattern as Phi_q  (m x n)
+  SpMat H;      // sum_r w_r d2Phi_r/dq2 for a weight vector w    (n x n)
+  SpMat Q_q;    // dQ/dq                                          (n x n)
+  SpMat Q_v;    // dQ/dv                                          (n x n)
+  SpMat M;      // mass matrix M(q), pattern Model::mass_pattern() (n x n)
+  SpMat M_inv;  // M(q)^-1, the same pattern (block diagonal)      (n x n)
+  SpMat M_qa;   // d(M(q) a)/dq for a vector a, the same pattern   (n x n)
+
+  // joint friction Q_f(q, v, lam) (sized only if the model has friction)
+  SpMat friction_Q_q;    // dQ_f/dq, pattern of Q_q                 (n x n)
+  SpMat friction_Q_v;    // dQ_f/dv, pattern of Q_v                 (n x n)
+  SpMat friction_Q_lam;  // (dQ_f/dlam)^T, pattern of Phi_q         (m x n)
+  VecX friction_Q0, friction_lam;  // scratch of the augmented fixed-point solve
+
+  /// Elements evaluated by the assembly kernels (added per group call).
+  long element_evaluations = 0;
+
+  /// Rows of Phi this run leaves out, found consistently redundant where it
+  /// started (redundancy.hpp). The kernels write them as 0 = 0 with a zero
+  /// Jacobian row, so their multipliers are 0 and the other rows of each
+  /// redundant set carry its reaction. Empty (the default): every row counts.
+  std::vector<int> dropped_rows;
+  std::vector<int> dropped_slots;  // their entries in the values of Phi_q
+  /// Sets dropped_rows (sorted) and their Jacobian slots.
+  void drop_rows(const Model& model, std::vector<int> rows);
+
+  /// What the run sets and the kernels read beside q, v and t (cf.
+  /// mjData::ctrl): the input values and the elements' run state. Shared by
+  /// the Data objects of one run (each formulation and solver keeps its own
+  /// Data for scratch): what an event records or a Simulator's set_input
+  /// changes, every kernel of the run sees.
+  struct RunValues {
+    /// One per Model::inputs(), the initial values until a Simulator sets them.
+    VecX inputs;
+    /// Per-run state of the elements that keep one (e.g. the approach speed
+    /// of a contact in progress), at the offsets the Model assigned
+    /// (Model::run_state_size); zero at the start of a run, written by event
+    /// crossings, read by the force kernels.
+    VecX state;
+  };
+  std::shared_ptr<RunValues> run;
+  /// The instant t of this run, as the kernels take it (time and inputs).
+  Instant at(double t) const { return {t, run->inputs.data()}; }
+  /// Makes this Data part of `run`: its dropped rows and the same run values.
+  void join_run(const Model& model, const Data& run);
+  /// Reads the run values of `run` (not its dropped rows: every row counts).
+  void share_values(const Data& run) { this->run = run.run; }
+};
+
+}  // namespace lagmb

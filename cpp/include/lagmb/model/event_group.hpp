@@ -1,0 +1,110 @@
+// One container per event kind and the loops that run over it.
+//
+// An event kind (e.g. JointStop) owns event functions g_r(q, v, t), r = 0 ..
+// roots - 1, whose zero crossings the integrators locate (IDARootInit /
+// CVodeRootInit), and says what happens at a crossing. It is a plain struct
+// with, in the local coordinates c and velocities cd of its two bodies (as in
+// constraint_group.hpp):
+//   static constexpr int roots;                event functions per element
+//   static constexpr const char* kind;
+//   std::string name; int body_i, body_j;
+//   double root(r, c, cd, t)                   g_r
+//   int direction(r)                           -1: only downward crossings
+//                                              (+ to -) count; 0: both
+//   EventAction crossing(r, c, cd, t)          what to do at a crossing of g_r
+//   or, for a kind with per-run state (run_state_size, constraint_group.hpp),
+//   EventAction crossing(r, c, cd, t, run)     which may record in run[run_state ..]
+// The runner (cpp/src/integrators/events.cpp) applies the actions; the steppers only see
+// "a root was found" and restart from the state the runner hands back. A
+// model without event elements has no group: no root functions are given to
+// SUNDIALS and nothing is evaluated.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "lagmb/model/constraint_group.hpp"
+#include "lagmb/types.hpp"
+
+namespace lagmb {
+
+class Model;
+
+/// What an element asks for at a crossing of one of its event functions.
+struct EventAction {
+  enum Type {
+    kNone,     // nothing (e.g. the velocity is leaving): continue, no restart needed
+    kRestart,  // the equations change here (a force switches): restart at order 1
+    kImpact    // a velocity jump: impulse along `gradient`, then restart
+  } type = kNone;
+  /// Impact: the gradient of the unilateral coordinate g (g >= 0 allowed),
+  /// in local coordinates, and the Newton restitution e: after the jump
+  /// gradient . v+ = -e gradient . v-.
+  Eigen::Matrix<double, 1, 6> gradient = Eigen::Matrix<double, 1, 6>::Zero();
+  double restitution = 0.0;
+  /// Impact: rebound speeds below this (in the units of g') count as coming
+  /// to rest against the limit.
+  double rest_speed = 0.0;
+  /// Impact: d2g/dc2, for the acceleration g'' = gradient . cdd + cd^T H cd
+  /// that tells resting from leaving.
+  Mat6 hessian = Mat6::Zero();
+  /// Restart: the event function's rate g' at the crossing, for the record.
+  double speed = 0.0;
+  /// Which limit or contact, for the record ("lower", "upper", "onset", ...).
+  const char* label = "";
+};
+
+class EventGroupBase {
+ public:
+  virtual ~EventGroupBase() = default;
+  virtual int size() const = 0;
+  virtual const std::string& name(int k) const = 0;
+  virtual const char* kind() const = 0;
+  virtual int roots(int k) const = 0;
+  /// Whether a negative event function marks a forbidden place (a limit)
+  /// rather than a switch of a force law (contact).
+  virtual bool bounds_motion() const = 0;
+  virtual void place(const Model& model) = 0;
+  /// Position of element k's coordinates in q (-1: ground / missing angle).
+  virtual const LocalCoords& coordinates(int k) const = 0;
+  /// All event functions of the group, in element order, written at g.
+  virtual void values(const double* q, const double* v, double t, double* g) const = 0;
+  virtual int direction(int k, int r) const = 0;
+  /// run: the run's element state (Data::run_state), which the crossing may write.
+  virtual EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const = 0;
+};
+
+template <class Kind>
+class EventGroup final : public EventGroupBase {
+ public:
+  std::vector<Kind> items;
+
+  void add(Kind item) { items.push_back(std::move(item)); }
+  int size() const override { return static_cast<int>(items.size()); }
+  const std::string& name(int k) const override { return items[k].name; }
+  const char* kind() const override { return Kind::kind; }
+  bool bounds_motion() const override { return Kind::bounds_motion; }
+  int roots(int) const override { return Kind::roots; }
+  void place(const Model& model) override;
+  const LocalCoords& coordinates(int k) const override { return coord_[k]; }
+  void values(const double* q, const double* v, double t, double* g) const override {
+    for (size_t k = 0; k < items.size(); ++k) {
+      const Local6 c = gather_q<Planar>(q, coord_[k]), cd = gather_v<6>(v, coord_[k]);
+      for (int r = 0; r < Kind::roots; ++r) g[k * Kind::roots + r] = items[k].root(r, c, cd, t);
+    }
+  }
+  int direction(int k, int r) const override { return items[k].direction(r); }
+  EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const override {
+    const Local6 c = gather_q<Planar>(q, coord_[k]), cd = gather_v<6>(v, coord_[k]);
+    if constexpr (run_state_size_v<Kind> > 0)
+      return items[k].crossing(r, c, cd, t, run);
+    else
+      return items[k].crossing(r, c, cd, t);
+  }
+
+ private:
+  std::vector<LocalCoords> coord_;  // planar kinds: the first 6
+};
+
+}  // namespace lagmb

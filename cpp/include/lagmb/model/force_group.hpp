@@ -1,0 +1,144 @@
+// One container per force kind and the loop that runs over it.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "lagmb/model/constraint_group.hpp"
+#include "lagmb/sparsity.hpp"
+#include "lagmb/types.hpp"
+
+namespace lagmb {
+
+class Model;
+
+/// A kind of applied force. Each contributes to Q(q, v, t) and, where Q
+/// depends on the state, to its exact derivatives Q_q and Q_v, which the
+/// Newton matrix needs (stiff springs). Kinds whose Q is constant say so in
+/// has_derivatives() and are skipped when the Newton matrix is assembled.
+class ForceGroupBase {
+ public:
+  virtual ~ForceGroupBase() = default;
+  virtual int size() const = 0;
+  virtual const std::string& name(int k) const = 0;
+  virtual const char* kind() const = 0;
+  virtual bool has_derivatives() const = 0;
+
+  // finalize: find coordinates, declare and bind derivative slots
+  virtual void place(const Model& model) = 0;
+  virtual void declare(SparsityPattern& Q_q, SparsityPattern& Q_v) const = 0;
+  virtual void bind(const SpMat& Q_q, const SpMat& Q_v) = 0;
+
+  /// at: the time and the run's inputs; run: the run's element state
+  /// (Data::RunValues::state), read by kinds that keep one.
+  virtual void add_forces(const double* q, const double* v, const Instant& at, const double* run,
+                          double* Q) const = 0;
+  virtual void add_derivatives(const double* q, const double* v, const Instant& at, const double* run,
+                               double* Q_q_values, double* Q_v_values) const = 0;
+  /// Potential energy of the conservative part; 0 for dissipative kinds.
+  virtual double potential(const double* q, const Instant& at) const = 0;
+};
+
+/// Forces acting on (at most) two bodies, one container per kind. A kind is a
+/// plain struct with, in the L local coordinates c and velocities cd of its
+/// bodies (as in constraint_group.hpp; space.hpp):
+///   using Space = Spatial;                   (omitted: Planar)
+///   static constexpr bool state_dependent;   Q depends on c or cd
+///   static constexpr const char* kind;
+///   std::string name; int body_i, body_j;    (-1: ground / unused)
+///   Loc force(c, cd, t)                      generalized force on c (L)
+///   void derivatives(c, cd, t, MatL& Q_c, MatL& Q_cd)   if state_dependent
+///   double potential(c, t)                   0 for non-conservative kinds
+/// A kind with per-run state (see run_state_size in constraint_group.hpp)
+/// takes the run's state as a last argument of force and derivatives; a
+/// kind that reads_inputs (an actuator) takes the Instant for t.
+template <class Kind>
+class ForceGroup final : public ForceGroupBase {
+ public:
+  using S = space_of_t<Kind>;
+  static constexpr int L = S::local;
+  using Loc = LocalVec<L>;
+  using MatL = LocalMat<L>;
+
+  std::vector<Kind> items;
+
+  void add(Kind item) { items.push_back(std::move(item)); }
+  int size() const override { return static_cast<int>(items.size()); }
+  const std::string& name(int k) const override { return items[k].name; }
+  const char* kind() const override { return Kind::kind; }
+  bool has_derivatives() const override { return Kind::state_dependent; }
+
+  void place(const Model& model) override;
+
+  void declare(SparsityPattern& Q_q, SparsityPattern& Q_v) const override {
+    if constexpr (Kind::state_dependent)
+      for (const auto& p : coord_)
+        for (int a = 0; a < L; ++a)
+          for (int b = 0; b < L; ++b) {
+            if (p[a] < 0 || p[b] < 0) continue;
+            Q_q.add(p[b], p[a]);
+            Q_v.add(p[b], p[a]);
+          }
+  }
+
+  void bind(const SpMat& Q_q, const SpMat& Q_v) override {
+    if constexpr (Kind::state_dependent) {
+      slots_q_.resize(items.size());
+      slots_v_.resize(items.size());
+      for (size_t k = 0; k < items.size(); ++k)
+        for (int a = 0; a < L; ++a)
+          for (int b = 0; b < L; ++b) {
+            slots_q_[k][a * L + b] = slot(Q_q, coord_[k][b], coord_[k][a]);
+            slots_v_[k][a * L + b] = slot(Q_v, coord_[k][b], coord_[k][a]);
+          }
+    }
+  }
+
+  void add_forces(const double* q, const double* v, const Instant& at, const double* run,
+                  double* Q) const override {
+    const auto t = time_argument<Kind>(at);
+    for (size_t k = 0; k < items.size(); ++k) {
+      const Loc c = gather_q<S>(q, coord_[k]), cd = gather_v<L>(v, coord_[k]);
+      Loc f;
+      if constexpr (run_state_size_v<Kind> > 0)
+        f = items[k].force(c, cd, t, run);
+      else
+        f = items[k].force(c, cd, t);
+      for (int a = 0; a < L; ++a)
+        if (coord_[k][a] >= 0) Q[coord_[k][a]] += f[a];
+    }
+  }
+
+  void add_derivatives(const double* q, const double* v, const Instant& at, const double* run, double* Qq,
+                       double* Qv) const override {
+    if constexpr (Kind::state_dependent) {
+      const auto t = time_argument<Kind>(at);
+      MatL dq, dv;
+      for (size_t k = 0; k < items.size(); ++k) {
+        const Loc c = gather_q<S>(q, coord_[k]), cd = gather_v<L>(v, coord_[k]);
+        if constexpr (run_state_size_v<Kind> > 0)
+          items[k].derivatives(c, cd, t, run, dq, dv);
+        else
+          items[k].derivatives(c, cd, t, dq, dv);
+        for (int a = 0; a < L * L; ++a) {
+          if (slots_q_[k][a] >= 0) Qq[slots_q_[k][a]] += dq.data()[a];
+          if (slots_v_[k][a] >= 0) Qv[slots_v_[k][a]] += dv.data()[a];
+        }
+      }
+    }
+  }
+
+  double potential(const double* q, const Instant& at) const override {
+    const auto t = time_argument<Kind>(at);
+    double V = 0.0;
+    for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather_q<S>(q, coord_[k]), t);
+    return V;
+  }
+
+ private:
+  std::vector<LocalCoords> coord_;
+  std::vector<std::array<int, L * L>> slots_q_, slots_v_;
+};
+
+}  // namespace lagmb

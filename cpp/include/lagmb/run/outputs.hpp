@@ -1,0 +1,56 @@
+// What a run's outputs give beyond q, v, a and lam: reactions, driver
+// efforts, joint friction, energy and constraint residuals, output by output
+// (free functions over the model and the outputs, as Python's Result and
+// C++ users call them).
+#pragma once
+
+#include <string>
+
+#include "lagmb/model/model.hpp"
+#include "lagmb/trajectory.hpp"
+
+namespace lagmb {
+
+/// Row-major numbers, one row per output.
+using OutputRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// The outputs of a run as arrays, one row per output time: a Trajectory's
+/// (OutputView::of) or arrays a binding holds (not copied). q, v, lam may be
+/// null where a function does not read them; inputs null: the inputs at
+/// their initial values (simulate's).
+struct OutputView {
+  int k = 0;  // outputs
+  const double* t = nullptr;       // (k)
+  const double* q = nullptr;       // (k, n)
+  const double* v = nullptr;       // (k, n)
+  const double* lam = nullptr;     // (k, m)
+  const double* inputs = nullptr;  // (k, p): Model::inputs() at each output
+  static OutputView of(const Trajectory& tr);
+};
+
+/// Force and torque that the joint or driver `element` applies to its second
+/// body, about that body's centre of mass, at each output: (k, 3) in the
+/// plane (force x, y and the torque), (k, 6) in space (force, torque); in
+/// global axes, or in the element's own axes with joint_axes (the planar
+/// torque unchanged). From -Phi_c^T lam of the element's rows.
+OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes = false);
+
+/// (k) what the driver `element` applies along what it drives (N or N m,
+/// positive along increasing driven coordinate): -lam of its row.
+VecX efforts(const Model& model, const std::string& element, const OutputView& out);
+
+/// (k, 2) the joint friction `element`: its torque (N m) or force (N) on the
+/// joint's second body and the joint's relative rate (rad/s or m/s).
+OutputRows friction(const Model& model, const std::string& element, const OutputView& out);
+
+/// (k) kinetic plus potential energy (J) of the conservative forces.
+VecX energy(const Model& model, const OutputView& out);
+
+/// (k) max |Phi(q, t)| over every row, the ones a run left out as redundant
+/// included (0 without constraints).
+VecX constraint_residual(const Model& model, const OutputView& out);
+
+/// (k) max |Phi_q v + Phi_t| over every row.
+VecX velocity_residual(const Model& model, const OutputView& out);
+
+}  // namespace lagmb

@@ -1,0 +1,190 @@
+#include "lagmb/assembly/assembly.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace lagmb {
+
+Data::Data(const Model& model)
+    : Phi(VecX::Zero(model.n_constraints())),
+      phi_t(VecX::Zero(model.n_constraints())),
+      gamma(VecX::Zero(model.n_constraints())),
+      Q(VecX::Zero(model.n_coordinates())),
+      Phi_q(model.jacobian_pattern()),
+      Vq(model.jacobian_pattern()),
+      H(model.hessian_pattern()),
+      Q_q(model.force_q_pattern()),
+      Q_v(model.force_v_pattern()),
+      M(model.mass_pattern()),
+      M_inv(model.mass_pattern()),
+      M_qa(model.mass_pattern()),
+      run(std::make_shared<RunValues>()) {
+  if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
+  init_mass(model, *this);
+  run->inputs.resize(int(model.inputs().size()));
+  for (int k = 0; k < run->inputs.size(); ++k) run->inputs[k] = model.inputs()[k].initial;
+  run->state = VecX::Zero(model.run_state_size());
+  if (!model.friction_groups().empty()) {
+    friction_Q_q = model.force_q_pattern();
+    friction_Q_v = model.force_v_pattern();
+    friction_Q_lam = model.jacobian_pattern();
+    friction_Q0.resize(model.n_coordinates());
+    friction_lam.resize(model.n_constraints());
+  }
+}
+
+void Data::drop_rows(const Model& model, std::vector<int> rows) {
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (int r : rows)
+    if (r < 0 || r >= model.n_constraints()) throw std::logic_error("lagmb: dropped row out of range");
+  dropped_rows = std::move(rows);
+  dropped_slots.clear();
+  const SpMat& J = model.jacobian_pattern();
+  for (int c = 0; c < J.outerSize(); ++c)
+    for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
+      if (std::binary_search(dropped_rows.begin(), dropped_rows.end(), J.innerIndexPtr()[k]))
+        dropped_slots.push_back(k);
+}
+
+void Data::join_run(const Model& model, const Data& run) {
+  if (&run == this) return;
+  drop_rows(model, run.dropped_rows);
+  share_values(run);
+}
+
+namespace {
+
+// rows dropped for the run read 0 = 0 (a no-op for most models)
+void drop_rows(const Data& d, VecX& x) {
+  for (int r : d.dropped_rows) x[r] = 0.0;
+}
+void drop_rows(const Data& d, SpMat& A) {
+  for (int s : d.dropped_slots) A.valuePtr()[s] = 0.0;
+}
+
+}  // namespace
+
+void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
+  for (const auto& g : model.constraint_groups()) {
+    g->phi(q, d.at(t), d.Phi.data());
+    d.element_evaluations += g->size();
+  }
+  drop_rows(d, d.Phi);
+}
+
+void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
+  for (const auto& g : model.constraint_groups()) {
+    g->jacobian(q, d.at(t), d.Phi_q.valuePtr());
+    d.element_evaluations += g->size();
+  }
+  drop_rows(d, d.Phi_q);
+  if (!model.constant_mass()) assemble_mass(model, d, q);
+}
+
+void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
+  d.phi_t.setZero();
+  for (const auto* g : model.time_dependent_groups()) {
+    g->add_phi_t(q, d.at(t), d.phi_t.data());
+    d.element_evaluations += g->size();
+  }
+  drop_rows(d, d.phi_t);
+}
+
+void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
+  for (const auto& g : model.constraint_groups()) {
+    g->gamma(q, v, d.at(t), d.gamma.data());
+    d.element_evaluations += g->size();
+  }
+  drop_rows(d, d.gamma);
+}
+
+void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
+                                double t) {
+  for (const auto& g : model.constraint_groups()) {
+    g->velocity_jacobian(q, v, d.at(t), d.Vq.valuePtr());
+    d.element_evaluations += g->size();
+  }
+  drop_rows(d, d.Vq);
+}
+
+void assemble_constraint_hessian(const Model& model, Data& d, const double* q, double t,
+                                 const double* w) {
+  // (the weights of dropped rows are their multipliers: zero)
+  d.H.coeffs().setZero();
+  for (const auto& g : model.constraint_groups()) {
+    g->add_hessian(q, d.at(t), w, d.H.valuePtr());
+    d.element_evaluations += g->size();
+  }
+}
+
+void assemble_forces(const Model& model, Data& d, const double* q, const double* v, double t) {
+  d.Q.setZero();
+  for (const auto& f : model.force_groups()) {
+    f->add_forces(q, v, d.at(t), d.run->state.data(), d.Q.data());
+    d.element_evaluations += f->size();
+  }
+}
+
+void assemble_force_derivatives(const Model& model, Data& d, const double* q, const double* v,
+                                double t) {
+  if (model.state_dependent_forces().empty()) return;
+  d.Q_q.coeffs().setZero();
+  d.Q_v.coeffs().setZero();
+  for (const auto* f : model.state_dependent_forces()) {
+    f->add_derivatives(q, v, d.at(t), d.run->state.data(), d.Q_q.valuePtr(), d.Q_v.valuePtr());
+    d.element_evaluations += f->size();
+  }
+}
+
+void add_friction_forces(const Model& model, Data& d, const double* q, const double* v,
+                         const double* lam) {
+  for (const auto& f : model.friction_groups()) {
+    f->add_forces(q, v, lam, d.Q.data());
+    d.element_evaluations += f->size();
+  }
+}
+
+void assemble_friction_derivatives(const Model& model, Data& d, const double* q, const double* v,
+                                   const double* lam) {
+  if (model.friction_groups().empty()) return;
+  d.friction_Q_q.coeffs().setZero();
+  d.friction_Q_v.coeffs().setZero();
+  d.friction_Q_lam.coeffs().setZero();
+  for (const auto& f : model.friction_groups()) {
+    f->add_derivatives(q, v, lam, d.friction_Q_q.valuePtr(), d.friction_Q_v.valuePtr(),
+                       d.friction_Q_lam.valuePtr());
+    d.element_evaluations += f->size();
+  }
+}
+
+void add_jacobian_transpose_times(const Data& d, const double* w, double* y) {
+  const SpMat& J = d.Phi_q;
+  const int* outer = J.outerIndexPtr();
+  const int* inner = J.innerIndexPtr();
+  const double* val = J.valuePtr();
+  for (int c = 0; c < J.cols(); ++c) {
+    double s = 0.0;
+    for (int k = outer[c]; k < outer[c + 1]; ++k) s += val[k] * w[inner[k]];
+    y[c] += s;
+  }
+}
+
+void add_jacobian_times(const Data& d, const double* x, double* y) {
+  const SpMat& J = d.Phi_q;
+  const int* outer = J.outerIndexPtr();
+  const int* inner = J.innerIndexPtr();
+  const double* val = J.valuePtr();
+  for (int c = 0; c < J.cols(); ++c) {
+    const double xc = x[c];
+    for (int k = outer[c]; k < outer[c + 1]; ++k) y[inner[k]] += val[k] * xc;
+  }
+}
+
+double potential_energy(const Model& model, const double* q, const Instant& at) {
+  double V = 0.0;
+  for (const auto& f : model.force_groups()) V += f->potential(q, at);
+  return V;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,163 @@
+// The time integrators lagmb drives, behind one call each.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "formulations/dae.hpp"
+#include "lagmb/integrators/methods.hpp"
+#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/options.hpp"
+#include "lagmb/trajectory.hpp"
+
+namespace lagmb {
+
+/// What every integrator is asked to do: the run's options (tolerances,
+/// step bounds, progress) read where they are, and what the run derives.
+struct IntegrationPlan {
+  const SimulationOptions* options = nullptr;  // outlives the plan
+  double t0 = 0.0, t_end = 0.0;  // of this stretch (a Simulator's advance moves them)
+  VecX atol;                     // per coordinate: options->atol or options->atol_coordinates
+  int max_order = 0;             // options->max_order, or the method's highest
+  std::vector<double> t_out;
+  std::vector<double> breakpoints;  // inside (t0, t_end): stop and restart there
+  class EventRunner* events = nullptr;  // the model's event functions; null: none
+  const Data* run = nullptr;  // the run's Data: each integrator's own Data joins it (Data::join_run)
+};
+
+/// Smallest step an integrator may take: 100 ulps of the largest |t| of the
+/// run. Below it the step cannot advance t.
+inline double minimum_step(const IntegrationPlan& plan) {
+  const double T = std::max({std::abs(plan.t0), std::abs(plan.t_end), 1.0});
+  return 100.0 * std::numeric_limits<double>::epsilon() * T;
+}
+
+/// The integrator gave up at time t; what() carries its diagnosis.
+struct IntegratorFailure : std::runtime_error {
+  IntegratorFailure(const std::string& what, double t_reached)
+      : std::runtime_error(what), t(t_reached) {}
+  double t;
+  VecX q;  // positions at t (the last accepted step), for the diagnosis
+  bool diagnose = true;  // false: the message is complete (no Jacobian diagnosis)
+};
+
+/// One integrator as the shared stepping loop sees it.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// Sets the time the next steps must not pass (a breakpoint or t_end).
+  virtual void set_stop(double stop) = 0;
+  /// One step; returns the time reached and sets at_stop when that is the
+  /// stop time. Throws IntegratorFailure (with the solver's diagnosis).
+  virtual double step(bool& at_stop) = 0;
+  /// q and v at time t inside the last step (interpolated).
+  virtual void interpolate(double t, const double*& q, const double*& v) = 0;
+  /// Restarts at order 1 from the current state at time t.
+  virtual void restart(double t) = 0;
+  /// Positions of the last accepted step.
+  virtual const double* positions() const = 0;
+  /// Counts so far, summed over restarts.
+  virtual void fill_stats(Stats& stats) = 0;
+  virtual const char* name() const = 0;
+
+  // events (a stepper of a model without event elements never reports roots)
+  /// Whether the last step stopped at a root of the event functions; then
+  /// fired[i] != 0 for the event functions that crossed.
+  virtual bool root_found(std::vector<int>& fired) { (void)fired; return false; }
+  /// Velocities of the last accepted step (or of the root).
+  virtual const double* velocities() const { return nullptr; }
+  /// Restarts at order 1 from a new consistent state at time t (after a
+  /// velocity jump or a change of the equations).
+  virtual void reset(double t, const ConsistentState& s) { (void)s; restart(t); }
+};
+
+using Record = std::function<void(const double* q, const double* v)>;
+
+/// The loop every run shares (simulate in one call, a Simulator in chunks):
+/// outputs interpolated where asked (the steps are not stopped there), a
+/// stop and restart at every breakpoint of the time functions, the events'
+/// actions, the max_steps bound and progress reports.
+class StepLoop {
+ public:
+  /// `stepper` starts at time t; the stop times are the breakpoints after t,
+  /// then plan.t_end if `stop_at_end` (simulate), else none (a Simulator:
+  /// the steps may pass the time asked for, outputs are interpolated).
+  StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end = true);
+  /// Steps until the time reached is at least `target`; calls record(q, v)
+  /// for each t_out[k] up to the time reached, k counting on. At most
+  /// options->max_steps steps between two outputs (IntegratorFailure beyond).
+  /// Without stop_at_end, a breakpoint or event that ends a step past
+  /// `target` is acted on when a later run has to step on: until then the
+  /// step's interpolant holds the times before it, which a Simulator's next
+  /// advances may ask for (a restart discards it).
+  void run(double target, const std::vector<double>& t_out, size_t& k, const Record& record);
+  /// The stepper was reset to time t from outside (a Simulator's input
+  /// change): the breakpoints from there on (a pending action is void).
+  void restarted(double t);
+  /// Time the stepper reached (its last step's end).
+  double t() const { return t_; }
+  /// Restarts at breakpoints and after events' actions so far.
+  long restarts() const { return restarts_; }
+
+ private:
+  double stop_time() const;
+  /// After a step to t: an event's action, or the restart at a breakpoint
+  /// (at_stop). True if the stepper was restarted.
+  bool act(double t, bool at_stop);
+  Stepper& stepper_;
+  const IntegrationPlan& plan_;
+  double t_;
+  bool stop_at_end_;
+  size_t next_break_ = 0;
+  long restarts_ = 0;
+  bool pending_ = false, pending_at_stop_ = false;  // act() deferred to the next run
+  std::vector<int> fired_;
+  VecX q_event_, v_event_;
+};
+
+/// simulate's run: the outputs at t0 from `start`, then StepLoop to
+/// plan.t_end; stats filled whatever happens (q of an IntegratorFailure set).
+void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start, const Record& record,
+               Stats& stats);
+
+/// The steppers of the integrators, each started at `start` at time plan.t0
+/// and owning its solver session; `plan` must outlive the stepper (its
+/// tolerances, bounds and event functions are read from there, and its t0
+/// and t_end set the scale of the first step after a reset).
+///
+/// IDA (ida_integrator.cpp) on a DAE formulation.
+std::unique_ptr<Stepper> make_ida_stepper(std::unique_ptr<DaeFormulation> dae, const ConsistentState& start,
+                                          const IntegrationPlan& plan);
+/// CVODE (cvode_integrator.cpp) on the ODE in accelerations (qdd, lam from
+/// the augmented system at every right-hand side). BDF: q and v are
+/// projected onto Phi = 0 and Phi_q v + Phi_t = 0 after every step.
+/// Adams-Moulton: CVODE cannot project, so only Baumgarte terms (alpha,
+/// beta) hold the constraints.
+std::unique_ptr<Stepper> make_cvode_stepper(const Model& model, bool adams, double alpha, double beta,
+                                            const ConsistentState& start, const IntegrationPlan& plan);
+/// ARKODE's explicit Runge-Kutta methods (erk_integrator.cpp; ERKStep, order
+/// plan.max_order: 2 to 6 or 8) on the ODE in accelerations, q and v
+/// projected onto Phi = 0 and Phi_q v + Phi_t = 0 after every accepted step.
+std::unique_ptr<Stepper> make_erk_stepper(const Model& model, const ConsistentState& start,
+                                          const IntegrationPlan& plan);
+/// ALI3-P (ali3p_integrator.cpp): index-3 equations, trapezoidal rule with
+/// the fixed step options->max_step, Newton on (q, lam) with a regularized
+/// multiplier block to options->newton_rtol and newton_atol, mass-orthogonal
+/// projections of v and a.
+std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, const ConsistentState& start,
+                                            const IntegrationPlan& plan);
+
+/// The stepper of a method of the table (methods.cpp), started at `start`.
+std::unique_ptr<Stepper> make_stepper(const Method& method, const Model& model, const ConsistentState& start,
+                                      const IntegrationPlan& plan);
+
+/// Runs a method of the table from `start` with `plan` to plan.t_end.
+void integrate(const Method& method, const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
+               const Record& record, Stats& stats);
+
+}  // namespace lagmb

@@ -1,0 +1,137 @@
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <sstream>
+
+#include "integrators/events.hpp"
+#include "integrators/integrators.hpp"
+#include "lagmb/errors.hpp"
+#include "lagmb/interrupt.hpp"
+#include "lagmb/time_function.hpp"
+
+namespace lagmb {
+
+StepLoop::StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end)
+    : stepper_(stepper), plan_(plan), t_(t), stop_at_end_(stop_at_end) {
+  restarted(t);
+}
+
+void StepLoop::restarted(double t) {
+  t_ = t;
+  pending_ = false;
+  const auto& b = plan_.breakpoints;
+  next_break_ = size_t(std::upper_bound(b.begin(), b.end(), t) - b.begin());
+  stepper_.set_stop(stop_time());
+}
+
+double StepLoop::stop_time() const {
+  if (next_break_ < plan_.breakpoints.size()) return plan_.breakpoints[next_break_];
+  // no stop: the largest time (SUNDIALS 6 cannot clear a stop time)
+  return stop_at_end_ ? plan_.t_end : std::numeric_limits<double>::max();
+}
+
+bool StepLoop::act(double t, bool at_stop) {
+  if (plan_.events) {
+    // a root of the event functions (or a crossing the integrator
+    // stepped over): the elements act, and the run restarts from the
+    // state they leave, at order 1
+    const bool root = stepper_.root_found(fired_);
+    if (root || plan_.events->missed(t, stepper_.positions(), stepper_.velocities(), fired_)) {
+      const int n = int(plan_.atol.size());
+      q_event_ = Eigen::Map<const VecX>(stepper_.positions(), n);
+      v_event_ = Eigen::Map<const VecX>(stepper_.velocities(), n);
+      bool acted = false;
+      try {
+        acted = plan_.events->handle(t, q_event_, v_event_, fired_);
+        if (acted) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
+      } catch (const SimulationError& e) {  // keep the outputs so far
+        throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
+      } catch (const UserFunctionError& e) {
+        throw IntegratorFailure(e.what(), t);
+      }
+      if (acted) {
+        ++restarts_;
+        if (at_stop && next_break_ < plan_.breakpoints.size()) ++next_break_;  // the event fell on a breakpoint: pass it
+        stepper_.set_stop(stop_time());
+        return true;
+      }
+    }
+  }
+  if (at_stop && next_break_ < plan_.breakpoints.size()) {
+    // a derivative of a time function jumps here: restart at order 1
+    // from the (continuous, consistent) state instead of stepping across
+    ++next_break_;
+    ++restarts_;
+    stepper_.restart(t);
+    stepper_.set_stop(stop_time());
+    return true;
+  }
+  return false;
+}
+
+void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {
+  auto clock = std::chrono::steady_clock::now();
+  long steps = 0;
+  if (pending_ && t_ < target) {  // (while target is inside the last step, it holds the outputs)
+    pending_ = false;
+    act(t_, pending_at_stop_);
+  }
+  while (t_ < target) {
+    poll_interrupt();
+    bool at_stop = false;
+    const double t = t_ = stepper_.step(at_stop);
+    for (; k < t_out.size() && t_out[k] <= t; ++k) {
+      const double *q = nullptr, *v = nullptr;
+      stepper_.interpolate(t_out[k], q, v);
+      record(q, v);
+      steps = 0;
+    }
+    // max_steps bounds the steps between outputs (as SUNDIALS' mxstep):
+    // a run that cannot end stops, an accurate long one does not
+    if (plan_.options->max_steps > 0 && ++steps >= plan_.options->max_steps && t < target) {
+      std::ostringstream msg;
+      msg << stepper_.name() << " took max_steps = " << plan_.options->max_steps << " steps without reaching the next output "
+          << "(at t = " << (k < t_out.size() ? t_out[k] : target) << "; now at t = " << t
+          << "): max_steps bounds the steps between outputs; raise it, or ask for outputs more often.";
+      throw IntegratorFailure(msg.str(), t);
+    }
+    if (!stop_at_end_ && t >= target) {  // the last step of this run: act at the start of the next
+      pending_ = true;
+      pending_at_stop_ = at_stop;
+      break;
+    }
+    if (act(t, at_stop)) continue;
+    if (plan_.options->progress) {
+      auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - clock).count() >= plan_.options->progress_interval) {
+        clock = now;
+        plan_.options->progress(t);
+      }
+    }
+  }
+}
+
+void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start, const Record& record,
+               Stats& stats) {
+  const auto& t_out = plan.t_out;
+  size_t k = 0;
+  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
+  StepLoop loop(stepper, plan, plan.t0);
+  auto finish = [&] {
+    stepper.fill_stats(stats);
+    stats.restarts = loop.restarts();
+  };
+  try {
+    loop.run(plan.t_end, t_out, k, record);
+  } catch (IntegratorFailure& e) {
+    finish();
+    e.q = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
+    throw;
+  } catch (...) {
+    finish();
+    throw;
+  }
+  finish();
+}
+
+}  // namespace lagmb

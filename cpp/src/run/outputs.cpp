@@ -1,0 +1,133 @@
+// Reactions, efforts, friction, energy and residuals at a run's outputs (outputs.hpp).
+#include "lagmb/run/outputs.hpp"
+
+#include "lagmb/assembly/assembly.hpp"
+#include "lagmb/model/data.hpp"
+
+namespace lagmb {
+
+namespace {
+
+/// ModelError unless the model is compiled and the view holds what `need` lists.
+void require(const Model& model, const OutputView& out, bool q, bool v, bool lam) {
+  if (!model.finalized()) throw ModelError("outputs: the model is not finalized");
+  if (out.k < 0 || (out.k > 0 && !out.t)) throw ModelError("outputs: no output times");
+  if (out.k > 0 && ((q && !out.q) || (v && !out.v) || (lam && !out.lam && model.n_constraints() > 0)))
+    throw ModelError(std::string("outputs: this needs ") + (q ? "q " : "") + (v ? "v " : "") +
+                     (lam ? "lam " : "") + "at every output");
+}
+
+/// A Data whose run values hold the inputs of output s (or the initial ones).
+void set_inputs(Data& d, const OutputView& out, int s) {
+  if (!out.inputs) return;
+  const int p = int(d.run->inputs.size());
+  for (int j = 0; j < p; ++j) d.run->inputs[j] = out.inputs[size_t(s) * p + j];
+}
+
+const ElementRef& constraint_element(const Model& model, const std::string& element, const char* what) {
+  const ElementRef& r = model.find(element);
+  if (r.type != ElementRef::kConstraint)
+    throw ModelError("'" + element + "' is " + model.describe(element) + ", not " + what);
+  return r;
+}
+
+}  // namespace
+
+OutputView OutputView::of(const Trajectory& tr) {
+  OutputView o;
+  o.k = tr.size();
+  o.t = tr.t.data();
+  o.q = tr.q.data();
+  o.v = tr.v.data();
+  // a and lam may be solved for fewer outputs than recorded (a failed run)
+  o.lam = tr.lam.size() >= size_t(o.k) * size_t(tr.m) ? tr.lam.data() : nullptr;
+  o.inputs = tr.p > 0 && tr.inputs.size() == size_t(o.k) * size_t(tr.p) ? tr.inputs.data() : nullptr;
+  return o;
+}
+
+OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes) {
+  require(model, out, true, false, true);
+  const ElementRef& r = constraint_element(model, element, "a joint or driver");
+  const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  Data d(model);
+  OutputRows R(out.k, g.dimension() == 2 ? 3 : 6);
+  for (int s = 0; s < out.k; ++s) {
+    set_inputs(d, out, s);
+    R.row(s) = g.reaction(r.index, out.q + size_t(s) * n, d.at(out.t[s]), out.lam + size_t(s) * m, joint_axes)
+                   .transpose();
+  }
+  return R;
+}
+
+VecX efforts(const Model& model, const std::string& element, const OutputView& out) {
+  require(model, out, false, false, true);
+  const ElementRef& r = constraint_element(model, element, "a driver");
+  const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
+  if (std::string(g.kind()).find("driver") == std::string::npos)
+    throw ModelError("'" + element + "' is " + model.describe(element) + ", not a driver");
+  const int row = g.placement(r.index).row0, m = model.n_constraints();
+  VecX e(out.k);
+  for (int s = 0; s < out.k; ++s) e[s] = -out.lam[size_t(s) * m + row];
+  return e;
+}
+
+OutputRows friction(const Model& model, const std::string& element, const OutputView& out) {
+  require(model, out, true, true, true);
+  const ElementRef& r = model.find(element);
+  if (r.type != ElementRef::kFriction)
+    throw ModelError("'" + element + "' is " + model.describe(element) + ", not a joint friction");
+  const FrictionGroupBase& g = *model.friction_groups()[r.group];
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  OutputRows F(out.k, 2);
+  for (int s = 0; s < out.k; ++s) {
+    const auto f = g.friction(r.index, out.q + size_t(s) * n, out.v + size_t(s) * n, out.lam + size_t(s) * m);
+    F(s, 0) = f[0];
+    F(s, 1) = f[1];
+  }
+  return F;
+}
+
+VecX energy(const Model& model, const OutputView& out) {
+  require(model, out, true, true, false);
+  const int n = model.n_coordinates();
+  Data d(model);
+  VecX E(out.k);
+  for (int s = 0; s < out.k; ++s) {
+    set_inputs(d, out, s);
+    const double *q = out.q + size_t(s) * n, *v = out.v + size_t(s) * n;
+    E[s] = kinetic_energy(model, q, v) + potential_energy(model, q, d.at(out.t[s]));
+  }
+  return E;
+}
+
+VecX constraint_residual(const Model& model, const OutputView& out) {
+  require(model, out, true, false, false);
+  const int n = model.n_coordinates();
+  Data d(model);  // every row, the ones a run dropped as redundant included
+  VecX r(out.k);
+  for (int s = 0; s < out.k; ++s) {
+    set_inputs(d, out, s);
+    assemble_constraints(model, d, out.q + size_t(s) * n, out.t[s]);
+    r[s] = d.Phi.size() ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
+  }
+  return r;
+}
+
+VecX velocity_residual(const Model& model, const OutputView& out) {
+  require(model, out, true, true, false);
+  const int n = model.n_coordinates();
+  Data d(model);
+  VecX r(out.k);
+  for (int s = 0; s < out.k; ++s) {
+    set_inputs(d, out, s);
+    const double *q = out.q + size_t(s) * n, *v = out.v + size_t(s) * n;
+    assemble_jacobian(model, d, q, out.t[s]);
+    assemble_phi_t(model, d, q, out.t[s]);
+    add_jacobian_times(d, v, d.phi_t.data());
+    r[s] = d.phi_t.size() ? d.phi_t.lpNorm<Eigen::Infinity>() : 0.0;
+  }
+  return r;
+}
+
+}  // namespace lagmb

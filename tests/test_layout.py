@@ -1,0 +1,80 @@
+"""The C++ sources sit in folders by layer, and every #include points down
+(docs/design.md, section 2): a file includes from its own layer or the
+layers before it, never after. CMakeLists.txt lists the layers in this
+order (LAGMB_LAYERS) and builds every source of each folder."""
+
+import pathlib
+import re
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+CPP = ROOT / "cpp"
+INCLUDE = re.compile(r'^#include "([^"]+)"', re.M)
+
+
+def layers():
+    """The layers in CMakeLists.txt's order."""
+    text = (ROOT / "CMakeLists.txt").read_text()
+    return re.search(r"set\(LAGMB_LAYERS ([^)]*)\)", text).group(1).split()
+
+
+def layer_of(path):
+    """The layer of a file: its folder under cpp/src or cpp/include/lagmb
+    (element kinds are the model's layer; the basic headers the base)."""
+    rel = path.relative_to(CPP)
+    parts = rel.parts
+    folder = parts[2] if parts[0] == "include" else parts[1]
+    if parts[0] == "include" and len(parts) == 3:
+        return "base"
+    return "model" if folder == "elements" else folder
+
+
+def resolve(name, here):
+    """The file an #include names: public (lagmb/...), or internal
+    (relative to cpp/src); None for a header from elsewhere."""
+    for base in (CPP / "include", CPP / "src", here.parent):
+        path = base / name
+        if path.exists():
+            return path.resolve()
+    return None
+
+
+def sources():
+    return sorted(p for p in (CPP / "src").rglob("*") if p.suffix in (".cpp", ".hpp")) + \
+        sorted(p for p in (CPP / "include" / "lagmb").rglob("*.hpp"))
+
+
+def test_every_source_sits_in_a_layer_folder():
+    order = layers() + ["model"]
+    strays = [str(p.relative_to(ROOT)) for p in sources() if layer_of(p) not in order]
+    assert strays == []
+    assert [p.name for p in (CPP / "src").iterdir() if p.is_file()] == []
+
+
+def test_includes_point_down():
+    rank = {name: k for k, name in enumerate(layers())}
+    rank["elements"] = rank["model"]
+    upward = []
+    for path in sources():
+        if path.name == "lagmb.hpp":  # the umbrella: everything, for users
+            continue
+        mine = rank[layer_of(path)]
+        for name in INCLUDE.findall(path.read_text()):
+            target = resolve(name, path)
+            if target is None or CPP not in target.parents:
+                continue
+            theirs = rank[layer_of(target)]
+            if theirs > mine:
+                upward.append(f"{path.relative_to(ROOT)} ({layer_of(path)}) includes {name} ({layer_of(target)})")
+    assert upward == []
+
+
+def test_the_umbrella_header_includes_every_public_header():
+    umbrella = (CPP / "include" / "lagmb" / "lagmb.hpp").read_text()
+    public = {str(p.relative_to(CPP / "include")) for p in (CPP / "include" / "lagmb").rglob("*.hpp")
+              if p.parent.name != "elements" and p.name != "lagmb.hpp"}
+    # the kinds' containers come with the model; the basic headers with any
+    indirect = {"lagmb/model/constraint_group.hpp", "lagmb/model/force_group.hpp", "lagmb/model/event_group.hpp",
+                "lagmb/model/friction_group.hpp", "lagmb/space.hpp", "lagmb/spatial.hpp", "lagmb/sparsity.hpp",
+                "lagmb/time_function.hpp", "lagmb/interrupt.hpp"}
+    missing = sorted(public - indirect - set(INCLUDE.findall(umbrella)))
+    assert missing == []
