@@ -396,6 +396,22 @@ def test_every_kind_round_trips_through_a_scene(kind, tmp_path):
 
 
 @pytest.mark.parametrize("kind", kinds())
+def test_a_joint_kind_declares_the_coordinate_it_has(kind):
+    """A joint kind with an angle or slide gives it (coordinate() next to its
+    equations) and its registry entry names it; drivers, stops and friction
+    find it there, never by the joint's kind."""
+    m, handle = EXAMPLES[kind]()
+    declared = registry.BY_NAME[kind].coordinate
+    coordinate = m.compiled().joint_coordinate(handle.name)
+    assert (coordinate is not None) == bool(declared)
+    if coordinate is not None:
+        assert coordinate["turns"] == ("angle" in declared)
+        assert coordinate["slides"] == ("slide" in declared)
+    assert {k.name for k in registry.ALL_KINDS if k.coordinate} == {
+        "revolute", "translational", "spatial_revolute", "cylindrical", "spatial_translational"}
+
+
+@pytest.mark.parametrize("kind", kinds())
 def test_every_kind_has_a_plotting_role(kind):
     """Drawings and summaries count an element by its role: a pendulum with
     a stop is "1 body, 1 joint, 1 stop"."""

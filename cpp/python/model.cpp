@@ -121,6 +121,7 @@ py::list kinds_to_python() {
     d["doc"] = k.doc;
     d["params"] = params;
     d["dimension"] = k.dimension;
+    d["coordinate"] = k.coordinate;
     out.append(d);
   }
   return out;
@@ -229,6 +230,19 @@ void bind_model(py::module_& m) {
              const auto& g = *model.constraint_groups()[r.group];
              return py::make_tuple(g.placement(r.index).row0, g.rows(r.index));
            })
+      .def("joint_coordinate",
+           [](const Model& model, const std::string& name) -> py::object {
+             const ElementRef& r = model.find(name);
+             if (r.type != ElementRef::kConstraint) return py::none();
+             const std::optional<JointCoordinate> c = model.constraint_groups()[r.group]->coordinate(r.index);
+             if (!c) return py::none();
+             py::dict d;
+             d["turns"] = c->turns;
+             d["slides"] = c->slides;
+             d["bodies"] = py::make_tuple(c->body_i, c->body_j);
+             return d;
+           },
+           py::arg("name"), "What the joint's scalar coordinate is (its kind's coordinate()), or None.")
       .def("element_kind",
            [](const Model& model, const std::string& name) -> std::string {
              const ElementRef& r = model.find(name);

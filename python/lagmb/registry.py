@@ -46,6 +46,7 @@ class Kind(NamedTuple):
     doc: str
     params: Tuple[Param, ...]
     dimension: int  # 2: planar models, 3: spatial ones
+    coordinate: str = ""  # a joint's scalar coordinate: "angle", "slide", "angle and slide"; "" none
 
     @property
     def what(self):

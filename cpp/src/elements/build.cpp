@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lagmb/elements/revolute.hpp"
-#include "lagmb/elements/translational.hpp"
 
 namespace lagmb::build {
 
@@ -68,24 +66,36 @@ ProjectedOffset across_line(const Model& m, int body_i, int body_j, Vec2 at, Vec
   return f;
 }
 
-JointCoordinate joint_coordinate(const Model& m, const std::string& joint, const std::string& element) {
+JointOf joint_coordinate(const Model& m, const std::string& joint, const std::string& element) {
   if (!m.has(joint)) throw ModelError(element + ": '" + joint + "' is not a joint of this model");
-  JointCoordinate c;
-  c.joint = m.find(joint);
-  if (const auto* rev = m.find_constraint<RevoluteJoint>(joint)) {
-    c.body_i = rev->body_i;
-    c.body_j = rev->body_j;
-  } else if (const auto* tr = m.find_constraint<TranslationalJoint>(joint)) {
-    c.body_i = tr->body_i;
-    c.body_j = tr->body_j;
-    c.slide = true;
-    c.along = tr->across;
-    c.along.w = tr->across.line_direction();
-  } else {
-    throw ModelError(element + ": '" + joint + "' is " + m.describe(joint) +
-                     ", not a revolute or translational joint");
+  const ElementRef& ref = m.find(joint);
+  std::optional<JointCoordinate> c;
+  if (ref.type == ElementRef::kConstraint) c = m.constraint_groups()[ref.group]->coordinate(ref.index);
+  if (!c) {
+    // the kinds of this space that have a coordinate, by the names users give them
+    std::vector<std::string> kinds;
+    for (const KindInfo& k : element_kinds())
+      if (k.dimension == m.dimension() && !k.coordinate.empty()) kinds.push_back(k.type.empty() ? k.name : k.type);
+    std::string listed;
+    for (size_t i = 0; i < kinds.size(); ++i)
+      listed += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + kinds[i];
+    throw ModelError(element + ": '" + joint + "' is " + m.describe(joint) + ", not a " + listed + " joint");
   }
-  return c;
+  JointOf out;
+  static_cast<JointCoordinate&>(out) = *c;
+  out.joint = ref;
+  return out;
+}
+
+KindInfo in_space(KindInfo k) {
+  k.dimension = 3;
+  return k;
+}
+
+Vec3 unit_direction(const Args& a, const std::string& key, const std::string& label) {
+  const Vec3 v = a.vec3(key);
+  if (!(v.norm() > 0.0)) throw ModelError(label + ": " + key + " must be a non-zero vector, got " + to_text(v));
+  return v.normalized();
 }
 
 }  // namespace lagmb::build

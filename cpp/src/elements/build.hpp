@@ -7,7 +7,9 @@
 #include <array>
 #include <string>
 
+#include "lagmb/elements/joint_coordinate.hpp"
 #include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/spatial.hpp"
 #include "lagmb/model/model.hpp"
 #include "lagmb/model/registry.hpp"
 
@@ -55,17 +57,38 @@ Vec2 local_direction(const Model& m, int body, Vec2 direction, const std::string
 ProjectedOffset across_line(const Model& m, int body_i, int body_j, Vec2 at, Vec2 axis,
                             const std::string& element);
 
-/// The scalar coordinate of a joint that has one: a revolute's relative
-/// angle phi_j - phi_i, or a translational's slide along its axis (0 in the
-/// initial configuration). Drivers, friction and stops act on it.
-struct JointCoordinate {
-  ElementRef joint;        // the joint element
-  int body_i = kGround, body_j = kGround;
-  bool slide = false;      // translational: the slide along `along`
-  ProjectedOffset along;   // slide: w = the axis in body i's axes
+/// The scalar coordinate of the joint called `joint` (its kind's
+/// coordinate(), joint_coordinate.hpp) and the element it is; ModelError
+/// naming `element` if there is no such joint or its kind has none (listing
+/// the kinds of the model's space that have one).
+struct JointOf : JointCoordinate {
+  ElementRef joint;
 };
-/// The coordinate of the joint called `joint`; ModelError naming `element`
-/// if there is no such joint or it has no coordinate.
-JointCoordinate joint_coordinate(const Model& m, const std::string& joint, const std::string& element);
+JointOf joint_coordinate(const Model& m, const std::string& joint, const std::string& element);
+
+// --- spatial kinds -----------------------------------------------------------
+
+/// A kind of a spatial model (KindInfo::dimension 3).
+KindInfo in_space(KindInfo k);
+
+/// The unit global direction given as `key`; ModelError for a zero vector.
+Vec3 unit_direction(const Args& a, const std::string& key, const std::string& label);
+
+/// A new spatial joint of Kind at the point `at` with the triple (f, g, a)
+/// around the global direction `axis`, all in the axes of the bodies'
+/// initial configuration (SpatialJointBase).
+template <class Kind>
+Kind spatial_joint(Model& m, const std::string& name, const Args& a, const Vec3& axis) {
+  Kind j = joining<Kind>(m, name, a.body("body_i"), a.body("body_j"));
+  const Vec3 at = a.vec3("at");
+  j.s_i = m.local_point(j.body_i, at);
+  j.s_j = m.local_point(j.body_j, at);
+  Vec3 f, g;
+  euler::complete_basis(axis, f, g);
+  j.f_i = m.local_direction(j.body_i, f);
+  j.g_i = m.local_direction(j.body_i, g);
+  j.a_i = m.local_direction(j.body_i, axis);
+  return j;
+}
 
 }  // namespace lagmb::build

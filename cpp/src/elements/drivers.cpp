@@ -10,8 +10,8 @@ namespace {
 /// A revolute's driver is an AngleDriver, a translational's a SlideDriver
 /// (build::joint_coordinate).
 void build_joint_driver(Model& m, const std::string& name, const Args& a) {
-  const build::JointCoordinate c = build::joint_coordinate(m, a.text("joint"), build::label(a, name));
-  if (c.slide) {
+  const build::JointOf c = build::joint_coordinate(m, a.text("joint"), build::label(a, name));
+  if (c.slides) {
     SlideDriver d = build::joining<SlideDriver>(m, name, c.body_i, c.body_j);
     d.along = c.along;
     d.f = build::drive(m, a.function("f"));

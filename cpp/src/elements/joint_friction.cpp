@@ -27,7 +27,7 @@ void build_joint_friction(Model& m, const std::string& name, const Args& a) {
   p.bearing_length = a.optional_real("bearing_length").value_or(0.0);
 
   const std::string& joint = a.text("joint");
-  const build::JointCoordinate c = build::joint_coordinate(m, joint, label);
+  const build::JointOf c = build::joint_coordinate(m, joint, label);
   // the friction element of the joint's kind, reading the joint's multipliers
   auto on_joint = [&](auto f, double arm) {
     f.joint_group = c.joint.group;
@@ -36,7 +36,7 @@ void build_joint_friction(Model& m, const std::string& name, const Args& a) {
     f.law.arm = arm;
     return f;
   };
-  if (c.slide) {
+  if (c.slides) {
     if (p.pin_radius != 0.0)
       throw ModelError(label + ": pin_radius applies to revolute joints; '" + joint + "' is translational");
     auto f = on_joint(build::joining<TranslationalFriction>(m, name, c.body_i, c.body_j), 1.0);

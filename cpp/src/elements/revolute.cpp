@@ -33,7 +33,7 @@ void build_revolute(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo revolute_kind() {
-  return {"revolute", "add_revolute", "joints", "revolute", Role::kJoint,
+  KindInfo k = {"revolute", "add_revolute", "joints", "revolute", Role::kJoint,
           "Pins body_i and body_j together at the global point `at` (in the initial configuration), "
           "or at `local_i` on body_i and `local_j` on body_j (each in its body's own axes).",
           {
@@ -44,6 +44,8 @@ KindInfo revolute_kind() {
               param::local_point("local_j", "body_j", "the joint point on body_j (instead of `at`)"),
           },
           build_revolute};
+  k.coordinate = "angle";
+  return k;
 }
 
 }  // namespace lagmb

@@ -2,57 +2,26 @@
 #include "elements/build.hpp"
 #include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/elements/spatial_forces.hpp"
-#include "lagmb/elements/spatial_joints.hpp"
 
 namespace lagmb {
 
 namespace {
 
-KindInfo in_space(KindInfo k) {
-  k.dimension = 3;
-  return k;
-}
-
-/// What drivers and rotational springs take from a spatial joint: its
-/// bodies, its point and triple in body i, body j's copy of f, and whether
-/// it turns (revolute, cylindrical) and slides (translational, cylindrical).
-struct SpatialJointCoordinate {
-  const SpatialJointBase* joint = nullptr;
-  Vec3 f_j = Vec3::UnitX();
-  bool turns = false, slides = false;
-};
-
-SpatialJointCoordinate spatial_joint(const Model& m, const std::string& joint, const std::string& element) {
-  if (!m.has(joint)) throw ModelError(element + ": '" + joint + "' is not a joint of this model");
-  SpatialJointCoordinate c;
-  if (const auto* j = m.find_constraint<SpatialRevoluteJoint>(joint)) {
-    c = {j, j->f_j, true, false};
-  } else if (const auto* j = m.find_constraint<CylindricalJoint>(joint)) {
-    c = {j, j->f_j, true, true};
-  } else if (const auto* j = m.find_constraint<SpatialTranslationalJoint>(joint)) {
-    c = {j, Vec3::UnitX(), false, true};
-  } else {
-    throw ModelError(element + ": '" + joint + "' is " + m.describe(joint) +
-                     ", not a revolute, cylindrical or translational joint");
-  }
-  return c;
-}
-
 /// A revolute's driver holds its angle, a translational's or cylindrical's
 /// its slide.
 void build_joint_driver(Model& m, const std::string& name, const Args& a) {
-  const SpatialJointCoordinate c = spatial_joint(m, a.text("joint"), build::label(a, name));
+  const build::JointOf c = build::joint_coordinate(m, a.text("joint"), build::label(a, name));
   if (c.slides) {
-    auto d = build::joining<SpatialSlideDriver>(m, name, c.joint->body_i, c.joint->body_j);
-    d.s_i = c.joint->s_i;
-    d.s_j = c.joint->s_j;
-    d.a_i = c.joint->a_i;
+    auto d = build::joining<SpatialSlideDriver>(m, name, c.body_i, c.body_j);
+    d.s_i = c.s_i;
+    d.s_j = c.s_j;
+    d.a_i = c.a_i;
     d.f = build::drive(m, a.function("f"));
     m.add_constraint(std::move(d));
   } else {
-    auto d = build::joining<SpatialAngleDriver>(m, name, c.joint->body_i, c.joint->body_j);
-    d.f_i = c.joint->f_i;
-    d.g_i = c.joint->g_i;
+    auto d = build::joining<SpatialAngleDriver>(m, name, c.body_i, c.body_j);
+    d.f_i = c.f_i;
+    d.g_i = c.g_i;
     d.f_j = c.f_j;
     d.f = build::drive(m, a.function("f"));
     m.add_constraint(std::move(d));
@@ -87,11 +56,11 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
 
 void build_rotational_spring_damper(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
-  const SpatialJointCoordinate c = spatial_joint(m, a.text("joint"), label);
+  const build::JointOf c = build::joint_coordinate(m, a.text("joint"), label);
   if (!c.turns) throw ModelError(label + ": '" + a.text("joint") + "' does not turn (a translational joint)");
-  auto e = build::joining<SpatialRotationalSpringDamper>(m, name, c.joint->body_i, c.joint->body_j);
-  e.f_i = c.joint->f_i;
-  e.g_i = c.joint->g_i;
+  auto e = build::joining<SpatialRotationalSpringDamper>(m, name, c.body_i, c.body_j);
+  e.f_i = c.f_i;
+  e.g_i = c.g_i;
   e.f_j = c.f_j;
   e.stiffness = a.real("stiffness");
   e.damping = a.real("damping");
@@ -141,7 +110,7 @@ void build_torque(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_joint_driver_kind() {
-  return in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
+  return build::in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
                    "Prescribes a revolute's angle (0 in the initial configuration, about its axis), or a "
                    "translational's or cylindrical's slide along its axis, as f(t).",
                    {param::joint("the revolute, cylindrical or translational joint driven"),
@@ -150,7 +119,7 @@ KindInfo spatial_joint_driver_kind() {
 }
 
 KindInfo spatial_body_driver_kind() {
-  return in_space({"spatial_body_driver", "drive_body", "drivers", "body", Role::kDriver,
+  return build::in_space({"spatial_body_driver", "drive_body", "drivers", "body", Role::kDriver,
                    "Prescribes a coordinate \"x\", \"y\" or \"z\" of a body's centre of mass as f(t).",
                    {param::body("body", "the body driven"),
                     param::choice("coordinate", {"x", "y", "z"}, "the coordinate driven"),
@@ -159,7 +128,7 @@ KindInfo spatial_body_driver_kind() {
 }
 
 KindInfo spatial_spring_damper_kind() {
-  return in_space({"spatial_spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
+  return build::in_space({"spatial_spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
                    "Translational spring-damper-actuator between point_i on body_i and point_j on body_j: "
                    "F = -k (l - l0) - c l' + f(t) along the line, F > 0 pushing the points apart.",
                    {param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "attachment on body_i"),
@@ -172,7 +141,7 @@ KindInfo spatial_spring_damper_kind() {
 }
 
 KindInfo spatial_rotational_spring_damper_kind() {
-  return in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
+  return build::in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
                    "rotational_spring_damper", Role::kForce,
                    "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (0 in "
                    "the initial configuration, in (-pi, pi]): torque -k (theta - theta0) - c theta' + tau(t) "
@@ -186,7 +155,7 @@ KindInfo spatial_rotational_spring_damper_kind() {
 }
 
 KindInfo bushing_kind() {
-  return in_space({"bushing", "add_bushing", "forces", "bushing", Role::kForce,
+  return build::in_space({"bushing", "add_bushing", "forces", "bushing", Role::kForce,
                    "Six-axis spring-damper between frames at `at` fixed in body_i and body_j (global axes of "
                    "the initial configuration): force -k delta - c delta' along each axis, torque -k rho - c "
                    "rho' about each (rho: the relative rotation, sin of the angle for a turn about one axis).",
@@ -200,7 +169,7 @@ KindInfo bushing_kind() {
 }
 
 KindInfo spatial_force_kind() {
-  return in_space({"spatial_force", "add_force", "forces", "force", Role::kForce,
+  return build::in_space({"spatial_force", "add_force", "forces", "force", Role::kForce,
                    "A force on a body at a point, each component a number or a function of time.",
                    {param::body("body", "the body pushed"), param::function_triple("force", "N", "(fx, fy, fz)"),
                     param::optional_point3("point", {"body"}, "where it acts (default: the centre of mass)"),
@@ -209,7 +178,7 @@ KindInfo spatial_force_kind() {
 }
 
 KindInfo spatial_torque_kind() {
-  return in_space({"spatial_torque", "add_torque", "forces", "torque", Role::kForce,
+  return build::in_space({"spatial_torque", "add_torque", "forces", "torque", Role::kForce,
                    "A torque on a body, each component a number or a function of time.",
                    {param::body("body", "the body turned"), param::function_triple("torque", "N m", "(tx, ty, tz)"),
                     param::flag("local", false, "components in the body's axes, turning with it")},

@@ -9,13 +9,13 @@ namespace {
 
 void build_stop(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
-  const build::JointCoordinate c = build::joint_coordinate(m, a.text("joint"), label);
+  const build::JointOf c = build::joint_coordinate(m, a.text("joint"), label);
   const std::optional<double> lower = a.optional_real("lower"), upper = a.optional_real("upper");
   if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");
   if (lower && upper && !(*lower < *upper))
     throw ModelError(label + ": lower = " + to_text(*lower) + " must be below upper = " + to_text(*upper));
   JointStop s = build::joining<JointStop>(m, name, c.body_i, c.body_j);
-  s.slide = c.slide;
+  s.slide = c.slides;
   s.along = c.along;
   s.has_lower = bool(lower);
   s.has_upper = bool(upper);

@@ -20,7 +20,7 @@ void build_translational(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo translational_kind() {
-  return {"translational", "add_translational", "joints", "translational", Role::kJoint,
+  KindInfo k = {"translational", "add_translational", "joints", "translational", Role::kJoint,
           "body_j slides relative to body_i along the line through `at` with direction `axis` "
           "(global, initial configuration), without rotating.",
           {
@@ -30,6 +30,8 @@ KindInfo translational_kind() {
               param::direction("axis", "direction of sliding"),
           },
           build_translational};
+  k.coordinate = "slide";
+  return k;
 }
 
 }  // namespace lagmb

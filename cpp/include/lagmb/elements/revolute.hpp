@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/elements/joint_coordinate.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {
@@ -26,6 +27,15 @@ struct RevoluteJoint {
   std::string name;
   int body_i = -1, body_j = -1;  // -1: ground
   Vec2 s_i = Vec2::Zero(), s_j = Vec2::Zero();
+
+  /// Its coordinate: the relative angle phi_j - phi_i.
+  JointCoordinate coordinate() const {
+    JointCoordinate c;
+    c.turns = true;
+    c.body_i = body_i;
+    c.body_j = body_j;
+    return c;
+  }
 
   Eigen::Vector2d phi(const Local6& c, double) const {
     return c.segment<2>(3) + rotation(c[5]) * s_j - c.segment<2>(0) - rotation(c[2]) * s_i;

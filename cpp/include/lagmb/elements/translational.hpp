@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "lagmb/elements/joint_coordinate.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 
 namespace lagmb {
@@ -21,6 +22,18 @@ struct TranslationalJoint {
   int body_i = -1, body_j = -1;
   ProjectedOffset across;  // w = n', the normal of the axis in body i's axes
   double phi0 = 0.0;
+
+  /// Its coordinate: the slide, the offset along the axis (0 in the
+  /// initial configuration).
+  JointCoordinate coordinate() const {
+    JointCoordinate c;
+    c.slides = true;
+    c.body_i = body_i;
+    c.body_j = body_j;
+    c.along = across;
+    c.along.w = across.line_direction();
+    return c;
+  }
 
   Eigen::Vector2d phi(const Local6& c, double) const {
     return {across.value(c), c[5] - c[2] - phi0};

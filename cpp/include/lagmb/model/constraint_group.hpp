@@ -22,11 +22,13 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "lagmb/elements/joint_coordinate.hpp"
 #include "lagmb/space.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/time_function.hpp"
@@ -45,6 +47,11 @@ struct ElementPlacement {
     return c;
   }
 };
+
+template <class Kind, class = void>
+struct has_coordinate : std::false_type {};
+template <class Kind>
+struct has_coordinate<Kind, std::void_t<decltype(std::declval<const Kind&>().coordinate())>> : std::true_type {};
 
 /// Per-run state of an element kind (any group): a kind that keeps values
 /// during a run (a contact's impact speed) declares
@@ -139,6 +146,9 @@ class ConstraintGroupBase {
   virtual VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes) const = 0;
   /// 2 for planar kinds, 3 for spatial ones.
   virtual int dimension() const = 0;
+  /// The scalar coordinate of element k (a revolute's angle, a
+  /// translational's slide), if its kind has one.
+  virtual std::optional<JointCoordinate> coordinate(int k) const = 0;
 };
 
 template <class Kind>
@@ -161,6 +171,12 @@ class ConstraintGroup final : public ConstraintGroupBase {
   bool time_dependent() const override { return Kind::time_dependent; }
   std::array<int, 2> bodies(int k) const override { return {items[k].body_i, items[k].body_j}; }
   int dimension() const override { return S::dimension; }
+  std::optional<JointCoordinate> coordinate(int k) const override {
+    if constexpr (has_coordinate<Kind>::value)
+      return items[k].coordinate();
+    else
+      return std::nullopt;
+  }
   ElementPlacement& placement(int k) override { return place_[k]; }
   const ElementPlacement& placement(int k) const override { return place_[k]; }
 

@@ -88,6 +88,10 @@ struct KindInfo {
   /// The space of the models it goes in: 2 (planar) or 3 (spatial). A
   /// method name (add_revolute) may have a kind in each.
   int dimension = 2;
+  /// A joint's scalar coordinate, as its kind's coordinate() gives it
+  /// (joint_coordinate.hpp): "angle", "slide", "angle and slide"; "" none.
+  /// Messages name the kinds that have one.
+  std::string coordinate = {};
 
   const Param* param(const std::string& key) const;
 };

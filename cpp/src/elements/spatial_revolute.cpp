@@ -1,0 +1,32 @@
+// The spatial kind "spatial_revolute": how users add it (registry.hpp). Points and axes
+// are given globally in the initial configuration and stored in body axes.
+#include "lagmb/elements/spatial_revolute.hpp"
+
+#include "elements/build.hpp"
+
+namespace lagmb {
+
+namespace {
+
+void build_revolute(Model& m, const std::string& name, const Args& a) {
+  const Vec3 axis = build::unit_direction(a, "axis", build::label(a, name));
+  auto j = build::spatial_joint<SpatialRevoluteJoint>(m, name, a, axis);
+  j.a_j = m.local_direction(j.body_j, axis);
+  j.f_j = m.local_direction(j.body_j, m.body_direction(j.body_i, j.f_i));
+  m.add_constraint(std::move(j));
+}
+
+}  // namespace
+
+KindInfo spatial_revolute_kind() {
+  KindInfo k = build::in_space({"spatial_revolute", "add_revolute", "joints", "revolute", Role::kJoint,
+                  "Hinge: body_j turns about the line through `at` along `axis`, fixed in body_i (5 equations).",
+                  {param::body("body_i", "the first body (the multipliers of the point are the force on it)"),
+                   param::body("body_j", "the second body"), param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
+                   param::direction3("axis", "the hinge axis")},
+                  build_revolute});
+  k.coordinate = "angle";
+  return k;
+}
+
+}  // namespace lagmb

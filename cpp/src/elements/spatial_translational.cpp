@@ -1,0 +1,33 @@
+// The spatial kind "spatial_translational": how users add it (registry.hpp). Points and axes
+// are given globally in the initial configuration and stored in body axes.
+#include "lagmb/elements/spatial_translational.hpp"
+
+#include "elements/build.hpp"
+
+namespace lagmb {
+
+namespace {
+
+void build_translational(Model& m, const std::string& name, const Args& a) {
+  const Vec3 axis = build::unit_direction(a, "axis", build::label(a, name));
+  auto j = build::spatial_joint<SpatialTranslationalJoint>(m, name, a, axis);
+  j.a_j = m.local_direction(j.body_j, axis);
+  j.g_j = m.local_direction(j.body_j, m.body_direction(j.body_i, j.g_i));
+  m.add_constraint(std::move(j));
+}
+
+}  // namespace
+
+KindInfo spatial_translational_kind() {
+  KindInfo k = build::in_space({"spatial_translational", "add_translational", "joints", "translational", Role::kJoint,
+                  "Prismatic joint: body_j slides along the line through `at` along `axis`, fixed in body_i, "
+                  "without turning (5 equations).",
+                  {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+                   param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
+                   param::direction3("axis", "the sliding direction")},
+                  build_translational});
+  k.coordinate = "slide";
+  return k;
+}
+
+}  // namespace lagmb
