@@ -125,6 +125,26 @@ def test_info_four_bar(four_bar):
     assert "rank of the constraint Jacobian: 8" in lines
     assert "degrees of freedom: 1" in lines
     assert "redundant equations: none" in lines
+    assert any(line.startswith("parameters: ") and "--parameters lists them" in line for line in lines)
+
+
+def test_info_lists_the_parameters_a_run_takes(four_bar):
+    """lagmb info --parameters: the names model.parameters() and the FMU use,
+    each with its value, unit and meaning."""
+    import lagmb as mb
+    from lagmb.scene import load_scene
+
+    p = lagmb("info", four_bar, "--parameters")
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    expected = load_scene(four_bar).model.parameters()
+    assert f"parameters: {len(expected)}" in lines
+    listed = {line.split()[0]: float(line.split()[1]) for line in lines if line.startswith("  ")}
+    assert listed == pytest.approx(expected, rel=1e-9, abs=1e-12)  # (printed to 10 digits)
+    crank = next(line for line in lines if line.split()[:1] == ["crank.mass"])
+    assert " kg " in crank and "mass" in crank.split("kg", 1)[1]
+    assert isinstance(mb.simulate(load_scene(four_bar).model, 0.01, n_out=2,
+                                  parameters={"crank.mass": 2 * expected["crank.mass"]}), mb.Result)
 
 
 PARALLELOGRAM = """\

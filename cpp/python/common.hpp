@@ -128,7 +128,9 @@ inline std::shared_ptr<void> hold(py::object value) {
 }
 
 /// The exception a user function raised in this thread's current call: the
-/// cause of the SimulationError it leads to (chained as __cause__).
+/// cause of the SimulationError it leads to (chained as __cause__). Per
+/// thread because the error crosses the core as a C++ exception that
+/// carries only text; the model's evaluation never reads it.
 inline thread_local std::shared_ptr<void> t_pending_cause;
 
 /// For one call from Python into the core: Ctrl-C is honoured at the core's

@@ -2,7 +2,7 @@
 
     lagmb run SCENE [-o results.npz|results.csv] [--plot out.png] [--animate out.gif]
                     [--t-end T] [--rtol R] [--n-out N] [--quiet]
-    lagmb info SCENE | --methods
+    lagmb info SCENE [--parameters] | --methods | --kinds
     lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T]
                    [-o table.json] [--plot out.png] [--quiet]
     lagmb demo [--plot out.png] [--quiet]
@@ -69,6 +69,9 @@ def _parser():
                       help="list the integration methods (formulation, integrator, what each supports)")
     info.add_argument("--kinds", action="store_true",
                       help="the element kinds and their parameters (Markdown; docs/modelling.md)")
+    info.add_argument("--parameters", action="store_true",
+                      help="also list the scene's run-time parameters (the names simulate(..., "
+                           "parameters=...), sweeps and the FMU take), with value, unit and meaning")
 
     acc = sub.add_parser("accuracy", help="work-precision study of a scene: error against CPU time",
                          description="Run the scene with each method at each tolerance, measure the "
@@ -525,6 +528,13 @@ def _info(args):
         say(f"inputs: {len(inputs)}" + (" (" + ", ".join(
             f"{i['name']} {i['initial']:g}" + (f" {i['unit']}" if i["unit"] else "") for i in inputs) + ")"
             if inputs else ""))
+        parameters = model.parameter_info()
+        say(f"parameters: {len(parameters)}" + ("" if args.parameters else " (--parameters lists them)"))
+        if args.parameters:
+            width = max((len(p["name"]) for p in parameters), default=0)
+            for p in parameters:
+                value = f"{p['value']:.10g}" + (f" {p['unit']}" if p["unit"] else "")
+                say(f"  {p['name']:<{width}}  {value:<18}  {p['doc']}")
         rank = model.rank()
     except ModelError as e:
         raise _Exit(USAGE, f"{scene.path}: {e}") from None

@@ -6,6 +6,11 @@ namespace lagmb {
 
 namespace {
 
+// The one thread-local state of the core, and not one a model evaluation
+// reads: the interrupt check a caller (the Python binding's Ctrl-C) installs
+// for the calls it makes on this thread. It reaches the integrators' loops
+// and Newton iterations without a callback passed through every solver and
+// SUNDIALS; what a run computes never depends on it.
 thread_local InterruptScope* current = nullptr;
 thread_local std::function<void()>* current_check = nullptr;
 thread_local std::chrono::steady_clock::time_point last_poll{};
