@@ -158,3 +158,34 @@ def test_a_compiled_model_outliving_its_model_keeps_its_callables():
     gc.collect()
     again = _core.simulate(core, {"t_end": 0.05, "n_out": 2}, None)
     assert np.isfinite(again["q"]).all()
+
+
+def test_the_description_is_the_one_copy_of_the_model():
+    """mb.Model keeps the core's description and nothing beside it:
+    elements() reads the spec back as the user gave it (bodies by name,
+    points as tuples, the same mb.Input and callable, built-in functions
+    equal to the ones given, a number where a function goes as a constant)."""
+    m = pendulum()
+    push = mb.Input(0.0)
+
+    def wind(t):
+        return 0.1 * t
+
+    m.add_force("shove", "rod", (1.5, push), point=(1.0, 0.0))
+    m.add_torque("gust", "rod", wind)
+    m.add_rotational_spring_damper("coil", m.ground, "rod", stiffness=2.0, torque=mb.Linear(0.5, 0.25))
+    assert not {"_elements", "_bodies"} & set(vars(m))
+    given = dict((kw["name"], kw) for _, kw in m.elements())
+    assert given["rod"]["position"] == (0.5, 0.0) and given["pin"]["body_i"] == "ground"
+    force = given["shove"]["force"]
+    assert force[1] is push and force[0] == mb.Constant(1.5)
+    assert given["gust"]["torque"] is wind
+    assert given["coil"]["torque"] == mb.Linear(0.5, 0.25)
+    # the core keeps a linear function as one (its text reads back exactly)
+    assert _core.linear(0.5, 0.25).text == "linear 0.5 0.25"
+    # replaying the description rebuilds the same model
+    again = mb.Model(gravity=m.gravity)
+    for method, kwargs in m.elements():
+        getattr(again, method)(**kwargs)
+    assert again.elements() == m.elements()
+    np.testing.assert_array_equal(mb.simulate(again, 0.2, n_out=3).q, mb.simulate(m, 0.2, n_out=3).q)

@@ -184,6 +184,8 @@ class PythonTimeFunction final : public TimeFunction {
     return std::make_shared<PythonTimeFunction>(f_, where_, derivatives_, component_, components_);
   }
   PyObject* callable() const { return f_.ptr(); }
+  /// What it takes of the callable: -1 all of it, else that entry of its result.
+  int component() const { return component_; }
   /// Drops the reference (the garbage collector breaking a cycle).
   void clear() { f_ = py::none(); }
 

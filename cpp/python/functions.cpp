@@ -6,10 +6,27 @@ namespace lagmb::python {
 void bind_functions(py::module_& m) {
   py::class_<TimeFunction, TimeFunctionPtr>(m, "TimeFunction",
                                            py::custom_type_setup(collectable<TimeFunction, OwnFunction>))
-      .def("__call__", [](const TimeFunction& f, double t) {
-        const TimeValue v = f.eval(t);
-        return py::make_tuple(v.f, v.df, v.ddf);
-      });
+      .def("__call__",
+           [](const TimeFunction& f, double t) {
+             const TimeValue v = f.eval(t);
+             return py::make_tuple(v.f, v.df, v.ddf);
+           })
+      .def_property_readonly("text", &TimeFunction::text,
+                             "The function as text (\"linear 2 0\"); \"\" for a Python callable.")
+      .def_property_readonly("callable",
+                             [](const TimeFunction& f) -> py::object {
+                               if (auto* p = dynamic_cast<const PythonTimeFunction*>(&f))
+                                 return py::reinterpret_borrow<py::object>(p->callable());
+                               return py::none();
+                             })
+      .def_property_readonly("component",
+                             [](const TimeFunction& f) {
+                               auto* p = dynamic_cast<const PythonTimeFunction*>(&f);
+                               return p ? p->component() : -1;
+                             })
+      .def_property_readonly(
+          "identity", [](const TimeFunction& f) { return reinterpret_cast<std::uintptr_t>(&f); },
+          "A number that names this C++ function while it lives (one Input is one object).");
   m.def("constant", &constant, py::arg("c"));
   m.def("linear", &linear, py::arg("rate"), py::arg("start"));
   m.def("polynomial", &polynomial, py::arg("coeffs"));

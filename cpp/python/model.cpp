@@ -72,6 +72,22 @@ py::object default_to_python(const Value& v) {
   return py::none();
 }
 
+/// A value as the spec holds it, as Python has it: numbers, tuples (nested
+/// for a matrix), flags, text, a body's index, time functions as core objects.
+py::object value_to_python(const Value& v) {
+  if (const auto* b = std::get_if<BodyIndex>(&v)) return py::int_(b->index);
+  if (const auto* m = std::get_if<Mat3>(&v))
+    return py::make_tuple(py::make_tuple((*m)(0, 0), (*m)(0, 1), (*m)(0, 2)),
+                          py::make_tuple((*m)(1, 0), (*m)(1, 1), (*m)(1, 2)),
+                          py::make_tuple((*m)(2, 0), (*m)(2, 1), (*m)(2, 2)));
+  if (const auto* f = std::get_if<TimeFunctionPtr>(&v)) return py::cast(*f);
+  if (const auto* fs = std::get_if<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(&v))
+    return py::make_tuple(py::cast(fs->first), py::cast(fs->second));
+  if (const auto* f3 = std::get_if<std::array<TimeFunctionPtr, 3>>(&v))
+    return py::make_tuple(py::cast((*f3)[0]), py::cast((*f3)[1]), py::cast((*f3)[2]));
+  return default_to_python(v);
+}
+
 const char* type_name(ParamType type) {
   switch (type) {
     case ParamType::kText: return "text";
@@ -160,6 +176,34 @@ void bind_model(py::module_& m) {
       .def("compile", [](const ModelSpec& spec) { return spec.build(own); },
            "A new compiled Model with its own references to the Python callables (lagmb.Model keeps it "
            "until the model changes).")
+      .def(
+          "elements",
+          [](const ModelSpec& spec) {
+            py::list out;
+            for (const ModelSpec::Element& e : spec.elements()) {
+              py::dict values;
+              for (const auto& [key, value] : e.args.values()) values[py::str(key)] = value_to_python(value);
+              out.append(py::make_tuple(e.args.kind().name, e.name, values));
+            }
+            return out;
+          },
+          "(kind, name, {parameter: value}) of every element as given, in the order added: the one "
+          "description lagmb.Model reads (bodies as indices, time functions as core functions).")
+      .def(
+          "body_index",
+          [](const ModelSpec& spec, const std::string& name) {
+            const Model& draft = spec.draft();
+            if (!draft.has(name) || draft.find(name).type != ElementRef::kBody) return -2;
+            return draft.find(name).group;
+          },
+          py::arg("name"), "The index of the body called `name`, -2 if there is none.")
+      .def_property_readonly("bodies",
+                             [](const ModelSpec& spec) {
+                               py::list out;
+                               const Model& draft = spec.draft();
+                               for (const Body& b : draft.bodies()) out.append(py::make_tuple(b.name, b.particle));
+                               return out;
+                             })
       .def(
           "outline",
           [](const ModelSpec& spec, int body) { return outline_of(spec.draft(), body); },

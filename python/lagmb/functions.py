@@ -2,6 +2,8 @@
 first and second derivatives (docs/modelling.md, "Time functions")."""
 
 import numbers
+import shlex
+import weakref
 
 from . import _core
 from ._checks import real
@@ -148,7 +150,9 @@ class Input(TimeFunction):
         super().__init__(_num(initial, "Input: initial"), name)
 
     def _build(self):
-        return _core.input(self.initial, self.name or "")
+        impl = _core.input(self.initial, self.name or "")
+        _INPUTS[impl.identity] = self  # the model's spec gives it back as this object
+        return impl
 
     def to_dict(self):
         out = {"type": self._type, "initial": self.initial}
@@ -163,6 +167,35 @@ class Input(TimeFunction):
 
 
 _TYPES = {cls._type: cls for cls in (Constant, Linear, Polynomial, Harmonic, SmoothStep, Spline, Input)}
+
+#: The mb.Input behind each core input that lives (an input is one object).
+_INPUTS = weakref.WeakValueDictionary()
+
+
+def from_core(f, memo=None):
+    """What a core time function of a model's spec stands for, as it was
+    given: the Python callable it calls, the mb.Input it is, or the built-in
+    read back from its text (exact: numbers to 17 digits). ``memo`` (a dict)
+    keeps one object per core input within one reading."""
+    if f.callable is not None:
+        return f.callable
+    if f.identity in _INPUTS:
+        return _INPUTS[f.identity]
+    memo = {} if memo is None else memo
+    if f.identity in memo:
+        return memo[f.identity]
+    words = shlex.split(f.text)
+    kind, args = words[0], words[1:]
+    if kind == "input":
+        out = Input(float(args[0]), args[1] or None)
+    elif kind in ("polynomial", "spline"):  # a count, then the lists
+        n = int(float(args[0]))
+        numbers_ = [float(x) for x in args[1:]]
+        out = Polynomial(numbers_) if kind == "polynomial" else Spline(numbers_[:n], numbers_[n:])
+    else:
+        out = _TYPES[kind](*(float(x) for x in args))
+    memo[f.identity] = out
+    return out
 
 
 def time_function_from_dict(d):

@@ -8,7 +8,7 @@ from . import registry
 from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
 from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
 from .errors import ModelError
-from .functions import TimeFunction, as_time_function
+from .functions import TimeFunction, as_time_function, from_core
 from .handles import Body, Handle, name_of
 
 
@@ -39,11 +39,10 @@ class Model:
         if isinstance(dimension, bool) or dimension not in (2, 3):
             raise ModelError(f"dimension must be 2 (planar) or 3 (spatial), got {show(dimension)}")
         self.dimension = int(dimension)
-        # the description; compiled() gives the immutable core Model
+        # the description, the one copy of the model (elements() reads it back);
+        # compiled() gives the immutable core Model
         self._spec = _core.ModelSpec(self.dimension)
         self._compiled = None  # kept until the description changes
-        self._bodies = {}
-        self._elements = []  # (method, kwargs) in user terms: see elements()
         self.ground = Body("ground", self, -1)
         self.gravity = None
         if gravity is not None:
@@ -58,8 +57,6 @@ class Model:
         other = Model.__new__(Model)
         other._spec = copy.copy(self._spec)
         other._compiled = self._compiled
-        other._bodies = {name: Body(name, other, b.index, b.kind) for name, b in self._bodies.items()}
-        other._elements = [(method, dict(kw)) for method, kw in self._elements]
         other.ground = Body("ground", other, -1)
         other.gravity = self.gravity
         other.dimension = self.dimension
@@ -82,9 +79,10 @@ class Model:
         name = name_of(self, body, ("body",), what, context)
         if name == "ground":
             return name, -1
-        if name not in self._bodies:
+        index = self._spec.body_index(name)
+        if index < 0:
             raise ModelError(f"{context}: {what}: no body named '{name}'")
-        return name, self._bodies[name].index
+        return name, index
 
     def _joint(self, joint, context):
         """The name of a joint given by its handle or name (the core checks
@@ -97,87 +95,101 @@ class Model:
         return name
 
     def _value(self, param, value, what):
-        """(value for the core, value as elements() records it) of one
-        parameter, checked by its declared type (lagmb.registry)."""
+        """The value of one parameter for the core, checked by its declared
+        type (lagmb.registry)."""
         label = f"{what}: {param.name}"
         if value is None and not param.required:
             value = param.default  # None means "not given"
             if value is None:
-                return None, None
+                return None
         t = param.type
         if t == "real":
             x = _number(value, label)
-            return x, x
+            return x
         if t == "vec2":
             x = _tuple(_vec2(value, label))
-            return x, x
+            return x
         if t == "vec3":
             x = tuple(float(c) for c in _vec3(value, label))
-            return x, x
+            return x
         if t in ("orientation", "inertia"):
             length, what = ((4, "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix") if t == "orientation"
                             else (3, "principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor"))
             x = _matrix_or_vector(value, label, length, what)
             x = tuple(float(c) for c in x) if x.ndim == 1 else tuple(tuple(float(c) for c in row) for row in x)
-            return x, x
+            return x
         if t == "bool":
             x = _flag(value, label)
-            return x, x
+            return x
         if t == "text":
-            return _text(value, label), value
+            return _text(value, label)
         if t == "body":
             name, index = self._body(value, param.name, what)
-            return index, name
+            return index
         if t == "joint":
             name = self._joint(value, what)
-            return name, name
+            return name
         if t == "choice":
             if value not in param.choices:
                 words = ", ".join(repr(c) for c in param.choices[:-1]) + f" or {param.choices[-1]!r}"
                 raise ModelError(f"{label} must be {words}, got {show(value)}")
-            return value, value
+            return value
         if t == "motion":
-            return as_time_function(value, what), value
+            return as_time_function(value, what)
         if t == "function":
-            return as_time_function(value, what, derivatives=False), value
+            return as_time_function(value, what, derivatives=False)
         if t == "function_pair":
             if callable(value) and not isinstance(value, TimeFunction):
                 return (as_time_function(value, what, derivatives=False, component=0),
-                        as_time_function(value, what, derivatives=False, component=1)), value
+                        as_time_function(value, what, derivatives=False, component=1))
             if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
                 raise ModelError(f"{what}: {param.name} must be (fx, fy) or a callable t -> (fx, fy), "
                                  f"got {show(value)}")
             pair = (as_time_function(value[0], f"{what}: fx", derivatives=False),
                     as_time_function(value[1], f"{what}: fy", derivatives=False))
-            return pair, tuple(float(f) if isinstance(f, numbers.Real) else f for f in value)
+            return pair
         if t == "function_triple":
             if callable(value) and not isinstance(value, TimeFunction):
                 return tuple(as_time_function(value, what, derivatives=False, component=k, components=3)
-                             for k in range(3)), value
+                             for k in range(3))
             if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 3:
                 raise ModelError(f"{what}: {param.name} must be (x, y, z) components or a callable "
                                  f"t -> (x, y, z), got {show(value)}")
             triple = tuple(as_time_function(f, f"{what}: {param.name}[{k}]", derivatives=False)
                            for k, f in enumerate(value))
-            return triple, tuple(float(f) if isinstance(f, numbers.Real) else f for f in value)
+            return triple
         raise AssertionError(f"parameter type {t!r} of {what} has no check")  # a new ParamType
 
     def _add(self, kind, name, values):
         """Check the values of one element of `kind` (lagmb.registry.Kind),
-        add it to the core, remember it (elements()) and return its handle."""
+        add it to the core's description and return its handle."""
         name = self._name(name)
         what = f"{kind.what} '{name}'"
-        core, given = {}, {"name": name}
+        core = {}
         for param in kind.params:
-            core[param.name], given[param.name] = self._value(param, values[param.name], what)
-        index = len(self._bodies)
+            core[param.name] = self._value(param, values[param.name], what)
         self._spec.add(kind.name, name, core)  # checks it against the model so far; ModelError
         self._compiled = None
-        self._elements.append((kind.method, given))
         if kind.role == "body":
-            self._bodies[name] = Body(name, self, index, kind.name)
-            return self._bodies[name]
+            return Body(name, self, self._spec.body_index(name), kind.name)
         return Handle(name, self, kind.name, kind.role)
+
+    def _given(self, param, value, bodies, memo):
+        """A value of the description as the user gives it (elements())."""
+        if value is None:
+            return None
+        t = param.type
+        if t == "body":
+            return "ground" if value < 0 else bodies[value]
+        if t in ("motion", "function"):
+            return from_core(value, memo)
+        if t in ("function_pair", "function_triple"):
+            calls = [f.callable for f in value]
+            if calls[0] is not None and all(c is calls[0] for c in calls) and \
+                    [f.component for f in value] == list(range(len(value))):
+                return calls[0]  # one callable giving every component
+            return tuple(from_core(f, memo) for f in value)
+        return value
 
     # --- questions -------------------------------------------------------
 
@@ -230,7 +242,16 @@ class Model:
         bodies by name, points as tuples and time functions as given.
         Replaying them on Model(gravity=self.gravity, dimension=self.dimension)
         rebuilds this model."""
-        return [(m, dict(kw)) for m, kw in self._elements]
+        bodies = [name for name, _ in self._spec.bodies]
+        memo = {}  # one object per core input within this reading
+        out = []
+        for kind_name, name, values in self._spec.elements():
+            kind = registry.BY_NAME[kind_name]
+            given = {"name": name}
+            for param in kind.params:
+                given[param.name] = self._given(param, values.get(param.name), bodies, memo)
+            out.append((kind.method, given))
+        return out
 
     def outline(self, body):
         """Local points (body axes) where joints and forces attach to a body,
@@ -238,16 +259,17 @@ class Model:
         name = name_of(self, body, ("body",), "body", "Model.outline")
         if name == "ground":
             return []
-        if name not in self._bodies:
+        index = self._spec.body_index(name)
+        if index < 0:
             raise ModelError(f"Model.outline: no body named '{name}'")
-        return list(self._spec.outline(self._bodies[name].index))
+        return list(self._spec.outline(index))
 
     def attachments(self, element):
         """[(body name, local point)] where an element attaches, in the
         order of its parameters (a point on the ground is global): (x, y)
         in a planar model, (x, y, z) in a spatial one."""
         name = name_of(self, element, registry.ROLES, "element", "Model.attachments")
-        names = ["ground"] + list(self._bodies)  # by index + 1
+        names = ["ground"] + [body for body, _ in self._spec.bodies]  # by index + 1
         return [(names[b + 1], tuple(point)) for b, *point in self._spec.attachments(name)]
 
     def to_scene(self, path, settings=None, output=None):
@@ -259,7 +281,9 @@ class Model:
     @property
     def bodies(self):
         """Body handles, in the order of their coordinates."""
-        return list(self._bodies.values())
+        kind = "spatial_body" if self.dimension == 3 else None
+        return [Body(name, self, k, kind or ("particle" if particle else "body"))
+                for k, (name, particle) in enumerate(self._spec.bodies)]
 
     @property
     def n_coordinates(self):
@@ -307,8 +331,8 @@ class Model:
             return self.compiled().rank(q, 0.0)
 
     def __repr__(self):
-        n_elements = len(self._spec) - len(self._bodies)
-        return f"<lagmb.Model: {len(self._bodies)} bodies, {n_elements} other elements>"
+        n_bodies = len(self._spec.bodies)
+        return f"<lagmb.Model: {n_bodies} bodies, {len(self._spec) - n_bodies} other elements>"
 
 
 def _rebuilt(gravity, dimension, elements):

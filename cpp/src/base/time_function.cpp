@@ -32,6 +32,14 @@ struct Constant final : TimeFunction {
   std::string text() const override { return "constant" + numbers({c}); }
 };
 
+/// start + rate t (its own kind, so that its text reads back as what was given)
+struct Linear final : TimeFunction {
+  double rate, start;
+  Linear(double r, double s) : rate(r), start(s) {}
+  TimeValue eval(double t) const override { return {rate * t + start, rate, 0.0}; }
+  std::string text() const override { return "linear" + numbers({rate, start}); }
+};
+
 struct Polynomial final : TimeFunction {
   std::vector<double> c;
   explicit Polynomial(std::vector<double> c_) : c(std::move(c_)) {}
@@ -130,7 +138,7 @@ TimeFunctionPtr constant(double c) {
 TimeFunctionPtr linear(double rate, double start) {
   require_finite(rate, "rate");
   require_finite(start, "start");
-  return std::make_shared<Polynomial>(std::vector<double>{start, rate});
+  return std::make_shared<Linear>(rate, start);
 }
 
 TimeFunctionPtr polynomial(std::vector<double> coeffs) {
@@ -184,6 +192,10 @@ TimeFunctionPtr time_function_from_text(std::istream& in) {
     return xs;
   };
   if (type == "constant") return constant(read("c"));
+  if (type == "linear") {
+    const double rate = read("rate");
+    return linear(rate, read("start"));
+  }
   if (type == "polynomial") return polynomial(list("a coefficient"));
   if (type == "harmonic") {
     const double a = read("amplitude"), w = read("omega"), p = read("phase");
@@ -206,7 +218,7 @@ TimeFunctionPtr time_function_from_text(std::istream& in) {
     return input(initial, name);
   }
   throw ModelError("unknown time function '" + type +
-                   "' (known: constant, polynomial, harmonic, smooth_step, spline, input)");
+                   "' (known: constant, linear, polynomial, harmonic, smooth_step, spline, input)");
 }
 
 std::shared_ptr<Input> input(double initial, std::string name) {

@@ -86,7 +86,10 @@ def toml_value(v):
     if isinstance(v, str):
         return toml_string(v)
     if hasattr(v, "to_dict") and callable(v.to_dict):  # a TimeFunction
-        return toml_value(v.to_dict())
+        d = v.to_dict()
+        if d.get("type") == "constant":  # a number where a function goes: as it was given
+            return toml_value(d["c"])
+        return toml_value(d)
     if isinstance(v, Handle):  # elements() holds names; a handle is written as one
         return toml_string(v.name)
     if isinstance(v, dict):
