@@ -477,6 +477,22 @@ def test_a_pendulum_with_a_stop_is_summarised_by_role():
     assert scene.summary() == "1 body, 1 joint, 1 stop"
 
 
+def test_every_parameter_type_is_one_entry_checked_everywhere():
+    """The types of parameters are one table in C++ (param_types()): every
+    type a kind uses is in it, and each has its check in the Python API and
+    its value kind in scene files."""
+    from lagmb import _core
+    from lagmb.model import _CHECKS
+    from lagmb.scene.schema import _VALUE_OF
+
+    names = [t["name"] for t in _core.param_types()]
+    assert len(names) == len(set(names))
+    assert {p.type for k in registry.ALL_KINDS for p in k.params} <= set(names)
+    assert set(_CHECKS) == set(names)
+    assert set(_VALUE_OF) == set(names)
+    assert all(t["takes"] for t in _core.param_types())
+
+
 def test_unknown_kind_and_parameter_are_model_errors():
     from lagmb import _core
 

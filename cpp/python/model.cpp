@@ -88,26 +88,6 @@ py::object value_to_python(const Value& v) {
   return default_to_python(v);
 }
 
-const char* type_name(ParamType type) {
-  switch (type) {
-    case ParamType::kText: return "text";
-    case ParamType::kReal: return "real";
-    case ParamType::kVec2: return "vec2";
-    case ParamType::kBool: return "bool";
-    case ParamType::kBody: return "body";
-    case ParamType::kJoint: return "joint";
-    case ParamType::kChoice: return "choice";
-    case ParamType::kMotion: return "motion";
-    case ParamType::kFunction: return "function";
-    case ParamType::kFunctionPair: return "function_pair";
-    case ParamType::kVec3: return "vec3";
-    case ParamType::kOrientation: return "orientation";
-    case ParamType::kInertia: return "inertia";
-    case ParamType::kFunctionTriple: return "function_triple";
-  }
-  return "?";
-}
-
 /// The registry as plain Python data (lagmb.registry reads it).
 py::list kinds_to_python() {
   py::list out;
@@ -116,7 +96,7 @@ py::list kinds_to_python() {
     for (const Param& p : k.params) {
       py::dict d;
       d["name"] = p.name;
-      d["type"] = type_name(p.type);
+      d["type"] = param_type(p.type).name;
       d["required"] = p.required;
       d["default"] = default_to_python(p.fallback);
       d["unit"] = p.unit;
@@ -473,6 +453,19 @@ void bind_model(py::module_& m) {
           },
           py::arg("q"), py::arg("t") = 0.0);
 
+  m.def(
+      "param_types",
+      [] {
+        py::list out;
+        for (const ParamTypeInfo& t : param_types()) {
+          py::dict d;
+          d["name"] = t.name;
+          d["takes"] = t.takes;
+          out.append(d);
+        }
+        return out;
+      },
+      "The types of element parameters (lagmb/model/registry.hpp, param_types()), in order.");
   m.def("kinds", &kinds_to_python, "The registry of element kinds (lagmb/model/registry.hpp) as plain data.");
 }
 

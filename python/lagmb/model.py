@@ -96,69 +96,12 @@ class Model:
 
     def _value(self, param, value, what):
         """The value of one parameter for the core, checked by its declared
-        type (lagmb.registry)."""
-        label = f"{what}: {param.name}"
+        type (lagmb.registry; the checks of each type: _CHECKS)."""
         if value is None and not param.required:
             value = param.default  # None means "not given"
             if value is None:
                 return None
-        t = param.type
-        if t == "real":
-            x = _number(value, label)
-            return x
-        if t == "vec2":
-            x = _tuple(_vec2(value, label))
-            return x
-        if t == "vec3":
-            x = tuple(float(c) for c in _vec3(value, label))
-            return x
-        if t in ("orientation", "inertia"):
-            length, what = ((4, "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix") if t == "orientation"
-                            else (3, "principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor"))
-            x = _matrix_or_vector(value, label, length, what)
-            x = tuple(float(c) for c in x) if x.ndim == 1 else tuple(tuple(float(c) for c in row) for row in x)
-            return x
-        if t == "bool":
-            x = _flag(value, label)
-            return x
-        if t == "text":
-            return _text(value, label)
-        if t == "body":
-            name, index = self._body(value, param.name, what)
-            return index
-        if t == "joint":
-            name = self._joint(value, what)
-            return name
-        if t == "choice":
-            if value not in param.choices:
-                words = ", ".join(repr(c) for c in param.choices[:-1]) + f" or {param.choices[-1]!r}"
-                raise ModelError(f"{label} must be {words}, got {show(value)}")
-            return value
-        if t == "motion":
-            return as_time_function(value, what)
-        if t == "function":
-            return as_time_function(value, what, derivatives=False)
-        if t == "function_pair":
-            if callable(value) and not isinstance(value, TimeFunction):
-                return (as_time_function(value, what, derivatives=False, component=0),
-                        as_time_function(value, what, derivatives=False, component=1))
-            if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
-                raise ModelError(f"{what}: {param.name} must be (fx, fy) or a callable t -> (fx, fy), "
-                                 f"got {show(value)}")
-            pair = (as_time_function(value[0], f"{what}: fx", derivatives=False),
-                    as_time_function(value[1], f"{what}: fy", derivatives=False))
-            return pair
-        if t == "function_triple":
-            if callable(value) and not isinstance(value, TimeFunction):
-                return tuple(as_time_function(value, what, derivatives=False, component=k, components=3)
-                             for k in range(3))
-            if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 3:
-                raise ModelError(f"{what}: {param.name} must be (x, y, z) components or a callable "
-                                 f"t -> (x, y, z), got {show(value)}")
-            triple = tuple(as_time_function(f, f"{what}: {param.name}[{k}]", derivatives=False)
-                           for k, f in enumerate(value))
-            return triple
-        raise AssertionError(f"parameter type {t!r} of {what} has no check")  # a new ParamType
+        return _CHECKS[param.type](self, param, value, what, f"{what}: {param.name}")
 
     def _add(self, kind, name, values):
         """Check the values of one element of `kind` (lagmb.registry.Kind),
@@ -333,6 +276,55 @@ class Model:
     def __repr__(self):
         n_bodies = len(self._spec.bodies)
         return f"<lagmb.Model: {n_bodies} bodies, {len(self._spec) - n_bodies} other elements>"
+
+
+def _matrix_or_vector_value(length, shape):
+    def check(model, param, value, what, label):
+        x = _matrix_or_vector(value, label, length, shape)
+        return tuple(float(c) for c in x) if x.ndim == 1 else tuple(tuple(float(c) for c in row) for row in x)
+    return check
+
+
+def _choice_value(model, param, value, what, label):
+    if value not in param.choices:
+        words = ", ".join(repr(c) for c in param.choices[:-1]) + f" or {param.choices[-1]!r}"
+        raise ModelError(f"{label} must be {words}, got {show(value)}")
+    return value
+
+
+def _functions_value(n, components, result):
+    """(f_1(t), ..., f_n(t)) given as n values or one callable giving all n."""
+    def check(model, param, value, what, label):
+        if callable(value) and not isinstance(value, TimeFunction):
+            return tuple(as_time_function(value, what, derivatives=False, component=k, components=n)
+                         for k in range(n))
+        if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != n:
+            raise ModelError(f"{what}: {param.name} must be {components} or a callable t -> {result}, "
+                             f"got {show(value)}")
+        names = ("fx", "fy") if n == 2 else tuple(f"{param.name}[{k}]" for k in range(n))
+        return tuple(as_time_function(f, f"{what}: {names[k]}", derivatives=False) for k, f in enumerate(value))
+    return check
+
+
+#: How the Python API checks a value of each parameter type, by the names of
+#: the core's table of types (lagmb/model/registry.hpp, param_types(); the
+#: tests of the registry check that every type has its check here).
+_CHECKS = {
+    "text": lambda model, param, value, what, label: _text(value, label),
+    "real": lambda model, param, value, what, label: _number(value, label),
+    "vec2": lambda model, param, value, what, label: _tuple(_vec2(value, label)),
+    "bool": lambda model, param, value, what, label: _flag(value, label),
+    "body": lambda model, param, value, what, label: model._body(value, param.name, what)[1],
+    "joint": lambda model, param, value, what, label: model._joint(value, what),
+    "choice": _choice_value,
+    "motion": lambda model, param, value, what, label: as_time_function(value, what),
+    "function": lambda model, param, value, what, label: as_time_function(value, what, derivatives=False),
+    "function_pair": _functions_value(2, "(fx, fy)", "(fx, fy)"),
+    "vec3": lambda model, param, value, what, label: tuple(float(c) for c in _vec3(value, label)),
+    "orientation": _matrix_or_vector_value(4, "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix"),
+    "inertia": _matrix_or_vector_value(3, "principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor"),
+    "function_triple": _functions_value(3, "(x, y, z) components", "(x, y, z)"),
+}
 
 
 def _rebuilt(gravity, dimension, elements):

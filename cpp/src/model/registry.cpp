@@ -94,6 +94,46 @@ const std::vector<KindInfo>& element_kinds() {
   return kinds;
 }
 
+namespace {
+template <class... T>
+bool holds_one_of(const Value& v) {
+  return (std::holds_alternative<T>(v) || ...);
+}
+}  // namespace
+
+const std::vector<ParamTypeInfo>& param_types() {
+  using P = ParamType;
+  static const std::vector<ParamTypeInfo> types = {
+      {P::kText, "text", "a name", holds_one_of<std::string>},
+      {P::kReal, "real", "a finite number", holds_one_of<double>},
+      {P::kVec2, "vec2", "(x, y): a point, a direction, a velocity", holds_one_of<Vec2>},
+      {P::kBool, "bool", "a flag", holds_one_of<bool>},
+      // a body by index, or by name from C++
+      {P::kBody, "body", "a body of the model, or the ground", holds_one_of<BodyIndex, std::string>},
+      {P::kJoint, "joint", "a joint of the model, by name", holds_one_of<std::string>},
+      {P::kChoice, "choice", "one of a few words", holds_one_of<std::string>},
+      {P::kMotion, "motion", "f(t) with f' and f'': a number, a time function or a callable",
+       holds_one_of<TimeFunctionPtr>},
+      {P::kFunction, "function", "f(t): a number, a time function or a callable", holds_one_of<TimeFunctionPtr>},
+      {P::kFunctionPair, "function_pair", "(fx(t), fy(t)), or a callable giving both",
+       holds_one_of<std::pair<TimeFunctionPtr, TimeFunctionPtr>>},
+      {P::kVec3, "vec3", "(x, y, z): a point, a direction, a velocity in space", holds_one_of<Vec3>},
+      {P::kOrientation, "orientation", "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix",
+       holds_one_of<Vec4, Mat3>},
+      {P::kInertia, "inertia", "principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor",
+       holds_one_of<Vec3, Mat3>},
+      {P::kFunctionTriple, "function_triple", "(fx(t), fy(t), fz(t)), or a callable giving all three",
+       holds_one_of<std::array<TimeFunctionPtr, 3>>},
+  };
+  return types;
+}
+
+const ParamTypeInfo& param_type(ParamType type) {
+  for (const ParamTypeInfo& t : param_types())
+    if (t.type == type) return t;
+  throw std::logic_error("lagmb: a parameter type without an entry in param_types()");
+}
+
 const KindInfo& find_kind(const std::string& name) {
   std::string known;
   for (const KindInfo& k : element_kinds()) {
@@ -106,26 +146,7 @@ const KindInfo& find_kind(const std::string& name) {
 namespace {
 
 /// Whether `value` is of the C++ type a parameter of `type` holds.
-bool fits(ParamType type, const Value& value) {
-  switch (type) {
-    case ParamType::kText:
-    case ParamType::kJoint:
-    case ParamType::kChoice: return std::holds_alternative<std::string>(value);
-    case ParamType::kReal: return std::holds_alternative<double>(value);
-    case ParamType::kVec2: return std::holds_alternative<Vec2>(value);
-    case ParamType::kBool: return std::holds_alternative<bool>(value);
-    case ParamType::kBody:  // an index, or a name (from C++)
-      return std::holds_alternative<BodyIndex>(value) || std::holds_alternative<std::string>(value);
-    case ParamType::kMotion:
-    case ParamType::kFunction: return std::holds_alternative<TimeFunctionPtr>(value);
-    case ParamType::kFunctionPair: return std::holds_alternative<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(value);
-    case ParamType::kVec3: return std::holds_alternative<Vec3>(value);
-    case ParamType::kOrientation: return std::holds_alternative<Vec4>(value) || std::holds_alternative<Mat3>(value);
-    case ParamType::kInertia: return std::holds_alternative<Vec3>(value) || std::holds_alternative<Mat3>(value);
-    case ParamType::kFunctionTriple: return std::holds_alternative<std::array<TimeFunctionPtr, 3>>(value);
-  }
-  return false;
-}
+bool fits(ParamType type, const Value& value) { return param_type(type).holds(value); }
 
 template <class T>
 const T& as(const Args& a, const std::string& key) {

@@ -49,6 +49,22 @@ using Value = std::variant<std::monostate, double, Vec2, bool, std::string, Body
                            std::pair<TimeFunctionPtr, TimeFunctionPtr>, Vec3, Vec4, Mat3,
                            std::array<TimeFunctionPtr, 3>>;
 
+/// One type of parameter, as the table of types (param_types()) lists it:
+/// its name where Python, scenes and docs name it, what a user gives, and
+/// which values hold it. A new type is a line of that table (registry.cpp),
+/// its conversion in the binding (cpp/python/model.cpp, to_value), its check
+/// in Python (lagmb/model.py) and its value kind in scenes; the tests of the
+/// registry fail until each exists.
+struct ParamTypeInfo {
+  ParamType type;
+  const char* name;                 // "real", "vec2", "function_pair", ...
+  const char* takes;                // one line for docs
+  bool (*holds)(const Value& value);  // whether a value is of this type
+};
+/// Every parameter type, in the order of ParamType.
+const std::vector<ParamTypeInfo>& param_types();
+const ParamTypeInfo& param_type(ParamType type);
+
 /// One parameter of an element kind.
 struct Param {
   std::string name;
