@@ -61,6 +61,26 @@ def test_advancing_in_chunks_ends_where_one_run_ends(chunks):
     assert len(sim.result().t) == chunks + 1
 
 
+
+def test_a_simulators_counts_are_its_runs():
+    """A Simulator reports what simulate reports for the same run: with the
+    explicit method on a 20-link chain, the Schur complement's pattern
+    analysed once and the same factor size, elements evaluated at the start
+    and at every output as well as in the steps, and the steps of one run
+    (give or take the last one, which may pass the end)."""
+    model = rod_chain(20)
+    options = dict(formulation="projection", integrator="erk", rtol=1e-6, atol=1e-8)
+    one_run = mb.simulate(model, t_end=0.5, n_out=2, **options)
+    sim = mb.Simulator(model, **options)
+    sim.advance(0.5)
+    s = sim.stats
+    assert s["symbolic_analyses"] == one_run.stats["symbolic_analyses"] == 1
+    assert s["factor_nonzeros"] == one_run.stats["factor_nonzeros"] > 0
+    assert abs(s["steps"] - one_run.stats["steps"]) <= 1
+    per_step = one_run.stats["element_evaluations"] / one_run.stats["residual_evals"]
+    assert s["element_evaluations"] / s["residual_evals"] == pytest.approx(per_step, rel=0.05)
+
+
 @pytest.mark.parametrize("method", [m["name"] for m in mb.methods()])
 def test_every_method_advances_in_chunks(method):
     """Each integration method, advanced in 20 chunks over 1 s, follows the

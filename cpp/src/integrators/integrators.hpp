@@ -120,11 +120,6 @@ class StepLoop {
   VecX q_event_, v_event_;
 };
 
-/// simulate's run: the outputs at t0 from `start`, then StepLoop to
-/// plan.t_end; stats filled whatever happens (q of an IntegratorFailure set).
-void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start, const Record& record,
-               Stats& stats);
-
 /// The steppers of the integrators, each started at `start` at time plan.t0
 /// and owning its solver session; `plan` must outlive the stepper (its
 /// tolerances, bounds and event functions are read from there, and its t0
@@ -155,9 +150,5 @@ std::unique_ptr<Stepper> make_ali3p_stepper(const Model& model, const Consistent
 /// The stepper of a method of the table (methods.cpp), started at `start`.
 std::unique_ptr<Stepper> make_stepper(const Method& method, const Model& model, const ConsistentState& start,
                                       const IntegrationPlan& plan);
-
-/// Runs a method of the table from `start` with `plan` to plan.t_end.
-void integrate(const Method& method, const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
-               const Record& record, Stats& stats);
 
 }  // namespace lagmb

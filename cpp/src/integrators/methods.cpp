@@ -125,9 +125,5 @@ std::unique_ptr<Stepper> make_stepper(const Method& method, const Model& model, 
   throw std::logic_error("lagmb: no stepper for method " + method.name);
 }
 
-void integrate(const Method& method, const Model& model, const ConsistentState& start, const IntegrationPlan& plan,
-               const std::function<void(const double* q, const double* v)>& record, Stats& stats) {
-  run_steps(*make_stepper(method, model, start, plan), plan, start, record, stats);
-}
 
 }  // namespace lagmb

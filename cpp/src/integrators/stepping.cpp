@@ -111,27 +111,4 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
   }
 }
 
-void run_steps(Stepper& stepper, const IntegrationPlan& plan, const ConsistentState& start, const Record& record,
-               Stats& stats) {
-  const auto& t_out = plan.t_out;
-  size_t k = 0;
-  for (; k < t_out.size() && t_out[k] <= plan.t0; ++k) record(start.q.data(), start.v.data());
-  StepLoop loop(stepper, plan, plan.t0);
-  auto finish = [&] {
-    stepper.fill_stats(stats);
-    stats.restarts = loop.restarts();
-  };
-  try {
-    loop.run(plan.t_end, t_out, k, record);
-  } catch (IntegratorFailure& e) {
-    finish();
-    e.q = Eigen::Map<const VecX>(stepper.positions(), start.q.size());
-    throw;
-  } catch (...) {
-    finish();
-    throw;
-  }
-  finish();
-}
-
 }  // namespace lagmb

@@ -72,23 +72,30 @@ void record_output(const Model& model, Data& d, AugmentedSystem& kkt, Redundancy
 int solved_outputs(const Trajectory& tr);
 
 /// Everything one dynamic run changes, in one place (docs/design.md 2.8):
+/// the model it runs (the one given, or built with the run's parameters),
 /// its Data (the dropped rows, the input values, the elements' run state:
 /// Data::RunValues, which every Data of the run shares), the augmented
 /// system, the event runner, the watch over the rows left out as redundant,
-/// the integration plan and the outputs recorded so far. simulate builds one
-/// and steps it to t_end; a Simulator keeps one and advances it in chunks.
-/// The stepper and its loop are the caller's (simulate's stops at t_end, a
-/// Simulator's steps past the time asked for). Constructing it validates
-/// nothing: the options are the caller's, checked (validate_run_options).
+/// the integration plan, the stepper and its loop, their counts and the
+/// outputs recorded so far. simulate builds one and steps it to t_end; a
+/// Simulator keeps one and steps it in chunks. Constructing it validates
+/// nothing: the options are the caller's, checked (validate_run_options)
+/// on `model`.
 class Run {
  public:
-  /// Starts the run at options.t0 (dynamic_start, start_events): the
-  /// consistent state is `start`; outputs holds none yet.
-  Run(const Model& model, const SimulationOptions& options, const Method& method);
+  /// Starts the run of `given` (or of `with_parameters`, the model built
+  /// from it with the run's parameters, when not null) at options.t0
+  /// (dynamic_start, start_events): the consistent state is `start`;
+  /// outputs holds none yet and there is no stepper until start_stepper.
+  /// `stop_at_end`: the steps stop at plan.t_end (simulate) or may pass the
+  /// time asked for (a Simulator: outputs interpolated, StepLoop).
+  Run(const Model& given, std::shared_ptr<const Model> with_parameters, const SimulationOptions& options,
+      const Method& method, bool stop_at_end);
   Run(const Run&) = delete;
   Run& operator=(const Run&) = delete;
 
-  const Model& model;
+  const std::shared_ptr<const Model> with_parameters;  // null: the run is of the model given
+  const Model& model;                                  // what the run integrates
   const SimulationOptions& options;
   const Method& method;
   Data data;  // the run's: plan.run and every formulation's Data join it
@@ -97,13 +104,40 @@ class Run {
   std::unique_ptr<EventRunner> events;  // null without event elements
   IntegrationPlan plan;                 // outputs and breakpoints: the caller's
   std::unique_ptr<RedundancyWatch> watch;
-  Trajectory outputs;  // n, m, p, dropped rows and the method's names set
+  Trajectory outputs;  // n, m, p, dropped rows, the method's names and run_model set
+  long input_changes = 0;  // a Simulator's restarts for new input values (Stats::input_changes)
 
   /// Appends the output (t, q, v) with the run's input values (and, with
   /// `solve`, its a and lam): record_output.
   void record(double t, const double* q, const double* v, bool solve);
-  /// Copies the event runner's records and counts into `tr`.
-  void report_events(Trajectory& tr) const;
+
+  /// A new stepper of the run's method from the consistent state `from` at
+  /// time t (plan.t0 = t, the scale of its first step), and a new loop; the
+  /// counts of the one before are kept, and replacing it is a restart.
+  void start_stepper(double t, const ConsistentState& from);
+  /// The stepper restarted at order 1 from `from` at time t (the run's
+  /// values changed there: an input); keeps its solver session.
+  void restart_stepper(double t, const ConsistentState& from);
+  /// Steps the stepper until the time reached is at least `target`,
+  /// calling record(q, v) for t_out[k], k counting on: first for the times
+  /// inside the step taken last (a Simulator's steps pass the time asked
+  /// for), then as StepLoop::run. An IntegratorFailure leaves with the
+  /// positions of the last accepted step (for the diagnosis).
+  void step_to(double target, const std::vector<double>& t_out, size_t& k, const Record& record);
+  /// Whether there is a stepper (start_stepper called).
+  bool stepping() const { return bool(stepper_); }
+
+  /// The run's counts: every stepper's summed, the restarts (breakpoints,
+  /// events, new steppers, input changes), the elements evaluated by the
+  /// run's own Data and watch, the events; the method's names.
+  Stats stats() const;
+
+ private:
+  std::unique_ptr<Stepper> stepper_;
+  std::unique_ptr<StepLoop> loop_;
+  bool stop_at_end_;
+  Stats finished_;  // counts of the steppers before the current one
+  long restarts_ = 0;  // new steppers and restarts from outside the loop
 };
 
 }  // namespace lagmb

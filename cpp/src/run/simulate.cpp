@@ -79,68 +79,6 @@ const Method& validate(const Model& model, const SimulationOptions& o) {
 
 }  // namespace
 
-const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who) {
-  const std::string at = who + ": ";
-  if (!model.finalized()) throw ModelError(at + "the model is not finalized");
-  if (model.n_coordinates() == 0) throw ModelError(at + "the model has no bodies");
-  auto positive = [&](double x, const char* name) {
-    if (!(std::isfinite(x) && x > 0))
-      throw ModelError(at + name + " must be positive and finite, got " + std::to_string(x));
-  };
-  if (!std::isfinite(o.t0)) throw ModelError(at + "t0 is not finite");
-  check_time(o.t0, who, "t0");
-  positive(o.rtol, "rtol");
-  if (o.rtol >= 1.0)
-    throw ModelError(at + "rtol = " + to_text(o.rtol) +
-                     " must be below 1: a relative error of 100 % or more bounds nothing (typical: 1e-3 to 1e-10)");
-  if (o.rtol < 1e-14)
-    throw ModelError(at + "rtol = " + std::to_string(o.rtol) +
-                     " is below 1e-14, which double precision cannot deliver");
-  positive(o.atol, "atol");
-  if (!o.atol_coordinates.empty()) {
-    if (int(o.atol_coordinates.size()) != model.n_coordinates())
-      throw ModelError(at + "atol needs one entry per coordinate (" + std::to_string(model.n_coordinates()) +
-                       "), got " + std::to_string(o.atol_coordinates.size()));
-    for (double a : o.atol_coordinates) positive(a, "every atol entry");
-  }
-  if (o.max_step != 0.0) positive(o.max_step, "max_step");
-  if (o.max_steps < 0) throw ModelError(at + "max_steps must be >= 0 (0: no limit)");
-  const Method& method = find_method(o.formulation, o.integrator);
-  // what a method does not model is refused, not ignored
-  auto those = [](bool Method::*has) {
-    std::string s;
-    for (const Method& m : methods())
-      if (m.*has) s += (s.empty() ? "" : ", ") + m.name;
-    return s;
-  };
-  if (method.fixed_step && o.max_step == 0.0)
-    throw ModelError(at + "formulation '" + name_of(method.formulation) +
-                     "' takes fixed steps: give the step as max_step (step= in Python)");
-  if (!method.friction && !model.friction_groups().empty())
-    throw ModelError(at + "formulation '" + name_of(method.formulation) + "' does not include joint friction ('" +
-                     model.friction_groups().front()->name(0) + "'); the methods that do: " +
-                     those(&Method::friction));
-  if (!method.events && !model.event_groups().empty())
-    throw ModelError(at + "formulation '" + name_of(method.formulation) +
-                     "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
-                     "'); the methods that have: " + those(&Method::events));
-  if (o.max_order < 0 || o.max_order > method.max_order)
-    throw ModelError(at + "max_order must be in 1.." + std::to_string(method.max_order) + " for " +
-                     method.name + " (integrator " + name_of(method.integrator) + "; 0: its highest order), got " +
-                     std::to_string(o.max_order));
-  if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && !method.baumgarte)
-    throw ModelError(at + "Baumgarte terms apply to the methods " + those(&Method::baumgarte) + ", not to formulation '" +
-                     name_of(method.formulation) + "' with integrator '" + name_of(method.integrator) + "'");
-  if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
-      o.baumgarte_beta < 0)
-    throw ModelError(at + "Baumgarte alpha and beta must be finite and >= 0");
-  if (method.fixed_step) {
-    positive(o.newton_rtol, "newton_rtol");
-    positive(o.newton_atol, "newton_atol");
-  }
-  return method;
-}
-
 namespace {
 
 std::vector<double> output_times(const SimulationOptions& o) {
@@ -152,129 +90,6 @@ std::vector<double> output_times(const SimulationOptions& o) {
 }
 
 }  // namespace
-
-std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first) {
-  const int n = tr.n, m = tr.m, k = tr.size();
-  for (int i = first; i < k; ++i) {
-    tr.a.resize(size_t(i + 1) * n);
-    tr.lam.resize(size_t(i + 1) * m);
-    double *a = tr.a.data() + size_t(i) * n, *lam = tr.lam.data() + size_t(i) * m;
-    const double *q = tr.q.data() + size_t(i) * n, *v = tr.v.data() + size_t(i) * n;
-    std::string why;
-    try {
-      solve_accelerations(model, d, kkt, q, v, tr.t[i], a, lam);
-      if (!Eigen::Map<const VecX>(a, n).allFinite() || !Eigen::Map<const VecX>(lam, m).allFinite())
-        why = non_finite_source(model, d, q, v, tr.t[i]);
-    } catch (const UserFunctionError& e) {
-      why = e.what();
-    } catch (const SimulationError& e) {
-      why = e.what();
-    }
-    if (!why.empty()) {
-      tr.a.resize(size_t(i) * n);
-      tr.lam.resize(size_t(i) * m);
-      std::ostringstream s;
-      s << "at the output t = " << tr.t[i] << " the accelerations and multipliers cannot be solved: " << why;
-      return s.str();
-    }
-  }
-  return "";
-}
-
-void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
-                   double t, const double* q, const double* v, const VecX& inputs, bool solve) {
-  auto stop = [&](const std::string& why) {
-    IntegratorFailure f(why, t);
-    f.diagnose = false;  // the message is complete
-    throw f;
-  };
-  if (watch.active())
-    if (const std::string why = watch.violation(q, t); !why.empty()) stop(why);
-  const int n = tr.n;
-  tr.t.push_back(t);
-  tr.q.insert(tr.q.end(), q, q + n);
-  tr.v.insert(tr.v.end(), v, v + n);
-  tr.inputs.insert(tr.inputs.end(), inputs.data(), inputs.data() + inputs.size());
-  if (solve)
-    if (const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1); !why.empty()) {
-      tr.truncate(solved_outputs(tr));
-      stop(why);
-    }
-}
-
-int solved_outputs(const Trajectory& tr) { return tr.n > 0 ? int(tr.a.size() / size_t(tr.n)) : tr.size(); }
-
-Run::Run(const Model& model_, const SimulationOptions& options_, const Method& method_)
-    : model(model_), options(options_), method(method_), data(model_), kkt(model_) {
-  Redundancy redundancy;
-  start = dynamic_start(model, options, data, kkt, redundancy);
-  events = start_events(model, data, options.t0, start);
-  plan = run_plan(model, options, method, data);
-  plan.events = events.get();
-  // the rows left out as redundant are checked at every output
-  watch = std::make_unique<RedundancyWatch>(model, data, std::move(redundancy));
-  outputs.n = model.n_coordinates();
-  outputs.m = model.n_constraints();
-  outputs.p = int(model.inputs().size());
-  outputs.dropped_rows = start.dropped_rows;
-  outputs.stats.formulation = name_of(method.formulation);
-  outputs.stats.integrator = name_of(method.integrator);
-  outputs.stats.analysis = name_of(Analysis::kDynamic);
-}
-
-void Run::record(double t, const double* q, const double* v, bool solve) {
-  record_output(model, data, kkt, *watch, outputs, t, q, v, data.run->inputs, solve);
-}
-
-void Run::report_events(Trajectory& tr) const {
-  if (!events) return;
-  tr.events = events->records;
-  tr.stats.events = events->events;
-  tr.stats.impacts = events->impacts;
-  tr.stats.root_evals = events->root_evals;
-}
-
-
-ConsistentState dynamic_start(const Model& model, const SimulationOptions& o, Data& d, AugmentedSystem& kkt,
-                              Redundancy& redundancy) {
-  VecX q_start = model.initial_q(), v_start = model.initial_v();
-  try {
-    if (o.start == Start::kEquilibrium) {  // at rest in the static equilibrium at t0
-      EquilibriumOptions eo;
-      eo.t = o.t0;
-      q_start = find_equilibrium(model, eo).q;
-      v_start.setZero();
-    }
-    return start_state(model, d, kkt, q_start, v_start, o.t0, &redundancy);
-  } catch (const UserFunctionError& e) {
-    throw SimulationError(e.what(), o.t0);
-  }
-}
-
-IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const Method& method, const Data& run) {
-  const int n = model.n_coordinates();
-  IntegrationPlan plan;
-  plan.options = &o;
-  plan.t0 = o.t0;
-  plan.t_end = o.t_end;
-  plan.atol = VecX::Constant(n, o.atol);
-  if (!o.atol_coordinates.empty()) plan.atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
-  plan.max_order = o.max_order ? o.max_order : method.max_order;
-  plan.run = &run;
-  return plan;
-}
-
-std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start) {
-  if (model.event_groups().empty()) return nullptr;
-  auto events = std::make_unique<EventRunner>(model, run);
-  // a joint that starts at a limit, moving into it, gets its impact at t
-  try {
-    if (events->start(t, start.q, start.v)) start = events->consistent(t, start.q, start.v);
-  } catch (const IntegratorFailure& e) {
-    throw SimulationError(e.what(), e.t);
-  }
-  return events;
-}
 
 ConsistentState assemble(const Model& model, double t) {
   if (!model.finalized()) throw ModelError("assemble: the model is not finalized");
@@ -349,20 +164,13 @@ Analysis resolve_analysis(const Model& model, const SimulationOptions& o) {
   return a;  // massless bodies are fine for inverse dynamics too: they carry no inertia force
 }
 
-Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters) {
-  const std::shared_ptr<const Model> run_model = with_parameters(model, parameters);
-  if (!run_model) return simulate(model, options);
-  try {
-    Trajectory tr = simulate(*run_model, options);
-    tr.run_model = run_model;
-    return tr;
-  } catch (SimulationError& e) {
-    e.partial.run_model = run_model;
-    throw;
-  }
-}
+namespace {
 
-Trajectory simulate(const Model& model, const SimulationOptions& o) {
+/// simulate of `given`, or of `with_parameters` (the model built from it
+/// with the run's parameters) when not null.
+Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& with_parameters,
+                        const SimulationOptions& o) {
+  const Model& model = with_parameters ? *with_parameters : given;
   const Method& method = validate(model, o);
   const auto wall0 = std::chrono::steady_clock::now();
   // what the scene needs: a fully driven model is solved from its constraints alone
@@ -375,6 +183,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
     const bool with_lam = analysis == Analysis::kInverseDynamics;
     Trajectory tr = kinematic_analysis(model, o.t0, output_times(o), with_lam, o.progress, o.progress_interval,
                                        o.max_steps);
+    tr.run_model = with_parameters;
     // a result holds finite numbers (a kinematic-only run has no multipliers: NaN, never read)
     for (int i = 0; i < tr.size(); ++i) {
       const size_t n = size_t(tr.n), m = size_t(tr.m);
@@ -396,7 +205,7 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   const int n = model.n_coordinates();
   // the run (its Data with the inputs at their initial values, start,
   // events, redundancy watch), stepped to t_end
-  Run run(model, o, method);
+  Run run(given, with_parameters, o, method, /*stop_at_end=*/true);
   IntegrationPlan& plan = run.plan;
   plan.t_out = output_times(o);
   for (double b : model.breakpoints())
@@ -423,10 +232,9 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
       }
     }
     tr.truncate(solved_outputs(tr));
-    // start, outputs, checks
-    tr.stats.element_evaluations += run.data.element_evaluations + run.watch->element_evaluations();
-    run.report_events(tr);
+    tr.stats = run.stats();
     tr.stats.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (run.events) tr.events = run.events->records;
     return why;
   };
   auto kept = [&] {
@@ -436,7 +244,10 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   };
 
   try {
-    integrate(method, model, run.start, plan, record, tr.stats);
+    run.start_stepper(o.t0, run.start);
+    size_t k = 0;
+    for (; k < plan.t_out.size() && plan.t_out[k] <= o.t0; ++k) record(run.start.q.data(), run.start.v.data());
+    run.step_to(o.t_end, plan.t_out, k, record);
   } catch (const IntegratorFailure& e) {
     const std::string output_failure = finish();
     std::ostringstream msg;
@@ -467,5 +278,19 @@ Trajectory simulate(const Model& model, const SimulationOptions& o) {
   }
   return std::move(tr);  // (tr is the run's: moved out, not copied)
 }
+
+}  // namespace
+
+Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters) {
+  const std::shared_ptr<const Model> with = with_parameters(model, parameters);
+  try {
+    return simulate_run(model, with, options);
+  } catch (SimulationError& e) {  // a failure before the run started has no outputs to point at the model
+    if (with) e.partial.run_model = with;
+    throw;
+  }
+}
+
+Trajectory simulate(const Model& model, const SimulationOptions& options) { return simulate(model, options, {}); }
 
 }  // namespace lagmb

@@ -12,31 +12,11 @@
 
 namespace lagmb {
 
-namespace {
-
-/// Adds the counts of a stepper's segment to a run's.
-void add_counts(Stats& total, const Stats& part) {
-  total.steps += part.steps;
-  total.residual_evals += part.residual_evals;
-  total.jacobian_evals += part.jacobian_evals;
-  total.lu_factorizations += part.lu_factorizations;
-  total.augmented_factorizations += part.augmented_factorizations;
-  total.projections += part.projections;
-  total.newton_iterations += part.newton_iterations;
-  total.error_test_failures += part.error_test_failures;
-  total.convergence_failures += part.convergence_failures;
-  total.element_evaluations += part.element_evaluations;
-}
-
-}  // namespace
-
 Simulator::Simulator(const Model& given, const SimulationOptions& options, double output_interval,
                      const ParameterValues& parameters)
-    : with_parameters_(lagmb::with_parameters(given, parameters)),
-      model_(with_parameters_ ? *with_parameters_ : given),
-      options_(options),
-      output_interval_(output_interval) {
-  const Model& model = model_;
+    : options_(options), output_interval_(output_interval) {
+  std::shared_ptr<const Model> with = lagmb::with_parameters(given, parameters);
+  const Model& model = with ? *with : given;
   method_ = &validate_run_options(model, options_, "Simulator");
   if (!(std::isfinite(output_interval) && output_interval >= 0.0))
     throw ModelError("Simulator: output_interval must be finite and >= 0 (0: outputs at the ends of advances), got " +
@@ -49,7 +29,7 @@ Simulator::Simulator(const Model& given, const SimulationOptions& options, doubl
                      "' is massless, so its motion does not follow from forces (a fully driven model with "
                      "massless bodies is solved by simulate's kinematic analysis)");
   const int n = model.n_coordinates(), m = model.n_constraints();
-  run_ = std::make_unique<Run>(model, options_, *method_);
+  run_ = std::make_unique<Run>(given, std::move(with), options_, *method_, /*stop_at_end=*/false);
   run_->plan.breakpoints = model.breakpoints();  // the loop takes those after its start
   inputs_ = run_->data.run->inputs;  // the initial values
   inputs_integrated_ = inputs_;
@@ -68,6 +48,8 @@ Simulator::Simulator(const Model& given, const SimulationOptions& options, doubl
 }
 
 Simulator::~Simulator() = default;
+
+const Model& Simulator::model() const { return run_->model; }
 
 Simulator::Call::Call(const Simulator& s, const char* what) : s_(s), lock_(s.busy_), outer_(!s.running_) {
   if (!outer_)
@@ -120,8 +102,8 @@ const VecX& Simulator::solved_a() {
   if (!solved_) {
     run_->data.run->inputs = inputs_;
     a_.resize(q_.size());
-    lam_.resize(model_.n_constraints());
-    solve_accelerations(model_, run_->data, run_->kkt, q_.data(), v_.data(), t_, a_.data(), lam_.data());
+    lam_.resize(model().n_constraints());
+    solve_accelerations(model(), run_->data, run_->kkt, q_.data(), v_.data(), t_, a_.data(), lam_.data());
     solved_ = true;
   }
   return a_;
@@ -134,15 +116,15 @@ VecX Simulator::lam() {
 }
 
 int Simulator::input_slot(const std::string& name) const {
-  const int k = model_.input_index(name);
+  const int k = model().input_index(name);
   if (k >= 0) return k;
   std::string names;
-  for (const InputInfo& in : model_.inputs()) names += (names.empty() ? "'" : ", '") + in.name + "'";
+  for (const InputInfo& in : model().inputs()) names += (names.empty() ? "'" : ", '") + in.name + "'";
   const std::string theirs = names.empty() ? "the model has no inputs (give a force, torque or driver value as an "
                                              "Input to make one)"
                                            : "the inputs are " + names;
-  if (model_.has(name))
-    throw ModelError("Simulator: '" + name + "' is " + model_.describe(name) + ", not an input; " + theirs);
+  if (model().has(name))
+    throw ModelError("Simulator: '" + name + "' is " + model().describe(name) + ", not an input; " + theirs);
   throw ModelError("Simulator: no input called '" + name + "'; " + theirs);
 }
 
@@ -162,20 +144,8 @@ double Simulator::input(const std::string& name) const {
 }
 
 void Simulator::new_stepper() {
-  // the finished stepper's counts are kept; the new one starts at order 1
-  if (stepper_) {
-    Stats s;
-    stepper_->fill_stats(s);
-    add_counts(finished_, s);
-    finished_.restarts += loop_->restarts();
-    ++restarts_;
-  }
-  loop_.reset();
-  stepper_.reset();
-  const ConsistentState start = make_consistent(model_, run_->data, run_->kkt, q_, v_, t_);
-  run_->plan.t0 = t_;
-  stepper_ = make_stepper(*method_, model_, start, run_->plan);
-  loop_ = std::make_unique<StepLoop>(*stepper_, run_->plan, t_, false);
+  const ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
+  run_->start_stepper(t_, start);
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
   solved_ = true;
   inputs_integrated_ = inputs_;
@@ -184,15 +154,12 @@ void Simulator::new_stepper() {
 
 void Simulator::restart_for_inputs() {
   // a jump in a force, or in a driver's value (positions assembled anew)
-  const ConsistentState start = make_consistent(model_, run_->data, run_->kkt, q_, v_, t_);
-  run_->plan.t0 = t_;  // the first step's scale: the advance in progress
-  stepper_->reset(t_, start);
-  loop_->restarted(t_);
+  const ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
+  run_->restart_stepper(t_, start);
+  ++run_->input_changes;
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
   solved_ = true;
   inputs_integrated_ = inputs_;
-  ++restarts_;
-  ++input_changes_;
 }
 
 void Simulator::advance(double target) {
@@ -239,24 +206,15 @@ void Simulator::advance(double target) {
   };
   try {
     run_->plan.t_end = target;  // the steppers' tout, and the scale of a first step
-    if (fresh_ || !stepper_)
+    if (fresh_ || !run_->stepping())
       new_stepper();
     else if (inputs_ != inputs_integrated_)
       restart_for_inputs();
-    // outputs inside the step the integrator took last (its steps may pass
-    // the time asked for): before it steps on, while they are inside it
-    for (; k < t_out.size() && t_out[k] <= loop_->t(); ++k) {
-      const double *q = nullptr, *v = nullptr;
-      stepper_->interpolate(t_out[k], q, v);
-      record(q, v);
-    }
-    loop_->run(target, t_out, k, record);
+    run_->step_to(target, t_out, k, record);
   } catch (const IntegratorFailure& e) {
     std::ostringstream msg;
     msg << e.what();
-    if (e.diagnose && stepper_)
-      msg << diagnose_failure(model_, Eigen::Map<const VecX>(stepper_->positions(), q_.size()), e.t,
-                              run_->outputs.dropped_rows);
+    if (e.q.size() && e.diagnose) msg << diagnose_failure(model(), e.q, e.t, run_->outputs.dropped_rows);
     failure_ = msg.str();
   } catch (const UserFunctionError& e) {
     failure_ = e.what();
@@ -294,15 +252,15 @@ SimulatorState Simulator::state() {
   s.inputs = inputs_;
   s.run_state = run_->data.run->state;
   s.events = run_->events ? long(run_->events->records.size()) : 0;
-  s.model_id = model_.id();
+  s.model_id = model().id();
   fresh_ = true;  // the run goes on from here as a restored copy would
   return s;
 }
 
 void Simulator::set_state(const SimulatorState& s) {
   Call call(*this, "set_state");
-  const int n = model_.n_coordinates();
-  if (s.model_id != model_.id() || s.q.size() != n || s.v.size() != n || s.inputs.size() != inputs_.size() ||
+  const int n = model().n_coordinates();
+  if (s.model_id != model().id() || s.q.size() != n || s.v.size() != n || s.inputs.size() != inputs_.size() ||
       s.run_state.size() != run_->data.run->state.size())
     throw ModelError("Simulator.set_state: the state was saved from a simulator of another model");
   if (!std::isfinite(s.t) || !s.q.allFinite() || !s.v.allFinite() || !s.inputs.allFinite())
@@ -348,27 +306,6 @@ Stats Simulator::stats() const {
   return stats_now();
 }
 
-Stats Simulator::stats_now() const {
-  Stats s = finished_;
-  if (stepper_) {
-    Stats now;
-    stepper_->fill_stats(now);
-    add_counts(s, now);
-    s.last_order = now.last_order;
-    s.last_step = now.last_step;
-    s.restarts += loop_->restarts();
-  }
-  s.restarts += restarts_;
-  s.input_changes = input_changes_;
-  s.formulation = name_of(method_->formulation);
-  s.integrator = name_of(method_->integrator);
-  s.analysis = name_of(Analysis::kDynamic);
-  if (run_->events) {
-    s.events = run_->events->events;
-    s.impacts = run_->events->impacts;
-    s.root_evals = run_->events->root_evals;
-  }
-  return s;
-}
+Stats Simulator::stats_now() const { return run_->stats(); }
 
 }  // namespace lagmb

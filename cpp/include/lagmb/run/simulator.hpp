@@ -14,8 +14,6 @@
 
 namespace lagmb {
 
-class Stepper;
-class StepLoop;
 class Run;
 
 /// Where a Simulator was, to go back to: time, state, inputs and the
@@ -66,7 +64,7 @@ class Simulator {
   Simulator& operator=(const Simulator&) = delete;
 
   /// The model it runs: the one given, or that model with the parameters given.
-  const Model& model() const { return model_; }
+  const Model& model() const;
 
   double t() const;
   VecX q() const;
@@ -124,15 +122,12 @@ class Simulator {
   void check_usable(const char* what) const;
   int input_slot(const std::string& name) const;
 
-  std::shared_ptr<const Model> with_parameters_;  // the model built with the parameters given (or null)
-  const Model& model_;
   SimulationOptions options_;
   double output_interval_;
   const Method* method_;
-  std::unique_ptr<Run> run_;  // what the run changes: Data and its run values, events, plan, outputs
-  std::unique_ptr<Stepper> stepper_;
-  std::unique_ptr<StepLoop> loop_;
-  Stats finished_;  // counts of the steppers before the current one
+  /// What the run changes: the model with its parameters, Data and its run
+  /// values, events, plan, stepper and loop, counts, outputs.
+  std::unique_ptr<Run> run_;
 
   double t_ = 0.0;
   VecX q_, v_, a_, lam_;
@@ -140,7 +135,6 @@ class Simulator {
   VecX inputs_, inputs_integrated_;  // set, and what the integrator runs with
   bool fresh_ = true;  // a new stepper at the next advance
   std::string failure_;
-  long restarts_ = 0, input_changes_ = 0;
   mutable std::recursive_mutex busy_;
   mutable bool running_ = false;  // inside a call that runs model functions
 };

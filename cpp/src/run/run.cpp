@@ -1,0 +1,280 @@
+#include "run/run.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "lagmb/analyses/equilibrium.hpp"
+#include "lagmb/errors.hpp"
+#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/assembly/assembly.hpp"
+#include "lagmb/integrators/methods.hpp"
+
+namespace lagmb {
+
+namespace {
+
+/// Adds the counts of a stepper (or of the run's own evaluations) to a run's.
+void add_counts(Stats& total, const Stats& part) {
+  total.steps += part.steps;
+  total.residual_evals += part.residual_evals;
+  total.jacobian_evals += part.jacobian_evals;
+  total.lu_factorizations += part.lu_factorizations;
+  total.augmented_factorizations += part.augmented_factorizations;
+  total.projections += part.projections;
+  total.newton_iterations += part.newton_iterations;
+  total.error_test_failures += part.error_test_failures;
+  total.convergence_failures += part.convergence_failures;
+  total.element_evaluations += part.element_evaluations;
+  total.symbolic_analyses += part.symbolic_analyses;
+  total.factor_nonzeros = std::max(total.factor_nonzeros, part.factor_nonzeros);  // a size, not a count
+}
+
+}  // namespace
+
+const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who) {
+  const std::string at = who + ": ";
+  if (!model.finalized()) throw ModelError(at + "the model is not finalized");
+  if (model.n_coordinates() == 0) throw ModelError(at + "the model has no bodies");
+  auto positive = [&](double x, const char* name) {
+    if (!(std::isfinite(x) && x > 0))
+      throw ModelError(at + name + " must be positive and finite, got " + std::to_string(x));
+  };
+  if (!std::isfinite(o.t0)) throw ModelError(at + "t0 is not finite");
+  check_time(o.t0, who, "t0");
+  positive(o.rtol, "rtol");
+  if (o.rtol >= 1.0)
+    throw ModelError(at + "rtol = " + to_text(o.rtol) +
+                     " must be below 1: a relative error of 100 % or more bounds nothing (typical: 1e-3 to 1e-10)");
+  if (o.rtol < 1e-14)
+    throw ModelError(at + "rtol = " + std::to_string(o.rtol) +
+                     " is below 1e-14, which double precision cannot deliver");
+  positive(o.atol, "atol");
+  if (!o.atol_coordinates.empty()) {
+    if (int(o.atol_coordinates.size()) != model.n_coordinates())
+      throw ModelError(at + "atol needs one entry per coordinate (" + std::to_string(model.n_coordinates()) +
+                       "), got " + std::to_string(o.atol_coordinates.size()));
+    for (double a : o.atol_coordinates) positive(a, "every atol entry");
+  }
+  if (o.max_step != 0.0) positive(o.max_step, "max_step");
+  if (o.max_steps < 0) throw ModelError(at + "max_steps must be >= 0 (0: no limit)");
+  const Method& method = find_method(o.formulation, o.integrator);
+  // what a method does not model is refused, not ignored
+  auto those = [](bool Method::*has) {
+    std::string s;
+    for (const Method& m : methods())
+      if (m.*has) s += (s.empty() ? "" : ", ") + m.name;
+    return s;
+  };
+  if (method.fixed_step && o.max_step == 0.0)
+    throw ModelError(at + "formulation '" + name_of(method.formulation) +
+                     "' takes fixed steps: give the step as max_step (step= in Python)");
+  if (!method.friction && !model.friction_groups().empty())
+    throw ModelError(at + "formulation '" + name_of(method.formulation) + "' does not include joint friction ('" +
+                     model.friction_groups().front()->name(0) + "'); the methods that do: " +
+                     those(&Method::friction));
+  if (!method.events && !model.event_groups().empty())
+    throw ModelError(at + "formulation '" + name_of(method.formulation) +
+                     "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
+                     "'); the methods that have: " + those(&Method::events));
+  if (o.max_order < 0 || o.max_order > method.max_order)
+    throw ModelError(at + "max_order must be in 1.." + std::to_string(method.max_order) + " for " +
+                     method.name + " (integrator " + name_of(method.integrator) + "; 0: its highest order), got " +
+                     std::to_string(o.max_order));
+  if ((o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0) && !method.baumgarte)
+    throw ModelError(at + "Baumgarte terms apply to the methods " + those(&Method::baumgarte) + ", not to formulation '" +
+                     name_of(method.formulation) + "' with integrator '" + name_of(method.integrator) + "'");
+  if (!std::isfinite(o.baumgarte_alpha) || !std::isfinite(o.baumgarte_beta) || o.baumgarte_alpha < 0 ||
+      o.baumgarte_beta < 0)
+    throw ModelError(at + "Baumgarte alpha and beta must be finite and >= 0");
+  if (method.fixed_step) {
+    positive(o.newton_rtol, "newton_rtol");
+    positive(o.newton_atol, "newton_atol");
+  }
+  return method;
+}
+
+std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first) {
+  const int n = tr.n, m = tr.m, k = tr.size();
+  for (int i = first; i < k; ++i) {
+    tr.a.resize(size_t(i + 1) * n);
+    tr.lam.resize(size_t(i + 1) * m);
+    double *a = tr.a.data() + size_t(i) * n, *lam = tr.lam.data() + size_t(i) * m;
+    const double *q = tr.q.data() + size_t(i) * n, *v = tr.v.data() + size_t(i) * n;
+    std::string why;
+    try {
+      solve_accelerations(model, d, kkt, q, v, tr.t[i], a, lam);
+      if (!Eigen::Map<const VecX>(a, n).allFinite() || !Eigen::Map<const VecX>(lam, m).allFinite())
+        why = non_finite_source(model, d, q, v, tr.t[i]);
+    } catch (const UserFunctionError& e) {
+      why = e.what();
+    } catch (const SimulationError& e) {
+      why = e.what();
+    }
+    if (!why.empty()) {
+      tr.a.resize(size_t(i) * n);
+      tr.lam.resize(size_t(i) * m);
+      std::ostringstream s;
+      s << "at the output t = " << tr.t[i] << " the accelerations and multipliers cannot be solved: " << why;
+      return s.str();
+    }
+  }
+  return "";
+}
+
+void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
+                   double t, const double* q, const double* v, const VecX& inputs, bool solve) {
+  auto stop = [&](const std::string& why) {
+    IntegratorFailure f(why, t);
+    f.diagnose = false;  // the message is complete
+    throw f;
+  };
+  if (watch.active())
+    if (const std::string why = watch.violation(q, t); !why.empty()) stop(why);
+  const int n = tr.n;
+  tr.t.push_back(t);
+  tr.q.insert(tr.q.end(), q, q + n);
+  tr.v.insert(tr.v.end(), v, v + n);
+  tr.inputs.insert(tr.inputs.end(), inputs.data(), inputs.data() + inputs.size());
+  if (solve)
+    if (const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1); !why.empty()) {
+      tr.truncate(solved_outputs(tr));
+      stop(why);
+    }
+}
+
+int solved_outputs(const Trajectory& tr) { return tr.n > 0 ? int(tr.a.size() / size_t(tr.n)) : tr.size(); }
+
+ConsistentState dynamic_start(const Model& model, const SimulationOptions& o, Data& d, AugmentedSystem& kkt,
+                              Redundancy& redundancy) {
+  VecX q_start = model.initial_q(), v_start = model.initial_v();
+  try {
+    if (o.start == Start::kEquilibrium) {  // at rest in the static equilibrium at t0
+      EquilibriumOptions eo;
+      eo.t = o.t0;
+      q_start = find_equilibrium(model, eo).q;
+      v_start.setZero();
+    }
+    return start_state(model, d, kkt, q_start, v_start, o.t0, &redundancy);
+  } catch (const UserFunctionError& e) {
+    throw SimulationError(e.what(), o.t0);
+  }
+}
+
+IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const Method& method, const Data& run) {
+  const int n = model.n_coordinates();
+  IntegrationPlan plan;
+  plan.options = &o;
+  plan.t0 = o.t0;
+  plan.t_end = o.t_end;
+  plan.atol = VecX::Constant(n, o.atol);
+  if (!o.atol_coordinates.empty()) plan.atol = Eigen::Map<const VecX>(o.atol_coordinates.data(), n);
+  plan.max_order = o.max_order ? o.max_order : method.max_order;
+  plan.run = &run;
+  return plan;
+}
+
+std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start) {
+  if (model.event_groups().empty()) return nullptr;
+  auto events = std::make_unique<EventRunner>(model, run);
+  // a joint that starts at a limit, moving into it, gets its impact at t
+  try {
+    if (events->start(t, start.q, start.v)) start = events->consistent(t, start.q, start.v);
+  } catch (const IntegratorFailure& e) {
+    throw SimulationError(e.what(), e.t);
+  }
+  return events;
+}
+
+Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, const SimulationOptions& options_,
+         const Method& method_, bool stop_at_end)
+    : with_parameters(std::move(with_parameters_)),
+      model(with_parameters ? *with_parameters : given),
+      options(options_),
+      method(method_),
+      data(model),
+      kkt(model),
+      stop_at_end_(stop_at_end) {
+  Redundancy redundancy;
+  start = dynamic_start(model, options, data, kkt, redundancy);
+  events = start_events(model, data, options.t0, start);
+  plan = run_plan(model, options, method, data);
+  plan.events = events.get();
+  // the rows left out as redundant are checked at every output
+  watch = std::make_unique<RedundancyWatch>(model, data, std::move(redundancy));
+  outputs.n = model.n_coordinates();
+  outputs.m = model.n_constraints();
+  outputs.p = int(model.inputs().size());
+  outputs.dropped_rows = start.dropped_rows;
+  outputs.run_model = with_parameters;
+  outputs.stats.formulation = name_of(method.formulation);
+  outputs.stats.integrator = name_of(method.integrator);
+  outputs.stats.analysis = name_of(Analysis::kDynamic);
+}
+
+void Run::record(double t, const double* q, const double* v, bool solve) {
+  record_output(model, data, kkt, *watch, outputs, t, q, v, data.run->inputs, solve);
+}
+
+void Run::start_stepper(double t, const ConsistentState& from) {
+  if (stepper_) {  // its counts are kept; the new one starts at order 1
+    Stats s;
+    stepper_->fill_stats(s);
+    add_counts(finished_, s);
+    finished_.restarts += loop_->restarts();
+    ++restarts_;
+  }
+  loop_.reset();
+  stepper_.reset();
+  plan.t0 = t;
+  stepper_ = make_stepper(method, model, from, plan);
+  loop_ = std::make_unique<StepLoop>(*stepper_, plan, t, stop_at_end_);
+}
+
+void Run::restart_stepper(double t, const ConsistentState& from) {
+  plan.t0 = t;  // the first step's scale: the stretch in progress
+  stepper_->reset(t, from);
+  loop_->restarted(t);
+  ++restarts_;
+}
+
+void Run::step_to(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {
+  try {
+    // outputs inside the step taken last, before it steps on
+    for (; k < t_out.size() && t_out[k] <= loop_->t(); ++k) {
+      const double *q = nullptr, *v = nullptr;
+      stepper_->interpolate(t_out[k], q, v);
+      record(q, v);
+    }
+    loop_->run(target, t_out, k, record);
+  } catch (IntegratorFailure& e) {
+    if (!e.q.size()) e.q = Eigen::Map<const VecX>(stepper_->positions(), model.n_coordinates());
+    throw;
+  }
+}
+
+Stats Run::stats() const {
+  Stats s = finished_;
+  if (stepper_) {
+    Stats now;
+    stepper_->fill_stats(now);
+    add_counts(s, now);
+    s.last_order = now.last_order;
+    s.last_step = now.last_step;
+    s.restarts += loop_->restarts();
+  }
+  s.restarts += restarts_;
+  s.input_changes = input_changes;
+  // the start, the outputs' solves and the checks of the dropped rows
+  s.element_evaluations += data.element_evaluations + watch->element_evaluations();
+  s.formulation = name_of(method.formulation);
+  s.integrator = name_of(method.integrator);
+  s.analysis = name_of(Analysis::kDynamic);
+  if (events) {
+    s.events = events->events;
+    s.impacts = events->impacts;
+    s.root_evals = events->root_evals;
+  }
+  return s;
+}
+
+}  // namespace lagmb
