@@ -288,7 +288,7 @@ def main(argv=None):
     print(f"steps = {r.stats['steps']}")
     print(f"wall time = {wall:.3f} s")
     if args.scene:
-        model.to_scene(args.scene, settings={"t_end": T_END, "rtol": args.rtol, "atol": args.atol,
+        mb.save_scene(model, args.scene, settings={"t_end": T_END, "rtol": args.rtol, "atol": args.atol,
                                              "n_out": 301})
         print(f"scene written to {args.scene}")
 

@@ -1159,8 +1159,8 @@ def _scene(ctx):
                                                  {"t_end": 0.05, "n_out": 2 ** 40}, {"t_end": None}]))
     if ctx.dim == 3 and settings is not None and "t_end" in settings:
         settings = dict(settings, max_steps=SPATIAL_MAX_STEPS)
-    ctx.add(f"m.to_scene(scene_path{'' if settings is None else ', settings=' + lit(settings)})\n"
-            "written = scene_path", "to_scene")
+    ctx.add(f"mb.save_scene(m, scene_path{'' if settings is None else ', settings=' + lit(settings)})\n"
+            "written = scene_path", "save_scene")
     ctx.add("scene = mb.load_scene(written)", "load_scene")  # only if it was written
     bound = "" if ctx.dim == 2 else f", max_steps={SPATIAL_MAX_STEPS}"
     ctx.add("r9 = scene.run()" if settings is not None else f"r9 = mb.simulate(scene.model, t_end=0.05{bound})",

@@ -186,7 +186,7 @@ def test_contact_in_a_scene_file(tmp_path):
     same run to the bit."""
     m = ball()
     path = tmp_path / "ball.toml"
-    m.to_scene(path, settings={"t_end": 0.6, "rtol": 1e-8})
+    mb.save_scene(m, path, settings={"t_end": 0.6, "rtol": 1e-8})
     assert 'type = "contact"' in path.read_text()
     r1, r2 = mb.load_scene(path).run(), mb.simulate(m, t_end=0.6, rtol=1e-8)
     assert r1.events == r2.events and len(r1.events) == 2

@@ -74,7 +74,7 @@ def test_model_questions_and_scene_output_accept_handles(tmp_path):
     motor = m.drive_joint("motor", pin, mb.Linear(1.0))
     assert m.outline(rod) == m.outline("rod")
     path = tmp_path / "p.toml"
-    m.to_scene(path, {"t_end": 0.1}, {"reactions": [pin], "efforts": [motor]})
+    mb.save_scene(m, path, {"t_end": 0.1}, {"reactions": [pin], "efforts": [motor]})
     scene = mb.load_scene(path)
     assert scene.output["reactions"] == ["pin"] and scene.output["efforts"] == ["motor"]
 
@@ -254,7 +254,7 @@ def test_a_handle_from_another_model_is_refused_naming_both():
         with pytest.raises(mb.ModelError, match="another model"):
             ask()
     with pytest.raises(mb.ModelError, match="another model"):
-        m.to_scene("never-written.toml", output={"reactions": [other_pin]})
+        mb.save_scene(m, "never-written.toml", output={"reactions": [other_pin]})
 
 
 @pytest.mark.parametrize("ask, expected, given", [

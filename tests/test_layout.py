@@ -78,3 +78,49 @@ def test_the_umbrella_header_includes_every_public_header():
                 "lagmb/time_function.hpp", "lagmb/interrupt.hpp"}
     missing = sorted(public - indirect - set(INCLUDE.findall(umbrella)))
     assert missing == []
+
+
+# --- the Python package -------------------------------------------------------
+
+#: The Python modules by layer, lowest first (docs/design.md, section 2):
+#: each imports only from its own layer or the ones before, at the top of a
+#: file or inside a function alike (a late import is still a dependency).
+PYTHON_LAYERS = [
+    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles"],
+    ["model"],
+    ["result", "simulation", "simulator", "statics", "accuracy"],
+    ["scene", "plotting", "demo"],
+    ["fmu", "cli", "__main__", "__init__"],
+]
+
+
+def python_imports(path, package):
+    """The lagmb modules a file imports (relative imports, resolved; the
+    first part below lagmb: 'scene' for lagmb.scene.reader)."""
+    import ast
+
+    here = list(path.relative_to(package).with_suffix("").parts[:-1])
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.level > 0:
+            base = here[:len(here) - (node.level - 1)] if node.level > 1 else here
+            names = (base + node.module.split(".")) if node.module else None
+            for target in ([names] if names else [base + [a.name] for a in node.names]):
+                found.add(target[0] if target else "__init__")
+    return found
+
+
+def test_python_imports_point_down():
+    package = ROOT / "python" / "lagmb"
+    rank = {name: k for k, layer in enumerate(PYTHON_LAYERS) for name in layer}
+    modules = sorted(package.rglob("*.py"))
+    unplaced = [str(p.relative_to(package)) for p in modules if p.relative_to(package).parts[0].removesuffix(".py")
+                not in rank]
+    assert unplaced == []
+    upward = []
+    for path in modules:
+        mine = path.relative_to(package).parts[0].removesuffix(".py")
+        for target in python_imports(path, package):
+            if target != mine and rank[target] > rank[mine]:
+                upward.append(f"{path.relative_to(package)} imports {target}")
+    assert upward == []

@@ -219,7 +219,7 @@ def test_stop_in_a_scene_file(tmp_path):
     """A [[stops]] table reads into the same model: the same impact to the bit."""
     m = pendulum(0.5)
     path = tmp_path / "stop.toml"
-    m.to_scene(path, settings={"t_end": 0.6, "rtol": 1e-9})
+    mb.save_scene(m, path, settings={"t_end": 0.6, "rtol": 1e-9})
     scene = mb.load_scene(path)
     assert "[[stops]]" in path.read_text()
     r1, r2 = scene.run(), mb.simulate(m, t_end=0.6, rtol=1e-9)

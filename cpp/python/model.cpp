@@ -131,6 +131,8 @@ void bind_model(py::module_& m) {
       .def("__copy__", [](const ModelSpec& spec) { return spec.copied(own); })
       .def("__len__", [](const ModelSpec& spec) { return spec.elements().size(); })
       .def_property_readonly("dimension", &ModelSpec::dimension)
+      .def_property_readonly("element_builds", &ModelSpec::element_builds,
+                             "Elements built into models by this spec so far (by add and by rebuilding).")
       .def("to_text", &ModelSpec::to_text)
       .def_static("from_text", &ModelSpec::from_text, py::arg("text"))
       .def(

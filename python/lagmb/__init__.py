@@ -25,7 +25,7 @@ from .simulator import Simulator
 from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
 
-__version__ = "0.1.0"
+from ._version import __version__  # noqa: F401
 SUNDIALS_VERSION = _core.sundials_version
 
 __all__ = [

@@ -128,15 +128,6 @@ def matrix_or_vector(value, name, length, what):
     return x
 
 
-def model(value, who):
-    """A lagmb.Model given to `who` (a run, an analysis)."""
-    from .model import Model
-
-    if not isinstance(value, Model):
-        raise ModelError(f"{who}: model must be a lagmb.Model, got {show(value)}")
-    return value
-
-
 def flag(value, name):
     """True or False: a bool or numpy's bool (not a string, a number or an
     array, whose truth Python would guess: "False" is true)."""

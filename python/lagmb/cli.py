@@ -22,7 +22,7 @@ import re
 import sys
 import warnings
 
-from . import __version__
+from ._version import __version__
 from .errors import ModelError, SimulationError
 from .registry import BY_METHOD, SPATIAL_BY_METHOD, markdown
 from .scene.schema import ELEMENT_TABLES, elements, methods

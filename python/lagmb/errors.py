@@ -1,5 +1,7 @@
 """Exceptions raised by lagmb (docs/design.md, section 6)."""
 
+import contextlib
+
 from . import _core
 
 #: Bad input: a value or name that cannot make a model. A ValueError.
@@ -50,3 +52,24 @@ class KinematicOnlyError(ModelError):
     """A quantity a kinematic-only analysis does not compute (the multipliers
     and everything derived from them: reactions, driver efforts) was asked
     for. Run with analysis="inverse_dynamics" (all masses > 0) to get them."""
+
+
+@contextlib.contextmanager
+def translated(partial_result=None):
+    """Turn the core's solver errors into lagmb's, with the exception a user
+    function raised as their cause. ``partial_result(raw)`` makes the
+    outputs a failed run reached into a Result (or None): a SimulationError
+    carries it as ``.result``, and an interrupt (KeyboardInterrupt,
+    SystemExit) passes unchanged, carrying it as ``.result`` too."""
+    def partial(raw):
+        return None if partial_result is None or raw is None else partial_result(raw)
+
+    try:
+        yield
+    except _core.AssemblyError as e:
+        raise AssemblyError(str(e), e.t, e.violated) from e.__cause__
+    except _core.SimulationError as e:
+        raise SimulationError(str(e), e.t, partial(e.partial)) from e.__cause__
+    except (KeyboardInterrupt, SystemExit) as e:
+        e.result = partial(getattr(e, "partial", None))
+        raise

@@ -22,6 +22,7 @@ import zipfile
 from xml.sax.saxutils import quoteattr
 
 from . import _core
+from ._version import __version__
 from .errors import ModelError
 
 RUNTIME = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fmu_runtime")
@@ -82,7 +83,7 @@ def model_description(name, identifier, token, variables, description=""):
     units = sorted({v["unit"] for v in variables if v["unit"]})
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              f'<fmiModelDescription fmiVersion="3.0" modelName={quoteattr(name)} '
-             f'instantiationToken={quoteattr(token)} generationTool="lagmb {_core_version()}" '
+             f'instantiationToken={quoteattr(token)} generationTool="lagmb {__version__}" '
              f'description={quoteattr(description)} variableNamingConvention="flat">',
              f'  <CoSimulation modelIdentifier={quoteattr(identifier)} '
              'canHandleVariableCommunicationStepSize="true" canGetAndSetFMUState="true" '
@@ -112,11 +113,6 @@ def model_description(name, identifier, token, variables, description=""):
     lines.append("  </ModelStructure>")
     lines.append("</fmiModelDescription>")
     return "\n".join(lines) + "\n"
-
-
-def _core_version():
-    from . import __version__
-    return __version__
 
 
 def build_fmu(scene, path, name=None):

@@ -1,13 +1,12 @@
 """Building a mechanism: bodies, joints, gravity (docs/design.md, section 2.7)."""
 
 import copy
-import numbers
 
 from . import _core
 from . import registry
 from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
 from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
-from .errors import ModelError
+from .errors import ModelError, RedundantConstraintWarning, translated
 from .functions import TimeFunction, as_time_function, from_core
 from .handles import Body, Handle, name_of
 
@@ -169,8 +168,6 @@ class Model:
             return
         import warnings
 
-        from .errors import RedundantConstraintWarning
-
         core = self.compiled()
         named = ", ".join(f"'{core.constraint_name_of_row(r)}' (row {r})" for r in rows)
         warnings.warn(RedundantConstraintWarning(
@@ -215,12 +212,6 @@ class Model:
         names = ["ground"] + [body for body, _ in self._spec.bodies]  # by index + 1
         return [(names[b + 1], tuple(point)) for b, *point in self._spec.attachments(name)]
 
-    def to_scene(self, path, settings=None, output=None):
-        """Write the model (and optional simulation settings) as a TOML scene."""
-        from .scene import save_scene
-
-        save_scene(self, path, settings, output)
-
     @property
     def bodies(self):
         """Body handles, in the order of their coordinates."""
@@ -239,11 +230,9 @@ class Model:
     def assemble(self, t=0.0):
         """Consistent initial state: (q, v, qdd, lam) at time t. Redundant
         equations found there are named in a RedundantConstraintWarning."""
-        from .simulation import _real, _translate
-
-        t = _real(t, "t")
+        t = _number(t, "t")
         core = self.compiled()
-        with _translate(self, core):
+        with translated():
             q, v, qdd, lam, dropped = _core.assemble(core, t)
         self._warn_redundant(dropped)
         return q, v, qdd, lam
@@ -252,10 +241,8 @@ class Model:
         """Coordinates minus the number of independent constraint equations,
         counted near the assembled initial position (at a singular position,
         such as a flat parallelogram, as at its regular neighbours)."""
-        from .simulation import _translate
-
         core = self.compiled()
-        with _translate(self, core):
+        with translated():
             return _core.degrees_of_freedom(core, 0.0)
 
     def rank(self):
@@ -265,18 +252,23 @@ class Model:
         import warnings
 
         from .errors import RedundantConstraintWarning
-        from .simulation import _translate
-
         with warnings.catch_warnings():  # the dependent rows are what this returns
             warnings.simplefilter("ignore", RedundantConstraintWarning)
             q = self.assemble()[0]
-        with _translate(self):
+        with translated():
             return self.compiled().rank(q, 0.0)
 
     def __repr__(self):
         n_bodies = len(self._spec.bodies)
         return f"<lagmb.Model: {n_bodies} bodies, {len(self._spec) - n_bodies} other elements>"
 
+
+
+def checked(value, who):
+    """A lagmb.Model given to `who` (a run, an analysis); ModelError otherwise."""
+    if not isinstance(value, Model):
+        raise ModelError(f"{who}: model must be a lagmb.Model, got {show(value)}")
+    return value
 
 def _matrix_or_vector_value(length, shape):
     def check(model, param, value, what, label):

@@ -1,14 +1,13 @@
 """Running a model: simulate() and one-instant solves."""
 
-import contextlib
-
 import numpy as np
 
 from . import _core
 from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
-from ._checks import model as _model, parameters as _parameters, positive as _positive, real as _real
+from ._checks import parameters as _parameters, positive as _positive, real as _real
 from ._checks import text as _text
-from .errors import AssemblyError, ModelError, SimulationError
+from .errors import ModelError, translated
+from .model import checked as _model
 from .result import Result
 
 #: What every run takes by default: the core's SimulationOptions, by field
@@ -17,28 +16,14 @@ DEFAULTS = _core.default_options()
 _D = DEFAULTS
 
 
-@contextlib.contextmanager
 def _translate(model=None, core=None):
-    """Turn the core's solver errors into lagmb's, with the partial result
-    and the exception a user function raised as their cause. An interrupt
-    (KeyboardInterrupt, SystemExit) passes unchanged, carrying the outputs
-    so far as ``.result`` (None if there were none)."""
+    """errors.translated, the partial outputs of a failed run of `model`
+    (compiled: `core`) as a Result."""
     def partial_result(raw):
-        if model is None or raw is None:
-            return None
         partial = Result(model, core, raw)
         return partial if len(partial.t) else None
 
-    try:
-        yield
-    except _core.AssemblyError as e:
-        raise AssemblyError(str(e), e.t, e.violated) from e.__cause__
-    except _core.SimulationError as e:
-        raise SimulationError(str(e), e.t, partial_result(e.partial)) from e.__cause__
-    except (KeyboardInterrupt, SystemExit) as e:
-        e.result = partial_result(getattr(e, "partial", None))
-        raise
-
+    return translated(partial_result if model is not None else None)
 
 
 def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n_out"], t_out=None, t0=_D["t0"],

@@ -4,10 +4,11 @@ saved and restored (docs/modelling.md, "Driving a run from outside")."""
 from types import SimpleNamespace
 
 from . import _core, registry
-from ._checks import model as _model, parameters as _parameters, real as _real, show as _show
+from ._checks import parameters as _parameters, real as _real, show as _show
 from .errors import ModelError
 from .handles import name_of
 from .result import BodyPath, Result, element_name
+from .model import checked as _model
 from .simulation import DEFAULTS as _D, _run_options, _translate
 
 

@@ -98,7 +98,8 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     """
     from .simulation import _translate
 
-    from ._checks import integer as _integer, model as _model, real as _real
+    from ._checks import integer as _integer, real as _real
+    from .model import checked as _model
 
     _model(model, "equilibrium")
     t = _real(t, "t")

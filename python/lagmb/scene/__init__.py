@@ -9,8 +9,7 @@ messages) is documented for users in docs/scene-format.md.
 simulates it, and ``model, settings = mb.load_scene(path)`` unpacks it where
 only the model and its settings are wanted. Anything the file gets wrong
 raises :class:`SceneError` naming the file, the line, the table and the key.
-``mb.save_scene(model, path, settings=None, output=None)`` (also
-``model.to_scene(path, ...)``) writes one that loads back into a model giving
+``mb.save_scene(model, path, settings=None, output=None)`` writes one that loads back into a model giving
 the same results to the last bit.
 
 The modules (docs/design.md, section 7): schema.py, what a scene may contain;

@@ -6,7 +6,6 @@ file order; every error names the file, the line (lines.py), the table and
 the key.
 """
 
-import inspect
 import math
 import os
 import re

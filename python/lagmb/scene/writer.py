@@ -10,6 +10,7 @@ import os
 
 import numpy as np
 
+from .._version import __version__
 from ..handles import name_of
 from .reader import Reader, SceneError
 from .schema import elements
@@ -63,8 +64,6 @@ def _named(value, names):
 
 def scene_text(model, settings=None, output=None):
     """The scene file of a model (and settings, output) as a string."""
-    from .. import __version__
-
     out = [f"# lagmb {__version__} scene", ""]
     gravity = getattr(model, "gravity", None)
     dimension = getattr(model, "dimension", 2)

@@ -85,8 +85,15 @@ class ModelSpec {
   std::shared_ptr<const Model> compile(const FunctionCopy& copy = nullptr) const;
 
   /// A new compiled model, not kept (compile() keeps one): the Python
-  /// binding gives each compiled model its own Python owner.
+  /// binding gives each compiled model its own Python owner. The model the
+  /// adds built (and checked) becomes it, so that each element is built
+  /// once, unless `copy` changes a time function or a compiled model took
+  /// that one already: then the elements are built again.
   std::shared_ptr<Model> build(const FunctionCopy& copy = nullptr) const;
+
+  /// Elements built into models by this spec so far (by add, and by
+  /// rebuilding the description): the cost of describing and compiling.
+  long element_builds() const { return element_builds_; }
 
   /// The description with `copy` applied to its time functions.
   ModelSpec copied(const FunctionCopy& copy) const;
@@ -99,8 +106,9 @@ class ModelSpec {
   /// Reads what to_text wrote; ModelError naming the line that is wrong.
   static ModelSpec from_text(const std::string& text);
 
-  /// The model being built, not compiled: the checks of add() and what an
-  /// element attaches to (Model::outline, Model::attachments).
+  /// The model being built (or, after build, the one built last): the
+  /// checks of add() and what an element attaches to (Model::outline,
+  /// Model::attachments).
   const Model& draft() const;
 
  private:
@@ -114,6 +122,7 @@ class ModelSpec {
   // the spec shares it until either adds), and the compiled model.
   mutable std::shared_ptr<Model> draft_;
   mutable std::shared_ptr<const Model> compiled_;
+  mutable long element_builds_ = 0;
 };
 
 /// The values of `args` with `copy` applied to each time function (null: as they are).
