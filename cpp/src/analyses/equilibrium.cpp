@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "assembly/saddle_point.hpp"
 #include "lagmb/assembly/analysis.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/interrupt.hpp"
@@ -35,8 +36,14 @@ struct Residual {
 class EquilibriumSolver {
  public:
   EquilibriumSolver(const Model& model, double t)
-      : model_(model), d_(model), t_(t), n_(model.n_coordinates()), m_(model.n_constraints()) {
+      : model_(model),
+        d_(model),
+        t_(t),
+        n_(model.n_coordinates()),
+        m_(model.n_constraints()),
+        saddle_(model, {0, 0, 0, n_, n_}) {
     v0_ = VecX::Zero(n_);
+    K_ = saddle_.build_square(diagonal_);  // the pattern once; values each step
   }
 
   Data& data() { return d_; }
@@ -71,41 +78,35 @@ class EquilibriumSolver {
   }
 
   /// Solves the Newton system at (q, lam) (Phi_q from the last residual()),
-  /// with mu added to the diagonal of the stiffness block (0: plain Newton).
+  /// with mu added to the diagonal of the stiffness block (0: plain Newton):
+  ///   [ (Phi_q^T lam)_q - Q_q + mu I   Phi_q^T ] [dq  ]   [ Q - Phi_q^T lam ]
+  ///   [ Phi_q                          D       ] [dlam] = [ -Phi            ]
+  /// the saddle-point block at rest (T0 with s = 1, c = 0, a = 0); D is 1 on
+  /// the rows left out as redundant (their dlam = 0), else 0.
   bool newton_step(const VecX& q, const VecX& lam, const Residual& r, double mu, VecX& dq, VecX& dlam) {
-    assemble_constraint_hessian(model_, d_, q.data(), t_, lam.data());
-    assemble_force_derivatives(model_, d_, q.data(), v0_.data(), t_);
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(d_.H.nonZeros() + d_.Q_q.nonZeros() + 2 * d_.Phi_q.nonZeros() + m_);
-    for (int c = 0; c < d_.H.outerSize(); ++c)
-      for (SpMat::InnerIterator it(d_.H, c); it; ++it) trip.emplace_back(it.row(), it.col(), it.value());
-    for (int c = 0; c < d_.Q_q.outerSize(); ++c)
-      for (SpMat::InnerIterator it(d_.Q_q, c); it; ++it) trip.emplace_back(it.row(), it.col(), -it.value());
-    for (int c = 0; c < d_.Phi_q.outerSize(); ++c)
-      for (SpMat::InnerIterator it(d_.Phi_q, c); it; ++it) {
-        trip.emplace_back(n_ + it.row(), it.col(), it.value());
-        trip.emplace_back(it.col(), n_ + it.row(), it.value());
-      }
-    for (int r = 0; r < m_; ++r)
-      trip.emplace_back(n_ + r, n_ + r, is_dropped(d_, r) ? 1.0 : 0.0);  // dropped rows: dlam = 0
-    for (int i = 0; i < n_; ++i) trip.emplace_back(i, i, mu);
+    double* x = K_.valuePtr();
+    K_.coeffs().setZero();
+    saddle_.add_tangent(d_, x, q.data(), v0_.data(), t_, lam.data(), v0_.data(), 1.0, 0.0);
+    const std::vector<int>&G = saddle_.jacobian, &GT = saddle_.jacobian_t;
+    for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d_.Phi_q.valuePtr()[k];
+    for (int i = 0; i < n_; ++i) x[diagonal_[i]] += mu;
+    for (int row = 0; row < m_; ++row)
+      if (is_dropped(d_, row)) x[diagonal_[n_ + row]] = 1.0;
     stiffness_size = 0.0;
     for (int c = 0; c < d_.H.outerSize(); ++c)
       for (SpMat::InnerIterator it(d_.H, c); it; ++it) stiffness_size = std::max(stiffness_size, std::abs(it.value()));
-    for (int c = 0; c < d_.Q_q.outerSize(); ++c)
-      for (SpMat::InnerIterator it(d_.Q_q, c); it; ++it)
-        stiffness_size = std::max(stiffness_size, std::abs(it.value()));
-    SpMat K(n_ + m_, n_ + m_);
-    K.setFromTriplets(trip.begin(), trip.end());
-    K.makeCompressed();
-    lu_.compute(K);
+    if (!model_.state_dependent_forces().empty())
+      for (int c = 0; c < d_.Q_q.outerSize(); ++c)
+        for (SpMat::InnerIterator it(d_.Q_q, c); it; ++it)
+          stiffness_size = std::max(stiffness_size, std::abs(it.value()));
+    lu_.compute(K_);
     if (lu_.info() != Eigen::Success) return false;
     VecX rhs(n_ + m_);
     rhs << r.f1, -r.f2;
-    const VecX x = lu_.solve(rhs);
-    if (!x.allFinite()) return false;
-    dq = x.head(n_);
-    dlam = x.tail(m_);
+    const VecX x_new = lu_.solve(rhs);
+    if (!x_new.allFinite()) return false;
+    dq = x_new.head(n_);
+    dlam = x_new.tail(m_);
     return true;
   }
 
@@ -117,7 +118,10 @@ class EquilibriumSolver {
   Data d_;
   double t_;
   int n_, m_;
-  VecX v0_;
+  VecX v0_;  // at rest: velocities and accelerations 0
+  SaddlePoint saddle_;
+  SpMat K_;
+  std::vector<int> diagonal_;  // slots of K_'s diagonal
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
 };
 

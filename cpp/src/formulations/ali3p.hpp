@@ -8,7 +8,7 @@
 #include <Eigen/SparseLU>
 
 #include "lagmb/assembly/augmented.hpp"
-#include "formulations/saddle_point.hpp"
+#include "assembly/saddle_point.hpp"
 
 namespace lagmb {
 

@@ -1,7 +1,7 @@
 // A DAE form of the equations of motion, F(t, y, y') = 0, for IDA.
 #pragma once
 
-#include "formulations/saddle_point.hpp"
+#include "assembly/saddle_point.hpp"
 #include "lagmb/assembly/augmented.hpp"
 #include "lagmb/model/data.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "solvers/klu_lu.hpp"
 
-#include "formulations/saddle_point.hpp"
+#include "assembly/saddle_point.hpp"
 #include "lagmb/assembly/augmented.hpp"
 
 namespace lagmb {

@@ -1,6 +1,7 @@
-// The saddle-point block that every Newton matrix of lagmb's formulations
-// holds (multiplier DAEs, projection, ali3p): its pattern at given offsets,
-// the slots of its entries, and the values of its tangent block T0.
+// The saddle-point block that every Newton matrix of lagmb holds (the
+// formulations' -- multiplier DAEs, projection, ali3p -- and the static
+// equilibrium's): its pattern at given offsets, the slots of its entries,
+// and the values of its tangent block T0.
 #pragma once
 
 #include <vector>

@@ -1,5 +1,5 @@
-// The saddle-point block of the formulations' Newton matrices (saddle_point.hpp).
-#include "formulations/saddle_point.hpp"
+// The saddle-point block of lagmb's Newton matrices (saddle_point.hpp).
+#include "assembly/saddle_point.hpp"
 
 #include "lagmb/assembly/assembly.hpp"
 
