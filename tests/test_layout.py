@@ -88,8 +88,8 @@ def test_the_umbrella_header_includes_every_public_header():
 PYTHON_LAYERS = [
     ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles"],
     ["model"],
-    ["result", "simulation", "simulator", "statics", "accuracy"],
-    ["scene", "plotting", "demo"],
+    ["result", "simulation", "simulator", "statics", "accuracy", "joints"],
+    ["scene", "plotting", "demo", "urdf"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 

@@ -296,6 +296,26 @@ void bind_model(py::module_& m) {
           "((x, y) and the torque in the plane, (x, y, z) and (x, y, z) in space); with joint_axes,\n"
           "in the element's own axes.")
       .def(
+          "joint_motion",
+          [](const Model& model, const std::string& joint, bool slide, const RowMajor& q, const RowMajor& v,
+             const RowMajor& a) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            if (a.size()) require_rows(model, a, model.n_coordinates(), "a");
+            if (v.rows() != q.rows() || (a.size() && a.rows() != q.rows()))
+              throw ModelError("q, v and a must have one row per state");
+            RowMajor out(q.rows(), 3);
+            for (Eigen::Index k = 0; k < q.rows(); ++k) {
+              const JointMotion m = joint_motion(model, joint, slide, q.row(k).data(), v.row(k).data(),
+                                                 a.size() ? a.row(k).data() : nullptr);
+              out.row(k) << m.value, m.rate, m.acceleration;
+            }
+            return out;
+          },
+          py::arg("joint"), py::arg("slide"), py::arg("q"), py::arg("v"), py::arg("a") = RowMajor(),
+          "(value, rate, acceleration) of a joint's angle (or, with slide, its slide) at each state (rows of q, "
+          "v, a)")
+      .def(
           "friction",
           [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,
              const RowMajor& lam) {

@@ -84,6 +84,38 @@ class BodyPath:
         self.angular_acceleration = result.a[:, first + 2] if count == 3 else zero
 
 
+class JointPath:
+    """A joint's coordinate along a run (Result.joint): ``angle`` (rad) of a
+    revolute or cylindrical joint, ``slide`` (m) of a translational or
+    cylindrical one, with ``rate`` and ``acceleration`` (k,) of the first it
+    has (the angle, for a cylindrical joint: ``slide_rate`` and
+    ``slide_acceleration`` for its slide). 0 in the initial configuration;
+    a spatial angle is continued across +-pi from output to output (it
+    counts turns, as a robot's joint value does), a planar one is the
+    bodies' angle difference."""
+
+    def __init__(self, result, name):
+        core = result._core
+        kind = core.element_kind(name)
+        turns = kind in ("revolute", "spatial_revolute", "cylindrical")
+        slides = kind in ("translational", "spatial_translational", "cylindrical")
+        if not (turns or slides):
+            raise ModelError(f"Result.joint: '{name}' is a {kind}, not a revolute, translational or cylindrical joint")
+        motion = {}
+        for slide, present in ((False, turns), (True, slides)):
+            if present:
+                motion[slide] = core.joint_motion(name, slide, result.q, result.v, result.a)
+        if turns:
+            angle = motion[False][:, 0]
+            self.angle = _frozen(np.unwrap(angle) if result.model.dimension == 3 else angle)
+        if slides:
+            self.slide = _frozen(motion[True][:, 0])
+        first = motion[False] if turns else motion[True]
+        self.rate, self.acceleration = _frozen(first[:, 1]), _frozen(first[:, 2])
+        if turns and slides:
+            self.slide_rate, self.slide_acceleration = _frozen(motion[True][:, 1]), _frozen(motion[True][:, 2])
+
+
 class Result:
     """States at the output times of a run.
 
@@ -172,6 +204,12 @@ class Result:
             return b.position + np.einsum("kij,j->ki", b.rotation, s)
         c, sn = np.cos(b.angle), np.sin(b.angle)
         return b.position + np.column_stack((c * s[0] - sn * s[1], sn * s[0] + c * s[1]))
+
+    def joint(self, joint):
+        """The coordinate of a revolute, translational or cylindrical joint
+        (handle or name) at each output: a JointPath (.angle or .slide,
+        .rate, .acceleration)."""
+        return JointPath(self, self._name(joint, ("joint",), "joint", "Result.joint"))
 
     def multipliers(self, element):
         """(k, rows) columns of lam that belong to a joint or driver."""

@@ -1,0 +1,192 @@
+"""Joint space: a spatial tree's state given as joint angles and slides
+(what robot users think in), and the joint values of any state.
+
+``JointSpace(model)`` reads the tree the model's revolute and translational
+joints make (each body the child of at most one joint; a body without one
+is free). ``coordinates`` turns joint values into lagmb's coordinates by
+the tree's forward kinematics; ``motion`` reads a joint's value, rate and
+acceleration from lagmb's coordinates (the core's joint_motion: the
+function the joint's drivers hold).
+"""
+
+import numpy as np
+
+from .errors import ModelError
+
+#: The kinds whose joints JointSpace moves, and what they move.
+_MOVING = {"add_revolute": "turns", "add_translational": "slides"}
+
+
+def _unit(x):
+    x = np.asarray(x, dtype=float)
+    return x / np.linalg.norm(x)
+
+
+def _quaternion_of(R):
+    """The unit quaternion (w, x, y, z) of a rotation matrix, w >= 0
+    (Shepperd: from the largest of 4 w^2, 4 x^2, 4 y^2, 4 z^2 and the
+    off-diagonal sums, so that no component comes from the square root of a
+    difference that cancels)."""
+    t = np.array([1.0 + R[0, 0] + R[1, 1] + R[2, 2], 1.0 + R[0, 0] - R[1, 1] - R[2, 2],
+                  1.0 - R[0, 0] + R[1, 1] - R[2, 2], 1.0 - R[0, 0] - R[1, 1] + R[2, 2]])
+    k = int(np.argmax(t))
+    s = 2.0 * np.sqrt(t[k])
+    if k == 0:
+        p = [s / 4, (R[2, 1] - R[1, 2]) / s, (R[0, 2] - R[2, 0]) / s, (R[1, 0] - R[0, 1]) / s]
+    elif k == 1:
+        p = [(R[2, 1] - R[1, 2]) / s, s / 4, (R[0, 1] + R[1, 0]) / s, (R[0, 2] + R[2, 0]) / s]
+    elif k == 2:
+        p = [(R[0, 2] - R[2, 0]) / s, (R[0, 1] + R[1, 0]) / s, s / 4, (R[1, 2] + R[2, 1]) / s]
+    else:
+        p = [(R[1, 0] - R[0, 1]) / s, (R[0, 2] + R[2, 0]) / s, (R[1, 2] + R[2, 1]) / s, s / 4]
+    p = np.array(p)
+    return (p if p[0] >= 0 else -p) / np.linalg.norm(p)
+
+
+def _rotation_of(p):
+    w, x, y, z = p
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def _turn(axis, angle):
+    """Rotation by `angle` about the unit `axis` (Rodrigues)."""
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * (K @ K)
+
+
+def _E(p):
+    """E(p) (3 x 4): omega = 2 E(p) p' in global axes (lagmb's spatial.hpp)."""
+    w, x, y, z = p
+    return np.array([[-x, w, -z, y], [-y, z, w, -x], [-z, -y, x, w]])
+
+
+class JointSpace:
+    """The joints of a spatial tree model and its state in joint values.
+
+    ``joints``: the revolute and translational joints, parents before
+    children; ``free``: the bodies that are no joint's child (free bodies,
+    such as a floating base). Raises ModelError for a planar model, or a
+    body that is the child of two joints (a closed loop)."""
+
+    def __init__(self, model):
+        if model.dimension != 3:
+            raise ModelError("JointSpace: the model is planar; joint space reads spatial trees")
+        core = model.compiled()
+        q0 = core.initial_state()[0]
+        self.model = model
+        self._bodies = [b.name for b in model.bodies]
+        self._index = {name: k for k, name in enumerate(self._bodies)}
+        # each body's pose in the initial configuration
+        self._R0, self._r0 = {"ground": np.eye(3)}, {"ground": np.zeros(3)}
+        for k, name in enumerate(self._bodies):
+            self._r0[name] = q0[7 * k:7 * k + 3]
+            self._R0[name] = _rotation_of(q0[7 * k + 3:7 * k + 7])
+        parent_of, joints = {}, {}
+        for method, values in model.elements():
+            if method not in _MOVING:
+                continue
+            name = values["name"]
+            body_i, body_j = str(values["body_i"]), str(values["body_j"])
+            if body_j in parent_of:
+                raise ModelError(f"JointSpace: body '{body_j}' is the child of joints '{parent_of[body_j]}' and "
+                                 f"'{name}': joint space is a tree's (a closed loop has no joint coordinates "
+                                 "of its own)")
+            parent_of[body_j] = name
+            Rp, rp = self._R0[body_i], self._r0[body_i]
+            axis = _unit(values["axis"])
+            joints[name] = dict(name=name, parent=body_i, child=body_j, kind=_MOVING[method],
+                                axis=Rp.T @ axis,  # in the parent's axes
+                                at=Rp.T @ (np.asarray(values["at"], dtype=float) - rp),
+                                # the child's pose in the parent's axes, joint value 0
+                                R=Rp.T @ self._R0[body_j], r=Rp.T @ (self._r0[body_j] - rp))
+        # parents before children
+        self.joints, placed = [], {"ground"} | {b for b in self._bodies if b not in parent_of}
+        pending = list(joints.values())
+        while pending:
+            ready = [j for j in pending if j["parent"] in placed]
+            if not ready:
+                raise ModelError(f"JointSpace: the joints {', '.join(j['name'] for j in pending)} do not hang from "
+                                 "the ground or a free body (a loop)")
+            for j in ready:
+                self.joints.append(j["name"])
+                placed.add(j["child"])
+                pending.remove(j)
+        self._joints = joints
+        self.free = [b for b in self._bodies if b not in parent_of]
+
+    def coordinates(self, positions, velocities=None, accelerations=None, free=None):
+        """lagmb's (q, v, a) for joint values {joint: value} (angles in rad,
+        slides in m; each joint 0 where not given), rates and accelerations
+        likewise (0 where not given), by forward kinematics down the tree.
+        ``free``: {body: dict(position, orientation (w, x, y, z), velocity,
+        angular_velocity, acceleration, angular_acceleration)} for the free
+        bodies (global axes; as in the initial configuration, at rest, where
+        not given)."""
+        unknown = set(positions) | set(velocities or {}) | set(accelerations or {})
+        unknown -= set(self._joints)
+        if unknown:
+            raise ModelError(f"JointSpace.coordinates: {', '.join(sorted(map(repr, unknown)))} are not joints of the "
+                             f"tree (its joints: {', '.join(self.joints)})")
+        zero = np.zeros(3)
+        R = {"ground": np.eye(3)}
+        r, v, w, a, al = ({"ground": zero} for _ in range(5))
+        for body in self.free:
+            given = (free or {}).get(body, {})
+            R[body] = _rotation_of(_unit(given["orientation"])) if "orientation" in given else self._R0[body]
+            r[body] = np.asarray(given.get("position", self._r0[body]), dtype=float)
+            v[body] = np.asarray(given.get("velocity", zero), dtype=float)
+            w[body] = np.asarray(given.get("angular_velocity", zero), dtype=float)
+            a[body] = np.asarray(given.get("acceleration", zero), dtype=float)
+            al[body] = np.asarray(given.get("angular_acceleration", zero), dtype=float)
+        for name in self.joints:
+            j = self._joints[name]
+            P, C = j["parent"], j["child"]
+            x = float(positions.get(name, 0.0))
+            xd = float((velocities or {}).get(name, 0.0))
+            xdd = float((accelerations or {}).get(name, 0.0))
+            u = R[P] @ j["axis"]  # the axis, global
+            s = r[P] + R[P] @ j["at"]  # a point of the axis, global
+            wP, vP = w[P], v[P]
+            if j["kind"] == "turns":
+                turn = _turn(j["axis"], x)
+                R[C] = R[P] @ turn @ j["R"]
+                r[C] = r[P] + R[P] @ (turn @ (j["r"] - j["at"]) + j["at"])
+                d, e = r[C] - r[P], r[C] - s
+                w[C] = wP + xd * u
+                v[C] = vP + np.cross(wP, d) + xd * np.cross(u, e)
+                ud, sd = np.cross(wP, u), vP + np.cross(wP, s - r[P])
+                al[C] = al[P] + xdd * u + xd * ud
+                a[C] = (a[P] + np.cross(al[P], d) + np.cross(wP, v[C] - vP) + xdd * np.cross(u, e)
+                        + xd * np.cross(ud, e) + xd * np.cross(u, v[C] - sd))
+            else:
+                R[C] = R[P] @ j["R"]
+                r[C] = r[P] + R[P] @ (j["r"] + x * j["axis"])
+                d = r[C] - r[P]
+                w[C], al[C] = wP, al[P]
+                v[C] = vP + np.cross(wP, d) + xd * u
+                a[C] = a[P] + np.cross(al[P], d) + np.cross(wP, v[C] - vP) + xdd * u + xd * np.cross(wP, u)
+        n = 7 * len(self._bodies)
+        q, qd, qdd = np.zeros(n), np.zeros(n), np.zeros(n)
+        for k, body in enumerate(self._bodies):
+            p = _quaternion_of(R[body])
+            pd = 0.5 * _E(p).T @ w[body]
+            q[7 * k:7 * k + 7] = np.concatenate([r[body], p])
+            qd[7 * k:7 * k + 7] = np.concatenate([v[body], pd])
+            # alpha = 2 E(p) p'' and p . p'' = -|p'|^2 (p stays a unit quaternion)
+            qdd[7 * k:7 * k + 7] = np.concatenate([a[body], 0.5 * _E(p).T @ al[body] - (pd @ pd) * p])
+        return q, qd, qdd
+
+    def motion(self, joint, q, v, a=None):
+        """(value, rate, acceleration) of a joint's angle or slide at one
+        state or at each row of (k, n) arrays: the core's joint_motion."""
+        if joint not in self._joints:
+            raise ModelError(f"JointSpace.motion: '{joint}' is not a joint of the tree (its joints: "
+                             f"{', '.join(self.joints)})")
+        slide = self._joints[joint]["kind"] == "slides"
+        one = np.ndim(q) == 1
+        rows = [np.atleast_2d(np.asarray(x, dtype=float)) for x in (q, v)]
+        acc = np.atleast_2d(np.asarray(a, dtype=float)) if a is not None else np.zeros((0, 0))
+        out = self.model.compiled().joint_motion(joint, slide, rows[0], rows[1], acc)
+        return out[0] if one else out

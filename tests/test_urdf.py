@@ -1,0 +1,298 @@
+"""Robots from URDF files (mb.load_urdf), checked against Pinocchio.
+
+Every URDF of the example-robot-data package is loaded; at random joint
+states the joint accelerations lagmb computes (mb.solve_accelerations on
+the Cartesian state that JointSpace builds by forward kinematics, read back
+in joint space by the joints' own coordinate functions) equal those of
+Pinocchio's articulated-body algorithm on the same file. The files lagmb
+does not read are listed with the reason, and the test checks that loading
+each fails with that reason. Bad files of our own check the errors.
+"""
+
+import os
+import site
+import sysconfig
+
+import numpy as np
+import pytest
+
+import lagmb as mb
+
+pin = pytest.importorskip("pinocchio", reason="the robots extra (pin) is not installed")
+
+
+def _robots_dir():
+    bases = {sysconfig.get_paths()["purelib"], *site.getsitepackages()}
+    for base in sorted(bases):
+        path = os.path.join(base, "cmeel.prefix", "share", "example-robot-data", "robots")
+        if os.path.isdir(path):
+            return path
+    return None
+
+
+ROBOTS = _robots_dir()
+if ROBOTS is None:
+    pytest.skip("example-robot-data is not installed", allow_module_level=True)
+
+URDFS = sorted(os.path.relpath(os.path.join(d, f), ROBOTS) for d, _, files in os.walk(ROBOTS)
+               for f in files if f.endswith(".urdf"))
+
+#: The files lagmb does not read, and the words of the error that says why.
+SKIPPED = {
+    "human_description/robots/human.urdf": "'left_upperleg_virtual': has no mass",
+    "romeo_description/urdf/romeo.urdf": "'LFinger11Link': has no mass",
+    "romeo_description/urdf/romeo_small.urdf": "break the triangle inequality",
+    "romeo_description/urdf/romeo_laas_small.urdf": "mesh 'file:///usr/Romeo",
+    "icub_description/robots/icub.urdf": "link 'r_hip_1': its principal moments of inertia [0.0, 0.0, 0.0]",
+    "icub_description/robots/icub_reduced.urdf": "link 'r_hip_1': its principal moments of inertia [0.0, 0.0, 0.0]",
+    "so_arm_description/urdf/so101.urdf": "<origin> in <link> is not supported",
+    "ur_description/urdf/ur3.urdf": "the robot has no links",
+}
+#: Files with one link: on a fixed base nothing moves (they load; there is
+#: no joint to compare).
+ONE_LINK = {"hector_description/robots/quadrotor_base.urdf", "iris_description/robots/iris_simple.urdf"}
+
+GRAVITY = (0.0, 0.0, -9.81)
+
+
+def load(relpath, **options):
+    options = dict(dict(limits=False, dynamics=False, mimic=False), **options)
+    return mb.load_urdf(os.path.join(ROBOTS, relpath), **options)
+
+
+def pinocchio_model(relpath, floating_base=False):
+    path = os.path.join(ROBOTS, relpath)
+    model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer()) if floating_base else \
+        pin.buildModelFromUrdf(path)
+    model.gravity.linear[:] = GRAVITY
+    return model
+
+
+def lagmb_name(js, name):
+    """A URDF joint's name in lagmb (a joint named like a link is NAME_joint)."""
+    return name if name in js.joints else f"{name}_joint"
+
+
+def random_state(pm, js, rng):
+    """Joint values and rates, uniform in [-1, 1] (rad, m, rad/s, m/s), as
+    {lagmb joint: value} and as Pinocchio's (q, v) (a continuous joint is
+    (cos, sin) there)."""
+    positions, rates = {}, {}
+    q, v = pin.neutral(pm), np.zeros(pm.nv)
+    for jid in range(1, pm.njoints):
+        joint = pm.joints[jid]
+        if joint.shortname() == "JointModelFreeFlyer":
+            continue
+        x, xd = rng.uniform(-1.0, 1.0, 2)
+        name = lagmb_name(js, pm.names[jid])
+        positions[name], rates[name] = x, xd
+        if joint.nq == 1:
+            q[joint.idx_q] = x
+        else:  # unbounded revolute
+            q[joint.idx_q:joint.idx_q + 2] = (np.cos(x), np.sin(x))
+        v[joint.idx_v] = xd
+    return positions, rates, q, v
+
+
+@pytest.mark.parametrize("relpath", URDFS)
+def test_joint_accelerations_equal_pinocchio_aba(relpath):
+    """At 5 random states (seeded) every joint acceleration of a fixed-base
+    robot equals Pinocchio's ABA to 1e-8 relative to the largest; the
+    joint values and rates read back are the ones given."""
+    if relpath in SKIPPED:
+        with pytest.raises(mb.UrdfError, match=SKIPPED[relpath].replace("(", r"\(").replace("[", r"\[")):
+            load(relpath)
+        return
+    model = load(relpath)
+    if relpath in ONE_LINK:
+        assert len(model.bodies) == 0
+        return
+    js = mb.JointSpace(model)
+    pm = pinocchio_model(relpath)
+    pd = pm.createData()
+    assert len(js.joints) == pm.nv == pm.njoints - 1
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        positions, rates, q_pin, v_pin = random_state(pm, js, rng)
+        expected = pin.aba(pm, pd, q_pin, v_pin, np.zeros(pm.nv))
+        q, v, _ = js.coordinates(positions, rates)
+        qdd, _ = mb.solve_accelerations(model, q, v)
+        scale = max(1.0, np.abs(expected).max())
+        for jid in range(1, pm.njoints):
+            name = lagmb_name(js, pm.names[jid])
+            value, rate, acceleration = js.motion(name, q, v, qdd)
+            assert abs(np.remainder(value - positions[name] + np.pi, 2 * np.pi) - np.pi) < 1e-12
+            assert abs(rate - rates[name]) < 1e-12
+            assert abs(acceleration - expected[pm.joints[jid].idx_v]) <= 1e-8 * scale, name
+
+
+def _free_flyer_accelerations(model, js, q, v, qdd, base):
+    """Pinocchio's free-flyer acceleration (the time derivative of the base
+    frame's velocity in its own axes, linear then angular) from lagmb's."""
+    k = [b.name for b in model.bodies].index(base)
+    p, pd_, pdd = q[7 * k + 3:7 * k + 7], v[7 * k + 3:7 * k + 7], qdd[7 * k + 3:7 * k + 7]
+    from lagmb.joints import _E, _rotation_of
+    R = _rotation_of(p)
+    omega, alpha = 2 * _E(p) @ pd_, 2 * _E(p) @ pdd
+    return R, omega, alpha, k
+
+
+@pytest.mark.parametrize("relpath", ["solo_description/robots/solo12.urdf", "anymal_b_simple_description/robots/anymal.urdf",
+                                     "talos_data/robots/talos_reduced.urdf"])
+def test_a_floating_base_moves_as_pinocchios_free_flyer(relpath):
+    """floating_base=True: the root is a free body. At random states (its
+    pose and twist random too) the base's acceleration and every joint's
+    equal Pinocchio's ABA with a free-flyer root to 1e-8 relative."""
+    model = load(relpath, floating_base=True)
+    js = mb.JointSpace(model)
+    assert len(js.free) == 1
+    base = js.free[0]
+    pm = pinocchio_model(relpath, floating_base=True)
+    pd = pm.createData()
+    rng = np.random.default_rng(11)
+    k = [b.name for b in model.bodies].index(base)
+    com_local = model.compiled().initial_state()[0][7 * k:7 * k + 3]  # the base's centre, frame at the origin
+    for _ in range(3):
+        positions, rates, q_pin, v_pin = random_state(pm, js, rng)
+        quaternion = rng.normal(size=4)
+        quaternion /= np.linalg.norm(quaternion)
+        origin, v_local, w_local = rng.uniform(-1, 1, 3), rng.uniform(-1, 1, 3), rng.uniform(-1, 1, 3)
+        q_pin[:3], q_pin[3:7] = origin, np.r_[quaternion[1:], quaternion[0]]
+        v_pin[:3], v_pin[3:6] = v_local, w_local
+        expected = pin.aba(pm, pd, q_pin, v_pin, np.zeros(pm.nv))
+        from lagmb.joints import _rotation_of
+        R = _rotation_of(quaternion)
+        omega = R @ w_local
+        centre = origin + R @ com_local
+        velocity = R @ v_local + np.cross(omega, centre - origin)
+        free = {base: dict(position=centre, orientation=quaternion, velocity=velocity, angular_velocity=omega)}
+        q, v, _ = js.coordinates(positions, rates, free=free)
+        qdd, _ = mb.solve_accelerations(model, q, v)
+        scale = max(1.0, np.abs(expected).max())
+        R, omega, alpha, k = _free_flyer_accelerations(model, js, q, v, qdd, base)
+        a_centre = qdd[7 * k:7 * k + 3]
+        d = centre - origin
+        a_origin = a_centre - np.cross(alpha, d) - np.cross(omega, np.cross(omega, d))
+        linear = R.T @ a_origin - np.cross(w_local, v_local)
+        np.testing.assert_allclose(linear, expected[:3], rtol=0, atol=1e-8 * scale)
+        np.testing.assert_allclose(R.T @ alpha, expected[3:6], rtol=0, atol=1e-8 * scale)
+        for jid in range(2, pm.njoints):
+            name = lagmb_name(js, pm.names[jid])
+            acceleration = js.motion(name, q, v, qdd)[2]
+            assert abs(acceleration - expected[pm.joints[jid].idx_v]) <= 1e-8 * scale, name
+
+
+def test_joint_damping_is_a_torque_against_the_rate():
+    """dynamics=True: a revolute's <dynamics damping="c"> acts as the joint
+    torque -c qd: the accelerations equal Pinocchio's ABA with that torque."""
+    relpath = "double_pendulum_description/urdf/double_pendulum.urdf"
+    text = open(os.path.join(ROBOTS, relpath)).read()
+    assert text.count('damping="0.05"') == 2  # both joints: 0.05 N m s/rad in the file
+    damped = text.replace('damping="0.05"', 'damping="0.7"')
+    path = os.path.join(os.path.dirname(os.path.join(ROBOTS, relpath)), "_damped_test.urdf")
+    with open(path, "w") as fh:
+        fh.write(damped)
+    try:
+        model = mb.load_urdf(path, limits=False)
+        pm = pinocchio_model(os.path.relpath(path, ROBOTS))
+    finally:
+        os.remove(path)
+    js = mb.JointSpace(model)
+    assert [e for e in model.elements() if e[0] == "add_rotational_spring_damper"]
+    positions, rates, q_pin, v_pin = random_state(pm, js, np.random.default_rng(3))
+    expected = pin.aba(pm, pm.createData(), q_pin, v_pin, -0.7 * v_pin)
+    q, v, _ = js.coordinates(positions, rates)
+    qdd, _ = mb.solve_accelerations(model, q, v)
+    for jid in range(1, pm.njoints):
+        acceleration = js.motion(pm.names[jid], q, v, qdd)[2]
+        assert acceleration == pytest.approx(expected[pm.joints[jid].idx_v], rel=1e-9, abs=1e-9)
+
+
+def test_a_run_reads_in_joint_angles():
+    """Result.joint: the Panda falling for 0.3 s from its zero configuration
+    (no damping, no limits): each joint's angle, rate and acceleration at
+    the outputs are those JointSpace reads from the same states, the rate
+    is the angle's slope and the first output is the zero configuration
+    (the fingers' slides likewise)."""
+    model = load("panda_description/urdf/panda.urdf")
+    r = mb.simulate(model, 0.3, n_out=301, rtol=1e-10, atol=1e-12)
+    js = mb.JointSpace(model)
+    for name in js.joints:
+        path = r.joint(name)
+        values = path.angle if name.startswith("panda_joint") else path.slide
+        assert abs(values[0]) < 1e-12
+        np.testing.assert_allclose(np.gradient(values, r.t)[5:-5], path.rate[5:-5], atol=2e-4)
+        np.testing.assert_allclose(js.motion(name, r.q, r.v, r.a)[:, 2], path.acceleration)
+
+
+# --- bad files -------------------------------------------------------------------------------------------
+
+
+ARM = """<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+
+
+def write(tmp_path, text, name="robot.urdf"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_a_plain_arm_loads_and_swings(tmp_path):
+    """A one-link arm from our own file, hinged about y with its centre of
+    mass 0.5 m out along x: gravity turns it about +y with the angular
+    acceleration m g r / (I_yy + m r^2) at the start."""
+    model = mb.load_urdf(write(tmp_path, ARM), limits=False)
+    assert [b.name for b in model.bodies] == ["upper"]
+    r = mb.simulate(model, 0.1, n_out=3, rtol=1e-10, atol=1e-12)
+    assert r.body("upper").position[0] == pytest.approx([0.5, 0.0, 0.0])
+    shoulder = r.joint("shoulder")
+    assert shoulder.acceleration[0] == pytest.approx(9.81 * 0.5 / (0.1 + 0.25), rel=1e-12)
+    assert shoulder.angle[-1] > 0.0 and shoulder.rate[-1] > 0.0
+
+
+@pytest.mark.parametrize("change, words", [
+    (('type="revolute"', 'type="screw"'), 'line 5: joint \'shoulder\': type "screw" is not a URDF joint type'),
+    (('<axis xyz="0 1 0"/>', '<axis xyz="0 1 0"/><spring/>'), "line 5: joint 'shoulder': <spring> in <joint> is not supported"),
+    (('iyy="0.1"', 'iyy="-0.3"'), "line 4: link 'upper': the inertia tensor is not positive semi-definite"),
+    (('<link name="base"/>', '<link name="base"><visual><geometry><mesh filename="package://nowhere/m.stl"/>'
+      '</geometry></visual></link>'), "line 2: link 'base': mesh 'package://nowhere/m.stl' not found"),
+    (('</robot>', '<joint name="again" type="fixed"><parent link="base"/><child link="upper"/></joint></robot>'),
+     "link 'upper' is already the child of joint 'shoulder'"),
+    (('<link name="base"/>', '<link name="base"/><joint name="back" type="fixed"><parent link="upper"/>'
+      '<child link="base"/></joint>'), "without a parent joint; a URDF tree has one root"),
+    (('<child link="upper"/>', '<child link="uper"/>'), "its child link 'uper' is not a link of the file"),
+    (('</robot>', '<robot>'), "not well-formed XML"),
+])
+def test_bad_files_are_named_by_line_and_element(tmp_path, change, words):
+    path = write(tmp_path, ARM.replace(*change))
+    with pytest.raises(mb.UrdfError) as error:
+        mb.load_urdf(path, limits=False)
+    assert words in str(error.value)
+    assert str(path) in str(error.value)
+
+
+def test_what_is_not_built_yet_is_refused_by_name(tmp_path):
+    """Limits (spatial stops), joint friction and mimic joints are refused
+    naming the joint and the way to load without them."""
+    with pytest.raises(mb.UrdfError, match=r"joint 'shoulder': position limits \(-1.0, 1.0\) need joint stops.*"
+                                           "limits=False"):
+        mb.load_urdf(write(tmp_path, ARM))
+    rubbing = ARM.replace("</joint>", '<dynamics friction="0.2"/></joint>')
+    with pytest.raises(mb.UrdfError, match="friction 0.2 needs joint friction in space.*dynamics=False"):
+        mb.load_urdf(write(tmp_path, rubbing), limits=False)
+    assert mb.load_urdf(write(tmp_path, rubbing), limits=False, dynamics=False).bodies
+    with pytest.raises(mb.UrdfError, match="panda_finger_joint2.*<mimic>"):
+        mb.load_urdf(os.path.join(ROBOTS, "panda_description/urdf/panda.urdf"), limits=False, dynamics=False)
+
+
+def test_a_massless_link_between_joints_is_refused(tmp_path):
+    text = ARM.replace('<mass value="1"/>', '<mass value="0"/>')
+    with pytest.raises(mb.UrdfError, match="line 3: link 'upper': has no mass"):
+        mb.load_urdf(write(tmp_path, text), limits=False)
