@@ -126,6 +126,46 @@ def test_joint_accelerations_equal_pinocchio_aba(relpath):
             assert abs(acceleration - expected[pm.joints[jid].idx_v]) <= 1e-8 * scale, name
 
 
+@pytest.mark.parametrize("relpath", [p for p in URDFS if p not in SKIPPED and p not in ONE_LINK])
+def test_joint_efforts_equal_pinocchio_rnea(relpath):
+    """mb.inverse_dynamics at 3 random states (positions, rates and
+    accelerations in [-1, 1]) gives the joint torques and forces of
+    Pinocchio's recursive Newton-Euler to 1e-8 relative to the largest."""
+    model = load(relpath)
+    js = mb.JointSpace(model)
+    pm = pinocchio_model(relpath)
+    pd = pm.createData()
+    rng = np.random.default_rng(5)
+    for _ in range(3):
+        positions, rates, q_pin, v_pin = random_state(pm, js, rng)
+        accelerations = {name: rng.uniform(-1.0, 1.0) for name in js.joints}
+        a_pin = np.zeros(pm.nv)
+        for jid in range(1, pm.njoints):
+            a_pin[pm.joints[jid].idx_v] = accelerations[lagmb_name(js, pm.names[jid])]
+        expected = pin.rnea(pm, pd, q_pin, v_pin, a_pin)
+        efforts = mb.inverse_dynamics(model, {n: (positions[n], rates[n], accelerations[n]) for n in js.joints})
+        scale = max(1.0, np.abs(expected).max())
+        for jid in range(1, pm.njoints):
+            name = lagmb_name(js, pm.names[jid])
+            assert abs(efforts[name] - expected[pm.joints[jid].idx_v]) <= 1e-8 * scale, name
+
+
+def test_inverse_dynamics_of_a_trajectory_and_of_a_floating_base(tmp_path):
+    """Arrays give one effort per state: the arm held still at three angles
+    needs -m g r cos(angle) about y (gravity's torque about the hinge is
+    +m g r cos(angle)). A floating base cannot be held by its joints:
+    SimulationError."""
+    model = mb.load_urdf(write(tmp_path, ARM), limits=False)
+    angles = np.array([0.0, 0.5, 1.0])
+    efforts = mb.inverse_dynamics(model, {"shoulder": (angles, 0 * angles, 0 * angles)})
+    np.testing.assert_allclose(efforts["shoulder"], -9.81 * 0.5 * np.cos(angles), rtol=1e-12)
+    heavy_base = ARM.replace('<link name="base"/>', '<link name="base"><inertial><mass value="2"/>'
+                             '<inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>')
+    free = mb.load_urdf(write(tmp_path, heavy_base, "free.urdf"), limits=False, floating_base=True)
+    with pytest.raises(mb.SimulationError, match="neither the joints nor the efforts"):
+        mb.inverse_dynamics(free, {"shoulder": (0.0, 0.0, 0.0)})
+
+
 def _free_flyer_accelerations(model, js, q, v, qdd, base):
     """Pinocchio's free-flyer acceleration (the time derivative of the base
     frame's velocity in its own axes, linear then angular) from lagmb's."""

@@ -316,6 +316,24 @@ void bind_model(py::module_& m) {
           "(value, rate, acceleration) of a joint's angle (or, with slide, its slide) at each state (rows of q, "
           "v, a)")
       .def(
+          "inverse_dynamics",
+          [](const Model& model, const std::vector<std::pair<std::string, bool>>& joints, const Eigen::VectorXd& t,
+             const RowMajor& q, const RowMajor& v, const RowMajor& a) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_rows(model, a, model.n_coordinates(), "a");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}, {&a, "a"}});
+            std::vector<JointEffort> efforts;
+            for (const auto& [joint, slide] : joints) efforts.push_back({joint, slide});
+            RowMajor out(q.rows(), Eigen::Index(efforts.size()));
+            for (Eigen::Index k = 0; k < q.rows(); ++k)
+              out.row(k) = inverse_dynamics(model, efforts, q.row(k).data(), v.row(k).data(), a.row(k).data(), t[k])
+                               .efforts.transpose();
+            return out;
+          },
+          py::arg("joints"), py::arg("t"), py::arg("q"), py::arg("v"), py::arg("a"),
+          "The efforts of the joints [(name, slide)] that make each state (t, q, v, a): (k, joints)")
+      .def(
           "friction",
           [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,
              const RowMajor& lam) {

@@ -24,7 +24,7 @@ from .simulation import methods, simulate, solve_accelerations
 from .simulator import Simulator
 from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
-from .joints import JointSpace
+from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 
 from ._version import __version__  # noqa: F401

@@ -190,3 +190,47 @@ class JointSpace:
         acc = np.atleast_2d(np.asarray(a, dtype=float)) if a is not None else np.zeros((0, 0))
         out = self.model.compiled().joint_motion(joint, slide, rows[0], rows[1], acc)
         return out[0] if one else out
+
+
+def inverse_dynamics(model, joint_trajectory, t=0.0):
+    """The joint efforts that make a spatial tree move as given.
+
+    ``joint_trajectory``: {joint: (position, velocity, acceleration)} for
+    the tree's revolute and translational joints (rad, rad/s, rad/s^2 or
+    m, m/s, m/s^2), each a number or an array (k,) of k states; a joint not
+    given holds 0, at rest. ``t``: the time of each state (a number or (k,)).
+    Returns {joint: effort} (N m about an angle, N along a slide; numbers,
+    or arrays (k,)): the torques and forces that, with the joints' reactions,
+    give that motion (M a + Phi_q^T lam = Q + G^T tau, solved by the core's
+    inverse_dynamics; for a fixed-base tree recursive Newton-Euler's). The
+    free bodies stay as in the initial configuration, at rest; a motion they
+    would need forces for raises SimulationError.
+    """
+    from .errors import translated
+
+    js = JointSpace(model)
+    unknown = set(joint_trajectory) - set(js.joints)
+    if unknown:
+        raise ModelError(f"inverse_dynamics: {', '.join(sorted(map(repr, unknown)))} are not joints of the tree "
+                         f"(its joints: {', '.join(js.joints)})")
+    arrays = {name: [np.atleast_1d(np.asarray(x, dtype=float)) for x in values]
+              for name, values in joint_trajectory.items()}
+    for name, values in arrays.items():
+        if len(values) != 3:
+            raise ModelError(f"inverse_dynamics: joint '{name}' needs (position, velocity, acceleration)")
+    lengths = {len(x) for values in arrays.values() for x in values} | {np.size(t)}
+    k = max(lengths)
+    if not lengths <= {1, k}:
+        raise ModelError(f"inverse_dynamics: the joints' arrays and t have different lengths ({sorted(lengths)})")
+    times = np.broadcast_to(np.asarray(t, dtype=float), (k,)).copy()
+    n = 7 * len(model.bodies)
+    Q, V, A = np.zeros((k, n)), np.zeros((k, n)), np.zeros((k, n))
+    for s in range(k):
+        pick = [{name: float(values[i][s if len(values[i]) > 1 else 0]) for name, values in arrays.items()}
+                for i in range(3)]
+        Q[s], V[s], A[s] = js.coordinates(*pick)
+    joints = [(name, js._joints[name]["kind"] == "slides") for name in js.joints]
+    with translated():
+        efforts = model.compiled().inverse_dynamics(joints, times, Q, V, A)
+    one = k == 1 and np.ndim(t) == 0 and all(np.ndim(x) == 0 for v in joint_trajectory.values() for x in v)
+    return {name: (float(efforts[0, i]) if one else efforts[:, i]) for i, name in enumerate(js.joints)}

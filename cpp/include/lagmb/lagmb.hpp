@@ -25,6 +25,7 @@
 #include "lagmb/assembly/augmented.hpp"
 
 #include "lagmb/analyses/equilibrium.hpp"
+#include "lagmb/analyses/joint_space.hpp"
 #include "lagmb/analyses/kinematics.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 

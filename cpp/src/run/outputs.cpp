@@ -1,10 +1,7 @@
 // Reactions, efforts, friction, energy and residuals at a run's outputs (outputs.hpp).
 #include "lagmb/run/outputs.hpp"
 
-#include "elements/build.hpp"
 #include "lagmb/assembly/assembly.hpp"
-#include "lagmb/elements/drivers.hpp"
-#include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/model/data.hpp"
 
 namespace lagmb {
@@ -131,49 +128,6 @@ VecX velocity_residual(const Model& model, const OutputView& out) {
     r[s] = d.phi_t.size() ? d.phi_t.lpNorm<Eigen::Infinity>() : 0.0;
   }
   return r;
-}
-
-JointMotion joint_motion(const Model& model, const std::string& joint, bool slide, const double* q, const double* v,
-                         const double* a) {
-  if (!model.finalized()) throw ModelError("joint_motion: the model is not finalized");
-  const build::JointOf c = build::joint_coordinate(model, joint, "joint_motion");
-  if (slide && !c.slides) throw ModelError("joint_motion: '" + joint + "' does not slide (it turns: ask for its angle)");
-  if (!slide && !c.turns) throw ModelError("joint_motion: '" + joint + "' does not turn (it slides: ask for its slide)");
-  const LocalCoords where = model.local_coordinates(c.body_i, c.body_j);
-  JointMotion m;
-  if (model.dimension() == 3) {
-    const spatial::Loc cq = gather_q<Spatial>(q, where), cv = gather_v<14>(v, where);
-    const spatial::Loc ca = a ? gather_v<14>(a, where) : spatial::Loc::Zero();
-    spatial::Want want;
-    want.rate = &cv;
-    spatial::ScalarTerm g;
-    if (slide) {  // the function the joint's slide driver holds
-      SpatialSlideDriver d;
-      d.s_i = c.s_i, d.s_j = c.s_j, d.a_i = c.a_i;
-      g = d.coordinate(cq, want);
-    } else {  // and its angle driver
-      SpatialAngleDriver d;
-      d.f_i = c.f_i, d.g_i = c.g_i, d.f_j = c.f_j;
-      g = d.coordinate(cq, want);
-    }
-    m.value = g.value;
-    m.rate = g.gradient.dot(cv);
-    m.acceleration = g.gradient.dot(ca) + g.gradient_rate.dot(cv);
-  } else {
-    const Local6 cq = gather_q<Planar>(q, where), cv = gather_v<6>(v, where);
-    const Local6 ca = a ? gather_v<6>(a, where) : Local6::Zero();
-    if (slide) {  // u_i . (p_j - p_i): value, gradient and Hessian of the offset
-      m.value = c.along.value(cq);
-      const Eigen::Matrix<double, 1, 6> grad = c.along.gradient(cq);
-      m.rate = grad.dot(cv);
-      m.acceleration = grad.dot(ca) + cv.dot(c.along.hessian(cq) * cv);
-    } else {  // phi_j - phi_i (the bodies' angles are coordinates: not wrapped)
-      m.value = cq[5] - cq[2];
-      m.rate = cv[5] - cv[2];
-      m.acceleration = ca[5] - ca[2];
-    }
-  }
-  return m;
 }
 
 }  // namespace lagmb

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "lagmb/analyses/joint_space.hpp"
 #include "lagmb/model/model.hpp"
 #include "lagmb/trajectory.hpp"
 
@@ -42,23 +43,6 @@ VecX efforts(const Model& model, const std::string& element, const OutputView& o
 /// (k, 2) the joint friction `element`: its torque (N m) or force (N) on the
 /// joint's second body and the joint's relative rate (rad/s or m/s).
 OutputRows friction(const Model& model, const std::string& element, const OutputView& out);
-
-/// A joint's scalar coordinate (JointCoordinate: a revolute's angle in rad,
-/// in (-pi, pi] in space and phi_j - phi_i in the plane, a translational's
-/// slide in m; 0 in the initial configuration) with its rate and acceleration.
-struct JointMotion {
-  double value = 0.0, rate = 0.0, acceleration = 0.0;
-};
-
-/// The coordinate of `joint` at (q, v, a) (one state, arrays over q): with g
-/// the coordinate as a function of the local coordinates c of the joint's two
-/// bodies (the function its drivers hold),
-///   value = g(c),  rate = g_c c',  acceleration = g_c c'' + (g_c)' c'.
-/// `slide` picks a cylindrical joint's slide (else its angle); a revolute has
-/// only its angle, a translational only its slide. a may be null (then the
-/// acceleration is 0). ModelError naming the joint if it has no such coordinate.
-JointMotion joint_motion(const Model& model, const std::string& joint, bool slide, const double* q, const double* v,
-                         const double* a);
 
 /// (k) kinetic plus potential energy (J) of the conservative forces.
 VecX energy(const Model& model, const OutputView& out);
