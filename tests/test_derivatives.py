@@ -142,8 +142,10 @@ def test_spatial_model_holds_every_spatial_kind():
     core = m.compiled()
     used = {core.element_kind(kw["name"]) for method, kw in m.elements()} - {"body"}
     declared = {k.name for k in SPATIAL_KINDS if k.role != "body"}
-    # the drivers and joint kinds a builder picks (angle or slide) are the ones in the core
-    assert declared - {"spatial_joint_driver", "spatial_body_driver"} <= used
+    # the drivers and joint kinds a builder picks (angle or slide) are the ones in the core; a
+    # stop's event function is the joint's coordinate, checked here through its driver
+    # (and its impacts in tests/test_stops.py)
+    assert declared - {"spatial_joint_driver", "spatial_body_driver", "spatial_stop"} <= used
     assert {"spatial_angle_driver", "spatial_slide_driver", "spatial_position_driver"} <= used
     q = core.initial_state()[0]
     assert core.rank(q, 0.0)["dependent_rows"] == []

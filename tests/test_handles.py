@@ -164,6 +164,7 @@ def _add_everything_spatial(m):
         "add_bushing": lambda: m.add_bushing("bushing", b, c, at=(2.5, 0.0, 0.0), stiffness=(1.0, 1.0, 1.0)),
         "add_force": lambda: m.add_force("force", a, (0.0, 1.0, 0.0)),
         "add_torque": lambda: m.add_torque("torque", a, (1.0, 0.0, 0.0)),
+        "add_stop": lambda: m.add_stop("stop", "translational", lower=-1.0, upper=1.0),
     }
 
 

@@ -258,6 +258,11 @@ def example_spatial_rotational_spring_damper():
                                              torque=mb.Linear(0.5))
 
 
+def example_spatial_stop():
+    m, _, hinge = _spatial_hinge()
+    return m, m.add_stop("limit", hinge, lower=-1.0, upper=1.0, restitution=0.5)
+
+
 def example_bushing():
     """A block hung from the ground by a bushing above its centre: it sags."""
     m = _spatial_model()
@@ -293,6 +298,9 @@ DERIVATIVE_CHECKS = {
     # translational stop; its s(q) is drive_joint's, which
     # test_derivatives.py checks by finite differences
     "stop": "tests/test_stops.py::test_slider_hits_translational_stop",
+    # its s(q) is the spatial drive_joint's (test_derivatives.py); its impacts
+    # equal the planar stop's on the same pendulum
+    "spatial_stop": "tests/test_stops.py::test_a_spatial_stop_acts_as_the_planar_one",
 }
 
 

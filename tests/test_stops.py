@@ -290,3 +290,56 @@ def test_equilibrium_beyond_a_stop_is_refused():
     m.add_stop("st", "pin", lower=-1.0, restitution=0.5)
     with pytest.raises(mb.EquilibriumError, match=r"'st' \(by 0\.5707") :
         mb.equilibrium(m)
+
+
+@pytest.mark.parametrize("formulation", ["ggl", "projection"])
+def test_a_spatial_stop_acts_as_the_planar_one(formulation):
+    """The pendulum of test_pendulum_hits_stop_at_quarter_period in space: a
+    1 m rod level along x, hinged at the origin about -y (so that falling is
+    a negative angle), gravity -z, a lower stop at -pi/2 with e = 0.5: the
+    impact at the closed-form quarter period (1e-8 s), speed sqrt(3 g) and
+    rebound e sqrt(3 g) (1e-6 relative); and a block on a 30 deg incline
+    stopped by a translational stop as test_slider_hits_translational_stop's
+    (times 1e-8 s, speeds 1e-6)."""
+    e = 0.5
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, -1.0, 0.0))
+    m.add_stop("stop", "pin", lower=-math.pi / 2, restitution=e)
+    r = mb.simulate(m, t_end=0.9, rtol=1e-10, atol=1e-12, formulation=formulation, n_out=91)
+    t_star = math.sqrt(2.0 / (3.0 * G)) * float(ellipk(0.5))
+    w = math.sqrt(3.0 * G)
+    first = r.events[0]
+    assert first["element"] == "stop" and first["kind"] == "impact" and first["label"] == "lower"
+    assert abs(first["t"] - t_star) <= 1e-8
+    assert abs(first["speed_before"] + w) <= 1e-6 * w
+    assert abs(first["speed_after"] - e * w) <= 1e-6 * w
+    assert np.min(r.joint("pin").angle) >= -math.pi / 2 - 1e-9
+
+    e, a, d = 0.6, math.radians(30.0), 0.3
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    block = m.add_body("block", 2.0, (0.1, 0.1, 0.1))
+    m.add_translational("rail", m.ground, block, at=(0.0, 0.0, 0.0), axis=(math.cos(a), 0.0, math.sin(a)))
+    m.add_stop("end", "rail", lower=-d, restitution=e)
+    acc = G * math.sin(a)
+    t1 = math.sqrt(2.0 * d / acc)
+    v1 = acc * t1
+    r = mb.simulate(m, t_end=t1 + 0.05, rtol=1e-10, atol=1e-12, formulation=formulation)
+    assert [x["kind"] for x in r.events] == ["impact"]
+    assert abs(r.events[0]["t"] - t1) <= 1e-8
+    assert abs(r.events[0]["speed_before"] + v1) <= 1e-6 * v1
+    assert abs(r.events[0]["speed_after"] - e * v1) <= 1e-6 * v1
+    assert np.max(r.residual) <= 1e-9
+
+
+def test_a_spatial_stop_takes_a_revolute_or_translational_joint_and_limits_inside_pi():
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
+    m.add_cylindrical("cyl", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    with pytest.raises(mb.ModelError, match="'cyl' turns and slides"):
+        m.add_stop("stop", "cyl", lower=-1.0)
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    with pytest.raises(mb.ModelError, match=r"upper = 3.5 rad; the angle of a joint in space is read in \(-pi, pi\]"):
+        m.add_stop("stop", "pin", lower=-1.0, upper=3.5)

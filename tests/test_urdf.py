@@ -364,12 +364,28 @@ def test_bad_files_are_named_by_line_and_element(tmp_path, change, words):
     assert str(path) in str(error.value)
 
 
+def test_limits_are_stops(tmp_path):
+    """limits=True: <limit lower upper> is a stop on the joint
+    (shoulder_limit). The arm falls onto its upper limit (1 rad) and, with
+    restitution 0, comes to rest there pressed by gravity: resting against a
+    stop is not modelled, so the run ends with SimulationError naming it,
+    the motion up to the impact kept in the partial result."""
+    model = mb.load_urdf(write(tmp_path, ARM))
+    assert ("add_stop", "shoulder_limit") in [(method, values["name"]) for method, values in model.elements()]
+    with pytest.raises(mb.SimulationError, match="'shoulder_limit' came to rest against its upper limit") as error:
+        mb.simulate(model, 2.0, n_out=201, rtol=1e-9, atol=1e-11)
+    partial = error.value.result
+    assert partial.events[0]["label"] == "upper" and partial.events[0]["kind"] == "rest"
+    assert np.max(partial.joint("shoulder").angle) <= 1.0 + 1e-9
+    wide = ARM.replace('lower="-1" upper="1"', 'lower="-4" upper="4"')
+    with pytest.raises(mb.UrdfError, match=r"line 6: joint 'shoulder': position limits \(-4.0, 4.0\) reach pi"):
+        mb.load_urdf(write(tmp_path, wide))
+    assert mb.load_urdf(write(tmp_path, wide), limits=False).bodies
+
+
 def test_what_is_not_built_yet_is_refused_by_name(tmp_path):
-    """Limits (spatial stops), joint friction and mimic joints are refused
-    naming the joint and the way to load without them."""
-    with pytest.raises(mb.UrdfError, match=r"joint 'shoulder': position limits \(-1.0, 1.0\) need joint stops.*"
-                                           "limits=False"):
-        mb.load_urdf(write(tmp_path, ARM))
+    """Joint friction and mimic joints are refused naming the joint and the
+    way to load without them."""
     rubbing = ARM.replace("</joint>", '<dynamics friction="0.2"/></joint>')
     with pytest.raises(mb.UrdfError, match="friction 0.2 needs joint friction in space.*dynamics=False"):
         mb.load_urdf(write(tmp_path, rubbing), limits=False)

@@ -345,10 +345,13 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     named like a link (URDF keeps the two apart, lagmb has one namespace) is
     called ``NAME_joint``.
 
-    ``dynamics=True``: a joint's ``<dynamics damping>`` becomes a
-    rotational damper on it (``NAME_damping``). ``limits=False`` leaves the
-    joints' position limits out; ``dynamics=False`` their damping and
-    friction. ``mimic=False`` reads a mimic joint as a joint of its own
+    ``limits=True``: a revolute's or prismatic's ``<limit lower upper>``
+    becomes a stop on it (``NAME_limit``, restitution 0: an impact at the
+    limit; a joint that comes to rest pressing on its limit ends the run
+    with SimulationError, as stops do). ``dynamics=True``: a joint's
+    ``<dynamics damping>`` becomes a rotational damper on it
+    (``NAME_damping``). ``limits=False`` leaves the joints' position limits
+    out; ``dynamics=False`` their damping and friction. ``mimic=False`` reads a mimic joint as a joint of its own
     (as Pinocchio builds it by default) instead of coupling it to the joint
     it mimics. ``package_dirs``: directories holding the packages that
     ``package://`` mesh names point into. Every mesh a link names must exist.
@@ -356,8 +359,9 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     Raises :class:`UrdfError` (a ModelError) naming the file, the line and
     the link or joint for anything lagmb does not read: an unknown tag or
     joint type, a link that is the child of two joints, a body without mass
-    or inertia, a missing mesh, and (not built yet) position limits, joint
-    friction, damping of a prismatic joint and mimic joints (``mimic=True``).
+    or inertia, a missing mesh, and (not built yet) revolute limits at pi or
+    beyond, joint friction, damping of a prismatic joint and mimic joints
+    (``mimic=True``).
     """
     reader = _Reader(path, package_dirs)
     links, joints, root, _ = reader.read()
@@ -366,9 +370,11 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         owner = f"joint '{joint['name']}'"
         if mimic and joint["mimic"] is not None:
             reader.fail(joint["mimic"], "<mimic> (a coupling of two joints) is not supported yet", owner)
-        if limits and joint["limit"] is not None:
-            reader.fail(joint["elements"]["limit"], f"position limits {joint['limit']} need joint stops in space, "
-                        "which lagmb does not have yet: load with limits=False to leave them out", owner)
+        if limits and joint["limit"] is not None and joint["type"] == "revolute" and \
+                not max(abs(joint["limit"][0]), abs(joint["limit"][1])) < math.pi:
+            reader.fail(joint["elements"]["limit"], f"position limits {joint['limit']} reach pi or beyond: a joint "
+                        "angle in space is read in (-pi, pi], so a stop cannot hold a limit there yet; load "
+                        "with limits=False to leave them out", owner)
         if dynamics and joint["friction"] > 0:
             reader.fail(joint["elements"]["dynamics"], f"friction {joint['friction']} needs joint friction in space, "
                         "which lagmb does not have yet: load with dynamics=False to leave it out", owner)
@@ -451,4 +457,6 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             model.add_translational(name, parent, child, at=tuple(at), axis=tuple(axis))
         else:
             model.add_planar(name, parent, child, at=tuple(at), normal=tuple(axis))
+        if limits and joint["limit"] is not None:  # (revolute and prismatic joints only)
+            model.add_stop(f"{name}_limit", joint=name, lower=joint["limit"][0], upper=joint["limit"][1])
     return model

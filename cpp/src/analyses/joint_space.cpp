@@ -29,7 +29,7 @@ struct CoordinateTerm {
 };
 
 /// g of `joint` from the coordinate function its drivers hold (spatial:
-/// SpatialAngleDriver / SpatialSlideDriver; plane: phi_j - phi_i or the
+/// spatial::joint_angle / joint_slide; plane: phi_j - phi_i or the
 /// projected offset).
 CoordinateTerm coordinate_term(const Model& model, const std::string& joint, bool slide, const double* q,
                                const double* v, const char* who) {
@@ -45,16 +45,8 @@ CoordinateTerm coordinate_term(const Model& model, const std::string& joint, boo
     const spatial::Loc cq = gather_q<Spatial>(q, g.where), cv = gather_v<14>(v, g.where);
     spatial::Want want;
     want.rate = &cv;
-    spatial::ScalarTerm s;
-    if (slide) {
-      SpatialSlideDriver d;
-      d.s_i = c.s_i, d.s_j = c.s_j, d.a_i = c.a_i;
-      s = d.coordinate(cq, want);
-    } else {
-      SpatialAngleDriver d;
-      d.f_i = c.f_i, d.g_i = c.g_i, d.f_j = c.f_j;
-      s = d.coordinate(cq, want);
-    }
+    const spatial::ScalarTerm s = slide ? spatial::joint_slide(cq, c.s_i, c.s_j, c.a_i, want)
+                                        : spatial::joint_angle(cq, c.f_i, c.g_i, c.f_j, want);
     g.local = 14;
     g.value = s.value;
     g.gradient = s.gradient.transpose();

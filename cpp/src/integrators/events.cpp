@@ -11,12 +11,20 @@ namespace lagmb {
 
 namespace {
 
-/// Scatters a local row (over c) into a global row (over q).
-VecX global_row(const Eigen::Matrix<double, 1, 6>& local, const LocalCoords& coord, int n) {
+/// Scatters a local row (over c: 6 or 14 entries) into a global row (over q).
+VecX global_row(const VecX& local, const LocalCoords& coord, int n) {
   VecX g = VecX::Zero(n);
-  for (int a = 0; a < 6; ++a)
+  for (int a = 0; a < int(local.size()); ++a)
     if (coord[a] >= 0) g[coord[a]] += local[a];
   return g;
+}
+
+/// The local entries of a global vector (0 where coord is -1).
+VecX local_of(const VecX& x, const LocalCoords& coord, int size) {
+  VecX c = VecX::Zero(size);
+  for (int a = 0; a < size; ++a)
+    if (coord[a] >= 0) c[a] = x[coord[a]];
+  return c;
 }
 
 std::string fmt(double x) { return to_text(x); }
@@ -160,7 +168,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd.data(), lam.data());
       have_qdd = true;
     }
-    const Local6 cd = gather_v<6>(v.data(), group.coordinates(r.element));
+    const VecX cd = local_of(v, group.coordinates(r.element), int(act[j].gradient.size()));
     const double gdd = C[j].dot(qdd) + cd.dot(act[j].hessian * cd);
     if (gdd < -1e-9 * (1.0 + C[j].norm() * qdd.norm())) {
       records.back().kind = "rest";

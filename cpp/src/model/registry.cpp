@@ -68,6 +68,7 @@ KindInfo spatial_rotational_spring_damper_kind();
 KindInfo bushing_kind();
 KindInfo spatial_force_kind();
 KindInfo spatial_torque_kind();
+KindInfo spatial_stop_kind();
 
 const std::vector<KindInfo>& element_kinds() {
   // the order of scene tables and docs; a new kind adds its line here and above
@@ -90,6 +91,7 @@ const std::vector<KindInfo>& element_kinds() {
       spatial_body_driver_kind(), spatial_spring_damper_kind(),
       spatial_rotational_spring_damper_kind(), bushing_kind(),
       spatial_force_kind(), spatial_torque_kind(),
+      spatial_stop_kind(),
   };
   return kinds;
 }

@@ -11,6 +11,29 @@
 
 namespace lagmb {
 
+namespace spatial {
+
+/// The angle of a revolute (or cylindrical) joint: body j's copy f_j of the
+/// joint's f_i, turned about a = f_i x g_i by theta, has f_j . g_i =
+/// sin theta and f_j . f_i = cos theta (global vectors), so
+///   theta = atan2(f_j . g_i, f_j . f_i)   in (-pi, pi]   (spatial_terms.hpp, angle).
+/// What its drivers, stops and springs act on.
+inline ScalarTerm joint_angle(const Loc& c, const Vec3& f_i, const Vec3& g_i, const Vec3& f_j, const Want& want) {
+  const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
+  return angle(dot(fj, body_vector(c, kBodyI, g_i, want), want), dot(fj, body_vector(c, kBodyI, f_i, want), want),
+               want);
+}
+
+/// The slide of a translational or cylindrical joint: (A_i a_i) . d, d from
+/// the joint point on body i to the one on body j (0 in the initial
+/// configuration).
+inline ScalarTerm joint_slide(const Loc& c, const Vec3& s_i, const Vec3& s_j, const Vec3& a_i, const Want& want) {
+  return dot(body_vector(c, kBodyI, a_i, want), minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)),
+             want);
+}
+
+}  // namespace spatial
+
 /// One row, time dependent through f.
 struct SpatialDriverBase {
   using Space = Spatial;
@@ -53,35 +76,27 @@ struct SpatialCoordinateDriverBase : SpatialDriverBase {
   const Kind& self() const { return static_cast<const Kind&>(*this); }
 };
 
-/// The angle of a revolute (or cylindrical) joint: body j's copy f_j of the
-/// joint's f_i, turned about a = f_i x g_i by theta, has f_j . g_i =
-/// sin theta and f_j . f_i = cos theta (global vectors), so
-///   g = theta = atan2(f_j . g_i, f_j . f_i)   (spatial_terms.hpp, angle)
-/// and the row theta - f(t), wrapped (periodic), holds theta = f(t) mod 2 pi.
-/// dPhi/dtheta = 1, so lam is minus the torque about a on body j.
+/// The angle of a revolute (or cylindrical) joint, g = theta
+/// (spatial::joint_angle); the row theta - f(t), wrapped (periodic), holds
+/// theta = f(t) mod 2 pi. dPhi/dtheta = 1, so lam is minus the torque about
+/// a on body j.
 struct SpatialAngleDriver : SpatialCoordinateDriverBase<SpatialAngleDriver> {
   static constexpr const char* kind = "spatial_angle_driver";
   static constexpr bool periodic = true;
   Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();
 
   spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
-    using namespace spatial;
-    const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
-    return angle(dot(fj, body_vector(c, kBodyI, g_i, want), want), dot(fj, body_vector(c, kBodyI, f_i, want), want),
-                 want);
+    return spatial::joint_angle(c, f_i, g_i, f_j, want);
   }
 };
 
-/// The slide of a translational or cylindrical joint: g = (A_i a_i) . d,
-/// d from the joint point on body i to the one on body j (0 in the initial
-/// configuration). Effort: the force along a on body j.
+/// The slide of a translational or cylindrical joint, g = (A_i a_i) . d
+/// (spatial::joint_slide). Effort: the force along a on body j.
 struct SpatialSlideDriver : SpatialCoordinateDriverBase<SpatialSlideDriver> {
   static constexpr const char* kind = "spatial_slide_driver";
   Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero(), a_i = Vec3::UnitZ();
   spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
-    using namespace spatial;
-    return dot(body_vector(c, kBodyI, a_i, want),
-               minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)), want);
+    return spatial::joint_slide(c, s_i, s_j, a_i, want);
   }
 };
 

@@ -57,7 +57,7 @@ struct JointStop {
     const Eigen::Matrix<double, 1, 6> grad = sign(r) * coordinate_gradient(c);
     if (!(grad.dot(cd) < 0.0)) return a;  // leaving or at rest: no impact
     a.type = EventAction::kImpact;
-    a.gradient = grad;
+    a.gradient = grad.transpose();
     a.restitution = restitution;
     a.rest_speed = rest_speed;
     a.hessian = sign(r) * coordinate_hessian(c);

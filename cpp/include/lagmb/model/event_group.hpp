@@ -1,10 +1,11 @@
 // One container per event kind and the loops that run over it.
 //
-// An event kind (e.g. JointStop) owns event functions g_r(q, v, t), r = 0 ..
+// An event kind (e.g. JointStop, SpatialJointStop) owns event functions g_r(q, v, t), r = 0 ..
 // roots - 1, whose zero crossings the integrators locate (IDARootInit /
 // CVodeRootInit), and says what happens at a crossing. It is a plain struct
 // with, in the local coordinates c and velocities cd of its two bodies (as in
-// constraint_group.hpp):
+// constraint_group.hpp; the plane's 6 or, for a kind with `using Space =
+// Spatial;`, space's 14):
 //   static constexpr int roots;                event functions per element
 //   static constexpr const char* kind;
 //   std::string name; int body_i, body_j;
@@ -39,16 +40,16 @@ struct EventAction {
     kImpact    // a velocity jump: impulse along `gradient`, then restart
   } type = kNone;
   /// Impact: the gradient of the unilateral coordinate g (g >= 0 allowed),
-  /// in local coordinates, and the Newton restitution e: after the jump
-  /// gradient . v+ = -e gradient . v-.
-  Eigen::Matrix<double, 1, 6> gradient = Eigen::Matrix<double, 1, 6>::Zero();
+  /// over the element's local coordinates (6 in the plane, 14 in space), and
+  /// the Newton restitution e: after the jump gradient . v+ = -e gradient . v-.
+  VecX gradient;
   double restitution = 0.0;
   /// Impact: rebound speeds below this (in the units of g') count as coming
   /// to rest against the limit.
   double rest_speed = 0.0;
   /// Impact: d2g/dc2, for the acceleration g'' = gradient . cdd + cd^T H cd
-  /// that tells resting from leaving.
-  Mat6 hessian = Mat6::Zero();
+  /// that tells resting from leaving (local, as gradient).
+  Eigen::MatrixXd hessian;
   /// Restart: the event function's rate g' at the crossing, for the record.
   double speed = 0.0;
   /// Which limit or contact, for the record ("lower", "upper", "onset", ...).
@@ -90,13 +91,15 @@ class EventGroup final : public EventGroupBase {
   const LocalCoords& coordinates(int k) const override { return coord_[k]; }
   void values(const double* q, const double* v, double t, double* g) const override {
     for (size_t k = 0; k < items.size(); ++k) {
-      const Local6 c = gather_q<Planar>(q, coord_[k]), cd = gather_v<6>(v, coord_[k]);
+      const auto c = gather_q<S>(q, coord_[k]);
+      const auto cd = gather_v<S::local>(v, coord_[k]);
       for (int r = 0; r < Kind::roots; ++r) g[k * Kind::roots + r] = items[k].root(r, c, cd, t);
     }
   }
   int direction(int k, int r) const override { return items[k].direction(r); }
   EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const override {
-    const Local6 c = gather_q<Planar>(q, coord_[k]), cd = gather_v<6>(v, coord_[k]);
+    const auto c = gather_q<S>(q, coord_[k]);
+    const auto cd = gather_v<S::local>(v, coord_[k]);
     if constexpr (run_state_size_v<Kind> > 0)
       return items[k].crossing(r, c, cd, t, run);
     else
@@ -104,7 +107,8 @@ class EventGroup final : public EventGroupBase {
   }
 
  private:
-  std::vector<LocalCoords> coord_;  // planar kinds: the first 6
+  using S = space_of_t<Kind>;  // the plane's 6 local coordinates, or space's 14
+  std::vector<LocalCoords> coord_;
 };
 
 }  // namespace lagmb
