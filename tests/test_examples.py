@@ -25,7 +25,7 @@ EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 G = 9.81
 
 SCRIPTS = ["seed_pendulum", "double_pendulum", "slider_crank", "four_bar", "quick_return",
-           "gear_train", "spring_damper", "bouncing_ball", "rolling_disk", "cam_follower"]
+           "gear_train", "spring_damper", "bouncing_ball", "rolling_disk", "cam_follower", "panda"]
 
 _LINE = re.compile(r"^\s*(?P<label>[^=]+?)\s*=\s*(?P<value>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")
 
@@ -284,3 +284,17 @@ def test_scene_heavy_top_conserves_energy_and_spin():
     assert np.abs(spin - 10.0).max() < 1e-7
     assert np.ptp(r.energy) < 1e-7 * np.abs(r.energy).max()
     assert r.reaction("tip").shape == (len(r), 6)
+
+
+def test_panda(outputs):
+    """examples/panda.py: the Panda from example-robot-data falls for 2 s
+    with 0.5 N m s/rad at each arm joint: 9 bodies and 9 joints (the hand
+    merged into link 7), and the energy it loses equals the dampers' work
+    (the integral of c w^2, trapezoidal on 2,001 outputs) to 1e-6 relative."""
+    import test_urdf  # (skips without Pinocchio and example-robot-data)
+
+    assert test_urdf.ROBOTS
+    _, v = outputs("panda")
+    assert v["bodies"] == 9 and v["joints"] == 9
+    assert v["energy lost"] > 10.0
+    assert abs(v["energy lost"] - v["damper work"]) <= 1e-6 * v["energy lost"]
