@@ -2,6 +2,7 @@
 closed-form motion (the heavy symmetric top), conservation laws, and the
 same mechanisms built in the plane."""
 
+import math
 import warnings
 
 import numpy as np
@@ -618,7 +619,7 @@ def test_random_spatial_input_is_taken_or_refused_by_name_never_crashes():
         return float(rng.uniform(0.01, 2.0))
 
     outcomes = {"added": 0, "refused": 0}
-    for trial in range(30):
+    for trial in range(40):
         m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
         bodies, joints = [], []
         for i in range(12):
@@ -694,3 +695,25 @@ def test_attachments_of_a_spatial_element_are_three_dimensional():
     rod = m.add_body("rod", mass=1.0, inertia=(1e-4, 1 / 12, 1 / 12), position=(0.5, 0.0, 0.0))
     m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
     assert m.attachments("hinge") == [("ground", (0.0, 0.0, 0.0)), ("rod", (-0.5, 0.0, 0.0))]
+
+
+def test_a_joint_built_at_an_angle_or_slide_reads_it():
+    """A revolute given angle=0.7 and a translational given slide=0.25 read
+    those values in the initial configuration (the rod hangs 0.7 rad down
+    from level about y; the block sits 0.25 m along the rail from `at`): a
+    driver holding 0.7 does nothing there (effort = the rod's weight's
+    moment m g r cos 0.7), and the rail's slide stays 0.25 with the rail
+    level."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -9.81))
+    c, s = math.cos(0.7), math.sin(0.7)
+    # turned 0.7 about +y: the rod's axis x goes to (cos, 0, -sin)
+    rod = m.add_body("rod", 1.0, (1e-3, 1 / 12, 1 / 12), position=(0.5 * c, 0.0, -0.5 * s),
+                     orientation=((c, 0.0, s), (0.0, 1.0, 0.0), (-s, 0.0, c)))
+    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0), angle=0.7)
+    m.drive_joint("hold", "hinge", 0.7)
+    block = m.add_body("block", 2.0, (0.1, 0.1, 0.1), position=(2.25, 0.0, 0.0))
+    m.add_translational("rail", m.ground, block, at=(2.0, 0.0, 0.0), axis=(1.0, 0.0, 0.0), slide=0.25)
+    r = mb.simulate(m, 0.2, n_out=3, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(r.joint("hinge").angle, 0.7, atol=1e-10)
+    np.testing.assert_allclose(r.joint("rail").slide, 0.25, atol=1e-10)
+    np.testing.assert_allclose(r.effort("hold"), -9.81 * 0.5 * c, rtol=1e-8)

@@ -265,6 +265,33 @@ def test_a_run_reads_in_joint_angles():
         np.testing.assert_allclose(js.motion(name, r.q, r.v, r.a)[:, 2], path.acceleration)
 
 
+def test_a_robot_built_in_a_pose_reads_its_joint_values():
+    """positions={joint: value}: the Panda built in its "ready" pose (and a
+    finger open 2 cm) reads those joint values in its initial configuration
+    (the joints' angle and slide parameters), and its accelerations at a
+    random state still equal Pinocchio's ABA to 1e-8; a name that is not a
+    movable joint is refused listing those that are."""
+    relpath = "panda_description/urdf/panda.urdf"
+    ready = dict(zip([f"panda_joint{k}" for k in range(1, 8)], [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]))
+    ready["panda_finger_joint1"] = 0.02
+    model = load(relpath, positions=ready)
+    js = mb.JointSpace(model)
+    q0, v0 = model.compiled().initial_state()
+    for name in js.joints:
+        assert js.motion(name, q0, v0)[0] == pytest.approx(ready.get(name, 0.0), abs=1e-12), name
+    pm = pinocchio_model(relpath)
+    positions, rates, q_pin, v_pin = random_state(pm, js, np.random.default_rng(2))
+    expected = pin.aba(pm, pm.createData(), q_pin, v_pin, np.zeros(pm.nv))
+    q, v, _ = js.coordinates(positions, rates)
+    qdd, _ = mb.solve_accelerations(model, q, v)
+    for jid in range(1, pm.njoints):
+        acceleration = js.motion(pm.names[jid], q, v, qdd)[2]
+        assert abs(acceleration - expected[pm.joints[jid].idx_v]) <= 1e-8 * max(1.0, np.abs(expected).max())
+    with pytest.raises(mb.UrdfError, match="positions: 'panda_hand_joint' is not a revolute, continuous or "
+                                           "prismatic joint of the file \\(those are: panda_joint1"):
+        load(relpath, positions={"panda_hand_joint": 0.1})
+
+
 def moving(model, js, rates):
     """The model with its bodies given the velocities of joint rates
     {joint: rate} in the zero configuration."""

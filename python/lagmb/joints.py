@@ -95,12 +95,18 @@ class JointSpace:
                                  "of its own)")
             parent_of[body_j] = name
             Rp, rp = self._R0[body_i], self._r0[body_i]
-            axis = _unit(values["axis"])
-            joints[name] = dict(name=name, parent=body_i, child=body_j, kind=_MOVING[method],
-                                axis=Rp.T @ axis,  # in the parent's axes
-                                at=Rp.T @ (np.asarray(values["at"], dtype=float) - rp),
-                                # the child's pose in the parent's axes, joint value 0
-                                R=Rp.T @ self._R0[body_j], r=Rp.T @ (self._r0[body_j] - rp))
+            axis_p = Rp.T @ _unit(values["axis"])  # in the parent's axes
+            at_p = Rp.T @ (np.asarray(values["at"], dtype=float) - rp)
+            # the child's pose in the parent's axes at joint value 0 (the
+            # initial configuration has the joint's given angle or slide)
+            R_rel, r_rel = Rp.T @ self._R0[body_j], Rp.T @ (self._r0[body_j] - rp)
+            if _MOVING[method] == "turns":
+                back = _turn(axis_p, -float(values.get("angle") or 0.0))
+                R_rel, r_rel = back @ R_rel, back @ (r_rel - at_p) + at_p
+            else:
+                r_rel = r_rel - float(values.get("slide") or 0.0) * axis_p
+            joints[name] = dict(name=name, parent=body_i, child=body_j, kind=_MOVING[method], axis=axis_p, at=at_p,
+                                R=R_rel, r=r_rel)
         # parents before children
         self.joints, placed = [], {"ground"} | {b for b in self._bodies if b not in parent_of}
         pending = list(joints.values())

@@ -89,7 +89,8 @@ class JointPath:
     revolute or cylindrical joint, ``slide`` (m) of a translational or
     cylindrical one, with ``rate`` and ``acceleration`` (k,) of the first it
     has (the angle, for a cylindrical joint: ``slide_rate`` and
-    ``slide_acceleration`` for its slide). 0 in the initial configuration;
+    ``slide_acceleration`` for its slide). In the initial configuration the
+    joint's ``angle`` or ``slide`` (0 unless given);
     a spatial angle is continued across +-pi from output to output (it
     counts turns, as a robot's joint value does), a planar one is the
     bodies' angle difference."""

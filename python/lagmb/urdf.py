@@ -324,6 +324,12 @@ class _Reader:
         return links, joints, roots[0], parent_joint
 
 
+def _turn(axis, angle):
+    """Rotation by `angle` about the unit `axis` (Rodrigues)."""
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1.0 - math.cos(angle)) * (K @ K)
+
+
 def _children(joints):
     out = {}
     for joint in joints.values():
@@ -332,7 +338,7 @@ def _children(joints):
 
 
 def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_dirs=None,
-              gravity=(0.0, 0.0, -9.81), mimic=True):
+              gravity=(0.0, 0.0, -9.81), mimic=True, positions=None):
     """A spatial :class:`lagmb.Model` of the robot a URDF file describes.
 
     Links joined by fixed joints become one body, named after the first link
@@ -341,7 +347,9 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     joints become revolute joints, prismatic ones translational joints,
     planar ones planar joints; a floating joint leaves its child free. Each
     joint keeps the URDF's name, and its angle or slide is the URDF's joint
-    value (0 in the zero configuration, where the model is built). A joint
+    value (0 in the zero configuration). The model is built in the
+    configuration of ``positions`` ({joint: angle or slide}, URDF names; 0
+    where not given), at rest. A joint
     named like a link (URDF keeps the two apart, lagmb has one namespace) is
     called ``NAME_joint``.
 
@@ -365,6 +373,14 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     """
     reader = _Reader(path, package_dirs)
     links, joints, root, _ = reader.read()
+    positions = dict(positions or {})
+    for name, value in positions.items():
+        if name not in joints or joints[name]["type"] not in ("revolute", "continuous", "prismatic"):
+            movable = [j["name"] for j in joints.values() if j["type"] in ("revolute", "continuous", "prismatic")]
+            raise UrdfError(f"{reader.path}: positions: '{name}' is not a revolute, continuous or prismatic joint "
+                            f"of the file (those are: {', '.join(movable)})")
+        if not (isinstance(value, (int, float)) and math.isfinite(value)):
+            raise UrdfError(f"{reader.path}: positions: joint '{name}' must be a finite number, got {value!r}")
     children = _children(joints)
     for joint in joints.values():
         owner = f"joint '{joint['name']}'"
@@ -391,7 +407,13 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         order.append(link)
         for joint in reversed(children.get(link, [])):
             R_parent, p_parent = pose[link]
-            pose[joint["child"]] = (R_parent @ joint["R"], p_parent + R_parent @ joint["p"])
+            R_joint, p_joint = R_parent @ joint["R"], p_parent + R_parent @ joint["p"]  # the joint's frame
+            x = float(positions.get(joint["name"], 0.0))
+            if joint["type"] in ("revolute", "continuous"):
+                R_joint = R_joint @ _turn(joint["axis"], x)
+            elif joint["type"] == "prismatic":
+                p_joint = p_joint + R_joint @ (x * joint["axis"])
+            pose[joint["child"]] = (R_joint, p_joint)
             group_of[joint["child"]] = group_of[link] if joint["type"] == "fixed" else joint["child"]
             stack.append(joint["child"])
     groups = {}
@@ -449,12 +471,13 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             name = f"{name}_joint"
             if name in links or name in joints:
                 reader.fail(joint["element"], f"has the name of a link, and so has '{name}'", f"joint '{joint['name']}'")
+        x = float(positions.get(joint["name"], 0.0))
         if joint["type"] in ("revolute", "continuous"):
-            model.add_revolute(name, parent, child, at=tuple(at), axis=tuple(axis))
+            model.add_revolute(name, parent, child, at=tuple(at), axis=tuple(axis), angle=x)
             if dynamics and joint["damping"] > 0:
                 model.add_rotational_spring_damper(f"{name}_damping", joint=name, damping=joint["damping"])
         elif joint["type"] == "prismatic":
-            model.add_translational(name, parent, child, at=tuple(at), axis=tuple(axis))
+            model.add_translational(name, parent, child, at=tuple(at), axis=tuple(axis), slide=x)
         else:
             model.add_planar(name, parent, child, at=tuple(at), normal=tuple(axis))
         if limits and joint["limit"] is not None:  # (revolute and prismatic joints only)

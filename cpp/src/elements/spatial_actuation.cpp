@@ -111,8 +111,8 @@ void build_torque(Model& m, const std::string& name, const Args& a) {
 
 KindInfo spatial_joint_driver_kind() {
   return build::in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
-                   "Prescribes a revolute's angle (0 in the initial configuration, about its axis), or a "
-                   "translational's or cylindrical's slide along its axis, as f(t).",
+                   "Prescribes a revolute's angle (about its axis; its `angle` in the initial configuration, 0 "
+                   "by default), or a translational's or cylindrical's slide along its axis, as f(t).",
                    {param::joint("the revolute, cylindrical or translational joint driven"),
                     param::motion("f", "rad or m", "the joint coordinate as a function of time", "function")},
                    build_joint_driver});
@@ -143,7 +143,7 @@ KindInfo spatial_spring_damper_kind() {
 KindInfo spatial_rotational_spring_damper_kind() {
   return build::in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
                    "rotational_spring_damper", Role::kForce,
-                   "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (0 in "
+                   "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (its `angle` in "
                    "the initial configuration, in (-pi, pi]): torque -k (theta - theta0) - c theta' + tau(t) "
                    "about the axis on body_j.",
                    {param::joint("the revolute or cylindrical joint"),

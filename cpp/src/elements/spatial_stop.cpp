@@ -46,8 +46,8 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
 KindInfo spatial_stop_kind() {
   return build::in_space(
       {"spatial_stop", "add_stop", "stops", "", Role::kStop,
-       "Limits a revolute's angle (in (-pi, pi)) or a translational's slide to lower <= s <= upper (0 in the "
-       "initial configuration). Reaching a limit with approaching speed is an impact: s' reverses with Newton's "
+       "Limits a revolute's angle (in (-pi, pi)) or a translational's slide to lower <= s <= upper (their "
+       "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is an impact: s' reverses with Newton's "
        "restitution e and the integrator restarts; a rebound slower than rest_speed while the motion presses on "
        "the limit stops the run with SimulationError naming the stop (resting contact is not modelled).",
        {

@@ -11,7 +11,8 @@ namespace lagmb {
 
 /// A joint's scalar coordinate (JointCoordinate: a revolute's angle in rad,
 /// in (-pi, pi] in space and phi_j - phi_i in the plane, a translational's
-/// slide in m; 0 in the initial configuration) with its rate and acceleration.
+/// slide in m; in space the joint's `angle` or `slide` in the initial
+/// configuration, 0 by default) with its rate and acceleration.
 struct JointMotion {
   double value = 0.0, rate = 0.0, acceleration = 0.0;
 };

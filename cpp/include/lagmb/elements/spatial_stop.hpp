@@ -11,7 +11,8 @@ namespace lagmb {
 
 /// The coordinate s of a spatial revolute (its angle, spatial::joint_angle,
 /// in (-pi, pi]; the limits lie inside) or translational joint (its slide,
-/// spatial::joint_slide), 0 in the initial configuration. Allowed: lower <=
+/// spatial::joint_slide), the joint's `angle` or `slide` in the initial
+/// configuration (0 by default). Allowed: lower <=
 /// s <= upper. As the planar JointStop (stop.hpp): event functions
 ///   g_0 = s - lower,   g_1 = upper - s       (an absent limit reads g = 1),
 /// counted when crossed downward; a crossing with approaching velocity
