@@ -403,3 +403,40 @@ def test_run_a_spatial_scene_with_its_animation_seen_from_a_viewpoint(tmp_path):
     assert "dimension: 3" in info.stdout and "joints: 1 (spherical 1)" in info.stdout
     bad = lagmb("run", scene, "--animate", tmp_path / "x.gif", "--view", "10")
     assert bad.returncode != 0 and "--view 10: must be two numbers ELEV,AZIM" in bad.stderr
+
+
+ARM_URDF = """<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_a_urdf_file_is_a_scene_for_info_and_run(tmp_path):
+    """lagmb info and run take a .urdf (mb.load_urdf, its options as flags;
+    the run settings from the command line): the one-link arm has one body,
+    one joint and, with its limits, one stop; --no-limits leaves it out; a
+    run needs --t-end, and writes what the same load and simulate give."""
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM_URDF)
+    p = lagmb("info", path)
+    assert p.returncode == 0, p.stderr
+    assert "bodies: 1 (upper)" in p.stdout and "joints: 1 (revolute 1)" in p.stdout and "stops: 1" in p.stdout
+    assert "degrees of freedom: 1" in p.stdout
+    p = lagmb("info", path, "--no-limits")
+    assert p.returncode == 0 and "stops: 0" in p.stdout
+    p = lagmb("run", path, "--no-limits")
+    assert p.returncode == 2 and "no end time" in p.stderr
+    out = tmp_path / "arm.npz"
+    p = lagmb("run", path, "--no-limits", "--t-end", "0.3", "--n-out", "4", "-o", out, "--quiet")
+    assert p.returncode == 0, p.stderr
+    import lagmb as mb
+
+    r = mb.simulate(mb.load_urdf(path, limits=False), t_end=0.3, n_out=4)
+    with np.load(out) as d:
+        assert np.array_equal(d["q"], r.q)
+    p = lagmb("info", tmp_path / "missing.urdf")
+    assert p.returncode == 2 and "cannot read the file" in p.stderr

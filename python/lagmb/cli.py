@@ -44,7 +44,7 @@ def _parser():
     run = sub.add_parser("run", help="simulate a scene file and write its results",
                          description="Simulate a scene file (TOML, docs/scene-format.md) with its "
                                      "[simulation] settings; write what -o and [output] ask for.")
-    run.add_argument("scene", help="the scene file (.toml)")
+    run.add_argument("scene", help="the scene file (.toml), or a robot's URDF file (.urdf; give --t-end)")
     run.add_argument("-o", "--output", metavar="FILE",
                      help="results file: .npz (all arrays) or .csv (t, coordinates, listed "
                           "reactions); default: [output] file")
@@ -57,6 +57,7 @@ def _parser():
     run.add_argument("--rtol", type=float, metavar="R", help="relative tolerance, instead of the scene's")
     run.add_argument("--n-out", type=int, metavar="N", help="number of output times, instead of the scene's")
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
+    _robot_options(run)
 
     info = sub.add_parser("info", help="bodies, coordinates, constraints and degrees of freedom",
                           description="Load a scene and report its size, the rank of its "
@@ -64,7 +65,7 @@ def _parser():
                                       "its degrees of freedom and any redundant equations; "
                                       "or, with --methods, the integration methods; with --kinds, "
                                       "the element kinds.")
-    info.add_argument("scene", nargs="?", help="the scene file (.toml)")
+    info.add_argument("scene", nargs="?", help="the scene file (.toml), or a robot's URDF file (.urdf)")
     info.add_argument("--methods", action="store_true",
                       help="list the integration methods (formulation, integrator, what each supports)")
     info.add_argument("--kinds", action="store_true",
@@ -72,6 +73,7 @@ def _parser():
     info.add_argument("--parameters", action="store_true",
                       help="also list the scene's run-time parameters (the names simulate(..., "
                            "parameters=...), sweeps and the FMU take), with value, unit and meaning")
+    _robot_options(info)
 
     acc = sub.add_parser("accuracy", help="work-precision study of a scene: error against CPU time",
                          description="Run the scene with each method at each tolerance, measure the "
@@ -222,9 +224,40 @@ def _demo(args):
     return OK
 
 
-def _load(path):
+def _robot_options(command):
+    """The options of mb.load_urdf, for a .urdf given as the scene."""
+    robot = command.add_argument_group("a URDF file (mb.load_urdf)")
+    robot.add_argument("--floating-base", action="store_true", help="the root link is a free body")
+    robot.add_argument("--no-limits", action="store_true", help="leave the joints' position limits out")
+    robot.add_argument("--no-dynamics", action="store_true", help="leave the joints' damping and friction out")
+    robot.add_argument("--no-mimic", action="store_true", help="read mimic joints as joints of their own")
+
+
+def _load_urdf(args):
+    """A Scene of the robot in a URDF file: its model, no settings (the
+    command line gives them), its elements listed by table."""
+    from .scene import Scene, SceneElement
+    from .urdf import load_urdf
+
+    try:
+        model = load_urdf(args.scene, floating_base=args.floating_base, limits=not args.no_limits,
+                          dynamics=not args.no_dynamics, mimic=not args.no_mimic)
+    except ModelError as e:
+        raise _Exit(USAGE, str(e)) from None
+    kinds = elements(3)
+    listed = [SceneElement(kinds[method].table, kinds[method].type, values["name"], None)
+              for method, values in model.elements()]
+    if not model.bodies:
+        raise _Exit(USAGE, f"{args.scene}: no bodies: every link is fixed to the root (give --floating-base to "
+                           "let the root move)")
+    return Scene(model, path=args.scene, elements=listed)
+
+
+def _load(path, args=None):
     from .scene import load_scene
 
+    if str(path).lower().endswith(".urdf") and args is not None:
+        return _load_urdf(args)
     try:
         scene = load_scene(path)
     except ModelError as e:
@@ -286,7 +319,7 @@ def _run(args):
     from .scene import MAX_OUTPUTS, SceneError
     from .scene.reader import animation_format_problem, plot_format_problem
 
-    scene = _load(args.scene)
+    scene = _load(args.scene, args)
     # the options, outputs and formats first: a mistake there costs no run
     _option_number("--t-end", args.t_end, above=scene.settings.get("t0", 0.0))
     _option_number("--rtol", args.rtol, above=0.0)
@@ -491,7 +524,7 @@ def _info(args):
         return OK
     if not args.scene:
         raise _Exit(USAGE, "give a scene file, or --methods")
-    scene = _load(args.scene)
+    scene = _load(args.scene, args)
     model = scene.model
     say = print
 
