@@ -18,6 +18,7 @@ numbers, and imports in about 3 s (trimesh).
 """
 
 import math
+import numbers
 import os
 import xml.parsers.expat
 
@@ -349,9 +350,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     joint keeps the URDF's name, and its angle or slide is the URDF's joint
     value (0 in the zero configuration). The model is built in the
     configuration of ``positions`` ({joint: angle or slide}, URDF names; 0
-    where not given), at rest. A joint
-    named like a link (URDF keeps the two apart, lagmb has one namespace) is
-    called ``NAME_joint``.
+    where not given), at rest. A joint named like a link (URDF keeps the two
+    apart, lagmb has one namespace) is called ``NAME_joint``.
 
     ``limits=True``: a revolute's or prismatic's ``<limit lower upper>``
     becomes a stop on it (``NAME_limit``, restitution 0: an impact at the
@@ -359,10 +359,11 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     with SimulationError, as stops do). ``dynamics=True``: a joint's
     ``<dynamics damping>`` becomes a rotational damper on it
     (``NAME_damping``). ``limits=False`` leaves the joints' position limits
-    out; ``dynamics=False`` their damping and friction. ``mimic=False`` reads a mimic joint as a joint of its own
-    (as Pinocchio builds it by default) instead of coupling it to the joint
-    it mimics. ``package_dirs``: directories holding the packages that
-    ``package://`` mesh names point into. Every mesh a link names must exist.
+    out; ``dynamics=False`` their damping and friction. ``mimic=False``
+    reads a mimic joint as a joint of its own (as Pinocchio builds it by
+    default) instead of coupling it to the joint it mimics.
+    ``package_dirs``: directories holding the packages that ``package://``
+    mesh names point into. Every mesh a link names must exist.
 
     Raises :class:`UrdfError` (a ModelError) naming the file, the line and
     the link or joint for anything lagmb does not read: an unknown tag or
@@ -379,7 +380,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             movable = [j["name"] for j in joints.values() if j["type"] in ("revolute", "continuous", "prismatic")]
             raise UrdfError(f"{reader.path}: positions: '{name}' is not a revolute, continuous or prismatic joint "
                             f"of the file (those are: {', '.join(movable)})")
-        if not (isinstance(value, (int, float)) and math.isfinite(value)):
+        if isinstance(value, bool) or not (isinstance(value, numbers.Real) and math.isfinite(value)):
             raise UrdfError(f"{reader.path}: positions: joint '{name}' must be a finite number, got {value!r}")
     children = _children(joints)
     for joint in joints.values():
@@ -398,7 +399,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             reader.fail(joint["elements"]["dynamics"], f"damping of a {joint['type']} joint is not supported yet "
                         "(a revolute's is): load with dynamics=False to leave it out", owner)
 
-    # world poses of the links in the zero configuration, and their groups
+    # world poses of the links in the configuration of `positions`, and their groups
     pose = {root: (np.eye(3), np.zeros(3))}
     group_of = {root: root}
     order, stack = [], [root]
