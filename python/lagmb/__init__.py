@@ -26,6 +26,7 @@ from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
 from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
+from .mjcf import MjcfError, MjcfWarning, load_mjcf
 
 from ._version import __version__  # noqa: F401
 SUNDIALS_VERSION = _core.sundials_version
