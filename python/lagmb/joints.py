@@ -11,7 +11,7 @@ function the joint's drivers hold).
 
 import numpy as np
 
-from .errors import ModelError
+from .errors import ModelError, translated
 
 #: The kinds whose joints JointSpace moves, and what they move.
 _MOVING = {"add_revolute": "turns", "add_translational": "slides"}
@@ -212,8 +212,6 @@ def inverse_dynamics(model, joint_trajectory, t=0.0):
     free bodies stay as in the initial configuration, at rest; a motion they
     would need forces for raises SimulationError.
     """
-    from .errors import translated
-
     js = JointSpace(model)
     unknown = set(joint_trajectory) - set(js.joints)
     if unknown:
