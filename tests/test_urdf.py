@@ -421,6 +421,22 @@ def test_what_is_not_built_yet_is_refused_by_name(tmp_path):
         mb.load_urdf(os.path.join(ROBOTS, "panda_description/urdf/panda.urdf"), limits=False, dynamics=False)
 
 
+def test_package_dirs_find_meshes(tmp_path):
+    """package://PKG/PATH is looked up in package_dirs (a list, or one
+    directory as a string): in DIR/PKG/PATH, or in DIR/PATH when DIR is the
+    package; a missing one names where it looked."""
+    mesh = tmp_path / "shop" / "arm_pkg" / "meshes" / "upper.stl"
+    mesh.parent.mkdir(parents=True)
+    mesh.write_text("solid upper\nendsolid upper\n")
+    text = ARM.replace('<link name="base"/>', '<link name="base"><visual><geometry><mesh '
+                       'filename="package://arm_pkg/meshes/upper.stl"/></geometry></visual></link>')
+    path = write(tmp_path, text)
+    for dirs in (str(tmp_path / "shop"), [tmp_path / "shop"], [str(tmp_path / "shop" / "arm_pkg")]):
+        assert mb.load_urdf(path, limits=False, package_dirs=dirs).bodies
+    with pytest.raises(mb.UrdfError, match="mesh 'package://arm_pkg/meshes/upper.stl' not found"):
+        mb.load_urdf(path, limits=False, package_dirs=[tmp_path / "elsewhere"])
+
+
 def test_a_massless_link_between_joints_is_refused(tmp_path):
     text = ARM.replace('<mass value="1"/>', '<mass value="0"/>')
     with pytest.raises(mb.UrdfError, match="line 3: link 'upper': has no mass"):

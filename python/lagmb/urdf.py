@@ -112,7 +112,9 @@ class _Reader:
 
     def __init__(self, path, package_dirs):
         self.path = os.fspath(path)
-        self.package_dirs = list(package_dirs or [])
+        # (one directory given as a string is one directory, not its letters)
+        self.package_dirs = [package_dirs] if isinstance(package_dirs, (str, os.PathLike)) else \
+            [os.fspath(d) for d in (package_dirs or [])]
         self.root = _read_xml(self.path)
         if self.root.tag != "robot":
             self.fail(self.root, f"the root element is <{self.root.tag}>, not <robot>")
