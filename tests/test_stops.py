@@ -341,5 +341,25 @@ def test_a_spatial_stop_takes_a_revolute_or_translational_joint_and_limits_insid
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
     rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
     m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
-    with pytest.raises(mb.ModelError, match=r"upper = 3.5 rad; the angle of a joint in space is read in \(-pi, pi\]"):
-        m.add_stop("stop", "pin", lower=-1.0, upper=3.5)
+    with pytest.raises(mb.ModelError, match=r"upper - lower = 7 rad; a joint angle in space is read within one "
+                                           "turn"):
+        m.add_stop("stop", "pin", lower=-3.5, upper=3.5)
+
+
+def test_a_spatial_stop_holds_a_limit_beyond_pi():
+    """A spatial angle is read within a turn of the middle of the stop's
+    range: the rod, hinged about -y and started level turning at 8 rad/s
+    (so the angle rises through pi), hits an upper limit at 3.6 rad, and the
+    angle never passes it (continued across pi: 3.6 in the stop's reading)."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0),
+                     velocity=(0.0, 0.0, 4.0), angular_velocity=(0.0, -8.0, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, -1.0, 0.0))
+    m.add_stop("stop", "pin", lower=-0.5, upper=3.6, restitution=0.5)
+    r = mb.simulate(m, t_end=1.0, rtol=1e-10, atol=1e-12, n_out=1001)
+    impact = r.events[0]
+    assert impact["label"] == "upper" and impact["kind"] == "impact"
+    angle = r.joint("pin").angle  # continued across pi from output to output
+    before = r.t <= impact["t"]
+    assert angle[before].max() <= 3.6 + 1e-8 and angle[before].max() > 3.5
+    assert abs(impact["speed_after"] + 0.5 * impact["speed_before"]) <= 1e-6 * abs(impact["speed_before"])

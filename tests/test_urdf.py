@@ -405,7 +405,8 @@ def test_limits_are_stops(tmp_path):
     assert partial.events[0]["label"] == "upper" and partial.events[0]["kind"] == "rest"
     assert np.max(partial.joint("shoulder").angle) <= 1.0 + 1e-9
     wide = ARM.replace('lower="-1" upper="1"', 'lower="-4" upper="4"')
-    with pytest.raises(mb.UrdfError, match=r"line 6: joint 'shoulder': position limits \(-4.0, 4.0\) reach pi"):
+    with pytest.raises(mb.UrdfError, match=r"line 6: joint 'shoulder': position limits \(-4.0, 4.0\) span a full "
+                                           "turn"):
         mb.load_urdf(write(tmp_path, wide))
     assert mb.load_urdf(write(tmp_path, wide), limits=False).bodies
 

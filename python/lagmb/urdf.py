@@ -370,9 +370,9 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     Raises :class:`UrdfError` (a ModelError) naming the file, the line and
     the link or joint for anything lagmb does not read: an unknown tag or
     joint type, a link that is the child of two joints, a body without mass
-    or inertia, a missing mesh, and (not built yet) revolute limits at pi or
-    beyond, joint friction, damping of a prismatic joint and mimic joints
-    (``mimic=True``).
+    or inertia, a missing mesh, and (not built yet) revolute limits a full
+    turn or more apart, joint friction, damping of a prismatic joint and
+    mimic joints (``mimic=True``).
     """
     reader = _Reader(path, package_dirs)
     links, joints, root, _ = reader.read()
@@ -390,10 +390,10 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         if mimic and joint["mimic"] is not None:
             reader.fail(joint["mimic"], "<mimic> (a coupling of two joints) is not supported yet", owner)
         if limits and joint["limit"] is not None and joint["type"] == "revolute" and \
-                not max(abs(joint["limit"][0]), abs(joint["limit"][1])) < math.pi:
-            reader.fail(joint["elements"]["limit"], f"position limits {joint['limit']} reach pi or beyond: a joint "
-                        "angle in space is read in (-pi, pi], so a stop cannot hold a limit there yet; load "
-                        "with limits=False to leave them out", owner)
+                not joint["limit"][1] - joint["limit"][0] < 2 * math.pi:
+            reader.fail(joint["elements"]["limit"], f"position limits {joint['limit']} span a full turn or more: "
+                        "a stop reads a joint angle within one turn, so it cannot hold them yet; load with "
+                        "limits=False to leave them out", owner)
         if dynamics and joint["friction"] > 0:
             reader.fail(joint["elements"]["dynamics"], f"friction {joint['friction']} needs joint friction in space, "
                         "which lagmb does not have yet: load with dynamics=False to leave it out", owner)

@@ -20,12 +20,14 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
   if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");
   if (lower && upper && !(*lower < *upper))
     throw ModelError(label + ": lower = " + to_text(*lower) + " must be below upper = " + to_text(*upper));
-  // a spatial angle is read in (-pi, pi]: a limit at or beyond pi could not be crossed
-  for (const auto& [limit, which] : {std::pair{lower, "lower"}, std::pair{upper, "upper"}})
-    if (c.turns && limit && !(std::abs(*limit) < kPi))
-      throw ModelError(label + ": " + which + " = " + to_text(*limit) +
-                       " rad; the angle of a joint in space is read in (-pi, pi], so its limits lie inside");
+  // a spatial angle is read within a turn: the limits must lie within one
+  if (c.turns && lower && upper && !(*upper - *lower < 2.0 * kPi))
+    throw ModelError(label + ": upper - lower = " + to_text(*upper - *lower) +
+                     " rad; a joint angle in space is read within one turn, so the limits must be less than "
+                     "2 pi apart");
   SpatialJointStop s = build::joining<SpatialJointStop>(m, name, c.body_i, c.body_j);
+  // read the angle within pi of the middle of the range (of a quarter turn inside a lone limit)
+  s.center = lower && upper ? 0.5 * (*lower + *upper) : lower ? *lower + 0.5 * kPi : *upper - 0.5 * kPi;
   s.slide = c.slides;
   s.f_i = c.f_i, s.g_i = c.g_i, s.f_j = c.f_j;
   s.s_i = c.s_i, s.s_j = c.s_j, s.a_i = c.a_i;
@@ -46,7 +48,8 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
 KindInfo spatial_stop_kind() {
   return build::in_space(
       {"spatial_stop", "add_stop", "stops", "", Role::kStop,
-       "Limits a revolute's angle (in (-pi, pi)) or a translational's slide to lower <= s <= upper (their "
+       "Limits a revolute's angle (limits less than 2 pi apart) or a translational's slide to lower <= s <= "
+       "upper (their "
        "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is an impact: s' reverses with Newton's "
        "restitution e and the integrator restarts; a rebound slower than rest_speed while the motion presses on "
        "the limit stops the run with SimulationError naming the stop (resting contact is not modelled).",

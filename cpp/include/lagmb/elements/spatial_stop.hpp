@@ -2,6 +2,7 @@
 // cpp/src/elements/spatial_stop.cpp): a joint limit in space, with impacts.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "lagmb/elements/spatial_drivers.hpp"
@@ -10,7 +11,9 @@
 namespace lagmb {
 
 /// The coordinate s of a spatial revolute (its angle, spatial::joint_angle,
-/// in (-pi, pi]; the limits lie inside) or translational joint (its slide,
+/// read in (center - pi, center + pi]: center is the middle of the limits,
+/// or a quarter turn inside a lone limit, so that the reading never wraps
+/// inside the allowed range) or translational joint (its slide,
 /// spatial::joint_slide), the joint's `angle` or `slide` in the initial
 /// configuration (0 by default). Allowed: lower <=
 /// s <= upper. As the planar JointStop (stop.hpp): event functions
@@ -33,11 +36,15 @@ struct SpatialJointStop {
   double lower = 0.0, upper = 0.0;
   double restitution = 0.0;
   double rest_speed = 0.0;  // rad/s or m/s
+  double center = 0.0;      // an angle is read within pi of it (rad)
 
   spatial::ScalarTerm coordinate(const spatial::Loc& c, bool hessian) const {
     spatial::Want want;
     want.hessian = hessian;
-    return slide ? spatial::joint_slide(c, s_i, s_j, a_i, want) : spatial::joint_angle(c, f_i, g_i, f_j, want);
+    if (slide) return spatial::joint_slide(c, s_i, s_j, a_i, want);
+    spatial::ScalarTerm s = spatial::joint_angle(c, f_i, g_i, f_j, want);
+    s.value = center + std::remainder(s.value - center, 2.0 * kPi);  // (a constant shift: same derivatives)
+    return s;
   }
   double root(int r, const spatial::Loc& c, const spatial::Loc&, double) const {
     if (r == 0 ? !has_lower : !has_upper) return 1.0;
