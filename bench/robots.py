@@ -71,7 +71,6 @@ def case(relpath, repeats):
     from scipy.integrate import solve_ivp
 
     import lagmb as mb
-    from lagmb.joints import _E
 
     path = os.path.join(robots_dir(), relpath)
     model = mb.load_urdf(path, limits=False, dynamics=False, mimic=False)
@@ -94,16 +93,7 @@ def case(relpath, repeats):
 
     reference = pinocchio_run(1e-13)
 
-    # the model moving with those rates from its zero configuration
-    q, v, _ = js.coordinates({}, rates)
-    moving = mb.Model(gravity=tuple(model.gravity), dimension=3)
-    bodies = [b.name for b in model.bodies]
-    for method, values in model.elements():
-        if method == "add_body":
-            k = bodies.index(values["name"])
-            values = dict(values, velocity=tuple(v[7 * k:7 * k + 3]),
-                          angular_velocity=tuple(2.0 * _E(q[7 * k + 3:7 * k + 7]) @ v[7 * k + 3:7 * k + 7]))
-        getattr(moving, method)(**values)
+    moving = js.with_rates(rates)  # from the zero configuration
 
     def lagmb_run(rtol, **method):
         r = mb.simulate(moving, 1.0, n_out=2, rtol=rtol, atol=1e-2 * rtol, **method)

@@ -31,3 +31,15 @@ def rod_chain(n, L=1.0, m=1.0, g=9.81):
         model.add_revolute(f"pin{k}", prev, body, at=(k * L, 0.0))
         prev = body
     return model
+
+
+#: A one-link arm as a URDF file: hinged about y at the origin, its 1 kg centre
+#: of mass 0.5 m out along x, limits -1 .. 1 rad (tests/test_urdf.py, test_cli.py).
+ARM_URDF = """<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""

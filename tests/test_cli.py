@@ -24,6 +24,8 @@ import pytest
 from lagmb.progress import Progress
 from lagmb.scene import load_scene
 
+from builders import ARM_URDF
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 FOUR_BAR_NAMES = ["crank", "coupler", "rocker"]
@@ -405,14 +407,6 @@ def test_run_a_spatial_scene_with_its_animation_seen_from_a_viewpoint(tmp_path):
     assert bad.returncode != 0 and "--view 10: must be two numbers ELEV,AZIM" in bad.stderr
 
 
-ARM_URDF = """<robot name="arm">
-  <link name="base"/>
-  <link name="upper"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>
-    <inertia ixx="0.01" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
-  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
 
 
 def test_a_urdf_file_is_a_scene_for_info_and_run(tmp_path):

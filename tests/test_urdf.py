@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
+from builders import ARM_URDF as ARM
 
 pin = pytest.importorskip("pinocchio", reason="the robots extra (pin) is not installed")
 
@@ -292,23 +293,6 @@ def test_a_robot_built_in_a_pose_reads_its_joint_values():
         load(relpath, positions={"panda_hand_joint": 0.1})
 
 
-def moving(model, js, rates):
-    """The model with its bodies given the velocities of joint rates
-    {joint: rate} in the zero configuration."""
-    from lagmb.joints import _E
-
-    q, v, _ = js.coordinates({}, rates)
-    out = mb.Model(gravity=tuple(model.gravity), dimension=3)
-    names = [b.name for b in model.bodies]
-    for method, values in model.elements():
-        if method == "add_body":
-            k = names.index(values["name"])
-            values = dict(values, velocity=tuple(v[7 * k:7 * k + 3]),
-                          angular_velocity=tuple(2.0 * _E(q[7 * k + 3:7 * k + 7]) @ v[7 * k + 3:7 * k + 7]))
-        getattr(out, method)(**values)
-    return out
-
-
 @pytest.mark.parametrize("relpath", ["panda_description/urdf/panda.urdf", "talos_data/robots/talos_reduced.urdf"])
 def test_a_second_of_free_motion_follows_pinocchio_and_dop853(relpath):
     """The Panda (9 joints) and Talos (32), from the zero configuration with
@@ -330,7 +314,7 @@ def test_a_second_of_free_motion_follows_pinocchio_and_dop853(relpath):
         v0[pm.joints[jid].idx_v] = rates[lagmb_name(js, pm.names[jid])]
     reference = solve_ivp(lambda t, y: np.concatenate([y[pm.nq:], pin.aba(pm, pd, y[:pm.nq], y[pm.nq:], 0 * v0)]),
                           (0.0, 1.0), np.concatenate([pin.neutral(pm), v0]), method="DOP853", rtol=1e-12, atol=1e-12)
-    r = mb.simulate(moving(model, js, rates), 1.0, n_out=2, formulation="projection", integrator="erk",
+    r = mb.simulate(js.with_rates(rates), 1.0, n_out=2, formulation="projection", integrator="erk",
                     rtol=1e-11, atol=1e-13)
     for jid in range(1, pm.njoints):
         name = lagmb_name(js, pm.names[jid])
@@ -341,14 +325,6 @@ def test_a_second_of_free_motion_follows_pinocchio_and_dop853(relpath):
 # --- bad files -------------------------------------------------------------------------------------------
 
 
-ARM = """<robot name="arm">
-  <link name="base"/>
-  <link name="upper"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>
-    <inertia ixx="0.01" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
-  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><axis xyz="0 1 0"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
 
 
 def write(tmp_path, text, name="robot.urdf"):

@@ -12,6 +12,7 @@ function the joint's drivers hold).
 import numpy as np
 
 from .errors import ModelError, translated
+from .model import Model
 
 #: The kinds whose joints JointSpace moves, and what they move.
 _MOVING = {"add_revolute": "turns", "add_translational": "slides"}
@@ -183,6 +184,20 @@ class JointSpace:
             # alpha = 2 E(p) p'' and p . p'' = -|p'|^2 (p stays a unit quaternion)
             qdd[7 * k:7 * k + 7] = np.concatenate([a[body], 0.5 * _E(p).T @ al[body] - (pd @ pd) * p])
         return q, qd, qdd
+
+    def with_rates(self, rates):
+        """A copy of the model whose bodies start with the velocities of the
+        joint rates {joint: rate} (0 where not given) in its initial
+        configuration, as forward kinematics gives them (rad/s, m/s)."""
+        q, v, _ = self.coordinates({}, rates)
+        out = Model(gravity=self.model.gravity, dimension=3)
+        for method, values in self.model.elements():
+            if method == "add_body":
+                k = self._index[values["name"]]
+                values = dict(values, velocity=tuple(v[7 * k:7 * k + 3]),
+                              angular_velocity=tuple(2.0 * _E(q[7 * k + 3:7 * k + 7]) @ v[7 * k + 3:7 * k + 7]))
+            getattr(out, method)(**values)
+        return out
 
     def motion(self, joint, q, v, a=None):
         """(value, rate, acceleration) of a joint's angle or slide at one

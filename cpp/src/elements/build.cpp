@@ -87,6 +87,35 @@ JointOf joint_coordinate(const Model& m, const std::string& joint, const std::st
   return out;
 }
 
+StopValues stop_values(const Args& a, const std::string& label) {
+  const std::optional<double> lower = a.optional_real("lower"), upper = a.optional_real("upper");
+  if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");
+  if (lower && upper && !(*lower < *upper))
+    throw ModelError(label + ": lower = " + to_text(*lower) + " must be below upper = " + to_text(*upper));
+  StopValues v;
+  v.has_lower = bool(lower);
+  v.has_upper = bool(upper);
+  v.lower = lower.value_or(0.0);
+  v.upper = upper.value_or(0.0);
+  v.restitution = a.real("restitution");
+  if (!(v.restitution >= 0.0 && v.restitution <= 1.0))
+    throw ModelError(label + ": restitution must be in [0, 1], got " + to_text(v.restitution));
+  // 0 would let rebounds shrink to rounding level (Zeno) before the rest test fires
+  v.rest_speed = a.real("rest_speed");
+  require_positive(v.rest_speed, label, "rest_speed");
+  return v;
+}
+
+std::vector<Param> stop_params() {
+  return {
+      param::joint("the revolute or translational joint limited"),
+      param::optional_real("lower", "rad or m", "lower limit (None: none)"),
+      param::optional_real("upper", "rad or m", "upper limit (None: none)"),
+      param::real("restitution", 0.0, "", "Newton's coefficient of restitution e in [0, 1]"),
+      param::real("rest_speed", 1e-3, "rad/s or m/s", "rebounds slower than this stop the run"),
+  };
+}
+
 KindInfo in_space(KindInfo k) {
   k.dimension = 3;
   return k;

@@ -71,6 +71,16 @@ JointOf joint_coordinate(const Model& m, const std::string& joint, const std::st
 /// A kind of a spatial model (KindInfo::dimension 3).
 KindInfo in_space(KindInfo k);
 
+/// What a joint stop (planar or spatial) is given: its limits, checked (one
+/// at least, lower below upper), restitution in [0, 1] and rest_speed > 0;
+/// and the parameters that give them (stop_params, after the joint).
+struct StopValues {
+  bool has_lower = false, has_upper = false;
+  double lower = 0.0, upper = 0.0, restitution = 0.0, rest_speed = 0.0;
+};
+StopValues stop_values(const Args& a, const std::string& label);
+std::vector<Param> stop_params();
+
 /// The unit global direction given as `key`; ModelError for a zero vector.
 Vec3 unit_direction(const Args& a, const std::string& key, const std::string& label);
 
