@@ -87,6 +87,14 @@ def every_spatial_kind():
     m.add_force("push_global", b[3], (-3.0, 2.0, 1.0), point=(1.1, 0.4, 0.2))
     m.add_torque("turn_local", b[5], (0.2, mb.Harmonic(2.0, 1.0), -0.1), local=True)
     m.add_torque("turn_global", b[1], (0.0, 0.5, -0.3))
+    # an arm on body c turns with the prism's slide: one row over the bodies
+    # (b, c) and (c, arm), c in both halves
+    arm = m.add_body("arm", 0.7, tensor, (0.8, 0.3, 0.4), orientation=quaternion((0.2, 1, 0.3), 0.4),
+                     angular_velocity=(0.1, 0.2, -0.3))
+    m.add_revolute("elbow", b[2], arm, at=(0.7, 0.2, 0.3), axis=(0.2, 0.4, 1.0))
+    m.add_joint_coupling("gang", "elbow", leader="prism", multiplier=3.0, offset=0.01)
+    m.add_joint_friction("drag", "prism", viscous=2.0, preload=0.5, slip_velocity=0.1)
+    m.add_joint_friction("bearing", "hinge", viscous=0.2, preload=0.3, slip_velocity=0.5)
     return m
 
 

@@ -263,6 +263,20 @@ def example_spatial_stop():
     return m, m.add_stop("limit", hinge, lower=-1.0, upper=1.0, restitution=0.5)
 
 
+def example_joint_coupling():
+    """Two rods hinged to the ground side by side: the second turns twice as
+    far as the first, the other way."""
+    m, rod, hinge = _spatial_hinge()
+    other = m.add_body("other", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 1.0, 0.0))
+    second = m.add_revolute("second", m.ground, other, at=(0.0, 1.0, 0.0), axis=(0.0, 1.0, 0.0))
+    return m, m.add_joint_coupling("gears", second, leader=hinge, multiplier=-2.0)
+
+
+def example_spatial_joint_friction():
+    m, _, hinge = _spatial_hinge()
+    return m, m.add_joint_friction("bearing", hinge, viscous=0.2, preload=0.1)
+
+
 def example_bushing():
     """A block hung from the ground by a bushing above its centre: it sags."""
     m = _spatial_model()

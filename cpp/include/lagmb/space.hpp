@@ -18,6 +18,7 @@ namespace lagmb {
 struct Planar {
   static constexpr int dimension = 2;
   static constexpr int local = 6;
+  static constexpr int bodies = 2;
   using Axes = Mat2;
   static double ground_coordinate(int) { return 0.0; }
   /// The reaction on body j from the generalized force g = -Phi_c^T lam: the
@@ -37,6 +38,7 @@ struct Planar {
 struct Spatial {
   static constexpr int dimension = 3;
   static constexpr int local = 14;
+  static constexpr int bodies = 2;
   using Axes = Mat3;
   static double ground_coordinate(int a) { return a == 3 || a == 10 ? 1.0 : 0.0; }
   static VecX reaction(const Eigen::Matrix<double, 14, 1>& g, const Eigen::Matrix<double, 14, 1>& c,
@@ -49,6 +51,22 @@ struct Spatial {
       w.tail<3>() = axes->transpose() * w.tail<3>();
     }
     return w;
+  }
+};
+
+/// Elements that relate two spatial joints (joint_coupling.hpp): c = (c_a,
+/// c_b), each the 14 coordinates (r_i, p_i, r_j, p_j) of one joint's two
+/// bodies (a body both joints share appears twice; its group adds the
+/// columns). Reactions (k, 6): as Spatial, on the second joint's body j.
+struct SpatialJointPair {
+  static constexpr int dimension = 3;
+  static constexpr int local = 28;
+  static constexpr int bodies = 4;
+  using Axes = Mat3;
+  static double ground_coordinate(int a) { return a % 7 == 3 ? 1.0 : 0.0; }
+  static VecX reaction(const Eigen::Matrix<double, 28, 1>& g, const Eigen::Matrix<double, 28, 1>& c,
+                       const Axes* axes) {
+    return Spatial::reaction(g.tail<14>(), c.tail<14>(), axes);
   }
 };
 

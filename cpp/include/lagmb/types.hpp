@@ -26,8 +26,9 @@ constexpr double kPi = 3.14159265358979323846;
 using Local6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-/// The most local coordinates an element has (a spatial pair: 2 x 7).
-constexpr int kMaxLocal = 14;
+/// The most local coordinates an element has (a coupling of two spatial
+/// joints: 4 bodies x 7).
+constexpr int kMaxLocal = 28;
 /// Positions in q of an element's local coordinates; -1 where the ground, or
 /// a particle's missing angle, stands.
 using LocalCoords = std::array<int, kMaxLocal>;

@@ -87,6 +87,25 @@ JointOf joint_coordinate(const Model& m, const std::string& joint, const std::st
   return out;
 }
 
+spatial::JointReading joint_reading(const JointCoordinate& c, double center) {
+  spatial::JointReading r;
+  r.slide = c.slides;
+  r.f_i = c.f_i, r.g_i = c.g_i, r.f_j = c.f_j;
+  r.s_i = c.s_i, r.s_j = c.s_j, r.a_i = c.a_i;
+  r.center = center;
+  return r;
+}
+
+double initial_joint_value(const Model& m, const JointCoordinate& c) {
+  spatial::Loc at;
+  for (int side = 0; side < 2; ++side) {
+    const int b = side ? c.body_j : c.body_i;
+    at.segment<3>(7 * side) = b == kGround ? Vec3::Zero() : Vec3(m.bodies()[b].r0);
+    at.segment<4>(7 * side + 3) = b == kGround ? Vec4(1.0, 0.0, 0.0, 0.0) : Vec4(m.bodies()[b].p0);
+  }
+  return joint_reading(c, 0.0)(at, {}).value;
+}
+
 StopValues stop_values(const Args& a, const std::string& label) {
   const std::optional<double> lower = a.optional_real("lower"), upper = a.optional_real("upper");
   if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");

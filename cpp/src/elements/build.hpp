@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lagmb/elements/joint_coordinate.hpp"
+#include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/spatial.hpp"
 #include "lagmb/model/model.hpp"
@@ -65,6 +66,12 @@ struct JointOf : JointCoordinate {
   ElementRef joint;
 };
 JointOf joint_coordinate(const Model& m, const std::string& joint, const std::string& element);
+/// How a spatial element reads that coordinate (spatial_drivers.hpp), an
+/// angle within pi of `center` (rad).
+spatial::JointReading joint_reading(const JointCoordinate& c, double center);
+/// The joint's coordinate (its angle in (-pi, pi], or its slide) in the
+/// model's initial configuration.
+double initial_joint_value(const Model& m, const JointCoordinate& c);
 
 // --- spatial kinds -----------------------------------------------------------
 

@@ -23,12 +23,9 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
                      "2 pi apart");
   SpatialJointStop s = build::joining<SpatialJointStop>(m, name, c.body_i, c.body_j);
   // read the angle within pi of the middle of the range (of a quarter turn inside a lone limit)
-  s.center = v.has_lower && v.has_upper ? 0.5 * (v.lower + v.upper)
-             : v.has_lower              ? v.lower + 0.5 * kPi
-                                        : v.upper - 0.5 * kPi;
-  s.slide = c.slides;
-  s.f_i = c.f_i, s.g_i = c.g_i, s.f_j = c.f_j;
-  s.s_i = c.s_i, s.s_j = c.s_j, s.a_i = c.a_i;
+  s.joint = build::joint_reading(c, v.has_lower && v.has_upper ? 0.5 * (v.lower + v.upper)
+                                    : v.has_lower              ? v.lower + 0.5 * kPi
+                                                               : v.upper - 0.5 * kPi);
   s.has_lower = v.has_lower, s.has_upper = v.has_upper;
   s.lower = v.lower, s.upper = v.upper;
   s.restitution = v.restitution, s.rest_speed = v.rest_speed;

@@ -181,8 +181,7 @@ void Model::finalize() {
     ConstraintGroupBase& group = *constraints_[g];
     ElementPlacement& p = group.placement(k);
     p.row0 = m_;
-    const auto bodies = group.bodies(k);
-    p.coord = local_coordinates(bodies[0], bodies[1]);
+    p.coord = local_coordinates(group.bodies(k));
     m_ += group.rows(k);
     row_owner_.insert(row_owner_.end(), group.rows(k), int(e));
   }
@@ -340,20 +339,31 @@ Vec2 Model::initial_position(int body) const {
   return body == kGround ? Vec2::Zero() : bodies_[body].position;
 }
 
-LocalCoords Model::local_coordinates(int body_i, int body_j) const {
+LocalCoords Model::local_coordinates(int body_i, int body_j) const { return local_coordinates({body_i, body_j}); }
+
+LocalCoords Model::local_coordinates(const std::vector<int>& element_bodies) const {
   LocalCoords c;
   c.fill(-1);
-  for (int side = 0; side < 2; ++side) {
-    const int b = side ? body_j : body_i;
+  // every body of one element lives in one space: the first that is not the ground says which
+  bool spatial = false;
+  for (int b : element_bodies)
+    if (b != kGround) {
+      spatial = bodies_[b].spatial;
+      break;
+    }
+  const int stride = spatial ? 7 : 3;
+  for (size_t side = 0; side < element_bodies.size(); ++side) {
+    const int b = element_bodies[side];
     if (b == kGround) continue;
     const Body& body = bodies_[b];
+    const int at = stride * int(side);
     if (body.spatial) {
-      for (int a = 0; a < 7; ++a) c[7 * side + a] = body.first_coord + a;
+      for (int a = 0; a < 7; ++a) c[at + a] = body.first_coord + a;
       continue;
     }
-    c[3 * side] = body.first_coord;
-    c[3 * side + 1] = body.first_coord + 1;
-    c[3 * side + 2] = body.angle_coord();
+    c[at] = body.first_coord;
+    c[at + 1] = body.first_coord + 1;
+    c[at + 2] = body.angle_coord();
   }
   return c;
 }

@@ -69,6 +69,8 @@ KindInfo bushing_kind();
 KindInfo spatial_force_kind();
 KindInfo spatial_torque_kind();
 KindInfo spatial_stop_kind();
+KindInfo joint_coupling_kind();
+KindInfo spatial_joint_friction_kind();
 
 const std::vector<KindInfo>& element_kinds() {
   // the order of scene tables and docs; a new kind adds its line here and above
@@ -91,7 +93,8 @@ const std::vector<KindInfo>& element_kinds() {
       spatial_body_driver_kind(), spatial_spring_damper_kind(),
       spatial_rotational_spring_damper_kind(), bushing_kind(),
       spatial_force_kind(), spatial_torque_kind(),
-      spatial_stop_kind(),
+      spatial_stop_kind(),  joint_coupling_kind(),
+      spatial_joint_friction_kind(),
   };
   return kinds;
 }
@@ -385,7 +388,10 @@ Param make(const std::string& name, ParamType type, bool required, Value fallbac
 Param body(const std::string& name, const std::string& doc) {
   return make(name, ParamType::kBody, true, {}, "", doc);
 }
-Param joint(const std::string& doc) { return make("joint", ParamType::kJoint, true, {}, "", doc); }
+Param joint(const std::string& doc) { return joint("joint", doc); }
+Param joint(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kJoint, true, {}, "", doc);
+}
 Param real(const std::string& name, const std::string& unit, const std::string& doc) {
   return make(name, ParamType::kReal, true, {}, unit, doc);
 }

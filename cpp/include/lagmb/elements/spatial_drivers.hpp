@@ -32,6 +32,25 @@ inline ScalarTerm joint_slide(const Loc& c, const Vec3& s_i, const Vec3& s_j, co
              want);
 }
 
+/// A joint's coordinate as stops and couplings read it: a revolute's angle
+/// (joint_angle) taken within pi of `center`, so that the reading does not
+/// wrap where the element acts, or a translational's slide (joint_slide).
+/// The shift by a whole number of turns is constant where the reading is
+/// smooth: the derivatives are joint_angle's.
+struct JointReading {
+  bool slide = false;
+  Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();  // the angle's (joint_coordinate.hpp)
+  Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero(), a_i = Vec3::UnitZ();    // the slide's
+  double center = 0.0;                                                  // rad
+
+  ScalarTerm operator()(const Loc& c, const Want& want) const {
+    if (slide) return joint_slide(c, s_i, s_j, a_i, want);
+    ScalarTerm s = joint_angle(c, f_i, g_i, f_j, want);
+    s.value = center + std::remainder(s.value - center, 2.0 * kPi);
+    return s;
+  }
+};
+
 }  // namespace spatial
 
 /// One row, time dependent through f.

@@ -29,22 +29,16 @@ struct SpatialJointStop {
 
   std::string name;
   int body_i = -1, body_j = -1;
-  bool slide = false;  // translational (else revolute)
-  Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();  // the angle's (joint_coordinate.hpp)
-  Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero(), a_i = Vec3::UnitZ();    // the slide's
+  spatial::JointReading joint;  // its center: the middle of the limits
   bool has_lower = false, has_upper = false;
   double lower = 0.0, upper = 0.0;
   double restitution = 0.0;
   double rest_speed = 0.0;  // rad/s or m/s
-  double center = 0.0;      // an angle is read within pi of it (rad)
 
   spatial::ScalarTerm coordinate(const spatial::Loc& c, bool hessian) const {
     spatial::Want want;
     want.hessian = hessian;
-    if (slide) return spatial::joint_slide(c, s_i, s_j, a_i, want);
-    spatial::ScalarTerm s = spatial::joint_angle(c, f_i, g_i, f_j, want);
-    s.value = center + std::remainder(s.value - center, 2.0 * kPi);  // (a constant shift: same derivatives)
-    return s;
+    return joint(c, want);
   }
   double root(int r, const spatial::Loc& c, const spatial::Loc&, double) const {
     if (r == 0 ? !has_lower : !has_upper) return 1.0;

@@ -119,7 +119,9 @@ class ConstraintGroupBase {
   virtual const std::string& name(int k) const = 0;
   virtual const char* kind() const = 0;
   virtual bool time_dependent() const = 0;
-  virtual std::array<int, 2> bodies(int k) const = 0;
+  /// The bodies element k joins, in the order of its local coordinates
+  /// (two; four for a coupling of two joints, space.hpp).
+  virtual std::vector<int> bodies(int k) const = 0;
   virtual ElementPlacement& placement(int k) = 0;
   virtual const ElementPlacement& placement(int k) const = 0;
 
@@ -169,7 +171,14 @@ class ConstraintGroup final : public ConstraintGroupBase {
   const std::string& name(int k) const override { return items[k].name; }
   const char* kind() const override { return Kind::kind; }
   bool time_dependent() const override { return Kind::time_dependent; }
-  std::array<int, 2> bodies(int k) const override { return {items[k].body_i, items[k].body_j}; }
+  std::vector<int> bodies(int k) const override {
+    if constexpr (S::bodies == 2) {
+      return {items[k].body_i, items[k].body_j};
+    } else {
+      const auto b = items[k].bodies();
+      return std::vector<int>(b.begin(), b.end());
+    }
+  }
   int dimension() const override { return S::dimension; }
   std::optional<JointCoordinate> coordinate(int k) const override {
     if constexpr (has_coordinate<Kind>::value)
@@ -198,9 +207,22 @@ class ConstraintGroup final : public ConstraintGroupBase {
     slots_.resize(items.size());
     for (size_t k = 0; k < items.size(); ++k) {
       const auto& p = place_[k];
+      Slots& s = slots_[k];
+      s.repeats = false;
       for (int a = 0; a < L; ++a) {
-        for (int r = 0; r < R; ++r) slots_[k].jac[a * R + r] = slot(jac, p.row0 + r, p.coord[a]);
-        for (int b = 0; b < L; ++b) slots_[k].hess[a * L + b] = slot(hess, p.coord[b], p.coord[a]);
+        // a body an element reaches twice (space.hpp, SpatialJointPair): its
+        // Jacobian columns are summed into the first (scatter_jac); the
+        // Hessian slots are added to, so they may repeat
+        s.first[a] = a;
+        for (int b = 0; b < a && p.coord[a] >= 0; ++b)
+          if (p.coord[b] == p.coord[a]) {
+            s.first[a] = b;
+            s.repeats = true;
+            break;
+          }
+        for (int r = 0; r < R; ++r)
+          s.jac[a * R + r] = s.first[a] == a ? slot(jac, p.row0 + r, p.coord[a]) : -1;
+        for (int b = 0; b < L; ++b) s.hess[a * L + b] = slot(hess, p.coord[b], p.coord[a]);
       }
     }
   }
@@ -298,6 +320,8 @@ class ConstraintGroup final : public ConstraintGroupBase {
   struct Slots {
     std::array<int, R * L> jac;
     std::array<int, L * L> hess;
+    std::array<int, L> first;  // the first local coordinate at the same place in q
+    bool repeats = false;
   };
 
   Loc at_q(size_t k, const double* q) const { return gather_q<S>(q, place_[k].coord); }
@@ -310,8 +334,17 @@ class ConstraintGroup final : public ConstraintGroupBase {
   }
 
   void scatter_jac(size_t k, const Jac& J, double* values) const {
+    const Slots& slots = slots_[k];
+    if (slots.repeats) {
+      Jac folded = Jac::Zero();
+      for (int a = 0; a < L; ++a) folded.col(slots.first[a]) += J.col(a);
+      return scatter_folded(slots, folded, values);
+    }
+    scatter_folded(slots, J, values);
+  }
+  static void scatter_folded(const Slots& slots, const Jac& J, double* values) {
     for (int a = 0; a < R * L; ++a) {
-      const int s = slots_[k].jac[a];
+      const int s = slots.jac[a];
       if (s >= 0) values[s] = J.data()[a];
     }
   }

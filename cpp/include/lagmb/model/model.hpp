@@ -228,6 +228,8 @@ class Model {
   /// (x_i, y_i, phi_i, x_j, y_j, phi_j) in the plane, (r_i, p_i, r_j, p_j) in
   /// space (space.hpp); -1 for the ground, a missing angle and the rest.
   LocalCoords local_coordinates(int body_i, int body_j) const;
+  /// The same for the bodies of an element that joins more than two.
+  LocalCoords local_coordinates(const std::vector<int>& element_bodies) const;
 
   /// Sorted times where a time function of the model has a breakpoint.
   std::vector<double> breakpoints() const;

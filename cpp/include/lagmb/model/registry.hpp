@@ -162,7 +162,8 @@ void add_element(Model& model, const std::string& name, const Args& args);
 // --- declaring kinds (in cpp/src/elements/*.cpp) ---------------------------
 namespace param {
 Param body(const std::string& name, const std::string& doc);
-Param joint(const std::string& doc);
+Param joint(const std::string& doc);  // called "joint"
+Param joint(const std::string& name, const std::string& doc);
 Param real(const std::string& name, const std::string& unit, const std::string& doc);
 Param real(const std::string& name, double fallback, const std::string& unit, const std::string& doc);
 Param optional_real(const std::string& name, const std::string& unit, const std::string& doc);
