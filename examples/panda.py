@@ -8,7 +8,8 @@ from the zero configuration (the arm straight up), at rest. Each arm joint
 gets a viscous damper of 0.5 N m s/rad. Its joint limits are left out
 (limits=False): the zero configuration lies beyond joint 4's, and a joint
 coming to rest on a limit would end the run; so are the file's own tiny
-damping values (dynamics=False) and the fingers' coupling (mimic=False).
+damping values (dynamics=False). The second finger mimics the first (the
+file's <mimic>, a joint coupling).
 
 Prints the energy balance of the 2 s fall: the energy the arm lost equals
 the work the dampers did, the integral of c w^2 over the joints.
@@ -39,7 +40,7 @@ def panda_urdf():
 
 
 def build(path):
-    model = mb.load_urdf(path, limits=False, dynamics=False, mimic=False)
+    model = mb.load_urdf(path, limits=False, dynamics=False)
     for joint in ARM:
         model.add_rotational_spring_damper(f"{joint}_damper", joint=joint, damping=DAMPING)
     return model

@@ -239,7 +239,7 @@ def test_joint_damping_is_a_torque_against_the_rate():
     finally:
         os.remove(path)
     js = mb.JointSpace(model)
-    assert [e for e in model.elements() if e[0] == "add_rotational_spring_damper"]
+    assert [kw["viscous"] for method, kw in model.elements() if method == "add_joint_friction"] == [0.7, 0.7]
     positions, rates, q_pin, v_pin = random_state(pm, js, np.random.default_rng(3))
     expected = pin.aba(pm, pm.createData(), q_pin, v_pin, -0.7 * v_pin)
     q, v, _ = js.coordinates(positions, rates)
@@ -387,15 +387,111 @@ def test_limits_are_stops(tmp_path):
     assert mb.load_urdf(write(tmp_path, wide), limits=False).bodies
 
 
-def test_what_is_not_built_yet_is_refused_by_name(tmp_path):
-    """Joint friction and mimic joints are refused naming the joint and the
-    way to load without them."""
-    rubbing = ARM.replace("</joint>", '<dynamics friction="0.2"/></joint>')
-    with pytest.raises(mb.UrdfError, match="friction 0.2 needs joint friction in space.*dynamics=False"):
-        mb.load_urdf(write(tmp_path, rubbing), limits=False)
-    assert mb.load_urdf(write(tmp_path, rubbing), limits=False, dynamics=False).bodies
-    with pytest.raises(mb.UrdfError, match="panda_finger_joint2.*<mimic>"):
-        mb.load_urdf(os.path.join(ROBOTS, "panda_description/urdf/panda.urdf"), limits=False, dynamics=False)
+def test_joint_friction_is_a_torque_against_the_rate(tmp_path):
+    """<dynamics damping="c" friction="F0">: the joint torque (force, for a
+    prismatic joint) -F0 sd / sqrt(sd^2 + v_s^2) - c sd, v_s = 1e-3, on a
+    revolute and a prismatic joint: the accelerations equal Pinocchio's ABA
+    given that torque."""
+    text = ARM.replace('<child link="upper"/>', '<child link="upper"/><dynamics damping="0.4" friction="0.3"/>')
+    text = text.replace("</robot>", """<link name="slider"><inertial><mass value="0.5"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <joint name="slide" type="prismatic"><parent link="upper"/><child link="slider"/>
+      <origin xyz="0.3 0 0"/><axis xyz="1 0 0"/><dynamics damping="2.0" friction="1.5"/>
+      <limit lower="-1" upper="1" effort="10" velocity="1"/></joint></robot>""")
+    path = write(tmp_path, text)
+    model = mb.load_urdf(path, limits=False)
+    frictions = {kw["joint"]: (kw["viscous"], kw["preload"]) for method, kw in model.elements()
+                 if method == "add_joint_friction"}
+    assert frictions == {"shoulder": (0.4, 0.3), "slide": (2.0, 1.5)}
+    pm = pin.buildModelFromUrdf(str(path))
+    pm.gravity.linear[:] = GRAVITY
+    js = mb.JointSpace(model)
+    for seed in range(3):
+        positions, rates, q_pin, v_pin = random_state(pm, js, np.random.default_rng(seed))
+        assert list(pm.names[1:]) == ["shoulder", "slide"]
+        damping, coulomb = np.array([0.4, 2.0]), np.array([0.3, 1.5])
+        tau = -coulomb * v_pin / np.sqrt(v_pin ** 2 + 1e-6) - damping * v_pin
+        expected = pin.aba(pm, pm.createData(), q_pin, v_pin, tau)
+        q, v, _ = js.coordinates(positions, rates)
+        qdd, _ = mb.solve_accelerations(model, q, v)
+        for jid in (1, 2):
+            assert js.motion(pm.names[jid], q, v, qdd)[2] == pytest.approx(expected[jid - 1], rel=1e-9, abs=1e-9)
+    with pytest.raises(mb.UrdfError, match="line 5: joint 'shoulder': damping and friction of a planar joint are not supported"):
+        mb.load_urdf(write(tmp_path, ARM.replace('type="revolute"', 'type="planar"').replace(
+            '<child link="upper"/>', '<child link="upper"/><dynamics damping="0.1"/>')), limits=False)
+
+
+def test_a_mimic_joint_follows_its_leader():
+    """<mimic joint="panda_finger_joint1"/>: the Panda's second finger slides
+    with the first (a joint coupling). It starts where its leader says;
+    its accelerations at random states equal Pinocchio's constrained
+    dynamics [M J^T; J 0] with the row qdd_2 - qdd_1 = 0 to 1e-9; in a run
+    the fingers keep equal slides."""
+    relpath = "panda_description/urdf/panda.urdf"
+    model = load(relpath, mimic=True, positions={"panda_finger_joint1": 0.02})
+    couplings = [kw for method, kw in model.elements() if method == "add_joint_coupling"]
+    assert couplings == [dict(name="panda_finger_joint2_mimic", joint="panda_finger_joint2",
+                              leader="panda_finger_joint1", multiplier=1.0, offset=0.0)]
+    js = mb.JointSpace(model)
+    q0, v0 = model.compiled().initial_state()
+    assert js.motion("panda_finger_joint2", q0, v0)[0] == pytest.approx(0.02, abs=1e-15)
+    pm = pinocchio_model(relpath)
+    i1, i2 = (pm.joints[pm.getJointId(f"panda_finger_joint{k}")].idx_v for k in (1, 2))
+    J = np.zeros((1, pm.nv))
+    J[0, i1], J[0, i2] = -1.0, 1.0
+    for seed in range(3):
+        positions, rates, q_pin, v_pin = random_state(pm, js, np.random.default_rng(seed))
+        for name, index in (("panda_finger_joint2", i2),):
+            positions[name], rates[name] = positions["panda_finger_joint1"], rates["panda_finger_joint1"]
+            q_pin[pm.joints[pm.getJointId(name)].idx_q], v_pin[index] = positions[name], rates[name]
+        data = pm.createData()
+        M = pin.crba(pm, data, q_pin)
+        M = np.triu(M) + np.triu(M, 1).T
+        bias = pin.rnea(pm, data, q_pin, v_pin, np.zeros(pm.nv))
+        kkt = np.block([[M, J.T], [J, np.zeros((1, 1))]])
+        expected = np.linalg.solve(kkt, np.concatenate([-bias, [0.0]]))[:pm.nv]
+        q, v, _ = js.coordinates(positions, rates)
+        qdd, _ = mb.solve_accelerations(model, q, v)
+        scale = np.abs(expected).max()
+        for jid in range(1, pm.njoints):
+            got = js.motion(pm.names[jid], q, v, qdd)[2]
+            assert got == pytest.approx(expected[pm.joints[jid].idx_v], abs=1e-9 * scale)
+    r = mb.simulate(model, 0.2, rtol=1e-8, n_out=11)
+    assert r.joint("panda_finger_joint2").slide == pytest.approx(r.joint("panda_finger_joint1").slide, abs=1e-9)
+
+
+def test_mimic_errors_name_the_joint(tmp_path):
+    """A mimic of an unknown joint, of itself, in a cycle, of a fixed joint;
+    a position given to a follower: each a UrdfError naming the joint and
+    the line. A fixed joint's <mimic> couples nothing (it has no
+    coordinate): passed over."""
+    two = ARM.replace("</robot>", """<link name="fore"><inertial><mass value="0.5"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/>
+      <origin xyz="0.3 0 0"/><axis xyz="0 1 0"/>MIMIC</joint></robot>""")
+
+    def loaded(tag, **options):
+        return mb.load_urdf(write(tmp_path, two.replace("MIMIC", tag)), limits=False, **options)
+
+    follows = loaded('<mimic joint="shoulder" multiplier="-0.5" offset="0.1"/>', positions={"shoulder": 0.4})
+    js = mb.JointSpace(follows)
+    q0, v0 = follows.compiled().initial_state()
+    assert js.motion("elbow", q0, v0)[0] == pytest.approx(-0.5 * 0.4 + 0.1, abs=1e-14)
+    r = mb.simulate(follows, 0.5, rtol=1e-9, n_out=6)
+    assert r.joint("elbow").angle == pytest.approx(-0.5 * r.joint("shoulder").angle + 0.1, abs=1e-9)
+    assert loaded('<mimic joint="shoulder"/>', mimic=False).elements()[-1][0] == "add_revolute"
+    for mimic, words in (('<mimic joint="wrist"/>', "mimics 'wrist', which is not a joint of the file"),
+                         ('<mimic joint="elbow"/>', "mimics itself"),
+                         ('<mimic/>', "needs the joint it mimics")):
+        with pytest.raises(mb.UrdfError, match=f"line 10: joint 'elbow': .*{words}"):
+            loaded(mimic)
+    with pytest.raises(mb.UrdfError, match="positions: joint 'elbow' mimics 'shoulder': give the position"):
+        loaded('<mimic joint="shoulder"/>', positions={"elbow": 0.2})
+    cycle = two.replace("MIMIC", '<mimic joint="shoulder"/>').replace(
+        '<child link="upper"/>', '<child link="upper"/><mimic joint="elbow"/>')
+    with pytest.raises(mb.UrdfError, match=r"mimics in a cycle \((shoulder -> elbow -> shoulder|elbow -> "
+                                           r"shoulder -> elbow)\)"):
+        mb.load_urdf(write(tmp_path, cycle), limits=False)
 
 
 def test_package_dirs_find_meshes(tmp_path):

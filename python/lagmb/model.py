@@ -2,6 +2,8 @@
 
 import copy
 
+import numpy as np
+
 from . import _core
 from . import registry
 from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
@@ -48,6 +50,9 @@ class Model:
             g = _vec2(gravity, "gravity") if self.dimension == 2 else _vec3(gravity, "gravity")
             self._spec.set_gravity(g)
             self.gravity = tuple(float(x) for x in g)
+        # frames and shapes: named places and geometry on bodies, for results
+        # and pictures; no part of the equations (add_frame, add_shape)
+        self._frames, self._shapes, self._annotations = {}, [], []
 
     def copy(self):
         """An independent copy to edit: the same bodies and elements (time
@@ -59,6 +64,8 @@ class Model:
         other.ground = Body("ground", other, -1)
         other.gravity = self.gravity
         other.dimension = self.dimension
+        other._frames, other._shapes = dict(self._frames), list(self._shapes)
+        other._annotations = list(self._annotations)
         return other
 
     __copy__ = copy
@@ -68,7 +75,7 @@ class Model:
         and the elements, replayed on a new Model (time functions by their
         fields, a Python callable by pickle's rules: a module-level function
         travels, a lambda does not). Handles and results stay with this one."""
-        return _rebuilt, (self.gravity, self.dimension, self.elements())
+        return _rebuilt, (self.gravity, self.dimension, self.elements(), tuple(self._annotations))
 
     # --- building --------------------------------------------------------
 
@@ -219,6 +226,97 @@ class Model:
         return [Body(name, self, k, kind or ("particle" if particle else "body"))
                 for k, (name, particle) in enumerate(self._spec.bodies)]
 
+    # --- frames and shapes (no part of the equations) -------------------
+
+    def add_frame(self, name, body, position, orientation=None):
+        """A named place fixed in a spatial body: its origin at the global
+        ``position`` and its axes along ``orientation`` (a rotation matrix or
+        unit quaternion (w, x, y, z); default the global axes), both in the
+        initial configuration. Results read it by name as a body
+        (``r.body(name)``: its origin's path, its axes' rotation) and
+        ``r.point(name, p)`` takes p in its axes. load_urdf adds one for each
+        link merged into another's body. Returns the Frame."""
+        context = f"frame '{name}'"
+        if self.dimension != 3:
+            raise ModelError(f"{context}: frames are spatial only; this model has dimension {self.dimension}")
+        name = _text(self._name(name), "frame name")
+        if name == "ground" or name in self._frames or name in {kw["name"] for _, kw in self.elements()}:
+            raise ModelError(f"{context}: the name is taken")
+        body_name, R, r = _initial_pose(self, body, context)
+        at = np.asarray(_vec3(position, f"{context}: position"), dtype=float)
+        if not np.all(np.isfinite(at)):
+            raise ModelError(f"{context}: position must be finite, got {position!r}")
+        axes = np.eye(3) if orientation is None else self._orientation(orientation, context)
+        frame = Frame(body_name, R.T @ (at - r), R.T @ axes)
+        self._frames[name] = frame
+        self._annotations.append(("add_frame", dict(name=name, body=body_name, position=tuple(float(x) for x in at),
+                                                    orientation=tuple(map(tuple, axes)))))
+        return frame
+
+    @property
+    def frames(self):
+        """{name: Frame} of the frames added (add_frame)."""
+        return dict(self._frames)
+
+    def add_shape(self, body, kind, size, position=(0.0, 0.0, 0.0), orientation=None, *, mesh=None,
+                  role="visual"):
+        """Geometry on a spatial body, kept with the model for pictures
+        (no part of the equations): ``kind`` "box" (size: edge lengths),
+        "cylinder" ((radius, length), its axis along its own z), "sphere"
+        ((radius,)) or "mesh" (size: the scale (3,), ``mesh``: the file);
+        centred at the global ``position`` with axes ``orientation``, in the
+        initial configuration; ``role`` "visual" or "collision". load_urdf
+        adds a link's <visual> and <collision> geometry. Returns the Shape."""
+        context = f"shape on '{body}'"
+        if self.dimension != 3:
+            raise ModelError(f"{context}: shapes are spatial only; this model has dimension {self.dimension}")
+        if kind not in _SHAPE_SIZES:
+            raise ModelError(f"{context}: kind must be one of {', '.join(_SHAPE_SIZES)}, got {kind!r}")
+        if role not in ("visual", "collision"):
+            raise ModelError(f"{context}: role must be 'visual' or 'collision', got {role!r}")
+        try:
+            dims = np.asarray(size, dtype=float).reshape(_SHAPE_SIZES[kind])
+        except (TypeError, ValueError):
+            raise ModelError(f"{context}: a {kind}'s size is {_SHAPE_SIZES[kind]} numbers, got {size!r}") from None
+        # (a mesh's scale may be negative: a mirrored mesh)
+        if not (np.all(np.isfinite(dims)) and np.all((dims != 0) if kind == "mesh" else (dims > 0))):
+            raise ModelError(f"{context}: a {kind}'s size must be {'nonzero' if kind == 'mesh' else 'positive'}, "
+                             f"got {size!r}")
+        if (kind == "mesh") != (mesh is not None):
+            raise ModelError(f"{context}: a mesh names its file (mesh=...), other kinds do not")
+        body_name, R, r = _initial_pose(self, body, context)
+        at = np.asarray(_vec3(position, f"{context}: position"), dtype=float)
+        axes = np.eye(3) if orientation is None else self._orientation(orientation, context)
+        shape = Shape(body_name, kind, tuple(float(x) for x in dims), R.T @ (at - r), R.T @ axes,
+                      None if mesh is None else str(mesh), role)
+        self._shapes.append(shape)
+        self._annotations.append(("add_shape", dict(body=body_name, kind=kind, size=shape.size,
+                                                    position=tuple(float(x) for x in at),
+                                                    orientation=tuple(map(tuple, axes)), mesh=shape.mesh,
+                                                    role=role)))
+        return shape
+
+    @property
+    def shapes(self):
+        """The shapes added (add_shape), in order."""
+        return list(self._shapes)
+
+    def _orientation(self, orientation, context):
+        try:
+            a = np.asarray(orientation, dtype=float)
+        except (TypeError, ValueError):
+            a = None
+        if a is None or a.shape not in ((3, 3), (4,)) or not np.all(np.isfinite(a)):
+            raise ModelError(f"{context}: orientation must be a 3 x 3 rotation matrix or a unit quaternion, "
+                             f"got {orientation!r}")
+        if a.shape == (4,):
+            if not abs(np.linalg.norm(a) - 1.0) < 1e-6:
+                raise ModelError(f"{context}: the quaternion {orientation!r} is not a unit quaternion")
+            return _rotation(a)
+        if not (np.allclose(a.T @ a, np.eye(3), atol=1e-6) and np.linalg.det(a) > 0):
+            raise ModelError(f"{context}: orientation is not a rotation matrix")
+        return a
+
     @property
     def n_coordinates(self):
         return self.compiled().n_coordinates
@@ -319,12 +417,74 @@ _CHECKS = {
 }
 
 
-def _rebuilt(gravity, dimension, elements):
+def _rebuilt(gravity, dimension, elements, annotations=()):
     """A Model from what Model.__reduce__ gives."""
     model = Model(gravity=gravity, dimension=dimension)
-    for method, kwargs in elements:
+    for method, kwargs in list(elements) + list(annotations):
         getattr(model, method)(**kwargs)
     return model
+
+
+def _initial_pose(model, body, context):
+    """(R, r) of a spatial body's axes in the initial configuration (the
+    ground: identity, origin), from its add_body values."""
+    name, index = model._body(body, "body", context)
+    if index < 0:
+        return name, np.eye(3), np.zeros(3)
+    values = next(kw for method, kw in model.elements() if method == "add_body" and kw["name"] == name)
+    R = _rotation(values["orientation"])
+    return name, R, np.asarray(values["position"], dtype=float)
+
+
+def _rotation(orientation):
+    """A 3 x 3 rotation matrix from a unit quaternion (w, x, y, z) or a matrix."""
+    a = np.asarray(orientation, dtype=float)
+    if a.shape == (3, 3):
+        return a
+    w, x, y, z = a / np.linalg.norm(a)
+    return np.array([[w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z]])
+
+
+class Frame(tuple):
+    """A named place on a body (Model.add_frame): ``body`` (its name),
+    ``position`` (3,) its origin in the body's axes from the body's centre
+    of mass (m), ``rotation`` (3, 3) its axes in the body's axes."""
+
+    __slots__ = ()
+
+    def __new__(cls, body, position, rotation):
+        return super().__new__(cls, (body, position, rotation))
+
+    body = property(lambda self: self[0])
+    position = property(lambda self: self[1])
+    rotation = property(lambda self: self[2])
+
+
+class Shape(tuple):
+    """Geometry on a body for pictures (Model.add_shape): ``body``,
+    ``kind`` ("box", "cylinder", "sphere" or "mesh"), ``size`` (box: the
+    edge lengths (3,); cylinder: (radius, length) along its z; sphere:
+    (radius,); mesh: the scale (3,)), ``position`` and ``rotation`` in the
+    body's axes from its centre of mass, ``mesh`` (a file path, or None),
+    ``role`` ("visual" or "collision")."""
+
+    __slots__ = ()
+
+    def __new__(cls, body, kind, size, position, rotation, mesh, role):
+        return super().__new__(cls, (body, kind, size, position, rotation, mesh, role))
+
+    body = property(lambda self: self[0])
+    kind = property(lambda self: self[1])
+    size = property(lambda self: self[2])
+    position = property(lambda self: self[3])
+    rotation = property(lambda self: self[4])
+    mesh = property(lambda self: self[5])
+    role = property(lambda self: self[6])
+
+
+_SHAPE_SIZES = {"box": 3, "cylinder": 2, "sphere": 1, "mesh": 3}
 
 
 def _method(method):

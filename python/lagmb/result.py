@@ -84,6 +84,31 @@ class BodyPath:
         self.angular_acceleration = result.a[:, first + 2] if count == 3 else zero
 
 
+class FramePath:
+    """The motion of a frame fixed in a spatial body (Model.add_frame), from
+    its body's: position, velocity, acceleration (k, 3) of its origin;
+    rotation (k, 3, 3), its axes into global axes; angular_velocity and
+    angular_acceleration (k, 3), the body's. With s = R_b s' its origin
+    from the body's centre of mass: v = v_b + w x s, a = a_b + w' x s +
+    w x (w x s)."""
+
+    def __init__(self, body, frame):
+        if not hasattr(body, "rotation"):  # a frame of the ground
+            k = len(body.position)
+            self.position = np.tile(frame.position, (k, 1))
+            self.velocity = self.acceleration = np.zeros((k, 3))
+            self.rotation = np.tile(frame.rotation, (k, 1, 1))
+            self.angular_velocity = self.angular_acceleration = np.zeros((k, 3))
+            return
+        s = np.einsum("kij,j->ki", body.rotation, frame.position)
+        w, wd = body.angular_velocity, body.angular_acceleration
+        self.position = body.position + s
+        self.velocity = body.velocity + np.cross(w, s)
+        self.acceleration = body.acceleration + np.cross(wd, s) + np.cross(w, np.cross(w, s))
+        self.rotation = np.einsum("kij,jl->kil", body.rotation, frame.rotation)
+        self.angular_velocity, self.angular_acceleration = w, wd
+
+
 class JointPath:
     """A joint's coordinate along a run (Result.joint): ``angle`` (rad) of a
     revolute or cylindrical joint, ``slide`` (m) of a translational or
@@ -183,9 +208,18 @@ class Result:
         return element_name(self.model, self._core, item, accepts, what, context)
 
     def body(self, body):
-        """Motion of a body (handle or name): .position, .angle, ..."""
+        """Motion of a body (handle or name): .position, .angle, ... In a
+        spatial model also of a frame by its name (Model.add_frame: a link
+        load_urdf merged into another's body): a FramePath."""
+        frame = self._frame(body)
+        if frame is not None:
+            return FramePath(self.body(frame.body), frame)
         first, count = self._core.body_coordinates(self._name(body, ("body",), "body", "Result.body"))
         return BodyPath(self, first, count)
+
+    def _frame(self, name):
+        frames = getattr(self.model, "_frames", {})
+        return frames.get(name) if isinstance(name, str) else None
 
     def point(self, body, local_point):
         """(k, 2) global path of a point given in the body's own axes ((k, 3)
@@ -202,6 +236,7 @@ class Result:
         if size == 3:
             if not hasattr(b, "rotation"):  # the ground
                 return np.tile(s, (len(self), 1))
+            # (a frame's path: its origin and axes)
             return b.position + np.einsum("kij,j->ki", b.rotation, s)
         c, sn = np.cos(b.angle), np.sin(b.angle)
         return b.position + np.column_stack((c * s[0] - sn * s[1], sn * s[0] + c * s[1]))

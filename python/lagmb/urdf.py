@@ -289,7 +289,12 @@ class _Reader:
             joint["elements"]["dynamics"] = dynamics
         mimic = element.one("mimic")
         if mimic is not None:
-            joint["mimic"] = mimic
+            leader = mimic.attrib.get("joint")
+            if not leader:
+                self.fail(mimic, "<mimic> needs the joint it mimics (joint=\"...\")", owner)
+            joint["mimic"] = dict(element=mimic, joint=leader,
+                                  multiplier=float(self.numbers(mimic, "multiplier", 1, owner, (1.0,))[0]),
+                                  offset=float(self.numbers(mimic, "offset", 1, owner, (0.0,))[0]))
         return joint
 
     def read(self):
@@ -385,21 +390,23 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         if isinstance(value, bool) or not (isinstance(value, numbers.Real) and math.isfinite(value)):
             raise UrdfError(f"{reader.path}: positions: joint '{name}' must be a finite number, got {value!r}")
     children = _children(joints)
+    followers = _followers(reader, joints) if mimic else {}
+    for name in positions:
+        if name in followers:
+            raise UrdfError(f"{reader.path}: positions: joint '{name}' mimics '{followers[name]['joint']}': give "
+                            f"the position of '{followers[name]['joint']}' (or load with mimic=False)")
+    value = _joint_values(joints, positions, followers, limits)
     for joint in joints.values():
         owner = f"joint '{joint['name']}'"
-        if mimic and joint["mimic"] is not None:
-            reader.fail(joint["mimic"], "<mimic> (a coupling of two joints) is not supported yet", owner)
         if limits and joint["limit"] is not None and joint["type"] == "revolute" and \
                 not joint["limit"][1] - joint["limit"][0] < 2 * math.pi:
             reader.fail(joint["elements"]["limit"], f"position limits {joint['limit']} span a full turn or more: "
                         "a stop reads a joint angle within one turn, so it cannot hold them yet; load with "
                         "limits=False to leave them out", owner)
-        if dynamics and joint["friction"] > 0:
-            reader.fail(joint["elements"]["dynamics"], f"friction {joint['friction']} needs joint friction in space, "
-                        "which lagmb does not have yet: load with dynamics=False to leave it out", owner)
-        if dynamics and joint["damping"] > 0 and joint["type"] not in ("revolute", "continuous"):
-            reader.fail(joint["elements"]["dynamics"], f"damping of a {joint['type']} joint is not supported yet "
-                        "(a revolute's is): load with dynamics=False to leave it out", owner)
+        if dynamics and (joint["damping"] > 0 or joint["friction"] > 0) and joint["type"] == "planar":
+            reader.fail(joint["elements"]["dynamics"], "damping and friction of a planar joint are not supported "
+                        "(a revolute's, continuous's and prismatic's are): load with dynamics=False to leave "
+                        "them out", owner)
 
     # world poses of the links in the configuration of `positions`, and their groups
     pose = {root: (np.eye(3), np.zeros(3))}
@@ -411,7 +418,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         for joint in reversed(children.get(link, [])):
             R_parent, p_parent = pose[link]
             R_joint, p_joint = R_parent @ joint["R"], p_parent + R_parent @ joint["p"]  # the joint's frame
-            x = float(positions.get(joint["name"], 0.0))
+            x = value.get(joint["name"], 0.0)
             if joint["type"] in ("revolute", "continuous"):
                 R_joint = R_joint @ _turn(joint["axis"], x)
             elif joint["type"] == "prismatic":
@@ -462,6 +469,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         group = group_of[link]
         return "ground" if group == ground else group
 
+    names = {}  # URDF joint name -> its name in the model
+
     for joint in joints.values():
         if joint["type"] in ("fixed", "floating"):
             continue
@@ -474,15 +483,88 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             name = f"{name}_joint"
             if name in links or name in joints:
                 reader.fail(joint["element"], f"has the name of a link, and so has '{name}'", f"joint '{joint['name']}'")
-        x = float(positions.get(joint["name"], 0.0))
+        names[joint["name"]] = name
+        x = value.get(joint["name"], 0.0)
         if joint["type"] in ("revolute", "continuous"):
             model.add_revolute(name, parent, child, at=tuple(at), axis=tuple(axis), angle=x)
-            if dynamics and joint["damping"] > 0:
-                model.add_rotational_spring_damper(f"{name}_damping", joint=name, damping=joint["damping"])
         elif joint["type"] == "prismatic":
             model.add_translational(name, parent, child, at=tuple(at), axis=tuple(axis), slide=x)
         else:
             model.add_planar(name, parent, child, at=tuple(at), normal=tuple(axis))
+        if dynamics and (joint["damping"] > 0 or joint["friction"] > 0):  # (not planar: refused above)
+            model.add_joint_friction(f"{name}_friction" if joint["friction"] > 0 else f"{name}_damping", joint=name,
+                                     viscous=joint["damping"], preload=joint["friction"])
         if limits and joint["limit"] is not None:  # (revolute and prismatic joints only)
             model.add_stop(f"{name}_limit", joint=name, lower=joint["limit"][0], upper=joint["limit"][1])
+    for follower, m in followers.items():  # (after every joint: a leader may come later in the file)
+        model.add_joint_coupling(f"{names[follower]}_mimic", joint=names[follower], leader=names[m["joint"]],
+                                 multiplier=m["multiplier"], offset=m["offset"])
+    taken = {kw["name"] for _, kw in model.elements()}
+    for first, members in groups.items():
+        for link in members:
+            R, p = pose[link]
+            # (a group's first link is its body; a root link called ground is the ground)
+            if (link != first or first == ground) and not (link == "ground" and first == ground):
+                if link in taken:
+                    reader.fail(links[link]["element"], f"its frame would take the name of the model's '{link}'",
+                                f"link '{link}'")
+                model.add_frame(link, body(link), position=tuple(p), orientation=R)
+            for shape in links[link]["shapes"]:
+                size = {"box": lambda: shape.get("size"), "cylinder": lambda: (shape["radius"], shape["length"]),
+                        "sphere": lambda: (shape["radius"],), "mesh": lambda: shape["scale"]}[shape["geometry"]]()
+                model.add_shape(body(link), shape["geometry"], size, position=tuple(p + R @ shape["p"]),
+                                orientation=R @ shape["R"], mesh=shape.get("filename"), role=shape["kind"])
     return model
+
+
+def _followers(reader, joints):
+    """{joint: its <mimic>} for the joints that mimic another: both must
+    have a coordinate (revolute, continuous, prismatic). A fixed joint's
+    <mimic> couples nothing (it has no coordinate) and is passed over, as
+    Pinocchio and MuJoCo do."""
+    moving = ("revolute", "continuous", "prismatic")
+    out = {}
+    for joint in joints.values():
+        m = joint["mimic"]
+        if m is None or joint["type"] == "fixed":
+            continue
+        owner = f"joint '{joint['name']}'"
+        if joint["type"] not in moving:
+            reader.fail(m["element"], f"a {joint['type']} joint cannot mimic (only revolute, continuous and "
+                        "prismatic joints have one coordinate)", owner)
+        leader = joints.get(m["joint"])
+        if leader is None:
+            reader.fail(m["element"], f"mimics '{m['joint']}', which is not a joint of the file", owner)
+        if leader["type"] not in moving:
+            reader.fail(m["element"], f"mimics '{m['joint']}', a {leader['type']} joint (a leader must be revolute, "
+                        "continuous or prismatic)", owner)
+        if leader["name"] == joint["name"]:
+            reader.fail(m["element"], "mimics itself", owner)
+        out[joint["name"]] = m
+    for name in out:  # a cycle of mimics has no leader
+        seen, at = [name], out[name]["joint"]
+        while at in out:
+            if at in seen:
+                reader.fail(out[name]["element"], f"mimics in a cycle ({' -> '.join(seen + [at])})",
+                            f"joint '{name}'")
+            seen.append(at)
+            at = out[at]["joint"]
+    return out
+
+
+def _joint_values(joints, positions, followers, limits):
+    """Each joint's angle or slide in the configuration the model is built
+    in: `positions`; where not given 0, or with `limits` the middle of the
+    joint's limits if 0 lies outside them (the Panda's fourth joint); a
+    mimic's multiplier x + offset of its leader's value."""
+    def of(name):
+        if name in followers:
+            m = followers[name]
+            return m["multiplier"] * of(m["joint"]) + m["offset"]
+        if name in positions:
+            return float(positions[name])
+        limit = joints[name]["limit"]
+        if limits and limit is not None and not limit[0] <= 0.0 <= limit[1]:
+            return 0.5 * (limit[0] + limit[1])
+        return 0.0
+    return {name: of(name) for name in joints}
