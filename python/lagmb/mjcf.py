@@ -17,6 +17,7 @@ import warnings
 import numpy as np
 
 from .errors import ModelError
+from .functions import Constant
 from .model import Model
 
 
@@ -49,13 +50,21 @@ def load_mjcf(path, *, contacts="warn"):
     (``NAME_damping``). Equality constraints: ``connect`` becomes a spherical
     joint at its anchor, ``weld`` a weld in the reference configuration.
     Gravity is the model's. Names are MuJoCo's (``body3``, ``joint2``,
-    ``equality0`` where it has none).
+    ``equality0`` where it has none). What the model's ``<option><flag>``
+    disables MuJoCo leaves out and so does lagmb: gravity (``gravity``),
+    joint damping (``damper``), equality constraints (``equality`` or
+    ``constraint``).
 
     Contacts between geoms are not simulated: ``contacts="warn"`` names the
     colliding geoms in an MjcfWarning, ``"ignore"`` says nothing, ``"error"``
     raises. MjcfError (a ModelError) for what lagmb does not read yet:
-    tendons, actuators, a body with more than one joint, joint equalities,
-    armature, friction loss, stiffness, limits, a slide's damping.
+    tendons, actuators, flexes, plugins, a body with more than one joint,
+    joint equalities, armature, friction loss, stiffness (linear or not),
+    limits, damping of a slide, ball or free joint, nonlinear damping
+    (``damping`` with more than one coefficient), gravity compensation
+    (``gravcomp``), fluid forces (``density`` or ``viscosity``), an
+    equality that does not hold in the reference configuration (a weld's
+    ``relpose``).
     """
     mujoco = _mujoco()
     path = os.fspath(path)
@@ -77,12 +86,28 @@ def load_mjcf(path, *, contacts="warn"):
         raise MjcfError(f"{path}: {what}")
 
     obj = mujoco.mjtObj
+    off = mujoco.mjtDisableBit
+
+    def disabled(*bits):  # what <option><flag .../> switches off in MuJoCo
+        return any(int(m.opt.disableflags) & int(bit) for bit in bits)
+
     if m.ntendon:
         refuse(f"tendon '{name(obj.mjOBJ_TENDON, 0, 'tendon')}': tendons are not supported")
     if m.nu:
         refuse(f"actuator '{name(obj.mjOBJ_ACTUATOR, 0, 'actuator')}': actuators are not supported yet")
+    if m.nflex:
+        refuse(f"flex '{name(obj.mjOBJ_FLEX, 0, 'flex')}': flexes (deformable bodies) are not supported")
+    if m.nplugin:
+        refuse(f"plugin '{name(obj.mjOBJ_PLUGIN, 0, 'plugin')}': plugins are not supported (one may add forces "
+               "lagmb does not know)")
+    if m.opt.density or m.opt.viscosity:
+        refuse(f"option density={m.opt.density:g} viscosity={m.opt.viscosity:g}: fluid forces are not supported")
+    for b in range(1, m.nbody):
+        if m.body_gravcomp[b]:
+            refuse(f"body '{name(obj.mjOBJ_BODY, b, 'body')}': gravity compensation (gravcomp) is not supported")
     colliding = [g for g in range(m.ngeom) if m.geom_contype[g] or m.geom_conaffinity[g]]
-    if colliding and not (m.opt.disableflags & mujoco.mjtDisableBit.mjDSBL_CONTACT) and contacts != "ignore":
+    colliding += sorted({int(g) for p in range(m.npair) for g in (m.pair_geom1[p], m.pair_geom2[p])} - set(colliding))
+    if colliding and not disabled(off.mjDSBL_CONTACT, off.mjDSBL_CONSTRAINT) and contacts != "ignore":
         listed = ", ".join(repr(name(obj.mjOBJ_GEOM, g, "geom")) for g in colliding[:5])
         text = (f"{path}: contacts between geoms are not simulated by lagmb ({len(colliding)} geoms collide in "
                 f"MuJoCo: {listed}{', ...' if len(colliding) > 5 else ''}); pass contacts='ignore' to say nothing")
@@ -95,7 +120,9 @@ def load_mjcf(path, *, contacts="warn"):
     for b in range(1, m.nbody):
         group[b] = b if m.body_jntnum[b] > 0 else group[int(m.body_parentid[b])]
     names = {0: "ground"}
-    model = Model(gravity=tuple(float(g) for g in m.opt.gravity), dimension=3)
+    joint_value = {}  # MuJoCo joint id -> (its name in the model, its value at qpos0): hinges and slides
+    gravity = np.zeros(3) if disabled(off.mjDSBL_GRAVITY) else m.opt.gravity
+    model = Model(gravity=tuple(float(g) for g in gravity), dimension=3)
     for b in range(1, m.nbody):
         if group[b] != b:
             continue
@@ -127,14 +154,20 @@ def load_mjcf(path, *, contacts="warn"):
         parent = names[group[int(m.body_parentid[b])]]
         at, axis = tuple(d.xanchor[j]), tuple(d.xaxis[j])
         dof = int(m.jnt_dofadr[j])
+        dofs = slice(dof, dof + (6 if kind == 0 else 3 if kind == 1 else 1))
         for what, values in (("armature", m.dof_armature), ("frictionloss", m.dof_frictionloss)):
-            if np.any(values[dof:dof + (6 if kind == 0 else 3 if kind == 1 else 1)] != 0):
+            if np.any(values[dofs] != 0):
                 refuse(f"joint '{label}': {what} is not supported yet")
-        if m.jnt_stiffness[j] != 0:
+        if m.jnt_stiffness[j] != 0 or np.any(m.jnt_stiffnesspoly[j] != 0):
             refuse(f"joint '{label}': stiffness is not supported yet")
         if m.jnt_limited[j]:
             refuse(f"joint '{label}': limits (range) are not read yet")
         value = float(m.qpos0[m.jnt_qposadr[j]]) if kind in (2, 3) else 0.0
+        damping = 0.0 if disabled(off.mjDSBL_DAMPER) else float(m.dof_damping[dof])
+        if damping and kind in (mujoco.mjtJoint.mjJNT_FREE, mujoco.mjtJoint.mjJNT_BALL):
+            refuse(f"joint '{label}': damping of a {('free', 'ball')[kind]} joint is not supported yet")
+        if not disabled(off.mjDSBL_DAMPER) and np.any(m.dof_dampingpoly[dofs] != 0):
+            refuse(f"joint '{label}': nonlinear damping (damping with more than one coefficient) is not supported")
         if kind == mujoco.mjtJoint.mjJNT_FREE:
             continue
         if kind == mujoco.mjtJoint.mjJNT_BALL:
@@ -143,21 +176,29 @@ def load_mjcf(path, *, contacts="warn"):
             model.add_translational(label, parent, names[b], at=at, axis=axis, slide=value)
         else:
             model.add_revolute(label, parent, names[b], at=at, axis=axis, angle=math.remainder(value, 2 * math.pi))
-        damping = float(m.dof_damping[dof])
-        if damping:
-            if kind != mujoco.mjtJoint.mjJNT_HINGE:
-                refuse(f"joint '{label}': damping of a {('free', 'ball', 'slide')[kind]} joint is not supported yet")
-            model.add_rotational_spring_damper(f"{label}_damping", joint=label, damping=damping)
+        if damping:  # (a hinge's or a slide's)
+            model.add_joint_friction(f"{label}_damping", joint=label, viscous=damping)
+        joint_value[j] = (label, value if kind == mujoco.mjtJoint.mjJNT_SLIDE else math.remainder(value, 2 * math.pi))
 
-    for e in range(m.neq):
+    for e in range(0 if disabled(off.mjDSBL_EQUALITY, off.mjDSBL_CONSTRAINT) else m.neq):
         label = name(obj.mjOBJ_EQUALITY, e, "equality")
         kind = int(m.eq_type[e])
+        if kind == mujoco.mjtEq.mjEQ_JOINT:
+            if m.eq_active0[e]:
+                _couple_joints(model, m, e, label, joint_value, refuse)
+            continue
         if kind not in (mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtEq.mjEQ_WELD) or \
                 m.eq_objtype[e] != obj.mjOBJ_BODY:
-            refuse(f"equality '{label}': only connect and weld between bodies are read (joint, tendon and "
-                   "distance equalities are not supported yet)")
+            refuse(f"equality '{label}': only connect and weld between bodies and joint equalities are read "
+                   "(tendon and distance equalities are not supported yet)")
         if not m.eq_active0[e]:
             continue
+        # lagmb joins the bodies as they are at qpos0: MuJoCo must hold them there too (a weld's relpose)
+        gap = max((abs(d.efc_pos[r]) for r in range(d.nefc)
+                   if d.efc_type[r] == mujoco.mjtConstraint.mjCNSTR_EQUALITY and d.efc_id[r] == e), default=0.0)
+        if gap > 1e-9:
+            refuse(f"equality '{label}': MuJoCo holds its bodies elsewhere than where they are in the reference "
+                   f"configuration (qpos0; {gap:.3g} apart; a weld's relpose), and lagmb joins them as they are there")
         b1, b2 = int(m.eq_obj1id[e]), int(m.eq_obj2id[e])
         i, k = names[group[b1]], names[group[b2]]
         if kind == mujoco.mjtEq.mjEQ_CONNECT:
@@ -166,3 +207,28 @@ def load_mjcf(path, *, contacts="warn"):
         else:
             model.add_weld(label, i, k)
     return model
+
+
+def _couple_joints(model, m, e, label, joint_value, refuse):
+    """An MJCF <joint> equality, y - y0 = a0 + a1 (x - x0) (MuJoCo's
+    polycoef; y joint1, x joint2, y0 and x0 their values at qpos0): a joint
+    coupling y = a1 x + (y0 + a0 - a1 x0). Without joint2, y = y0 + a0: the
+    joint held by a constant driver. Only the linear polynomial is read."""
+    a = m.eq_data[e][:5]
+    j1, j2 = int(m.eq_obj1id[e]), int(m.eq_obj2id[e])
+    if np.any(a[2:] != 0):
+        refuse(f"equality '{label}': a joint equality with polycoef beyond the linear term "
+               f"({' '.join(f'{c:g}' for c in a)}) is not supported")
+    for j in (j1, j2):
+        if j >= 0 and j not in joint_value:
+            refuse(f"equality '{label}': couples a ball or free joint (only hinge and slide joints have one "
+                   "coordinate)")
+    name1, y0 = joint_value[j1]
+    if j2 < 0:
+        model.drive_joint(label, name1, Constant(y0 + a[0]))
+        return
+    name2, x0 = joint_value[j2]
+    if a[1] == 0:
+        refuse(f"equality '{label}': polycoef a1 = 0 holds '{name1}' still without '{name2}'; leave joint2 out")
+    model.add_joint_coupling(label, name1, leader=name2, multiplier=float(a[1]),
+                             offset=float(y0 + a[0] - a[1] * x0))
