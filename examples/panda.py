@@ -1,6 +1,6 @@
 """A Franka Emika Panda arm falling under gravity, with damped joints.
 
-    python examples/panda.py [--plot panda.png] [--gif panda.gif]
+    python examples/panda.py [--plot panda.png] [--gif panda.gif] [--picture arm.png]
 
 The robot is example-robot-data's URDF (pip install example-robot-data, or
 the `robots` extra), read by mb.load_urdf: 7 arm joints and 2 finger slides,
@@ -72,6 +72,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plot", metavar="PATH", help="write the joint angles to PATH (.png, .pdf)")
     parser.add_argument("--gif", metavar="PATH", help="write an animation to PATH (.gif)")
+    parser.add_argument("--picture", metavar="PATH", help="draw the arm with its collision meshes at 0.3 s to PATH")
     args = parser.parse_args(argv)
     path = panda_urdf()
     if path is None:
@@ -91,6 +92,10 @@ def main(argv=None):
     print(f"elbow angle at 2 s = {r.joint('panda_joint4').angle[-1]:.6f} rad")
     if args.plot:
         plot(r, args.plot)
+    if args.picture:
+        from lagmb.plotting import picture
+        picture(r, args.picture, time=0.3, title="Franka Panda from URDF (example-robot-data), falling")
+        print(f"picture written to {args.picture}")
     if args.gif:
         from lagmb.plotting import animate
         animate(r, args.gif, view=(15.0, -60.0))

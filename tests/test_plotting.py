@@ -361,3 +361,47 @@ def test_animate_a_spatial_run_from_the_viewpoint_asked(mpl, tmp_path):
             assert im.n_frames == 10 and im.size == (320, 240)
             frames[view] = im.convert("RGB")
     assert ImageChops.difference(*frames.values()).getbbox() is not None  # seen from elsewhere
+
+
+def _binary_stl(path, triangles):
+    """An STL file (binary) of the given triangles (n, 3, 3)."""
+    triangles = np.asarray(triangles, dtype="<f4")
+    record = np.zeros(len(triangles), dtype=[("normal", "<f4", 3), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
+    record["vertices"] = triangles
+    with open(path, "wb") as f:
+        f.write(b"lagmb test".ljust(80, b" "))
+        f.write(np.uint32(len(triangles)).tobytes())
+        f.write(record.tobytes())
+
+
+def test_stl_files_are_read_binary_and_ascii(tmp_path):
+    triangles = np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 0, 1], [0, 1, 1.5]]], dtype=float)
+    _binary_stl(tmp_path / "b.stl", triangles)
+    ascii_text = "solid t\n" + "".join(
+        "facet normal 0 0 1\nouter loop\n" + "".join(f"vertex {x} {y} {z}\n" for x, y, z in tri) +
+        "endloop\nendfacet\n" for tri in triangles) + "endsolid t\n"
+    (tmp_path / "a.stl").write_text(ascii_text)
+    for name in ("b.stl", "a.stl"):
+        assert plotting._read_stl(tmp_path / name) == pytest.approx(triangles)
+
+
+def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):
+    """plotting.picture: a box, a cylinder, a sphere and an STL mesh on a
+    swinging rod are drawn (4), a COLLADA mesh is counted out; the PNG is
+    written; planar models are refused."""
+    _binary_stl(tmp_path / "tri.stl", [[[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0]]])
+    m = mb.Model(dimension=3)
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
+    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    for kind, size, mesh in (("box", (1.0, 0.05, 0.05), None), ("cylinder", (0.03, 0.2), None),
+                             ("sphere", (0.06,), None), ("mesh", (2.0, 2.0, 2.0), str(tmp_path / "tri.stl")),
+                             ("mesh", (1.0, 1.0, 1.0), str(tmp_path / "arm.dae"))):
+        m.add_shape(rod, kind, size, position=(0.5, 0.0, 0.0), mesh=mesh, role="collision")
+    r = mb.simulate(m, 0.5, n_out=6)
+    assert plotting.picture(r, tmp_path / "rod.png", time=0.2) == 4
+    assert (tmp_path / "rod.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert plotting.picture(r, tmp_path / "none.png", role="visual") == 0
+    planar = mb.Model()
+    planar.add_body("b", 1.0, 0.1)
+    with pytest.raises(mb.ModelError, match="draws spatial models"):
+        plotting.picture(mb.simulate(planar, 0.1, n_out=2), tmp_path / "p.png")

@@ -514,3 +514,32 @@ def test_a_massless_link_between_joints_is_refused(tmp_path):
     text = ARM.replace('<mass value="1"/>', '<mass value="0"/>')
     with pytest.raises(mb.UrdfError, match="line 3: link 'upper': has no mass"):
         mb.load_urdf(write(tmp_path, text), limits=False)
+
+
+def test_merged_links_are_frames_where_pinocchio_puts_them():
+    """Links merged into another's body by fixed joints (the Panda's link8,
+    hand and tcp; link0 into the ground) are frames: along a 0.3 s fall
+    their origins and axes equal Pinocchio's frame placements (oMf) at the
+    same joint values to 1e-12. Each link's visual and collision geometry
+    is kept (one shape per element, meshes resolved to files)."""
+    relpath = "panda_description/urdf/panda.urdf"
+    model = load(relpath, mimic=True)
+    assert sorted(model.frames) == ["panda_hand", "panda_hand_tcp", "panda_link0", "panda_link8"]
+    assert model.frames["panda_link0"].body == "ground"
+    kinds = {(s.kind, s.role) for s in model.shapes}
+    assert kinds == {("mesh", "visual"), ("mesh", "collision"), ("box", "collision")}
+    assert all(os.path.isfile(s.mesh) for s in model.shapes if s.kind == "mesh")
+    pm = pinocchio_model(relpath)
+    pd = pm.createData()
+    r = mb.simulate(model, 0.3, rtol=1e-10, atol=1e-12, n_out=4)
+    for k in range(len(r.t)):
+        q = pin.neutral(pm)
+        for jid in range(1, pm.njoints):
+            path = r.joint(pm.names[jid])
+            q[pm.joints[jid].idx_q] = (path.slide if "finger" in pm.names[jid] else path.angle)[k]
+        pin.framesForwardKinematics(pm, pd, q)
+        for name in model.frames:
+            placement = pd.oMf[pm.getFrameId(name)]
+            frame = r.body(name)
+            assert frame.position[k] == pytest.approx(placement.translation, abs=1e-12)
+            assert frame.rotation[k] == pytest.approx(placement.rotation, abs=1e-12)

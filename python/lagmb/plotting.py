@@ -21,6 +21,7 @@ import os
 
 import numpy as np
 
+from .errors import ModelError
 from .handles import Handle, name_of
 from .registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD
 
@@ -648,3 +649,136 @@ def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
         stamp.set_text(stamp_format.format(t[k]))
 
     return _write_gif(fig, path, frames, draw, fps, dpi)
+
+
+# --- a still picture of a spatial model with its shapes -------------------
+
+
+def _read_stl(path):
+    """The triangles (n, 3, 3) of an STL file, binary or ASCII (m)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if len(data) >= 84:
+        count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0])
+        if 84 + 50 * count == len(data):  # binary: 80-byte header, count, 50 bytes per triangle
+            records = np.frombuffer(data, dtype=np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)),
+                                                          ("attribute", "<u2")]), count=count, offset=84)
+            return records["vertices"].astype(float)
+    words = data.decode("ascii", errors="replace").split()
+    vertices = [float(words[i + k]) for i, w in enumerate(words) if w == "vertex" for k in (1, 2, 3)]
+    return np.array(vertices, dtype=float).reshape(-1, 3, 3)
+
+
+def _box_faces(size):
+    half = 0.5 * np.asarray(size, dtype=float)
+    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * half
+    quads = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
+    return [corners[list(q)] for q in quads]
+
+
+def _cylinder_faces(radius, length, segments=24):
+    a = np.linspace(0.0, 2 * np.pi, segments + 1)
+    ring = np.column_stack([radius * np.cos(a), radius * np.sin(a)])
+    faces = [np.array([[*ring[k], -0.5 * length], [*ring[k + 1], -0.5 * length], [*ring[k + 1], 0.5 * length],
+                       [*ring[k], 0.5 * length]]) for k in range(segments)]
+    faces += [np.column_stack([ring, np.full(len(ring), z)]) for z in (-0.5 * length, 0.5 * length)]
+    return faces
+
+
+def _sphere_faces(radius, segments=12):
+    u = np.linspace(0.0, 2 * np.pi, 2 * segments + 1)
+    v = np.linspace(0.0, np.pi, segments + 1)
+
+    def at(i, j):
+        return radius * np.array([np.cos(u[i]) * np.sin(v[j]), np.sin(u[i]) * np.sin(v[j]), np.cos(v[j])])
+
+    return [np.array([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+            for i in range(2 * segments) for j in range(segments)]
+
+
+def _shape_faces(shape):
+    """The faces of one shape in its own axes, or None (a mesh lagmb does
+    not read: only STL files are drawn)."""
+    if shape.kind == "box":
+        return _box_faces(shape.size)
+    if shape.kind == "cylinder":
+        return _cylinder_faces(*shape.size)
+    if shape.kind == "sphere":
+        return _sphere_faces(shape.size[0])
+    if not shape.mesh.lower().endswith(".stl") or not os.path.isfile(shape.mesh):
+        return None
+    return list(_read_stl(shape.mesh) * np.asarray(shape.size))
+
+
+def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), size=(640, 640), dpi=100,
+            title=None):
+    """A still picture of a spatial model at one output of a run: the
+    shapes of ``role`` ("visual" or "collision"; Model.add_shape, as
+    load_urdf keeps a robot's) at their bodies' poses, shaded by their
+    facing to the light, each body in its colour, over the bodies' lines to
+    their joints (as animate draws them). ``time``: the output nearest it
+    (default the last). Meshes are drawn from STL files; a shape in
+    another format (COLLADA .dae, OBJ) is left out and counted in the
+    caption. Returns the number of shapes drawn."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    model = result.model
+    if getattr(model, "dimension", 2) != 3:
+        raise ModelError("plotting.picture draws spatial models (dimension 3); this one is planar")
+    t = np.asarray(result.t)
+    k = len(t) - 1 if time is None else int(np.argmin(np.abs(t - float(time))))
+    scene = _Scene(result)
+    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    ax = fig.add_subplot(projection="3d")
+    ax.view_init(elev=float(view[0]), azim=float(view[1]))
+    light = np.array([0.4, -0.5, 0.8]) / np.linalg.norm([0.4, -0.5, 0.8])
+    drawn, skipped, points = 0, 0, []
+    bodies = list(scene.bodies)
+    for shape in model.shapes:
+        if shape.role != role:
+            continue
+        faces = _shape_faces(shape)
+        if faces is None:
+            skipped += 1
+            continue
+        if shape.body == "ground":
+            R_body, r_body = np.eye(3), np.zeros(3)
+        else:
+            b = result.body(shape.body)
+            R_body, r_body = b.rotation[k], b.position[k]
+        R = R_body @ shape.rotation
+        r = r_body + R_body @ shape.position
+        world = [r + f @ R.T for f in faces]
+        normals = [np.cross(f[1] - f[0], f[2] - f[0]) for f in world]
+        shade = np.array([abs(n @ light) / (np.linalg.norm(n) or 1.0) for n in normals])
+        base = np.array(_rgb(_colour(bodies.index(shape.body)) if shape.body in bodies else "0.6"))
+        colours = [(*(base * (0.45 + 0.55 * s)), 1.0) for s in shade]
+        ax.add_collection3d(Poly3DCollection(world, facecolors=colours, edgecolors="none"))
+        points += [np.concatenate(world)]
+        drawn += 1
+    for i, b in enumerate(bodies):  # the skeleton: centre of mass to joint points
+        c = result.body(b).position[k]
+        spokes = [scene.path(b, p)[k] for p in scene.outlines[b]]
+        xyz = np.array([c] + [p for s in spokes for p in (s, c)])
+        ax.plot(xyz[:, 0], xyz[:, 1], xyz[:, 2], color="0.15", lw=1.0, alpha=0.6)
+        points.append(xyz)
+    pts = np.concatenate(points) if points else np.zeros((1, 3))
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+    half = 0.55 * max(float(np.max(np.ptp(pts, axis=0))), 1e-3)
+    for axis, set_lim, label in zip(range(3), (ax.set_xlim, ax.set_ylim, ax.set_zlim), "xyz"):
+        set_lim(centre[axis] - half, centre[axis] + half)
+        getattr(ax, f"set_{label}label")(f"{label} (m)")
+    if hasattr(ax, "set_box_aspect"):
+        ax.set_box_aspect((1, 1, 1))
+    caption = f"t = {t[k]:.3g} s, {drawn} {role} shapes" + (f" ({skipped} meshes not STL, not drawn)"
+                                                             if skipped else "")
+    ax.set_title(title or f"lagmb: {scene.summary()}", fontsize=10)
+    ax.text2D(0.02, 0.02, caption, transform=ax.transAxes, fontsize=8)
+    _save(fig, path)
+    return drawn
+
+
+def _rgb(colour):
+    from matplotlib.colors import to_rgb
+
+    return to_rgb(colour)

@@ -92,9 +92,8 @@ class FramePath:
     from the body's centre of mass: v = v_b + w x s, a = a_b + w' x s +
     w x (w x s)."""
 
-    def __init__(self, body, frame):
-        if not hasattr(body, "rotation"):  # a frame of the ground
-            k = len(body.position)
+    def __init__(self, body, frame, k):
+        if body is None:  # a frame of the ground
             self.position = np.tile(frame.position, (k, 1))
             self.velocity = self.acceleration = np.zeros((k, 3))
             self.rotation = np.tile(frame.rotation, (k, 1, 1))
@@ -213,7 +212,7 @@ class Result:
         load_urdf merged into another's body): a FramePath."""
         frame = self._frame(body)
         if frame is not None:
-            return FramePath(self.body(frame.body), frame)
+            return FramePath(None if frame.body == "ground" else self.body(frame.body), frame, len(self.t))
         first, count = self._core.body_coordinates(self._name(body, ("body",), "body", "Result.body"))
         return BodyPath(self, first, count)
 
