@@ -46,9 +46,11 @@ def load_mjcf(path, *, contacts="warn"):
     world is the ground). Joints: a hinge becomes a revolute, a slide a
     translational joint (``angle``/``slide`` their qpos0 values, so lagmb's
     joint values are MuJoCo's), a ball a spherical joint, a free joint
-    leaves the body free. A hinge's ``damping`` becomes a rotational damper
-    (``NAME_damping``). Equality constraints: ``connect`` becomes a spherical
-    joint at its anchor, ``weld`` a weld in the reference configuration.
+    leaves the body free. A hinge's or slide's ``damping`` becomes viscous
+    joint friction (``NAME_damping``). Equality constraints: ``connect``
+    becomes a spherical joint at its anchor, ``weld`` a weld in the
+    reference configuration, ``joint`` (linear polycoef) a joint coupling,
+    or with one joint a constant driver.
     Gravity is the model's. Names are MuJoCo's (``body3``, ``joint2``,
     ``equality0`` where it has none). What the model's ``<option><flag>``
     disables MuJoCo leaves out and so does lagmb: gravity (``gravity``),
@@ -59,8 +61,9 @@ def load_mjcf(path, *, contacts="warn"):
     colliding geoms in an MjcfWarning, ``"ignore"`` says nothing, ``"error"``
     raises. MjcfError (a ModelError) for what lagmb does not read yet:
     tendons, actuators, flexes, plugins, a body with more than one joint,
-    joint equalities, armature, friction loss, stiffness (linear or not),
-    limits, damping of a slide, ball or free joint, nonlinear damping
+    joint equalities beyond the linear term or of ball and free joints,
+    armature, friction loss, stiffness (linear or not), limits, damping of
+    a ball or free joint, nonlinear damping
     (``damping`` with more than one coefficient), gravity compensation
     (``gravcomp``), fluid forces (``density`` or ``viscosity``), an
     equality that does not hold in the reference configuration (a weld's

@@ -363,21 +363,31 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     ``limits=True``: a revolute's or prismatic's ``<limit lower upper>``
     becomes a stop on it (``NAME_limit``, restitution 0: an impact at the
     limit; a joint that comes to rest pressing on its limit ends the run
-    with SimulationError, as stops do). ``dynamics=True``: a joint's
-    ``<dynamics damping>`` becomes a rotational damper on it
-    (``NAME_damping``). ``limits=False`` leaves the joints' position limits
-    out; ``dynamics=False`` their damping and friction. ``mimic=False``
-    reads a mimic joint as a joint of its own (as Pinocchio builds it by
-    default) instead of coupling it to the joint it mimics.
+    with SimulationError, as stops do); a joint whose zero lies outside its
+    limits starts at their middle unless ``positions`` says otherwise.
+    ``dynamics=True``: a revolute's, continuous's or prismatic's
+    ``<dynamics damping friction>`` becomes joint friction on it
+    (``NAME_damping``, or ``NAME_friction`` with a Coulomb part: viscous =
+    damping, preload = friction). ``limits=False`` leaves the joints'
+    position limits out; ``dynamics=False`` their damping and friction.
+    ``mimic=True``: a ``<mimic joint multiplier offset>`` couples the joint
+    to the one it mimics (``NAME_mimic``, a joint coupling; the follower
+    starts where its leader's position puts it); ``mimic=False`` reads it
+    as a joint of its own (as Pinocchio builds it by default).
     ``package_dirs``: directories holding the packages that ``package://``
     mesh names point into. Every mesh a link names must exist.
+
+    Links merged into another's body (and the root's links) become frames
+    (``model.frames``; ``r.body(link)``, ``r.point(link, p)``); visual and
+    collision geometry is kept as shapes (``model.shapes``) for
+    ``lagmb.plotting.picture``.
 
     Raises :class:`UrdfError` (a ModelError) naming the file, the line and
     the link or joint for anything lagmb does not read: an unknown tag or
     joint type, a link that is the child of two joints, a body without mass
-    or inertia, a missing mesh, and (not built yet) revolute limits a full
-    turn or more apart, joint friction, damping of a prismatic joint and
-    mimic joints (``mimic=True``).
+    or inertia, a missing mesh, a mimic of an unknown joint (or of itself,
+    or in a cycle), and (not built yet) revolute limits a full turn or more
+    apart and damping or friction of a planar joint.
     """
     reader = _Reader(path, package_dirs)
     links, joints, root, _ = reader.read()
