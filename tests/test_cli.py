@@ -268,7 +268,7 @@ def test_usage_errors_exit_2(four_bar, tmp_path):
 
 def test_failed_run_exits_1_and_writes_partial_results(four_bar, tmp_path):
     # 60 steps between outputs 0.5 s apart are too few at rtol 1e-8
-    four_bar.write_text(four_bar.read_text().replace("n_out = 401", "n_out = 5\nmax_steps = 60"))
+    four_bar.write_text(four_bar.read_text().replace("n_out = 401", "n_out = 5\nmax_steps = 60\nformulation = \"ggl\""))
     out = tmp_path / "partial.npz"
     p = lagmb("run", four_bar, "-o", out)
     assert p.returncode == 1, p.stderr

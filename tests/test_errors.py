@@ -233,7 +233,7 @@ def test_step_limit_raises_simulation_error_with_partial_result(capfd):
     max_steps bounds the steps between two outputs: 200 do not reach 1 s."""
     m = seed_pendulum()
     with pytest.raises(mb.SimulationError, match="max_steps") as info:
-        mb.simulate(m, t_end=2.0, n_out=3, rtol=1e-8, atol=1e-10, max_steps=200)
+        mb.simulate(m, t_end=2.0, n_out=3, rtol=1e-8, atol=1e-10, max_steps=200, formulation="ggl")
     err = info.value
     assert 0.0 < err.t < 2.0
     partial = err.result
@@ -285,11 +285,12 @@ def test_failure_on_a_long_chain_is_not_called_a_singular_position():
         m.drive_joint(f"motor{k}", f"pin{k}", mb.Harmonic(0.3, 2.0, phase=0.1 * k))
         prev = rod
     with pytest.raises(mb.SimulationError, match="no worse conditioned") as info:
-        mb.simulate(m, t_end=0.1, n_out=3, rtol=1e-10, atol=1e-13, analysis="dynamic")
+        mb.simulate(m, t_end=0.1, n_out=3, rtol=1e-10, atol=1e-13, analysis="dynamic", formulation="ggl")
     assert "dead point" not in str(info.value)
     floor = float(re.search(r"rounding allows for this model: about ([-+\d.e]+)", str(info.value)).group(1))
     assert 1e-13 < floor < 1e-10
-    assert mb.simulate(m, t_end=0.1, n_out=3, rtol=1e-10, atol=1e-10, analysis="dynamic").stats["steps"] > 0
+    assert mb.simulate(m, t_end=0.1, n_out=3, rtol=1e-10, atol=1e-10, analysis="dynamic",
+                       formulation="ggl").stats["steps"] > 0
 
 
 @pytest.mark.parametrize("rtol", [1e-15, 0.0, -1e-6])

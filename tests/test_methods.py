@@ -29,7 +29,7 @@ def options_of(method):
 
 def test_the_table_lists_each_method_once_with_what_it_supports():
     table = mb.methods()
-    assert table[0]["name"] == "ggl"                          # the default first
+    assert table[0]["name"] == "ggl"                          # GGL first ("auto" chooses)
     names = [m["name"] for m in table]
     assert len(set(names)) == len(names)
     pairs = [(m["formulation"], m["integrator"]) for m in table]
@@ -62,15 +62,19 @@ def test_the_integrator_defaults_to_the_formulations_first():
 
 
 def test_names_outside_the_table_are_refused_listing_it():
-    with pytest.raises(mb.ModelError, match=r"unknown formulation 'rk4' \(the choices are ggl, index3, index1, "
-                                            r"projection, ali3p\)"):
+    with pytest.raises(mb.ModelError, match=r"unknown formulation 'rk4' \(the choices are auto, ggl, index3, "
+                                            r"index1, projection, ali3p\)"):
         mb.simulate(pendulum(), t_end=0.1, formulation="rk4")
     with pytest.raises(mb.ModelError, match="integrated by 'bdf', not by 'adams'"):
         mb.simulate(pendulum(), t_end=0.1, formulation="ggl", integrator="adams")
     with pytest.raises(mb.ModelError, match=r"max_order must be in 1\.\.5 for projection-bdf"):
         mb.simulate(pendulum(), t_end=0.1, formulation="projection", max_order=6)
     with pytest.raises(mb.ModelError, match="Baumgarte terms apply to the methods index1, projection-adams"):
+        mb.simulate(pendulum(), t_end=0.1, formulation="ggl", baumgarte=(1.0, 1.0))
+    with pytest.raises(mb.ModelError, match="Baumgarte terms need the formulation.*'auto' does not choose"):
         mb.simulate(pendulum(), t_end=0.1, baumgarte=(1.0, 1.0))
+    with pytest.raises(mb.ModelError, match="integrator 'adams' needs its formulation: formulation 'auto'"):
+        mb.simulate(pendulum(), t_end=0.1, integrator="adams")
     with pytest.raises(mb.ModelError, match=r"unknown start 'rest' \(the choices are given, equilibrium\)"):
         mb.Simulator(pendulum(), start="rest")
     with pytest.raises(mb.ModelError, match=r"unknown integrator 'rk4' \(the choices are bdf, adams, erk, "
@@ -86,7 +90,9 @@ def test_the_choices_and_defaults_come_from_the_core():
     choices = _core.choices()
     assert choices["analysis"] == ("auto", "dynamic", "kinematic", "inverse_dynamics")
     assert choices["start"] == ("given", "equilibrium")
-    assert {m["formulation"] for m in mb.methods()} == set(choices["formulation"])
+    # every formulation has its methods; "auto" (the default) chooses one of them
+    assert {m["formulation"] for m in mb.methods()} | {"auto"} == set(choices["formulation"])
+    assert choices["formulation"][0] == "auto" == _core.default_options()["formulation"]
     defaults = _core.default_options()
     for function in (mb.simulate, mb.Simulator):
         params = inspect.signature(function).parameters

@@ -301,10 +301,20 @@ def test_free_redundant_parallelogram_turns_through_its_flat_positions():
     goes over the top and through its flat (singular) positions. GGL at a
     tight tolerance stops at the first and names the dependent equations; ALI3-P with a
     fixed step (what that message advises) runs through: more than a full
-    turn in 1 s, energy kept to its second-order error (4e-5 at h = 1 ms)."""
+    turn in 1 s, energy kept to its second-order error (4e-5 at h = 1 ms).
+    So does the default (formulation "auto": the explicit projection method,
+    whose accelerations come from the augmented system, defined at the flat
+    positions): energy to 1e-8 (seen 4e-10) and the end where ALI3-P at
+    h = 0.1 ms ends, to 1e-5 (seen 4.7e-7)."""
     model = spatial_parallelogram(driven=False, rate=6.0)
+    with pytest.warns(mb.RedundantConstraintWarning):
+        default = mb.simulate(model, 1.0, rtol=1e-10, atol=1e-12)
+        fine = mb.simulate(model, 1.0, formulation="ali3p", step=1e-4, n_out=2)
+    assert default.stats["method_choice"].startswith("auto: projection-erk")
+    assert np.ptp(default.energy) < 1e-8 * np.abs(default.energy).max()
+    assert np.abs(default.q[-1] - fine.q[-1]).max() < 1e-5
     with pytest.raises(mb.SimulationError, match="dead point"):  # (a failed run warns of nothing)
-        mb.simulate(model, 1.0, rtol=1e-10, atol=1e-12)
+        mb.simulate(model, 1.0, rtol=1e-10, atol=1e-12, formulation="ggl")
     with pytest.warns(mb.RedundantConstraintWarning):
         r = mb.simulate(model, 1.0, formulation="ali3p", step=1e-3, n_out=101)
     p = r.body("crank").orientation
@@ -580,8 +590,10 @@ def test_a_thousand_body_spatial_chain_costs_the_same_per_body():
 def test_work_precision_of_a_spatial_mechanism():
     """The work-precision sweep runs on a spatial model: each method's error
     against the shared reference falls as the tolerance does."""
+    # (5 outputs: the explicit method steps to every output, and at 101 of
+    # them its steps, not the tolerance, would set its error)
     wp = mb.work_precision(double_pendulum_with_spring(), 1.0, methods=["ggl", "projection-erk"],
-                           tolerances=[1e-4, 1e-6, 1e-8])
+                           tolerances=[1e-4, 1e-6, 1e-8], n_out=5)
     for method in ("ggl", "projection-erk"):
         errors = [row["error"] for row in wp.rows if row["method"] == method]
         assert len(errors) == 3 and errors[2] < 1e-2 * errors[0]

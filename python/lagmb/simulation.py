@@ -37,7 +37,13 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     that :func:`lagmb.methods` lists: a ``formulation`` and one of its
     integrators (``integrator=None``: the formulation's first):
 
-    - ``formulation="ggl"`` (default): stabilized index 2 (Gear, Gupta,
+    - ``formulation="auto"`` (default): the method chosen from the model:
+      ``"ggl"`` where a contact or joint friction from the loads switches
+      the forces or the applied forces are stiff (their fastest rate at the
+      start times the span above 1000), else ``"projection"`` with
+      ``"erk"``; ``r.stats["method_choice"]`` says which and why. No
+      ``integrator`` or ``baumgarte`` with it.
+    - ``"ggl"``: stabilized index 2 (Gear, Gupta,
       Leimkuhler), IDA; positions and velocities stay on the constraints.
     - ``"index3"``: position constraints only, IDA with the multipliers and
       velocities weighted as index-3 and index-2 variables.
@@ -50,9 +56,10 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
       so the constraints drift unless ``baumgarte=(alpha, beta)`` is given;
       with ``"erk"`` ARKODE's explicit Runge-Kutta methods (ERKStep; order 8,
       Fehlberg 7(8), by default; ``max_order`` 2-6 or 8 picks another), q
-      and v projected after every accepted step, outputs from a quintic
-      Hermite interpolant: for non-stiff mechanisms, such as long free
-      chains, where a few high-order steps beat many BDF steps.
+      and v projected after every accepted step, the steps stopped at the
+      output times (its interpolant is less accurate than its steps): for
+      non-stiff mechanisms, such as long free chains, where a few
+      high-order steps beat many BDF steps.
     - ``"ali3p"``: index-3 augmented Lagrangian with mass-orthogonal
       projections of velocities and accelerations, trapezoidal rule with the
       fixed ``step`` (s; ``max_step`` is taken as the step if ``step`` is

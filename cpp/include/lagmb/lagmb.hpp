@@ -28,6 +28,7 @@
 #include "lagmb/analyses/joint_space.hpp"
 #include "lagmb/analyses/kinematics.hpp"
 #include "lagmb/analyses/redundancy.hpp"
+#include "lagmb/analyses/stiffness.hpp"
 
 #include "lagmb/integrators/methods.hpp"
 

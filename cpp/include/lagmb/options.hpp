@@ -27,8 +27,10 @@ enum class Start {
   kEquilibrium,  // at rest in the static equilibrium at t0 (equilibrium.hpp)
 };
 
-/// The equations a dynamic run integrates (methods.hpp pairs each with its integrators).
-enum class Formulation { kGgl, kIndex3, kIndex1, kProjection, kAli3p };
+/// The equations a dynamic run integrates (methods.hpp pairs each with its
+/// integrators); kAuto: the method chosen from the model (choose_method,
+/// run.hpp).
+enum class Formulation { kGgl, kIndex3, kIndex1, kProjection, kAli3p, kAuto };
 
 /// The integrator of a formulation; kDefault: the formulation's first.
 enum class Integrator { kDefault, kBdf, kAdams, kErk, kTrapezoidal };
@@ -55,8 +57,9 @@ struct ChoiceNames<Start> {
 template <>
 struct ChoiceNames<Formulation> {
   static constexpr const char* what = "formulation";
-  static constexpr std::array<std::pair<Formulation, const char*>, 5> names{
-      {{Formulation::kGgl, "ggl"},
+  static constexpr std::array<std::pair<Formulation, const char*>, 6> names{
+      {{Formulation::kAuto, "auto"},
+       {Formulation::kGgl, "ggl"},
        {Formulation::kIndex3, "index3"},
        {Formulation::kIndex1, "index1"},
        {Formulation::kProjection, "projection"},
@@ -118,10 +121,11 @@ struct SimulationOptions {
   /// needs more steps than this over [t0, t_end] is refused up front.
   long max_steps = 500000;
   int max_order = 0;  // 0: the method's highest (BDF 5, Adams 12; methods.hpp)
-  /// The method (methods.hpp, which lists them): a formulation (GGL, the
-  /// default) and one of its integrators (kDefault: its first, e.g. BDF;
-  /// Adams for projection). ali3p takes a fixed step, given as max_step.
-  Formulation formulation = Formulation::kGgl;
+  /// The method (methods.hpp, which lists them): a formulation and one of
+  /// its integrators (kDefault: its first, e.g. BDF; Adams for projection),
+  /// or kAuto (the default): the method chosen from the model
+  /// (choose_method, run.hpp). ali3p takes a fixed step, given as max_step.
+  Formulation formulation = Formulation::kAuto;
   Integrator integrator = Integrator::kDefault;
   double baumgarte_alpha = 0.0, baumgarte_beta = 0.0;  // index1, and projection with adams
   /// ali3p's Newton iteration: corrections of q below newton_rtol |q| + newton_atol.

@@ -30,6 +30,8 @@ struct Stats {
   double wall_time = 0.0;  // s
   std::string formulation;
   std::string integrator;
+  /// "given", or what formulation "auto" chose and why (choose_method).
+  std::string method_choice = "given";
   /// "dynamic" (the DAE integrated), "kinematic" or "inverse_dynamics" (a
   /// fully driven model solved from its constraints alone: steps = 0).
   std::string analysis = "dynamic";
@@ -59,6 +61,7 @@ struct Stats {
     f("error_test_failures", error_test_failures), f("convergence_failures", convergence_failures);
     f("element_evaluations", element_evaluations), f("last_order", last_order), f("last_step", last_step);
     f("wall_time", wall_time), f("formulation", formulation), f("integrator", integrator);
+    f("method_choice", method_choice);
     f("analysis", analysis), f("kinematic_solves", kinematic_solves), f("events", events);
     f("impacts", impacts), f("root_evals", root_evals), f("restarts", restarts), f("input_changes", input_changes);
     f("symbolic_analyses", symbolic_analyses);

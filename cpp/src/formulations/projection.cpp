@@ -129,10 +129,19 @@ int ProjectionFormulation::project(double t, double* q, double* v, double* corr,
   Eigen::Map<VecX> Q(q, n_), V(v, n_);
   q0_ = Q;
   v0_ = V;
-  for (int it = 0; it < 3; ++it) {
+  // Newton on Phi(q) = 0 (a step's end lies close: 1 or 2 iterations); a
+  // state no position near it satisfies (a dead point passed, a driver
+  // pulling a linkage apart) is a failed projection, not a step accepted
+  // off the constraints
+  for (int it = 0;; ++it) {
     assemble_constraints(model_, d_, q, t);
     const double e = nc_ ? d_.Phi.lpNorm<Eigen::Infinity>() : 0.0;
-    if (e <= 1e-14 * (1.0 + Q.lpNorm<Eigen::Infinity>())) break;
+    const double size = 1.0 + Q.lpNorm<Eigen::Infinity>();
+    if (e <= 1e-14 * size) break;
+    if (it == 6) {
+      if (!(e <= 1e-8 * size)) return 1;
+      break;
+    }
     assemble_jacobian(model_, d_, q, t);
     if (!kkt_.factorize(d_)) return 1;
     d_.Phi = -d_.Phi;  // in place: no temporary

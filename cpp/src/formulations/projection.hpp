@@ -38,7 +38,8 @@ class ProjectionFormulation {
   void solve(const double* b, double* x);
   /// Projects (q, v) onto the constraints; corr = the change of (q, v), err
   /// (if given) projected onto the tangent space. 0, or 1 if the augmented
-  /// matrix is singular.
+  /// matrix is singular or no position near q satisfies Phi = 0 (Newton
+  /// leaves |Phi| above 1e-8 (1 + |q|) after 6 iterations).
   int project(double t, double* q, double* v, double* corr, double* err);
   /// Its counts: lu_factorizations, augmented_factorizations, projections,
   /// element_evaluations.

@@ -116,11 +116,12 @@ struct ErkStepper final : ErkParts, OdeStepper {
     e.has_f = true;
   }
   const char* name() const override { return "ARKODE ERKStep"; }
+  bool steps_to_outputs() const override { return true; }
   void set_stop(double stop) override { check(ERKStepSetStopTime(s.mem, stop), "ERKStepSetStopTime", s.ctx); }
   double step(bool& at_stop) override {
     sunrealtype t = 0.0;
     const int flag = ERKStepEvolve(s.mem, plan.t_end, s.y, &t, ARK_ONE_STEP);
-    rethrow_callback_error(p, t);
+    rethrow_callback_error(p, end_.t);  // (the time reached: a stage's time may lie beyond it)
     if (flag < 0) {
       sunrealtype h = 0;
       ERKStepGetCurrentStep(s.mem, &h);

@@ -59,6 +59,11 @@ class Stepper {
   virtual void interpolate(double t, const double*& q, const double*& v) = 0;
   /// Restarts at order 1 from the current state at time t.
   virtual void restart(double t) = 0;
+  /// Whether the loop stops the steps at the output times: a stepper whose
+  /// interpolant is less accurate than its steps (an explicit Runge-Kutta
+  /// method of order 7 with a quintic interpolant, whose long steps make the
+  /// interpolant's O(h^6) error the larger one at outputs inside a step).
+  virtual bool steps_to_outputs() const { return false; }
   /// Positions of the last accepted step.
   virtual const double* positions() const = 0;
   /// Counts so far, summed over restarts.
@@ -79,7 +84,8 @@ class Stepper {
 using Record = std::function<void(const double* q, const double* v)>;
 
 /// The loop every run shares (simulate in one call, a Simulator in chunks):
-/// outputs interpolated where asked (the steps are not stopped there), a
+/// outputs interpolated where asked (the steps are not stopped there, unless
+/// the stepper's interpolant is the less accurate: steps_to_outputs), a
 /// stop and restart at every breakpoint of the time functions, the events'
 /// actions, the max_steps bound and progress reports.
 class StepLoop {
@@ -106,6 +112,9 @@ class StepLoop {
 
  private:
   double stop_time() const;
+  /// Whether a step that ended at t stopped at the next breakpoint (and not
+  /// at an output time, steps_to_outputs).
+  bool at_breakpoint(double t, bool at_stop) const;
   /// After a step to t: an event's action, or the restart at a breakpoint
   /// (at_stop). True if the stepper was restarted.
   bool act(double t, bool at_stop);

@@ -36,7 +36,8 @@ const std::vector<Entry>& entries() {
     using F = Formulation;
     using I = Integrator;
     m = {"ggl", F::kGgl, I::kBdf, "IDA",
-         "stabilized index 2 (Gear-Gupta-Leimkuhler): positions and velocities stay on the constraints; the default",
+         "stabilized index 2 (Gear-Gupta-Leimkuhler): positions and velocities stay on the constraints; "
+         "what \"auto\" runs for stiff forces, contact and friction",
          5};
     add(m, &ida<GglFormulation>);
     m = {"index3", F::kIndex3, I::kBdf, "IDA",

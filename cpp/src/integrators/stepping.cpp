@@ -30,6 +30,10 @@ double StepLoop::stop_time() const {
   return stop_at_end_ ? plan_.t_end : std::numeric_limits<double>::max();
 }
 
+bool StepLoop::at_breakpoint(double t, bool at_stop) const {
+  return at_stop && next_break_ < plan_.breakpoints.size() && t >= plan_.breakpoints[next_break_];
+}
+
 bool StepLoop::act(double t, bool at_stop) {
   if (plan_.events) {
     // a root of the event functions (or a crossing the integrator
@@ -51,13 +55,13 @@ bool StepLoop::act(double t, bool at_stop) {
       }
       if (acted) {
         ++restarts_;
-        if (at_stop && next_break_ < plan_.breakpoints.size()) ++next_break_;  // the event fell on a breakpoint: pass it
+        if (at_breakpoint(t, at_stop)) ++next_break_;  // the event fell on a breakpoint: pass it
         stepper_.set_stop(stop_time());
         return true;
       }
     }
   }
-  if (at_stop && next_break_ < plan_.breakpoints.size()) {
+  if (at_breakpoint(t, at_stop)) {
     // a derivative of a time function jumps here: restart at order 1
     // from the (continuous, consistent) state instead of stepping across
     ++next_break_;
@@ -76,8 +80,11 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
     pending_ = false;
     act(t_, pending_at_stop_);
   }
+  const bool to_outputs = stepper_.steps_to_outputs();
   while (t_ < target) {
     poll_interrupt();
+    // (after the last output the stop is the breakpoint's or the end's again)
+    if (to_outputs) stepper_.set_stop(k < t_out.size() ? std::min(stop_time(), t_out[k]) : stop_time());
     bool at_stop = false;
     const double t = t_ = stepper_.step(at_stop);
     for (; k < t_out.size() && t_out[k] <= t; ++k) {

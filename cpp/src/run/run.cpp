@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "lagmb/analyses/equilibrium.hpp"
+#include "lagmb/analyses/stiffness.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/assembly/analysis.hpp"
 #include "lagmb/assembly/assembly.hpp"
@@ -31,6 +32,37 @@ void add_counts(Stats& total, const Stats& part) {
 
 }  // namespace
 
+MethodChoice choose_method(const Model& model, const SimulationOptions& o) {
+  MethodChoice c;
+  auto choose = [&](Formulation f, Integrator i, std::string why) {
+    c.method = &find_method(f, i);
+    c.why = "auto: " + c.method->name + ", " + why;
+    return c;
+  };
+  for (const auto& g : model.event_groups())
+    if (!g->bounds_motion() && g->size() > 0)
+      return choose(Formulation::kGgl, Integrator::kDefault,
+                    std::string("the model has a ") + g->kind() + " ('" + g->name(0) +
+                        "'), whose onset an explicit step could pass over");
+  if (!model.friction_groups().empty())
+    return choose(Formulation::kGgl, Integrator::kDefault,
+                  "the model has joint friction from the joints' loads ('" + model.friction_groups().front()->name(0) +
+                      "')");
+  const VecX q = model.initial_q(), v = model.initial_v();
+  const ForceRates rates = force_rates(model, q.data(), v.data(), o.t0);
+  const double span = o.t_end > o.t0 ? o.t_end - o.t0 : 1.0;
+  std::ostringstream why;
+  why.precision(3);
+  why << "the forces' fastest rate " << rates.fastest() << " 1/s times the span " << span << " s is "
+      << rates.fastest() * span;
+  if (!(rates.fastest() * span <= kStiffSpan)) {
+    why << " > " << kStiffSpan << " (stiff)";
+    return choose(Formulation::kGgl, Integrator::kDefault, why.str());
+  }
+  why << " <= " << kStiffSpan << " (not stiff)";
+  return choose(Formulation::kProjection, Integrator::kErk, why.str());
+}
+
 const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who) {
   const std::string at = who + ": ";
   if (!model.finalized()) throw ModelError(at + "the model is not finalized");
@@ -57,7 +89,14 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
   }
   if (o.max_step != 0.0) positive(o.max_step, "max_step");
   if (o.max_steps < 0) throw ModelError(at + "max_steps must be >= 0 (0: no limit)");
-  const Method& method = find_method(o.formulation, o.integrator);
+  if (o.formulation == Formulation::kAuto && o.integrator != Integrator::kDefault)
+    throw ModelError(at + "integrator '" + name_of(o.integrator) +
+                     "' needs its formulation: formulation 'auto' chooses both");
+  if (o.formulation == Formulation::kAuto && (o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0))
+    throw ModelError(at + "Baumgarte terms need the formulation they apply to (index1, or projection with adams); "
+                     "formulation 'auto' does not choose those");
+  const Method& method =
+      o.formulation == Formulation::kAuto ? *choose_method(model, o).method : find_method(o.formulation, o.integrator);
   // what a method does not model is refused, not ignored
   auto those = [](bool Method::*has) {
     std::string s;
@@ -209,6 +248,8 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
   outputs.stats.formulation = name_of(method.formulation);
   outputs.stats.integrator = name_of(method.integrator);
   outputs.stats.analysis = name_of(Analysis::kDynamic);
+  if (options.formulation == Formulation::kAuto) method_choice = choose_method(model, options).why;
+  outputs.stats.method_choice = method_choice;
 }
 
 void Run::record(double t, const double* q, const double* v, bool solve) {
@@ -268,6 +309,7 @@ Stats Run::stats() const {
   s.element_evaluations += data.element_evaluations + watch->element_evaluations();
   s.formulation = name_of(method.formulation);
   s.integrator = name_of(method.integrator);
+  s.method_choice = method_choice;
   s.analysis = name_of(Analysis::kDynamic);
   if (events) {
     s.events = events->events;

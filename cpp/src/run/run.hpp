@@ -32,8 +32,28 @@ inline void check_time(double t, const std::string& who, const char* what) {
 }
 
 /// The options every dynamic run takes (tolerances, method, bounds, start);
-/// ModelError beginning with "who: " for one that is wrong. Returns the method.
+/// ModelError beginning with "who: " for one that is wrong. Returns the
+/// method (formulation "auto": choose_method's).
 const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who);
+
+/// What formulation "auto" runs, and why (Stats::method_choice):
+///   - GGL where the forces switch faster than any step can follow: a
+///     contact (its onset and release; an explicit step could pass a whole
+///     contact) or joint friction from the joints' loads;
+///   - GGL where the applied forces are stiff: their fastest rate rho
+///     (force_rates at the initial state: springs, bushings, dampers, the
+///     smoothed sign of joint friction) times the run's span above
+///     kStiffSpan, where an explicit method would take more than about
+///     kStiffSpan / 5 steps for stability alone;
+///   - else the explicit projection-erk (Fehlberg 7(8) with projections),
+///     which on non-stiff mechanisms reaches an error in a fraction of the
+///     implicit methods' time (bench/auto_method.py).
+struct MethodChoice {
+  const Method* method = nullptr;
+  std::string why;
+};
+constexpr double kStiffSpan = 1000.0;
+MethodChoice choose_method(const Model& model, const SimulationOptions& o);
 
 /// The consistent state a dynamic run starts from at o.t0: the model's
 /// initial positions and velocities or, with o.start == Start::kEquilibrium, the
@@ -106,6 +126,7 @@ class Run {
   std::unique_ptr<RedundancyWatch> watch;
   Trajectory outputs;  // n, m, p, dropped rows, the method's names and run_model set
   long input_changes = 0;  // a Simulator's restarts for new input values (Stats::input_changes)
+  std::string method_choice = "given";  // Stats::method_choice
 
   /// Appends the output (t, q, v) with the run's input values (and, with
   /// `solve`, its a and lam): record_output.

@@ -35,7 +35,8 @@ struct Method {
   }
 };
 
-/// Every method, in the order users see them (the default first).
+/// Every method, in the order users see them (GGL first; formulation
+/// "auto", the default, chooses one: choose_method, run.hpp).
 const std::vector<Method>& methods();
 
 /// The method of a formulation and integrator (kDefault: the formulation's
