@@ -4,6 +4,7 @@ the scene reader's formulation/integrator/max_order checks, simulate's
 validation and the work-precision presets (mb.METHODS)."""
 
 import inspect
+import os
 import re
 import subprocess
 import sys
@@ -154,3 +155,41 @@ def test_lagmb_info_lists_the_methods():
     for m in mb.methods():
         line = next(x for x in lines if x.split()[0] == m["name"])
         assert m["formulation"] in line and m["integrator"] in line and m["description"] in line
+
+
+def test_auto_chooses_from_the_model_and_says_why():
+    """formulation="auto" (the default): the explicit method for a pendulum
+    (no stiff forces), GGL for a stiff spring (its rate sqrt(k/m) times the
+    span above 1000) and for a contact; r.stats["method_choice"] says so."""
+    free = mb.simulate(pendulum(), t_end=0.5, n_out=3)
+    assert (free.stats["formulation"], free.stats["integrator"]) == ("projection", "erk")
+    assert free.stats["method_choice"].startswith("auto: projection-erk, the forces' fastest rate 0 1/s")
+    stiff = mb.Model(gravity=(0.0, -9.81))
+    block = stiff.add_body("block", 1.0, 0.1, position=(1.0, 0.0))
+    stiff.add_translational("rail", stiff.ground, block, at=(1.0, 0.0), axis=(1.0, 0.0))
+    stiff.add_spring_damper("spring", stiff.ground, (0.0, 0.0), block, (1.0, 0.0), stiffness=1e8, free_length=0.9)
+    r = mb.simulate(stiff, t_end=0.5, n_out=3)
+    assert r.stats["formulation"] == "ggl"
+    rate = float(r.stats["method_choice"].split("fastest rate ")[1].split()[0])
+    assert rate == pytest.approx(1e4, rel=1e-2)  # sqrt(k / m)
+    assert mb.simulate(stiff, t_end=0.5, n_out=3, formulation="projection", integrator="erk").stats["method_choice"] \
+        == "given"
+    ball = mb.Model(gravity=(0.0, -9.81))
+    b = ball.add_body("ball", 1.0, 0.004, position=(0.0, 1.0))
+    ball.add_contact("floor", b, (0.0, 1.0), 0.1, "ground", (0.0, 0.0), (1.0, 0.0), stiffness=1e7, restitution=0.8)
+    assert "contact ('floor')" in mb.simulate(ball, t_end=0.5, n_out=3).stats["method_choice"]
+
+
+def test_auto_hands_a_stiff_run_over_to_ggl(tmp_path):
+    """A top of 9.2e18 kg on 0.002 kg m^2 (a fuzzed scene) is stiff in a way
+    its forces do not show at the start: the explicit method gives up after
+    5,000 steps between two outputs and GGL takes over from its last step
+    (here to meet max_steps too: the model is beyond both)."""
+    text = open(os.path.join(os.path.dirname(__file__), "..", "examples", "heavy_top.toml")).read()
+    path = tmp_path / "heavy.toml"
+    path.write_text(text.replace("mass = 1.0", "mass = 9223372036854775808"))
+    with pytest.raises(mb.SimulationError, match="IDA took max_steps = 20000") as failure:
+        mb.simulate(mb.load_scene(path).model, 2.0, n_out=11, max_steps=20000)
+    stats = failure.value.result.stats
+    assert stats["formulation"] == "ggl"
+    assert "GGL took over: ARKODE ERKStep took 5000 steps between two outputs" in stats["method_choice"]

@@ -41,8 +41,10 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
       ``"ggl"`` where a contact or joint friction from the loads switches
       the forces or the applied forces are stiff (their fastest rate at the
       start times the span above 1000), else ``"projection"`` with
-      ``"erk"``; ``r.stats["method_choice"]`` says which and why. No
-      ``integrator`` or ``baumgarte`` with it.
+      ``"erk"``, handing over to ``"ggl"`` if the explicit run fails its
+      error test or takes 5,000 steps between two outputs;
+      ``r.stats["method_choice"]`` says which and why. No ``integrator``
+      or ``baumgarte`` with it.
     - ``"ggl"``: stabilized index 2 (Gear, Gupta,
       Leimkuhler), IDA; positions and velocities stay on the constraints.
     - ``"index3"``: position constraints only, IDA with the multipliers and

@@ -28,6 +28,10 @@ struct IntegrationPlan {
   std::vector<double> breakpoints;  // inside (t0, t_end): stop and restart there
   class EventRunner* events = nullptr;  // the model's event functions; null: none
   const Data* run = nullptr;  // the run's Data: each integrator's own Data joins it (Data::join_run)
+  /// Steps between outputs after which the method gives up as too stiff
+  /// for it (IntegratorFailure::integrator_gave_up), so that formulation
+  /// "auto" runs on with GGL; 0: none (only max_steps).
+  long stiff_steps = 0;
 };
 
 /// Smallest step an integrator may take: 100 ulps of the largest |t| of the
@@ -44,6 +48,10 @@ struct IntegratorFailure : std::runtime_error {
   double t;
   VecX q;  // positions at t (the last accepted step), for the diagnosis
   bool diagnose = true;  // false: the message is complete (no Jacobian diagnosis)
+  /// The integrator itself gave up (its error test or step count), not a
+  /// user function or an event: another method may still get through
+  /// (formulation "auto" then runs on with GGL: Run::step_to).
+  bool integrator_gave_up = false;
 };
 
 /// One integrator as the shared stepping loop sees it.

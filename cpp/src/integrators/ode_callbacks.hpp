@@ -139,9 +139,11 @@ class OdeStepper : public Stepper {
 /// What a failed step reports: the solver, where, its step size and flag.
 inline IntegratorFailure solver_failure(const char* solver, double t, double h, int flag, const char* flag_name,
                                         const std::string& message) {
-  return IntegratorFailure(std::string(solver) + " failed at t = " + to_text(t) + " (step size " + to_text(h) +
-                               "), flag " + std::to_string(flag) + " (" + flag_name + "): " + message,
-                           t);
+  IntegratorFailure f(std::string(solver) + " failed at t = " + to_text(t) + " (step size " + to_text(h) +
+                          "), flag " + std::to_string(flag) + " (" + flag_name + "): " + message,
+                      t);
+  f.integrator_gave_up = true;
+  return f;
 }
 
 }  // namespace lagmb

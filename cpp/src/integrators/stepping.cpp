@@ -100,7 +100,17 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
       msg << stepper_.name() << " took max_steps = " << plan_.options->max_steps << " steps without reaching the next output "
           << "(at t = " << (k < t_out.size() ? t_out[k] : target) << "; now at t = " << t
           << "): max_steps bounds the steps between outputs; raise it, or ask for outputs more often.";
-      throw IntegratorFailure(msg.str(), t);
+      IntegratorFailure f(msg.str(), t);
+      f.integrator_gave_up = true;
+      throw f;
+    }
+    if (plan_.stiff_steps > 0 && steps >= plan_.stiff_steps && t < target) {
+      std::ostringstream msg;
+      msg << stepper_.name() << " took " << plan_.stiff_steps << " steps between two outputs (now at t = " << t
+          << "): the model is too stiff for it";
+      IntegratorFailure f(msg.str(), t);
+      f.integrator_gave_up = true;
+      throw f;
     }
     if (!stop_at_end_ && t >= target) {  // the last step of this run: act at the start of the next
       pending_ = true;

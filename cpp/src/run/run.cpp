@@ -232,6 +232,7 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
       method(method_),
       data(model),
       kkt(model),
+      current_(&method_),
       stop_at_end_(stop_at_end) {
   Redundancy redundancy;
   start = dynamic_start(model, options, data, kkt, redundancy);
@@ -248,7 +249,10 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
   outputs.stats.formulation = name_of(method.formulation);
   outputs.stats.integrator = name_of(method.integrator);
   outputs.stats.analysis = name_of(Analysis::kDynamic);
-  if (options.formulation == Formulation::kAuto) method_choice = choose_method(model, options).why;
+  if (options.formulation == Formulation::kAuto) {
+    method_choice = choose_method(model, options).why;
+    if (method.formulation == Formulation::kProjection) plan.stiff_steps = kAutoStiffSteps;
+  }
   outputs.stats.method_choice = method_choice;
 }
 
@@ -267,7 +271,7 @@ void Run::start_stepper(double t, const ConsistentState& from) {
   loop_.reset();
   stepper_.reset();
   plan.t0 = t;
-  stepper_ = make_stepper(method, model, from, plan);
+  stepper_ = make_stepper(*current_, model, from, plan);
   loop_ = std::make_unique<StepLoop>(*stepper_, plan, t, stop_at_end_);
 }
 
@@ -279,18 +283,44 @@ void Run::restart_stepper(double t, const ConsistentState& from) {
 }
 
 void Run::step_to(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {
-  try {
-    // outputs inside the step taken last, before it steps on
-    for (; k < t_out.size() && t_out[k] <= loop_->t(); ++k) {
-      const double *q = nullptr, *v = nullptr;
-      stepper_->interpolate(t_out[k], q, v);
-      record(q, v);
+  for (;;) {
+    try {
+      // outputs inside the step taken last, before it steps on
+      for (; k < t_out.size() && t_out[k] <= loop_->t(); ++k) {
+        const double *q = nullptr, *v = nullptr;
+        stepper_->interpolate(t_out[k], q, v);
+        record(q, v);
+      }
+      loop_->run(target, t_out, k, record);
+      return;
+    } catch (IntegratorFailure& e) {
+      if (!e.q.size()) e.q = Eigen::Map<const VecX>(stepper_->positions(), model.n_coordinates());
+      if (!switch_to_ggl(e)) throw;
     }
-    loop_->run(target, t_out, k, record);
-  } catch (IntegratorFailure& e) {
-    if (!e.q.size()) e.q = Eigen::Map<const VecX>(stepper_->positions(), model.n_coordinates());
-    throw;
   }
+}
+
+bool Run::switch_to_ggl(const IntegratorFailure& why) {
+  if (options.formulation != Formulation::kAuto || current_->formulation != Formulation::kProjection ||
+      !why.integrator_gave_up)
+    return false;
+  const int n = model.n_coordinates();
+  const double t = loop_->t();
+  const VecX q = Eigen::Map<const VecX>(stepper_->positions(), n), v = Eigen::Map<const VecX>(stepper_->velocities(), n);
+  ConsistentState from;
+  try {
+    from = make_consistent(model, data, kkt, q, v, t);
+  } catch (const std::exception&) {
+    return false;  // (the explicit method's failure says more)
+  }
+  std::ostringstream s;
+  s << "; at t = " << t << " GGL took over: " << why.what();
+  method_choice += s.str();
+  current_ = &find_method(Formulation::kGgl, Integrator::kDefault);
+  plan.stiff_steps = 0;
+  plan.max_order = std::min(options.max_order ? options.max_order : current_->max_order, current_->max_order);
+  start_stepper(t, from);
+  return true;
 }
 
 Stats Run::stats() const {
@@ -307,8 +337,8 @@ Stats Run::stats() const {
   s.input_changes = input_changes;
   // the start, the outputs' solves and the checks of the dropped rows
   s.element_evaluations += data.element_evaluations + watch->element_evaluations();
-  s.formulation = name_of(method.formulation);
-  s.integrator = name_of(method.integrator);
+  s.formulation = name_of(current_->formulation);
+  s.integrator = name_of(current_->integrator);
   s.method_choice = method_choice;
   s.analysis = name_of(Analysis::kDynamic);
   if (events) {

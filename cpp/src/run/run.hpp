@@ -47,7 +47,9 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
 ///     kStiffSpan / 5 steps for stability alone;
 ///   - else the explicit projection-erk (Fehlberg 7(8) with projections),
 ///     which on non-stiff mechanisms reaches an error in a fraction of the
-///     implicit methods' time (bench/auto_method.py).
+///     implicit methods' time (bench/auto_method.py); should it give up
+///     (its error test, or kAutoStiffSteps between two outputs), GGL takes
+///     over from its last step (Run::switch_to_ggl).
 struct MethodChoice {
   const Method* method = nullptr;
   std::string why;
@@ -117,7 +119,7 @@ class Run {
   const std::shared_ptr<const Model> with_parameters;  // null: the run is of the model given
   const Model& model;                                  // what the run integrates
   const SimulationOptions& options;
-  const Method& method;
+  const Method& method;  // the method asked for or chosen at the start (see current_method)
   Data data;  // the run's: plan.run and every formulation's Data join it
   AugmentedSystem kkt;
   ConsistentState start;
@@ -147,6 +149,12 @@ class Run {
   void step_to(double target, const std::vector<double>& t_out, size_t& k, const Record& record);
   /// Whether there is a stepper (start_stepper called).
   bool stepping() const { return bool(stepper_); }
+  /// The method stepping now: `method`, or GGL after formulation "auto"
+  /// gave up on the explicit method (step_to).
+  const Method& current_method() const { return *current_; }
+  /// Steps between outputs after which formulation "auto" takes the
+  /// explicit method for too stiff and runs on with GGL.
+  static constexpr long kAutoStiffSteps = 5000;
 
   /// The run's counts: every stepper's summed, the restarts (breakpoints,
   /// events, new steppers, input changes), the elements evaluated by the
@@ -154,6 +162,13 @@ class Run {
   Stats stats() const;
 
  private:
+  /// Formulation "auto" running the explicit method: after the failure
+  /// `why` (its error test, kAutoStiffSteps or max_steps between outputs),
+  /// GGL takes over from the last accepted step; false if that is not
+  /// the case (or it happened before: the failure stands).
+  bool switch_to_ggl(const IntegratorFailure& why);
+
+  const Method* current_;
   std::unique_ptr<Stepper> stepper_;
   std::unique_ptr<StepLoop> loop_;
   bool stop_at_end_;
