@@ -193,3 +193,16 @@ def test_auto_hands_a_stiff_run_over_to_ggl(tmp_path):
     stats = failure.value.result.stats
     assert stats["formulation"] == "ggl"
     assert "GGL took over: ARKODE ERKStep took 5000 steps between two outputs" in stats["method_choice"]
+
+
+def test_the_explicit_method_refuses_a_contact_it_cannot_place():
+    """projection-erk passed a whole bounce of the bouncing ball inside one
+    step, placed the onset on its interpolant and ran on 1 km off with no
+    error; a model with a contact (an event that switches a force) is now
+    refused by name, listing the methods that place it."""
+    ball = mb.Model(gravity=(0.0, -9.81))
+    b = ball.add_body("ball", 1.0, 0.004, position=(0.0, 1.0))
+    ball.add_contact("floor", b, (0.0, 1.0), 0.1, "ground", (0.0, 0.0), (1.0, 0.0), stiffness=1e7, restitution=0.8)
+    with pytest.raises(mb.ModelError, match="projection-erk cannot place the onset of contact 'floor'.*ggl"):
+        mb.simulate(ball, t_end=1.0, formulation="projection", integrator="erk")
+    assert not next(m for m in mb.methods() if m["name"] == "projection-erk")["contact"]

@@ -502,7 +502,8 @@ def _methods_table():
     rows = []
     for m in methods():
         notes = [f"order <= {m['max_order']}", "fixed step" if m["fixed_step"] else "error control"]
-        notes += [w for w, has in (("no events", not m["events"]), ("no friction", not m["friction"]),
+        notes += [w for w, has in (("no events", not m["events"]), ("no contact", m["events"] and not m["contact"]),
+                                   ("no friction", not m["friction"]),
                                    ("baumgarte", m["baumgarte"]), ("drifts", m["drifts"])) if has]
         rows.append((m["name"], m["formulation"], m["integrator"], ", ".join(notes), m["description"]))
     head = ("method", "formulation", "integrator", "supports", "")

@@ -232,6 +232,7 @@ def methods():
     ``formulation`` and ``integrator`` (what :func:`simulate` takes),
     ``solver``, ``description`` (one line), ``max_order``, and what the
     method supports: ``fixed_step`` (needs ``step``), ``events`` (stops and
-    contact), ``friction`` (joint friction), ``baumgarte``, ``drifts``
+    contact), ``contact`` (a contact's onset placed: not the explicit
+    method), ``friction`` (joint friction), ``baumgarte``, ``drifts``
     (positions are not held on the constraints)."""
     return [dict(m) for m in _core.methods()]

@@ -68,6 +68,7 @@ const std::vector<Entry>& entries() {
          "ODE in accelerations, explicit Runge-Kutta (Fehlberg 7(8) by default), positions and velocities "
          "projected after each step; for non-stiff mechanisms such as long free chains",
          8};
+    m.contact = false;
     add(m, [](const Model& model, const ConsistentState& start, const IntegrationPlan& plan) {
       return make_erk_stepper(model, start, plan);
     });
@@ -77,6 +78,7 @@ const std::vector<Entry>& entries() {
          2};
     m.fixed_step = true;
     m.events = false;
+    m.contact = false;
     m.friction = false;
     add(m, &make_ali3p_stepper);
     return t;

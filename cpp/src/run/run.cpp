@@ -115,6 +115,12 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
     throw ModelError(at + "formulation '" + name_of(method.formulation) +
                      "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
                      "'); the methods that have: " + those(&Method::events));
+  if (!method.contact)
+    for (const auto& g : model.event_groups())
+      if (!g->bounds_motion() && g->size() > 0)
+        throw ModelError(at + method.name + " cannot place the onset of " + g->kind() + " '" + g->name(0) +
+                         "' (an explicit step can pass a whole contact); the methods that can: " +
+                         those(&Method::contact) + " (formulation 'auto' chooses ggl here)");
   if (o.max_order < 0 || o.max_order > method.max_order)
     throw ModelError(at + "max_order must be in 1.." + std::to_string(method.max_order) + " for " +
                      method.name + " (integrator " + name_of(method.integrator) + "; 0: its highest order), got " +
