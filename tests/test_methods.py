@@ -182,9 +182,10 @@ def test_auto_chooses_from_the_model_and_says_why():
 
 def test_auto_hands_a_stiff_run_over_to_ggl(tmp_path):
     """A top of 9.2e18 kg on 0.002 kg m^2 (a fuzzed scene) is stiff in a way
-    its forces do not show at the start: the explicit method gives up after
-    5,000 steps between two outputs and GGL takes over from its last step
-    (here to meet max_steps too: the model is beyond both)."""
+    its forces do not show at the start: the explicit method gives up (its
+    error test fails; or it would take 5,000 steps between two outputs) and
+    GGL takes over from its last step (here to meet max_steps too: the model
+    is beyond both)."""
     text = open(os.path.join(os.path.dirname(__file__), "..", "examples", "heavy_top.toml")).read()
     path = tmp_path / "heavy.toml"
     path.write_text(text.replace("mass = 1.0", "mass = 9223372036854775808"))
@@ -192,7 +193,7 @@ def test_auto_hands_a_stiff_run_over_to_ggl(tmp_path):
         mb.simulate(mb.load_scene(path).model, 2.0, n_out=11, max_steps=20000)
     stats = failure.value.result.stats
     assert stats["formulation"] == "ggl"
-    assert "GGL took over: ARKODE ERKStep took 5000 steps between two outputs" in stats["method_choice"]
+    assert re.search(r"GGL took over: (ERKStep failed|ARKODE ERKStep took 5000 steps)", stats["method_choice"])
 
 
 def test_the_explicit_method_refuses_a_contact_it_cannot_place():

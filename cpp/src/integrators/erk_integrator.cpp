@@ -7,6 +7,9 @@
 #include <arkode/arkode_erkstep.h>
 #include <nvector/nvector_serial.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "integrators/ode_callbacks.hpp"
 
 namespace lagmb {
@@ -92,6 +95,7 @@ struct ErkStepper final : ErkParts, OdeStepper {
     check(ERKStepSetOrder(s.mem, plan.max_order), "ERKStepSetOrder", s.ctx);
     if (plan.options->max_step > 0) check(ERKStepSetMaxStep(s.mem, plan.options->max_step), "ERKStepSetMaxStep", s.ctx);
     check(ERKStepSetMinStep(s.mem, minimum_step(plan)), "ERKStepSetMinStep", s.ctx);
+    if (const double h0 = first_step(); h0 > 0.0) check(ERKStepSetInitStep(s.mem, h0), "ERKStepSetInitStep", s.ctx);
     if (ode_.n_constraints() > 0)
       check(ERKStepSetPostprocessStepFn(s.mem, erk_project), "ERKStepSetPostprocessStepFn", s.ctx);
     if (plan.events && plan.events->size() > 0) {  // only models with event elements
@@ -101,6 +105,39 @@ struct ErkStepper final : ErkParts, OdeStepper {
     }
     mark(plan.t0);
   }
+  /// The first step, as Hairer, Norsett and Wanner choose it for explicit
+  /// Runge-Kutta methods of order p (Solving ODEs I, sec. II.4): with the
+  /// weighted RMS norms of y0, f0 = f(y0) and of the change of f over an
+  /// explicit Euler step of h0 = 0.01 |y0| / |f0|, d2 = |f1 - f0| / h0,
+  ///   h = min(100 h0, (0.01 / max(|f0|, d2))^(1 / (p + 1))),
+  /// within the run's span and max_step. ARKODE's own estimate starts a
+  /// mechanism released at rest (f's position part 0) near 1e-10 s, and the
+  /// ramp from there took a third of the steps of a 1 s chain run. 0 (let
+  /// ARKODE choose) where f cannot be evaluated.
+  double first_step() {
+    const int size = 2 * n;
+    const double rtol = plan.options->rtol;
+    const Eigen::Map<const VecX> y0(N_VGetArrayPointer(s.y), size), atol(N_VGetArrayPointer(s.abstol), size);
+    VecX f0(size), y1(size), f1(size);
+    if (!p.ode.right_hand_side(plan.t0, y0.data(), f0.data())) return 0.0;
+    auto norm = [&](const VecX& x, const VecX& at) {
+      return std::sqrt(((x.array() / (atol.array() + rtol * at.array().abs())).square()).mean());
+    };
+    const VecX y_now = y0;
+    const double d0 = norm(y_now, y_now), d1 = norm(f0, y_now);
+    const double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+    y1 = y_now + h0 * f0;
+    if (!p.ode.right_hand_side(plan.t0 + h0, y1.data(), f1.data())) return 0.0;
+    const double d2 = norm(f1 - f0, y_now) / h0, largest = std::max(d1, d2);
+    const double h1 = largest <= 1e-15 ? std::max(1e-6, 1e-3 * h0)
+                                       : std::pow(0.01 / largest, 1.0 / (plan.max_order + 1));
+    double h = std::min(100.0 * h0, h1);
+    if (plan.t_end > plan.t0) h = std::min(h, plan.t_end - plan.t0);
+    if (plan.options->max_step > 0) h = std::min(h, plan.options->max_step);
+    extra_rhs_ += 2;
+    return std::isfinite(h) && h > minimum_step(plan) ? h : 0.0;
+  }
+
   /// The current state of s.y at t becomes the end of the last step.
   void mark(double t) {
     end_.t = t;
