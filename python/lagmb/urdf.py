@@ -530,8 +530,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
 def _followers(reader, joints):
     """{joint: its <mimic>} for the joints that mimic another: both must
     have a coordinate (revolute, continuous, prismatic). A fixed joint's
-    <mimic> couples nothing (it has no coordinate) and is passed over, as
-    Pinocchio and MuJoCo do."""
+    <mimic> couples nothing (it has no coordinate) and is passed over
+    (Talos's gripper has such elements)."""
     moving = ("revolute", "continuous", "prismatic")
     out = {}
     for joint in joints.values():
