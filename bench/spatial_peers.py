@@ -84,7 +84,7 @@ import numpy as np  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
-from time_to import time_to  # noqa: E402
+from time_to import decisive as shared_decisive, time_to  # noqa: E402
 
 TARGETS = (1e-6, 1e-8)
 ANGLE0 = 0.1
@@ -475,18 +475,8 @@ def search_steps(sweep, tip, max_run, log, first=25, max_steps=25 * 2 ** 16):
 
 
 def decisive(rows):
-    """Indices of the ok rows time_to and the lower bound rest on."""
-    ok = [i for i, r in enumerate(rows) if r["status"] == "ok"]
-    out = set()
-    for t in TARGETS:
-        hit = [j for j, i in enumerate(ok) if rows[i]["error"] <= t]
-        if hit:
-            out.add(ok[hit[0]])
-            if hit[0] > 0:
-                out.add(ok[hit[0] - 1])
-        elif ok:
-            out.add(max(ok, key=lambda i: rows[i]["search_time"]))
-    return sorted(out)
+    """The rows a sweep's times rest on (time_to.decisive)."""
+    return sorted(shared_decisive(rows, TARGETS, "search_time"))
 
 
 def check_sweep(sweep, tip, max_run):

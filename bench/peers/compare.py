@@ -89,7 +89,7 @@ MAX_INNER = 20  # repetitions of one short run at most
 ENGINE_MODULES = ("peer_lagmb", "peer_pinocchio", "peer_mujoco", "peer_exudyn")
 
 
-from time_to import time_to  # noqa: E402  (bench/time_to.py)
+from time_to import decisive as shared_decisive, time_to  # noqa: E402  (bench/time_to.py)
 
 
 def lower_bound(rows, target):
@@ -219,20 +219,8 @@ def should_stop(sweep, max_run):
 
 
 def decisive(rows):
-    """Indices of the ok runs time_to and lower_bound use: for each target the
-    first run that reaches it and the ok run before; the slowest ok run if it
-    is not reached."""
-    ok = [i for i, r in enumerate(rows) if r["status"] == "ok"]
-    out = set()
-    for t in TARGETS:
-        hit = [j for j, i in enumerate(ok) if rows[i]["error"] <= t]
-        if hit:
-            out.add(ok[hit[0]])
-            if hit[0] > 0:
-                out.add(ok[hit[0] - 1])
-        elif ok:
-            out.add(max(ok, key=lambda i: rows[i]["time"]))
-    return out
+    """The rows a sweep's times rest on (time_to.decisive)."""
+    return shared_decisive(rows, TARGETS, "time")
 
 
 def order(items, k):
