@@ -67,6 +67,14 @@ inline Mat34 point_jacobian(const Vec4& p, const Vec3& s) {
   return J;
 }
 
+/// d(A(p) s)/dt = point_jacobian(p, s) p', without forming the matrix:
+/// 2 [p0' (e0 s + e x s) + (e.s) e' + (s.e') e - (e.e') s - e0 s x e'].
+inline Vec3 rotation_rate(const Vec4& p, const Vec4& pd, const Vec3& s) {
+  const double e0 = p[0];
+  const Vec3 e = p.tail<3>(), ed = pd.tail<3>();
+  return 2.0 * (pd[0] * (e0 * s + e.cross(s)) + e.dot(s) * ed + s.dot(ed) * e - e.dot(ed) * s - e0 * s.cross(ed));
+}
+
 /// d2(A(p) s)_k / dp2 (4 x 4, constant: A s is quadratic in p), for the
 /// weighted sum over k with weights w: sum_k w_k d2(A s)_k/dp2.
 inline Mat4 point_hessian(const Vec3& s, const Vec3& w) {

@@ -18,6 +18,8 @@ struct SpatialDistanceJoint : SpatialJointBase, spatial::TermJoint<SpatialDistan
     f.value = (f.value - length * length) / (2.0 * length);
     f.gradient /= 2.0 * length;
     f.gradient_rate /= 2.0 * length;
+    f.velocity /= 2.0 * length;
+    f.convective /= 2.0 * length;
     if (want.hessian) f.hessian /= 2.0 * length;
     return {f};
   }
