@@ -96,19 +96,27 @@ void AugmentedSystem::setup_schur(const Model& model) {
     u.add(r, c);
   });
   S_ = u.build();
-  // S's entry e = sum of J[a] (J[b] / M_c) over its pairs, grouped by entry (a counting sort)
-  std::vector<int> slot_of_pair;
-  each_pair([&](int, int a, int b) {
-    const auto [r, c] = entry(a, b);
-    slot_of_pair.push_back(slot(S_, r, c));
-  });
-  term_begin_.assign(S_.nonZeros() + 1, 0);
-  for (int e : slot_of_pair) ++term_begin_[e + 1];
-  for (Eigen::Index e = 0; e < S_.nonZeros(); ++e) term_begin_[e + 1] += term_begin_[e];
-  std::vector<int> next(term_begin_.begin(), term_begin_.end() - 1);
-  term_pairs_.resize(slot_of_pair.size());
-  size_t k = 0;
-  each_pair([&](int, int a, int b) { term_pairs_[next[slot_of_pair[k++]]++] = {a, b}; });
+  // runs of neighbouring columns with the same rows: M^-1's blocks lie
+  // within one (their columns share rows: checked above)
+  int largest = 0;
+  for (int c = 0; c < n_;) {
+    const int rows = outer[c + 1] - outer[c];
+    int end = c + 1;
+    while (end < n_ && outer[end + 1] - outer[end] == rows &&
+           std::equal(row + outer[c], row + outer[c + 1], row + outer[end]))
+      ++end;
+    if (rows > 0) {
+      runs_.push_back({outer[c], rows, end - c, int(run_slots_.size())});
+      for (int b = 0; b < rows; ++b)
+        for (int a = b; a < rows; ++a) {
+          const auto [r, s] = entry(outer[c] + a, outer[c] + b);
+          run_slots_.push_back(slot(S_, r, s));
+        }
+      largest = std::max(largest, rows);
+    }
+    c = end;
+  }
+  run_product_.resize(largest * (largest + 1) / 2);
   j_scaled_.resize(J.nonZeros());
   for (int i = 0; i < m_; ++i) s_diag_.push_back(slot(S_, i, i));
   chol_.analyzePattern(S_);
@@ -169,10 +177,26 @@ bool AugmentedSystem::factorize_schur(const Data& d) {
       for (int k = 0; k < count; ++k) Jw[begin + k] += J[a + k] * mv[e];
     }
   }
-  for (Eigen::Index e = 0; e < S_.nonZeros(); ++e) {
-    double sum = 0.0;
-    for (int t = term_begin_[e]; t < term_begin_[e + 1]; ++t) sum += J[term_pairs_[t][0]] * Jw[term_pairs_[t][1]];
-    S[e] = sum;
+  // S = sum over the runs g of J_g (J M^-1)_g^T: small dense products
+  // (the lower triangle, column b = sum over the run's columns of J_g[b.., c] (J M^-1)_g[b, c]:
+  // contiguous axpys)
+  S_.coeffs().setZero();
+  for (const ColumnRun& g : runs_) {
+    const int k = g.rows;
+    double* P = run_product_.data();
+    std::fill(P, P + k * (k + 1) / 2, 0.0);
+    for (int c = 0; c < g.width; ++c) {
+      const double* Jc = J + g.entry0 + c * k;
+      const double* Wc = Jw + g.entry0 + c * k;
+      double* column = P;
+      for (int b = 0; b < k; ++b) {
+        const double w = Wc[b];
+        for (int a = b; a < k; ++a) column[a - b] += Jc[a] * w;
+        column += k - b;
+      }
+    }
+    const int* slot = run_slots_.data() + g.slot0;
+    for (int e = 0; e < k * (k + 1) / 2; ++e) S[slot[e]] += P[e];
   }
   // a dropped (redundant) row has no entries; a unit diagonal keeps S definite, and its
   // right side is zero, so its multiplier stays 0

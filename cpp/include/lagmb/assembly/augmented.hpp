@@ -91,10 +91,15 @@ class AugmentedSystem {
   SpMat m_inv_;                 // M^-1 at the last factorization (block diagonal)
   SpMat S_;                     // upper triangle, AMD order
   VecX s_rhs_, work_, lam_, lam_prev_, w_n_;
-  // S.values[e] = sum of J.values[a] (J M^-1).values[b] over the pairs (a, b) in
-  // term_pairs_[term_begin_[e] .. term_begin_[e + 1]) (a and b in one column)
-  std::vector<int> term_begin_;
-  std::vector<std::array<int, 2>> term_pairs_;
+  // Phi_q's columns in runs with the same rows (a body's position, its Euler
+  // parameters): each run adds the dense product J_g (J M^-1)_g^T, rows x
+  // rows, to S; its lower triangle goes to S's entries slots_[slot0 ..)
+  struct ColumnRun {
+    int entry0, rows, width, slot0;
+  };
+  std::vector<ColumnRun> runs_;
+  std::vector<int> run_slots_;
+  VecX run_product_;  // the lower triangle of the largest run's product, by columns
   VecX j_scaled_;  // J M^-1, per entry (a block of M^-1 mixes columns with the same rows)
   std::vector<int> s_diag_;
   Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
