@@ -278,13 +278,41 @@ def test_cam_follower(outputs):
 
 def test_scene_heavy_top_conserves_energy_and_spin():
     """examples/heavy_top.toml: a spatial scene; no torque acts about the
-    top's axis, so its spin stays at 10 rad/s, and its energy stays put."""
+    top's axis, so its spin stays at 100 rad/s, and its energy stays put."""
     r = mb.load_scene(os.path.join(EXAMPLES, "heavy_top.toml")).run()
     top = r.body("top")
     spin = np.einsum("ki,ki->k", top.angular_velocity, top.rotation[:, :, 2])
-    assert np.abs(spin - 10.0).max() < 1e-7
+    assert np.abs(spin - 100.0).max() < 1e-6
     assert np.ptp(r.energy) < 1e-7 * np.abs(r.energy).max()
     assert r.reaction("tip").shape == (len(r), 6)
+
+
+def test_scene_heavy_top_nutates_between_its_release_tilt_and_the_closed_form_turning_tilt():
+    """What examples/heavy_top.toml's header says. Let go at tilt theta0
+    with no precession, a symmetric top on its tip keeps p_psi = I3 w3 and
+    p_phi = I3 w3 cos(theta0); where theta' = 0, energy gives, with u = cos
+    theta and I1 about the tip (I1c + m l^2),
+        2 I1 m g l (1 - u^2) = (I3 w3)^2 (u0 - u),
+    so the tilt swings between theta0 and that root, and the precession
+    rate I3 w3 (u0 - u) / (I1 sin^2 theta) never changes sign. Sampled every
+    0.5 ms over 2 s (ten nutations); the mean precession rate is near a fast
+    top's m g l / (I3 w3)."""
+    scene = mb.load_scene(os.path.join(EXAMPLES, "heavy_top.toml"))
+    settings = {k: v for k, v in scene.settings.items() if k not in ("t_end", "n_out", "t_out")}
+    r = mb.simulate(scene.model, 2.0, n_out=4001, **settings)
+    axis = r.body("top").rotation[:, :, 2]
+    tilt = np.arccos(np.clip(axis[:, 2], -1.0, 1.0))
+    azimuth = np.unwrap(np.arctan2(axis[:, 1], axis[:, 0]))
+    m, g, l, I3, w3, theta0 = 1.0, 9.81, 0.1, 0.004, 100.0, 0.5
+    I1 = 0.002 + m * l * l
+    a, b, u0 = 2.0 * I1 * m * g * l, (I3 * w3) ** 2, np.cos(theta0)
+    turning = np.arccos((b - np.sqrt(b * b - 4.0 * a * (b * u0 - a))) / (2.0 * a))
+    assert abs(turning - 0.5874) < 1e-4  # (the header's 0.587 rad)
+    assert abs(tilt.min() - theta0) < 1e-8
+    assert abs(tilt.max() - turning) < 1e-6
+    assert np.diff(azimuth).min() > -1e-9  # one way round
+    mean_rate = (azimuth[-1] - azimuth[0]) / 2.0
+    assert abs(mean_rate - 2.6) < 0.05 and abs(mean_rate / (m * g * l / (I3 * w3)) - 1.0) < 0.1
 
 
 def test_panda(outputs):
