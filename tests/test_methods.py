@@ -137,7 +137,7 @@ def test_a_scene_is_checked_against_the_table(tmp_path):
     with pytest.raises(mb.SceneError, match=f"integrator.*{re.escape(projection)} for formulation 'projection'"):
         mb.load_scene(scene('formulation = "projection"\nintegrator = "rk4"'))
     with pytest.raises(mb.SceneError, match="max_order.*1..5 for method 'ggl'"):
-        mb.load_scene(scene("max_order = 6"))
+        mb.load_scene(scene('method = "ggl"\nmax_order = 6'))
     with pytest.raises(mb.SceneError, match="formulation.*'ggl', 'index3'"):
         mb.load_scene(scene('formulation = "rk4"'))
 
@@ -209,3 +209,48 @@ def test_the_explicit_method_refuses_a_contact_it_cannot_place():
     with pytest.raises(mb.ModelError, match="projection-erk cannot place the onset of contact 'floor'.*ggl"):
         mb.simulate(ball, t_end=1.0, formulation="projection", integrator="erk")
     assert not next(m for m in mb.methods() if m["name"] == "projection-erk")["contact"]
+
+
+def test_a_method_is_named_the_same_way_everywhere(tmp_path):
+    """One name per method, the one lagmb.methods() lists: simulate(method=),
+    in any case, runs exactly what its formulation and integrator run, and
+    r.stats["method"] names the method that ran; a listed name is taken as a
+    formulation too; the Simulator and a scene's [simulation] take it alike."""
+    model = pendulum()
+    for m in mb.methods():
+        if m["fixed_step"]:
+            continue
+        by_parts = mb.simulate(model, 0.2, n_out=3, formulation=m["formulation"], integrator=m["integrator"])
+        by_name = mb.simulate(model, 0.2, n_out=3, method=m["name"].upper())
+        assert np.array_equal(by_name.q, by_parts.q)
+        assert by_name.stats["method"] == by_parts.stats["method"] == m["name"]
+        as_formulation = mb.simulate(model, 0.2, n_out=3, formulation=m["name"])
+        assert np.array_equal(as_formulation.q, by_parts.q)
+    assert mb.simulate(model, 0.2, n_out=3).stats["method"] == "projection-erk"  # "auto" chose it
+    simulator = mb.Simulator(model, method="Projection-BDF")
+    simulator.advance(0.1)
+    assert simulator.result().stats["method"] == "projection-bdf"
+    scene = tmp_path / "s.toml"
+    mb.save_scene(model, scene)
+    scene.write_text(scene.read_text() + '\n[simulation]\nt_end = 0.2\nmethod = "index3"\n')
+    assert mb.load_scene(scene).run().stats["method"] == "index3"
+
+
+@pytest.mark.parametrize("options, message", [
+    (dict(method="rk4"), "method 'rk4' is not one of: auto, ggl"),
+    (dict(method="ggl", formulation="index3"), "give method, or formulation and integrator, not both"),
+    (dict(method="ggl", integrator="bdf"), "not both"),
+    (dict(formulation="projection-erk", integrator="bdf"), "names integrator 'erk', got integrator 'bdf'"),
+    (dict(method=3), "method must be a string"),
+])
+def test_a_method_name_that_does_not_fit_is_refused_by_name(options, message):
+    with pytest.raises(mb.ModelError, match=re.escape(message)):
+        mb.simulate(pendulum(), 0.1, **options)
+
+
+def test_a_scene_refuses_a_method_beside_a_formulation_at_its_line(tmp_path):
+    scene = tmp_path / "s.toml"
+    mb.save_scene(pendulum(), scene)
+    scene.write_text(scene.read_text() + '\n[simulation]\nmethod = "ggl"\nformulation = "index1"\n')
+    with pytest.raises(mb.SceneError, match=r"method.*not both"):
+        mb.load_scene(scene)

@@ -419,7 +419,7 @@ def _summary(scene, r, say):
         ("jacobian_evals", "Jacobians"), ("lu_factorizations", "LU factorizations")) if k in s]
     if "wall_time" in s:
         parts.append(f"{1e3 * s['wall_time']:.1f} ms")
-    say(f"  solver ({s.get('formulation', '?')}, {s.get('integrator', '?')}): " + ", ".join(parts))
+    say(f"  method {s.get('method', s.get('formulation', '?'))}: " + ", ".join(parts))
     say(f"  max |Phi| {r.residual.max():.2e}")
 
 

@@ -71,7 +71,7 @@ def run(plot=None, t_end=5.0, rtol=1e-8, atol=1e-10, out=print):
     out(f"  max |Phi|                  {r.residual.max():.2e} m")
     out(f"  energy drift               {np.ptp(r.energy):.2e} J")
     s = r.stats
-    out(f"  solver ({s['formulation']}, {s['integrator']}): {s['steps']} steps, "
+    out(f"  method {s['method']}: {s['steps']} steps, "
         f"{s['residual_evals']} residual evaluations, {s['jacobian_evals']} Jacobians, "
         f"{s['lu_factorizations']} LU factorizations, {1e3 * s['wall_time']:.1f} ms")
     if plot:

@@ -71,7 +71,7 @@ def setup_text(scene):
         ("formulation", DEFAULTS["formulation"]), ("integrator", None), ("max_step", None), ("step", None),
         ("max_order", None), ("baumgarte", None), ("max_steps", DEFAULTS["max_steps"]),
         ("start", DEFAULTS["start"]), ("newton_rtol", DEFAULTS["newton_rtol"]),
-        ("newton_atol", DEFAULTS["newton_atol"]))})
+        ("newton_atol", DEFAULTS["newton_atol"]), ("method", None))})
     output = getattr(scene, "output", None) or {}
     reactions = [str(r) for r in output.get("reactions", [])]
     efforts = [str(e) for e in output.get("efforts", [])]

@@ -4,6 +4,7 @@ from functools import cached_property
 
 import numpy as np
 
+from . import _core
 from .errors import KinematicOnlyError, ModelError, SimulationError
 from .handles import name_of
 
@@ -171,6 +172,11 @@ class Result:
         self._inputs = _frozen(np.asarray(inputs, dtype=float))
         self._input_names = names
         self.stats = dict(raw["stats"])
+        # the method's listed name (lagmb.methods()) beside its parts
+        name = next((m["name"] for m in _core.methods() if m["formulation"] == self.stats.get("formulation")
+                     and m["integrator"] == self.stats.get("integrator")), None)
+        if name is not None:
+            self.stats["method"] = name
         self.events = [dict(e) for e in raw.get("events", [])]
         self.redundant_rows = list(raw.get("dropped_rows", []))
 

@@ -29,13 +29,16 @@ def _translate(model=None, core=None):
 def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n_out"], t_out=None, t0=_D["t0"],
              max_step=None, max_steps=_D["max_steps"], formulation=_D["formulation"], integrator=None,
              max_order=None, baumgarte=None, progress=None, analysis=_D["analysis"], start=_D["start"], step=None,
-             parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"]):
+             parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
     velocities by projection); then it is integrated by one of the methods
-    that :func:`lagmb.methods` lists: a ``formulation`` and one of its
-    integrators (``integrator=None``: the formulation's first):
+    that :func:`lagmb.methods` lists, named by ``method`` (its listed name,
+    any case: ``method="projection-erk"``; ``r.stats["method"]`` says the one
+    that ran) or by a ``formulation`` and one of its integrators
+    (``integrator=None``: the formulation's first; a listed name is taken as
+    ``formulation`` too):
 
     - ``formulation="auto"`` (default): the method chosen from the model:
       ``"ggl"`` where a contact or joint friction from the loads switches
@@ -147,7 +150,8 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
     options = _run_options(t0=t0, rtol=rtol, atol=atol, formulation=formulation, integrator=integrator,
                            max_step=max_step, step=step, max_order=max_order, baumgarte=baumgarte,
-                           max_steps=max_steps, start=start, newton_rtol=newton_rtol, newton_atol=newton_atol)
+                           max_steps=max_steps, start=start, newton_rtol=newton_rtol, newton_atol=newton_atol,
+                           method=method)
     if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
         raise ModelError("t_out must be strictly increasing")
     if t_out is not None and t_out.size > _INT_MAX:
@@ -163,25 +167,52 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     with _translate(model, core):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
         raw = _core.simulate(core, options, progress)
-    model._warn_redundant(raw.get("dropped_rows", []), stacklevel=3)
+    model._warn_redundant(raw.get("dropped_rows", []))
+    if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
+        model._warn_moved(core, raw["q"][0])
     return Result(model, core, raw)
 
 
+def method_options(method=None, formulation=_D["formulation"], integrator=None):
+    """(formulation, integrator) for a run: from ``method``, a name that
+    :func:`methods` lists (or "auto"), in any case; else from ``formulation``
+    (which may be such a name too) and ``integrator`` ("" for the
+    formulation's first). ModelError for an unknown name, or for ``method``
+    given beside a formulation or an integrator."""
+    by_name = {m["name"]: m for m in _core.methods()}
+    if method is not None:
+        name = _text(method, "method").strip().lower()
+        if name != "auto" and name not in by_name:
+            raise ModelError(f"method {method!r} is not one of: {', '.join(['auto'] + list(by_name))}")
+        if integrator is not None or _text(formulation, "formulation").strip().lower() != _D["formulation"]:
+            raise ModelError(f"method {method!r} names the formulation and the integrator together: give method, "
+                             "or formulation and integrator, not both")
+        return ("auto", "") if name == "auto" else (by_name[name]["formulation"], by_name[name]["integrator"])
+    formulation = _text(formulation, "formulation").strip().lower()
+    integrator = "" if integrator is None else _text(integrator, "integrator").strip().lower()
+    listed = by_name.get(formulation)
+    if listed is not None and listed["formulation"] != formulation:  # "projection-erk" as a formulation
+        if integrator and integrator != listed["integrator"]:
+            raise ModelError(f"formulation {formulation!r} names integrator {listed['integrator']!r}, "
+                             f"got integrator {integrator!r}")
+        return listed["formulation"], listed["integrator"]
+    return formulation, integrator
+
+
 def _run_options(*, t0, rtol, atol, formulation, integrator, max_step, step, max_order, baumgarte, max_steps,
-                 start, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"]):
+                 start, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None):
     """The options every dynamic run takes, checked, by the names of the
     core's SimulationOptions (simulate and Simulator). The choices
     (formulation, integrator, start, analysis) are checked to be strings
     here and parsed by the core, which lists the valid ones."""
     rtol = _positive(rtol, "rtol")
-    formulation = _text(formulation, "formulation")
+    formulation, integrator = method_options(method, formulation, integrator)
     if formulation == "ali3p" and not (np.ndim(atol) == 0 and rtol == _D["rtol"] and atol == _D["atol"]):
         raise ModelError("formulation 'ali3p' takes fixed steps without error control: rtol and atol do not "
                          f"apply; its Newton corrections are bounded by newton_rtol (default {_D['newton_rtol']}) "
                          f"and newton_atol (default {_D['newton_atol']})")
     newton_rtol = _positive(newton_rtol, "newton_rtol")
     newton_atol = _positive(newton_atol, "newton_atol")
-    integrator = "" if integrator is None else _text(integrator, "integrator")  # "": the formulation's first
     atol_coordinates = []
     if np.ndim(atol) > 0:  # one per coordinate (for q_i and v_i)
         atol_coordinates = [_positive(float(a), "atol entry") for a in _array(atol, "atol")]

@@ -41,11 +41,11 @@ class Simulator:
     def __init__(self, model, *, t0=_D["t0"], rtol=_D["rtol"], atol=_D["atol"], formulation=_D["formulation"],
                  integrator=None, max_step=None, step=None, max_steps=_D["max_steps"], max_order=None,
                  baumgarte=None, start=_D["start"], output_interval=None, parameters=None,
-                 newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"]):
+                 newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None):
         options = _run_options(t0=_real(t0, "t0"), rtol=rtol, atol=atol, formulation=formulation,
                                integrator=integrator, max_step=max_step, step=step, max_order=max_order,
                                baumgarte=baumgarte, max_steps=max_steps, start=start, newton_rtol=newton_rtol,
-                               newton_atol=newton_atol)
+                               newton_atol=newton_atol, method=method)
         _model(model, "Simulator")
         interval = 0.0 if output_interval is None else _real(output_interval, "output_interval")
         if interval < 0:
@@ -54,7 +54,10 @@ class Simulator:
         self._core_model = _parameters(model, parameters, "Simulator")
         with _translate(model, self._core_model):
             self._sim = _core.Simulator(self._core_model, options, interval)
-        model._warn_redundant(self._sim.result().get("dropped_rows", []), stacklevel=2)
+        start_state = self._sim.result()
+        model._warn_redundant(start_state.get("dropped_rows", []))
+        if options["start"] == "given":
+            model._warn_moved(self._core_model, start_state["q"][0])
 
     # the current state, consistent: copies
     @property

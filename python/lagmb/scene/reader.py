@@ -517,7 +517,7 @@ class Reader:
         if "max_steps" in out and not 1 <= out["max_steps"] <= MAX_STEPS:
             raise w.error(f"must be at least 1 and at most {MAX_STEPS:.0e}, got "
                           f"{show(out['max_steps'])}", "max_steps")
-        if "max_order" in out and not 1 <= out["max_order"] <= method["max_order"]:
+        if "max_order" in out and method is not None and not 1 <= out["max_order"] <= method["max_order"]:
             raise w.error(f"must be in 1..{method['max_order']} for method {method['name']!r}, got "
                           f"{show(out['max_order'])}", "max_order")
         if "t_out" in out:
@@ -535,20 +535,29 @@ class Reader:
 
     @staticmethod
     def method(w, settings):
-        """The entry of lagmb.methods() the settings choose (formulation,
-        integrator: None for the formulation's first)."""
-        from ..simulation import methods
+        """The entry of lagmb.methods() the settings choose: `method` (a
+        listed name, any case), or formulation (which may be such a name)
+        and integrator (absent: the formulation's first); None for "auto",
+        the default, which the run resolves."""
+        from ..simulation import method_options, methods
 
+        try:
+            formulation, integrator = method_options(settings.get("method"), settings.get("formulation", "auto"),
+                                                     settings.get("integrator"))
+        except ModelError as e:
+            raise w.error(str(e), "method" if "method" in settings else "formulation") from None
+        if formulation == "auto":
+            return None
         table = methods()
-        formulation = settings.get("formulation", table[0]["formulation"])
         theirs = [m for m in table if m["formulation"] == formulation]
         if not theirs:
-            names = list(dict.fromkeys(m["formulation"] for m in table))
-            raise w.error(f"must be one of {', '.join(map(repr, names))}, got {formulation!r}", "formulation")
-        if "integrator" not in settings:
+            names = list(dict.fromkeys(["auto"] + [m["formulation"] for m in table]))
+            raise w.error(f"must be one of {', '.join(map(repr, names))}, got {settings['formulation']!r}",
+                          "formulation")
+        if not integrator:
             return theirs[0]
         for m in theirs:
-            if m["integrator"] == settings["integrator"]:
+            if m["integrator"] == integrator:
                 return m
         raise w.error(f"must be one of {', '.join(repr(m['integrator']) for m in theirs)} for formulation "
                       f"{formulation!r}, got {settings['integrator']!r}", "integrator")

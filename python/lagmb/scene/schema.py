@@ -73,14 +73,15 @@ ELEMENT_TABLES = {e.table: _entry_word(e.table)
 
 # The other tables: key -> kind, in the order messages list them. [simulation]
 # holds keyword arguments of mb.simulate ("step": the fixed step of
-# formulation "ali3p"), [output] what `lagmb run` writes.
+# formulation "ali3p"; "method": a name lagmb.methods() lists), [output]
+# what `lagmb run` writes.
 SETTINGS = {
     "model": {"dimension": INTEGER, "gravity": VECTOR},
     "simulation": {
         "t_end": NUMBER, "t0": NUMBER, "rtol": NUMBER, "atol": NUMBER, "n_out": INTEGER,
         "t_out": NUMBERS, "max_step": NUMBER, "max_steps": INTEGER, "formulation": STRING,
         "integrator": STRING, "max_order": INTEGER, "step": NUMBER, "analysis": STRING,
-        "start": STRING, "newton_rtol": NUMBER, "newton_atol": NUMBER,
+        "start": STRING, "newton_rtol": NUMBER, "newton_atol": NUMBER, "method": STRING,
     },
     "output": {
         "file": STRING, "reactions": STRINGS, "efforts": STRINGS, "reaction_frame": STRING,
