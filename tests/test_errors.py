@@ -222,6 +222,59 @@ def test_unassemblable_model_raises_assembly_error():
         assert np.asarray(err.result.t).size <= 1
 
 
+def _crank_with_a_coupler_off_its_pin():
+    """A crank pinned at the origin and a coupler whose pin point, given in
+    the coupler's axes (0.6 m below its centre), is 0.45 m from the crank's
+    end (local points: nothing makes them meet)."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    crank = m.add_body("crank", 1.0, 0.1, (0.5, 0.0))
+    coupler = m.add_body("coupler", 1.0, 0.1, (1.0, 1.0))
+    m.add_revolute("A", m.ground, crank, at=(0.0, 0.0))
+    m.add_revolute("B", crank, coupler, local_i=(0.5, 0.0), local_j=(0.0, -0.6))
+    return m
+
+
+def test_assembly_that_moves_bodies_far_says_which_and_by_how_much():
+    """The run starts from the assembled configuration, and an
+    AssemblyWarning, pointing at the caller's line, names each body moved
+    by more than 1e-3 of the mechanism's size or 1e-3 rad with the distance
+    and the turn it was moved by (those of the run's first output); the
+    Simulator and Model.assemble warn alike."""
+    m = _crank_with_a_coupler_off_its_pin()
+    with pytest.warns(mb.AssemblyWarning) as seen:
+        r = mb.simulate(m, 0.1, n_out=3)
+    assert seen[0].filename == __file__
+    message = str(seen[0].message)
+    for name, (x, y, angle) in (("crank", (0.5, 0.0, 0.0)), ("coupler", (1.0, 1.0, 0.0))):
+        body = r.body(name)
+        shift = math.hypot(body.position[0, 0] - x, body.position[0, 1] - y)
+        assert shift > 0.05
+        assert f"'{name}' by {shift:.3g} m and {abs(body.angle[0] - angle):.3g} rad" in message
+    # the pin closed: the crank's end is the coupler's pin point
+    assert np.abs(r.point("crank", (0.5, 0.0))[0] - r.point("coupler", (0.0, -0.6))[0]).max() < 1e-10
+    with pytest.warns(mb.AssemblyWarning, match="'crank' by"):
+        mb.Simulator(m)
+    with pytest.warns(mb.AssemblyWarning, match="'coupler' by"):
+        m.assemble()
+
+
+def test_a_consistent_model_assembles_without_a_word():
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mb.simulate(seed_pendulum(), 0.1, n_out=3)
+        mb.Simulator(seed_pendulum())
+
+
+def test_a_redundant_joint_is_named_at_the_callers_line():
+    m = seed_pendulum()
+    m.add_revolute("again", m.ground, "rod", at=(0.0, 0.0))
+    with pytest.warns(mb.RedundantConstraintWarning) as seen:
+        mb.simulate(m, 0.1, n_out=3)
+    assert seen[0].filename == __file__
+
+
 # --------------------------------------------------------------------------
 # Solver trouble keeps what was computed
 # --------------------------------------------------------------------------

@@ -13,7 +13,7 @@ the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
 
 from . import _core
 from .accuracy import METHODS, WorkPrecision, work_precision
-from .errors import AssemblyError, ModelError, RedundantConstraintWarning, SimulationError
+from .errors import AssemblyError, AssemblyWarning, ModelError, RedundantConstraintWarning, SimulationError
 from .functions import (Constant, Harmonic, Input, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
                         time_function_from_dict)
 from .handles import Body, Handle
@@ -45,6 +45,7 @@ __all__ = [
     "ModelError",
     "Polynomial",
     "RedundantConstraintWarning",
+    "AssemblyWarning",
     "Result",
     "Scene",
     "SceneError",

@@ -16,6 +16,15 @@ class RedundantConstraintWarning(UserWarning):
     determined."""
 
 
+class AssemblyWarning(UserWarning):
+    """Assembly moved bodies a long way from where the model put them: their
+    given positions did not satisfy the joints (a joint point given off by
+    a link's length, a crank angle that the loop cannot close with). The run
+    goes on from the assembled configuration; the warning counts the bodies
+    moved by more than 1e-3 of the mechanism's size or 1e-3 rad and names
+    the five moved most, each with how far and how much it turned."""
+
+
 class SimulationError(RuntimeError):
     """The solver could not go on.
 

@@ -8,7 +8,7 @@ from . import _core
 from . import registry
 from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
 from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
-from .errors import ModelError, RedundantConstraintWarning, translated
+from .errors import AssemblyWarning, ModelError, RedundantConstraintWarning, translated
 from .functions import TimeFunction, as_time_function, from_core
 from .handles import Body, Handle, name_of
 
@@ -169,8 +169,10 @@ class Model:
         x/y/z), unit, doc and value."""
         return [dict(p) for p in self.compiled().parameters]
 
-    def _warn_redundant(self, rows, stacklevel=3):
-        """RedundantConstraintWarning for the rows a run left out."""
+    def _warn_redundant(self, rows, stacklevel=2):
+        """RedundantConstraintWarning for the rows a run left out; stacklevel
+        as warnings.warn counts it from the public function that calls this
+        (2: its caller's line)."""
         if not rows:
             return
         import warnings
@@ -183,6 +185,49 @@ class Model:
             "rest of each redundant set carries its reaction (the split among redundant "
             "joints is not unique). The dropped equations are checked at every output."),
             stacklevel=stacklevel + 1)
+
+    def _warn_moved(self, core, q_start, stacklevel=2):
+        """AssemblyWarning naming the bodies that the start state q_start
+        (assembled from the model's initial coordinates) moved by more than
+        1e-3 of the mechanism's size (the spread of the bodies' initial
+        centres and the origin, at least 0.1 m) or 1e-3 rad: the turn of a
+        planar angle, or the angle 2 acos |p0 . p1| between two orientations
+        in space."""
+        q0 = np.asarray(core.initial_state()[0], dtype=float)
+        q1 = np.asarray(q_start, dtype=float)
+        places = []
+        for name, _ in self._spec.bodies:
+            first, count = core.body_coordinates(name)
+            places.append((name, first, 3 if count == 7 else 2, count))
+        centres = [q0[f:f + d] for _, f, d, _ in places]
+        size = max([0.1] + [float(np.ptp(np.vstack(centres + [np.zeros_like(centres[0])])[:, k]))
+                            for k in range(centres[0].size)]) if centres else 0.1
+        moved = []
+        for name, f, d, count in places:
+            shift = float(np.linalg.norm(q1[f:f + d] - q0[f:f + d]))
+            if count == 3:
+                turn = abs(float(np.remainder(q1[f + 2] - q0[f + 2] + np.pi, 2 * np.pi) - np.pi))
+            elif count == 7:
+                p0, p1 = q0[f + 3:f + 7], q1[f + 3:f + 7]
+                c = abs(float(p0 @ p1)) / float(np.linalg.norm(p0) * np.linalg.norm(p1))
+                turn = 2.0 * float(np.arccos(min(1.0, c)))
+            else:  # a particle
+                turn = 0.0
+            if shift > 1e-3 * size or turn > 1e-3:
+                moved.append((max(shift / size, turn), f"'{name}' by {shift:.3g} m and {turn:.3g} rad"))
+        if not moved:
+            return
+        import warnings
+
+        # the five moved most (relative to the size, or turned), then a count
+        named = [text for _, text in sorted(moved, key=lambda m: -m[0])[:5]]
+        if len(moved) > 5:
+            named.append(f"and {len(moved) - 5} more")
+        warnings.warn(AssemblyWarning(
+            f"assembly moved {len(moved)} bod{'y' if len(moved) == 1 else 'ies'} to satisfy the joints: "
+            f"{', '.join(named)} (more than 1e-3 of the mechanism's size, {size:.3g} m, or 1e-3 rad). "
+            "Check the joint points and the initial positions; the run starts from the assembled "
+            "configuration."), stacklevel=stacklevel + 1)
 
     def elements(self):
         """Everything added, in order: (method name, keyword arguments) with
@@ -327,12 +372,14 @@ class Model:
 
     def assemble(self, t=0.0):
         """Consistent initial state: (q, v, qdd, lam) at time t. Redundant
-        equations found there are named in a RedundantConstraintWarning."""
+        equations found there are named in a RedundantConstraintWarning,
+        bodies moved far by assembly in an AssemblyWarning."""
         t = _number(t, "t")
         core = self.compiled()
         with translated():
             q, v, qdd, lam, dropped = _core.assemble(core, t)
         self._warn_redundant(dropped)
+        self._warn_moved(core, q)
         return q, v, qdd, lam
 
     def degrees_of_freedom(self):
