@@ -222,6 +222,28 @@ def test_unassemblable_model_raises_assembly_error():
         assert np.asarray(err.result.t).size <= 1
 
 
+def test_a_loop_that_cannot_close_blames_the_joint_the_given_positions_break():
+    """A four-bar of three 1 m links whose ground pivot D is 10 m away: no
+    configuration closes it. The given positions break D alone; where
+    Newton stops, the violation is spread over the loop. AssemblyError
+    blames D (first in .violated and in the message) and says what is
+    still violated where Newton stopped."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    crank = m.add_body("crank", 1.0, 0.1, (0.5, 0.0))
+    coupler = m.add_body("coupler", 1.0, 0.1, (1.5, 0.0))
+    rocker = m.add_body("rocker", 1.0, 0.1, (2.5, 0.0))
+    m.add_revolute("A", m.ground, crank, at=(0.0, 0.0))
+    m.add_revolute("B", crank, coupler, at=(1.0, 0.0))
+    m.add_revolute("C", coupler, rocker, at=(2.0, 0.0))
+    m.add_revolute("D", rocker, m.ground, local_i=(0.5, 0.0), local_j=(10.0, 0.0))
+    with pytest.raises(mb.AssemblyError) as failure:
+        mb.simulate(m, 0.1)
+    assert [name for name, _ in failure.value.violated] == ["D"]
+    assert abs(failure.value.violated[0][1] - 7.0) < 1e-12  # |(10, 0) - (3, 0)|
+    assert re.search(r"violated by the given positions: 'D' \(\|Phi\| = 7\); still violated where Newton "
+                     r"stopped: '", str(failure.value))
+
+
 def _crank_with_a_coupler_off_its_pin():
     """A crank pinned at the origin and a coupler whose pin point, given in
     the coupler's axes (0.6 m below its centre), is 0.45 m from the crank's

@@ -289,11 +289,12 @@ namespace {
 
 double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
 
-[[noreturn]] void fail_assembly(const Model& model, const Data& d, double t, double tol,
-                                const std::string& why) {
+/// The elements whose rows of Phi exceed tol, each with its largest |Phi|,
+/// the largest first.
+std::vector<std::pair<std::string, double>> violated(const Model& model, const VecX& Phi, double tol) {
   std::map<std::string, double> worst;
-  for (int r = 0; r < d.Phi.size(); ++r) {
-    const double e = std::abs(d.Phi[r]);
+  for (int r = 0; r < Phi.size(); ++r) {
+    const double e = std::abs(Phi[r]);
     if (!(e <= tol)) {
       double& w = worst[model.constraint_name_of_row(r)];
       w = std::max(w, std::isfinite(e) ? e : INFINITY);
@@ -301,12 +302,26 @@ double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 
   }
   std::vector<std::pair<std::string, double>> v(worst.begin(), worst.end());
   std::sort(v.begin(), v.end(), [](auto& a, auto& b) { return a.second > b.second; });
+  return v;
+}
+
+/// AssemblyError blaming the elements violated in the given configuration
+/// (`at_start`, when known: what the user's positions break), and saying
+/// which are still violated where Newton stopped (d.Phi), which reflects
+/// where the iteration ended more than what was wrong.
+[[noreturn]] void fail_assembly(const Model& model, const Data& d, double t, double tol, const std::string& why,
+                                const VecX* at_start = nullptr) {
+  std::vector<std::pair<std::string, double>> blamed = violated(model, at_start ? *at_start : d.Phi, tol);
   std::ostringstream s;
-  s << "the model cannot be assembled at t = " << t << " (" << why
-    << "); constraint equations still violated:";
-  for (const auto& [name, e] : v) s << " '" << name << "' (|Phi| = " << e << ")";
+  s << "the model cannot be assembled at t = " << t << " (" << why << "); constraint equations violated "
+    << (at_start ? "by the given positions:" : "still:");
+  for (const auto& [name, e] : blamed) s << " '" << name << "' (|Phi| = " << e << ")";
+  if (at_start) {
+    s << "; still violated where Newton stopped:";
+    for (const auto& [name, e] : violated(model, d.Phi, tol)) s << " '" << name << "' (|Phi| = " << e << ")";
+  }
   s << ". Check the joint points and the initial positions.";
-  throw AssemblyError(s.str(), t, std::move(v));
+  throw AssemblyError(s.str(), t, std::move(blamed));
 }
 
 }  // namespace
@@ -357,15 +372,16 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
 
   assemble_constraints(model, d, q.data(), t);
+  const VecX phi_given = d.Phi;  // what the given positions break: the blame if Newton fails
   double err = max_abs(d.Phi);
   const int max_iter = 100, max_moves = 8;
   int iterations = 0, moves = 0;
   while (err > tol) {
     poll_interrupt();
     if (iterations++ >= max_iter || !std::isfinite(err))
-      fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge");
+      fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge", &phi_given);
     assemble_jacobian(model, d, q.data(), t);
-    if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix");
+    if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix", &phi_given);
     kkt.solve(zero_n, -d.Phi, dq, kappa);
     double step = 1.0, err_try = INFINITY;
     for (const auto& [i, per_unit] : turns)
@@ -390,7 +406,7 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
       const double size = max_abs(dq);
       if (moves++ >= max_moves || !(size > 0.0) || !std::isfinite(size)) {
         assemble_constraints(model, d, q.data(), t);
-        fail_assembly(model, d, t, 1e3 * tol, "no Newton step reduces |Phi|");
+        fail_assembly(model, d, t, 1e3 * tol, "no Newton step reduces |Phi|", &phi_given);
       }
       q_try = q + (1e-2 * spread(q) / size) * dq;
       unit_euler_parameters(q_try);
