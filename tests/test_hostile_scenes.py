@@ -157,7 +157,7 @@ def test_integer_of_5000_digits(tmp_path):
 @pytest.mark.parametrize("command", ["info", "run"])
 @pytest.mark.parametrize("old, new, key, words", [
     ("n_out = 11", "n_out = 3000000000", "n_out", "at most 10,000,000"),
-    ("n_out = 11", "n_out = 11\nmax_order = 101", "max_order", "1..5 for method 'ggl'"),
+    ("n_out = 11", "n_out = 11\nmax_order = 101", "max_order", "1..5 for method 'auto'"),
     ("n_out = 11", 'n_out = 11\nformulation = "projection"\nintegrator = "adams"\n'
                    "max_order = 13", "max_order", "1..12 for method 'projection-adams'"),
     ("n_out = 11", "n_out = 11\nmax_steps = 100000000000000000000", "max_steps", "at most"),

@@ -517,7 +517,7 @@ class Reader:
         if "max_steps" in out and not 1 <= out["max_steps"] <= MAX_STEPS:
             raise w.error(f"must be at least 1 and at most {MAX_STEPS:.0e}, got "
                           f"{show(out['max_steps'])}", "max_steps")
-        if "max_order" in out and method is not None and not 1 <= out["max_order"] <= method["max_order"]:
+        if "max_order" in out and not 1 <= out["max_order"] <= method["max_order"]:
             raise w.error(f"must be in 1..{method['max_order']} for method {method['name']!r}, got "
                           f"{show(out['max_order'])}", "max_order")
         if "t_out" in out:
@@ -537,8 +537,10 @@ class Reader:
     def method(w, settings):
         """The entry of lagmb.methods() the settings choose: `method` (a
         listed name, any case), or formulation (which may be such a name)
-        and integrator (absent: the formulation's first); None for "auto",
-        the default, which the run resolves."""
+        and integrator (absent: the formulation's first). For "auto", the
+        default, which the run resolves: no integrator, and max_order
+        within what every variable-step method takes (the smallest of their
+        highest orders)."""
         from ..simulation import method_options, methods
 
         try:
@@ -546,9 +548,12 @@ class Reader:
                                                      settings.get("integrator"))
         except ModelError as e:
             raise w.error(str(e), "method" if "method" in settings else "formulation") from None
-        if formulation == "auto":
-            return None
         table = methods()
+        if formulation == "auto":
+            if integrator:
+                raise w.error(f"does not go with formulation 'auto', which chooses the method: give a "
+                              f"formulation or a method, got {settings['integrator']!r}", "integrator")
+            return {"name": "auto", "max_order": min(m["max_order"] for m in table if not m["fixed_step"])}
         theirs = [m for m in table if m["formulation"] == formulation]
         if not theirs:
             names = list(dict.fromkeys(["auto"] + [m["formulation"] for m in table]))

@@ -80,8 +80,8 @@ SETTINGS = {
     "simulation": {
         "t_end": NUMBER, "t0": NUMBER, "rtol": NUMBER, "atol": NUMBER, "n_out": INTEGER,
         "t_out": NUMBERS, "max_step": NUMBER, "max_steps": INTEGER, "formulation": STRING,
-        "integrator": STRING, "max_order": INTEGER, "step": NUMBER, "analysis": STRING,
-        "start": STRING, "newton_rtol": NUMBER, "newton_atol": NUMBER, "method": STRING,
+        "integrator": STRING, "method": STRING, "max_order": INTEGER, "step": NUMBER, "analysis": STRING,
+        "start": STRING, "newton_rtol": NUMBER, "newton_atol": NUMBER,
     },
     "output": {
         "file": STRING, "reactions": STRINGS, "efforts": STRINGS, "reaction_frame": STRING,
