@@ -753,7 +753,13 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
         shade = np.array([abs(n @ light) / (np.linalg.norm(n) or 1.0) for n in normals])
         base = np.array(_rgb(_colour(bodies.index(shape.body)) if shape.body in bodies else "0.6"))
         colours = [(*(base * (0.45 + 0.55 * s)), 1.0) for s in shade]
-        ax.add_collection3d(Poly3DCollection(world, facecolors=colours, edgecolors="none"))
+        # one collection per polygon size: matplotlib pads ragged polygons (a
+        # cylinder's caps beside its side quads) with unset values that its
+        # autoscaling read as limits (seen once: an infinite z limit)
+        for count in sorted({len(f) for f in world}):
+            picked = [i for i, f in enumerate(world) if len(f) == count]
+            ax.add_collection3d(Poly3DCollection([world[i] for i in picked],
+                                                 facecolors=[colours[i] for i in picked], edgecolors="none"))
         points += [np.concatenate(world)]
         drawn += 1
     for i, b in enumerate(bodies):  # the skeleton: centre of mass to joint points
