@@ -276,6 +276,23 @@ def test_cam_follower(outputs):
     assert v["contact events"] == 0
 
 
+def test_scene_cart_pole_is_the_script_s_model_with_its_input_held_at_zero():
+    """examples/cart_pole.toml is examples/cart_pole.py's model: the same
+    run to the bit with the input "push" at its initial 0 N, in which the
+    pole falls past 1 rad from the vertical at 0.78 s (its header)."""
+    sys.path.insert(0, EXAMPLES)
+    import cart_pole as cp
+
+    scene = mb.load_scene(os.path.join(EXAMPLES, "cart_pole.toml"))
+    settings = {k: v for k, v in scene.settings.items() if k != "t_end"}
+    from_scene = mb.simulate(scene.model, 2.0, **settings)
+    from_script = mb.simulate(cp.cart_pole(), 2.0, **settings)
+    assert np.array_equal(from_scene.q, from_script.q)
+    assert [(i["name"], i["initial"]) for i in scene.model.compiled().inputs] == [("push", 0.0)]
+    tilt = np.abs(from_scene.body("pole").angle - np.pi / 2)
+    assert abs(from_scene.t[np.argmax(tilt > 1.0)] - 0.78) < 0.011  # (outputs every 0.01 s)
+
+
 def test_scene_heavy_top_conserves_energy_and_spin():
     """examples/heavy_top.toml: a spatial scene; no torque acts about the
     top's axis, so its spin stays at 100 rad/s, and its energy stays put."""
