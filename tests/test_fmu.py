@@ -200,21 +200,22 @@ def test_the_fmu_runs_as_lagmb_simulate_does(cart_pole_fmu, cart_pole_scene):
 
 @needs_fmpy
 @needs_cc
-def test_parameters_change_before_initialization(cart_pole_fmu, cart_pole_scene):
+def test_parameters_change_before_initialization(cart_pole_fmu, cart_pole_scene, tmp_path):
     """A heavier pole (0.3 kg) set as a start value runs as the scene with
     that mass does."""
     r = simulate_fmu(cart_pole_fmu, stop_time=1.0, output_interval=0.05, start_values={"pole.mass": 0.3})
-    ref = mb.simulate(_with_pole_mass(cart_pole_scene, 0.3), t_out=r["time"], rtol=1e-9, atol=1e-11)
+    ref = mb.simulate(_with_pole_mass(cart_pole_scene, 0.3, tmp_path), t_out=r["time"], rtol=1e-9, atol=1e-11)
     assert np.max(np.abs(r["cart.x"] - ref.body("cart").position[:, 0])) < 1e-6
     light = simulate_fmu(cart_pole_fmu, stop_time=1.0, output_interval=0.05)
     assert np.max(np.abs(r["cart.x"] - light["cart.x"])) > 1e-3  # the mass mattered
 
 
-def _with_pole_mass(scene_path, mass):
-    """The scene's model with the pole's mass changed in the file."""
+def _with_pole_mass(scene_path, mass, directory):
+    """The scene's model with the pole's mass changed in a copy of the file
+    (in directory)."""
     text = open(scene_path).read()
     text = re.sub(r'(name = "pole"\nmass = )[0-9.e-]+', lambda m: m.group(1) + repr(mass), text)
-    path = scene_path.replace(".toml", f"_{mass}.toml")
+    path = os.path.join(str(directory), f"cart_pole_{mass}.toml")
     open(path, "w").write(text)
     return mb.load_scene(path).model
 
