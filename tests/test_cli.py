@@ -14,6 +14,7 @@
 
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -286,6 +287,16 @@ def test_run_summary(four_bar):
     assert p.returncode == 0, p.stderr
     assert "401 outputs, t = 0 .. 0.1 s" in p.stdout
     assert "steps" in p.stdout and "max |Phi|" in p.stdout
+    # the method by its listed name, and a run that keeps nothing says so
+    assert re.search(r"method (ggl|index3|index1|projection-bdf|projection-adams|projection-erk|ali3p): \d+ steps",
+                     p.stdout)
+    assert "nothing written: -o FILE (.npz or .csv), --plot or --animate keep the outputs" in p.stdout
+
+
+def test_run_option_numbers_in_messages_as_given(four_bar):
+    p = lagmb("run", four_bar, "--rtol", "1e-16")
+    assert p.returncode != 0
+    assert "rtol = 1e-16 is below 1e-14" in p.stderr
 
 
 def test_demo_quiet():

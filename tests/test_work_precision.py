@@ -145,9 +145,12 @@ def test_table_lists_every_run(wp):
     lines = wp.table().splitlines()
     assert len(lines) == 2 + len(wp.rows)
     assert "method" in lines[0] and "error" in lines[0]
+    assert "Newton" in lines[0] and "KKT" in lines[0]  # the two kinds of factorization apart
     for line, row in zip(lines[2:], wp.rows):
         assert line.startswith(row["method"])
         assert f"{row['rtol']:.0e}" in line
+        if row["status"] == "ok":  # as the run's stats count them
+            assert f" {row['lu_factorizations']:>6d} {row['augmented_factorizations']:>6d} " in line
 
 
 def test_plot_writes_png(wp, tmp_path):

@@ -400,6 +400,8 @@ def _run(args):
         if animate:
             _plotting().animate(result, animate, view=view)
             say(f"  animation written to {animate}")
+        if not (out or plot or animate):
+            say("  nothing written: -o FILE (.npz or .csv), --plot or --animate keep the outputs")
     except OSError as e:
         raise _Exit(USAGE, f"cannot write {e.filename or ''}: {e.strerror or e}") from None
     return OK
@@ -416,7 +418,8 @@ def _summary(scene, r, say):
     say(f"{scene.path}: {len(r.t)} outputs, t = {r.t[0]:.6g} .. {r.t[-1]:.6g} s")
     parts = [f"{s[k]} {label}" for k, label in (
         ("steps", "steps"), ("residual_evals", "residual evaluations"),
-        ("jacobian_evals", "Jacobians"), ("lu_factorizations", "LU factorizations")) if k in s]
+        ("jacobian_evals", "Jacobians"), ("lu_factorizations", "LU factorizations"),
+        ("augmented_factorizations", "augmented-system factorizations")) if k in s]
     if "wall_time" in s:
         parts.append(f"{1e3 * s['wall_time']:.1f} ms")
     say(f"  method {s.get('method', s.get('formulation', '?'))}: " + ", ".join(parts))

@@ -462,7 +462,7 @@ void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, cons
   const int n = model.n_coordinates(), m = model.n_constraints();
   assemble_jacobian(model, d, q, t);
   if (!kkt.factorize(d))
-    throw SimulationError("the augmented matrix is singular at t = " + std::to_string(t), t);
+    throw SimulationError("the augmented matrix is singular at t = " + to_text(t), t);
   assemble_forces(model, d, q, v, t);
   assemble_gamma(model, d, q, v, t);
   VecX a(n), l(m);

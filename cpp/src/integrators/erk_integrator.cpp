@@ -149,7 +149,7 @@ struct ErkStepper final : ErkParts, OdeStepper {
     if (e.has_f) return;
     ++extra_rhs_;
     if (!p.ode.right_hand_side(e.t, e.y.data(), e.f.data()))
-      throw IntegratorFailure("the augmented system is singular at t = " + std::to_string(e.t), e.t);
+      throw IntegratorFailure("the augmented system is singular at t = " + to_text(e.t), e.t);
     e.has_f = true;
   }
   const char* name() const override { return "ARKODE ERKStep"; }
@@ -183,7 +183,7 @@ struct ErkStepper final : ErkParts, OdeStepper {
     quintic_hermite((t - start_.t) / h, h, n, y0, y0 + n, f0 + n, y1, y1 + n, f1 + n, out_.data(), out_.data() + n);
     // onto the constraints, as the steps' ends are (the interpolant is off by O(h^6))
     if (p.ode.n_constraints() > 0 && p.ode.project(t, out_.data(), out_.data() + n, p.correction.data(), nullptr) != 0)
-      throw IntegratorFailure("the augmented system is singular at t = " + std::to_string(t), t);
+      throw IntegratorFailure("the augmented system is singular at t = " + to_text(t), t);
     q = out_.data(), v = q + n;
   }
   void restart(double t) override {

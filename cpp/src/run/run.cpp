@@ -69,7 +69,7 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
   if (model.n_coordinates() == 0) throw ModelError(at + "the model has no bodies");
   auto positive = [&](double x, const char* name) {
     if (!(std::isfinite(x) && x > 0))
-      throw ModelError(at + name + " must be positive and finite, got " + std::to_string(x));
+      throw ModelError(at + name + " must be positive and finite, got " + to_text(x));
   };
   if (!std::isfinite(o.t0)) throw ModelError(at + "t0 is not finite");
   check_time(o.t0, who, "t0");
@@ -78,7 +78,7 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
     throw ModelError(at + "rtol = " + to_text(o.rtol) +
                      " must be below 1: a relative error of 100 % or more bounds nothing (typical: 1e-3 to 1e-10)");
   if (o.rtol < 1e-14)
-    throw ModelError(at + "rtol = " + std::to_string(o.rtol) +
+    throw ModelError(at + "rtol = " + to_text(o.rtol) +
                      " is below 1e-14, which double precision cannot deliver");
   positive(o.atol, "atol");
   if (!o.atol_coordinates.empty()) {
