@@ -280,6 +280,21 @@ def test_assembly_that_moves_bodies_far_says_which_and_by_how_much():
         m.assemble()
 
 
+def test_a_spatial_body_moved_by_assembly_is_named_with_its_turn():
+    """In space the turn is the angle between the given and the assembled
+    orientations, 2 acos |p0 . p1|."""
+    m = mb.Model(dimension=3)
+    m.add_body("bob", 1.0, (0.1, 0.1, 0.1), position=(1.0, 0.0, 0.0))
+    m.add_spherical("ball", m.ground, "bob", at=(0.0, 0.0, 0.0))
+    # a link of 1.5 m between the ground point (1, 1, 0) and the bob's far end, 1 m away
+    m.add_distance("link", m.ground, (1.0, 1.0, 0.0), "bob", (2.0, 0.0, 0.0), length=1.5)
+    with pytest.warns(mb.AssemblyWarning, match="'bob' by") as seen:
+        r = mb.simulate(m, 0.1, n_out=3)
+    p0, p1 = np.array([1.0, 0.0, 0.0, 0.0]), r.body("bob").orientation[0]
+    shift = np.linalg.norm(r.body("bob").position[0] - (1.0, 0.0, 0.0))
+    assert f"'bob' by {shift:.3g} m and {2 * math.acos(min(1.0, abs(p0 @ p1))):.3g} rad" in str(seen[0].message)
+
+
 def test_a_consistent_model_assembles_without_a_word():
     import warnings
 

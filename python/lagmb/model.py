@@ -195,24 +195,25 @@ class Model:
         in space."""
         q0 = np.asarray(core.initial_state()[0], dtype=float)
         q1 = np.asarray(q_start, dtype=float)
-        places = []
+        places = []  # (name, first coordinate, position's size, has an orientation)
+        dimension = 3 if self.dimension == 3 else 2
         for name, _ in self._spec.bodies:
             first, count = core.body_coordinates(name)
-            places.append((name, first, 3 if count == 7 else 2, count))
+            places.append((name, first, dimension, count > dimension))  # (a particle has no orientation)
         centres = [q0[f:f + d] for _, f, d, _ in places]
         size = max([0.1] + [float(np.ptp(np.vstack(centres + [np.zeros_like(centres[0])])[:, k]))
                             for k in range(centres[0].size)]) if centres else 0.1
         moved = []
-        for name, f, d, count in places:
+        for name, f, d, turns in places:
             shift = float(np.linalg.norm(q1[f:f + d] - q0[f:f + d]))
-            if count == 3:
+            if not turns:
+                turn = 0.0
+            elif d == 2:
                 turn = abs(float(np.remainder(q1[f + 2] - q0[f + 2] + np.pi, 2 * np.pi) - np.pi))
-            elif count == 7:
+            else:
                 p0, p1 = q0[f + 3:f + 7], q1[f + 3:f + 7]
                 c = abs(float(p0 @ p1)) / float(np.linalg.norm(p0) * np.linalg.norm(p1))
                 turn = 2.0 * float(np.arccos(min(1.0, c)))
-            else:  # a particle
-                turn = 0.0
             if shift > 1e-3 * size or turn > 1e-3:
                 moved.append((max(shift / size, turn), f"'{name}' by {shift:.3g} m and {turn:.3g} rad"))
         if not moved:
