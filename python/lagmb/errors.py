@@ -29,9 +29,10 @@ class SimulationError(RuntimeError):
     """The solver could not go on.
 
     Attributes:
-        t: time reached (s).
-        result: the outputs computed before the failure, as a Result (None
-            when nothing was computed, e.g. the model could not be assembled).
+
+    - t: time reached (s).
+    - result: the outputs computed before the failure, as a Result (None
+      when nothing was computed, e.g. the model could not be assembled).
     """
 
     def __init__(self, message, t=float("nan"), result=None):
@@ -44,7 +45,8 @@ class AssemblyError(SimulationError):
     """The initial positions cannot be made to satisfy the constraints.
 
     Attributes:
-        violated: list of (element name, max |Phi|), largest first.
+
+    - violated: list of (element name, max ``|Phi|``), largest first.
     """
 
     def __init__(self, message, t=float("nan"), violated=()):

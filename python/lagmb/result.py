@@ -306,7 +306,7 @@ class Result:
 
     @cached_property
     def velocity_residual(self):
-        """(k,) max |Phi_q v + Phi_t| (velocity-level constraint violation)."""
+        """(k,) max ``|Phi_q v + Phi_t|`` (velocity-level constraint violation)."""
         return self._finite(self._core.velocity_residual(self.t, self.q, self.v, self._inputs),
                             "the velocity residual")
 

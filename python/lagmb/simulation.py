@@ -113,7 +113,7 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
 
     The last two need 0 degrees of freedom (ModelError naming the count
     otherwise). ``rtol``/``atol`` do not apply to them: positions are solved
-    to rounding level (|dq| <= 1e-12 (1 + |q|)). Bodies with mass (or
+    to rounding level (``|dq| <= 1e-12 (1 + |q|)``). Bodies with mass (or
     inertia) 0 are allowed in kinematic analyses only.
 
     ``start="equilibrium"`` starts a dynamic run at rest in the static

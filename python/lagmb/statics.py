@@ -27,16 +27,17 @@ class Equilibrium:
     """A static equilibrium found by mb.equilibrium.
 
     Attributes:
-        q (n,), lam (m,): coordinates and multipliers (sign of docs/design.md
-            section 1: Q(q, 0, t) = Phi_q^T lam).
-        t: the time it holds at.
-        stable: the tangent stiffness reduced to the motions the joints
-            allow is positive definite (a strict minimum of the potential).
-        stiffness_eigenvalues: its eigenvalues, ascending (N/m, N m/rad
-            mixed; empty when nothing can move), and softest_mode (n,) the
-            motion of the smallest.
-        iterations: Newton iterations; force_residual (max |Q - Phi_q^T
-            lam|, N or N m) and constraint_residual (max |Phi|).
+
+    - q (n,), lam (m,): coordinates and multipliers (sign of docs/design.md
+      section 1: Q(q, 0, t) = Phi_q^T lam).
+    - t: the time it holds at.
+    - stable: the tangent stiffness reduced to the motions the joints
+      allow is positive definite (a strict minimum of the potential).
+    - stiffness_eigenvalues: its eigenvalues, ascending (N/m, N m/rad
+      mixed; empty when nothing can move), and softest_mode (n,) the
+      motion of the smallest.
+    - iterations: Newton iterations; force_residual (max
+      ``|Q - Phi_q^T lam|``, N or N m) and constraint_residual (max ``|Phi|``).
     """
 
     def __init__(self, model, core, raw, t):
@@ -87,8 +88,8 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     derivatives (step-limited, with a line search) from the assembled initial
     configuration, then checks stability: the tangent stiffness H(lam) - Q_q
     reduced to the null space of Phi_q must be positive definite (dense
-    check). ``tol`` is relative (forces to tol |Q|, constraints to
-    tol (1 + |q|)). Returns an :class:`Equilibrium`.
+    check). ``tol`` is relative (forces to ``tol |Q|``, constraints to
+    ``tol (1 + |q|)``). Returns an :class:`Equilibrium`.
 
     Raises EquilibriumError (a ValueError) if a force or driver function
     raises (chained as its cause), if there is none nearby (naming

@@ -652,11 +652,12 @@ class Scene:
     """A model read from a scene file, with its settings.
 
     Attributes:
-        model: the mb.Model.
-        settings: dict of mb.simulate keyword arguments from [simulation].
-        output: dict from [output] (only the keys the file gives).
-        path: the file.
-        elements: list of SceneElement (table, type, name, line), in file order.
+
+    - model: the mb.Model.
+    - settings: dict of mb.simulate keyword arguments from [simulation].
+    - output: dict from [output] (only the keys the file gives).
+    - path: the file.
+    - elements: list of SceneElement (table, type, name, line), in file order.
 
     ``model, settings = scene`` unpacks the two.
     """
@@ -683,7 +684,7 @@ class Scene:
         return w.error(message, key)
 
     def run(self, **overrides):
-        """mb.simulate(model, **(settings | overrides)). Overriding t_end
+        """``mb.simulate(model, **(settings | overrides))``. Overriding t_end
         keeps the file's t_out times up to the new t_end; giving n_out drops
         its t_out. A bad setting from the file raises SceneError at its line."""
         from ..simulation import simulate
