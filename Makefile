@@ -1,11 +1,12 @@
 # make demo: install what is missing, build lagmb, run the seed pendulum.
 # make test: the same set-up, then the test suite.
 # make test-asan: the test suite under AddressSanitizer and UBSan.
+# make docs: the documentation site into build/docs/html (warnings are errors).
 PYTHON ?= $(shell scripts/python.sh)
 SOURCES := $(shell find cpp python -type f -not -name '*.pyc') CMakeLists.txt pyproject.toml
 STAMP := build/.installed-$(subst /,_,$(PYTHON))
 
-.PHONY: demo test test-slow test-fuzz test-asan bench setup clean
+.PHONY: demo test test-slow test-fuzz test-asan bench docs setup clean
 
 demo: $(STAMP)
 	$(PYTHON) -m lagmb demo --plot out/seed_pendulum.png
@@ -26,6 +27,13 @@ test-asan:
 
 bench: $(STAMP)
 	$(PYTHON) bench/chain.py
+
+# from scratch, so the gallery runs every example against the code as it is
+# (tests/test_docs.py builds the same pages, reusing the gallery's outputs)
+docs: $(STAMP)
+	rm -rf build/docs docs/gallery docs/generated
+	$(PYTHON) -m sphinx -W --keep-going -b html docs build/docs/html
+	@echo "docs: build/docs/html/index.html"
 
 setup: $(STAMP)
 

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Installs what lagmb needs and is missing: Eigen 3.4, SUNDIALS and SuiteSparse (apt, on
 # Debian/Ubuntu), then the Python build tools, and the package with its
-# test, plot, fmu, robots and mjcf extras. Usage: scripts/setup.sh PYTHON
+# test, plot, fmu, robots, mjcf and docs extras. Usage: scripts/setup.sh PYTHON
 set -eu
 PYTHON=${1:-python3}
 
@@ -32,4 +32,4 @@ if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
 fi
 
 "$PYTHON" -m pip install -q --disable-pip-version-check "scikit-build-core>=0.10" "pybind11>=2.12" numpy
-"$PYTHON" -m pip install -q --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf]"
+"$PYTHON" -m pip install -q --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf,docs]"
