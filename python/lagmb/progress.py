@@ -14,8 +14,10 @@ import time
 class Progress:
     """Callable progress(t) for simulate; close() when the run ends."""
 
-    def __init__(self, t0, t_end, enabled=True, delay=1.0, stream=None):
+    def __init__(self, t0, t_end, enabled=True, delay=1.0, stream=None, label=None):
         self.stream = sys.stderr if stream is None else stream
+        # what is counted in t: the bar's "simulated" unless told (animate: "drawn")
+        self.label = label
         isatty = getattr(self.stream, "isatty", None)
         self.enabled = bool(enabled) and isatty is not None and isatty()
         self.t0, self.t_end = float(t0), float(t_end)
@@ -49,7 +51,7 @@ class Progress:
                 # a size, for terminals that do not tell theirs (tqdm shows nothing in 0 x 0)
                 size = shutil.get_terminal_size((80, 24))
                 self._bar = tqdm(total=span, unit="s", unit_scale=False, file=self.stream,
-                                 desc="simulated", leave=False, mininterval=0.0,
+                                 desc=self.label or "simulated", leave=False, mininterval=0.0,
                                  ncols=size.columns, nrows=size.lines, initial=done,
                                  bar_format="{desc} {n:.4g}/{total:.4g} s |{bar}| "
                                             "{percentage:3.0f}% [{elapsed}<{remaining}]")
@@ -57,7 +59,8 @@ class Progress:
             self._bar.update(done - self._shown)
             self._shown = done
         else:
-            self.stream.write(f"\r  t = {self.t0 + done:.6g} of {self.t_end:.6g} s "
+            label = f"{self.label}: " if self.label else ""
+            self.stream.write(f"\r  {label}t = {self.t0 + done:.6g} of {self.t_end:.6g} s "
                               f"({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed ")
             self.stream.flush()
 
