@@ -25,6 +25,7 @@ import lagmb as mb
 from lagmb import plotting
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples")
 
 
 @pytest.fixture
@@ -244,35 +245,235 @@ def test_body_shapes(outline, n, closed):
         np.testing.assert_allclose(sorted(local[:, 0]), [-1.0, 1.0])
 
 
-def test_frames_are_spread_over_the_whole_run():
-    idx = plotting._frame_indices(1001, 300)
-    assert len(idx) == 300 and idx[0] == 0 and idx[-1] == 1000
-    assert np.all(np.diff(idx) >= 3)
-    np.testing.assert_array_equal(plotting._frame_indices(11, 300), np.arange(11))
+def gif_durations(path):
+    """The duration of each frame of a GIF (ms), as Pillow reads them."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        durations = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            durations.append(im.info["duration"])
+    return durations
 
 
-# --- animate -------------------------------------------------------------
+# --- animate: timing ------------------------------------------------------
 
 
-@pytest.mark.parametrize("n_out, max_frames", [(51, 20), (11, 300)])
-def test_animate_writes_a_gif_with_one_frame_per_sampled_output(mpl, tmp_path, n_out,
-                                                                 max_frames):
+def test_frame_plan_plays_the_span_in_span_over_speed():
+    """2 s of outputs: 25 frames/s in real time is 50 frames of 40 ms; at
+    30 frames/s (33.3 ms, not a whole number of a GIF's 10 ms ticks) 60
+    frames of 30 or 40 ms that add up to 2 s; half speed doubles the frames;
+    a cap of 20 frames makes each last 100 ms. Frame i shows t0 + i span/n."""
+    t = np.linspace(1.0, 3.0, 401)
+    times, durations = plotting._frame_plan(t, fps=25, speed=1.0)
+    assert len(times) == 50 and set(durations) == {40}
+    np.testing.assert_allclose(times, 1.0 + 0.04 * np.arange(50), rtol=0, atol=1e-12)
+    times, durations = plotting._frame_plan(t, fps=30, speed=1.0)
+    assert len(times) == 60 and set(durations) == {30, 40} and sum(durations) == 2000
+    times, durations = plotting._frame_plan(t, fps=25, speed=0.5)
+    assert len(times) == 100 and sum(durations) == 4000
+    times, durations = plotting._frame_plan(t, fps=25, speed=1.0, frames=20)
+    assert len(times) == 20 and set(durations) == {100}
+    times, durations = plotting._frame_plan(t, fps=50, speed=100.0)  # 20 ms: one frame per 20 ms at most
+    assert len(times) == 1
+
+
+@pytest.mark.parametrize("kwargs, frames, duration_ms", [
+    ({}, 25, 1000),                           # real time at 25 frames/s (40 ms each)
+    ({"speed": 0.25}, 100, 4000),             # four times slower
+    ({"fps": 20}, 20, 1000),                  # 50 ms each
+    ({"frames": 10}, 10, 1000),               # fewer frames, 100 ms each, the same second
+    ({"fps": 50, "speed": 2.0}, 25, 500),     # twice as fast at 50 frames/s
+])
+def test_a_gif_lasts_the_run_span_over_the_speed(mpl, tmp_path, kwargs, frames, duration_ms):
+    """A 1 s run of the double pendulum: the GIF's frame durations (as Pillow
+    reads them) add up to 1 s / speed, and there are span * fps / speed
+    frames (or the number asked for)."""
+    r = mb.simulate(double_pendulum(), t_end=1.0, n_out=51)
+    path = tmp_path / "pendulum.gif"
+    assert plotting.animate(r, path, size=(320, 240), **kwargs) == str(path)
+    durations = gif_durations(path)
+    assert len(durations) == frames
+    assert sum(durations) == duration_ms
+    assert len(set(durations)) == 1
+
+
+def test_a_run_shorter_than_a_second_plays_in_one_by_default_and_says_so(mpl, tmp_path):
+    """0.2 s of the double pendulum in real time would be 5 frames: unless a
+    speed is given it is slowed down to last 1 s (25 frames), and the title
+    says the speed; speed=1 keeps real time."""
+    r = mb.simulate(double_pendulum(), t_end=0.2, n_out=21)
+    times, _ = plotting._frame_plan(r.t, fps=25, speed=0.2)
+    scene = plotting._Scene(r)
+    drawing = plotting._planar_drawing(scene, plotting._resample(r, times), [], (320, 240), 100, 0.2)
+    assert drawing.fig.axes[0].get_title() == "lagmb: 2 bodies, 2 joints, played at 0.2 × real time"
+    plotting.animate(r, tmp_path / "slow.gif", size=(320, 240))
+    assert len(gif_durations(tmp_path / "slow.gif")) == 25 and sum(gif_durations(tmp_path / "slow.gif")) == 1000
+    plotting.animate(r, tmp_path / "real.gif", size=(320, 240), speed=1)
+    assert gif_durations(tmp_path / "real.gif") == [40] * 5
+
+
+def test_animate_writes_a_moving_gif_of_the_size_asked(mpl, tmp_path):
     from PIL import Image, ImageChops
 
-    r = mb.simulate(double_pendulum(), t_end=1.0, n_out=n_out)
+    r = mb.simulate(double_pendulum(), t_end=1.0, n_out=11)
     path = tmp_path / "pendulum.gif"
-    out = plotting.animate(r, path, fps=20, max_frames=max_frames, size=(320, 240),
-                           trace=[("lower", (0.5, 0.0))])
-    assert out == str(path)
+    plotting.animate(r, path, size=(320, 240), trace=[("lower", (0.5, 0.0))])
     with Image.open(path) as im:
-        assert im.format == "GIF"
-        assert im.size == (320, 240)
-        assert im.n_frames == min(max_frames, n_out)
-        assert im.info["duration"] == 50  # ms per frame at 20 fps
+        assert im.format == "GIF" and im.size == (320, 240)
+        assert im.n_frames == 25  # frames between the 11 outputs are interpolated
         first = im.convert("RGB")
         im.seek(im.n_frames - 1)
         last = im.convert("RGB")
     assert ImageChops.difference(first, last).getbbox() is not None  # it moves
+
+
+def test_frames_between_outputs_are_interpolated_from_positions_and_velocities():
+    """The frames of a run with 21 outputs in 1 s (every 50 ms), at 25
+    frames/s, are within 2e-3 (m, rad) of a run with an output at each frame
+    time (a tenth of what straight lines between the outputs give: 1.5e-2);
+    at the outputs themselves they are the outputs."""
+    coarse = mb.simulate(double_pendulum(), t_end=1.0, n_out=21)
+    fine = mb.simulate(double_pendulum(), t_end=1.0, n_out=101)
+    times, _ = plotting._frame_plan(coarse.t, fps=25, speed=1.0)
+    shown = plotting._resample(coarse, times)
+    np.testing.assert_allclose(shown.t, fine.t[:-1:4], rtol=0, atol=1e-12)
+    error = np.max(np.abs(shown.q - fine.q[:-1:4]))
+    straight = np.column_stack([np.interp(times, coarse.t, q) for q in coarse.q.T])
+    assert error < 2e-3 and error < 0.1 * np.max(np.abs(straight - fine.q[:-1:4]))
+    np.testing.assert_allclose(shown.q[::5], coarse.q[:-1:4], rtol=0, atol=1e-12)  # t = 0, 0.2, ... 0.8
+
+
+def test_animate_reports_its_progress_in_run_time(mpl, tmp_path, monkeypatch):
+    """animate counts the frames drawn on lagmb.progress.Progress, labelled
+    "drawn", from the first frame's time to the run's end, and closes it."""
+    import lagmb.progress
+
+    calls = []
+
+    class Recorder:
+        def __init__(self, t0, t_end, enabled=True, label=None, **kwargs):
+            calls.append(("open", t0, t_end, enabled, label))
+
+        def __call__(self, t):
+            calls.append(("at", t))
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exc):
+            calls.append(("close",))
+
+    monkeypatch.setattr(lagmb.progress, "Progress", Recorder)
+    r = mb.simulate(double_pendulum(), t_end=0.4, n_out=5)
+    plotting.animate(r, tmp_path / "p.gif", size=(160, 120), speed=1.0)
+    assert calls[0] == ("open", 0.0, 0.4, True, "drawn") and calls[-1] == ("close",)
+    seen = [c[1] for c in calls if c[0] == "at"]
+    np.testing.assert_allclose(seen, 0.04 * np.arange(10), atol=1e-12)
+
+
+# --- animate: what is drawn ------------------------------------------------
+
+
+def test_a_rod_pinned_at_one_end_is_drawn_to_both_ends(mpl):
+    """The double pendulum's lower rod (1 m, 1 kg, inertia 1/12: a uniform
+    rod) has one joint, at its upper end: it is drawn from the elbow through
+    its centre to its free end (1, -1), not to its centre only. A bob of
+    little inertia (1 kg, 1e-6 kg m^2) on a joint 1 m away is drawn from the
+    joint to its centre (and 1.7 mm on)."""
+    m = double_pendulum()
+    bob = m.add_body("bob", mass=1.0, inertia=1e-6, position=(2.0, -1.0))
+    m.add_revolute("string", "lower", bob, at=(1.0, -1.0))
+    r = mb.simulate(m, t_end=0.2, n_out=3)
+    scene = plotting._Scene(r)
+    assert len(scene.outlines["upper"]) == 2  # two joints: drawn between them
+    np.testing.assert_allclose(scene.drawn_outline("upper"), [[-0.5, 0.0], [0.5, 0.0]], atol=1e-12)
+    np.testing.assert_allclose(scene.drawn_outline("bob"), [[-1.0, 0.0], [math.sqrt(3e-6), 0.0]], atol=1e-12)
+    # the lower rod now has two joints (elbow and string); alone, one:
+    m1 = double_pendulum()
+    r1 = mb.simulate(m1, t_end=0.2, n_out=3)
+    scene1 = plotting._Scene(r1)
+    assert len(scene1.outlines["lower"]) == 1
+    np.testing.assert_allclose(scene1.drawn_outline("lower"), [[-0.5, 0.0], [0.5, 0.0]], atol=1e-12)
+    # and the line drawn at the first frame runs from the elbow (1, 0) to the tip (1, -1)
+    drawing = plotting._planar_drawing(scene1, r1, [], (320, 240), 100, 1.0)
+    drawing.update(0)
+    x, y = drawing.artists["bodies"][1].get_data()
+    np.testing.assert_allclose(sorted(zip(x, y), key=lambda p: -p[1]), [[1.0, 0.0], [1.0, -1.0]], atol=1e-9)
+    # a body pinned at its centre with one more point (the cam of examples/cam_follower.toml, its
+    # contact circle 0.02 m off the pivot) is not taken for a rod
+    cam = plotting._Scene(mb.load_scene(os.path.join(EXAMPLES, "cam_follower.toml")).run(t_end=0.01, n_out=2))
+    np.testing.assert_allclose(cam.drawn_outline("cam"), cam.outlines["cam"])
+    assert len(cam.outlines["cam"]) == 2
+
+
+def test_a_spatial_body_is_drawn_with_its_axes_turning_with_it(mpl):
+    """The heavy top spinning at 100 rad/s, 201 outputs in 2 s: its frames at
+    25 frames/s fall on every 4th output. At each frame the triad drawn at
+    the centre of mass points along the columns of the body's rotation
+    matrix there (x red, y green, z blue), so that its spin shows, and its
+    inertia box (a flat square: the inertia (2, 2, 4) g m^2 of a disc) has
+    its corners where the rotation puts them."""
+    r = mb.load_scene(os.path.join(EXAMPLES, "heavy_top.toml")).run(n_out=201)
+    times, _ = plotting._frame_plan(r.t, fps=25, speed=1.0)
+    shown = plotting._resample(r, times)
+    scene = plotting._Scene(r)
+    drawing = plotting._spatial_drawing(scene, shown, [], (320, 240), 100, (20.0, -70.0), 1.0)
+    top = r.body("top")
+    length = drawing.triad_length
+    corners = scene.box("top")
+    half = np.sqrt(3 * 0.002 / 1.0)  # a uniform square with S_xx = S_yy = 2 g m^2: half side sqrt(3 S / m)
+    np.testing.assert_allclose(sorted(np.abs(corners).max(axis=0)), [0.0, half, half], atol=1e-12)
+    directions = []
+    for k in (0, 1, 17, 49):
+        drawing.update(k)
+        R, c = top.rotation[4 * k], top.position[4 * k]
+        for axis, art in enumerate(drawing.artists["triad"]):
+            x, y, z = (np.asarray(v, dtype=float) for v in art.get_data_3d())
+            np.testing.assert_allclose([x[0], y[0], z[0]], c, atol=1e-9)
+            np.testing.assert_allclose(np.array([x[1], y[1], z[1]]) - c, length * R[:, axis], atol=1e-9)
+        x, y, z = (np.asarray(v, dtype=float) for v in drawing.artists["boxes"][0].get_data_3d())
+        drawn = np.column_stack([x, y, z])
+        drawn = drawn[np.isfinite(drawn).all(axis=1)]
+        expected = c + corners @ R.T
+        assert max(np.min(np.linalg.norm(expected - p, axis=1)) for p in drawn) < 1e-9
+        directions.append(R[:, 0])
+    assert np.linalg.norm(directions[1] - directions[0]) > 0.5  # it turned 4 rad in 40 ms
+
+
+def test_trace_takes_bodies_elements_and_points_by_name():
+    """What a trace names: a body (its centre of mass), a joint (where it
+    attaches to its moving body), "body:x,y", a (body, point) pair; what it
+    cannot trace is a ModelError naming it."""
+    m = double_pendulum()
+    got = plotting.trace_points(m, ["lower", "elbow", "lower:0.5,0", ("upper", (0.5, 0.0))])
+    assert [b for b, _ in got] == ["lower", "lower", "lower", "upper"]
+    np.testing.assert_allclose([p for _, p in got], [[0, 0], [-0.5, 0], [0.5, 0], [0.5, 0]], atol=1e-12)
+    assert plotting.trace_points(m, "shoulder")[0][0] == "upper"
+    with pytest.raises(mb.ModelError, match=r"animate: trace 'wrist': no body or element of that name; "
+                                            r"the bodies are upper, lower"):
+        plotting.trace_points(m, ["wrist"])
+    with pytest.raises(mb.ModelError, match=r"animate: trace 'lower:0.5': a point on a body is body:x,y"):
+        plotting.trace_points(m, "lower:0.5")
+    with pytest.raises(mb.ModelError, match=r"--trace hand: no body or element"):
+        plotting.trace_points(m, ["hand"], context="--trace")
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"fps": 0}, "animate: fps 0: must be a number above 0 and at most 50"),
+    ({"fps": 100}, "animate: fps 100: must be a number above 0 and at most 50"),
+    ({"speed": -1.0}, "animate: speed -1.0: must be a number above 0"),
+    ({"speed": float("nan")}, "animate: speed nan: must be a number above 0"),
+    ({"frames": 0}, "animate: frames 0: must be a whole number, at least 1"),
+    ({"frames": 2.5}, "animate: frames 2.5: must be a whole number, at least 1"),
+    ({"trace": "elbw"}, "animate: trace 'elbw': no body or element of that name"),
+])
+def test_animate_refuses_bad_settings_naming_them(mpl, pendulum_run, tmp_path, kwargs, message):
+    with pytest.raises(mb.ModelError) as e:
+        plotting.animate(pendulum_run, tmp_path / "x.gif", **kwargs)
+    assert str(e.value).startswith(message)
+    assert not (tmp_path / "x.gif").exists()
 
 
 def test_animate_default_size_and_single_trace_pair(mpl, tmp_path):
@@ -281,16 +482,10 @@ def test_animate_default_size_and_single_trace_pair(mpl, tmp_path):
     m, (A, B, C, D) = fourbar()
     r = mb.simulate(m, t_end=0.5, n_out=26)
     path = tmp_path / "fourbar.gif"
-    plotting.animate(r, path, max_frames=5, trace=("coupler", (0.0, 0.5)))
+    plotting.animate(r, path, frames=5, trace=("coupler", (0.0, 0.5)))
     with Image.open(path) as im:
         assert im.size == (640, 480) and im.n_frames == 5
 
-
-def test_animate_rejects_bad_settings(mpl, pendulum_run, tmp_path):
-    with pytest.raises(ValueError, match="positive"):
-        plotting.animate(pendulum_run, tmp_path / "x.gif", fps=0)
-    with pytest.raises(ValueError, match="positive"):
-        plotting.animate(pendulum_run, tmp_path / "x.gif", max_frames=0)
 
 
 # --- matplotlib is optional ------------------------------------------------
@@ -355,7 +550,7 @@ def test_animate_a_spatial_run_from_the_viewpoint_asked(mpl, tmp_path):
     frames = {}
     for view in ((25.0, -60.0), (80.0, 0.0)):
         path = tmp_path / f"view{view[0]:.0f}.gif"
-        assert plotting.animate(r, path, max_frames=10, size=(320, 240), view=view,
+        assert plotting.animate(r, path, frames=10, size=(320, 240), view=view,
                                 trace=("lower", (0.0, 0.0, 0.0))) == str(path)
         with Image.open(path) as im:
             assert im.n_frames == 10 and im.size == (320, 240)

@@ -85,17 +85,81 @@ class _Scene:
             kw["name"]: [(names[b + 1], np.array(point, dtype=float)) for b, *point in core.attachments(kw["name"])]
             for method, kw in self.elements if kinds[method].role != "body"}
         self.outlines = {b.name: [np.asarray(p, dtype=float) for p in core.outline(b.index)] for b in bodies}
+        # mass and inertia about the centre of mass (body axes) as given to add_body
+        self.mass = {kw["name"]: float(kw.get("mass") or 0.0) for method, kw in self.elements
+                     if kinds[method].role == "body"}
+        self.inertia = {kw["name"]: _inertia_tensor(kw.get("inertia"), self.dimension)
+                        for method, kw in self.elements if kinds[method].role == "body"}
 
     def attachments(self, name):
         """[(body, local point)] where one element attaches."""
         return self._attachments.get(name, [])
 
-    def path(self, body, local, index=slice(None)):
+    def path(self, body, local, index=slice(None), result=None):
         """(k, 2) global path of a body's local point (fixed for the ground);
-        (k, 3) in space."""
+        (k, 3) in space. Of this scene's result, or of ``result`` (the frames)."""
+        result = self.result if result is None else result
         if body == "ground":
-            return np.broadcast_to(np.asarray(local, dtype=float), (len(self.result.t), self.dimension))[index]
-        return self.result.point(body, local)[index]
+            return np.broadcast_to(np.asarray(local, dtype=float), (len(result.t), self.dimension))[index]
+        return result.point(body, local)[index]
+
+    def second_moment(self, body):
+        """The body's second moment of mass about its centre, S = sum m x x^T
+        in its own axes: (2, 2) or (3, 3), from the inertia given to add_body
+        (S = tr(J)/2 - J in space; in the plane only I = S_xx + S_yy is
+        known, and S is taken as I along every direction: the body as a rod)."""
+        mass, J = self.mass.get(body, 0.0), self.inertia.get(body)
+        if J is None or not mass > 0.0:
+            return None
+        if self.dimension == 2:
+            return J * np.eye(2)
+        return 0.5 * np.trace(J) * np.eye(3) - J
+
+    def half_length(self, body, direction):
+        """Half the length of the uniform rod along ``direction`` (body axes)
+        that has the body's mass and second moment along it: sqrt(3 S_uu / m)
+        (a rod of length L has S_uu = m L^2 / 12). 0 for a particle."""
+        S = self.second_moment(body)
+        if S is None:
+            return 0.0
+        u = np.asarray(direction, dtype=float)
+        u = u / np.linalg.norm(u)
+        return math.sqrt(3.0 * max(float(u @ S @ u), 0.0) / self.mass[body])
+
+    def drawn_outline(self, body):
+        """The local points a body is drawn through: where its elements attach
+        (its outline). A body attached at one point only, off its centre of
+        mass (a pendulum's rod pinned at one end), is drawn whole: as the
+        uniform rod through that point and the centre with the body's mass
+        and inertia (half_length); a rod of length L pinned at its end
+        reaches L/2 beyond the centre. A point mass (no inertia) keeps the
+        line from the point to its centre."""
+        points = list(self.outlines.get(body, []))
+        distinct = {tuple(np.round(p, 12)) for p in points}
+        if len(distinct) != 1 or np.linalg.norm(points[0]) <= 1e-12:
+            return points  # two or more points, or pinned at its centre (a cam, a wheel)
+        p = points[0]
+        d = float(np.linalg.norm(p))
+        u = p / d
+        h = self.half_length(body, u)
+        if h <= 1e-9 * d:
+            return points
+        return [p] + ([h * u] if h > d * (1.0 + 1e-9) else []) + [-h * u]
+
+    def box(self, body):
+        """(8, 3) corners, in body axes, of the uniform box with the body's
+        mass and second moment (its principal axes, half extents sqrt(3 s_i /
+        m)): what shows a spatial body's orientation; None for a particle or
+        a body without inertia."""
+        S = self.second_moment(body)
+        if S is None or self.dimension != 3:
+            return None
+        s, V = np.linalg.eigh(0.5 * (S + S.T))
+        half = np.sqrt(3.0 * np.clip(s, 0.0, None) / self.mass[body])
+        if not half.max() > 0.0:
+            return None
+        signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
+        return (signs * half) @ V.T
 
     def summary(self):
         """"2 bodies, 1 joint, 1 stop": each role that has elements."""
@@ -110,6 +174,17 @@ class _Scene:
         if kind == "drive_joint":
             return "N" if self.kind_of.get(kw.get("joint")) in ("add_translational", "add_cylindrical") else "N m"
         return "N or N m"
+
+
+def _inertia_tensor(inertia, dimension):
+    """add_body's inertia as given: a number in the plane; (Ixx, Iyy, Izz)
+    or a 3 x 3 tensor in space (None for a particle)."""
+    if inertia is None:
+        return None
+    J = np.asarray(inertia, dtype=float)
+    if dimension == 2:
+        return float(J.reshape(-1)[0]) if J.size else None
+    return np.diag(J) if J.shape == (3,) else J.reshape(3, 3)
 
 
 def _count(n, one, many=None):
@@ -145,7 +220,7 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     from its initial orientation), "reactions" (magnitude of each joint's
     reaction force, N), "efforts" (the drivers' forces or torques),
     "energy" (change E - E(0) in J, with E(0) given) and "residual"
-    (max |Phi| on a log scale). Subplots with nothing to show are left out.
+    (max ``|Phi|`` on a log scale). Subplots with nothing to show are left out.
     Up to 6 bodies and 8 joints or drivers are drawn; the legend says when
     there are more.
 
@@ -376,12 +451,80 @@ def _zigzag(p, q, width, coils=6):
     return p + np.outer(s * length, u) + np.outer(offset, n)
 
 
-def _frame_indices(k, max_frames):
-    """At most max_frames indices spread evenly over 0..k-1, both ends included."""
-    n = max(1, min(int(max_frames), k))
-    if n == 1:
-        return np.array([0])
-    return np.unique(np.round(np.linspace(0, k - 1, n)).astype(int))
+_FPS = 25       # default frames per second: 40 ms a frame, four ticks of a GIF's 10 ms clock
+_MAX_FPS = 50   # GIF viewers show a frame of 10 ms for 100 ms: 20 ms is the shortest kept
+_MAX_FRAMES = 1000  # unless asked: Pillow holds every frame until the GIF is written (0.3 MB at 640 x 480)
+
+
+def _frame_plan(t, fps, speed, frames=None):
+    """(times (n,), durations in ms (n,)) of the frames of a run with output
+    times t: n frames spread evenly from the first output on, frame i showing
+    t0 + i * span / n, so that the GIF plays the span in span / speed s.
+    n is span * fps / speed, rounded (at most ``frames``; at least 1). A GIF
+    counts frame durations in whole hundredths of a second: the ends of the
+    frames are rounded to them, so that every frame lasts the same where
+    100 / frame rate is whole (fps 10, 20, 25, 50) and otherwise one tick
+    more or less (30 or 40 ms at 30 frames/s), the whole always right to
+    10 ms."""
+    t0, t1 = float(t[0]), float(t[-1])
+    span = t1 - t0
+    playing = span / speed
+    n = int(round(span * fps / speed)) if span > 0 else 1
+    n = min(n, int(math.floor(playing * _MAX_FPS + 1e-9)))  # no frame shorter than 20 ms
+    if frames is not None:
+        n = min(n, int(frames))
+    n = max(n, 1)
+    times = t0 + span * np.arange(n) / n
+    if n == 1:  # one picture: its duration does not matter
+        return times, np.array([max(10 * round(100.0 / fps), 20)])
+    ends = np.round(100.0 * playing * np.arange(1, n + 1) / n)  # hundredths of a second
+    return times, (10 * np.diff(np.concatenate(([0.0], ends)))).astype(int)
+
+
+def _resample(result, times):
+    """The result at the frame times, as a Result (q and v; a and lam zero):
+    q by cubic Hermite interpolation between the outputs around each time
+    (q and q' = v at both; exact at the outputs), linear where an event
+    (impact) lies between them; each spatial body's Euler parameters
+    normalised."""
+    from .result import Result
+
+    t = np.asarray(result.t, dtype=float)
+    q, v = np.asarray(result.q, dtype=float), np.asarray(result.v, dtype=float)
+    times = np.asarray(times, dtype=float)
+    if len(t) == len(times) and np.array_equal(t, times):
+        return result
+    if len(t) == 1:
+        qf, vf = np.repeat(q, len(times), axis=0), np.repeat(v, len(times), axis=0)
+    else:
+        k = np.clip(np.searchsorted(t, times, side="right") - 1, 0, len(t) - 2)
+        h = t[k + 1] - t[k]
+        s = np.clip(np.divide(times - t[k], h, out=np.zeros_like(h), where=h > 0), 0.0, 1.0)[:, None]
+        hh = h[:, None]
+        h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
+        h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
+        qf = h00 * q[k] + h10 * hh * v[k] + h01 * q[k + 1] + h11 * hh * v[k + 1]
+        linear = (1 - s) * q[k] + s * q[k + 1]
+        jumps = np.zeros(len(t), dtype=bool)  # intervals (t_j, t_j+1] with an event
+        for e in getattr(result, "events", []):
+            j = int(np.searchsorted(t, float(e.get("t", np.nan)), side="left")) - 1
+            if 0 <= j < len(t) - 1:
+                jumps[j] = True
+        rough = jumps[k] | ~np.isfinite(qf).all(axis=1)
+        qf[rough] = linear[rough]
+        vf = (1 - s) * v[k] + s * v[k + 1]
+    core = result._core
+    for body in result.model.bodies:
+        if not core.has(body.name):
+            continue
+        first, count = core.body_coordinates(body.name)
+        if count == 7:
+            p = qf[:, first + 3:first + 7]
+            qf[:, first + 3:first + 7] = p / np.linalg.norm(p, axis=1, keepdims=True)
+    lam = getattr(result, "_lam", np.zeros((len(t), 0)))
+    raw = {"t": times, "q": qf, "v": vf, "a": np.zeros_like(qf), "lam": np.zeros((len(times), lam.shape[1])),
+           "stats": result.stats}
+    return Result(result.model, core, raw)
 
 
 def _time_format(times):
@@ -391,61 +534,251 @@ def _time_format(times):
     return f"t = {{:.{digits}f}} s"
 
 
-def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480), dpi=100, view=(25.0, -60.0)):
-    """Write a GIF of the mechanism moving.
+def _speed_words(speed):
+    """What the title says of the speed: nothing in real time."""
+    if speed == 1.0:
+        return ""
+    return f", played at {speed:.3g} × real time"
+
+
+def _checked(name, value, low, high=None, whole=False):
+    """An animation setting: a number (whole if asked) above low and at most
+    high, else a ModelError naming it and the value as given ("animate: fps
+    0: must be ..."; from the command line "--fps 0: ...")."""
+    words = f"a whole number, at least {low + 1}" if whole else f"a number above {low:g}"
+    if high is not None:
+        words += f" and at most {high:g}"
+    try:
+        number = float(value)
+        good = not isinstance(value, bool) and math.isfinite(number) and number > low \
+            and (high is None or number <= high) and (not whole or number == int(number))
+    except (TypeError, ValueError, OverflowError):
+        good = False
+    if not good:
+        reason = " (GIF viewers show a frame shorter than 20 ms for 100 ms)" if high == _MAX_FPS else ""
+        shown = value if name.startswith("--") else repr(value)
+        raise ModelError(f"{name} {shown}: must be {words}{reason}")
+    return int(number) if whole else number
+
+
+def trace_points(model, trace, context="animate: trace"):
+    """The traced points as [(body name, local point)] from what ``animate``
+    and ``lagmb run --trace`` take: a body (handle or name: its centre of
+    mass), an element (a joint, force, spring: by handle or name; the point
+    where it attaches to its moving body, the last it names), a pair
+    (body, local point), or "body:x,y" ("body:x,y,z" in space); one of them
+    or a list. A ModelError names what cannot be traced, after ``context``."""
+    size = getattr(model, "dimension", 2)
+
+    def said(item):
+        return str(item) if context.startswith("--") else repr(item)
+
+    if trace is None:
+        return []
+    if isinstance(trace, (str, Handle)) or (isinstance(trace, (tuple, list)) and len(trace) == 2
+                                             and isinstance(trace[0], (str, Handle)) and np.ndim(trace[1]) == 1):
+        trace = [trace]  # one of them
+    bodies = [b.name for b in model.bodies]
+
+    def body_named(body, item):
+        body = name_of(model, body, ("body",), "body", context)
+        if body not in bodies:
+            raise ModelError(f"{context} {said(item)}: no body named {body!r}; the bodies are " + ", ".join(bodies))
+        return body
+
+    out = []
+    for item in trace:
+        if isinstance(item, (tuple, list)) and len(item) == 2:
+            body, point = body_named(item[0], item), item[1]
+        elif isinstance(item, str) and ":" in item:
+            body, text = item.split(":", 1)
+            try:
+                point = [float(x) for x in text.split(",")]
+            except ValueError:
+                point = None
+            if point is None or len(point) != size:
+                raise ModelError(f"{context} {said(item)}: a point on a body is body:{'x,y' if size == 2 else 'x,y,z'} "
+                                 "(m, in the body's own axes)")
+            body = body_named(body, item)
+        elif isinstance(item, Handle) and item.role == "body":
+            out.append((body_named(item, item), np.zeros(size)))
+            continue
+        elif isinstance(item, (str, Handle)):
+            if item in bodies:
+                out.append((item, np.zeros(size)))
+                continue
+            try:
+                attached = model.attachments(item)
+            except ModelError:
+                raise ModelError(f"{context} {said(item)}: no body or element of that name; the bodies are "
+                                 + ", ".join(bodies)) from None
+            moving = [(b, p) for b, p in attached if b != "ground"]
+            if not moving:
+                raise ModelError(f"{context} {said(item)}: it attaches to no moving body")
+            out.append((moving[-1][0], np.asarray(moving[-1][1], dtype=float)))
+            continue
+        else:
+            raise ModelError(f"{context}: expected a body, an element, (body, point) or 'body:x,y', got {item!r}")
+        try:
+            point = np.asarray(point, dtype=float).reshape(size)
+        except (TypeError, ValueError):
+            raise ModelError(f"{context} point {point!r}: must be {size} numbers") from None
+        if not np.all(np.isfinite(point)):
+            raise ModelError(f"{context} point {tuple(point)}: must be finite")
+        out.append((body, point))
+    return out
+
+
+def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size=(640, 480), dpi=100,
+            view=(25.0, -60.0), progress=True, max_frames=None):
+    """Write a GIF of the mechanism moving, in real time by default.
+
+    Timing: the GIF plays the run's span in span / ``speed`` seconds (speed
+    1: a 1 s run lasts 1 s; 0.1: ten times slower) at ``fps`` frames per
+    second (default 25; at most 50). The default speed is 1, real time,
+    except for a run shorter than 1 s, which is slowed down to last 1 s
+    (an impact of 30 ms would be one frame); the title says the speed
+    whenever it is not 1. A GIF counts a frame's duration in
+    whole hundredths of a second: at 10, 20, 25 or 50 frames/s every frame
+    lasts the same (100, 50, 40, 20 ms); at another rate frames last one
+    tick more or less (30 or 40 ms at 30 frames/s) so that the whole still
+    lasts span / speed, to 10 ms. ``frames`` caps the number of frames
+    (default 1000, 40 s at 25 frames/s: Pillow holds them all until the GIF
+    is written): the frames then last longer, the GIF keeps its duration. Frame i shows the
+    mechanism at t0 + i * span / n (n frames): the states between outputs
+    are interpolated (cubic, from the positions and velocities), so the
+    frames need not fall on output times. ``max_frames`` is the old name of
+    ``frames``.
+
+    ``progress``: a line (or tqdm bar) on a terminal's stderr while the
+    frames are drawn, after the first second (lagmb.progress.Progress).
 
     A spatial model (dimension 3) is drawn in perspective by matplotlib's
     mplot3d, seen from ``view`` = (elevation, azimuth) in degrees (see
-    _animate_spatial); what follows is the planar drawing.
+    _spatial_drawing); what follows is the planar drawing.
 
     Each body is drawn through the points where its joints and forces attach
     (``model.outline(body)``): a line for two points, a shaded convex polygon
-    for three or more, a line from the centre of mass to a single point, a
-    disc for none (a square block if it slides in a translational joint); a
-    dot marks each centre of mass, white circles the revolute
+    for three or more, a disc for none (a square block if it slides in a
+    translational joint). A body attached at one point off its centre (a
+    pendulum's rod) is drawn whole: as the uniform rod with its mass and
+    inertia, from that point through the centre of mass (a rod pinned at its
+    end reaches as far beyond the centre); a point mass from the point to its
+    centre. A dot marks each centre of mass, white circles the revolute
     joints, triangles the joints to the ground, zig-zags the spring-dampers,
     dashed lines the slide axes fixed to the ground.
-    ``trace``: a list of (body, local point) pairs (or one pair; the body by
-    its handle or name) whose paths are drawn as they are travelled (faint
-    ahead); a traced point also joins its body's shape (so a pendulum's free
-    tip is drawn). The axes are fixed to cover the whole motion, with equal
-    scales, in m.
 
-    Frames are the output times of the result, evenly subsampled to at most
-    ``max_frames``; they play at ``fps`` frames per second. ``size`` is the
+    ``trace``: points whose paths are drawn as they are travelled (faint
+    ahead): a body (its centre of mass), an element (a joint: where it is),
+    a (body, local point) pair or "body:x,y" (trace_points); one or a list.
+    A traced (body, point) also joins its body's shape. The axes are fixed
+    to cover the whole motion, with equal scales, in m. ``size`` is the
     picture in pixels. Returns the path written.
     """
     _matplotlib()
     try:
-        from matplotlib.animation import PillowWriter  # noqa: F401 - there before anything is drawn
-        from matplotlib.patches import Polygon
+        from PIL import Image  # noqa: F401 - there before anything is drawn
     except ImportError as e:
         raise ImportError(_HINT) from e
-    if fps <= 0 or max_frames < 1:
-        raise ValueError(f"animate: fps and max_frames must be positive, got {fps}, {max_frames}")
+    if max_frames is not None:
+        if frames is not None:
+            raise ModelError("animate: give frames or its old name max_frames, not both")
+        frames = max_frames
+    fps = _FPS if fps is None else _checked("animate: fps", fps, 0.0, _MAX_FPS)
+    if speed is not None:
+        speed = _checked("animate: speed", speed, 0.0)
+    frames = _MAX_FRAMES if frames is None else _checked("animate: frames", frames, 0, whole=True)
     t = np.asarray(result.t)
     if len(t) == 0:
-        raise ValueError("animate: the result has no outputs")
+        raise ModelError("animate: the result has no outputs")
+    if speed is None:  # real time, or 1 s for a shorter run
+        span = float(t[-1] - t[0])
+        speed = span if 0.0 < span < 1.0 else 1.0
     scene = _Scene(result)
-    frames = _frame_indices(len(t), max_frames)
-    if trace is not None and len(trace) == 2 and isinstance(trace[0], (str, Handle)) \
-            and np.ndim(trace[1]) == 1:
-        trace = [trace]  # one (body, point) pair
-    trace = [(name_of(result.model, b, ("body",), "body", "animate: trace"),
-              np.asarray(p, dtype=float).reshape(scene.dimension)) for b, p in (trace or [])]
+    trace = trace_points(result.model, trace)
+    times, durations = _frame_plan(t, fps, speed, frames)
+    shown = _resample(result, times)
     if scene.dimension == 3:
-        return _animate_spatial(scene, path, frames, trace, fps, size, dpi, view)
+        drawing = _spatial_drawing(scene, shown, trace, size, dpi, view, speed)
+    else:
+        drawing = _planar_drawing(scene, shown, trace, size, dpi, speed)
+    from .progress import Progress
 
-    # global paths of everything drawn, over all outputs (for the limits);
-    # traced points belong to their bodies' shapes too (a pendulum's free tip)
-    outlines = {b: list(scene.outlines[b]) for b in scene.bodies}
+    with Progress(times[0], t[-1], enabled=bool(progress), label="drawn") as bar:
+        return _write_gif(drawing, path, durations, lambda k: bar(times[k]))
+
+
+class _Drawing:
+    """A figure of a run's frames: ``update(k)`` sets the ``animated``
+    artists to frame k; everything else is drawn once. ``artists`` names
+    the animated ones (for tests)."""
+
+    def __init__(self, fig, artists, update):
+        self.fig, self.artists, self.update = fig, artists, update
+        self.animated = [a for v in artists.values() for a in (v if isinstance(v, list) else [v])]
+
+
+def _write_gif(drawing, path, durations, progress=None):
+    """Draws each frame of drawing into a GIF at path, frame k lasting
+    durations[k] ms; returns the path. The fixed part of the figure is drawn
+    once and copied under each frame (blitting); the frame's pixels go from
+    Agg's buffer to Pillow, on one palette for all frames (made from the
+    first, middle and last frames)."""
+    from PIL import Image
+
+    path = os.fspath(path)
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    fig = drawing.fig
+    canvas = fig.canvas
+    for art in drawing.animated:
+        art.set_animated(True)
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+
+    def picture(k):
+        canvas.restore_region(background)
+        drawing.update(k)
+        for art in drawing.animated:
+            fig.draw_artist(art)
+        width, height = canvas.get_width_height(physical=True)
+        return Image.frombuffer("RGBA", (width, height), canvas.buffer_rgba(), "raw", "RGBA", 0, 1).convert("RGB")
+
+    n = len(durations)
+    samples = [picture(k) for k in sorted({0, n // 2, n - 1})]
+    strip = Image.new("RGB", (samples[0].width, samples[0].height * len(samples)))
+    for i, im in enumerate(samples):
+        strip.paste(im, (0, i * im.height))
+    palette = strip.quantize(colors=255, method=Image.Quantize.MEDIANCUT)
+    pictures = []
+    for k in range(n):
+        pictures.append(picture(k).quantize(palette=palette, dither=Image.Dither.NONE))
+        if progress is not None:
+            progress(k)
+    pictures[0].save(path, save_all=True, append_images=pictures[1:], duration=[int(d) for d in durations],
+                     loop=0)
+    return path
+
+
+def _planar_drawing(scene, shown, trace, size, dpi, speed):
+    """The planar drawing of the frames ``shown`` (a Result at the frame
+    times) of scene's run (see animate)."""
+    from matplotlib.patches import Polygon
+
+    result = scene.result
+    t = np.asarray(shown.t)
+    # global paths of everything drawn, over all outputs (for the limits) and
+    # at the frames; traced points belong to their bodies' shapes too (a
+    # pendulum's free tip)
+    outlines = {b: scene.drawn_outline(b) for b in scene.bodies}
     for b, p in trace:
-        if b in outlines and all(np.hypot(*(p - u)) > 1e-12 for u in outlines[b]):
+        if b in outlines and all(np.hypot(*(p - u)) > 1e-12 for u in outlines[b]) and np.hypot(*p) > 1e-12:
             outlines[b].append(p)
     shapes = {b: _shape(outlines[b]) for b in scene.bodies}
-    body_paths = {b: [scene.path(b, p) for p in shapes[b][0]] for b in scene.bodies}
-    centres = {b: result.body(b).position for b in scene.bodies}
+    body_paths = {b: [scene.path(b, p, result=shown) for p in shapes[b][0]] for b in scene.bodies}
+    centres = {b: shown.body(b).position for b in scene.bodies}
     traces = [scene.path(b, p) for b, p in trace]
+    trace_frames = [scene.path(b, p, result=shown) for b, p in trace]
+    reached = np.searchsorted(np.asarray(result.t), t, side="right")  # outputs up to each frame
     pins, supports, guides, links, sliders = [], [], [], [], set()
     for kind, kw in scene.elements:
         if kind == "add_translational":
@@ -455,7 +788,7 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
             moving = [(b, p) for b, p in att if b != "ground"]
             fixed = [p for b, p in att if b == "ground"]
             if moving:
-                pins.append(scene.path(*moving[-1]))
+                pins.append(scene.path(*moving[-1], result=shown))
             if fixed:
                 supports.append(fixed[0])
         elif kind in ("add_translational", "add_pin_in_slot") and kw.get("axis") is not None:
@@ -463,10 +796,12 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
                 guides.append((np.asarray(kw["at"], float), np.asarray(kw["axis"], float)))
             moving = [(b, p) for b, p in att if b != "ground"]
             if moving and kind == "add_pin_in_slot":
-                pins.append(scene.path(*moving[-1]))
+                pins.append(scene.path(*moving[-1], result=shown))
         elif kind in ("add_spring_damper", "add_distance") and len(att) == 2:
-            links.append((kind, scene.path(*att[0]), scene.path(*att[1])))
-    clouds = [c for paths in body_paths.values() for c in paths] + list(centres.values()) \
+            links.append((kind, scene.path(*att[0], result=shown), scene.path(*att[1], result=shown)))
+    everywhere = [scene.path(b, p) for b in scene.bodies for p in shapes[b][0]] \
+        + [result.body(b).position for b in scene.bodies]
+    clouds = everywhere + [c for paths in body_paths.values() for c in paths] + list(centres.values()) \
         + traces + pins + [p[None, :] for p in supports] \
         + [q for _, p, q in links] + [p for _, p, q in links]
     pts = np.concatenate([np.asarray(c).reshape(-1, 2) for c in clouds]) if clouds \
@@ -492,9 +827,9 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.grid(alpha=0.25)
-    ax.set_title(f"lagmb: {scene.summary()}", fontsize=10)
+    ax.set_title(f"lagmb: {scene.summary()}{_speed_words(speed)}", fontsize=10)
 
-    # fixed things: slide guides, supports
+    # fixed things: slide guides, supports, the paths ahead
     for at, axis in guides:
         u = axis / max(np.hypot(*axis), 1e-300)
         ax.plot(*np.array([at - 4 * span * u, at + 4 * span * u]).T, color="0.5", lw=1,
@@ -504,13 +839,12 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
         ax.add_patch(Polygon(tri, closed=True, facecolor="0.75", edgecolor="0.2", lw=1,
                              zorder=2))
         ax.plot([p[0] - mark, p[0] + mark], [p[1] - mark] * 2, color="0.2", lw=1.5, zorder=2)
+    trace_colours = [_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
+    for c, path_ in zip(trace_colours, traces):
+        ax.plot(*path_.T, color=c, lw=1, alpha=0.2, zorder=1)
 
     # moving things, updated per frame
-    trace_full, trace_done = [], []
-    for n, ((b, _), path_) in enumerate(zip(trace, traces)):
-        c = _colour(scene.bodies.index(b)) if b in scene.bodies else "k"
-        trace_full.append(ax.plot(*path_.T, color=c, lw=1, alpha=0.2, zorder=1)[0])
-        trace_done.append(ax.plot([], [], color=c, lw=1.3, zorder=1)[0])
+    trace_done = [ax.plot([], [], color=c, lw=1.3, zorder=1)[0] for c in trace_colours]
     link_art = [ax.plot([], [], color="0.35", lw=1.0 if kind == "add_spring_damper" else 1.8,
                         zorder=2)[0] for kind, _, _ in links]
     body_art = []
@@ -532,9 +866,9 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
     stamp = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
                     family="monospace", zorder=6,
                     bbox={"facecolor": "white", "edgecolor": "0.8", "alpha": 0.85})
-    stamp_format = _time_format(t[frames])
+    stamp_format = _time_format(t)
 
-    def draw(k):
+    def update(k):
         for b, art in zip(scene.bodies, body_art):
             if body_paths[b]:
                 xy = np.array([p[k] for p in body_paths[b]])
@@ -554,56 +888,75 @@ def animate(result, path, *, fps=30, max_frames=300, trace=None, size=(640, 480)
             xy = _zigzag(p[k], q[k], 0.4 * mark) if kind == "add_spring_damper" \
                 else np.array([p[k], q[k]])
             art.set_data(xy[:, 0], xy[:, 1])
-        for art, path_ in zip(trace_done, traces):
-            art.set_data(path_[:k + 1, 0], path_[:k + 1, 1])
+        for art, path_, at in zip(trace_done, traces, trace_frames):
+            xy = np.concatenate([path_[:reached[k]], at[k][None, :]])
+            art.set_data(xy[:, 0], xy[:, 1])
         stamp.set_text(stamp_format.format(t[k]))
 
-    return _write_gif(fig, path, frames, draw, fps, dpi)
+    # in the order of their zorder: each frame draws them one by one, in this order
+    artists = {"traces": trace_done, "links": link_art, "bodies": body_art, "pins": pin_art,
+               "centres": centre_art, "stamp": stamp}
+    return _Drawing(fig, artists, update)
 
 
-def _write_gif(fig, path, frames, draw, fps, dpi):
-    """Draws each frame k (draw(k)) of fig into a GIF at path; returns the path."""
-    from matplotlib.animation import PillowWriter
-
-    path = os.fspath(path)
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    writer = PillowWriter(fps=fps)
-    with writer.saving(fig, path, dpi):
-        for k in frames:
-            draw(k)
-            writer.grab_frame()
-    return path
+_TRIAD_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")  # body axes x, y, z: red, green, blue
 
 
-def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
-    """The spatial drawing: each body as lines from its centre of mass to the
-    points where elements attach to it (a dot alone if none), white circles
-    at the joints, triangles at joints to the ground, grey lines for
-    spring-dampers and distance links, traced points' paths; equal scales on
-    the three axes, in m, seen from view = (elevation, azimuth) in degrees."""
+def _box_edges(corners):
+    """(36, 3) the 12 edges of a box with corners (8, 3) (index bits z y x)
+    as one polyline, NaN between edges."""
+    pairs = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
+    gap = np.full(3, np.nan)
+    return np.array([p for a, b in pairs for p in (corners[a], corners[b], gap)])
+
+
+def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
+    """The spatial drawing of the frames ``shown``: each body as lines from
+    its centre of mass to the points where elements attach to it (a rod
+    pinned at one end drawn whole, as in the plane; a dot alone if none),
+    the edges of its inertia box (the uniform box with its mass and
+    inertia, Scene.box) and its axes (a triad: x red, y green, z blue, of a
+    length scaled to the scene) that turn with it, so that spin shows;
+    white circles at the joints, triangles at joints to the ground, grey
+    lines for spring-dampers and distance links, traced points' paths;
+    equal scales on the three axes, in m, seen from view = (elevation,
+    azimuth) in degrees."""
     result = scene.result
-    t = np.asarray(result.t)
+    t = np.asarray(shown.t)
     elevation, azimuth = (float(x) for x in view)
-    outlines = {b: list(scene.outlines[b]) + [p for tb, p in trace if tb == b] for b in scene.bodies}
-    centres = {b: result.body(b).position for b in scene.bodies}
-    spokes = {b: [scene.path(b, p) for p in outlines[b]] for b in scene.bodies}
+    outlines = {b: scene.drawn_outline(b) + [p for tb, p in trace if tb == b] for b in scene.bodies}
+    centres = {b: shown.body(b).position for b in scene.bodies}
+    spokes = {b: [scene.path(b, p, result=shown) for p in outlines[b]] for b in scene.bodies}
+    rotations = {b: getattr(shown.body(b), "rotation", None) for b in scene.bodies}
+    boxes = {b: scene.box(b) for b in scene.bodies if rotations[b] is not None}
+    boxes = {b: _box_edges(c) for b, c in boxes.items() if c is not None}
     traces = [scene.path(b, p) for b, p in trace]
+    trace_frames = [scene.path(b, p, result=shown) for b, p in trace]
+    reached = np.searchsorted(np.asarray(result.t), t, side="right")
     joints, supports, links = [], [], []
     for kind, kw in scene.elements:
         att = scene.attachments(kw["name"])
         if kind in ("add_spring_damper", "add_distance") and len(att) == 2:
-            links.append((scene.path(*att[0]), scene.path(*att[1])))
+            links.append((scene.path(*att[0], result=shown), scene.path(*att[1], result=shown)))
         elif scene.kind_of.get(kw["name"]) and kw["name"] in scene.joints and att:
             moving = [(b, p) for b, p in att if b != "ground"]
             if moving:
-                joints.append(scene.path(*moving[-1]))
+                joints.append(scene.path(*moving[-1], result=shown))
             supports += [p for b, p in att if b == "ground"]
-    clouds = list(centres.values()) + [s for paths in spokes.values() for s in paths] + traces + joints \
-        + [p for link in links for p in link] + [np.asarray(p)[None, :] for p in supports]
+    # the limits: everything drawn, over all outputs and frames
+    everywhere = [result.body(b).position for b in scene.bodies] \
+        + [scene.path(b, p) for b in scene.bodies for p in outlines[b]]
+    for b, edges in boxes.items():
+        corners = edges[np.isfinite(edges).all(axis=1)][::2]
+        everywhere.append((result.body(b).position[:, None, :]
+                           + np.einsum("kij,nj->kni", result.body(b).rotation, corners)).reshape(-1, 3))
+    clouds = everywhere + list(centres.values()) + [s for paths in spokes.values() for s in paths] + traces \
+        + joints + [p for link in links for p in link] + [np.asarray(p)[None, :] for p in supports]
     pts = np.concatenate([np.asarray(c).reshape(-1, 3) for c in clouds]) if clouds else np.zeros((1, 3))
     pts = pts[np.isfinite(pts).all(axis=1)]
     centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(3)
     half = 0.55 * max(float(np.max(np.ptp(pts, axis=0))) if len(pts) else 0.0, 1e-3)
+    triad = 0.3 * half  # length of the body axes drawn: a sixth of the scene
 
     fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
     ax = fig.add_subplot(projection="3d")
@@ -613,30 +966,51 @@ def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
         getattr(ax, f"set_{label}label")(f"{label} (m)")
     if hasattr(ax, "set_box_aspect"):
         ax.set_box_aspect((1, 1, 1))
-    ax.set_title(f"lagmb: {scene.summary()}", fontsize=10)
+    ax.set_title(f"lagmb: {scene.summary()}{_speed_words(speed)}", fontsize=10)
     if supports:
         s = np.array(supports, dtype=float)
         ax.plot(s[:, 0], s[:, 1], s[:, 2], "^", ms=9, color="0.75", mec="0.2")
-    for n, ((b, _), path_) in enumerate(zip(trace, traces)):
-        c = _colour(scene.bodies.index(b)) if b in scene.bodies else "k"
+    trace_colours = [_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
+    for c, path_ in zip(trace_colours, traces):
         ax.plot(*path_.T, color=c, lw=1, alpha=0.2)
-    trace_done = [ax.plot([], [], [], color=_colour(scene.bodies.index(b)) if b in scene.bodies else "k",
-                          lw=1.3)[0] for b, _ in trace]
+
+    # per frame: the lines of every body's box, axes, spokes in one array each
+    box_frames = {b: centres[b][:, None, :] + np.einsum("kij,nj->kni", rotations[b], edges)
+                  for b, edges in boxes.items()}
+    turning = [b for b in scene.bodies if rotations[b] is not None]
+    gap = np.full((len(t), 1, 3), np.nan)
+    triad_frames = []
+    for axis in range(3):
+        parts = []
+        for b in turning:
+            c = centres[b][:, None, :]
+            parts += [c, c + triad * rotations[b][:, None, :, axis], gap]
+        triad_frames.append(np.concatenate(parts, axis=1) if parts else np.zeros((len(t), 0, 3)))
+
+    trace_done = [ax.plot([], [], [], color=c, lw=1.3)[0] for c in trace_colours]
     link_art = [ax.plot([], [], [], color="0.35", lw=1.2)[0] for _ in links]
+    box_art = {b: ax.plot([], [], [], color=_colour(scene.bodies.index(b)), lw=1.0, alpha=0.8)[0]
+               for b in boxes}
     body_art = [ax.plot([], [], [], color=_colour(i), lw=4, solid_capstyle="round")[0]
                 for i, _ in enumerate(scene.bodies)]
+    triad_art = [ax.plot([], [], [], color=c, lw=1.6)[0] for c in _TRIAD_COLOURS] if turning else []
     centre_art = ax.plot([], [], [], "o", ms=3.5, color="0.1")[0]
     joint_art = ax.plot([], [], [], "o", ms=5.5, mfc="white", mec="0.15", mew=1.2)[0]
     stamp = ax.text2D(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
                       family="monospace")
-    stamp_format = _time_format(t[frames])
+    stamp_format = _time_format(t)
 
-    def draw(k):
+    def update(k):
         for b, art in zip(scene.bodies, body_art):
             c = centres[b][k]
             xyz = np.array([c] + [p for s in spokes[b] for p in (s[k], c)]) if spokes[b] else c[None, :]
             art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
             art.set_marker("" if spokes[b] else "o")
+        for b, art in box_art.items():
+            xyz = box_frames[b][k]
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+        for art, xyz in zip(triad_art, triad_frames):
+            art.set_data_3d(xyz[k, :, 0], xyz[k, :, 1], xyz[k, :, 2])
         c = np.array([centres[b][k] for b in scene.bodies]).reshape(-1, 3)
         centre_art.set_data_3d(c[:, 0], c[:, 1], c[:, 2])
         j = np.array([p[k] for p in joints]).reshape(-1, 3)
@@ -644,11 +1018,16 @@ def _animate_spatial(scene, path, frames, trace, fps, size, dpi, view):
         for art, (p, q) in zip(link_art, links):
             xyz = np.array([p[k], q[k]])
             art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
-        for art, path_ in zip(trace_done, traces):
-            art.set_data_3d(path_[:k + 1, 0], path_[:k + 1, 1], path_[:k + 1, 2])
+        for art, path_, at in zip(trace_done, traces, trace_frames):
+            xyz = np.concatenate([path_[:reached[k]], at[k][None, :]])
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
         stamp.set_text(stamp_format.format(t[k]))
 
-    return _write_gif(fig, path, frames, draw, fps, dpi)
+    artists = {"traces": trace_done, "links": link_art, "boxes": list(box_art.values()), "bodies": body_art,
+               "triad": triad_art, "centres": centre_art, "joints": joint_art, "stamp": stamp}
+    drawing = _Drawing(fig, artists, update)
+    drawing.triad_length = triad
+    return drawing
 
 
 # --- a still picture of a spatial model with its shapes -------------------
