@@ -316,6 +316,71 @@ def test_plot_and_animate(four_bar, tmp_path):
     assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
 
 
+def gif_durations(path):
+    """Each frame's duration (ms) of a GIF, as Pillow reads them."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        durations = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            durations.append(im.info["duration"])
+    return durations
+
+
+def test_animation_in_real_time_and_its_options(tmp_path):
+    """The double pendulum for 1 s: --animate alone plays it in 1 s (25
+    frames of 40 ms); --fps 20 --speed 0.5 in 2 s (40 frames of 50 ms),
+    with the lower rod's tip and the elbow traced by name; --frames 10 in
+    the same 2 s with 10 frames."""
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("PIL")
+    scene = os.path.join(EXAMPLES, "double_pendulum.toml")
+    gif = tmp_path / "dp.gif"
+    p = lagmb("run", scene, "--t-end", "1", "--n-out", "51", "--animate", gif, "-q")
+    assert p.returncode == 0, p.stderr
+    assert gif_durations(gif) == [40] * 25
+    p = lagmb("run", scene, "--t-end", "1", "--n-out", "51", "--animate", gif, "--fps", "20", "--speed", "0.5",
+              "--trace", "lower:0.5,0", "elbow", "-q")
+    assert p.returncode == 0, p.stderr
+    assert gif_durations(gif) == [50] * 40
+    p = lagmb("run", scene, "--t-end", "1", "--n-out", "51", "--animate", gif, "--speed", "0.5", "--frames", "10",
+              "-q")
+    assert p.returncode == 0, p.stderr
+    assert gif_durations(gif) == [200] * 10
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--fps", "0"], "--fps 0: must be a number above 0 and at most 50 (GIF viewers show a frame shorter "
+                     "than 20 ms for 100 ms)"),
+    (["--fps", "60"], "--fps 60: must be a number above 0 and at most 50 (GIF viewers show a frame shorter "
+                      "than 20 ms for 100 ms)"),
+    (["--fps", "fast"], "--fps fast: must be a number above 0 and at most 50 (GIF viewers show a frame "
+                        "shorter than 20 ms for 100 ms)"),
+    (["--speed", "-2"], "--speed -2: must be a number above 0"),
+    (["--speed", "inf"], "--speed inf: must be a number above 0"),
+    (["--frames", "2.5"], "--frames 2.5: must be a whole number, at least 1"),
+    (["--frames", "0"], "--frames 0: must be a whole number, at least 1"),
+    (["--trace", "wrist"], "--trace wrist: no body or element of that name; the bodies are upper, lower"),
+    (["--trace", "lower:1"], "--trace lower:1: a point on a body is body:x,y (m, in the body's own axes)"),
+    (["--trace", "hand:0,1"], "--trace hand:0,1: no body named 'hand'; the bodies are upper, lower"),
+])
+def test_bad_animation_options_are_usage_errors_naming_option_and_value(tmp_path, options, message):
+    """Checked before the run: exit 2 and one line naming the option and the
+    value as typed; no GIF is written."""
+    gif = tmp_path / "x.gif"
+    p = lagmb("run", os.path.join(EXAMPLES, "double_pendulum.toml"), "--animate", gif, *options)
+    assert p.returncode == 2
+    assert p.stderr == f"lagmb run: {message}\n"
+    assert p.stdout == "" and not gif.exists()
+
+
+def test_animation_options_without_an_animation_are_refused(four_bar):
+    p = lagmb("run", four_bar, "--fps", "30")
+    assert p.returncode == 2
+    assert p.stderr.startswith("lagmb run: --fps 30: there is no animation to apply it to; give --animate GIF")
+
+
 # --- the progress bar --------------------------------------------------------------
 
 class _Stream:

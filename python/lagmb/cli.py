@@ -1,6 +1,7 @@
 """The lagmb command.
 
     lagmb run SCENE [-o results.npz|results.csv] [--plot out.png] [--animate out.gif]
+                    [--fps F] [--speed S] [--frames N] [--trace POINT ...] [--view ELEV,AZIM]
                     [--t-end T] [--rtol R] [--n-out N] [--quiet]
     lagmb info SCENE [--parameters] | --methods | --kinds
     lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T]
@@ -53,6 +54,18 @@ def _parser():
                      help="animate the mechanism (default: [output] animate)")
     run.add_argument("--view", metavar="ELEV,AZIM",
                      help="viewpoint of a spatial animation, degrees (default: [output] view, else 25,-60)")
+    run.add_argument("--fps", metavar="F",
+                     help="frames per second of the animation, above 0 and at most 50 (default 25)")
+    run.add_argument("--speed", metavar="S",
+                     help="speed of the animation: 1 plays the run in real time, 0.1 ten times slower "
+                          "(default 1, except that a run shorter than 1 s plays in 1 s)")
+    run.add_argument("--frames", metavar="N",
+                     help="at most N frames in the animation (default 1000; they then last longer, the "
+                          "animation keeps its duration)")
+    run.add_argument("--trace", nargs="+", metavar="POINT",
+                     help="draw the paths of these points in the animation: a body (its centre of mass), a "
+                          "joint or other element (where it attaches to its moving body), or BODY:X,Y "
+                          "(BODY:X,Y,Z in space; m, in the body's axes)")
     run.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
     run.add_argument("--rtol", type=float, metavar="R", help="relative tolerance, instead of the scene's")
     run.add_argument("--n-out", type=int, metavar="N", help="number of output times, instead of the scene's")
@@ -340,6 +353,7 @@ def _run(args):
             view = ()
         if len(view) != 2 or not all(math.isfinite(x) for x in view):
             raise _Exit(USAGE, f"--view {args.view}: must be two numbers ELEV,AZIM (degrees)")
+    motion = _animation_options(args, scene, animate)
 
     overrides = {}
     if args.t_end is not None:
@@ -398,7 +412,7 @@ def _run(args):
             _plotting().plot_result(result, plot)
             say(f"  plot written to {plot}")
         if animate:
-            _plotting().animate(result, animate, view=view)
+            _plotting().animate(result, animate, view=view, progress=not args.quiet, **motion)
             say(f"  animation written to {animate}")
         if not (out or plot or animate):
             say("  nothing written: -o FILE (.npz or .csv), --plot or --animate keep the outputs")
@@ -411,6 +425,36 @@ def _plotting():
     from . import plotting
 
     return plotting
+
+
+def _animation_options(args, scene, animate):
+    """animate's fps, speed, frames and trace from --fps, --speed, --frames
+    and --trace, checked before the run (a usage error, exit 2, names the
+    option and the value as typed); they need an animation (--animate or
+    [output] animate)."""
+    plotting = _plotting()
+    given = [(option, value) for option, value in (("--fps", args.fps), ("--speed", args.speed),
+                                                   ("--frames", args.frames)) if value is not None]
+    if args.trace:
+        given.append(("--trace", " ".join(args.trace)))
+    if given and not animate:
+        option, value = given[0]
+        raise _Exit(USAGE, f"{option} {value}: there is no animation to apply it to; give --animate GIF "
+                           "(or animate in [output])")
+    motion = {}
+    try:
+        if args.fps is not None:
+            motion["fps"] = plotting._checked("--fps", args.fps, 0.0, plotting._MAX_FPS)
+        if args.speed is not None:
+            motion["speed"] = plotting._checked("--speed", args.speed, 0.0)
+        if args.frames is not None:
+            motion["frames"] = plotting._checked("--frames", args.frames, 0, whole=True)
+        if args.trace:
+            plotting.trace_points(scene.model, args.trace, context="--trace")
+            motion["trace"] = list(args.trace)
+    except ModelError as e:
+        raise _Exit(USAGE, str(e)) from None
+    return motion
 
 
 def _summary(scene, r, say):
