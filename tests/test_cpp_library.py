@@ -10,7 +10,7 @@ parameter; and the cart-pole controller of examples/cpp/cart_pole.cpp
 The default test installs the archive that the set-up already compiled (the
 CMake tree pip built this lagmb in, pyproject.toml's build/{wheel_tag}; its
 install component "cpp") after bringing it up to date; the slow one
-configures and builds the library on its own, as README's C++ section does.
+configures and builds the library on its own, as docs/cpp.md does.
 """
 
 import glob
