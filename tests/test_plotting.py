@@ -421,10 +421,11 @@ def test_a_spatial_body_is_drawn_with_its_axes_turning_with_it(mpl):
     scene = plotting._Scene(r)
     drawing = plotting._spatial_drawing(scene, shown, [], (320, 240), 100, (20.0, -70.0), 1.0)
     top = r.body("top")
-    length = drawing.triad_length
+    lengths = drawing.triad_lengths["top"]  # x and y a fifth past the square, z a 25th of the scene
     corners = scene.box("top")
     half = np.sqrt(3 * 0.002 / 1.0)  # a uniform square with S_xx = S_yy = 2 g m^2: half side sqrt(3 S / m)
     np.testing.assert_allclose(sorted(np.abs(corners).max(axis=0)), [0.0, half, half], atol=1e-12)
+    np.testing.assert_allclose(drawing.triad_lengths["top"][:2], 1.2 * half, rtol=1e-12)
     directions = []
     for k in (0, 1, 17, 49):
         drawing.update(k)
@@ -432,7 +433,7 @@ def test_a_spatial_body_is_drawn_with_its_axes_turning_with_it(mpl):
         for axis, art in enumerate(drawing.artists["triad"]):
             x, y, z = (np.asarray(v, dtype=float) for v in art.get_data_3d())
             np.testing.assert_allclose([x[0], y[0], z[0]], c, atol=1e-9)
-            np.testing.assert_allclose(np.array([x[1], y[1], z[1]]) - c, length * R[:, axis], atol=1e-9)
+            np.testing.assert_allclose(np.array([x[1], y[1], z[1]]) - c, lengths[axis] * R[:, axis], atol=1e-9)
         x, y, z = (np.asarray(v, dtype=float) for v in drawing.artists["boxes"][0].get_data_3d())
         drawn = np.column_stack([x, y, z])
         drawn = drawn[np.isfinite(drawn).all(axis=1)]

@@ -900,6 +900,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
 
 
 _TRIAD_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")  # body axes x, y, z: red, green, blue
+_POKE = 1.2  # a body's axes reach this far past its inertia box
 
 
 def _box_edges(corners):
@@ -915,8 +916,9 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     its centre of mass to the points where elements attach to it (a rod
     pinned at one end drawn whole, as in the plane; a dot alone if none),
     the edges of its inertia box (the uniform box with its mass and
-    inertia, Scene.box) and its axes (a triad: x red, y green, z blue, of a
-    length scaled to the scene) that turn with it, so that spin shows;
+    inertia, Scene.box) and its axes (a triad: x red, y green, z blue,
+    reaching a fifth past the box, at least a 25th of the scene) that turn
+    with it, so that spin shows;
     white circles at the joints, triangles at joints to the ground, grey
     lines for spring-dampers and distance links, traced points' paths;
     equal scales on the three axes, in m, seen from view = (elevation,
@@ -928,8 +930,9 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     centres = {b: shown.body(b).position for b in scene.bodies}
     spokes = {b: [scene.path(b, p, result=shown) for p in outlines[b]] for b in scene.bodies}
     rotations = {b: getattr(shown.body(b), "rotation", None) for b in scene.bodies}
-    boxes = {b: scene.box(b) for b in scene.bodies if rotations[b] is not None}
-    boxes = {b: _box_edges(c) for b, c in boxes.items() if c is not None}
+    corners = {b: scene.box(b) for b in scene.bodies if rotations[b] is not None}
+    corners = {b: c for b, c in corners.items() if c is not None}
+    boxes = {b: _box_edges(c) for b, c in corners.items()}
     traces = [scene.path(b, p) for b, p in trace]
     trace_frames = [scene.path(b, p, result=shown) for b, p in trace]
     reached = np.searchsorted(np.asarray(result.t), t, side="right")
@@ -946,17 +949,19 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     # the limits: everything drawn, over all outputs and frames
     everywhere = [result.body(b).position for b in scene.bodies] \
         + [scene.path(b, p) for b in scene.bodies for p in outlines[b]]
-    for b, edges in boxes.items():
-        corners = edges[np.isfinite(edges).all(axis=1)][::2]
+    for b, c in corners.items():  # with the axes that poke out of the box
         everywhere.append((result.body(b).position[:, None, :]
-                           + np.einsum("kij,nj->kni", result.body(b).rotation, corners)).reshape(-1, 3))
+                           + np.einsum("kij,nj->kni", result.body(b).rotation, _POKE * c)).reshape(-1, 3))
     clouds = everywhere + list(centres.values()) + [s for paths in spokes.values() for s in paths] + traces \
         + joints + [p for link in links for p in link] + [np.asarray(p)[None, :] for p in supports]
     pts = np.concatenate([np.asarray(c).reshape(-1, 3) for c in clouds]) if clouds else np.zeros((1, 3))
     pts = pts[np.isfinite(pts).all(axis=1)]
     centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(3)
     half = 0.55 * max(float(np.max(np.ptp(pts, axis=0))) if len(pts) else 0.0, 1e-3)
-    triad = 0.3 * half  # length of the body axes drawn: a sixth of the scene
+    # the body axes drawn: poking out of the box along them, at least a 25th of the scene
+    turning = [b for b in scene.bodies if rotations[b] is not None]
+    triad = {b: np.maximum(0.08 * half, _POKE * np.abs(corners[b]).max(axis=0) if b in corners else 0.0)
+             for b in turning}
 
     fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
     ax = fig.add_subplot(projection="3d")
@@ -977,14 +982,13 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     # per frame: the lines of every body's box, axes, spokes in one array each
     box_frames = {b: centres[b][:, None, :] + np.einsum("kij,nj->kni", rotations[b], edges)
                   for b, edges in boxes.items()}
-    turning = [b for b in scene.bodies if rotations[b] is not None]
     gap = np.full((len(t), 1, 3), np.nan)
     triad_frames = []
     for axis in range(3):
         parts = []
         for b in turning:
             c = centres[b][:, None, :]
-            parts += [c, c + triad * rotations[b][:, None, :, axis], gap]
+            parts += [c, c + triad[b][axis] * rotations[b][:, None, :, axis], gap]
         triad_frames.append(np.concatenate(parts, axis=1) if parts else np.zeros((len(t), 0, 3)))
 
     trace_done = [ax.plot([], [], [], color=c, lw=1.3)[0] for c in trace_colours]
@@ -1026,7 +1030,7 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     artists = {"traces": trace_done, "links": link_art, "boxes": list(box_art.values()), "bodies": body_art,
                "triad": triad_art, "centres": centre_art, "joints": joint_art, "stamp": stamp}
     drawing = _Drawing(fig, artists, update)
-    drawing.triad_length = triad
+    drawing.triad_lengths = triad  # {body: (3,) m}
     return drawing
 
 
