@@ -66,4 +66,12 @@ __all__ = [
     "EquilibriumError",
     "KinematicOnlyError",
     "equilibrium",
+    "JointSpace",
+    "inverse_dynamics",
+    "UrdfError",
+    "load_urdf",
+    "MjcfError",
+    "MjcfWarning",
+    "load_mjcf",
+    "SUNDIALS_VERSION",
 ]

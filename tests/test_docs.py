@@ -1,0 +1,121 @@
+"""The documentation site builds with warnings as errors, as `make docs`
+does, so a renamed or removed function, a docstring reST cannot read or a
+broken link between pages fails the suite; its key pages are there; every
+public name of lagmb is in the API reference; the tour's Python blocks run
+as written.
+
+The build goes into a temporary folder. The gallery (sphinx-gallery running
+examples/*.py) keeps its outputs in docs/gallery/ and reruns only the
+scripts whose gallery source changed: the first build of a clone runs them
+all (about half a minute more), later ones reuse them. `make docs` starts
+from scratch.
+"""
+
+import importlib.util
+import inspect
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+import lagmb as mb
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DOCS = os.path.join(ROOT, "docs")
+EXAMPLES = os.path.join(ROOT, "examples")
+
+MISSING = [m for m in ("sphinx", "myst_parser", "sphinx_gallery", "furo") if importlib.util.find_spec(m) is None]
+needs_sphinx = pytest.mark.skipif(bool(MISSING), reason=f"the docs extra is not installed ({', '.join(MISSING)}): "
+                                                        "pip install '.[docs]' (Python >= 3.11)")
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    """(the finished sphinx-build process, the HTML folder)."""
+    html = tmp_path_factory.mktemp("docs") / "html"
+    proc = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", DOCS, str(html)],
+                          capture_output=True, text=True, timeout=900, cwd=ROOT)
+    return proc, html
+
+
+def read(html, page):
+    path = html / page
+    assert path.is_file(), f"{page} was not built"
+    return path.read_text(encoding="utf-8")
+
+
+@needs_sphinx
+def test_build_has_no_warnings(site):
+    proc, _ = site
+    assert proc.returncode == 0, f"sphinx-build -W failed:\n{proc.stdout[-4000:]}\n{proc.stderr[-8000:]}"
+
+
+@needs_sphinx
+def test_api_reference_pages(site):
+    """The API page links every entry; simulate's page holds its signature
+    and its docstring's first line; a Model method from the element
+    registry shows its parameters."""
+    _, html = site
+    api = read(html, "api.html")
+    for name in ("lagmb.simulate", "lagmb.Model", "lagmb.Result", "lagmb.load_urdf", "lagmb.plotting.plot_result"):
+        assert name in api, name
+    page = read(html, "generated/lagmb.simulate.html")
+    assert 'id="lagmb.simulate"' in page
+    assert "Integrate a model from its initial state" in page
+    model = read(html, "generated/lagmb.Model.html")
+    assert 'id="lagmb.Model.add_revolute"' in model
+    assert "In a spatial model" in model
+
+
+@needs_sphinx
+def test_gallery_pages_show_the_examples(site):
+    """One page per examples/*.py, with what it printed; the seed pendulum's
+    page shows the figure its --plot wrote."""
+    _, html = site
+    index = read(html, "gallery/index.html")
+    for script in sorted(os.listdir(EXAMPLES)):
+        if script.endswith(".py"):
+            stem = script[:-3]
+            assert f"{stem}.html" in index, stem
+            read(html, f"gallery/{stem}.html")
+    page = read(html, "gallery/seed_pendulum.html")
+    assert "period closed form = 1.9333348544" in page
+    images = re.findall(r'<img [^>]*src="([^"]+\.png)"', page)
+    assert images, "no figure on the seed pendulum's page"
+    assert (html / "gallery" / images[0]).resolve().is_file()
+
+
+@needs_sphinx
+def test_user_guide_and_version(site):
+    _, html = site
+    for page in ("install", "tour", "modelling", "scene-format", "methods", "cpp", "validation", "benchmarks",
+                 "internals", "design", "changelog"):
+        read(html, f"{page}.html")
+    assert f"lagmb {mb.__version__}" in read(html, "index.html")
+    # each benchmark says when its results file was committed
+    assert len(re.findall(r"committed \d{4}-\d{2}-\d{2}", read(html, "benchmarks.html"))) >= 10
+
+
+def public_names():
+    """What `import lagmb` offers a user: its names without a leading
+    underscore, modules left out."""
+    return sorted(n for n in dir(mb) if not n.startswith("_") and not inspect.ismodule(getattr(mb, n)))
+
+
+def test_every_public_name_is_in_the_api_reference():
+    """A new public name needs an entry in docs/api.rst (and a renamed one
+    fails the build above)."""
+    text = open(os.path.join(DOCS, "api.rst"), encoding="utf-8").read()
+    listed = set(re.findall(r"^   (\w+)$", text, re.M)) | set(re.findall(r"^\.\. data:: (\w+)$", text, re.M))
+    assert [n for n in public_names() if n not in listed] == []
+
+
+def test_tour_python_blocks_run():
+    """Each Python block of docs/tour.md runs on its own, imports included."""
+    text = open(os.path.join(DOCS, "tour.md"), encoding="utf-8").read()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) >= 4
+    for k, code in enumerate(blocks):
+        exec(compile(code, f"docs/tour.md, block {k + 1}", "exec"), {})
