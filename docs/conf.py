@@ -8,6 +8,7 @@ says how).
 
 import os
 import re
+import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -46,6 +47,9 @@ myst_enable_extensions = ["dollarmath"]
 myst_heading_anchors = 4
 
 # --- API reference ------------------------------------------------------------
+# autosummary writes a page per name into generated/ at every build; a page
+# left from a name no longer listed would be a warning, so start empty
+shutil.rmtree(os.path.join(HERE, "generated"), ignore_errors=True)
 autosummary_generate = True
 autosummary_imported_members = True
 autodoc_default_options = {"members": True}

@@ -223,9 +223,23 @@ def png_scraper(block, block_vars, gallery_conf, **kwargs):
     return figure_rst(found, gallery_conf["src_dir"])
 
 
+def forget_removed(gallery):
+    """Removes from the gallery's output folder the pages of scripts no
+    longer in examples/ (their pages would be in no toctree: a warning)."""
+    stems = {os.path.splitext(name)[0] for name in os.listdir(EXAMPLES) if name.endswith(".py")}
+    if not os.path.isdir(gallery):
+        return
+    for name in os.listdir(gallery):
+        stem = name.split(".")[0]
+        path = os.path.join(gallery, name)
+        if os.path.isfile(path) and stem != "index" and stem not in stems:
+            os.remove(path)
+
+
 def configuration(docs):
     """sphinx_gallery_conf for docs/conf.py (writes the gallery sources)."""
     write_sources()
+    forget_removed(os.path.join(docs, "gallery"))
     return {
         "examples_dirs": SOURCES,
         "gallery_dirs": os.path.join(docs, "gallery"),
