@@ -79,8 +79,10 @@ class ExampleOrder:
 
 
 def _escape(text):
-    """Plain text as reST shows it: markup characters escaped."""
-    return re.sub(r"([\\`*|_])", r"\\\1", text)
+    """Plain text as reST shows it: markup characters escaped, except
+    inside ``literal`` spans, which stay literals."""
+    parts = re.split(r"(``[^`]+``)", text)
+    return "".join(part if k % 2 else re.sub(r"([\\`*|_])", r"\\\1", part) for k, part in enumerate(parts))
 
 
 def _title(first):
