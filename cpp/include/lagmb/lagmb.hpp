@@ -18,6 +18,7 @@
 #include "lagmb/spec/parameters.hpp"
 #include "lagmb/spec/spec.hpp"
 
+#include "lagmb/solvers/sparse_lu.hpp"
 #include "lagmb/solvers/sundials.hpp"
 
 #include "lagmb/assembly/analysis.hpp"

@@ -13,18 +13,6 @@ namespace lagmb {
 /// kernels then write into valuePtr() through precomputed slots.
 using SpMat = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-/// Factorizes A with a sparse LU; false if the factorization fails or A holds
-/// a value that is not finite (Eigen's SparseLU is not made for inf or NaN:
-/// with them it may report success and corrupt memory in a later solve).
-template <class LU>
-bool factorize_finite(LU& lu, const SpMat& A) {
-  const double* x = A.valuePtr();
-  for (Eigen::Index k = 0; k < A.nonZeros(); ++k)
-    if (!std::isfinite(x[k])) return false;
-  lu.factorize(A);
-  return lu.info() == Eigen::Success;
-}
-
 /// Collects the (row, column) entries a matrix may ever hold, then builds the
 /// compressed matrix with explicit zeros, so its pattern never changes.
 class SparsityPattern {

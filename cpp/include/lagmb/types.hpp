@@ -33,6 +33,9 @@ constexpr int kMaxLocal = 28;
 /// a particle's missing angle, stands.
 using LocalCoords = std::array<int, kMaxLocal>;
 
+/// max_i |x_i|, the infinity norm of x (0 for an empty vector).
+inline double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
+
 /// Rotation matrix A(phi) of a body's local axes into global axes.
 inline Mat2 rotation(double phi) {
   const double c = std::cos(phi), s = std::sin(phi);

@@ -2,7 +2,6 @@
 
 #include <Eigen/Dense>
 #include <Eigen/OrderingMethods>
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -19,8 +18,6 @@
 namespace lagmb {
 
 namespace {
-
-double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
 
 bool is_dropped(const Data& d, int row) {
   return std::binary_search(d.dropped_rows.begin(), d.dropped_rows.end(), row);
@@ -99,11 +96,11 @@ class EquilibriumSolver {
       for (int c = 0; c < d_.Q_q.outerSize(); ++c)
         for (SpMat::InnerIterator it(d_.Q_q, c); it; ++it)
           stiffness_size = std::max(stiffness_size, std::abs(it.value()));
-    lu_.compute(K_);
-    if (lu_.info() != Eigen::Success) return false;
+    if (!lu_.compute(K_)) return false;
     VecX rhs(n_ + m_);
     rhs << r.f1, -r.f2;
-    const VecX x_new = lu_.solve(rhs);
+    VecX x_new;
+    lu_.solve(rhs, x_new);
     if (!x_new.allFinite()) return false;
     dq = x_new.head(n_);
     dlam = x_new.tail(m_);
@@ -122,7 +119,7 @@ class EquilibriumSolver {
   SaddlePoint saddle_;
   SpMat K_;
   std::vector<int> diagonal_;  // slots of K_'s diagonal
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  SupernodalLU lu_;
 };
 
 /// The largest entries of a generalized force, by coordinate.

@@ -53,8 +53,6 @@ int degrees_of_freedom(const Model& model, double t) {
 
 namespace {
 
-double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
-
 /// The solve times: t0, the breakpoints inside (t0, t_end) and the outputs.
 std::vector<double> solve_times(const Model& model, double t0, const std::vector<double>& t_out) {
   std::vector<double> t{t0};
@@ -99,7 +97,7 @@ class SquareJacobian {
     for (int c = 0; c < J.outerSize(); ++c)
       for (SpMat::InnerIterator it(J, c); it; ++it)
         slots_.push_back(compact[it.row()] >= 0 ? slot(S_, compact[it.row()], c) : -1);
-    lu_.analyzePattern(S_);
+    lu_.analyze(S_);
     b_.resize(n_);
     x_.resize(n_);
   }
@@ -111,18 +109,18 @@ class SquareJacobian {
     for (size_t k = 0; k < slots_.size(); ++k)
       if (slots_[k] >= 0) s[slots_[k]] = j[k];
     ++factorizations_;
-    return factorize_finite(lu_, S_);
+    return lu_.factorize(S_);
   }
 
   /// x (n) solving the independent rows of Phi_q x = b (b: m rows).
   void solve(const VecX& b, VecX& x) {
     for (int i = 0; i < n_; ++i) b_[i] = b[row_of_[i]];
-    x = lu_.solve(b_);
+    lu_.solve(b_, x);
   }
 
   /// lam (m) solving Phi_q^T lam = c with lam = 0 in the dropped rows.
   void solve_transpose(const VecX& c, VecX& lam) {
-    x_ = lu_.transpose().solve(c);
+    lu_.solve_transposed(c, x_);
     lam.setZero(m_);
     for (int i = 0; i < n_; ++i) lam[row_of_[i]] = x_[i];
   }
@@ -134,7 +132,7 @@ class SquareJacobian {
   std::vector<int> row_of_;  // compact row -> row of Phi
   std::vector<int> slots_;   // value k of Phi_q -> value of S_, -1 in dropped rows
   SpMat S_;
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  SupernodalLU lu_;
   VecX b_, x_;
   int factorizations_ = 0;
 };

@@ -16,8 +16,6 @@ namespace lagmb {
 
 namespace {
 
-double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
-
 /// Size of the mechanism (m): the spread of the bodies' centres, at least 0.1.
 double extent(const Model& model, const VecX& q) {
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);

@@ -151,10 +151,10 @@ bool AugmentedSystem::factorize(const Data& d) {
   }
   fill_lu_matrix(d);
   if (!lu_analyzed_) {
-    lu_.analyzePattern(K_);
+    lu_.analyze(K_);
     lu_analyzed_ = true;
   }
-  factorized_ = factorize_finite(lu_, K_);
+  factorized_ = lu_.factorize(K_);
   return factorized_;
 }
 
@@ -272,13 +272,13 @@ void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) 
   if (!factorized_) throw SimulationError("the augmented matrix [M Phi_q^T; Phi_q 0] is singular or not finite", NAN);
   if (schur_) return solve_range_space(b1, b2, x1, x2);
   rhs_ << b1, b2;
-  x_ = lu_.solve(rhs_);
+  lu_.solve(rhs_, x_);
   // refine against eps = 0: K0 x = K x + eps [0; x2]
   for (int it = 0; it < 3; ++it) {
     r_.noalias() = rhs_ - K_ * x_;
     r_.tail(m_) -= eps_ * x_.tail(m_);
     if (r_.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + rhs_.lpNorm<Eigen::Infinity>())) break;
-    dx_ = lu_.solve(r_);
+    lu_.solve(r_, dx_);
     x_ += dx_;
   }
   x1 = x_.head(n_);
@@ -286,8 +286,6 @@ void AugmentedSystem::solve(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) 
 }
 
 namespace {
-
-double max_abs(const VecX& x) { return x.size() ? x.lpNorm<Eigen::Infinity>() : 0.0; }
 
 /// The elements whose rows of Phi exceed tol, each with its largest |Phi|,
 /// the largest first.

@@ -54,7 +54,7 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
   m.add_force_element(std::move(e));
 }
 
-void build_rotational_spring_damper(Model& m, const std::string& name, const Args& a) {
+void build_spatial_rotational_spring_damper(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
   const build::JointOf c = build::joint_coordinate(m, a.text("joint"), label);
   if (!c.turns) throw ModelError(label + ": '" + a.text("joint") + "' does not turn (a translational joint)");
@@ -151,7 +151,7 @@ KindInfo spatial_rotational_spring_damper_kind() {
                     param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
                     param::real("free_angle", 0.0, "rad", "free angle theta0"),
                     param::function("torque", "N m", "actuator torque tau(t) on body_j")},
-                   build_rotational_spring_damper});
+                   build_spatial_rotational_spring_damper});
 }
 
 KindInfo bushing_kind() {

@@ -33,7 +33,7 @@ Ali3pFormulation::Ali3pFormulation(const Model& model, const ConsistentState& st
   x_.resize(n_ + m_);
   rhs_.resize(n_ + m_);
   K_ = saddle_.build_square(diag_);
-  lu_.analyzePattern(K_);
+  lu_.analyze(K_);
 }
 
 void Ali3pFormulation::begin_step() {
@@ -84,8 +84,8 @@ bool Ali3pFormulation::newton(double t1, double h, int& it, double& err) {
     if (!rhs_.allFinite()) return false;
     tangent(t1, h);
     ++factorizations_;
-    if (!factorize_finite(lu_, K_)) return false;
-    x_ = lu_.solve(rhs_);
+    if (!lu_.factorize(K_)) return false;
+    lu_.solve(rhs_, x_);
     q += x_.head(n_);
     lam += x_.tail(m_) / b;
     ++iterations_;
@@ -151,7 +151,7 @@ void Ali3pFormulation::project(VecX& x, Residual residual, double tol) {
   for (int k = 0; k < max_projections && norm > tol; ++k) {
     rhs_.head(n_).setZero();
     rhs_.tail(m_) = -r_;
-    x_ = lu_.solve(rhs_);
+    lu_.solve(rhs_, x_);
     x += x_.head(n_);
     ++projections_;
     residual();

@@ -5,7 +5,6 @@
 // retries near singular positions, outputs) is ali3p_integrator.cpp.
 #pragma once
 
-#include <Eigen/SparseLU>
 
 #include "lagmb/assembly/augmented.hpp"
 #include "assembly/saddle_point.hpp"
@@ -82,7 +81,7 @@ class Ali3pFormulation {
   SaddlePoint saddle_;
   SpMat K_;
   std::vector<int> diag_;
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  SupernodalLU lu_;
   long iterations_ = 0, residual_evals_ = 0, factorizations_ = 0, projections_ = 0;
 };
 

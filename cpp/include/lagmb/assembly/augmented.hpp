@@ -2,13 +2,13 @@
 #pragma once
 
 #include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
 #include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "lagmb/model/data.hpp"
+#include "lagmb/solvers/sparse_lu.hpp"
 
 namespace lagmb {
 
@@ -76,7 +76,7 @@ class AugmentedSystem {
   std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
   double mass_scale_;
   bool diagonal_mass_;  // M constant and diagonal (a planar model)
-  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu_;
+  SupernodalLU lu_;
   bool lu_analyzed_ = false;
   bool factorized_ = false;
   VecX rhs_, x_, r_, dx_;
