@@ -169,6 +169,35 @@ def test_a_wrong_model_text_names_its_line():
 # --- the FMU through FMPy ---------------------------------------------------------
 
 
+# what every Linux machine has: the C and C++ runtimes and the loader
+SYSTEM_RUNTIME = re.compile(r"^(linux-vdso|ld-linux-x86-64|libc|libm|libdl|libpthread|librt|libstdc\+\+|libgcc_s)\.so")
+
+
+@needs_fmpy
+@needs_cc
+@pytest.mark.skipif(not sys.platform.startswith("linux") or not shutil.which("ldd"), reason="needs Linux's ldd")
+def test_the_fmu_carries_every_library_it_loads_but_the_system_runtime(cart_pole_fmu, tmp_path):
+    """SuiteSparse, BLAS/LAPACK and what they load travel in the FMU next to
+    its binaries, and are the copies that load with the FMU's binary, all
+    the way down (ldd lists the whole tree: an RPATH of $ORIGIN is searched
+    before the system's folders, for the libraries' own dependencies too):
+    the FMU runs where none of them is installed."""
+    import subprocess
+
+    with zipfile.ZipFile(cart_pole_fmu) as z:
+        z.extractall(tmp_path)
+    binaries = tmp_path / "binaries" / "x86_64-linux"
+    names = sorted(p.name for p in binaries.iterdir())
+    assert {"cart_pole.so", "liblagmb_fmu.so"} <= set(names)
+    assert any(n.startswith("libklu.so") for n in names) and any(n.startswith("libspqr.so") for n in names)
+    for name in ("cart_pole.so", "liblagmb_fmu.so"):  # what an importer loads, and what that loads
+        out = subprocess.run(["ldd", str(binaries / name)], capture_output=True, text=True, check=True).stdout
+        for line in out.strip().splitlines():
+            lib = line.split()[0]
+            if not SYSTEM_RUNTIME.match(os.path.basename(lib)):
+                assert f"=> {binaries}/{lib} " in line, f"{name} loads {line.strip()} from outside the FMU"
+
+
 @needs_fmpy
 @needs_cc
 def test_fmpy_finds_no_problem_in_the_fmu(cart_pole_fmu):

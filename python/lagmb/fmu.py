@@ -3,8 +3,11 @@
 The FMU holds the model as text (resources/model.lagmb: the elements, the
 simulation options, the reactions and efforts to output), lagmb's FMU runtime
 (liblagmb_fmu.so, built with the package: a ``lagmb::CoSimulation`` behind
-plain C) and the FMI 3.0 functions (``fmi3.c``), compiled here against the
-FMI headers that FMPy ships (the ``fmu`` extra) with the system's C compiler.
+plain C) with every shared library it loads beyond the C and C++ runtimes
+(SuiteSparse, BLAS, LAPACK and theirs, copied from where they are installed
+here: the FMU runs where they are not), and the FMI 3.0 functions
+(``fmi3.c``), compiled here against the FMI headers that FMPy ships (the
+``fmu`` extra) with the system's C compiler.
 Variables (docs/modelling.md, "FMU"): the time; the scene's inputs; every
 number given to an element as a fixed parameter, settable until
 initialization ends; the body coordinates, their rates, and the reactions and
@@ -47,6 +50,34 @@ def _compiler():
         if name and shutil.which(name):
             return name
     raise ModelError("building an FMU needs a C compiler (cc, gcc or clang; or set CC)")
+
+
+# what every Linux machine has: the C and C++ runtimes and the loader (an
+# FMU carries every other library its binaries need)
+_SYSTEM_RUNTIME = re.compile(r"^(linux-vdso|linux-gate|ld-linux(-x86-64)?|libc|libm|libdl|libpthread|librt|"
+                             r"libstdc\+\+|libgcc_s)\.so")
+
+
+def runtime_libraries(runtime):
+    """The shared libraries ``runtime`` loads beyond the system runtime
+    (SuiteSparse, BLAS, LAPACK and what they load in turn), as (file name,
+    path) pairs, from ``ldd``; ModelError naming any that is not found."""
+    try:
+        listed = subprocess.run(["ldd", runtime], capture_output=True, text=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError) as e:
+        raise ModelError(f"an FMU carries the libraries its runtime needs, found with ldd: {e}") from None
+    libraries, missing = [], []
+    for line in listed.splitlines():
+        parts = line.split()
+        if len(parts) < 3 or parts[1] != "=>" or _SYSTEM_RUNTIME.match(parts[0]):
+            continue
+        if parts[2] == "not":
+            missing.append(parts[0])
+        else:
+            libraries.append((parts[0], os.path.realpath(parts[2])))
+    if missing:
+        raise ModelError(f"lagmb's FMU runtime {runtime} needs {', '.join(missing)}, not found on this machine")
+    return libraries
 
 
 def _identifier(name):
@@ -142,7 +173,7 @@ def build_fmu(scene, path, name=None):
         command = [cc, "-std=c99", "-O2", "-fPIC", "-shared", "-fvisibility=hidden", "-Wall", "-Wextra",
                    f"-I{headers}", f"-I{RUNTIME}", f'-DLAGMB_FMU_TOKEN="{token}"',
                    os.path.join(RUNTIME, "fmi3.c"), "-o", library, f"-L{RUNTIME}", "-llagmb_fmu",
-                   "-Wl,-rpath,$ORIGIN", "-Wl,--no-undefined"]
+                   "-Wl,--disable-new-dtags,-rpath,$ORIGIN", "-Wl,--no-undefined"]
         compiled = subprocess.run(command, capture_output=True, text=True)
         if compiled.returncode != 0:
             raise ModelError(f"compiling the FMU's FMI functions failed:\n{compiled.stderr.strip()}")
@@ -151,5 +182,7 @@ def build_fmu(scene, path, name=None):
             fmu.writestr("modelDescription.xml", model_description(name, identifier, token, variables, description))
             fmu.write(library, f"binaries/{PLATFORM}/{identifier}.so")
             fmu.write(runtime, f"binaries/{PLATFORM}/liblagmb_fmu.so")
+            for file_name, library_path in runtime_libraries(runtime):
+                fmu.write(library_path, f"binaries/{PLATFORM}/{file_name}")
             fmu.writestr("resources/model.lagmb", setup)
     return path
