@@ -32,4 +32,17 @@ if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
 fi
 
 "$PYTHON" -m pip install -q --disable-pip-version-check "scikit-build-core>=0.10" "pybind11>=2.12" numpy
-"$PYTHON" -m pip install -q --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf,docs]"
+# The compiler's progress ([12/40] Building CXX object ...) shows as it goes;
+# pip's whole output is kept in build/setup-pip.log and its end shown if it fails.
+mkdir -p build
+log=build/setup-pip.log
+echo "setup: building lagmb (pip install .[test,plot,fmu,robots,mjcf,docs]; log in $log)"
+( "$PYTHON" -m pip install -v --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf,docs]" 2>&1
+  echo $? > "$log.status" ) | tee "$log" | grep -E '^ *\[[0-9]+/[0-9]+\] |^\*\*\* |^Successfully installed' || true
+status=$(cat "$log.status")
+rm -f "$log.status"
+if [ "$status" != 0 ]; then
+  tail -n 60 "$log"
+  echo "setup: pip install failed (exit $status); the whole output is in $log"
+  exit "$status"
+fi
