@@ -38,7 +38,7 @@ mkdir -p build
 log=build/setup-pip.log
 echo "setup: building lagmb (pip install .[test,plot,fmu,robots,mjcf,docs]; log in $log)"
 ( "$PYTHON" -m pip install -v --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf,docs]" 2>&1
-  echo $? > "$log.status" ) | tee "$log" | grep -E '^ *\[[0-9]+/[0-9]+\] |^\*\*\* |^Successfully installed' || true
+  echo $? > "$log.status" ) | tee "$log" | grep --line-buffered -E '^ *\[[0-9]+/[0-9]+\] |^\*\*\* |^Successfully installed' || true
 status=$(cat "$log.status")
 rm -f "$log.status"
 if [ "$status" != 0 ]; then
