@@ -883,6 +883,7 @@ def four_bar(dimension, crank_angle, rocker_angle, ground=1.0, crank=0.5, rocker
 
 
 @pytest.mark.parametrize("dimension", [2, 3])
+@pytest.mark.filterwarnings("ignore::lagmb.AssemblyWarning")  # moving the links far is what is asked here
 def test_a_four_bar_that_can_close_assembles_from_any_start(dimension):
     """A Grashof crank-rocker (ground 1, crank 0.5, rocker 1, coupler 1.2 m)
     closes at every crank angle. Started with its links on one line, Newton
@@ -909,6 +910,7 @@ def test_a_four_bar_that_cannot_close_blames_its_coupler_not_euler_parameters():
     assert not any("Euler" in name for name, _ in failure.value.violated)
 
 
+@pytest.mark.filterwarnings("ignore::lagmb.AssemblyWarning")  # the drive moves the bodies 0.5 m: asked for
 def test_a_driven_chain_with_a_heavy_body_assembles():
     """Found by the spatial fuzzer: a cylindrical joint driven 0.5 m, a
     universal joint to a 1,000 kg body; with a mass of 1 it assembled, with
