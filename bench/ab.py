@@ -30,10 +30,15 @@ def worker():
     """One round in this interpreter: every case once; JSON on stdout."""
     sys.path.insert(0, HERE)
     sys.path.insert(0, os.path.join(HERE, "..", "tests"))
+    # an editable install's finder comes before PYTHONPATH: drop it, so that
+    # the build under test is the one imported (checked below)
+    sys.meta_path[:] = [f for f in sys.meta_path if "editable" not in type(f).__module__.lower()]
     import chain as chain_bench
     from test_spatial import spatial_chain
     import work_precision as wp_bench
     import lagmb as mb
+    if not os.path.abspath(mb.__file__).startswith(os.environ["PYTHONPATH"]):
+        raise SystemExit(f"imported {mb.__file__}, not the build in {os.environ['PYTHONPATH']}")
     from lagmb.accuracy import METHODS
 
     out = {}
