@@ -1,4 +1,4 @@
-"""lagmb models shared by several test files.
+"""lagmb models (and a helper or two) shared by several test files.
 
 Kept apart from references.py so that the references stay free of lagmb.
 """
@@ -43,3 +43,15 @@ ARM_URDF = """<robot name="arm">
     <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
 </robot>
 """
+
+
+def gif_durations(path):
+    """Each frame's duration (ms) of a GIF, as Pillow reads them."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        durations = []
+        for k in range(im.n_frames):
+            im.seek(k)
+            durations.append(im.info["duration"])
+    return durations

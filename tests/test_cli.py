@@ -25,7 +25,7 @@ import pytest
 from lagmb.progress import Progress
 from lagmb.scene import load_scene
 
-from builders import ARM_URDF
+from builders import ARM_URDF, gif_durations
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
@@ -314,18 +314,6 @@ def test_plot_and_animate(four_bar, tmp_path):
     assert p.returncode == 0, p.stderr
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
-
-
-def gif_durations(path):
-    """Each frame's duration (ms) of a GIF, as Pillow reads them."""
-    from PIL import Image
-
-    with Image.open(path) as im:
-        durations = []
-        for k in range(im.n_frames):
-            im.seek(k)
-            durations.append(im.info["duration"])
-    return durations
 
 
 def test_animation_in_real_time_and_its_options(tmp_path):

@@ -23,6 +23,7 @@ import pytest
 
 import lagmb as mb
 from lagmb import plotting
+from builders import gif_durations
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples")
@@ -243,18 +244,6 @@ def test_body_shapes(outline, n, closed):
     assert len(local) == n and is_closed == closed
     if outline and not closed and len(outline) == 3:
         np.testing.assert_allclose(sorted(local[:, 0]), [-1.0, 1.0])
-
-
-def gif_durations(path):
-    """The duration of each frame of a GIF (ms), as Pillow reads them."""
-    from PIL import Image
-
-    with Image.open(path) as im:
-        durations = []
-        for k in range(im.n_frames):
-            im.seek(k)
-            durations.append(im.info["duration"])
-    return durations
 
 
 # --- animate: timing ------------------------------------------------------
