@@ -1,5 +1,5 @@
 // IDA (variable-order, variable-step BDF) on a DaeFormulation.
-#include <ida/ida.h>
+#include <idas/idas.h>
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>

@@ -7,7 +7,7 @@
 
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
-#include <ida/ida.h>
+#include <idas/idas.h>
 #include <sundials/sundials_config.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_types.h>
