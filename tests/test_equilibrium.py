@@ -96,6 +96,35 @@ def test_inverted_pendulum_is_unstable():
     assert abs(eq.body("rod").angle - math.pi / 2) < 1e-12
 
 
+def test_without_the_stability_check_the_same_rest_state_and_stability_unknown():
+    """stability=False (for models too large for the dense check) finds the
+    same upright rod to the bit, says nothing of its stability (stable is
+    None, no eigenvalues) and so does not refuse it."""
+    m = torsion_pendulum(0.0, start=math.pi / 2)
+    checked = mb.equilibrium(m, allow_unstable=True)
+    unchecked = mb.equilibrium(m, stability=False)
+    assert np.array_equal(unchecked.q, checked.q) and np.array_equal(unchecked.lam, checked.lam)
+    assert unchecked.stable is None and unchecked.stiffness_eigenvalues.size == 0
+    assert "stability not checked" in repr(unchecked)
+
+
+def test_the_rows_left_out_as_redundant_are_named():
+    """A parallelogram of three equal cranks hanging from the ground and a
+    bar joining their ends: the third crank repeats a constraint the other
+    two already impose (one row is redundant; it is left out and its
+    multiplier is 0). A single pendulum leaves out none."""
+    m = mb.Model(gravity=(0.0, -G))
+    bar = m.add_body("bar", 1.0, 1 / 12, position=(1.0, -1.0))
+    for k, x in enumerate((0.0, 1.0, 2.0)):
+        crank = m.add_body(f"crank{k}", 1.0, 1 / 12, position=(x, -0.5), angle=-math.pi / 2)
+        m.add_revolute(f"ground{k}", m.ground, crank, at=(x, 0.0))
+        m.add_revolute(f"end{k}", crank, bar, at=(x, -1.0))
+    eq = mb.equilibrium(m)
+    assert len(eq.dropped_rows) == 1
+    assert np.all(eq.lam[eq.dropped_rows] == 0.0)
+    assert mb.equilibrium(torsion_pendulum(1.0)).dropped_rows == []
+
+
 def test_free_body_has_no_equilibrium():
     """A body with no joint under gravity: EquilibriumError naming the body
     and its y coordinate with the unbalanced weight -m g."""

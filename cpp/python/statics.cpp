@@ -6,12 +6,13 @@ namespace lagmb::python {
 void bind_statics(py::module_& m) {
   m.def(
       "equilibrium",
-      [](const Model& model, double t, double tol, int max_iterations, bool allow_unstable) {
+      [](const Model& model, double t, double tol, int max_iterations, bool allow_unstable, bool stability) {
         EquilibriumOptions o;
         o.t = t;
         o.tol = tol;
         o.max_iterations = max_iterations;
         o.allow_unstable = allow_unstable;
+        o.stability = stability;
         PythonCall call;
         Equilibrium e;
         {
@@ -22,7 +23,8 @@ void bind_statics(py::module_& m) {
         out["q"] = e.q;
         out["lam"] = e.lam;
         out["iterations"] = e.iterations;
-        out["stable"] = e.stable;
+        out["stable"] = e.stability_checked ? py::object(py::bool_(e.stable)) : py::object(py::none());
+        out["dropped_rows"] = e.dropped_rows;
         out["stiffness_eigenvalues"] = e.stiffness_eigenvalues;
         out["softest_mode"] = e.softest_mode;
         out["force_residual"] = e.force_residual;
@@ -30,7 +32,7 @@ void bind_statics(py::module_& m) {
         return out;
       },
       py::arg("model"), py::arg("t") = 0.0, py::arg("tol") = 1e-12, py::arg("max_iterations") = 100,
-      py::arg("allow_unstable") = false, "Static equilibrium (see equilibrium.hpp) as a dict.");
+      py::arg("allow_unstable") = false, py::arg("stability") = true, "Static equilibrium (see equilibrium.hpp) as a dict.");
 
   m.def(
       "degrees_of_freedom",

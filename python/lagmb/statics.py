@@ -32,10 +32,13 @@ class Equilibrium:
       section 1: Q(q, 0, t) = Phi_q^T lam).
     - t: the time it holds at.
     - stable: the tangent stiffness reduced to the motions the joints
-      allow is positive definite (a strict minimum of the potential).
+      allow is positive definite (a strict minimum of the potential);
+      None when found with ``stability=False``.
     - stiffness_eigenvalues: its eigenvalues, ascending (N/m, N m/rad
-      mixed; empty when nothing can move), and softest_mode (n,) the
-      motion of the smallest.
+      mixed; empty when nothing can move or unchecked), and softest_mode
+      (n,) the motion of the smallest.
+    - dropped_rows: the rows of Phi left out as redundant there (lam is 0
+      in them), ascending.
     - iterations: Newton iterations; force_residual (max
       ``|Q - Phi_q^T lam|``, N or N m) and constraint_residual (max ``|Phi|``).
     """
@@ -46,7 +49,8 @@ class Equilibrium:
         self.t = float(t)
         self.q = np.asarray(raw["q"], dtype=float)
         self.lam = np.asarray(raw["lam"], dtype=float)
-        self.stable = bool(raw["stable"])
+        self.stable = None if raw["stable"] is None else bool(raw["stable"])
+        self.dropped_rows = [int(r) for r in raw["dropped_rows"]]
         self.iterations = int(raw["iterations"])
         self.stiffness_eigenvalues = np.asarray(raw["stiffness_eigenvalues"], dtype=float)
         self.softest_mode = np.asarray(raw["softest_mode"], dtype=float)
@@ -77,19 +81,23 @@ class Equilibrium:
         return np.asarray(out)[0]
 
     def __repr__(self):
-        return (f"<lagmb.Equilibrium at t = {self.t:g}: {'stable' if self.stable else 'not stable'}, "
+        state = {True: "stable", False: "not stable", None: "stability not checked"}[self.stable]
+        return (f"<lagmb.Equilibrium at t = {self.t:g}: {state}, "
                 f"{self.iterations} Newton iterations>")
 
 
-def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=False):
+def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=False, stability=True):
     """Static equilibrium of a model at time t (at rest: v = 0).
 
     Solves Q(q, 0, t) = Phi_q^T lam, Phi(q, t) = 0 by Newton with exact
     derivatives (step-limited, with a line search) from the assembled initial
     configuration, then checks stability: the tangent stiffness H(lam) - Q_q
-    reduced to the null space of Phi_q must be positive definite (dense
-    check). ``tol`` is relative (forces to ``tol |Q|``, constraints to
-    ``tol (1 + |q|)``). Returns an :class:`Equilibrium`.
+    reduced to the null space of Phi_q must be positive definite (a dense
+    check: O(n^3) in the coordinates, about 15 s for a 1,000-link chain;
+    ``stability=False`` skips it, and then ``stable`` is None and
+    ``allow_unstable`` has no effect). ``tol`` is relative (forces to
+    ``tol |Q|``, constraints to ``tol (1 + |q|)``). Returns an
+    :class:`Equilibrium`.
 
     Raises EquilibriumError (a ValueError) if a force or driver function
     raises (chained as its cause), if there is none nearby (naming
@@ -111,7 +119,7 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     core = model.compiled()
     with _translate(model, core):
         try:
-            raw = _core.equilibrium(core, t, tol, max_iterations, bool(allow_unstable))
+            raw = _core.equilibrium(core, t, tol, max_iterations, bool(allow_unstable), bool(stability))
         except _core.UserFunctionError as e:  # a force or driver function failed
             raise EquilibriumError(f"equilibrium: {e}") from e.__cause__
     return Equilibrium(model, core, raw, t)

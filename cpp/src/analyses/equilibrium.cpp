@@ -157,6 +157,7 @@ std::vector<std::pair<std::string, double>> largest(const Model& model, const Ve
 void stability(const Model& model, Data& d, double t, Equilibrium& e) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   const VecX v0 = VecX::Zero(n);
+  e.stability_checked = true;
   assemble_jacobian(model, d, e.q.data(), t);
   assemble_constraint_hessian(model, d, e.q.data(), t, e.lam.data());
   assemble_force_derivatives(model, d, e.q.data(), v0.data(), t);
@@ -295,7 +296,8 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
     throw EquilibriumError("equilibrium: the forces at the position found are not finite: " +
                            non_finite_source(model, solver.data(), q.data(), rest.data(), o.t));
   }
-  stability(model, solver.data(), o.t, e);
+  e.dropped_rows = solver.data().dropped_rows;
+  if (o.stability) stability(model, solver.data(), o.t, e);
   // resting against a stop is not modelled: an equilibrium beyond a limit is
   // not one the mechanism can reach
   const VecX zero_v = VecX::Zero(model.n_coordinates());
@@ -314,7 +316,7 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
           throw EquilibriumError(s.str());
         }
   }
-  if (!e.stable && !o.allow_unstable && e.stiffness_eigenvalues.size() && e.stiffness_eigenvalues[0] < 0 &&
+  if (e.stability_checked && !e.stable && !o.allow_unstable && e.stiffness_eigenvalues.size() && e.stiffness_eigenvalues[0] < 0 &&
       e.stiffness_eigenvalues[0] < -1e-9 * e.stiffness_eigenvalues.cwiseAbs().maxCoeff()) {
     std::ostringstream s;
     s << "the static equilibrium found at t = " << o.t << " is unstable: the tangent stiffness reduced to the "

@@ -46,6 +46,9 @@ struct EquilibriumOptions {
   double tol = 1e-12;          // relative: |Q - Phi_q^T lam| <= tol |Q|, |Phi| <= tol (1 + |q|)
   int max_iterations = 100;
   bool allow_unstable = false;  // else an unstable equilibrium is an EquilibriumError
+  // check stability (dense: O(n^3) in the coordinates, 15 s at 1,000 links);
+  // without it `stable` is not known and allow_unstable has no effect
+  bool stability = true;
 };
 
 struct Equilibrium {
@@ -53,10 +56,12 @@ struct Equilibrium {
   int iterations = 0;
   /// max |Q - Phi_q^T lam| (N or N m) and max |Phi| at q.
   double force_residual = 0.0, constraint_residual = 0.0;
-  bool stable = false;
+  bool stability_checked = false, stable = false;
   /// Eigenvalues of the reduced tangent stiffness K_r, ascending (empty at
-  /// 0 degrees of freedom), and the mode (in q, unit norm) of the smallest.
+  /// 0 degrees of freedom or unchecked), and the mode (in q, unit norm) of the smallest.
   VecX stiffness_eigenvalues, softest_mode;
+  /// Rows of Phi left out as redundant at q (ascending; lam is 0 there).
+  std::vector<int> dropped_rows;
 };
 
 /// No equilibrium found, or an unstable one not allowed. A ModelError (the
