@@ -88,7 +88,7 @@ def test_the_umbrella_header_includes_every_public_header():
 PYTHON_LAYERS = [
     ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles"],
     ["model"],
-    ["result", "simulation", "simulator", "statics", "accuracy", "joints"],
+    ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["scene", "plotting", "demo", "urdf", "mjcf"],
     ["fmu", "cli", "__main__", "__init__"],
 ]

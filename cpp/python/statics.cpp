@@ -35,6 +35,21 @@ void bind_statics(py::module_& m) {
       py::arg("allow_unstable") = false, py::arg("stability") = true, "Static equilibrium (see equilibrium.hpp) as a dict.");
 
   m.def(
+      "tangent_at_rest",
+      [](const Model& model, const VecX& q, const VecX& lam, double t, const std::vector<int>& dropped_rows) {
+        PythonCall call;
+        RestTangent r = tangent_at_rest(model, q, lam, t, dropped_rows);
+        py::dict out;
+        out["M"] = r.M;
+        out["K"] = r.K;
+        out["C"] = r.C;
+        out["Phi_q"] = r.Phi_q;
+        return out;
+      },
+      py::arg("model"), py::arg("q"), py::arg("lam"), py::arg("t"), py::arg("dropped_rows"),
+      "M, K = (Phi_q^T lam)_q - Q_q, C = -Q_v and Phi_q at rest (linearization.hpp), dense.");
+
+  m.def(
       "degrees_of_freedom",
       [](const Model& model, double t) {
         PythonCall call;

@@ -24,6 +24,7 @@ from .simulation import methods, simulate, solve_accelerations
 from .simulator import Simulator
 from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
+from .linear import Modes, modes
 from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
@@ -66,6 +67,8 @@ __all__ = [
     "EquilibriumError",
     "KinematicOnlyError",
     "equilibrium",
+    "modes",
+    "Modes",
     "JointSpace",
     "inverse_dynamics",
     "UrdfError",

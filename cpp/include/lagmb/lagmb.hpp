@@ -28,6 +28,7 @@
 #include "lagmb/analyses/equilibrium.hpp"
 #include "lagmb/analyses/joint_space.hpp"
 #include "lagmb/analyses/kinematics.hpp"
+#include "lagmb/analyses/linearization.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 #include "lagmb/analyses/stiffness.hpp"
 
