@@ -56,6 +56,15 @@ def test_a_double_pendulum_of_two_rods_has_the_two_closed_form_frequencies():
     expected = np.sqrt(G / L * np.array([3 - 6 / math.sqrt(7), 3 + 6 / math.sqrt(7)]))
     np.testing.assert_allclose(modes.omega, expected, rtol=1e-12)
     assert len(modes) == 2 and modes.shapes.shape == (2, 6)
+    # upside down: both modes unstable, still listed by frequency ascending
+    upright = mb.Model(gravity=(0.0, G))
+    upper = upright.add_body("upper", mass, mass * L**2 / 12, position=(0.0, -L / 2), angle=-math.pi / 2)
+    lower = upright.add_body("lower", mass, mass * L**2 / 12, position=(0.0, -1.5 * L), angle=-math.pi / 2)
+    upright.add_revolute("shoulder", upright.ground, upper, at=(0.0, 0.0))
+    upright.add_revolute("elbow", upper, lower, at=(0.0, -L))
+    falling = mb.modes(upright)
+    assert falling.kinds == ["unstable", "unstable"]
+    np.testing.assert_allclose(falling.omega, expected, rtol=1e-12)
 
 
 def spring_chain(n, k, c, mass):

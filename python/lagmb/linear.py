@@ -30,7 +30,7 @@ class Modes:
     """The vibration modes of a mechanism at an equilibrium (mb.modes).
 
     Attributes, one entry per mode (the number of degrees of freedom left by
-    the joints and drivers), ordered by omega^2 ascending:
+    the joints and drivers), ordered by omega ascending:
 
     - omega_squared (rad^2/s^2): the eigenvalues of Kr phi = omega^2 Mr phi;
     - omega (rad/s): ``sqrt(abs(omega^2))``, for an unstable mode the rate
@@ -117,6 +117,8 @@ def modes(model, at=None, *, tol=1e-9):
     L = np.linalg.cholesky(0.5 * (Mr + Mr.T))
     Linv = np.linalg.inv(L)
     omega_squared, Y = np.linalg.eigh(Linv @ Kr @ Linv.T)
+    order = np.argsort(np.abs(omega_squared), kind="stable")  # by omega = sqrt(|omega^2|)
+    omega_squared, Y = omega_squared[order], Y[:, order]
     phi = Linv.T @ Y  # mass-normalized: phi^T Mr phi = I
     largest = max(np.abs(omega_squared).max(), 1e-300)
     kinds = ["rigid-body" if abs(w2) <= tol * largest else "unstable" if w2 < 0 else "vibration"
