@@ -10,6 +10,7 @@
 #include "lagmb/assembly/analysis.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/interrupt.hpp"
+#include "lagmb/analyses/linearization.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 #include "solvers/sparse_qr.hpp"
 #include "lagmb/assembly/augmented.hpp"
@@ -153,21 +154,18 @@ std::vector<std::pair<std::string, double>> largest(const Model& model, const Ve
   throw EquilibriumError(s.str(), std::move(worst));
 }
 
-/// Stability: eigenvalues of the tangent stiffness reduced to the null space of Phi_q.
-void stability(const Model& model, Data& d, double t, Equilibrium& e) {
+/// Stability: eigenvalues of the tangent stiffness K = (Phi_q^T lam)_q - Q_q
+/// (tangent_at_rest, linearization.hpp) reduced to the null space of Phi_q.
+void stability(const Model& model, const Data& d, double t, Equilibrium& e) {
   const int n = model.n_coordinates(), m = model.n_constraints();
-  const VecX v0 = VecX::Zero(n);
   e.stability_checked = true;
-  assemble_jacobian(model, d, e.q.data(), t);
-  assemble_constraint_hessian(model, d, e.q.data(), t, e.lam.data());
-  assemble_force_derivatives(model, d, e.q.data(), v0.data(), t);
-  Eigen::MatrixXd K = Eigen::MatrixXd(d.H) - Eigen::MatrixXd(d.Q_q);
-  K = 0.5 * (K + K.transpose()).eval();
+  const RestTangent rest = tangent_at_rest(model, e.q, e.lam, t, d.dropped_rows);
+  const Eigen::MatrixXd K = 0.5 * (rest.K + rest.K.transpose());
   Eigen::MatrixXd Z;
   if (m == 0) {
     Z = Eigen::MatrixXd::Identity(n, n);
   } else {
-    const Eigen::MatrixXd JT = Eigen::MatrixXd(d.Phi_q).transpose();  // n x m
+    const Eigen::MatrixXd JT = rest.Phi_q.transpose();  // n x m
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(JT);
     qr.setThreshold(1e-10);
     const int rank = int(qr.rank());
