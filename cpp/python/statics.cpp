@@ -3,6 +3,25 @@
 
 namespace lagmb::python {
 
+namespace {
+
+/// A sparse matrix as (rows, cols, values, shape), which Python turns into
+/// a dense array or a SciPy matrix (SciPy is not a dependency of lagmb).
+py::tuple triplets(const SpMat& A) {
+  std::vector<int> rows, cols;
+  std::vector<double> values;
+  rows.reserve(A.nonZeros()), cols.reserve(A.nonZeros()), values.reserve(A.nonZeros());
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (SpMat::InnerIterator it(A, j); it; ++it) {
+      rows.push_back(int(it.row()));
+      cols.push_back(int(it.col()));
+      values.push_back(it.value());
+    }
+  return py::make_tuple(rows, cols, values, py::make_tuple(A.rows(), A.cols()));
+}
+
+}  // namespace
+
 void bind_statics(py::module_& m) {
   m.def(
       "equilibrium",
@@ -48,6 +67,38 @@ void bind_statics(py::module_& m) {
       },
       py::arg("model"), py::arg("q"), py::arg("lam"), py::arg("t"), py::arg("dropped_rows"),
       "M, K = (Phi_q^T lam)_q - Q_q, C = -Q_v and Phi_q at rest (linearization.hpp), dense.");
+
+  m.def(
+      "tangent_at",
+      [](const Model& model, const VecX& q, const VecX& v, double t, const VecX& u,
+         const std::optional<std::vector<int>>& dropped_rows) {
+        PythonCall call;
+        StateTangent r;
+        {
+          py::gil_scoped_release release;
+          r = tangent_at(model, q, v, t, u, dropped_rows);
+        }
+        py::dict out;
+        out["dropped_rows"] = r.dropped_rows;
+        out["a"] = r.a;
+        out["lam"] = r.lam;
+        out["Q"] = r.Q;
+        out["gamma"] = r.gamma;
+        out["Phi"] = r.Phi;
+        out["velocity_residual"] = r.velocity_residual;
+        out["M"] = triplets(r.M);
+        out["Phi_q"] = triplets(r.Phi_q);
+        out["K"] = triplets(r.K);
+        out["C"] = triplets(r.C);
+        out["G_q"] = triplets(r.G_q);
+        out["G_v"] = triplets(r.G_v);
+        out["Q_u"] = r.Q_u;
+        out["Phi_u"] = r.Phi_u;
+        return out;
+      },
+      py::arg("model"), py::arg("q"), py::arg("v"), py::arg("t"), py::arg("inputs"), py::arg("dropped_rows") = py::none(),
+      "The linearization's terms at a state (linearization.hpp, StateTangent): a, lam, Q, gamma, Phi, "
+      "velocity_residual, Q_u, Phi_u dense; M, Phi_q, K, C, G_q, G_v as (rows, cols, values, shape).");
 
   m.def(
       "degrees_of_freedom",

@@ -24,7 +24,7 @@ from .simulation import methods, simulate, solve_accelerations
 from .simulator import Simulator
 from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
-from .linear import Modes, modes
+from .linear import Descriptor, LinearSystem, Modes, linearize, modes
 from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
@@ -68,7 +68,7 @@ __all__ = [
     "KinematicOnlyError",
     "equilibrium",
     "modes",
-    "Modes",
+    "Modes", "LinearSystem", "Descriptor", "linearize",
     "JointSpace",
     "inverse_dynamics",
     "UrdfError",

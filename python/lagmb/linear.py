@@ -136,3 +136,493 @@ def modes(model, at=None, *, tol=1e-9):
     eigenvalues = np.linalg.eigvals(A)
     eigenvalues = eigenvalues[np.argsort(np.abs(eigenvalues), kind="stable")]
     return Modes(at, omega_squared, kinds, damping_ratios, shapes, eigenvalues)
+
+
+# --- linearization (mb.linearize) ---------------------------------------------
+
+
+def _dense(triplet):
+    """A (rows, cols, values, shape) triplet from the core as a dense array."""
+    rows, cols, values, shape = triplet
+    out = np.zeros(shape)
+    np.add.at(out, (np.asarray(rows, dtype=int), np.asarray(cols, dtype=int)), np.asarray(values, dtype=float))
+    return out
+
+
+class LinearSystem:
+    """A mechanism's motion linearized about an operating point
+    (:func:`lagmb.linearize`)::
+
+        x' = A x + B u,   y = C x + D u,
+
+    x, u and y the deviations of the states, inputs and outputs from their
+    values at the operating point.
+
+    - A (2k, 2k), B (2k, p), C (r, 2k), D (r, p): numpy arrays.
+    - states: the names of x: the k minimal coordinates (``"cart.x"``,
+      ``"pole.angle"`` for independent coordinates; ``"z1"`` ... for an
+      orthonormal basis), then their rates (``"der(cart.x)"``).
+    - inputs: the names of u (the model's ``mb.Input`` elements);
+      outputs: the names of y.
+    - coordinates: "independent" or "orthonormal", the basis the states are
+      in; basis (n, k) and velocity_basis (n, k): the motion of the model's
+      coordinates, ``dq = basis z``, ``dv = basis w + velocity_basis z``
+      (x = (z, w)).
+    - q, v, a, lam, t and input_values: the operating point; y0: the outputs
+      there; dropped_rows: the rows of Phi left out as redundant there;
+      equilibrium: the :class:`Equilibrium` it is, if linearized about one.
+    - eigenvalues: of A, ordered by magnitude.
+
+    :meth:`to_scipy` gives a ``scipy.signal.StateSpace``; :meth:`descriptor`
+    the same motion in the model's own (redundant) coordinates.
+    """
+
+    def __init__(self, **fields):
+        self.__dict__.update(fields)
+
+    @property
+    def eigenvalues(self):
+        values = np.linalg.eigvals(self.A) if self.A.size else np.zeros(0, complex)
+        return values[np.argsort(np.abs(values), kind="stable")]
+
+    def to_scipy(self):
+        """This system as a ``scipy.signal.StateSpace`` (continuous time)."""
+        from scipy import signal
+
+        B, D = self.B, self.D
+        if B.shape[1] == 0:  # scipy wants at least one input: a zero column
+            B, D = np.zeros((B.shape[0], 1)), np.zeros((D.shape[0], 1))
+        return signal.StateSpace(self.A, B, self.C, D)
+
+    def descriptor(self):
+        """The motion in the model's own coordinates, as a descriptor system
+        ``E x' = A x + B u, y = C x + D u`` with x = (dq, dv, dlam) (n, n and
+        one multiplier per kept row of Phi)::
+
+            E = [[I, 0, 0], [0, M, 0], [0, 0, 0]]
+            A = [[0, I, 0], [-K, -C_v, -Phi_q^T], [Phi_q, 0, 0]]
+            B = [[0], [Q_u], [0]]
+
+        (K the tangent stiffness, C_v = -Q_v). A constrained mechanism's
+        pencil has index 3: its finite eigenvalues are those of the minimal
+        ``A``, the others are infinite. Given about a static equilibrium only:
+        elsewhere the constraint rows turn with the motion, which a constant
+        pencil cannot say (ModelError). Returns an object with E, A, B, C, D,
+        states, inputs and outputs."""
+        if self._descriptor is None:
+            raise ModelError("LinearSystem.descriptor: the operating point is not a static equilibrium "
+                             f"(max abs(v) {np.abs(self.v).max(initial=0.0):.3g}, max abs(a) "
+                             f"{np.abs(self.a).max(initial=0.0):.3g}): there the rows of Phi_q turn with the "
+                             "motion and no constant pencil describes it; use the minimal form (A, B, C, D)")
+        return self._descriptor
+
+    def __repr__(self):
+        return (f"<lagmb.LinearSystem: {len(self.states)} states ({', '.join(self.states)}), "
+                f"{len(self.inputs)} inputs, {len(self.outputs)} outputs>")
+
+
+class Descriptor:
+    """A descriptor system E x' = A x + B u, y = C x + D u
+    (:meth:`LinearSystem.descriptor`): E, A, B, C, D (numpy), states,
+    inputs, outputs (names)."""
+
+    def __init__(self, **fields):
+        self.__dict__.update(fields)
+
+    @property
+    def eigenvalues(self):
+        """The finite generalized eigenvalues of (A, E), ordered by magnitude."""
+        from scipy import linalg
+
+        alpha, beta = linalg.eigvals(self.A, self.E, homogeneous_eigvals=True)
+        scale = max(np.abs(self.A).max(initial=0.0), np.abs(self.E).max(initial=0.0), 1e-300)
+        finite = np.abs(beta) > 1e-7 * np.maximum(np.abs(alpha), scale)
+        values = alpha[finite] / beta[finite]
+        return values[np.argsort(np.abs(values), kind="stable")]
+
+    def __repr__(self):
+        return f"<lagmb.Descriptor: {len(self.states)} states, {len(self.inputs)} inputs, {len(self.outputs)} outputs>"
+
+
+def _coordinate_names(model, core):
+    """The model's coordinates by the FMU's names: body.x, body.y, body.angle
+    in the plane; body.x, .y, .z, .e0 ... .e3 in space."""
+    names = [f"q{i}" for i in range(core.n_coordinates)]
+    for body in model.bodies:
+        first, count = core.body_coordinates(body.name)
+        suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")
+        for k in range(count):
+            names[first + k] = f"{body.name}.{suffixes[k]}"
+    return names
+
+
+def _preference(names):
+    """The order in which coordinates are taken as independent: angles (a
+    planar body's angle, the vector part e1..e3 of a spatial body's Euler
+    parameters) first, then positions, then e0; in the order of the
+    bodies within each."""
+    def rank(name):
+        suffix = name.rsplit(".", 1)[-1]
+        return 0 if suffix in ("angle", "e1", "e2", "e3") else 2 if suffix == "e0" else 1
+    return sorted(range(len(names)), key=lambda j: (rank(names[j]), j))
+
+
+def _independent(Z, names, chosen, who):
+    """Rows of Z (indices into q) taken as the independent coordinates:
+    ``chosen`` names, or the first rows in _preference order that add to the
+    rank (each must keep more than 1e-3 of the largest row's length
+    outside the span of those before)."""
+    k = Z.shape[1]
+    if chosen is not None:
+        chosen = [chosen] if isinstance(chosen, str) else list(chosen)
+        unknown = [c for c in chosen if c not in names]
+        if unknown:
+            raise ModelError(f"{who}: no coordinate {unknown[0]!r}; the coordinates are {', '.join(names)}")
+        rows = [names.index(c) for c in chosen]
+        if len(rows) != k or len(set(rows)) != k:
+            raise ModelError(f"{who}: the mechanism has {k} degrees of freedom here; "
+                             f"give {k} different coordinates, got {chosen}")
+        s = np.linalg.svd(Z[rows], compute_uv=False) if k else np.zeros(0)
+        if k and s[-1] < 1e-8 * max(s[0], 1e-300):
+            raise ModelError(f"{who}: the coordinates {chosen} do not determine the motion here (the joints "
+                             "tie them together); choose others")
+        return rows
+    rows, basis = [], np.zeros((0, k))
+    threshold = 1e-3 * max(np.linalg.norm(Z, axis=1).max(initial=0.0), 1e-300)
+    for j in _preference(names):
+        if len(rows) == k:
+            break
+        r = Z[j] - basis.T @ (basis @ Z[j])
+        size = np.linalg.norm(r)
+        if size > threshold:
+            rows.append(j)
+            basis = np.vstack([basis, r / size])
+    return sorted(rows)
+
+
+def _operating_point(model, core, at, input_values, who):
+    """(q, v, t, u, dropped_rows or None, the Equilibrium or None)."""
+    n = core.n_coordinates
+    infos = core.inputs
+    u = np.array([i["initial"] for i in infos], dtype=float)
+    given = dict(input_values or {})
+    if isinstance(at, dict):
+        given.update(at.get("inputs", {}) or {})
+    names = [i["name"] for i in infos]
+    for name, value in given.items():
+        if name not in names:
+            raise ModelError(f"{who}: no input {name!r}; the model's inputs are "
+                             f"{', '.join(names) if names else '(none)'}")
+        value = float(value)
+        if not np.isfinite(value):
+            raise ModelError(f"{who}: input {name!r} must be finite, got {value}")
+        u[names.index(name)] = value
+    if at is None:
+        at = equilibrium(model, allow_unstable=True)
+    if isinstance(at, Equilibrium):
+        if at.model is not model:
+            raise ModelError(f"{who}: at is an equilibrium of another model")
+        return at.q, np.zeros(n), at.t, u, list(at.dropped_rows), at
+    if isinstance(at, dict):
+        unknown = set(at) - {"q", "v", "t", "inputs"}
+        if unknown or "q" not in at:
+            raise ModelError(f"{who}: at as a dict takes q (and v, t, inputs), got keys {sorted(at)}")
+        q, v, t = at["q"], at.get("v"), at.get("t", 0.0)
+    elif isinstance(at, (tuple, list)) and len(at) in (2, 3):
+        q, v, t = at[0], at[1], at[2] if len(at) == 3 else 0.0
+    else:
+        raise ModelError(f"{who}: at must be None, an Equilibrium, (q, v) or (q, v, t), or a dict with q, v, t "
+                         f"(e.g. a Result's point: (r.q[i], r.v[i], r.t[i])), got {type(at).__name__}")
+    q = np.asarray(q, dtype=float).ravel()
+    v = np.zeros(n) if v is None else np.asarray(v, dtype=float).ravel()
+    if q.shape != (n,) or v.shape != (n,):
+        raise ModelError(f"{who}: q and v must have the model's {n} coordinates, got {q.size} and {v.size}")
+    t = float(t)
+    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v)) and np.isfinite(t)):
+        raise ModelError(f"{who}: the state (q, v, t) must be finite")
+    return q, v, t, u, None, None
+
+
+class _Outputs:
+    """The output rows y = Cq dq + Cv dv + Cl dlam + Cu du, by name."""
+
+    def __init__(self, model, core, names, point, inputs_used, who):
+        self.model, self.core, self.point, self.who = model, core, point, who
+        q, v, lam, t, u = point
+        n, m = len(q), len(lam)
+        coords = _coordinate_names(model, core)
+        self.names, rows = [], []
+        for name in names:
+            if not isinstance(name, str):
+                raise ModelError(f"{who}: output names are strings, got {name!r}")
+            Cq, Cv, Cl, value = np.zeros(n), np.zeros(n), np.zeros(m), None
+            rate = name.startswith("der(") and name.endswith(")")
+            base = name[4:-1] if rate else name
+            element, _, what = base.partition(".")
+            if base in coords:
+                j = coords.index(base)
+                (Cv if rate else Cq)[j] = 1.0
+                value = (v if rate else q)[j]
+            elif not rate and what.startswith("reaction.") and self._is(element, "constraint"):
+                value = self._reaction(element, what[len("reaction."):], Cq, Cl, name)
+            elif not rate and what == "effort" and self._is(element, "driver"):
+                row0, _ = core.constraint_rows(element)
+                Cl[row0] = -1.0
+                value = -lam[row0]
+            elif what in ("angle", "slide") and self._is(element, "joint"):
+                value = self._joint(element, what, rate, Cq, Cv, name)
+            else:
+                raise ModelError(f"{who}: no output {name!r}; outputs are coordinates and their rates "
+                                 f"({', '.join(coords[:3])}{', ...' if len(coords) > 3 else ''}, "
+                                 f"der({coords[0] if coords else 'body.x'})), '<joint>.reaction.<x|y|torque>' "
+                                 "('.z', '.torque.x' ... in space), '<driver>.effort', '<joint>.angle' or "
+                                 "'<joint>.slide' and der() of those")
+            self.names.append(name)
+            rows.append((Cq, Cv, Cl, value))
+        r = len(rows)
+        self.Cq = np.array([x[0] for x in rows]).reshape(r, n)
+        self.Cv = np.array([x[1] for x in rows]).reshape(r, n)
+        self.Cl = np.array([x[2] for x in rows]).reshape(r, m)
+        self.Cu = np.zeros((r, len(inputs_used)))
+        self.y0 = np.array([x[3] for x in rows], dtype=float)
+
+    def _is(self, element, what):
+        core = self.core
+        if not core.has(element):
+            return False
+        kind = core.element_kind(element)
+        if what == "driver":
+            return "driver" in kind
+        if what == "joint":
+            return core.joint_coordinate(element) is not None
+        try:
+            core.constraint_rows(element)
+            return True
+        except Exception:  # not a joint or driver
+            return False
+
+    def _q_difference(self, f, q):
+        """df/dq by central differences (f of q alone: a geometric relation,
+        smooth), relative step 1e-6."""
+        h = 1e-6 * np.maximum(1.0, np.abs(q))
+        plus = q + np.diag(h)
+        minus = q - np.diag(h)
+        return (f(plus) - f(minus)) / (2.0 * h)
+
+    def _reaction(self, element, component, Cq, Cl, name):
+        core = self.core
+        q, v, lam, t, u = self.point
+        components = (["x", "y", "z", "torque.x", "torque.y", "torque.z"] if self.model.dimension == 3
+                      else ["x", "y", "torque"])
+        if component not in components:
+            raise ModelError(f"{self.who}: no output {name!r}; a reaction's components are "
+                             f"{', '.join(components)}")
+        c = components.index(component)
+        row0, rows = core.constraint_rows(element)
+        inputs = np.asarray(u, dtype=float)[None, :] if len(u) else np.zeros((1, 0))
+
+        def reaction(qs, lams):
+            k = len(qs)
+            return np.asarray(core.reaction(element, np.full(k, t), qs, lams, False,
+                                            np.repeat(inputs, k, axis=0)))[:, c]
+
+        # linear in lam: exact from unit multipliers; its q-dependence (the
+        # geometry that turns -Phi_c^T lam into a force and torque) by differences
+        units = np.zeros((rows, len(lam)))
+        units[np.arange(rows), row0 + np.arange(rows)] = 1.0
+        if rows:
+            Cl[row0:row0 + rows] = reaction(np.repeat(q[None, :], rows, axis=0), units)
+        at_lam = lambda qs: reaction(qs, np.repeat(lam[None, :], len(qs), axis=0))
+        Cq[:] = self._q_difference(at_lam, q)
+        return float(at_lam(q[None, :])[0])
+
+    def _joint(self, element, what, rate, Cq, Cv, name):
+        core = self.core
+        q, v, lam, t, u = self.point
+        info = core.joint_coordinate(element)
+        slide = what == "slide"
+        if not (info["slides"] if slide else info["turns"]):
+            raise ModelError(f"{self.who}: no output {name!r}: {element!r} has no {what}")
+        n = len(q)
+        column = 1 if rate else 0
+
+        def motion(qs, vs):
+            return np.asarray(core.joint_motion(element, slide, qs, vs))[:, column]
+
+        if rate:  # linear in v: exact from unit rates
+            Cv[:] = motion(np.repeat(q[None, :], n, axis=0), np.eye(n))
+        Cq[:] = self._q_difference(lambda qs: motion(qs, np.repeat(v[None, :], len(qs), axis=0)), q)
+        return float(motion(q[None, :], v[None, :])[0])
+
+
+def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="independent", input_values=None):
+    """The motion linearized about an operating point, in minimal
+    coordinates: ``x' = A x + B u, y = C x + D u`` (a :class:`LinearSystem`).
+
+    At the operating point (q, v, t), differentiating the equations of
+    motion M a + Phi_q^T lam = Q(q, v, t, u), Phi_q a = gamma(q, v, t) gives
+    the augmented system::
+
+        [M      Phi_q^T] [da  ]   [-K dq - C_v dv + Q_u du]
+        [Phi_q  0      ] [dlam] = [ G_q dq + G_v dv       ]
+
+    K = (M a)_q + (Phi_q^T lam)_q - Q_q, C_v = -Q_v, G_q = gamma_q -
+    (Phi_q a)_q, G_v = -2 (Phi_q v + Phi_t)_q, all the elements' exact
+    derivatives (``_core.tangent_at``) except gamma_q, taken by central
+    differences of gamma (it needs Phi's third derivatives; it vanishes at
+    rest). The motions the joints allow are dq = T z with Phi_q T = 0; the
+    velocity constraint Phi_q dv + (Phi_q v + Phi_t)_q dq = 0 gives dv = T w
+    + V z with L V = 0, L the k x n map z = L dq. The state is x = (z, w)
+    and z' = w, w' = L da.
+
+    ``coordinates``: "independent" (the default): z is k of the model's
+    coordinates, chosen by the rule: angles first (a planar body's angle, the
+    vector part e1..e3 of a spatial body's Euler parameters), then positions
+    (x, y, z), then e0, bodies in the order added, each taken if the joints
+    leave it free given those taken before (the cart's x and the pole's angle
+    of a cart-pole); or a list of k coordinate names to take instead;
+    "orthonormal": z = T^T dq with T an orthonormal basis of the null space
+    of Phi_q (states z1 ... zk). Both are the same motion in other
+    coordinates: at an equilibrium A has the same eigenvalues. Away from an
+    equilibrium the linearization depends on the coordinates chosen (the
+    basis T is held fixed at the operating point).
+
+    ``at``: None (the default) for ``mb.equilibrium(model,
+    allow_unstable=True)``, an :class:`Equilibrium`, or a consistent state
+    (q, v) or (q, v, t), or a dict with q, v, t and inputs (e.g. a Result's
+    point ``(r.q[i], r.v[i], r.t[i])``). ``input_values``: {input name:
+    value} at the operating point (default the inputs' initial values).
+
+    ``inputs``: the names of the ``mb.Input`` elements that form u (None:
+    all of the model's, in the order added; the others are held). Q is
+    affine in an input's value for a force or torque that takes it, so B is
+    exact. An input that drives a motion (a driver) is refused: its rate
+    enters the motion, which B cannot carry.
+
+    ``outputs``: names, as the FMU and ``lagmb info`` name them: coordinates
+    ``"body.x"`` and rates ``"der(body.x)"``; ``"<joint>.reaction.x"`` (.y,
+    .torque in the plane; .z, .torque.x ... in space: the force and torque on
+    its second body, global axes); ``"<driver>.effort"``; ``"<joint>.angle"``,
+    ``"<joint>.slide"`` and their der(). None: every coordinate of the model.
+    A reaction is linear in the multipliers (exact); how it and a joint's
+    angle depend on q is taken by central differences.
+
+    ModelError for: an ``at`` that is not a consistent state of this model
+    (max abs(Phi) or abs(Phi_q v + Phi_t) above 1e-8), unknown input, output
+    or coordinate names (the known ones listed), joint friction (its force
+    switches with the sign of the rate), an input that drives a motion.
+    Dense linear algebra: for models of up to a few hundred coordinates.
+    """
+    from .model import checked as _model
+
+    who = "linearize"
+    _model(model, who)
+    if (coordinates not in ("independent", "orthonormal") if isinstance(coordinates, str)
+            else not hasattr(coordinates, "__iter__")):
+        raise ModelError(f"{who}: coordinates must be 'independent', 'orthonormal' or a list of coordinate "
+                         f"names, got {coordinates!r}")
+    core = model.compiled()
+    friction = [name for kind, name, _ in model._spec.elements() if "friction" in kind]
+    if friction:
+        raise ModelError(f"{who}: joint friction ({', '.join(repr(f) for f in friction)}) switches with the sign "
+                         "of the joint's rate and has no linearization; remove it to linearize")
+    q, v, t, u, dropped, eq = _operating_point(model, core, at, input_values, who)
+    tangent = _core.tangent_at(core, q, v, t, u, dropped)
+    n, m = len(q), core.n_constraints
+    scale = 1.0 + np.abs(q).max(initial=0.0)
+    phi = np.abs(np.asarray(tangent["Phi"])).max(initial=0.0)
+    vel = np.abs(np.asarray(tangent["velocity_residual"])).max(initial=0.0)
+    if phi > 1e-8 * scale or vel > 1e-8 * (1.0 + np.abs(v).max(initial=0.0)):
+        raise ModelError(f"{who}: at is not a consistent state of the model: max abs(Phi) {phi:.3g}, max "
+                         f"abs(Phi_q v + Phi_t) {vel:.3g} (give a state the joints allow, e.g. a Result's point, "
+                         "or an Equilibrium)")
+    dropped = [int(r) for r in tangent["dropped_rows"]]
+    a, lam = np.asarray(tangent["a"]), np.asarray(tangent["lam"])
+
+    infos = core.inputs
+    all_inputs = [i["name"] for i in infos]
+    if inputs is None:
+        used = list(range(len(infos)))
+    else:
+        names = [inputs] if isinstance(inputs, str) else list(inputs)
+        for name in names:
+            if name not in all_inputs:
+                raise ModelError(f"{who}: no input {name!r}; the model's inputs are "
+                                 f"{', '.join(all_inputs) if all_inputs else '(none)'}")
+        used = [all_inputs.index(name) for name in names]
+    Phi_u = np.asarray(tangent["Phi_u"]).reshape(m, len(infos))
+    for j in used:
+        if np.abs(Phi_u[:, j]).max(initial=0.0) > 0.0:
+            raise ModelError(f"{who}: input {all_inputs[j]!r} drives the motion of {infos[j]['element']!r}: its "
+                             "rate enters the motion, which a state-space B cannot carry; leave it out of "
+                             "inputs (it is held at its value)")
+    Q_u = np.asarray(tangent["Q_u"]).reshape(n, len(infos))[:, used]
+    p = len(used)
+
+    M, K, Cv_ = (_dense(tangent[k]) for k in ("M", "K", "C"))
+    Phi_q, G_q, G_v = (_dense(tangent[k]) for k in ("Phi_q", "G_q", "G_v"))
+    kept = np.setdiff1d(np.arange(m), dropped)
+    J, mk = Phi_q[kept], len(kept)
+
+    # the minimal coordinates: dq = T z, z = L dq
+    Z = _null_space(J, 1e-10)
+    k = Z.shape[1]
+    names = _coordinate_names(model, core)
+    if isinstance(coordinates, str) and coordinates == "orthonormal":
+        T, L = Z, Z.T
+        state_names = [f"z{i + 1}" for i in range(k)]
+    else:
+        rows = _independent(Z, names, None if isinstance(coordinates, str) else coordinates, who)
+        T = Z @ np.linalg.inv(Z[rows]) if k else np.zeros((n, 0))
+        L = np.zeros((k, n))
+        L[np.arange(k), rows] = 1.0
+        state_names = [names[j] for j in rows]
+        coordinates = "independent"
+    # dv = T w + V z: Phi_q V = -Vq T (Vq = -G_v / 2) and L V = 0
+    N = np.vstack([J, L])
+    V = np.linalg.lstsq(N, np.vstack([0.5 * G_v[kept] @ T, np.zeros((k, k))]), rcond=None)[0]
+
+    # the augmented system, differentiated: da, dlam for unit dq, dv, du
+    aug = np.block([[M, J.T], [J, np.zeros((mk, mk))]])
+    rhs = np.block([[-K, -Cv_, Q_u], [G_q[kept], G_v[kept], np.zeros((mk, p))]])
+    X = np.linalg.solve(aug, rhs)
+    da_q, da_v, da_u = X[:n, :n], X[:n, n:2 * n], X[:n, 2 * n:]
+    dl = np.zeros((m, 2 * n + p))
+    dl[kept] = X[n:]
+    dl_q, dl_v, dl_u = dl[:, :n], dl[:, n:2 * n], dl[:, 2 * n:]
+
+    A = np.block([[np.zeros((k, k)), np.eye(k)], [L @ (da_q @ T + da_v @ V), L @ da_v @ T]])
+    B = np.vstack([np.zeros((k, p)), L @ da_u])
+
+    out = _Outputs(model, core, names if outputs is None else
+                   ([outputs] if isinstance(outputs, str) else list(outputs)), (q, v, lam, t, u), used, who)
+    C = np.hstack([out.Cq @ T + out.Cv @ V + out.Cl @ (dl_q @ T + dl_v @ V), out.Cv @ T + out.Cl @ dl_v @ T])
+    D = out.Cu + out.Cl @ dl_u
+
+    descriptor = None
+    at_rest = (np.abs(v).max(initial=0.0) == 0.0
+               and np.abs(a).max(initial=0.0) <= 1e-8 * (1.0 + np.abs(np.asarray(tangent["Q"])).max(initial=0.0)))
+    if at_rest:
+        multipliers = []
+        for r in kept:
+            element = core.constraint_name_of_row(int(r))
+            if core.has(element):
+                row0, _ = core.constraint_rows(element)
+                multipliers.append(f"{element}.lambda[{int(r) - row0}]")
+            else:  # a row no element owns: a spatial body's Euler parameters' unit length
+                multipliers.append(f"lambda[{int(r)}] ({element})")
+        Z0 = np.zeros
+        descriptor = Descriptor(
+            E=np.block([[np.eye(n), Z0((n, n)), Z0((n, mk))], [Z0((n, n)), M, Z0((n, mk))],
+                        [Z0((mk, n)), Z0((mk, n)), Z0((mk, mk))]]),
+            A=np.block([[Z0((n, n)), np.eye(n), Z0((n, mk))], [-K, -Cv_, -J.T], [J, Z0((mk, n)), Z0((mk, mk))]]),
+            B=np.vstack([Z0((n, p)), Q_u, Z0((mk, p))]),
+            C=np.hstack([out.Cq, out.Cv, out.Cl[:, kept]]), D=out.Cu.copy(),
+            states=names + [f"der({x})" for x in names] + multipliers,
+            inputs=[all_inputs[j] for j in used], outputs=list(out.names))
+    return LinearSystem(
+        A=A, B=B, C=C, D=D, states=state_names + [f"der({s})" for s in state_names],
+        inputs=[all_inputs[j] for j in used], outputs=list(out.names), coordinates=coordinates,
+        basis=T, velocity_basis=V, q=q, v=v, a=a, lam=lam, t=t,
+        input_values={all_inputs[j]: float(u[j]) for j in range(len(u))}, y0=out.y0,
+        dropped_rows=dropped, equilibrium=eq, _descriptor=descriptor)
