@@ -276,3 +276,22 @@ def test_bad_input_is_named():
     with pytest.raises(mb.ModelError, match="input 'angle' drives the motion of 'motor'"):
         mb.linearize(driven, at=mb.equilibrium(driven))
     assert mb.linearize(driven, inputs=[], outputs=["motor.effort"]).A.shape == (0, 0)
+
+
+def test_the_lqr_example_designed_on_the_linearization_balances_the_pole_from_0_6_rad():
+    sys.path.insert(0, str(EXAMPLES))
+    try:
+        import cart_pole_lqr as example
+    finally:
+        sys.path.remove(str(EXAMPLES))
+    K, lin = example.lqr_gain(cart_pole())
+    # the closed loop of the linear model is stable; the open loop is not
+    assert max(lin.eigenvalues.real) > 3.9
+    assert max(np.linalg.eigvals(lin.A - lin.B @ K).real) < -0.5
+    sim, _ = example.balance_lqr(theta0=0.6, t_end=10.0, rtol=1e-6)
+    r = sim.result()
+    tilt = r.body("pole").angle - math.pi / 2
+    late = r.t >= 8.0
+    assert np.max(np.abs(tilt[late])) < 2e-4
+    assert np.max(np.abs(r.body("cart").position[late, 0])) < 2e-3
+    assert np.max(np.abs(r.input("push"))) < 27.0
