@@ -6,13 +6,15 @@
     lagmb info SCENE [--parameters] | --methods | --kinds
     lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T]
                    [-o table.json] [--plot out.png] [--quiet]
+    lagmb modes SCENE [--at-time T] [--count K] [--gif out.gif] [--mode I] [--view ELEV,AZIM]
     lagmb demo [--plot out.png] [--quiet]
 
 Exit status: 0 done; 2 a usage or scene error (one line naming the file,
 line, table and key, or the option); 1 the simulation failed (the results
 computed until then are still written to -o, if given); 3 an internal error,
 a bug in lagmb (one line; LAGMB_TRACEBACK=1 shows the traceback); 130
-interrupted (Ctrl-C).
+interrupted (Ctrl-C). lagmb modes exits 1 where the scene has no static
+equilibrium (a free body under gravity) or its joints cannot be closed.
 """
 
 import argparse
@@ -114,6 +116,25 @@ def _parser():
     fmu.add_argument("--name", help="the model's name in the FMU (default: the scene file's name)")
     fmu.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
 
+    modes = sub.add_parser("modes", help="vibration modes about the static equilibrium",
+                           description="Find the scene's static equilibrium (mb.equilibrium; an unstable "
+                                       "one too) and its vibration modes about it (mb.modes); print each "
+                                       "mode's kind, frequency, damping ratio and the coordinate it moves "
+                                       "most, lowest frequency first; --gif animates one.")
+    modes.add_argument("scene", help="the scene file (.toml), or a robot's URDF file (.urdf)")
+    modes.add_argument("--at-time", type=float, metavar="T",
+                       help="the time the equilibrium holds at, for drivers and forces that depend on time "
+                            "(default the scene's t0, else 0)")
+    modes.add_argument("--count", type=int, metavar="K", help="list the K lowest modes only (default all)")
+    modes.add_argument("--gif", metavar="GIF",
+                       help="animate a mode: its shape about the equilibrium (lagmb.plotting.animate_mode)")
+    modes.add_argument("--mode", type=int, metavar="I",
+                       help="the mode --gif animates, by its number in the table (default the first "
+                            "vibration mode)")
+    modes.add_argument("--view", metavar="ELEV,AZIM",
+                       help="viewpoint of a spatial model's --gif, degrees (default: [output] view, else 25,-60)")
+    _robot_options(modes)
+
     demo = sub.add_parser("demo", help="simulate the seed pendulum and check it against closed forms")
     demo.add_argument("--plot", metavar="PNG", help="write a plot of angle and pin force")
     demo.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
@@ -146,6 +167,8 @@ def _main(args):
             return _accuracy(args)
         if args.command == "fmu":
             return _fmu(args)
+        if args.command == "modes":
+            return _modes(args)
         return _run(args)
     except _Exit as e:
         print(f"lagmb {args.command}: " + " ".join(str(e).splitlines()), file=sys.stderr)
@@ -345,14 +368,7 @@ def _run(args):
     if args.animate or scene.output.get("animate"):
         _need_matplotlib("animating")
     animate = _output(scene, args.animate, "--animate", "animate", animation_format_problem)
-    view = tuple(scene.output.get("view", (25.0, -60.0)))
-    if args.view is not None:
-        try:
-            view = tuple(float(x) for x in args.view.split(","))
-        except ValueError:
-            view = ()
-        if len(view) != 2 or not all(math.isfinite(x) for x in view):
-            raise _Exit(USAGE, f"--view {args.view}: must be two numbers ELEV,AZIM (degrees)")
+    view = _view(scene, args.view)
     motion = _animation_options(args, scene, animate)
 
     overrides = {}
@@ -421,6 +437,20 @@ def _run(args):
     return OK
 
 
+def _view(scene, given):
+    """The viewpoint of a spatial animation: --view ELEV,AZIM, else the
+    scene's [output] view, else (25, -60)."""
+    view = tuple(scene.output.get("view", (25.0, -60.0)))
+    if given is not None:
+        try:
+            view = tuple(float(x) for x in given.split(","))
+        except ValueError:
+            view = ()
+        if len(view) != 2 or not all(math.isfinite(x) for x in view):
+            raise _Exit(USAGE, f"--view {given}: must be two numbers ELEV,AZIM (degrees)")
+    return view
+
+
 def _plotting():
     from . import plotting
 
@@ -472,12 +502,14 @@ def _summary(scene, r, say):
 
 def coordinate_names(model):
     """Names of the coordinates in order: body.x, body.y, body.angle (a
-    particle has .x, .y)."""
+    particle has .x, .y); in space body.x, body.y, body.z and the Euler
+    parameters body.e0 .. body.e3 (w, x, y, z)."""
     core = model.compiled()
     names = [f"q{i}" for i in range(core.n_coordinates)]
     for body in model.bodies:
         first, count = core.body_coordinates(body.name)
-        for k, suffix in enumerate(("x", "y", "angle")[:count]):
+        suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")[:count]
+        for k, suffix in enumerate(suffixes):
             names[first + k] = f"{body.name}.{suffix}"
     return names
 
@@ -538,6 +570,96 @@ def _write(path, r, scene):
         w = csv.writer(fh, lineterminator="\n")
         w.writerow(columns)
         w.writerows(data.tolist())  # floats as repr: they read back exactly
+
+
+# --- modes ----------------------------------------------------------------------
+
+def _modes(args):
+    from .errors import EquilibriumError
+    from .linear import modes as vibration_modes
+    from .scene.reader import animation_format_problem
+    from .statics import equilibrium
+
+    scene = _load(args.scene, args)
+    # the options first: a mistake there costs no analysis
+    t = float(scene.settings.get("t0", 0.0)) if args.at_time is None else args.at_time
+    if not math.isfinite(t):
+        raise _Exit(USAGE, f"--at-time {args.at_time:g}: must be a finite time (s)")
+    if args.count is not None and args.count < 1:
+        raise _Exit(USAGE, f"--count {args.count}: must be at least 1")
+    if args.mode is not None and args.mode < 0:
+        raise _Exit(USAGE, f"--mode {args.mode}: must be the number of a mode in the table, 0 or more")
+    gif = None
+    if args.gif:
+        _need_matplotlib("--gif")
+        gif = _output(scene, args.gif, "--gif", "animate", animation_format_problem)
+    else:
+        given = [(option, value) for option, value in (("--mode", args.mode), ("--view", args.view))
+                 if value is not None]
+        if given:
+            option, value = given[0]
+            raise _Exit(USAGE, f"{option} {value}: there is no animation to apply it to; give --gif GIF")
+    view = _view(scene, args.view)
+
+    try:
+        at = equilibrium(scene.model, t, allow_unstable=True)
+        found = vibration_modes(scene.model, at)
+    except EquilibriumError as e:  # none nearby (a free body under gravity), or a force function failed
+        raise _Exit(FAILED, f"{scene.path}: {e}") from None
+    except ModelError as e:  # the scene as a whole (non-conservative forces: no real modes)
+        raise _Exit(USAGE, f"{scene.path}: {e}") from None
+    except SimulationError as e:  # the joints cannot be closed
+        raise _Exit(FAILED, f"{scene.path}: the equilibrium cannot be found: {e}") from None
+    n = len(found)
+    index = None
+    if gif:
+        if args.mode is not None and args.mode >= n:
+            raise _Exit(USAGE, f"--mode {args.mode}: the scene has {n} mode{'' if n == 1 else 's'}"
+                               + (f" (0 .. {n - 1})" if n else ""))
+        if not n:
+            raise _Exit(USAGE, f"--gif {gif}: the scene has no modes to animate (nothing can move)")
+        index = args.mode if args.mode is not None else \
+            next((i for i, kind in enumerate(found.kinds) if kind == "vibration"), 0)
+
+    for line in _modes_table(scene, found, t, args.count):
+        print(line)
+    if gif:
+        try:
+            _plotting().animate_mode(found, index, gif, view=view)
+        except OSError as e:
+            raise _Exit(USAGE, f"cannot write {e.filename or gif}: {e.strerror or e}") from None
+        print(f"  mode {index} ({found.kinds[index]}) animated in {gif}")
+    return OK
+
+
+def _modes_table(scene, found, t, count=None):
+    """The lines lagmb modes prints: what the modes are about, then one row
+    a mode (the first count): its number, kind, frequency (Hz), omega
+    (rad/s), damping ratio and the coordinate its shape moves most."""
+    n = len(found)
+    state = {True: "stable", False: "unstable", None: "static"}[found.equilibrium.stable]
+    lines = [f"{scene.path}: {n} mode{'' if n == 1 else 's'} about the {state} equilibrium at t = {t:g} s"]
+    if not n:
+        return lines + ["  no modes: every degree of freedom is driven, nothing can move"]
+    names = coordinate_names(scene.model)
+    head = ("mode", "kind", "frequency (Hz)", "omega (rad/s)", "damping ratio", "moves most")
+    rows = []
+    for i in range(n if count is None else min(count, n)):
+        zeta, rigid = found.damping_ratios[i], found.kinds[i] == "rigid-body"  # its omega: round-off about 0
+        rows.append((str(i), found.kinds[i], "0" if rigid else f"{found.frequencies[i]:.6g}",
+                     "0" if rigid else f"{found.omega[i]:.6g}", "-" if math.isnan(zeta) else f"{zeta:.4g}",
+                     names[int(abs(found.shapes[i]).argmax())]))
+    width = [max(len(r[k]) for r in rows + [head]) for k in range(len(head))]
+    right = (True, False, True, True, True, False)
+    for r in [head] + rows:
+        lines.append("  " + "  ".join(c.rjust(w) if ok else c.ljust(w) for c, w, ok in zip(r, width, right)).rstrip())
+    if len(rows) < n:
+        lines.append(f"  the {len(rows)} lowest of {n} modes (--count)")
+    if "unstable" in found.kinds[:len(rows)]:
+        lines.append("  unstable: the equilibrium is unstable in this mode; omega is the rate exp(omega t) it grows at")
+    if "rigid-body" in found.kinds[:len(rows)]:
+        lines.append("  rigid-body: a motion nothing resists (frequency 0)")
+    return lines
 
 
 # --- info -----------------------------------------------------------------------

@@ -1,4 +1,5 @@
-"""Pictures of a run: time histories (plot_result) and a GIF of the mechanism (animate).
+"""Pictures of a run: time histories (plot_result) and a GIF of the mechanism
+(animate); a GIF of a vibration mode of mb.modes (animate_mode).
 
 matplotlib is an optional extra (``pip install 'lagmb[plot]'``); it is imported
 only when a function here is called, so ``import lagmb`` never needs it.
@@ -514,17 +515,22 @@ def _resample(result, times):
         qf[rough] = linear[rough]
         vf = (1 - s) * v[k] + s * v[k + 1]
     core = result._core
-    for body in result.model.bodies:
-        if not core.has(body.name):
-            continue
-        first, count = core.body_coordinates(body.name)
-        if count == 7:
-            p = qf[:, first + 3:first + 7]
-            qf[:, first + 3:first + 7] = p / np.linalg.norm(p, axis=1, keepdims=True)
+    _unit_orientations(result.model, core, qf)
     lam = getattr(result, "_lam", np.zeros((len(t), 0)))
     raw = {"t": times, "q": qf, "v": vf, "a": np.zeros_like(qf), "lam": np.zeros((len(times), lam.shape[1])),
            "stats": result.stats}
     return Result(result.model, core, raw)
+
+
+def _unit_orientations(model, core, q):
+    """Normalises, in place, each spatial body's Euler parameters in the rows of q (k, n)."""
+    for body in model.bodies:
+        if not core.has(body.name):
+            continue
+        first, count = core.body_coordinates(body.name)
+        if count == 7:
+            p = q[:, first + 3:first + 7]
+            q[:, first + 3:first + 7] = p / np.linalg.norm(p, axis=1, keepdims=True)
 
 
 def _time_format(times):
@@ -1035,6 +1041,155 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     drawing = _Drawing(fig, artists, update)
     drawing.triad_lengths = triad  # {body: (3,) m}
     return drawing
+
+
+# --- a vibration mode ------------------------------------------------------
+
+
+_MODE_CYCLE = 2.0     # s: a cycle of a mode plays in 2 s (at the default frames), whatever its frequency
+_MODE_REACH = 0.1     # the default amplitude moves the mechanism's points by up to this much of its size
+
+
+def _posed(equilibrium, q, t=None):
+    """A Result of the equilibrium's model at rest in the poses q (k, n) at
+    the times t (default 0 .. k - 1), each spatial body's Euler parameters
+    normalised."""
+    from .result import Result
+
+    q = np.array(q, dtype=float)
+    core = equilibrium._core
+    _unit_orientations(equilibrium.model, core, q)
+    zero = np.zeros_like(q)
+    t = np.arange(len(q), dtype=float) if t is None else np.asarray(t, dtype=float)
+    raw = {"t": t, "q": q, "v": zero, "a": zero,
+           "lam": np.zeros((len(q), len(equilibrium.lam))), "stats": {}}
+    return Result(equilibrium.model, core, raw)
+
+
+def _drawn_points(scene, result):
+    """(k, p, d): the points the drawing goes through in each pose of result:
+    the bodies' centres of mass, the points where elements attach (a pinned
+    rod drawn whole) and, in space, the corners of the inertia boxes; the
+    points fixed to the ground too."""
+    k = len(result.t)
+    paths = []
+    for b in scene.bodies:
+        paths.append(result.body(b).position)
+        paths += [scene.path(b, p, result=result) for p in scene.drawn_outline(b)]
+        corners = scene.box(b)
+        if corners is not None:
+            paths += [scene.path(b, c, result=result) for c in corners]
+    for kind, kw in scene.elements:
+        paths += [np.broadcast_to(p, (k, scene.dimension)) for b, p in scene.attachments(kw["name"])
+                  if b == "ground"]
+    return np.stack(paths, axis=1)
+
+
+def _mode_amplitude(equilibrium, shape):
+    """The default amplitude of a mode's shape (its largest entry 1: m or
+    rad): what moves the drawn points by up to _MODE_REACH of the
+    mechanism's size (the largest extent of those points at equilibrium),
+    from the points' motion along the shape (a difference quotient)."""
+    step = 1e-6
+    shown = _posed(equilibrium, [equilibrium.q, equilibrium.q + step * shape])
+    points = _drawn_points(_Scene(shown), shown)
+    size = float(np.max(np.ptp(points[0], axis=0))) if points.shape[1] else 0.0
+    if not size > 1e-9:
+        size = 1.0  # a point alone: 1 m
+    moved = float(np.max(np.linalg.norm(points[1] - points[0], axis=1))) / step if points.shape[1] else 0.0
+    if not moved > 1e-9:
+        return _MODE_REACH  # the shape moves no drawn point: 0.1 of whatever it moves
+    return _MODE_REACH * size / moved
+
+
+def animate_mode(modes, index=0, path=None, *, amplitude=None, cycles=2, fps=25, frames=None,
+                 size=(640, 480), dpi=100, view=(25.0, -60.0)):
+    """Write a looping GIF of one vibration mode of ``mb.modes``: the
+    mechanism at its equilibrium moved along the mode's shape,
+    q = q_eq + amplitude sin(phase) shape, the phase running through
+    ``cycles`` whole cycles (so that the loop has no seam). Drawn as
+    :func:`animate` draws a run (planar or spatial); each spatial body's
+    Euler parameters are normalised after the shape is added. The title
+    says "mode I: f Hz (kind)".
+
+    ``modes``: what ``mb.modes(model)`` returned; ``index``: the mode, 0 to
+    ``len(modes) - 1`` (their order: frequency ascending). A vibration mode
+    is shown in its own time, the phase omega t, the stamp giving t (a
+    cycle plays in 2 s at the default frames, whatever its period). A
+    rigid-body mode (nothing resists it) or an unstable one
+    (it grows as exp(omega t)) is not an oscillation: it is shown as the
+    same slow back-and-forth along its shape, and the title says which.
+
+    ``amplitude``: the multiple of the shape added (the shape's largest
+    entry is 1, so amplitude is in the unit of that coordinate, m or rad).
+    By default the one that moves the points drawn (centres of mass, joint
+    points, the corners of spatial bodies' inertia boxes) by up to a tenth
+    of the mechanism's size: visible, and small enough to look linear.
+    ``fps`` frames per second (at most 50); ``frames``: the number of
+    frames (default ``cycles`` times 2 s at ``fps``: 100 at the defaults;
+    pictures that come out the same one after the other, the turning points
+    of a mode shown without a time stamp, Pillow keeps as one longer frame).
+    ``size`` in pixels, ``view`` = (elevation, azimuth) in degrees for a
+    spatial model, as for animate.
+
+    Writes the GIF to ``path`` and returns the path; with ``path`` None,
+    returns the GIF's bytes (``IPython.display.Image(data=...)`` shows them
+    in a notebook). ModelError for a bad index (naming it and how many
+    modes there are) or setting.
+    """
+    from .linear import Modes
+
+    _matplotlib()
+    try:
+        from PIL import Image  # noqa: F401 - there before anything is drawn
+    except ImportError as e:
+        raise ImportError(_HINT) from e
+    if not isinstance(modes, Modes):
+        raise ModelError(f"animate_mode: modes must be what mb.modes(model) returns, got {type(modes).__name__}")
+    count = len(modes)
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < count:
+        which = f"0 .. {count - 1}" if count else "none: nothing can move"
+        raise ModelError(f"animate_mode: index {index!r}: there {'is' if count == 1 else 'are'} "
+                         f"{_count(count, 'mode')} ({which})")
+    index = int(index)
+    fps = _checked("animate_mode: fps", fps, 0.0, _MAX_FPS)
+    cycles = _checked("animate_mode: cycles", cycles, 0, whole=True)
+    frames = int(round(cycles * _MODE_CYCLE * fps)) if frames is None \
+        else _checked("animate_mode: frames", frames, 1, whole=True)
+    frames = max(frames, 2)
+    equilibrium = modes.equilibrium
+    shape = np.asarray(modes.shapes[index], dtype=float)
+    amplitude = _mode_amplitude(equilibrium, shape) if amplitude is None \
+        else _checked("animate_mode: amplitude", amplitude, 0.0)
+
+    kind, omega, frequency = modes.kinds[index], float(modes.omega[index]), float(modes.frequencies[index])
+    if kind == "rigid-body":  # its omega is round-off about 0
+        frequency = 0.0
+    phase = 2.0 * math.pi * cycles * np.arange(frames) / frames
+    # a vibration mode at its own times (the stamp gives t in the cycle); the others by phase
+    shown = _posed(equilibrium, equilibrium.q + amplitude * np.sin(phase)[:, None] * shape[None, :],
+                   phase / omega if kind == "vibration" else phase)
+    scene = _Scene(shown)
+    if scene.dimension == 3:
+        drawing = _spatial_drawing(scene, shown, [], size, dpi, view, 1.0)
+    else:
+        drawing = _planar_drawing(scene, shown, [], size, dpi, 1.0)
+    title = f"mode {index}: {frequency:.4g} Hz ({kind})"
+    if kind != "vibration":  # no time to stamp: the title says how it moves instead
+        title += "\n" + ("it moves freely" if kind == "rigid-body" else f"it grows as exp({omega:.3g} t)") \
+            + "; shown back and forth"
+        drawing.artists["stamp"].set_visible(False)
+    drawing.fig.axes[0].set_title(title, fontsize=10)
+    ends = np.round(100.0 * np.arange(1, frames + 1) / fps)  # hundredths of a second, as animate counts
+    durations = (10 * np.diff(np.concatenate(([0.0], ends)))).astype(int)
+    if path is not None:
+        return _write_gif(drawing, path, durations)
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        written = _write_gif(drawing, os.path.join(folder, "mode.gif"), durations)
+        with open(written, "rb") as f:
+            return f.read()
 
 
 # --- a still picture of a spatial model with its shapes -------------------
