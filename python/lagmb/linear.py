@@ -17,7 +17,17 @@ The modes are those of the undamped system, Kr phi = omega^2 Mr phi
 where C acts mode by mode (damping proportional to M and K) and the usual
 modal estimate otherwise. The damped system's eigenvalues (of
 [[0, I], [-Mr^-1 Kr, -Mr^-1 Cr]]) are given as they are.
+
+That is dense (O(n^3)). For a large model ``count=k`` (automatic above 600
+coordinates) finds the k modes nearest omega^2 = 0 without Z: the
+constrained problem K x = omega^2 M x, Phi_q x = 0 in the model's
+coordinates by shift-invert Lanczos, each step a solve with the sparse LU of
+[[K - sigma M, Phi_q^T], [Phi_q, 0]] (the matrices of
+``lagmb._core.tangent_at`` as triplets), sigma just below 0.
 """
+
+import math
+import numbers
 
 import numpy as np
 
@@ -30,7 +40,8 @@ class Modes:
     """The vibration modes of a mechanism at an equilibrium (mb.modes).
 
     Attributes, one entry per mode (the number of degrees of freedom left by
-    the joints and drivers), ordered by omega ascending:
+    the joints and drivers; the lowest ``count`` of them from the sparse
+    path), ordered by omega ascending:
 
     - omega_squared (rad^2/s^2): the eigenvalues of Kr phi = omega^2 Mr phi;
     - omega (rad/s): ``sqrt(abs(omega^2))``, for an unstable mode the rate
@@ -41,7 +52,8 @@ class Modes:
     - damping_ratios: phi^T Cr phi / (2 omega) (NaN for a rigid-body mode);
     - shapes (k, n): each mode as a motion of the model's coordinates q,
       scaled so that its largest entry is +1;
-    - eigenvalues (2k,): of the damped system, complex, ordered by magnitude;
+    - eigenvalues (2k,): of the damped system, complex, ordered by magnitude
+      (from the sparse path: of the system reduced to the modes found);
     - equilibrium: the :class:`Equilibrium` the modes are about.
 
     ``len(modes)`` is the number of modes.
@@ -75,30 +87,82 @@ def _null_space(J, tol):
     return vt[rank:].T
 
 
-def modes(model, at=None, *, tol=1e-9):
+SPARSE_ABOVE = 600  # coordinates: above this mb.modes computes the lowest DEFAULT_COUNT modes sparsely
+DEFAULT_COUNT = 10
+
+
+def modes(model, at=None, *, tol=1e-9, count=None):
     """Vibration modes about a static equilibrium: natural frequencies,
     damping ratios and mode shapes (see :class:`Modes`).
 
     ``at``: the :class:`Equilibrium` to linearize about (from
     ``mb.equilibrium``), or None for ``mb.equilibrium(model,
     allow_unstable=True)`` (an unstable equilibrium has modes too: they say
-    how it falls). Dense linear algebra: for models of up to a few hundred
-    coordinates. ModelError for an ``at`` that is not an equilibrium of this
-    model, or a tangent stiffness that is not symmetric (non-conservative
-    forces: its undamped modes are not real; the damped eigenvalues still
-    say how the motion grows or decays).
+    how it falls).
+
+    ``count``: None (the default) for every mode by dense linear algebra
+    (O(n^3) in the n coordinates: for models of up to a few hundred); or the
+    number k of lowest-frequency modes (smallest ``abs(omega^2)``) to compute
+    with SciPy's sparse linear algebra, for large models. A model of more
+    than 600 coordinates (a 200-link planar chain) takes the sparse path on
+    its own, with ``count=10`` (or all its degrees of freedom if fewer).
+
+    The sparse path solves K x = omega^2 M x, Phi_q x = 0 (the rows of Phi
+    kept at the equilibrium) in the model's coordinates, by shift-invert
+    Lanczos (``scipy.sparse.linalg.eigsh``) with a sparse LU
+    (``scipy.sparse.linalg.splu``) of [[K - sigma M, Phi_q^T], [Phi_q, 0]]
+    as the operator: no dense n x n matrix. The shift sigma is just below 0
+    (1e-9 times the largest ratio of a diagonal entry of K to M's), so the
+    modes found are those nearest omega^2 = 0 on either side: rigid-body
+    modes, the slowest vibrations and the slowest-growing unstable modes.
+    An unstable mode growing faster than the k-th frequency is left out:
+    ``mb.equilibrium``'s stability check says whether there is any (at=None
+    finds the equilibrium without it there, ``stable`` is None). The
+    computed modes are refined by a Rayleigh-Ritz step, mass-normalized
+    (phi^T M phi = 1) and scaled like the dense ones; damping ratios are
+    phi^T C phi / (2 omega) as there. ``eigenvalues`` are those of the damped
+    system reduced to the k modes found (z'' + Cm z' + diag(omega^2) z = 0,
+    Cm = Phi^T C Phi, 2k of them): the full system's own where the damping
+    does not couple those modes to the others (damping proportional to M
+    and K), otherwise an approximation. A mode is rigid-body when
+    ``abs(omega^2)`` is below ``tol`` times that diagonal ratio (on the dense
+    path: times the largest omega^2). With few degrees of freedom (at most 2 k + 20)
+    the sparse path takes them all from an orthonormal basis of the motions
+    the joints allow (a sparse projection) and keeps the k lowest. SciPy is
+    needed for the sparse path only.
+
+    ModelError for an ``at`` that is not an equilibrium of this model, a
+    ``count`` below 1 or above the number of degrees of freedom, the sparse
+    path without SciPy, or a tangent stiffness that is not symmetric
+    (non-conservative forces: its undamped modes are not real; the damped
+    eigenvalues still say how the motion grows or decays, see
+    ``mb.linearize``).
     """
+    from ._checks import show
     from .model import checked as _model
 
     _model(model, "modes")
-    if at is None:
-        at = equilibrium(model, allow_unstable=True)
-    elif not isinstance(at, Equilibrium):
+    if count is not None:
+        if isinstance(count, bool) or not isinstance(count, numbers.Real) or not (
+                isinstance(count, numbers.Integral) or (math.isfinite(count) and float(count).is_integer())):
+            raise ModelError(f"modes: count must be a whole number of modes or None, got {show(count)}")
+        count = int(count)
+        if count < 1:
+            raise ModelError(f"modes: count must be at least 1, got {count}")
+    if at is not None and not isinstance(at, Equilibrium):
         raise ModelError(f"modes: at must be an equilibrium from mb.equilibrium(model) or None, "
                          f"got {type(at).__name__}")
-    elif at.model is not model:
+    if at is not None and at.model is not model:
         raise ModelError("modes: at is an equilibrium of another model")
     core = model.compiled()
+    automatic = count is None and core.n_coordinates > SPARSE_ABOVE
+    if count is not None or automatic:
+        scipy = _scipy_sparse(automatic, core.n_coordinates)
+        if at is None:  # the dense stability check is what the sparse path avoids
+            at = equilibrium(model, allow_unstable=True, stability=False)
+        return _sparse_modes(core, at, count, tol, scipy)
+    if at is None:
+        at = equilibrium(model, allow_unstable=True)
     tangent = _core.tangent_at_rest(core, at.q, at.lam, at.t, at.dropped_rows)
     M, K, C = (np.asarray(tangent[k]) for k in ("M", "K", "C"))
     kept = np.setdiff1d(np.arange(len(at.lam)), at.dropped_rows)
@@ -108,11 +172,7 @@ def modes(model, at=None, *, tol=1e-9):
     if k == 0:
         return Modes(at, np.zeros(0), [], np.zeros(0), np.zeros((0, n)), np.zeros(0, complex))
     Mr, Kr, Cr = Z.T @ M @ Z, Z.T @ K @ Z, Z.T @ C @ Z
-    scale = max(np.abs(Kr).max(), 1e-300)
-    if np.abs(Kr - Kr.T).max() > 1e-8 * scale:
-        raise ModelError("modes: the tangent stiffness is not symmetric (largest difference "
-                         f"{np.abs(Kr - Kr.T).max():.3g} against {scale:.3g}): non-conservative forces "
-                         "(a follower force, friction) have no real undamped modes")
+    _check_symmetric(Kr)
     Kr = 0.5 * (Kr + Kr.T)
     L = np.linalg.cholesky(0.5 * (Mr + Mr.T))
     Linv = np.linalg.inv(L)
@@ -121,18 +181,156 @@ def modes(model, at=None, *, tol=1e-9):
     omega_squared, Y = omega_squared[order], Y[:, order]
     phi = Linv.T @ Y  # mass-normalized: phi^T Mr phi = I
     largest = max(np.abs(omega_squared).max(), 1e-300)
-    kinds = ["rigid-body" if abs(w2) <= tol * largest else "unstable" if w2 < 0 else "vibration"
-             for w2 in omega_squared]
+    kinds = _kinds(omega_squared, tol * largest)
     omega = np.sqrt(np.abs(omega_squared))
     modal_damping = np.einsum("ij,ik,kj->j", phi, Cr, phi)
-    damping_ratios = np.array([c / (2.0 * w) if kind != "rigid-body" else np.nan
-                               for c, w, kind in zip(modal_damping, omega, kinds)])
-    shapes = (Z @ phi).T
-    for row in shapes:
-        big = row[np.argmax(np.abs(row))]
-        row /= big
+    damping_ratios = _damping_ratios(modal_damping, omega, kinds)
+    shapes = _largest_entry_one((Z @ phi).T)
     A = np.block([[np.zeros((k, k)), np.eye(k)],
                   [-np.linalg.solve(Mr, Kr), -np.linalg.solve(Mr, Cr)]])
+    eigenvalues = np.linalg.eigvals(A)
+    eigenvalues = eigenvalues[np.argsort(np.abs(eigenvalues), kind="stable")]
+    return Modes(at, omega_squared, kinds, damping_ratios, shapes, eigenvalues)
+
+
+def _check_symmetric(Kr, scale=None):
+    """ModelError unless the reduced tangent stiffness Kr is symmetric to
+    1e-8 of its largest entry (or of ``scale``)."""
+    scale = max(np.abs(Kr).max(initial=0.0) if scale is None else scale, 1e-300)
+    asymmetry = np.abs(Kr - Kr.T).max(initial=0.0)
+    if asymmetry > 1e-8 * scale:
+        raise ModelError("modes: the tangent stiffness is not symmetric (largest difference "
+                         f"{asymmetry:.3g} against {scale:.3g}): non-conservative forces "
+                         "(a follower force, friction) have no real undamped modes")
+
+
+def _kinds(omega_squared, rigid):
+    return ["rigid-body" if abs(w2) <= rigid else "unstable" if w2 < 0 else "vibration" for w2 in omega_squared]
+
+
+def _damping_ratios(modal_damping, omega, kinds):
+    return np.array([c / (2.0 * w) if kind != "rigid-body" else np.nan
+                     for c, w, kind in zip(modal_damping, omega, kinds)])
+
+
+def _largest_entry_one(shapes):
+    """Each row scaled (in place) so that its largest entry is +1."""
+    for row in shapes:
+        row /= row[np.argmax(np.abs(row))]
+    return shapes
+
+
+# --- the sparse path: the k lowest modes of a large model ---------------------
+
+
+def _scipy_sparse(automatic, n):
+    """(scipy.sparse, scipy.sparse.linalg, scipy.linalg), or ModelError."""
+    try:
+        from scipy import linalg, sparse
+        from scipy.sparse import linalg as sparse_linalg
+    except ImportError:
+        why = (f"the model has {n} coordinates (more than {SPARSE_ABOVE}), so modes computes the "
+               f"{DEFAULT_COUNT} lowest with sparse linear algebra" if automatic else "count=... asks for the sparse path")
+        raise ModelError(f"modes: {why}, which needs SciPy (pip install scipy); without it, "
+                         "mb.modes(model) on a model of up to a few hundred coordinates is dense") from None
+    return sparse, sparse_linalg, linalg
+
+
+def _sparse_matrix(triplet, sparse):
+    """A (rows, cols, values, shape) triplet from the core as a CSC matrix
+    (repeated entries summed)."""
+    rows, cols, values, shape = triplet
+    return sparse.csc_matrix((np.asarray(values, dtype=float),
+                              (np.asarray(rows, dtype=int), np.asarray(cols, dtype=int))),
+                             shape=tuple(int(s) for s in shape))
+
+
+def _saddle_lu(A, J, sparse, sparse_linalg):
+    """The sparse LU of [[A, J^T], [J, 0]] (A n x n, J rows x n), and a
+    solve of [[A, J^T], [J, 0]] [x; mu] = [b; 0] for x (b n or n x p)."""
+    n, rows = A.shape[0], J.shape[0]
+    augmented = sparse.bmat([[A, J.T], [J, None]], format="csc") if rows else sparse.csc_matrix(A)
+    lu = sparse_linalg.splu(augmented)
+
+    def solve(b):
+        b = np.asarray(b, dtype=float)
+        padded = np.concatenate([b, np.zeros((rows,) + b.shape[1:])])
+        return lu.solve(padded)[:n]
+
+    return solve
+
+
+def _sparse_modes(core, at, count, tol, scipy):
+    sparse, sparse_linalg, linalg = scipy
+    n = len(at.q)
+    inputs = np.array([i["initial"] for i in core.inputs], dtype=float)
+    tangent = _core.tangent_at(core, at.q, np.zeros(n), at.t, inputs, list(at.dropped_rows))
+    M, K, C, Phi_q = (_sparse_matrix(tangent[k], sparse) for k in ("M", "K", "C", "Phi_q"))
+    kept = np.setdiff1d(np.arange(Phi_q.shape[0]), np.asarray(tangent["dropped_rows"], dtype=int))
+    J = Phi_q[kept]
+    dof = n - len(kept)  # the kept rows are independent
+    if count is None:
+        count = min(DEFAULT_COUNT, dof)
+    elif count > dof:
+        raise ModelError(f"modes: count {count} is more than the {dof} degree{'' if dof == 1 else 's'} of "
+                         "freedom the joints and drivers leave")
+    if count == 0:
+        return Modes(at, np.zeros(0), [], np.zeros(0), np.zeros((0, n)), np.zeros(0, complex))
+    Ms, Ks = 0.5 * (M + M.T), 0.5 * (K + K.T)
+    # the scale of omega^2: the largest ratio of K's diagonal to M's
+    m_diag, k_diag = Ms.diagonal(), np.abs(Ks.diagonal())
+    massive = m_diag > 0
+    scale = float(np.max(k_diag[massive] / m_diag[massive])) if massive.any() else 0.0
+    scale = scale if scale > 0 else 1.0  # nothing stiff: every mode rigid
+    rng = np.random.default_rng(20240528)  # the same modes every call
+
+    if dof <= 2 * count + 20:
+        # few degrees of freedom (too few for Lanczos): all of them, in an
+        # orthonormal basis of null(J) from the projection [[I, J^T], [J, 0]]
+        project = _saddle_lu(sparse.identity(n, format="csc"), J, sparse, sparse_linalg)
+        Z = np.linalg.svd(project(rng.standard_normal((n, dof + 5))), full_matrices=False)[0][:, :dof]
+        Kr = Z.T @ (K @ Z)
+        _check_symmetric(Kr)
+        omega_squared, Y = linalg.eigh(0.5 * (Kr + Kr.T), Z.T @ (Ms @ Z))
+        phi = Z @ Y
+    else:
+        sigma, solve = None, None
+        for attempt in range(4):  # just below 0; away from an eigenvalue met exactly
+            sigma = -1e-9 * scale * 7.0**attempt
+            try:
+                solve = _saddle_lu(Ks - sigma * Ms, J, sparse, sparse_linalg)
+                break
+            except RuntimeError:  # exactly singular: sigma is an eigenvalue
+                continue
+        if solve is None:
+            raise ModelError("modes: the shifted tangent [[K - sigma M, Phi_q^T], [Phi_q, 0]] is singular "
+                             "for every shift tried")
+        # x = OP (M y) lies in null(J): (K - sigma M) x + J^T mu = M y, J x = 0
+        operator = sparse_linalg.LinearOperator((n, n), matvec=solve, dtype=float)
+        ncv = min(dof, max(2 * count + 1, 20))
+        try:
+            omega_squared, phi = sparse_linalg.eigsh(Ks, k=count, M=Ms, sigma=sigma, which="LM", OPinv=operator,
+                                                     ncv=ncv, v0=rng.standard_normal(n))
+        except sparse_linalg.ArpackError as e:  # (ArpackNoConvergence among them)
+            raise ModelError(f"modes: the sparse eigensolver (ARPACK) failed: {e}") from None
+        # Rayleigh-Ritz in the modes found: M-orthonormal, K diagonal
+        Kr = phi.T @ (K @ phi)
+        probes = solve(rng.standard_normal((n, 4)))  # and motions the joints allow of other kinds
+        probes /= np.sqrt(np.einsum("ij,ij->j", probes, Ms @ probes))
+        basis = np.hstack([phi, probes])
+        _check_symmetric(basis.T @ (K @ basis), scale=max(scale, np.abs(basis.T @ (Ks @ basis)).max()))
+        omega_squared, Y = linalg.eigh(0.5 * (Kr + Kr.T), phi.T @ (Ms @ phi))
+        phi = phi @ Y
+    order = np.argsort(np.abs(omega_squared), kind="stable")[:count]
+    omega_squared, phi = omega_squared[order], phi[:, order]
+    largest = max(scale, np.abs(omega_squared).max())
+    kinds = _kinds(omega_squared, tol * largest)
+    omega = np.sqrt(np.abs(omega_squared))
+    Cm = phi.T @ (C @ phi)
+    damping_ratios = _damping_ratios(np.diag(Cm), omega, kinds)
+    shapes = _largest_entry_one(np.array(phi.T))
+    k = len(omega)
+    A = np.block([[np.zeros((k, k)), np.eye(k)], [-np.diag(omega_squared), -Cm]])
     eigenvalues = np.linalg.eigvals(A)
     eigenvalues = eigenvalues[np.argsort(np.abs(eigenvalues), kind="stable")]
     return Modes(at, omega_squared, kinds, damping_ratios, shapes, eigenvalues)
