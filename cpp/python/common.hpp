@@ -54,6 +54,13 @@ inline py::dict to_python(Trajectory&& tr) {
   }
   out["events"] = events;
   out["dropped_rows"] = tr.dropped_rows;
+  if (const py::ssize_t count = py::ssize_t(tr.sensitivity_names.size())) {
+    const py::ssize_t w = 2 * tr.n + tr.m;
+    out["sensitivity_names"] = tr.sensitivity_names;
+    const py::ssize_t ks = py::ssize_t(tr.sensitivities.size()) / (count * w);
+    out["sensitivities"] = to_numpy(std::move(tr.sensitivities), {ks, count, w});
+    out["sensitivity_a"] = to_numpy(std::move(tr.sensitivity_a), {ks, count, tr.n});
+  }
   return out;
 }
 

@@ -73,7 +73,8 @@ void bind_runs(py::module_& m) {
 
   m.def(
       "simulate",
-      [](const Model& model, const py::dict& options, py::object progress) {
+      [](const Model& model, const py::dict& options, py::object progress,
+         const std::vector<std::string>& sensitivities) {
         SimulationOptions o = options_from(options, "simulate");
         // between steps: let Ctrl-C through, and report progress if asked
         // (a borrowed pointer: the std::function is copied without the GIL)
@@ -98,11 +99,12 @@ void bind_runs(py::module_& m) {
         Trajectory tr;
         {
           py::gil_scoped_release release;
-          tr = simulate(model, o);
+          tr = simulate(model, o, {}, sensitivities);
         }
         return to_python(std::move(tr));
       },
       py::arg("model"), py::arg("options"), py::arg("progress") = py::none(),
+      py::arg("sensitivities") = std::vector<std::string>{},
       "Runs simulate(model, options): options by the names of SimulationOptions' fields.");
 
   py::class_<SimulatorState>(m, "SimulatorState")

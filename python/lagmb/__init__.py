@@ -18,7 +18,7 @@ from .functions import (Constant, Harmonic, Input, Linear, Polynomial, SmoothSte
                         time_function_from_dict)
 from .handles import Body, Handle
 from .model import Model
-from .result import BodyPath, Result
+from .result import BodyPath, Result, Sensitivity
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import methods, simulate, solve_accelerations
 from .simulator import Simulator
@@ -48,6 +48,7 @@ __all__ = [
     "RedundantConstraintWarning",
     "AssemblyWarning",
     "Result",
+    "Sensitivity",
     "Scene",
     "SceneError",
     "SimulationError",

@@ -179,6 +179,10 @@ class Result:
             self.stats["method"] = name
         self.events = [dict(e) for e in raw.get("events", [])]
         self.redundant_rows = list(raw.get("dropped_rows", []))
+        # forward sensitivities (simulate(..., sensitivities=[...])): (k, count, 2n + m) and (k, count, n)
+        self.sensitivity_names = list(raw.get("sensitivity_names", []))
+        self._sensitivities = raw.get("sensitivities")
+        self._sensitivity_a = raw.get("sensitivity_a")
 
     def __len__(self):
         return len(self._t)
@@ -310,6 +314,18 @@ class Result:
         return self._finite(self._core.velocity_residual(self.t, self.q, self.v, self._inputs),
                             "the velocity residual")
 
+    def sensitivity(self, parameter):
+        """The derivative of this run with respect to a parameter it was
+        run with ``sensitivities=[...]`` for: a :class:`Sensitivity`, whose
+        ``q``, ``v``, ``a``, ``lam`` and accessors (``body``, ``point``,
+        ``reaction``, ...) are d/dp of this Result's. ModelError for a name
+        the run has no sensitivity to (naming those it has)."""
+        if parameter not in self.sensitivity_names:
+            have = ", ".join(repr(n) for n in self.sensitivity_names)
+            raise ModelError(f"Result.sensitivity: this run has no sensitivity to {parameter!r}; "
+                             + (f"it has {have}" if have else "run simulate(..., sensitivities=[...]) for them"))
+        return Sensitivity(self, self.sensitivity_names.index(parameter), parameter)
+
     def _finite(self, values, what):
         """values, read-only, if all are finite; else SimulationError naming
         the first output where they overflow (the states themselves are finite)."""
@@ -323,3 +339,127 @@ class Result:
     def __repr__(self):
         return (f"<lagmb.Result: {len(self.t)} outputs, t = {self.t[0]:g}..{self.t[-1]:g} s, "
                 f"{self.stats.get('steps', 0)} steps>")
+
+
+def _difference(plus, minus, scale):
+    """(plus - minus) * scale for arrays, attribute by attribute for paths
+    (BodyPath, JointPath, FramePath)."""
+    if isinstance(plus, np.ndarray) or np.isscalar(plus):
+        return (np.asarray(plus, dtype=float) - np.asarray(minus, dtype=float)) * scale
+    out = _Derivative()
+    for key, value in vars(plus).items():
+        if isinstance(value, np.ndarray):
+            setattr(out, key, _frozen((value - getattr(minus, key)) * scale))
+    return out
+
+
+def _sum(a, b):
+    if isinstance(a, np.ndarray):
+        return _frozen(a + b)
+    out = _Derivative()
+    for key, value in vars(a).items():
+        setattr(out, key, _frozen(value + getattr(b, key)))
+    return out
+
+
+class _Derivative:
+    """The derivative of a path (BodyPath, JointPath, FramePath): the same
+    attributes, each d/dp of the path's."""
+
+    def __repr__(self):
+        return f"<lagmb derivative of a path: {', '.join(sorted(vars(self)))}>"
+
+
+class Sensitivity:
+    """The derivative of a run with respect to one parameter p
+    (``Result.sensitivity(name)``, from ``simulate(..., sensitivities=[...])``).
+
+    - ``parameter``: its name; ``value``: p in the run.
+    - ``q``, ``v``, ``a`` (k, n) and ``lam`` (k, m): dq/dp, dv/dp, da/dp and
+      dlam/dp at the outputs, integrated by IDAS beside the run (a is the
+      derivative of dv/dp; lam is the run's GGL multiplier, equal to the
+      Result's to the integration tolerance).
+    - ``body(b)``, ``point(b, local_point)``, ``joint(j)``,
+      ``multipliers(e)``, ``reaction(e, frame)``, ``effort(d)``, ``energy``:
+      d/dp of the Result's: for a quantity f(q, v, a, lam; p), the total
+      derivative f_y s + f_p, its first part by a central difference along
+      the sensitivity s (f is smooth in the state: a relative step of 1e-6,
+      error about 1e-10 relative) and f_p (a reaction's geometry, a spring's
+      energy) by a central difference between the models at p +- 1e-6 abs(p)
+      evaluated at the run's states.
+    """
+
+    def __init__(self, result, index, parameter):
+        self._result = result
+        self.parameter = parameter
+        values = {p["name"]: p["value"] for p in result._core.parameters}
+        self.value = float(values[parameter])
+        n, m = result.q.shape[1], result._lam.shape[1]
+        k = len(result.t)
+        s = np.asarray(result._sensitivities)[:k, index]
+        self.q = _frozen(s[:, :n])
+        self.v = _frozen(s[:, n:2 * n])
+        self.lam = _frozen(s[:, 2 * n:2 * n + m])
+        self.a = _frozen(np.asarray(result._sensitivity_a)[:k, index])
+        self._along = None
+
+    def _results(self):
+        """The Results moved by +- h along the sensitivity (the model of the
+        run), the step h, and the Results of the run's states under the
+        models at p +- delta, and delta."""
+        if self._along is None:
+            r = self._result
+            pairs = [(r.q, self.q), (r.v, self.v), (r.a, self.a), (r._lam, self.lam)]
+            h = min((1.0 + np.abs(x).max(initial=0.0)) / np.abs(sx).max()
+                    for x, sx in pairs if sx.size and np.abs(sx).max() > 0) if any(
+                sx.size and np.abs(sx).max() > 0 for _, sx in pairs) else 1.0
+            h *= 1e-6
+
+            def raw(sign, core=None):
+                return dict(t=r.t, q=r.q + sign * h * self.q, v=r.v + sign * h * self.v,
+                            a=r.a + sign * h * self.a, lam=r._lam + sign * h * self.lam, inputs=r._inputs,
+                            stats=r.stats, dropped_rows=r.redundant_rows)
+
+            along = [Result(r.model, r._core, raw(sign)) for sign in (1.0, -1.0)]
+            delta = 1e-6 * (abs(self.value) if self.value != 0.0 else 1.0)
+            at_p = [Result(r.model, r._core.with_parameters({self.parameter: self.value + sign * delta}), raw(0.0))
+                    for sign in (1.0, -1.0)]
+            self._along = (along, h, at_p, delta)
+        return self._along
+
+    def _derivative(self, ask):
+        along, h, at_p, delta = self._results()
+        return _sum(_difference(ask(along[0]), ask(along[1]), 0.5 / h),
+                    _difference(ask(at_p[0]), ask(at_p[1]), 0.5 / delta))
+
+    def body(self, body):
+        """d/dp of ``Result.body(body)``: its attributes' derivatives."""
+        return self._derivative(lambda r: r.body(body))
+
+    def point(self, body, local_point):
+        """d/dp of ``Result.point(body, local_point)``."""
+        return self._derivative(lambda r: r.point(body, local_point))
+
+    def joint(self, joint):
+        """d/dp of ``Result.joint(joint)``."""
+        return self._derivative(lambda r: r.joint(joint))
+
+    def multipliers(self, element):
+        """d/dp of ``Result.multipliers(element)``."""
+        return self._derivative(lambda r: r.multipliers(element))
+
+    def reaction(self, element, frame="global"):
+        """d/dp of ``Result.reaction(element, frame)``."""
+        return self._derivative(lambda r: r.reaction(element, frame))
+
+    def effort(self, driver):
+        """d/dp of ``Result.effort(driver)``."""
+        return self._derivative(lambda r: r.effort(driver))
+
+    @property
+    def energy(self):
+        """d/dp of ``Result.energy``."""
+        return self._derivative(lambda r: r.energy)
+
+    def __repr__(self):
+        return f"<lagmb.Sensitivity to {self.parameter} = {self.value:g}: {len(self.q)} outputs>"

@@ -29,7 +29,8 @@ def _translate(model=None, core=None):
 def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n_out"], t_out=None, t0=_D["t0"],
              max_step=None, max_steps=_D["max_steps"], formulation=_D["formulation"], integrator=None,
              max_order=None, baumgarte=None, progress=None, analysis=_D["analysis"], start=_D["start"], step=None,
-             parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None):
+             parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None,
+             sensitivities=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
@@ -126,6 +127,22 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     without changing ``model``; the Result's reactions and energy are of
     that run. Each value is checked as ``add_*`` checks it.
 
+    ``sensitivities=["rod.mass", "spring.stiffness", ...]`` integrates,
+    beside the run, the derivatives of its solution with respect to those
+    parameters (``model.parameters()`` names them: every number given to an
+    element and the bodies' initial coordinates and velocities):
+    ``r.sensitivity(name)`` gives dq/dp, dv/dp, da/dp, dlam/dp and the
+    derivatives of positions, points, reactions and efforts (a
+    :class:`~lagmb.Sensitivity`). IDAS integrates them with the GGL
+    form (which ``method="auto"`` then runs; another method is a
+    ModelError), its staggered corrector reusing the run's Newton matrix:
+    F_y s + F_y' s' + F_p = 0 with the form's exact blocks, F_p a central
+    difference of the residual between the models at p +- 1e-4 abs(p), and
+    the initial sensitivities from those models' consistent starts; they
+    take part in the error test. ModelError for a model with stops or
+    contact (the motion jumps at their events), joint friction, or a fully
+    driven model.
+
     Raises ModelError for bad arguments, AssemblyError if the joints cannot
     be assembled, SimulationError (with ``.t`` and the partial ``.result``)
     if the integrator (or the kinematic Newton solve) fails, or a user
@@ -164,9 +181,13 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
         raise ModelError(f"progress must be a callable t -> None, got {progress!r}")
     analysis = _text(analysis, "analysis")  # the core parses the choice
     core = _parameters(model, parameters, "simulate")
+    if sensitivities is None:
+        sensitivities = []
+    elif isinstance(sensitivities, str) or not all(isinstance(x, str) for x in sensitivities):
+        raise ModelError(f"simulate: sensitivities must be a list of parameter names, got {sensitivities!r}")
     with _translate(model, core):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
-        raw = _core.simulate(core, options, progress)
+        raw = _core.simulate(core, options, progress, list(sensitivities))
     model._warn_redundant(raw.get("dropped_rows", []))
     if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
         model._warn_moved(core, raw["q"][0])

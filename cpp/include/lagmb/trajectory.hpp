@@ -99,6 +99,12 @@ struct Trajectory {
   /// that model with the run's parameter values (parameters.hpp). Reactions,
   /// energy and residuals of these outputs (outputs.hpp) are of this model.
   std::shared_ptr<const Model> run_model;
+  /// Forward sensitivities (simulate with sensitivities): for output k and
+  /// parameter i (of sensitivity_names), d(q, v, lam)/dp_i at
+  /// sensitivities[(k * count + i) * (2n + m) ...] and da/dp_i at
+  /// sensitivity_a[(k * count + i) * n ...]. Empty without.
+  std::vector<std::string> sensitivity_names;
+  std::vector<double> sensitivities, sensitivity_a;
   int size() const { return static_cast<int>(t.size()); }
   /// Keeps the first k outputs (a, lam only as far as they were solved).
   void truncate(int k) {
@@ -109,6 +115,9 @@ struct Trajectory {
     a.resize(std::min(a.size(), kk * size_t(n)));
     lam.resize(std::min(lam.size(), kk * size_t(m)));
     inputs.resize(std::min(inputs.size(), kk * size_t(p)));
+    const size_t count = sensitivity_names.size();
+    sensitivities.resize(std::min(sensitivities.size(), kk * count * size_t(2 * n + m)));
+    sensitivity_a.resize(std::min(sensitivity_a.size(), kk * count * size_t(n)));
   }
 };
 

@@ -46,6 +46,14 @@ class DaeFormulation {
   virtual long element_evaluations() const { return 0; }
   /// Joins the run: its dropped rows and run state (Data::join_run).
   virtual void join_run(const Data& run) = 0;
+  /// Forward sensitivities (IDAS): out_i = F_y s_i + F_y' sp_i for each of
+  /// the k directions (s_i, sp_i), with F's exact derivatives at (t, y, y').
+  /// False where the form does not give them (only GGL does).
+  virtual bool sensitivity_products(double t, const double* y, const double* yp, int k, const double* const* s,
+                                    const double* const* sp, double* const* out) {
+    (void)t, (void)y, (void)yp, (void)k, (void)s, (void)sp, (void)out;
+    return false;
+  }
 };
 
 /// What the DAE forms of lagmb share: y starts with (q, v, lam), and
@@ -140,6 +148,15 @@ class GglFormulation final : public MultiplierDae {
   void tolerances(const VecX& atol, double* abstol) const override;
   int residual(double t, const double* y, const double* yp, double* F) override;
   void newton_matrix(double t, double cj, const double* y, const double* yp) override;
+  /// With s = (s_q, s_v, s_lam, s_mu), sp = (s_q', s_v', ...):
+  ///   out1 = s_q' - s_v + (Phi_q^T mu)_q s_q + Phi_q^T s_mu
+  ///   out2 = M s_v' + ((M v')_q + (Phi_q^T lam)_q - Q_q) s_q - Q_v s_v + Phi_q^T s_lam
+  ///   out3 = Phi_q s_q
+  ///   out4 = (Phi_q v + Phi_t)_q s_q + Phi_q s_v
+  /// (the Newton matrix's blocks, unscaled). Without joint friction (its
+  /// load makes Q depend on lam: refused by the runs that ask).
+  bool sensitivity_products(double t, const double* y, const double* yp, int k, const double* const* s,
+                            const double* const* sp, double* const* out) override;
 
  private:
   std::vector<int> jac_F4v_, jac_F1mu_, vq_F4q_, hess_F1q_;

@@ -32,6 +32,9 @@ struct Callbacks {
   bool scale_relative = false;
   EventRunner* events = nullptr;
   bool fresh = false;  // restarted from a new state: weights for h_default until a step is taken
+  SensitivityPlan* sens = nullptr;
+  std::vector<const double*> s, sp;  // scratch of sensitivity_residual_fn
+  std::vector<double*> out;
 };
 
 /// Error weights. An index-k component (k = 2, 3: multipliers and, in the
@@ -84,6 +87,37 @@ int jacobian_fn(sun::real t, sun::real cj, N_Vector y, N_Vector yp, N_Vector, SU
   }
 }
 
+/// The sensitivity residuals F_y s_i + F_y' s_i' + F_p_i (SensitivityPlan).
+int sensitivity_residual_fn(int Ns, sun::real t, N_Vector y, N_Vector yp, N_Vector, N_Vector* yS, N_Vector* ypS,
+                            N_Vector* resS, void* data, N_Vector tmp1, N_Vector tmp2, N_Vector) {
+  auto* cb = static_cast<Callbacks*>(data);
+  try {
+    const double *yy = N_VGetArrayPointer(y), *yyp = N_VGetArrayPointer(yp);
+    cb->s.resize(Ns), cb->sp.resize(Ns), cb->out.resize(Ns);
+    for (int i = 0; i < Ns; ++i) {
+      cb->s[i] = N_VGetArrayPointer(yS[i]);
+      cb->sp[i] = N_VGetArrayPointer(ypS[i]);
+      cb->out[i] = N_VGetArrayPointer(resS[i]);
+    }
+    if (!cb->dae->sensitivity_products(t, yy, yyp, Ns, cb->s.data(), cb->sp.data(), cb->out.data())) return -1;
+    const int N = int(N_VGetLength(y));
+    double *plus = N_VGetArrayPointer(tmp1), *minus = N_VGetArrayPointer(tmp2);
+    for (int i = 0; i < Ns; ++i) {
+      if (int flag = cb->sens->plus[i]->residual(t, yy, yyp, plus)) return flag;
+      if (int flag = cb->sens->minus[i]->residual(t, yy, yyp, minus)) return flag;
+      const double inv = 0.5 / cb->sens->delta[i];
+      double* o = cb->out[i];
+      for (int j = 0; j < N; ++j) o[j] += (plus[j] - minus[j]) * inv;
+      for (int j = 0; j < N; ++j)
+        if (!std::isfinite(o[j])) return 1;
+    }
+    return 0;
+  } catch (...) {
+    cb->error = std::current_exception();
+    return -1;
+  }
+}
+
 int root_fn(sun::real t, N_Vector y, N_Vector, sun::real* g, void* data) {
   auto* cb = static_cast<Callbacks*>(data);
   try {
@@ -104,8 +138,12 @@ struct IdaSession {
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
   sun::SparseLU lu;
+  int Ns = 0;  // forward sensitivities
+  N_Vector *yS = nullptr, *ypS = nullptr;
   ~IdaSession() {
     if (mem) IDAFree(&mem);
+    if (yS) N_VDestroyVectorArray(yS, Ns);
+    if (ypS) N_VDestroyVectorArray(ypS, Ns);
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
     for (N_Vector* v : {&y, &yp, &id, &abstol, &out})
@@ -197,6 +235,7 @@ class IdaStepper final : public Stepper {
       check(IDARootInit(s.mem, plan.events->size(), root_fn), "IDARootInit", s.ctx);
       check(IDASetRootDirection(s.mem, plan.events->directions()), "IDASetRootDirection", s.ctx);
     }
+    if (plan.sensitivities) start_sensitivities(*plan.sensitivities);
   }
 
   const char* name() const override { return "IDA"; }
@@ -233,6 +272,9 @@ class IdaStepper final : public Stepper {
   }
   const double* velocities() const override { return dae_->v(N_VGetArrayPointer(s.y)); }
   void reset(double t, const ConsistentState& state) override {
+    // a jump of the state (an event, a new input) would make the
+    // sensitivities jump too: the runs with sensitivities have neither
+    if (s.Ns) throw std::logic_error("lagmb: a run with sensitivities cannot jump to a new state");
     dae_->initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
     // a new first step, and weights for it (as at the start): the index-2
     // and index-3 weights scale with 1/h, and the last step before the
@@ -253,7 +295,33 @@ class IdaStepper final : public Stepper {
   const double* positions() const override { return dae_->q(N_VGetArrayPointer(s.y)); }
   void restart(double t) override {
     fill_stats(before_);
+    if (s.Ns) {  // the sensitivities go on from where they are (the state is continuous here)
+      for (int i = 0; i < s.Ns; ++i) {
+        check(IDAGetSensDky1(s.mem, t, 0, i, s.yS[i]), "IDAGetSensDky1", s.ctx);
+        check(IDAGetSensDky1(s.mem, t, 1, i, s.ypS[i]), "IDAGetSensDky1", s.ctx);
+      }
+    }
     check(IDAReInit(s.mem, t, s.y, s.yp), "IDAReInit", s.ctx);
+    if (s.Ns) check(IDASensReInit(s.mem, IDA_STAGGERED, s.yS, s.ypS), "IDASensReInit", s.ctx);
+  }
+  void sensitivities(double t, std::vector<VecX>& out, std::vector<VecX>& out_p) override {
+    if (!s.Ns) throw std::logic_error("lagmb: this run has no sensitivities");
+    const int N = dae_->size();
+    out.resize(s.Ns), out_p.resize(s.Ns);
+    long steps = 0;
+    IDAGetNumSteps(s.mem, &steps);
+    for (int i = 0; i < s.Ns; ++i) {
+      out[i].resize(N), out_p[i].resize(N);
+      if (steps == 0 && before_.steps == 0) {  // at the start: no step to interpolate in yet
+        out[i] = plan.sensitivities->s0[i];
+        out_p[i] = plan.sensitivities->sp0[i];
+        continue;
+      }
+      check(IDAGetSensDky1(s.mem, t, 0, i, s.out), "IDAGetSensDky1", s.ctx);
+      out[i] = Eigen::Map<const VecX>(N_VGetArrayPointer(s.out), N);
+      check(IDAGetSensDky1(s.mem, t, 1, i, s.out), "IDAGetSensDky1", s.ctx);
+      out_p[i] = Eigen::Map<const VecX>(N_VGetArrayPointer(s.out), N);
+    }
   }
   void fill_stats(Stats& stats) override {
     const Stats b = before_;
@@ -273,6 +341,27 @@ class IdaStepper final : public Stepper {
   }
 
  private:
+  /// IDAS' forward sensitivities with the staggered corrector (the
+  /// sensitivity systems solved after the state's Newton iteration
+  /// converged, with its Newton matrix), tolerances estimated from the
+  /// state's weights scaled by pbar, and the sensitivities in the error test.
+  void start_sensitivities(SensitivityPlan& sens) {
+    const int N = dae_->size();
+    cb.sens = &sens;
+    s.Ns = sens.count();
+    s.yS = N_VCloneVectorArray(s.Ns, s.y);
+    s.ypS = N_VCloneVectorArray(s.Ns, s.y);
+    if (!s.yS || !s.ypS) throw std::bad_alloc();
+    for (int i = 0; i < s.Ns; ++i) {
+      std::copy(sens.s0[i].data(), sens.s0[i].data() + N, N_VGetArrayPointer(s.yS[i]));
+      std::copy(sens.sp0[i].data(), sens.sp0[i].data() + N, N_VGetArrayPointer(s.ypS[i]));
+    }
+    check(IDASensInit(s.mem, s.Ns, IDA_STAGGERED, sensitivity_residual_fn, s.yS, s.ypS), "IDASensInit", s.ctx);
+    check(IDASetSensParams(s.mem, nullptr, sens.scale.data(), nullptr), "IDASetSensParams", s.ctx);
+    check(IDASensEEtolerances(s.mem), "IDASensEEtolerances", s.ctx);
+    check(IDASetSensErrCon(s.mem, SUNTRUE), "IDASetSensErrCon", s.ctx);
+  }
+
   std::unique_ptr<DaeFormulation> dae_;
   const IntegrationPlan& plan;
   IdaSession s;

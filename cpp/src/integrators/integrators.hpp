@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "formulations/dae.hpp"
@@ -16,6 +17,26 @@
 #include "lagmb/trajectory.hpp"
 
 namespace lagmb {
+
+/// Forward sensitivities s_i = dy/dp_i of a run's solution y(t) to
+/// parameters p_i (IDA on the GGL form only), integrated by IDAS beside y:
+///   F_y s_i + F_y' s_i' + F_p_i = 0,
+/// F_y s + F_y' s' from the formulation's exact blocks
+/// (DaeFormulation::sensitivity_products) and F_p_i by central differences
+/// of F between the models built with p_i +- delta_i (F of the same y, y').
+struct SensitivityPlan {
+  /// The models at p_i +- delta_i (first: the forms below refer to them).
+  std::vector<std::shared_ptr<const Model>> models;
+  std::vector<std::string> names;
+  std::vector<double> delta;  // the step of F's difference in p_i
+  std::vector<double> scale;  // IDAS' pbar: abs(p_i), 1 where p_i = 0
+  /// The GGL forms of the models at p_i + delta_i and p_i - delta_i (joined to the run).
+  std::vector<std::unique_ptr<DaeFormulation>> plus, minus;
+  /// The sensitivities of y and y' at the start: central differences of the
+  /// consistent starts of the models at p_i +- delta_i.
+  std::vector<VecX> s0, sp0;
+  int count() const { return int(names.size()); }
+};
 
 /// What every integrator is asked to do: the run's options (tolerances,
 /// step bounds, progress) read where they are, and what the run derives.
@@ -32,6 +53,8 @@ struct IntegrationPlan {
   /// for it (IntegratorFailure::integrator_gave_up), so that formulation
   /// "auto" runs on with GGL; 0: none (only max_steps).
   long stiff_steps = 0;
+  /// Forward sensitivities to integrate beside the state (null: none).
+  SensitivityPlan* sensitivities = nullptr;
 };
 
 /// Smallest step an integrator may take: 100 ulps of the largest |t| of the
@@ -87,6 +110,12 @@ class Stepper {
   /// Restarts at order 1 from a new consistent state at time t (after a
   /// velocity jump or a change of the equations).
   virtual void reset(double t, const ConsistentState& s) { (void)s; restart(t); }
+  /// The forward sensitivities at time t inside the last step (plan.sensitivities):
+  /// s[i] of y and sp[i] of y' for each parameter, in the formulation's layout.
+  virtual void sensitivities(double t, std::vector<VecX>& s, std::vector<VecX>& sp) {
+    (void)t, (void)s, (void)sp;
+    throw std::logic_error("lagmb: this integrator has no sensitivities");
+  }
 };
 
 using Record = std::function<void(const double* q, const double* v)>;

@@ -130,9 +130,20 @@ class Run {
   long input_changes = 0;  // a Simulator's restarts for new input values (Stats::input_changes)
   std::string method_choice = "given";  // Stats::method_choice
 
+  /// Forward sensitivities to integrate (start_sensitivities; null: none).
+  std::unique_ptr<SensitivityPlan> sensitivities;
+
   /// Appends the output (t, q, v) with the run's input values (and, with
-  /// `solve`, its a and lam): record_output.
+  /// `solve`, its a and lam): record_output; with sensitivities, theirs.
   void record(double t, const double* q, const double* v, bool solve);
+  /// Sets up forward sensitivities to the parameters `names`
+  /// (Model::parameters' names) before the stepper starts: the models at
+  /// p_i +- delta_i (delta_i = 1e-4 abs(p_i), 1e-4 where p_i = 0),
+  /// their GGL forms joined to this run, and the initial sensitivities from
+  /// their consistent starts. ModelError for a method other than GGL with
+  /// IDA, a model with events or joint friction, an unknown or repeated
+  /// name, or a parameter whose change alters which rows are redundant.
+  void start_sensitivities(const std::vector<std::string>& names);
 
   /// A new stepper of the run's method from the consistent state `from` at
   /// time t (plan.t0 = t, the scale of its first step), and a new loop; the
@@ -162,6 +173,9 @@ class Run {
   Stats stats() const;
 
  private:
+  /// Makes the initial sensitivities satisfy the constraints' linearization
+  /// exactly (see run.cpp).
+  void consistent_sensitivities(SensitivityPlan& sens);
   /// Formulation "auto" running the explicit method: after the failure
   /// `why` (its error test, kAutoStiffSteps or max_steps between outputs),
   /// GGL takes over from the last accepted step; false if that is not

@@ -169,13 +169,22 @@ namespace {
 /// simulate of `given`, or of `with_parameters` (the model built from it
 /// with the run's parameters) when not null.
 Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& with_parameters,
-                        const SimulationOptions& o) {
+                        const SimulationOptions& options, const std::vector<std::string>& sensitivities) {
   const Model& model = with_parameters ? *with_parameters : given;
+  // sensitivities are IDAS' on the GGL form: what formulation "auto" runs then
+  SimulationOptions o = options;
+  const bool sensitivities_choose = !sensitivities.empty() && o.formulation == Formulation::kAuto;
+  if (sensitivities_choose) o.formulation = Formulation::kGgl, o.integrator = Integrator::kDefault;
+  // a fully driven model's reactions have sensitivities too: through a dynamic run
+  if (!sensitivities.empty() && o.analysis == Analysis::kAuto) o.analysis = Analysis::kDynamic;
   const Method& method = validate(model, o);
   const auto wall0 = std::chrono::steady_clock::now();
   // what the scene needs: a fully driven model is solved from its constraints alone
   const Analysis analysis = resolve_analysis(model, o);
   if (analysis != Analysis::kDynamic) {
+    if (!sensitivities.empty())
+      throw ModelError(std::string("simulate: sensitivities are integrated beside a dynamic run; analysis \"") +
+                       name_of(analysis) + "\" integrates nothing (use analysis=\"dynamic\" or the default)");
     if (o.start != Start::kGiven)
       throw ModelError(std::string("simulate: start '") + name_of(o.start) + "' applies to a dynamic analysis; the " +
                        "positions of this fully driven model (0 degrees of freedom) follow from its drivers (" +
@@ -206,6 +215,12 @@ Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& 
   // the run (its Data with the inputs at their initial values, start,
   // events, redundancy watch), stepped to t_end
   Run run(given, with_parameters, o, method, /*stop_at_end=*/true);
+  if (!sensitivities.empty()) {
+    run.start_sensitivities(sensitivities);
+    if (sensitivities_choose)
+      run.method_choice = run.outputs.stats.method_choice =
+          "auto: ggl, the run has sensitivities (IDAS integrates them beside the GGL form)";
+  }
   IntegrationPlan& plan = run.plan;
   plan.t_out = output_times(o);
   for (double b : model.breakpoints())
@@ -253,6 +268,10 @@ Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& 
     std::ostringstream msg;
     msg << e.what();
     if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t, run.start.dropped_rows);
+    if (run.sensitivities)
+      msg << " The run integrates sensitivities: their F_p is a difference of the residual over 1e-4 of each "
+             "parameter, good to about 1e-12 of the residual's scale, so an atol much below that in them "
+             "cannot be met (try atol >= 1e-12).";
     if (!output_failure.empty()) msg << " Also, " << output_failure << ".";
     msg << kept();
     throw SimulationError(msg.str(), e.t, std::move(tr));
@@ -281,10 +300,11 @@ Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& 
 
 }  // namespace
 
-Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters) {
+Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters,
+                    const std::vector<std::string>& sensitivities) {
   const std::shared_ptr<const Model> with = with_parameters(model, parameters);
   try {
-    return simulate_run(model, with, options);
+    return simulate_run(model, with, options, sensitivities);
   } catch (SimulationError& e) {  // a failure before the run started has no outputs to point at the model
     if (with) e.partial.run_model = with;
     throw;

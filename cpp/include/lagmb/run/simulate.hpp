@@ -24,7 +24,13 @@ Trajectory simulate(const Model& model, const SimulationOptions& options);
 /// The same run of `model` with other parameter values (parameters.hpp):
 /// the model built with them runs, and the trajectory keeps it
 /// (Trajectory::run_model). Empty `parameters`: simulate(model, options).
-Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters);
+/// `sensitivities`: parameter names whose forward sensitivities the run
+/// integrates beside the state (Trajectory::sensitivities; IDAS on the GGL
+/// form, which formulation "auto" then runs); ModelError where a run cannot
+/// be differentiated (events, joint friction, another method, a fully
+/// driven model).
+Trajectory simulate(const Model& model, const SimulationOptions& options, const ParameterValues& parameters,
+                    const std::vector<std::string>& sensitivities = {});
 
 /// The analysis options.analysis asks for, resolved: dynamic, kinematic or
 /// inverse dynamics. kAuto picks inverse dynamics at 0 DOF (kinematic if
