@@ -247,6 +247,15 @@ def test_a_cart_pole_upright_has_the_textbook_linear_model():
                                atol=1e-6)
     held = mb.linearize(model, inputs=[])
     assert held.B.shape == (4, 0) and held.to_scipy().B.shape == (4, 1)
+    # pushing 1 N: not at rest (the cart accelerates at B's (I + m l^2) / den), so no descriptor form
+    pushed = mb.linearize(model, at=(lin.q, lin.v, 0.0), input_values={"push": 1.0})
+    assert pushed.a[0] == pytest.approx((I + m * l**2) / den, rel=1e-12)
+    with pytest.raises(mb.ModelError, match="not a static equilibrium"):
+        pushed.descriptor()
+    with pytest.raises(mb.ModelError, match="input_values with at=None"):
+        mb.linearize(model, input_values={"push": 1.0})
+    with pytest.raises(mb.ModelError, match=r"no input 'pull'.*push"):
+        mb.linearize(model, at=(lin.q, lin.v), input_values={"pull": 1.0})
 
 
 def test_bad_input_is_named():

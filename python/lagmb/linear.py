@@ -516,6 +516,9 @@ def _operating_point(model, core, at, input_values, who):
             raise ModelError(f"{who}: input {name!r} must be finite, got {value}")
         u[names.index(name)] = value
     if at is None:
+        if input_values:
+            raise ModelError(f"{who}: input_values with at=None: mb.equilibrium holds the inputs at their initial "
+                             "values, so the equilibrium would not be one at these; give at= a consistent state")
         at = equilibrium(model, allow_unstable=True)
     if isinstance(at, Equilibrium):
         if at.model is not model:
