@@ -48,10 +48,12 @@ class DaeFormulation {
   virtual void join_run(const Data& run) = 0;
   /// Forward sensitivities (IDAS): out_i = F_y s_i + F_y' sp_i for each of
   /// the k directions (s_i, sp_i), with F's exact derivatives at (t, y, y').
-  /// False where the form does not give them (only GGL does).
-  virtual bool sensitivity_products(double t, const double* y, const double* yp, int k, const double* const* s,
-                                    const double* const* sp, double* const* out) {
-    (void)t, (void)y, (void)yp, (void)k, (void)s, (void)sp, (void)out;
+  /// `same_state`: (t, y, y') are those of the last call, whose blocks are
+  /// reused (IDAS' corrector iterates on s at a converged state). False
+  /// where the form does not give them (only GGL does).
+  virtual bool sensitivity_products(double t, const double* y, const double* yp, bool same_state, int k,
+                                    const double* const* s, const double* const* sp, double* const* out) {
+    (void)t, (void)y, (void)yp, (void)same_state, (void)k, (void)s, (void)sp, (void)out;
     return false;
   }
 };
@@ -155,11 +157,13 @@ class GglFormulation final : public MultiplierDae {
   ///   out4 = (Phi_q v + Phi_t)_q s_q + Phi_q s_v
   /// (the Newton matrix's blocks, unscaled). Without joint friction (its
   /// load makes Q depend on lam: refused by the runs that ask).
-  bool sensitivity_products(double t, const double* y, const double* yp, int k, const double* const* s,
-                            const double* const* sp, double* const* out) override;
+  bool sensitivity_products(double t, const double* y, const double* yp, bool same_state, int k,
+                            const double* const* s, const double* const* sp, double* const* out) override;
 
  private:
   std::vector<int> jac_F4v_, jac_F1mu_, vq_F4q_, hess_F1q_;
+  // the blocks of the last sensitivity_products state (residual() overwrites d_'s)
+  SpMat sens_Phi_q_, sens_M_, sens_Q_v_, sens_Vq_, sens_H_mu_, sens_T_;
 };
 
 /// Index-3 form, y = (q, v, lam): F1 = q' - v, F2 as above, F3 = Phi(q, t).

@@ -70,34 +70,40 @@ void GglFormulation::newton_matrix(double t, double cj, const double* y, const d
   pin_dropped_multipliers();
 }
 
-bool GglFormulation::sensitivity_products(double t, const double* y, const double* yp, int k, const double* const* s,
-                                          const double* const* sp, double* const* out) {
+bool GglFormulation::sensitivity_products(double t, const double* y, const double* yp, bool same_state, int k,
+                                          const double* const* s, const double* const* sp, double* const* out) {
   if (!model_.friction_groups().empty()) return false;
-  const double *q = y, *v = y + n_, *lam = y + 2 * n_, *mu = y + 2 * n_ + m_, *vp = yp + n_;
   const int n = n_, m = m_;
+  if (!same_state) {
+    // the blocks at (t, y, y'): Phi_q and M(q); H(mu); the momentum tangent
+    // T = (M v')_q + H(lam) - Q_q and -Q_v; Vq
+    const double *q = y, *v = y + n_, *lam = y + 2 * n_, *mu = y + 2 * n_ + m_, *vp = yp + n_;
+    assemble_jacobian(model_, d_, q, t);
+    sens_Phi_q_ = d_.Phi_q;
+    sens_M_ = d_.M;
+    assemble_constraint_hessian(model_, d_, q, t, mu);
+    sens_H_mu_ = d_.H;
+    assemble_constraint_hessian(model_, d_, q, t, lam);
+    assemble_force_derivatives(model_, d_, q, v, t);
+    assemble_mass_derivative(model_, d_, q, vp);
+    sens_T_ = d_.M_qa + d_.H - d_.Q_q;
+    sens_Q_v_ = d_.Q_v;
+    assemble_velocity_jacobian(model_, d_, q, v, t);
+    sens_Vq_ = d_.Vq;
+  }
   using Map = Eigen::Map<const VecX>;
-  // the blocks at (t, y, y'): Phi_q and M(q); H(mu); the momentum tangent
-  // T = (M v')_q + H(lam) - Q_q and -Q_v; Vq
-  assemble_jacobian(model_, d_, q, t);
-  assemble_constraint_hessian(model_, d_, q, t, mu);
-  const SpMat H_mu = d_.H;
-  assemble_constraint_hessian(model_, d_, q, t, lam);
-  assemble_force_derivatives(model_, d_, q, v, t);
-  assemble_mass_derivative(model_, d_, q, vp);
-  const SpMat T = d_.M_qa + d_.H - d_.Q_q;
-  assemble_velocity_jacobian(model_, d_, q, v, t);
   for (int i = 0; i < k; ++i) {
     const Map s_q(s[i], n), s_v(s[i] + n, n), s_lam(s[i] + 2 * n, m), s_mu(s[i] + 2 * n + m, m);
     const Map sp_q(sp[i], n), sp_v(sp[i] + n, n);
     Eigen::Map<VecX> o1(out[i], n), o2(out[i] + n, n), o3(out[i] + 2 * n, m), o4(out[i] + 2 * n + m, m);
-    o1 = sp_q - s_v + H_mu * s_q;
-    o1.noalias() += d_.Phi_q.transpose() * s_mu;
-    o2 = d_.M * sp_v + T * s_q;
-    o2.noalias() -= d_.Q_v * s_v;
-    o2.noalias() += d_.Phi_q.transpose() * s_lam;
-    o3 = d_.Phi_q * s_q;
-    o4 = d_.Vq * s_q;
-    o4.noalias() += d_.Phi_q * s_v;
+    o1 = sp_q - s_v + sens_H_mu_ * s_q;
+    o1.noalias() += sens_Phi_q_.transpose() * s_mu;
+    o2 = sens_M_ * sp_v + sens_T_ * s_q;
+    o2.noalias() -= sens_Q_v_ * s_v;
+    o2.noalias() += sens_Phi_q_.transpose() * s_lam;
+    o3 = sens_Phi_q_ * s_q;
+    o4 = sens_Vq_ * s_q;
+    o4.noalias() += sens_Phi_q_ * s_v;
   }
   return true;
 }

@@ -35,6 +35,11 @@ struct Callbacks {
   SensitivityPlan* sens = nullptr;
   std::vector<const double*> s, sp;  // scratch of sensitivity_residual_fn
   std::vector<double*> out;
+  // the state of the last sensitivity residual and its F_p (one per
+  // parameter): the corrector iterates on s at one converged state
+  double sens_t = 0.0;
+  VecX sens_y, sens_yp;
+  std::vector<VecX> F_p;
 };
 
 /// Error weights. An index-k component (k = 2, 3: multipliers and, in the
@@ -99,17 +104,25 @@ int sensitivity_residual_fn(int Ns, sun::real t, N_Vector y, N_Vector yp, N_Vect
       cb->sp[i] = N_VGetArrayPointer(ypS[i]);
       cb->out[i] = N_VGetArrayPointer(resS[i]);
     }
-    if (!cb->dae->sensitivity_products(t, yy, yyp, Ns, cb->s.data(), cb->sp.data(), cb->out.data())) return -1;
     const int N = int(N_VGetLength(y));
-    double *plus = N_VGetArrayPointer(tmp1), *minus = N_VGetArrayPointer(tmp2);
+    const Eigen::Map<const VecX> y_now(yy, N), yp_now(yyp, N);
+    const bool same = int(cb->F_p.size()) == Ns && cb->sens_t == t && cb->sens_y == y_now && cb->sens_yp == yp_now;
+    if (!cb->dae->sensitivity_products(t, yy, yyp, same, Ns, cb->s.data(), cb->sp.data(), cb->out.data()))
+      return -1;
+    if (!same) {  // F_p = (F(p + delta) - F(p - delta)) / (2 delta) at this state
+      cb->F_p.resize(Ns);
+      double *plus = N_VGetArrayPointer(tmp1), *minus = N_VGetArrayPointer(tmp2);
+      for (int i = 0; i < Ns; ++i) {
+        if (int flag = cb->sens->plus[i]->residual(t, yy, yyp, plus)) return cb->F_p.clear(), flag;
+        if (int flag = cb->sens->minus[i]->residual(t, yy, yyp, minus)) return cb->F_p.clear(), flag;
+        cb->F_p[i] = (Eigen::Map<const VecX>(plus, N) - Eigen::Map<const VecX>(minus, N)) * (0.5 / cb->sens->delta[i]);
+      }
+      cb->sens_t = t, cb->sens_y = y_now, cb->sens_yp = yp_now;
+    }
     for (int i = 0; i < Ns; ++i) {
-      if (int flag = cb->sens->plus[i]->residual(t, yy, yyp, plus)) return flag;
-      if (int flag = cb->sens->minus[i]->residual(t, yy, yyp, minus)) return flag;
-      const double inv = 0.5 / cb->sens->delta[i];
-      double* o = cb->out[i];
-      for (int j = 0; j < N; ++j) o[j] += (plus[j] - minus[j]) * inv;
-      for (int j = 0; j < N; ++j)
-        if (!std::isfinite(o[j])) return 1;
+      Eigen::Map<VecX> o(cb->out[i], N);
+      o += cb->F_p[i];
+      if (!o.allFinite()) return 1;
     }
     return 0;
   } catch (...) {
