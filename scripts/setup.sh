@@ -1,7 +1,7 @@
 #!/bin/sh
 # Installs what lagmb needs and is missing: Eigen 3.4, SUNDIALS and SuiteSparse (apt, on
 # Debian/Ubuntu), then the Python build tools, and the package with its
-# test, plot, fmu, robots, mjcf and docs extras. Usage: scripts/setup.sh PYTHON
+# test, plot, fmu, robots, mjcf, docs and sweep extras. Usage: scripts/setup.sh PYTHON
 set -eu
 PYTHON=${1:-python3}
 
@@ -36,8 +36,8 @@ fi
 # pip's whole output is kept in build/setup-pip.log and its end shown if it fails.
 mkdir -p build
 log=build/setup-pip.log
-echo "setup: building lagmb (pip install .[test,plot,fmu,robots,mjcf,docs]; log in $log)"
-( "$PYTHON" -m pip install -v --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf,docs]" 2>&1
+echo "setup: building lagmb (pip install .[test,plot,fmu,robots,mjcf,docs,sweep]; log in $log)"
+( "$PYTHON" -m pip install -v --disable-pip-version-check --no-build-isolation ".[test,plot,fmu,robots,mjcf,docs,sweep]" 2>&1
   echo $? > "$log.status" ) | tee "$log" | grep --line-buffered -E '^ *\[[0-9]+/[0-9]+\] |^\*\*\* |^Successfully installed' || true
 status=$(cat "$log.status")
 rm -f "$log.status"

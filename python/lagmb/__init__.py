@@ -28,6 +28,7 @@ from .linear import Descriptor, LinearSystem, Modes, linearize, modes
 from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
+from .studies import sweep
 
 from ._version import __version__  # noqa: F401
 SUNDIALS_VERSION = _core.sundials_version
@@ -70,6 +71,7 @@ __all__ = [
     "equilibrium",
     "modes",
     "Modes", "LinearSystem", "Descriptor", "linearize",
+    "sweep",
     "JointSpace",
     "inverse_dynamics",
     "UrdfError",

@@ -152,6 +152,43 @@ class Model:
             self._compiled = self._spec.compile()
         return self._compiled
 
+    def to_text(self):
+        """The model's description as text (``ModelSpec``'s, as the FMU
+        carries it): every element with its values as given, numbers to 17
+        digits; :meth:`from_text` reads it back to a model that compiles to
+        the same numbers. ModelError for a model with a Python callable (it
+        has no text). Frames and shapes (pictures, not equations) are not in
+        it."""
+        return self._spec.to_text()
+
+    @classmethod
+    def from_text(cls, text):
+        """The model :meth:`to_text` described."""
+        if not isinstance(text, str):
+            raise ModelError(f"Model.from_text: text must be a string, got {type(text).__name__}")
+        spec = _core.ModelSpec.from_text(text)
+        model = cls(dimension=spec.dimension)
+        model._spec = spec
+        for line in text.splitlines():
+            if line.startswith("gravity "):
+                g = [float(x) for x in line.split()[1:]]
+                model.gravity = tuple(g[:model.dimension]) if any(g) else None
+                break
+        return model
+
+    def coordinate_names(self):
+        """The names of the coordinates q in order, as the FMU names them:
+        body.x, body.y, body.angle in the plane; body.x, .y, .z, .e0 ...
+        .e3 (Euler parameters) in space."""
+        core = self.compiled()
+        names = [f"q{i}" for i in range(core.n_coordinates)]
+        for name, _ in self._spec.bodies:
+            first, count = core.body_coordinates(name)
+            suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")
+            for k in range(count):
+                names[first + k] = f"{name}.{suffixes[k]}"
+        return names
+
     def parameters(self):
         """{name: value} of every number given to an element that a run may
         change (``simulate(..., parameters={...})``, ``Simulator``, the FMU's
