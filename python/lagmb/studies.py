@@ -32,7 +32,8 @@ from .progress import Progress
 from .simulation import simulate
 
 # the settings a case may vary beside the model's parameters (simulate's keywords)
-RUN_SETTINGS = ("t_end", "rtol", "atol", "method", "max_step", "n_out", "max_steps")
+RUN_SETTINGS = ("t_end", "rtol", "atol", "method", "formulation", "integrator", "analysis", "start", "max_step",
+                "n_out", "max_steps")
 _STORE_FORMAT = 1
 
 
@@ -481,8 +482,9 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     (:func:`monte_carlo`, :func:`latin_hypercube`, :func:`sobol`). Names are
     those of ``model.parameters()`` (the FMU's and ``lagmb info``'s:
     ``"crank.mass"``, ``"spring.stiffness"``, ``"rod.angle.start"``) and the
-    run settings ``t_end``, ``rtol``, ``atol``, ``method``, ``max_step``,
-    ``n_out``, ``max_steps``. Every name and value is checked before any
+    run settings ``t_end``, ``rtol``, ``atol``, ``method``, ``formulation``,
+    ``integrator``, ``analysis``, ``start``, ``max_step``, ``n_out``,
+    ``max_steps``. Every name and value is checked before any
     case runs (ModelError naming the case: an unknown name lists the
     parameters; a value the element refuses gives the element's message).
 
