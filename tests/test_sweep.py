@@ -181,3 +181,12 @@ def test_bad_input_is_refused_before_any_case_runs():
     with pytest.raises(mb.ModelError, match="pickle"):
         with ProcessPoolExecutor(1) as ex:
             mb.sweep(s, {"rod.mass": [1.0]}, t_end=0.1, outputs={"x": lambda r: 0.0}, executor=ex, progress=False)
+
+
+def test_run_settings_vary_like_parameters_method_included():
+    ds = mb.sweep(scene(), [{"method": "ggl"}, {"method": "projection-erk", "rtol": 1e-10}], t_end=0.1,
+                  analysis="dynamic", outputs={"x_end": slider_x_end}, progress=False)
+    assert list(ds["method"].values) == ["ggl", "projection-erk"] and np.isnan(ds["rtol"].values[0])
+    alone = scene().run(t_end=0.1, method="projection-erk", rtol=1e-10, analysis="dynamic")
+    assert ds["x_end"].values[1] == alone.body("slider").position[-1, 0]
+    assert ds["x_end"].values[0] == pytest.approx(ds["x_end"].values[1], abs=1e-6)
