@@ -7,6 +7,9 @@
     lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T]
                    [-o table.json] [--plot out.png] [--quiet]
     lagmb modes SCENE [--at-time T] [--count K] [--gif out.gif] [--mode I] [--view ELEV,AZIM]
+    lagmb sweep SCENE --vary NAME=SPEC [--vary ...] [--output KIND[=ARG] ...] [-o study.zarr]
+                [--workers N | --scheduler ADDRESS] [--t-end T] [--batch-size B]
+    lagmb sweep --plot study.zarr [-o study.png]
     lagmb demo [--plot out.png] [--quiet]
 
 Exit status: 0 done; 2 a usage or scene error (one line naming the file,
@@ -15,6 +18,8 @@ computed until then are still written to -o, if given); 3 an internal error,
 a bug in lagmb (one line; LAGMB_TRACEBACK=1 shows the traceback); 130
 interrupted (Ctrl-C). lagmb modes exits 1 where the scene has no static
 equilibrium (a free body under gravity) or its joints cannot be closed.
+lagmb sweep exits 0 when at least one case ran (failed cases are listed),
+1 when every case failed.
 """
 
 import argparse
@@ -135,6 +140,8 @@ def _parser():
                        help="viewpoint of a spatial model's --gif, degrees (default: [output] view, else 25,-60)")
     _robot_options(modes)
 
+    _sweep_parser(sub)
+
     demo = sub.add_parser("demo", help="simulate the seed pendulum and check it against closed forms")
     demo.add_argument("--plot", metavar="PNG", help="write a plot of angle and pin force")
     demo.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
@@ -169,6 +176,8 @@ def _main(args):
             return _fmu(args)
         if args.command == "modes":
             return _modes(args)
+        if args.command == "sweep":
+            return _sweep(args)
         return _run(args)
     except _Exit as e:
         print(f"lagmb {args.command}: " + " ".join(str(e).splitlines()), file=sys.stderr)
@@ -660,6 +669,426 @@ def _modes_table(scene, found, t, count=None):
     if "rigid-body" in found.kinds[:len(rows)]:
         lines.append("  rigid-body: a motion nothing resists (frequency 0)")
     return lines
+
+
+# --- sweep ----------------------------------------------------------------------
+
+_SWEEP_KINDS = {  # --output KIND: what its ARG names (None: no ARG)
+    "peak_reaction": "a joint or driver",
+    "peak_effort": "a driver",
+    "final": "a coordinate",
+    "energy_drift": None,
+}
+_SWEEP_ROWS = 20          # more cases than this: the first and last rows and each output's range
+_SWEEP_ENDS = 5           # rows shown at each end then
+_SWEEP_MAX_CASES = 10**8  # a typo such as 0:1:1e9 is refused, not a machine filled with case lists
+_INTEGER_SETTINGS = ("n_out", "max_steps")
+
+
+def _sweep_parser(sub):
+    sweep = sub.add_parser(
+        "sweep", help="a parameter study: a scene run over a grid of parameter values",
+        description="Run a scene once per combination of the --vary values (mb.sweep): in this process, on "
+                    "N processes (--workers N) or on a Dask cluster (--scheduler ADDRESS). Print each case's "
+                    "parameters, status and outputs (for many cases the first and last rows and each "
+                    "output's range); -o keeps them in a Zarr store, written as the cases finish, so the same "
+                    "command run again finishes an interrupted study. With --plot STORE: draw a study's "
+                    "outputs against its parameters instead.")
+    sweep.add_argument("scene", nargs="?", help="the scene file (.toml)")
+    sweep.add_argument("--vary", action="append", metavar="NAME=SPEC",
+                       help="a parameter and its values. NAME: a parameter of `lagmb info SCENE --parameters` "
+                            "(crank.mass, B.at.y, rod.angle.start, ...) or a run setting (t_end, rtol, atol, "
+                            "max_step, n_out, max_steps); SPEC: A:B:N (N values from A to B, both included, as "
+                            "numpy.linspace) or V1,V2,... (a list). Several --vary make a grid of every "
+                            "combination, the last varying fastest")
+    sweep.add_argument("--output", action="append", dest="outputs", metavar="KIND[=ARG]",
+                       help="a number each case gives, under the name in brackets: peak_reaction=JOINT, the "
+                            "largest reaction force of a joint or driver in N [peak_reaction_JOINT]; "
+                            "peak_effort=DRIVER, the largest magnitude of a driver's force or torque "
+                            "[peak_effort_DRIVER]; final=COORDINATE, a coordinate's value at the end, e.g. "
+                            "final=slider.x, der(slider.x) its rate [final_slider.x]; energy_drift, the largest "
+                            "change of the energy in J [energy_drift]")
+    sweep.add_argument("-o", dest="out", metavar="STORE",
+                       help="the Zarr store (a folder, e.g. study.zarr) the cases are written to as they "
+                            "finish; the same command again computes only the cases not there. With --plot: "
+                            "the figure (default: the store's name with .png)")
+    sweep.add_argument("--workers", type=int, metavar="N",
+                       help="run the cases on N processes (default 1: in this process)")
+    sweep.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run the cases on a Dask cluster, its scheduler's address (tcp://host:8786); "
+                            "its workers run them (no --workers)")
+    sweep.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
+    sweep.add_argument("--batch-size", type=int, metavar="B",
+                       help="cases per task and per batch written to the store (default: the cases over 4 "
+                            "tasks per worker, at most 256)")
+    sweep.add_argument("--plot", metavar="STORE",
+                       help="draw the study in STORE (a plot per output against the varied parameters, "
+                            "lagmb.plotting.plot_sweep) to -o, instead of running one")
+
+
+def _sweep(args):
+    import time
+
+    if args.plot is not None:
+        return _sweep_plot(args)
+    if not args.scene:
+        raise _Exit(USAGE, "give a scene file and --vary NAME=SPEC (or --plot STORE to draw a study)")
+    scene = _load(args.scene)
+    # the options first: a mistake there costs no run
+    grid, typed = _sweep_grid(args.vary)
+    outputs = _sweep_outputs(scene, args.outputs or [])
+    t0 = scene.settings.get("t0", 0.0)
+    _option_number("--t-end", args.t_end, above=t0)
+    if args.workers is not None and args.workers < 1:
+        raise _Exit(USAGE, f"--workers {args.workers}: must be at least 1")
+    if args.scheduler is not None and args.workers is not None:
+        raise _Exit(USAGE, f"--workers {args.workers}: the cluster at --scheduler {args.scheduler} runs the "
+                           "cases on its own workers; give one or the other")
+    if args.batch_size is not None and args.batch_size < 1:
+        raise _Exit(USAGE, f"--batch-size {args.batch_size}: must be at least 1")
+    store = _sweep_store(args.out) if args.out else None
+    t_end = args.t_end if args.t_end is not None else scene.settings.get("t_end")
+    if t_end is None and scene.settings.get("t_out") is not None:
+        t_end = scene.settings["t_out"][-1]  # the sweep's cases take n_out output times, not t_out
+    if t_end is None and "t_end" not in grid:
+        raise _Exit(USAGE, f"{args.scene}: no end time: give t_end in [simulation], --t-end or --vary t_end=...")
+    try:
+        import xarray  # noqa: F401 - the results' type
+        if store:
+            import zarr  # noqa: F401
+    except ImportError:
+        raise _Exit(USAGE, "lagmb sweep needs xarray (and zarr for -o): pip install 'lagmb[sweep]'") from None
+    from concurrent.futures import BrokenExecutor
+
+    from .studies import sweep
+
+    n = math.prod(len(values) for values in grid.values())
+    executor, where = None, "in this process"
+    if args.scheduler is not None:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise _Exit(USAGE, f"--scheduler {args.scheduler}: needs dask.distributed: "
+                               "pip install 'lagmb[sweep]'") from None
+        try:
+            executor = Client(args.scheduler, timeout=10)
+        except Exception as e:  # noqa: BLE001 - any failure to reach it: the address is the user's
+            raise _Exit(USAGE, f"--scheduler {args.scheduler}: cannot connect: {e}") from None
+        where = f"on the Dask cluster at {args.scheduler}"
+    elif args.workers and args.workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        executor = ProcessPoolExecutor(args.workers)
+        where = f"on {args.workers} processes"
+    start = time.monotonic()
+    interrupted = False
+    try:
+        ds = sweep(scene, grid, outputs=outputs, t_end=t_end, executor=executor, store=store, progress=True,
+                   batch_size=args.batch_size)
+    except ModelError as e:  # names a --vary, the store, or else the scene as a whole
+        raise _Exit(USAGE, _sweep_error(str(e), args, typed)) from None
+    except KeyboardInterrupt:
+        if not store:
+            raise
+        interrupted = True
+    except (BrokenExecutor, OSError) as e:  # a worker process killed (out of memory), a cluster lost, a disk full
+        text = " ".join(str(e).split()).rstrip(".")
+        raise _Exit(FAILED, f"{args.scene}: the study stopped: {type(e).__name__}" + (f": {text}" if text else "")
+                    + (f"; the finished cases are in {store}: the same command finishes the study" if store
+                       else "")) from None
+    finally:
+        if hasattr(executor, "scheduler_info"):
+            executor.close()
+        elif executor is not None:
+            executor.shutdown(wait=True, cancel_futures=True)
+    if interrupted:
+        import gc
+
+        with warnings.catch_warnings():  # zarr's writes cut short: not the user's concern
+            warnings.filterwarnings("ignore", "coroutine .* was never awaited", RuntimeWarning)
+            gc.collect()
+        kept = os.path.isdir(store) and any(name.startswith("batch_") for name in os.listdir(store))
+        raise _Exit(130, f"interrupted; the finished cases are in {store}: the same command finishes the study"
+                    if kept else f"interrupted before any case was written to {store}")
+    elapsed = time.monotonic() - start
+
+    span = "t_end varied" if "t_end" in grid else f"t = {t0:g} .. {t_end:g} s"
+    print(f"{args.scene}: {_count(n, 'case')} (" + " x ".join(f"{name} {len(v)}" for name, v in grid.items())
+          + f"), {span}, {where}")
+    for line in _sweep_table(ds, list(grid), list(outputs)):
+        print(line)
+    computed = int(ds.attrs.get("computed_cases", n))
+    line = f"  computed {computed} of {_count(n, 'case')} in {elapsed:.2f} s"
+    if store and computed < n:
+        line += f"; the other {n - computed} were in the store"
+    print(line)
+    if store:
+        print(f"  results in {store} (lagmb sweep --plot {store} draws them)")
+    else:
+        print("  nothing written: -o STORE keeps the results (a Zarr store, resumable)")
+    if not (ds["status"].values == "ok").any():
+        print("lagmb sweep: every case failed", file=sys.stderr)
+        return FAILED
+    return OK
+
+
+def _count(n, one):
+    return f"{n:,} {one}{'' if n == 1 else 's'}"
+
+
+def _sweep_grid(specs):
+    """({name: values}, {name: the --vary as typed}) from the --vary options."""
+    if not specs:
+        raise _Exit(USAGE, "give at least one --vary NAME=SPEC (e.g. --vary rod.mass=1:3:5 or "
+                           "--vary rod.mass=1,2,4)")
+    grid, typed = {}, {}
+    for spec in specs:
+        name, eq, text = spec.partition("=")
+        name = name.strip()
+        if not eq or not name:
+            raise _Exit(USAGE, f"--vary {spec}: must be NAME=SPEC, SPEC A:B:N (N values from A to B) or V1,V2,...")
+        if name in grid:
+            raise _Exit(USAGE, f"--vary {spec}: {name} is varied twice (--vary {typed[name]})")
+        grid[name], typed[name] = _sweep_values(spec, name, text.strip()), spec
+    n = math.prod(len(values) for values in grid.values())
+    if n > _SWEEP_MAX_CASES:
+        raise _Exit(USAGE, f"--vary: {n:,} cases (" + " x ".join(str(len(v)) for v in grid.values())
+                           + f"): at most {_SWEEP_MAX_CASES:,} in one study")
+    return grid, typed
+
+
+def _sweep_values(spec, name, text):
+    """The values of --vary NAME=SPEC: A:B:N as numpy.linspace(A, B, N), or V1,V2,..."""
+    import numpy as np
+
+    def number(s):
+        try:
+            v = float(s)
+        except ValueError:
+            raise _Exit(USAGE, f"--vary {spec}: {s.strip()!r} is not a number; SPEC is A:B:N (N values from A "
+                               "to B) or V1,V2,...") from None
+        if not math.isfinite(v):
+            raise _Exit(USAGE, f"--vary {spec}: {s.strip()} must be a finite number")
+        return v
+
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise _Exit(USAGE, f"--vary {spec}: A:B:N has three parts (N values from A to B), got {len(parts)}")
+        a, b, count = (number(p) for p in parts)
+        if not count.is_integer() or count < 2:
+            raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()} must be a whole number of values, at least "
+                               f"2 (one value: {name}=V)")
+        if count > _SWEEP_MAX_CASES:
+            raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()}: at most {_SWEEP_MAX_CASES:,} values")
+        if a == b:
+            raise _Exit(USAGE, f"--vary {spec}: A:B:N runs from A to B: give A and B apart")
+        values = np.linspace(a, b, int(count)).tolist()
+    else:
+        items = text.split(",")
+        if any(not s.strip() for s in items):
+            raise _Exit(USAGE, f"--vary {spec}: an empty value; SPEC is A:B:N (N values from A to B) or V1,V2,...")
+        values = [number(s) for s in items]
+        twice = next((v for k, v in enumerate(values) if v in values[:k]), None)
+        if twice is not None:
+            raise _Exit(USAGE, f"--vary {spec}: {twice:g} is listed twice")
+    if name in _INTEGER_SETTINGS:
+        if any(not float(v).is_integer() for v in values):
+            raise _Exit(USAGE, f"--vary {spec}: {name} takes whole numbers")
+        values = [int(v) for v in values]
+    return values
+
+
+def _sweep_outputs(scene, specs):
+    """{variable name: the built-in output} from the --output options,
+    their arguments checked against the scene."""
+    from .studies import energy_drift, final, peak_effort, peak_reaction
+
+    model = scene.model
+    kinds = BY_METHOD if getattr(model, "dimension", 2) == 2 else SPATIAL_BY_METHOD
+    roles = {kw["name"]: kinds[method].role for method, kw in model.elements() if method in kinds}
+    constraints = [name for name, role in roles.items() if role in ("joint", "driver")]
+    drivers = [name for name, role in roles.items() if role == "driver"]
+    coordinates = coordinate_names(model)
+    outputs = {}
+    for spec in specs:
+        kind, eq, arg = (s.strip() for s in spec.partition("="))
+        if kind not in _SWEEP_KINDS:
+            raise _Exit(USAGE, f"--output {spec}: unknown kind {kind!r}; the kinds are peak_reaction=JOINT, "
+                               "peak_effort=DRIVER, final=COORDINATE and energy_drift")
+        what = _SWEEP_KINDS[kind]
+        if what is None:
+            if eq:
+                raise _Exit(USAGE, f"--output {spec}: {kind} takes no argument: --output {kind}")
+            name, f = kind, energy_drift()
+        else:
+            if not arg:
+                raise _Exit(USAGE, f"--output {spec}: give {kind}=NAME, NAME {what} of the scene")
+            if kind == "peak_reaction" and arg not in constraints:
+                raise _Exit(USAGE, f"--output {spec}: {scene.path} has no joint or driver {arg!r}; "
+                                   + _listed("its joints and drivers", constraints))
+            if kind == "peak_effort" and arg not in drivers:
+                raise _Exit(USAGE, f"--output {spec}: {scene.path} has no driver {arg!r}; "
+                                   + _listed("its drivers", drivers))
+            if kind == "final":
+                plain = arg[4:-1] if arg.startswith("der(") and arg.endswith(")") else arg
+                if plain not in coordinates:
+                    raise _Exit(USAGE, f"--output {spec}: {scene.path} has no coordinate {plain!r}; "
+                                       + _listed("its coordinates", coordinates)
+                                       + " (der(NAME) for a rate)")
+            name, f = f"{kind}_{arg}", {"peak_reaction": peak_reaction, "peak_effort": peak_effort,
+                                        "final": final}[kind](arg)
+        if name in outputs:
+            raise _Exit(USAGE, f"--output {spec}: given twice")
+        outputs[name] = f
+    return outputs
+
+
+def _listed(what, names):
+    return f"{what} are {', '.join(names)}" if names else "it has none"
+
+
+def _sweep_store(path):
+    """The -o store, checked before any case runs: a new folder, or a
+    study's store (the same study resumes; another is refused by mb.sweep)."""
+    if os.path.lexists(path) and not os.path.isdir(path):
+        raise _Exit(USAGE, f"-o {path}: is a file; a store is a folder (e.g. study.zarr)")
+    if os.path.isdir(path):
+        if not any(os.path.exists(os.path.join(path, meta)) for meta in ("zarr.json", ".zgroup")):
+            if os.listdir(path):
+                raise _Exit(USAGE, f"-o {path}: a folder that is not a study's store; give a new name "
+                                   "(e.g. study.zarr)")
+        else:
+            try:
+                import zarr
+
+                held = zarr.open_group(path, mode="r").attrs.get("lagmb_sweep")
+            except Exception:  # noqa: BLE001 - unreadable: not a store of ours
+                held = None
+            if held is None:
+                raise _Exit(USAGE, f"-o {path}: a Zarr store, but not a study's (lagmb sweep's); give a new name")
+        target = path
+    else:
+        target = os.path.dirname(os.path.abspath(path))
+        while not os.path.lexists(target):  # missing folders are made when writing
+            target = os.path.dirname(target)
+        if not os.path.isdir(target):
+            raise _Exit(USAGE, f"-o {path}: {target} is not a folder")
+    if not os.access(target, os.W_OK):
+        raise _Exit(USAGE, f"-o {path}: {target} is not writable")
+    return path
+
+
+def _sweep_error(text, args, typed):
+    """mb.sweep's ModelError as a usage error naming the option it is about."""
+    if "holds another sweep" in text:
+        return f"-o {args.out}: {text}"
+    for name, spec in typed.items():
+        if f"'{name}'" in text or f" {name} = " in text:
+            return f"--vary {spec}: {text}"
+    return f"{args.scene}: {text}"
+
+
+def _sweep_table(ds, names, outputs):
+    """The lines lagmb sweep prints: a row a case (case number, the varied
+    parameters, ok or failed, the outputs; steps without outputs), or for
+    many cases the first and last rows and each output's range, then the
+    failed cases' errors and the warnings."""
+    import numpy as np
+
+    n = ds.sizes["case"]
+    status = ds["status"].values
+    ok = status == "ok"
+    shown = outputs or ["steps"]
+    head = ["case"] + names + ["status"] + shown
+
+    def cell(v):
+        v = float(v)
+        return "-" if math.isnan(v) else f"{v:.6g}"
+
+    def row(i):
+        return ([str(int(ds["case"].values[i]))] + [cell(ds[name].values[i]) for name in names]
+                + ["ok" if ok[i] else "failed"]
+                + [cell(ds[name].values[i]) if ok[i] or name != "steps" else "-" for name in shown])
+
+    if n <= _SWEEP_ROWS:
+        rows = [row(i) for i in range(n)]
+    else:
+        rows = ([row(i) for i in range(_SWEEP_ENDS)] + [["..."] + [""] * (len(head) - 1)]
+                + [row(i) for i in range(n - _SWEEP_ENDS, n)])
+    width = [max(len(r[k]) for r in rows + [head]) for k in range(len(head))]
+    lines = ["  " + "  ".join(c.rjust(w) for c, w in zip(r, width)).rstrip() for r in [head] + rows]
+    if n > _SWEEP_ROWS:
+        lines.append(f"  the first and last {_SWEEP_ENDS} of {n:,} cases; over the {int(ok.sum()):,} ok cases:")
+        w = max(len(name) for name in shown)
+        for name in shown:
+            values = np.where(ok, ds[name].values.astype(float), np.nan)
+            if np.isnan(values).all():
+                lines.append(f"    {name:<{w}}  no values")
+                continue
+            lo, hi = int(np.nanargmin(values)), int(np.nanargmax(values))
+            lines.append(f"    {name:<{w}}  min {cell(values[lo])} (case {int(ds['case'].values[lo])}), "
+                         f"max {cell(values[hi])} (case {int(ds['case'].values[hi])})")
+    failed = np.flatnonzero(~ok)
+    if len(failed):
+        lines.append(f"  {len(failed):,} of {_count(n, 'case')} failed:")
+        for i in failed[:5]:
+            lines.append(f"    case {int(ds['case'].values[i])}: " + " ".join(str(status[i]).split())[:300])
+        if len(failed) > 5:
+            lines.append(f"    and {len(failed) - 5:,} more (the status variable holds every message)")
+    warned = np.flatnonzero(ds["warnings"].values != "")
+    if len(warned):
+        i = warned[0]
+        lines.append(f"  {_count(len(warned), 'case')} gave warnings (the warnings variable), e.g. case "
+                     f"{int(ds['case'].values[i])}: " + " ".join(str(ds['warnings'].values[i]).split())[:300])
+    return lines
+
+
+def _sweep_plot(args):
+    """lagmb sweep --plot STORE [-o FIG]: a study's outputs against its parameters."""
+    given = [(option, value) for option, value in (
+        ("--vary", args.vary), ("--output", args.outputs), ("--workers", args.workers),
+        ("--scheduler", args.scheduler), ("--t-end", args.t_end), ("--batch-size", args.batch_size))
+        if value is not None]
+    if args.scene:
+        raise _Exit(USAGE, f"{args.scene}: --plot {args.plot} draws a finished study from its store; give no "
+                           "scene with it")
+    if given:
+        option, value = given[0]
+        shown = " ".join(value) if isinstance(value, list) else f"{value:g}" if isinstance(value, float) else value
+        raise _Exit(USAGE, f"{option} {shown}: --plot {args.plot} draws a finished study from its store; give "
+                           f"no {option} with it")
+    _need_matplotlib("--plot")
+    from .scene.reader import plot_format_problem
+
+    store = args.plot
+    path = args.out or os.path.splitext(store.rstrip("/\\") or store)[0] + ".png"
+    reason = plot_format_problem(path)
+    if reason:
+        raise _Exit(USAGE, f"-o {path}: {reason}")
+    try:
+        from .studies import open_store
+
+        ds = open_store(store)
+    except ImportError:
+        raise _Exit(USAGE, "lagmb sweep --plot needs xarray and zarr: pip install 'lagmb[sweep]'") from None
+    except ModelError as e:
+        raise _Exit(USAGE, f"--plot {store}: {e}") from None
+    except Exception as e:  # noqa: BLE001 - a folder zarr cannot read
+        raise _Exit(USAGE, f"--plot {store}: not a study's store ({type(e).__name__}: {e})") from None
+    plotting = _plotting()
+    kinds = list(_SWEEP_KINDS)
+    try:  # the store keeps no order: lagmb sweep's kinds in --output's order, then the others by name
+        drawn = sorted(plotting._sweep_outputs(ds), key=lambda name: (
+            next((k for k, kind in enumerate(kinds) if name.startswith(kind)), len(kinds)), name))
+        plotting.plot_sweep(ds, path, outputs=drawn)
+    except ValueError as e:
+        raise _Exit(USAGE, f"--plot {store}: {e}") from None
+    except OSError as e:
+        raise _Exit(USAGE, f"-o {path}: cannot write: {e.strerror or e}") from None
+    print(f"{store}: {_count(ds.sizes['case'], 'case')}, {_count(len(drawn), 'output')} "
+          f"({', '.join(drawn)}) drawn in {path}")
+    return OK
 
 
 # --- info -----------------------------------------------------------------------
