@@ -14,8 +14,10 @@ import time
 class Progress:
     """Callable progress(t) for simulate; close() when the run ends."""
 
-    def __init__(self, t0, t_end, enabled=True, delay=1.0, stream=None, label=None):
+    def __init__(self, t0, t_end, enabled=True, delay=1.0, stream=None, label=None, unit="s"):
         self.stream = sys.stderr if stream is None else stream
+        # what t counts: seconds of a run ("s"), or items ("cases": a sweep's count)
+        self.unit = unit
         # what is counted in t: the bar's "simulated" unless told (animate: "drawn")
         self.label = label
         isatty = getattr(self.stream, "isatty", None)
@@ -50,18 +52,22 @@ class Progress:
                 self._shown = done
                 # a size, for terminals that do not tell theirs (tqdm shows nothing in 0 x 0)
                 size = shutil.get_terminal_size((80, 24))
-                self._bar = tqdm(total=span, unit="s", unit_scale=False, file=self.stream,
+                unit = "" if self.unit != "s" else " s"
+                self._bar = tqdm(total=span, unit=self.unit, unit_scale=False, file=self.stream,
                                  desc=self.label or "simulated", leave=False, mininterval=0.0,
                                  ncols=size.columns, nrows=size.lines, initial=done,
-                                 bar_format="{desc} {n:.4g}/{total:.4g} s |{bar}| "
+                                 bar_format="{desc} {n:.4g}/{total:.4g}" + unit + " |{bar}| "
                                             "{percentage:3.0f}% [{elapsed}<{remaining}]")
         if self._bar is not None:
             self._bar.update(done - self._shown)
             self._shown = done
         else:
             label = f"{self.label}: " if self.label else ""
-            self.stream.write(f"\r  {label}t = {self.t0 + done:.6g} of {self.t_end:.6g} s "
-                              f"({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed ")
+            if self.unit == "s":
+                where = f"t = {self.t0 + done:.6g} of {self.t_end:.6g} s"
+            else:
+                where = f"{self.t0 + done:.0f} of {self.t_end:.0f} {self.unit}"
+            self.stream.write(f"\r  {label}{where} ({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed ")
             self.stream.flush()
 
     def close(self):

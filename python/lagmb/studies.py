@@ -438,6 +438,9 @@ def open_store(path):
     if not parts:
         raise ModelError(f"sweep.open_store: {path!r} holds no finished case yet")
     ds = xr.concat(parts, dim="case").sortby("case")
+    # the variables in the order a sweep makes them (a store lists them by name)
+    order = ["status", "warnings", "steps", "wall_time"] + list(description.get("outputs", [])) + ["q"]
+    ds = ds[[v for v in order if v in ds.data_vars] + [v for v in ds.data_vars if v not in order]]
     ds.attrs["grid"] = description.get("grid", "")
     return ds
 
@@ -556,7 +559,7 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     held = None
     if store is not None:
         description = {"format": _STORE_FORMAT, "fingerprint": _fingerprint(text, cases, run_settings, outputs, t_out),
-                       "cases": n, "batch_size": int(batch_size),
+                       "cases": n, "batch_size": int(batch_size), "outputs": list(outputs),
                        "grid": json.dumps([[g[0], [float(v) if isinstance(v, numbers.Real) else str(v)
                                                    for v in g[1]]] for g in grid]) if grid else ""}
         held = _Store(store, description)
@@ -570,7 +573,11 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
         batches = [b for b in batches if b[0] not in done]
 
     records = {}
-    bar = Progress(0, n, enabled=progress, label="cases")
+    # a batch's store write (about 0.1 s) goes to a thread of its own, so the
+    # results of the next batches are taken meanwhile; each write is whole or absent
+    writer = concurrent.futures.ThreadPoolExecutor(1) if held is not None else None
+    writes = []
+    bar = Progress(0, n, enabled=progress, label="sweep", unit="cases")
     finished = n - sum(last - first for _, first, last in batches)
     computed = 0
 
@@ -580,8 +587,8 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
             records[i] = record
         first, last = batch[1], batch[2]
         if held is not None:
-            held.write(batch[0], _dataset(cases, records, names, outputs, grid, t_out, coordinate_names,
-                                          range(first, last)))
+            part = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, range(first, last))
+            writes.append(writer.submit(held.write, batch[0], part))
         finished += last - first
         computed += last - first
         bar(finished)
@@ -618,9 +625,13 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
                     f.cancel()
                 raise
     finally:
+        if writer is not None:  # every finished batch reaches the store, even when the sweep stops
+            writer.shutdown(wait=True)
         close = getattr(bar, "close", None)
         if close:
             close()
+    for w in writes:
+        w.result()  # a write that failed (a full disk) is an error of the sweep
 
     if held is not None:
         ds = open_store(held.path)
