@@ -89,7 +89,7 @@ PYTHON_LAYERS = [
     ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles"],
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
-    ["scene", "plotting", "demo", "urdf", "mjcf", "studies"],
+    ["scene", "plotting", "demo", "urdf", "mjcf", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 

@@ -29,6 +29,7 @@ from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
 from .studies import sweep
+from .viewer import View, view
 
 from ._version import __version__  # noqa: F401
 SUNDIALS_VERSION = _core.sundials_version
@@ -72,6 +73,8 @@ __all__ = [
     "modes",
     "Modes", "LinearSystem", "Descriptor", "linearize",
     "sweep",
+    "view",
+    "View",
     "JointSpace",
     "inverse_dynamics",
     "UrdfError",

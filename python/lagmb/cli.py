@@ -59,6 +59,9 @@ def _parser():
     run.add_argument("--plot", metavar="PNG", help="plot the results (default: [output] plot)")
     run.add_argument("--animate", metavar="GIF",
                      help="animate the mechanism (default: [output] animate)")
+    run.add_argument("--html", metavar="HTML",
+                     help="write the run as an interactive page (3D view, play, time slider, plots; opens "
+                          "offline in a browser: lagmb.view)")
     run.add_argument("--view", metavar="ELEV,AZIM",
                      help="viewpoint of a spatial animation, degrees (default: [output] view, else 25,-60)")
     run.add_argument("--fps", metavar="F",
@@ -377,6 +380,15 @@ def _run(args):
     if args.animate or scene.output.get("animate"):
         _need_matplotlib("animating")
     animate = _output(scene, args.animate, "--animate", "animate", animation_format_problem)
+    html_page = _output(scene, args.html, "--html", "html",
+                        lambda p: None if p.lower().endswith((".html", ".htm")) else "must end in .html")
+    if html_page:
+        try:
+            from .viewer import _three_js
+
+            _three_js()
+        except ModelError as e:  # three.js comes with the 'view' extra
+            raise _Exit(USAGE, f"--html {html_page}: {e}") from None
     view = _view(scene, args.view)
     motion = _animation_options(args, scene, animate)
 
@@ -439,8 +451,15 @@ def _run(args):
         if animate:
             _plotting().animate(result, animate, view=view, progress=not args.quiet, **motion)
             say(f"  animation written to {animate}")
-        if not (out or plot or animate):
-            say("  nothing written: -o FILE (.npz or .csv), --plot or --animate keep the outputs")
+        if html_page:
+            from .viewer import view as view_page
+
+            folder = os.path.dirname(os.path.abspath(html_page))
+            os.makedirs(folder, exist_ok=True)
+            page = view_page(result, html_page, title=os.path.basename(str(scene.path or args.scene)))
+            say(f"  interactive view written to {html_page} ({page.size / 1e6:.2f} MB; open it in a browser)")
+        if not (out or plot or animate or html_page):
+            say("  nothing written: -o FILE (.npz or .csv), --plot, --animate or --html keep the outputs")
     except OSError as e:
         raise _Exit(USAGE, f"cannot write {e.filename or ''}: {e.strerror or e}") from None
     return OK

@@ -1,0 +1,372 @@
+"""See the motion in a browser: ``lagmb.view(result, "run.html")`` writes one
+self-contained HTML page with the mechanism in 3D (WebGL, three.js), play,
+pause, a time slider, playback speed, camera orbit/zoom/pan, and time plots
+of chosen outputs with a cursor at the current time.
+
+The page needs no network: three.js (MIT licence) is inlined, read from the
+``trimesh`` wheel (the ``view`` extra), which ships three.js r140 with its
+TrackballControls in ``trimesh/resources/templates/viewer.zip``. The bodies'
+geometry is sent once, in each body's own axes; each frame is then a pose
+per body (position and quaternion, 7 float32 numbers, base64), so a page
+grows with bodies x frames, not with the geometry. A test hook,
+``window.lagmbViewer`` (``state()``, ``play()``, ``pause()``, ``seek(t)``,
+``setFrame(k)``, ``reset()``), lets a browser test or a notebook read and
+drive it.
+"""
+
+import base64
+import html
+import importlib.resources
+import io
+import json
+import math
+import os
+import zipfile
+from functools import lru_cache
+
+import numpy as np
+
+from .errors import ModelError
+from .plotting import _Scene, _shape, _shape_faces, _stats_line
+
+_PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
+            (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.50, 0.50, 0.50), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81)]
+_JOINT = (0.2, 0.2, 0.2)
+_GROUND = (0.55, 0.55, 0.58)
+
+
+@lru_cache(maxsize=1)
+def _three_js():
+    """three.js r140 and its TrackballControls, as the trimesh wheel ships
+    them (the script of its viewer template, before the template's own code)."""
+    try:
+        files = importlib.resources.files("trimesh")
+    except ModuleNotFoundError:
+        raise ModelError("lagmb.view needs three.js, which it takes from the trimesh wheel: "
+                         "pip install 'trimesh>=5' (lagmb's 'view' extra)") from None
+    with zipfile.ZipFile(io.BytesIO((files / "resources" / "templates" / "viewer.zip").read_bytes())) as z:
+        text = z.read("viewer.html.template").decode("utf-8")
+    start = text.index("<script>") + len("<script>")
+    end = text.index("var camera,controls,scene,renderer,tracklight;")
+    lib = text[start:end]
+    if "TrackballControls" not in lib or "WebGLRenderer" not in lib:
+        raise ModelError("lagmb.view: the trimesh wheel's viewer template no longer holds three.js and its "
+                         "TrackballControls where lagmb reads them (trimesh 5.x does)")
+    return lib.replace("</script", "<\\/script")
+
+
+def _b64(array, dtype="<f4"):
+    return base64.b64encode(np.ascontiguousarray(array, dtype=dtype).tobytes()).decode("ascii")
+
+
+def _quaternion_z(angle):
+    """(x, y, z, w) of a turn by angle about z."""
+    return [0.0, 0.0, math.sin(0.5 * angle), math.cos(0.5 * angle)]
+
+
+def _quaternion_of(R):
+    """(x, y, z, w) of a rotation matrix."""
+    R = np.asarray(R, dtype=float)
+    w = math.sqrt(max(0.0, 1.0 + R[0, 0] + R[1, 1] + R[2, 2])) / 2.0
+    x = math.copysign(math.sqrt(max(0.0, 1.0 + R[0, 0] - R[1, 1] - R[2, 2])) / 2.0, R[2, 1] - R[1, 2])
+    y = math.copysign(math.sqrt(max(0.0, 1.0 - R[0, 0] + R[1, 1] - R[2, 2])) / 2.0, R[0, 2] - R[2, 0])
+    z = math.copysign(math.sqrt(max(0.0, 1.0 - R[0, 0] - R[1, 1] + R[2, 2])) / 2.0, R[1, 0] - R[0, 1])
+    q = np.array([x, y, z, w])
+    return list(q / np.linalg.norm(q))
+
+
+def _bar(a, b, width, colour, z=0.0):
+    """A box from a to b (planar points, body axes), width wide."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    d = b - a
+    length = float(np.hypot(*d))
+    return {"type": "box", "size": [length + width, width, 0.5 * width], "position": [*(0.5 * (a + b)), z],
+            "quaternion": _quaternion_z(math.atan2(d[1], d[0])), "colour": colour}
+
+
+def _rod3(a, b, radius, colour):
+    """A cylinder from a to b (points in 3D, body axes)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    d = b - a
+    length = float(np.linalg.norm(d))
+    if length <= 0.0:
+        return None
+    z = d / length
+    helper = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, z)
+    x /= np.linalg.norm(x)
+    R = np.column_stack([x, np.cross(z, x), z])
+    return {"type": "cylinder", "radius": radius, "length": length, "position": list(0.5 * (a + b)),
+            "quaternion": _quaternion_of(R), "colour": colour}
+
+
+def _mesh(faces, shape, colour):
+    """A shape's faces (polygons in its own axes) as a triangle mesh in its
+    body's axes."""
+    R = np.asarray(shape.rotation, dtype=float)
+    p = np.asarray(shape.position, dtype=float)
+    vertices, triangles = [], []
+    for face in faces:
+        face = np.asarray(face, dtype=float) @ R.T + p
+        first = len(vertices)
+        vertices.extend(face)
+        triangles.extend((first, first + k, first + k + 1) for k in range(1, len(face) - 1))
+    return {"type": "mesh", "vertices": _b64(np.array(vertices)), "faces": _b64(np.array(triangles), "<u4"),
+            "colour": colour}
+
+
+def _planar_parts(scene, body, colour, width):
+    parts = []
+    if body in scene.particles:
+        return [{"type": "sphere", "radius": 1.5 * width, "colour": colour}]
+    points, closed = _shape(scene.drawn_outline(body))
+    if len(points) == 0:
+        parts.append({"type": "sphere", "radius": 1.5 * width, "colour": colour})
+    for k in range(len(points) - (0 if closed else 1)):
+        parts.append(_bar(points[k], points[(k + 1) % len(points)], width, colour))
+    return parts
+
+
+def _spatial_parts(scene, body, colour, width, shapes):
+    parts = []
+    mine = [s for s in shapes if s.body == body]
+    visual = [s for s in mine if s.role == "visual"] or mine
+    for shape in visual:
+        faces = _shape_faces(shape)
+        if faces:
+            parts.append(_mesh(faces, shape, colour))
+    if not parts:
+        S = scene.second_moment(body)
+        if S is not None:
+            s, V = np.linalg.eigh(0.5 * (S + S.T))
+            half = np.sqrt(3.0 * np.clip(s, 0.0, None) / scene.mass[body])
+            if np.linalg.det(V) < 0:
+                V[:, 0] = -V[:, 0]
+            if half.max() > 0.0:
+                parts.append({"type": "box", "size": list(2.0 * np.maximum(half, 0.05 * half.max())),
+                              "quaternion": _quaternion_of(V), "colour": colour})
+                parts.append({"type": "axes", "length": float(1.5 * half.max())})
+        for point in scene.outlines.get(body, []):  # links to where its joints attach
+            rod = _rod3(np.zeros(3), point, 0.4 * width, colour)
+            if rod:
+                parts.append(rod)
+    if not parts:
+        parts.append({"type": "sphere", "radius": 1.5 * width, "colour": colour})
+    return parts
+
+
+def _output_series(result, name):
+    """(values (k,), unit) of one output by name."""
+    model = result.model
+    coords = model.coordinate_names()
+    rate = name.startswith("der(") and name.endswith(")")
+    base = name[4:-1] if rate else name
+    if name in ("energy", "residual", "velocity_residual"):
+        return np.asarray(getattr(result, name), dtype=float), {"energy": "J", "residual": "", "velocity_residual": ""}[name]
+    if base in coords:
+        j = coords.index(base)
+        unit = "rad" if base.endswith(".angle") else "" if ".e" in base[-3:] else "m"
+        return np.asarray((result.v if rate else result.q)[:, j], dtype=float), unit + ("/s" if rate and unit else "")
+    element, _, what = base.partition(".")
+    core = result._core
+    if element and core.has(element):
+        if not rate and what.startswith("reaction."):
+            components = (["x", "y", "z", "torque.x", "torque.y", "torque.z"] if model.dimension == 3
+                          else ["x", "y", "torque"])
+            c = what[len("reaction."):]
+            if c in components:
+                k = components.index(c)
+                return np.asarray(result.reaction(element)[:, k], dtype=float), "N m" if c.startswith("torque") else "N"
+        if not rate and what == "effort" and core.element_kind(element).endswith("_driver"):
+            return np.asarray(result.effort(element), dtype=float), "N or N m"
+        if what in ("angle", "slide") and core.joint_coordinate(element) is not None:
+            path = result.joint(element)
+            values = path.rate if rate else getattr(path, what, None)
+            if values is not None:
+                return np.asarray(values, dtype=float), ("rad" if what == "angle" else "m") + ("/s" if rate else "")
+    raise ModelError(f"lagmb.view: no output {name!r}; outputs are energy, residual, velocity_residual, the "
+                     f"coordinates ({', '.join(coords[:60])}{f', ... ({len(coords)} in all)' if len(coords) > 60 else ''}) "
+                     "and their "
+                     "der(...), '<joint>.reaction.x' (.y, .torque; in space .z, .torque.x ...), "
+                     "'<driver>.effort', '<joint>.angle' or '<joint>.slide'")
+
+
+class View:
+    """A page written by :func:`view`: ``path`` (None when kept in memory),
+    ``size`` (bytes) and, in a notebook, the page itself inline
+    (``_repr_html_``: an iframe holding it)."""
+
+    def __init__(self, page, path):
+        self.path, self.size = path, len(page.encode("utf-8"))
+        self._page = page
+
+    def _repr_html_(self):
+        return ('<iframe style="width: 100%; height: 560px; border: 1px solid #ddd" '
+                f'srcdoc="{html.escape(self._page, quote=True)}"></iframe>')
+
+    def __repr__(self):
+        where = self.path if self.path else "in memory"
+        return f"<lagmb.View: {where}, {self.size / 1e6:.2f} MB>"
+
+
+def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_frames=5000):
+    """Writes the run as one self-contained HTML page (see the module's
+    docstring) and returns a :class:`View`; ``path=None`` keeps it in memory
+    (a notebook shows it inline).
+
+    ``outputs``: names of the time plots beside the 3D view: "energy",
+    "residual", "velocity_residual", coordinates ("rod.angle") and their
+    "der(...)", "<joint>.reaction.x" (".y", ".torque"; in space ".z",
+    ".torque.x" ...), "<driver>.effort", "<joint>.angle" / ".slide". Default:
+    the energy and each driver's effort. Clicking a plot jumps to that time.
+    ``trace``: points drawn as lines up to the current time, [(body,
+    local point), ...]. ``title``: the page's (default: the bodies and the
+    method). ``max_frames``: outputs beyond it are thinned evenly (the
+    page holds 7 float32 numbers per body per frame).
+
+    Planar models are drawn in their plane (x, y), bodies as bars between
+    their joints; spatial ones with their shapes (a URDF's meshes, STL) or
+    else the box of their inertia and axes. ModelError for a Result without
+    its model, an unknown output (the names listed), or a path that cannot
+    be written.
+    """
+    from .result import Result
+
+    if not isinstance(result, Result):
+        raise ModelError(f"lagmb.view: give a Result (from mb.simulate or a Simulator), got {type(result).__name__}")
+    if getattr(result, "model", None) is None or getattr(result, "_core", None) is None:
+        raise ModelError("lagmb.view: this Result has no model (it was made without the model it ran): run "
+                         "mb.simulate(model, ...) and view its Result")
+    if len(result.t) == 0:
+        raise ModelError("lagmb.view: the Result has no outputs to show")
+    model = result.model
+    scene = _Scene(result)
+    dimension = scene.dimension
+    k_all = len(result.t)
+    frames = np.arange(k_all) if k_all <= max_frames else np.unique(np.linspace(0, k_all - 1, max_frames).round()
+                                                                   .astype(int))
+    t = np.asarray(result.t, dtype=float)[frames]
+    bodies = scene.bodies
+
+    # the size of the scene, from every frame's body positions and attachment points
+    points = [result.body(b).position[frames] for b in bodies]
+    for name in scene.joints + scene.drivers:
+        for body, local in scene.attachments(name):
+            if body == "ground":
+                points.append(np.atleast_2d(local))
+    cloud = np.vstack([np.pad(np.asarray(p, dtype=float), ((0, 0), (0, 3 - np.shape(p)[1]))) for p in points])
+    reach = 0.0  # how far a body's drawing reaches from its centre
+    for body in bodies:
+        for p in scene.outlines.get(body, []):
+            reach = max(reach, float(np.linalg.norm(p)))
+        S = scene.second_moment(body) if dimension == 3 else None
+        if S is not None:
+            reach = max(reach, float(np.sqrt(3.0 * max(np.trace(S), 0.0) / scene.mass[body])))
+    cloud = np.vstack([cloud - reach, cloud + reach]) if reach > 0.0 else cloud
+    low, high = cloud.min(axis=0), cloud.max(axis=0)
+    size = float(max(np.linalg.norm(high - low), 1e-3))
+    width = 0.02 * size
+    center = 0.5 * (low + high)
+
+    # geometry, once, in each body's axes
+    shapes = list(getattr(model, "shapes", []) or [])
+    body_data = []
+    for i, body in enumerate(bodies):
+        colour = _PALETTE[i % len(_PALETTE)]
+        parts = (_planar_parts(scene, body, colour, width) if dimension == 2
+                 else _spatial_parts(scene, body, colour, width, shapes))
+        for name in scene.joints + scene.drivers:  # the joints: dots where they hold the body
+            for b, local in scene.attachments(name):
+                if b == body:
+                    position = [*local, 0.6 * width] if dimension == 2 else list(local)
+                    parts.append({"type": "sphere", "radius": 0.9 * width, "position": position, "colour": _JOINT})
+        body_data.append({"name": body, "parts": parts})
+    ground_parts = []
+    for name in scene.joints + scene.drivers:
+        for b, local in scene.attachments(name):
+            if b == "ground":
+                position = [*local, 0.0] if dimension == 2 else list(local)
+                ground_parts.append({"type": "box", "size": [2.5 * width] * 3, "position": position,
+                                     "colour": _GROUND})
+
+    # poses: (frames, bodies, 7) = position and quaternion (x, y, z, w)
+    poses = np.zeros((len(frames), len(bodies), 7), dtype=float)
+    for i, body in enumerate(bodies):
+        motion = result.body(body)
+        if dimension == 2:
+            poses[:, i, 0:2] = motion.position[frames]
+            angle = np.asarray(motion.angle, dtype=float)[frames]
+            poses[:, i, 5] = np.sin(0.5 * angle)
+            poses[:, i, 6] = np.cos(0.5 * angle)
+        else:
+            poses[:, i, 0:3] = motion.position[frames]
+            p = np.asarray(motion.orientation, dtype=float)[frames]
+            p = p / np.linalg.norm(p, axis=1, keepdims=True)
+            poses[:, i, 3:6] = p[:, 1:4]
+            poses[:, i, 6] = p[:, 0]
+
+    # traces and plots
+    traces = []
+    for j, item in enumerate(trace or []):
+        try:
+            body, local = item
+        except (TypeError, ValueError):
+            raise ModelError(f"lagmb.view: trace takes (body, local point) pairs, got {item!r}") from None
+        p = np.asarray(result.point(body, local), dtype=float)[frames]
+        if dimension == 2:
+            p = np.column_stack([p, np.zeros(len(p))])
+        traces.append({"points": _b64(p), "colour": list(_PALETTE[(j + 3) % len(_PALETTE)])})
+    if outputs is None:
+        outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers if result._core.element_kind(d).endswith("_driver")][:3]
+    elif isinstance(outputs, str):
+        outputs = [outputs]
+    plots = []
+    for name in outputs:
+        values, unit = _output_series(result, name)
+        plots.append({"name": name, "unit": unit, "values": _b64(values[frames])})
+
+    # the camera and the ground
+    if dimension == 2:
+        up, normal = [0.0, 1.0, 0.0], np.array([0.0, 0.0, 1.0])
+        grid_center = [float(center[0]), float(center[1]), float(-width)]
+        camera = list(center + np.array([0.0, 0.0, 1.8 * size]))
+    else:
+        g = np.asarray(model.gravity if model.gravity else (0.0, 0.0, -1.0), dtype=float)
+        normal = -g / np.linalg.norm(g) if np.linalg.norm(g) > 0 else np.array([0.0, 0.0, 1.0])
+        up = list(normal)
+        lowest = float(np.min(cloud @ normal))
+        grid_center = list(center - (float(center @ normal) - lowest) * normal)
+        side = np.cross(normal, [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0])
+        side /= np.linalg.norm(side)
+        front = np.cross(side, normal)
+        camera = list(center + size * (1.4 * front + 0.8 * side + 0.9 * normal))
+    grid_normal = normal
+    stats = dict(result.stats)
+    def count(n, word):
+        return f"{n} {word}{'' if n == 1 else 's'}" if n else ""
+
+    lines = [", ".join(filter(None, [count(len(bodies), "body").replace("bodys", "bodies"),
+                                     count(len(scene.joints), "joint"), count(len(scene.drivers), "driver")])),
+             f"method {stats.get('method', stats.get('formulation', '?'))}: {_stats_line(stats)}",
+             f"t = {t[0]:g} .. {t[-1]:g} s, {len(frames)} frames"]
+    data = {
+        "title": title or "lagmb", "lines": lines, "dimension": dimension, "size": size, "up": up,
+        "grid": {"size": float(2.0 * size), "divisions": 20, "center": [float(x) for x in grid_center],
+                 "normal": [float(x) for x in grid_normal]},
+        "camera": {"target": [float(x) for x in center], "position": [float(x) for x in camera]},
+        "bodies": body_data, "ground_parts": ground_parts, "traces": traces, "plots": plots, "times": _b64(t),
+    }
+    template = (importlib.resources.files("lagmb") / "viewer.html").read_text(encoding="utf-8")
+    page = (template.replace("%%TITLE%%", html.escape(title or "lagmb"))
+            .replace("%%THREE%%", _three_js())
+            .replace("%%DATA%%", json.dumps(data).replace("</", "<\\/"))
+            .replace("%%POSES%%", _b64(poses)))
+    if path is None:
+        return View(page, None)
+    path = os.fspath(path)
+    try:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(page)
+    except OSError as e:
+        raise ModelError(f"lagmb.view: cannot write {path!r}: {e.strerror or e}") from None
+    return View(page, path)
