@@ -130,11 +130,13 @@ def _planar_parts(scene, body, colour, width):
 def _spatial_parts(scene, body, colour, width, shapes):
     parts = []
     mine = [s for s in shapes if s.body == body]
-    visual = [s for s in mine if s.role == "visual"] or mine
-    for shape in visual:
-        faces = _shape_faces(shape)
-        if faces:
-            parts.append(_mesh(faces, shape, colour))
+    for role in ("visual", "collision"):  # the visual shapes, or else the collision ones lagmb reads (STL)
+        for shape in (s for s in mine if s.role == role):
+            faces = _shape_faces(shape)
+            if faces:
+                parts.append(_mesh(faces, shape, colour))
+        if parts:
+            break
     if not parts:
         S = scene.second_moment(body)
         if S is not None:
@@ -339,7 +341,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         side = np.cross(normal, [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0])
         side /= np.linalg.norm(side)
         front = np.cross(side, normal)
-        camera = list(center + size * (1.4 * front + 0.8 * side + 0.9 * normal))
+        camera = list(center + size * (0.95 * front + 0.55 * side + 0.6 * normal))
     grid_normal = normal
     stats = dict(result.stats)
     def count(n, word):
