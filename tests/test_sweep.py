@@ -190,3 +190,16 @@ def test_run_settings_vary_like_parameters_method_included():
     alone = scene().run(t_end=0.1, method="projection-erk", rtol=1e-10, analysis="dynamic")
     assert ds["x_end"].values[1] == alone.body("slider").position[-1, 0]
     assert ds["x_end"].values[0] == pytest.approx(ds["x_end"].values[1], abs=1e-6)
+
+
+def test_a_thread_sweep_keeps_each_case_s_warnings_and_leaves_the_warnings_module_alone():
+    import warnings
+
+    model = four_bar_with_a_coupler_link()
+    cases = [{"coupler.length": 4.5} if k % 2 else {"crank.mass": 1.0 + k} for k in range(8)]
+    with ThreadPoolExecutor(2) as ex:
+        ds = mb.sweep(model, cases, t_end=0.2, executor=ex, batch_size=1, progress=False)
+    for k in range(8):
+        assert ds["warnings"].values[k].startswith("AssemblyWarning") == bool(k % 2), (k, ds["warnings"].values[k])
+    with pytest.warns(UserWarning, match="still shown"):
+        warnings.warn("still shown")

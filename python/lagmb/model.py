@@ -206,24 +206,25 @@ class Model:
         x/y/z), unit, doc and value."""
         return [dict(p) for p in self.compiled().parameters]
 
-    def _warn_redundant(self, rows, stacklevel=2):
+    def _warn_redundant(self, rows, stacklevel=2, into=None):
         """RedundantConstraintWarning for the rows a run left out; stacklevel
         as warnings.warn counts it from the public function that calls this
-        (2: its caller's line)."""
+        (2: its caller's line). ``into``: a list that takes the warning
+        instead (a sweep's case: the warnings module is not thread-safe)."""
         if not rows:
             return
         import warnings
 
         core = self.compiled()
         named = ", ".join(f"'{core.constraint_name_of_row(r)}' (row {r})" for r in rows)
-        warnings.warn(RedundantConstraintWarning(
+        (into.append if into is not None else lambda w: warnings.warn(w, stacklevel=stacklevel + 2))(
+            RedundantConstraintWarning(
             f"{len(rows)} constraint equation(s) are redundant at the initial configuration: "
             f"{named}. They are dropped: the motion is unique and is simulated, and the "
             "rest of each redundant set carries its reaction (the split among redundant "
-            "joints is not unique). The dropped equations are checked at every output."),
-            stacklevel=stacklevel + 1)
+            "joints is not unique). The dropped equations are checked at every output."))
 
-    def _warn_moved(self, core, q_start, stacklevel=2):
+    def _warn_moved(self, core, q_start, stacklevel=2, into=None):
         """AssemblyWarning naming the bodies that the start state q_start
         (assembled from the model's initial coordinates) moved by more than
         1e-3 of the mechanism's size (the spread of the bodies' initial
@@ -261,11 +262,11 @@ class Model:
         named = [text for _, text in sorted(moved, key=lambda m: -m[0])[:5]]
         if len(moved) > 5:
             named.append(f"and {len(moved) - 5} more")
-        warnings.warn(AssemblyWarning(
+        (into.append if into is not None else lambda w: warnings.warn(w, stacklevel=stacklevel + 2))(AssemblyWarning(
             f"assembly moved {len(moved)} bod{'y' if len(moved) == 1 else 'ies'} to satisfy the joints: "
             f"{', '.join(named)} (more than 1e-3 of the mechanism's size, {size:.3g} m, or 1e-3 rad). "
             "Check the joint points and the initial positions; the run starts from the assembled "
-            "configuration."), stacklevel=stacklevel + 1)
+            "configuration."))
 
     def elements(self):
         """Everything added, in order: (method name, keyword arguments) with

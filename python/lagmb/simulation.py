@@ -30,7 +30,7 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
              max_step=None, max_steps=_D["max_steps"], formulation=_D["formulation"], integrator=None,
              max_order=None, baumgarte=None, progress=None, analysis=_D["analysis"], start=_D["start"], step=None,
              parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None,
-             sensitivities=None):
+             sensitivities=None, _warnings=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
@@ -188,9 +188,10 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     with _translate(model, core):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
         raw = _core.simulate(core, options, progress, list(sensitivities))
-    model._warn_redundant(raw.get("dropped_rows", []))
+    # (_warnings: a list that takes lagmb's warnings instead, for a sweep's case in a thread)
+    model._warn_redundant(raw.get("dropped_rows", []), into=_warnings)
     if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
-        model._warn_moved(core, raw["q"][0])
+        model._warn_moved(core, raw["q"][0], into=_warnings)
     return Result(model, core, raw)
 
 

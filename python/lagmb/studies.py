@@ -21,7 +21,6 @@ import pickle
 import shutil
 import time
 import uuid
-import warnings
 
 import numpy as np
 
@@ -293,14 +292,15 @@ def _run_case(model, case, settings, outputs, t_out):
         run.setdefault("t_end", t_out[-1])
     record = {"status": "ok", "warnings": "", "outputs": {}, "steps": -1, "wall_time": float("nan"),
               "history": None}
-    with warnings.catch_warnings(record=True) as caught:  # kept with the case, not printed by a worker
-        warnings.simplefilter("always")
-        try:
-            r = simulate(model, parameters=params or None, **run)
-        except Exception as e:  # a case that fails is recorded, the sweep goes on
-            record["status"] = f"{type(e).__name__}: {e}"
-            r = None
-    record["warnings"] = "; ".join(f"{w.category.__name__}: {w.message}" for w in caught)
+    # lagmb's warnings are kept with the case (handed back, not warned: the
+    # warnings module's catch_warnings is not thread-safe, and threads run cases)
+    caught = []
+    try:
+        r = simulate(model, parameters=params or None, _warnings=caught, **run)
+    except Exception as e:  # a case that fails is recorded, the sweep goes on
+        record["status"] = f"{type(e).__name__}: {e}"
+        r = None
+    record["warnings"] = "; ".join(f"{type(w).__name__}: {w}" for w in caught)
     if r is None:
         return record
     record["steps"] = int(r.stats.get("steps", 0))
