@@ -154,3 +154,24 @@ def test_lagmb_run_writes_the_page_with_html(tmp_path):
     assert "WebGLRenderer" in page.read_text() and "four_bar.toml" in page.read_text()
     bad = lagmb("run", EXAMPLES / "four_bar.toml", "--html", tmp_path / "four_bar.txt")
     assert bad.returncode == 2 and "--html" in bad.stderr and "must end in .html" in bad.stderr
+
+
+def test_a_vibration_mode_loops_in_the_browser(chromium, tmp_path):
+    scene = mb.load_scene(EXAMPLES / "double_pendulum.toml")
+    modes = mb.modes(scene.model)
+    path = tmp_path / "mode.html"
+    v = mb.view_mode(modes, 1, path)
+    assert v.path == str(path)
+    page, _ = open_page(chromium, path)
+    state = page.evaluate("lagmbViewer.state()")
+    assert state["loop"] and state["frames"] == 101 and state["bodies"] == 2
+    period = 1.0 / modes.frequencies[1]
+    assert page.evaluate("lagmbViewer.state().time") == 0.0
+    page.evaluate(f"lagmbViewer.seek({0.9 * period})")
+    page.evaluate("lagmbViewer.play()")
+    time.sleep(1.0)  # past the period's end: it starts again instead of stopping
+    state = page.evaluate("lagmbViewer.state()")
+    assert state["playing"] and state["time"] < 0.9 * period
+    page.close()
+    with pytest.raises(mb.ModelError, match="index 5: there are 2 modes"):
+        mb.view_mode(modes, 5, tmp_path / "x.html")

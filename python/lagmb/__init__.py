@@ -29,7 +29,7 @@ from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
 from .studies import sweep
-from .viewer import View, view
+from .viewer import View, view, view_mode
 
 from ._version import __version__  # noqa: F401
 SUNDIALS_VERSION = _core.sundials_version
@@ -74,6 +74,7 @@ __all__ = [
     "Modes", "LinearSystem", "Descriptor", "linearize",
     "sweep",
     "view",
+    "view_mode",
     "View",
     "JointSpace",
     "inverse_dynamics",

@@ -211,7 +211,38 @@ class View:
         return f"<lagmb.View: {where}, {self.size / 1e6:.2f} MB>"
 
 
-def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_frames=5000):
+def view_mode(modes, index=0, path="mode.html", *, amplitude=None, frames=100):
+    """A vibration mode as a looping page (:func:`view`): the equilibrium
+    pose plus amplitude sin(omega t) times the mode's shape over one period
+    (a rigid-body or unstable mode: back and forth over one cycle of phase),
+    the amplitude as :func:`lagmb.plotting.animate_mode` chooses it unless
+    given. ModelError for a bad index (naming how many modes there are)."""
+    from .linear import Modes
+    from .plotting import _mode_amplitude, _posed
+
+    if not isinstance(modes, Modes):
+        raise ModelError(f"lagmb.view_mode: modes must be what mb.modes(model) returns, got {type(modes).__name__}")
+    count = len(modes)
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < count:
+        raise ModelError(f"lagmb.view_mode: index {index!r}: there are {count} modes"
+                         + (f" (0 .. {count - 1})" if count else " (nothing can move)"))
+    index = int(index)
+    equilibrium = modes.equilibrium
+    shape = np.asarray(modes.shapes[index], dtype=float)
+    amplitude = _mode_amplitude(equilibrium, shape) if amplitude is None else float(amplitude)
+    kind, omega = modes.kinds[index], float(modes.omega[index])
+    phase = 2.0 * math.pi * np.arange(frames + 1) / frames
+    times = phase / omega if kind == "vibration" and omega > 0 else phase / (2.0 * math.pi)
+    shown = _posed(equilibrium, equilibrium.q + amplitude * np.sin(phase)[:, None] * shape[None, :], times)
+    frequency = 0.0 if kind == "rigid-body" else float(modes.frequencies[index])
+    return view(shown, path, outputs=[], title=f"mode {index}: {frequency:.4g} Hz ({kind})", loop=True,
+                lines=[f"mode {index} of {count}: {kind}, {frequency:.6g} Hz, omega {omega:.6g} rad/s"
+                       + ("" if kind == "vibration" else " (shown back and forth over one cycle of phase)"),
+                       f"amplitude {amplitude:.3g} times the shape (largest coordinate +1)"])
+
+
+def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_frames=5000, loop=False,
+         lines=None):
     """Writes the run as one self-contained HTML page (see the module's
     docstring) and returns a :class:`View`; ``path=None`` keeps it in memory
     (a notebook shows it inline).
@@ -224,7 +255,9 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     ``trace``: points drawn as lines up to the current time, [(body,
     local point), ...]. ``title``: the page's (default: the bodies and the
     method). ``max_frames``: outputs beyond it are thinned evenly (the
-    page holds 7 float32 numbers per body per frame).
+    page holds 7 float32 numbers per body per frame). ``loop``: playing
+    starts again at the end (:func:`view_mode`); ``lines``: the text under
+    the title (default: the bodies, the method and its counts).
 
     Planar models are drawn in their plane (x, y), bodies as bars between
     their joints; spatial ones with their shapes (a URDF's meshes, STL) or
@@ -347,7 +380,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     def count(n, word):
         return f"{n} {word}{'' if n == 1 else 's'}" if n else ""
 
-    lines = [", ".join(filter(None, [count(len(bodies), "body").replace("bodys", "bodies"),
+    lines = lines if lines is not None else [", ".join(filter(None, [count(len(bodies), "body").replace("bodys", "bodies"),
                                      count(len(scene.joints), "joint"), count(len(scene.drivers), "driver")])),
              f"method {stats.get('method', stats.get('formulation', '?'))}: {_stats_line(stats)}",
              f"t = {t[0]:g} .. {t[-1]:g} s, {len(frames)} frames"]
@@ -357,6 +390,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
                  "normal": [float(x) for x in grid_normal]},
         "camera": {"target": [float(x) for x in center], "position": [float(x) for x in camera]},
         "bodies": body_data, "ground_parts": ground_parts, "traces": traces, "plots": plots, "times": _b64(t),
+        "loop": bool(loop),
     }
     template = (importlib.resources.files("lagmb") / "viewer.html").read_text(encoding="utf-8")
     page = (template.replace("%%TITLE%%", html.escape(title or "lagmb"))
