@@ -175,3 +175,28 @@ def test_a_vibration_mode_loops_in_the_browser(chromium, tmp_path):
     page.close()
     with pytest.raises(mb.ModelError, match="index 5: there are 2 modes"):
         mb.view_mode(modes, 5, tmp_path / "x.html")
+
+
+def test_a_sweep_s_cases_are_selectable_each_drawn_with_its_own_parameters(chromium, tmp_path):
+    scene = mb.load_scene(EXAMPLES / "slider_crank.toml")
+    grid = {"B.at.y": [0.08, 0.12], "rod.mass": [1.0, 2.0]}
+    ds = mb.sweep(scene, grid, t_end=0.3, histories=np.linspace(0.0, 0.3, 31), progress=False)
+    index = mb.view_sweep(ds, scene.model, tmp_path / "study")
+    page, _ = open_page_of_sweep(chromium, index)
+    assert page.evaluate("lagmbSweep.cases()") == 4 and page.evaluate("lagmbSweep.page()") == "case_0000.html"
+    page.evaluate("lagmbSweep.choose(3)")
+    assert page.evaluate("lagmbSweep.page()") == "case_0003.html"
+    page.close()
+    # each case's page: the crank as long as its B.at.y says (the bar from O to B)
+    short = (tmp_path / "study" / "case_0000.html").read_text()
+    long = (tmp_path / "study" / "case_0002.html").read_text()
+    assert "B.at.y = 0.08" in short and "B.at.y = 0.12" in long and short != long
+    with pytest.raises(mb.ModelError, match="no time histories"):
+        mb.view_sweep(mb.sweep(scene, grid, t_end=0.1, progress=False), scene.model, tmp_path / "x")
+
+
+def open_page_of_sweep(chromium, path):
+    page = chromium.open("about:blank")
+    page.command("Page.navigate", {"url": Path(path).resolve().as_uri()})
+    page.wait_for("window.lagmbSweep && window.lagmbSweep.selected() !== null")
+    return page, None

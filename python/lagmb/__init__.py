@@ -29,7 +29,7 @@ from .joints import JointSpace, inverse_dynamics
 from .urdf import UrdfError, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
 from .studies import sweep
-from .viewer import View, view, view_mode
+from .viewer import View, view, view_mode, view_sweep
 
 from ._version import __version__  # noqa: F401
 SUNDIALS_VERSION = _core.sundials_version
@@ -75,6 +75,7 @@ __all__ = [
     "sweep",
     "view",
     "view_mode",
+    "view_sweep",
     "View",
     "JointSpace",
     "inverse_dynamics",

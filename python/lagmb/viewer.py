@@ -241,6 +241,104 @@ def view_mode(modes, index=0, path="mode.html", *, amplitude=None, frames=100):
                        f"amplitude {amplitude:.3g} times the shape (largest coordinate +1)"])
 
 
+def view_sweep(ds, model, folder="sweep_view", *, cases=None, outputs=None):
+    """A sweep's cases, selectable: ``folder/index.html`` holds a list of
+    the cases (their parameters and status) and shows the chosen one's page
+    (:func:`view`, one ``case_NNNN.html`` beside it, each of the model built
+    with that case's parameters, so a length a case changes is drawn so).
+    Needs the sweep's time histories (``mb.sweep(..., histories=[...])``:
+    the coordinates ``q`` on a time grid). ``cases``: which (default all,
+    at most 200); ``outputs``: the plots of each page, as :func:`view`
+    takes them (coordinates and energy: a history holds positions only).
+    ModelError for a Dataset without histories or a model that is not the
+    sweep's (other coordinates)."""
+    from .result import Result
+
+    if "q" not in getattr(ds, "data_vars", {}):
+        raise ModelError("lagmb.view_sweep: the sweep has no time histories: run mb.sweep(..., histories=[times])")
+    names = model.coordinate_names()
+    if list(ds["coordinate"].values) != names:
+        raise ModelError("lagmb.view_sweep: the sweep's coordinates are not this model's: give the model it ran")
+    all_cases = [int(c) for c in ds["case"].values]
+    chosen = all_cases if cases is None else [int(c) for c in cases]
+    unknown = [c for c in chosen if c not in all_cases]
+    if unknown:
+        raise ModelError(f"lagmb.view_sweep: no case {unknown[0]} in the sweep (cases {all_cases[0]} .. {all_cases[-1]})")
+    if len(chosen) > 200:
+        raise ModelError(f"lagmb.view_sweep: {len(chosen)} cases: choose at most 200 (cases=[...]); each is a page")
+    folder = os.fspath(folder)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as e:
+        raise ModelError(f"lagmb.view_sweep: cannot make {folder!r}: {e.strerror or e}") from None
+    parameters = [c for c in ds.coords if c not in ("case", "time", "coordinate")]
+    known = set(model.parameters())
+    t = np.asarray(ds["time"].values, dtype=float)
+    entries = []
+    for case in chosen:
+        row = ds.sel(case=case)
+        values = {p: row[p].item() for p in parameters}
+        label = ", ".join(f"{p} = {v:g}" if isinstance(v, float) else f"{p} = {v}" for p, v in values.items()
+                          if not (isinstance(v, float) and math.isnan(v)))
+        status = str(row["status"].item())
+        page = f"case_{case:04d}.html"
+        if status == "ok":
+            params = {p: float(v) for p, v in values.items() if p in known and not math.isnan(float(v))}
+            core = model.compiled().with_parameters(params) if params else model.compiled()
+            q = np.asarray(row["q"].values, dtype=float)
+            zero = np.zeros_like(q)
+            raw = {"t": t, "q": q, "v": zero, "a": zero, "lam": np.zeros((len(t), core.n_constraints)),
+                   "stats": {"steps": int(row["steps"].item())}}
+            view(Result(model, core, raw), os.path.join(folder, page), outputs=outputs or [],
+                 title=f"case {case}: {label}", lines=[label, f"{len(t)} frames from the sweep's histories"])
+        entries.append({"case": case, "label": label or f"case {case}", "status": status,
+                        "page": page if status == "ok" else None})
+    index = _SWEEP_INDEX.replace("%%DATA%%", json.dumps(entries).replace("</", "<\\/"))
+    with open(os.path.join(folder, "index.html"), "w", encoding="utf-8") as f:
+        f.write(index)
+    return os.path.join(folder, "index.html")
+
+
+_SWEEP_INDEX = """<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>lagmb sweep</title>
+<style>
+  html, body { margin: 0; height: 100%; font: 13px system-ui, sans-serif; }
+  #app { display: flex; height: 100%; }
+  #cases { width: 280px; overflow-y: auto; border-right: 1px solid #ddd; }
+  #cases div { padding: 4px 8px; cursor: pointer; border-bottom: 1px solid #f0f0f0; }
+  #cases div.selected { background: #dbe8f6; }
+  #cases div.failed { color: #a33; cursor: default; }
+  iframe { flex: 1; border: 0; height: 100%; }
+</style></head>
+<body><div id="app"><div id="cases"></div><iframe id="case"></iframe></div>
+<script type="application/json" id="lagmb-cases">%%DATA%%</script>
+<script>
+"use strict";
+const entries = JSON.parse(document.getElementById("lagmb-cases").textContent);
+const list = document.getElementById("cases"), frame = document.getElementById("case");
+let selected = null;
+function choose(k) {
+  const e = entries[k];
+  if (!e.page) return;
+  selected = k;
+  frame.src = e.page;
+  for (const [i, div] of [...list.children].entries()) div.classList.toggle("selected", i === k);
+}
+entries.forEach((e, k) => {
+  const div = document.createElement("div");
+  div.textContent = "case " + e.case + ": " + e.label + (e.page ? "" : " (" + e.status.split(":")[0] + ")");
+  if (!e.page) { div.className = "failed"; div.title = e.status; }
+  div.addEventListener("click", () => choose(k));
+  list.appendChild(div);
+});
+const first = entries.findIndex((e) => e.page);
+if (first >= 0) choose(first);
+window.lagmbSweep = { cases: () => entries.length, selected: () => selected, choose: choose,
+                      page: () => frame.getAttribute("src") };
+</script></body></html>
+"""
+
+
 def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_frames=5000, loop=False,
          lines=None):
     """Writes the run as one self-contained HTML page (see the module's
