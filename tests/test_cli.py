@@ -290,7 +290,7 @@ def test_run_summary(four_bar):
     # the method by its listed name, and a run that keeps nothing says so
     assert re.search(r"method (ggl|index3|index1|projection-bdf|projection-adams|projection-erk|ali3p): \d+ steps",
                      p.stdout)
-    assert "nothing written: -o FILE (.npz or .csv), --plot or --animate keep the outputs" in p.stdout
+    assert "nothing written: -o FILE (.npz or .csv), --plot, --animate or --html keep the outputs" in p.stdout
 
 
 def test_run_option_numbers_in_messages_as_given(four_bar):
