@@ -200,3 +200,33 @@ def open_page_of_sweep(chromium, path):
     page.command("Page.navigate", {"url": Path(path).resolve().as_uri()})
     page.wait_for("window.lagmbSweep && window.lagmbSweep.selected() !== null")
     return page, None
+
+
+def test_an_imported_robot_plays_with_its_meshes(chromium, tmp_path):
+    import sys
+
+    sys.path.insert(0, str(EXAMPLES))
+    try:
+        import panda
+    finally:
+        sys.path.remove(str(EXAMPLES))
+    urdf = panda.panda_urdf()
+    if urdf is None:
+        pytest.skip("example-robot-data is not installed (the robots extra)")
+    model = panda.build(urdf)
+    r = mb.simulate(model, 0.3, n_out=31, method="projection-erk", rtol=1e-6, atol=1e-8)
+    path = tmp_path / "panda.html"
+    view(r, path, outputs=["energy", "panda_joint2.angle"])
+    assert '"type": "mesh"' in path.read_text()  # its STL meshes, sent once
+    page, _ = open_page(chromium, path)
+    state = page.evaluate("lagmbViewer.state()")
+    assert state["bodies"] == len(model.bodies) and state["drawn"] > state["bodies"]
+    page.evaluate("lagmbViewer.setFrame(30)")
+    assert page.evaluate("lagmbViewer.state().time") == pytest.approx(0.3)
+    shot = tmp_path / "panda.png"
+    page.wait_for(f"lagmbViewer.state().renders > {state['renders'] + 2}")
+    page.screenshot(shot)
+    box = page.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
+                        "return [r.left, r.top, r.right, r.bottom]; })()")
+    assert drawn_pixels(shot, [int(x) for x in box]) > 2000
+    page.close()
