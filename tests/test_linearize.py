@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
+from test_modes import hanging_rod, spring_chain  # the same pinned rod and spring chain
 
 G = 9.81
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -32,13 +33,6 @@ def by_frequency(values):
     """Eigenvalues in a fixed order: by magnitude, then imaginary part."""
     values = np.asarray(values)
     return values[np.lexsort((values.imag, np.round(np.abs(values), 6)))]
-
-
-def hanging_rod(L=1.3, mass=2.0):
-    m = mb.Model(gravity=(0.0, -G))
-    rod = m.add_body("rod", mass, mass * L**2 / 12, position=(0.0, -L / 2), angle=-math.pi / 2)
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    return m
 
 
 def test_a_pinned_rod_linearizes_to_theta_dd_equal_minus_3g_over_2L_theta_with_its_reaction():
@@ -121,17 +115,6 @@ def test_at_a_moving_state_A_is_the_jacobian_of_the_equations_of_motion_in_the_t
     np.testing.assert_allclose(lin.a[[2, 5]], two_rods_accelerations(L, mass, a, w), rtol=1e-12)
     with pytest.raises(mb.ModelError, match="not a static equilibrium"):
         lin.descriptor()
-
-
-def spring_chain(n, k, c, mass):
-    m = mb.Model(gravity=(0.0, 0.0))
-    previous, anchor = m.ground, (0.0, 0.0)
-    for j in range(1, n + 1):
-        block = m.add_body(f"block{j}", mass, 0.01, position=(float(j), 0.0))
-        m.add_translational(f"guide{j}", m.ground, block, at=(float(j), 0.0), axis=(1.0, 0.0))
-        m.add_spring_damper(f"spring{j}", previous, anchor, block, (float(j), 0.0), stiffness=k, damping=c)
-        previous, anchor = block, (float(j), 0.0)
-    return m
 
 
 def test_a_spring_damper_chain_has_the_analytic_damped_eigenvalues_in_both_forms():
