@@ -4,6 +4,7 @@ numbers reach past a double (10**400) and past what repr() prints (an int
 of 5,000 digits); neither may escape as OverflowError or ValueError."""
 
 import math
+import re
 import numbers
 
 import numpy as np
@@ -139,4 +140,27 @@ def flag(value, name):
 def text(value, name):
     if not isinstance(value, str):
         raise ModelError(f"{name} must be a string, got {show(value)}")
+    return value
+
+
+# A number as XML Schema (xsd:double) and TOML write it in ASCII: no "1_0"
+# (Python's float() reads it as 10), no digits of other scripts (float()
+# reads the Arabic-Indic one as 1), no hex, no surrounding words.
+_DECIMAL = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_SPECIAL = {"inf": math.inf, "+inf": math.inf, "-inf": -math.inf, "nan": math.nan}
+
+
+def decimal(text, name):
+    """The float a decimal number written as text means (surrounding blanks
+    ignored; also 'inf', '-inf' and 'nan', which callers that need finite
+    values then refuse); ModelError naming `name` and the text otherwise.
+    A number past a double's range is an error, not inf."""
+    word = str(text).strip(" \t\r\n")
+    if word.lower() in _SPECIAL:
+        return _SPECIAL[word.lower()]
+    if not _DECIMAL.fullmatch(word):
+        raise ModelError(f"{name}: {show(word)} is not a decimal number")
+    value = float(word)
+    if math.isinf(value):
+        raise ModelError(f"{name}: {show(word)} is too large for a float")
     return value
