@@ -11,21 +11,27 @@ would. A case that fails is recorded with its error; the others go on.
 """
 
 import concurrent.futures
+import errno
+import functools
 import hashlib
+import inspect
 import itertools
 import json
+import marshal
 import math
 import numbers
 import os
 import pickle
+import re
 import shutil
-import time
+import socket
 import uuid
+import warnings
 
 import numpy as np
 
-from . import _core
-from .errors import ModelError
+from ._checks import array, real, show
+from .errors import ModelError, SimulationError
 from .model import Model, checked as _checked_model
 from .progress import Progress
 from .simulation import simulate
@@ -33,7 +39,11 @@ from .simulation import simulate
 # the settings a case may vary beside the model's parameters (simulate's keywords)
 RUN_SETTINGS = ("t_end", "rtol", "atol", "method", "formulation", "integrator", "analysis", "start", "max_step",
                 "n_out", "max_steps")
-_STORE_FORMAT = 1
+_STORE_FORMAT = 2  # 2: each batch's marker of its files, the outputs' descriptions, the lock
+# at most this many cases in one sweep or design: a typo (0:1:1e9, n=10**12)
+# is refused, not a machine filled with case lists (memory is checked too)
+MAX_CASES = 10_000_000
+_CASE_BYTES = 2500  # memory a case takes: its dict, the checked copy, its record, its row (measured)
 
 
 # --- built-in outputs (picklable: module-level classes) ----------------------
@@ -147,8 +157,8 @@ def _bounds(bounds, who):
     for name, pair in bounds.items():
         try:
             low, high = (float(x) for x in pair)
-        except (TypeError, ValueError):
-            raise ModelError(f"{who}: {name!r} needs (low, high), got {pair!r}") from None
+        except (TypeError, ValueError, OverflowError):
+            raise ModelError(f"{who}: {name!r} needs (low, high), got {show(pair)}") from None
         if not (np.isfinite(low) and np.isfinite(high) and low < high):
             raise ModelError(f"{who}: {name!r} needs finite low < high, got ({low}, {high})")
         names.append(name), lows.append(low), highs.append(high)
@@ -157,8 +167,20 @@ def _bounds(bounds, who):
 
 def _count(n, who):
     if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
-        raise ModelError(f"{who}: n must be a positive integer, got {n!r}")
+        raise ModelError(f"{who}: n must be a positive integer, got {show(n)}")
+    if n > MAX_CASES:
+        raise ModelError(f"{who}: n = {show(n)} cases: at most {MAX_CASES:,} in one design (sweep.MAX_CASES)")
     return int(n)
+
+
+def _seed(seed, who):
+    """The seed as numpy takes it: None (fresh entropy) or an integer >= 0
+    (a Generator or SeedSequence passes as is)."""
+    if seed is None or isinstance(seed, (np.random.Generator, np.random.SeedSequence)):
+        return seed
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+        raise ModelError(f"{who}: seed must be an integer >= 0 (or None), got {show(seed)}")
+    return int(seed)
 
 
 def monte_carlo(distributions, n, seed):
@@ -170,7 +192,7 @@ def monte_carlo(distributions, n, seed):
     n = _count(n, who)
     if not isinstance(distributions, dict) or not distributions:
         raise ModelError(f"{who}: give the parameters as a non-empty dict {{name: (low, high) or distribution}}")
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(_seed(seed, who))
     columns = {}
     for name, d in distributions.items():
         if hasattr(d, "rvs"):
@@ -186,6 +208,7 @@ def _qmc(kind, bounds, n, seed):
 
     who = f"sweep.{kind}"
     n = _count(n, who)
+    seed = _seed(seed, who)
     names, low, high = _bounds(bounds, who)
     sampler = (qmc.LatinHypercube(d=len(names), seed=seed) if kind == "latin_hypercube"
                else qmc.Sobol(d=len(names), scramble=True, seed=seed))
@@ -209,12 +232,45 @@ def sobol(bounds, n, seed):
 # --- the cases ------------------------------------------------------------------
 
 
-def _cases(parameters, who):
+def _missing(value):
+    """A DataFrame's cell that holds no value (NaN, None, pd.NA): a case
+    that does not give that name, as in a list of dicts."""
+    import pandas
+
+    try:
+        return bool(pandas.isna(value))
+    except (TypeError, ValueError):  # a list or an array: a value
+        return False
+
+
+def _physical_memory():
+    """The machine's memory (bytes), or None where the system does not say."""
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def _too_many(n, who, per_case):
+    """Refuses n cases past MAX_CASES, or that would take more memory than
+    the machine has (per_case bytes each), before they are made."""
+    if n > MAX_CASES:
+        raise ModelError(f"{who}: {n:,} cases: at most {MAX_CASES:,} in one sweep (sweep.MAX_CASES); split the study")
+    memory = _physical_memory()
+    if memory and n * per_case > memory:
+        raise ModelError(f"{who}: {n:,} cases would take about {n * per_case / 1e9:,.1f} GB of memory (this "
+                         f"machine has {memory / 1e9:,.1f} GB): split the study, or ask for fewer history times")
+
+
+def _cases(parameters, who, per_case=_CASE_BYTES):
     """(list of case dicts, grid or None): a grid is [(name, values), ...]."""
     if isinstance(parameters, Design):
+        _too_many(len(parameters.cases), who, per_case)
         return list(parameters.cases), None
     if hasattr(parameters, "to_dict") and hasattr(parameters, "columns"):  # a pandas DataFrame
-        return [dict(row) for row in parameters.to_dict(orient="records")], None
+        _too_many(len(parameters), who, per_case)
+        return [{k: v for k, v in row.items() if not _missing(v)}
+                for row in parameters.to_dict(orient="records")], None
     if isinstance(parameters, dict):
         if not parameters:
             raise ModelError(f"{who}: the grid is empty: give {{name: [values, ...]}}")
@@ -224,14 +280,16 @@ def _cases(parameters, who):
             if not values:
                 raise ModelError(f"{who}: the grid's axis {name!r} has no values")
             grid.append((name, values))
+        _too_many(math.prod(len(g[1]) for g in grid), who, per_case)  # before the product is built
         names = [g[0] for g in grid]
         return [dict(zip(names, combo)) for combo in itertools.product(*(g[1] for g in grid))], grid
     if isinstance(parameters, (list, tuple)):
         if not parameters:
             raise ModelError(f"{who}: no cases: the table is empty")
+        _too_many(len(parameters), who, per_case)
         for i, case in enumerate(parameters):
             if not isinstance(case, dict):
-                raise ModelError(f"{who}: case {i} must be a dict {{name: value}}, got {case!r}")
+                raise ModelError(f"{who}: case {i} must be a dict {{name: value}}, got {show(case)}")
         return [dict(c) for c in parameters], None
     raise ModelError(f"{who}: parameters must be a grid {{name: [values]}}, a list of cases {{name: value}}, a "
                      f"pandas DataFrame or a design (sweep.monte_carlo, ...), got {type(parameters).__name__}")
@@ -239,8 +297,9 @@ def _cases(parameters, who):
 
 def _check_cases(model, cases, who):
     """Every name known and every value one its element accepts (the
-    element's own ModelError), before any case runs; values as floats
-    (run settings: as simulate takes them)."""
+    element's own ModelError), before any case runs; parameters as floats,
+    run settings as one number or name each (a list, such as a
+    per-coordinate atol, is a setting of the whole sweep, not a case's)."""
     known = model.parameters()
     core = model.compiled()
     tried = set()
@@ -248,15 +307,22 @@ def _check_cases(model, cases, who):
     for i, case in enumerate(cases):
         checked = {}
         for name, value in case.items():
+            if isinstance(value, np.generic):
+                value = value.item()
             if name in RUN_SETTINGS:
-                checked[name] = value.item() if isinstance(value, np.generic) else value
+                if isinstance(value, bool) or not isinstance(value, (str, numbers.Real)):
+                    raise ModelError(f"{who}: case {i}: the run setting {name!r} must be one number or name a "
+                                     f"case, got {show(value)}; a setting that is a list (a per-coordinate "
+                                     f"atol) is the whole sweep's: give it as {name}=... or run={{...}}")
+                if isinstance(value, numbers.Real):
+                    number = real(value, f"{who}: case {i}: {name!r}")
+                    value = int(value) if isinstance(value, numbers.Integral) else number
+                checked[name] = value
                 continue
             if name not in known:
                 raise ModelError(f"{who}: case {i}: no parameter {name!r}; the model's parameters are "
                                  f"{', '.join(known)} (and the run settings {', '.join(RUN_SETTINGS)})")
-            if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.number)):
-                raise ModelError(f"{who}: case {i}: {name!r} must be a number, got {value!r}")
-            value = float(value)
+            value = real(value, f"{who}: case {i}: {name!r}")
             if (name, value) not in tried:
                 try:
                     core.with_parameters({name: value})
@@ -383,65 +449,409 @@ def as_grid(ds):
 
 # --- the store -------------------------------------------------------------------------
 
+_BUILT_IN = (Final, PeakReaction, PeakEffort, EnergyDrift)
 
-def _fingerprint(text, cases, settings, outputs, t_out):
-    payload = json.dumps({"model": text, "cases": cases, "settings": settings,
-                          "outputs": sorted(outputs), "t_out": None if t_out is None else list(map(float, t_out))},
-                         sort_keys=True, default=str)
-    return hashlib.sha256(payload.encode()).hexdigest()
+
+def _digest(data):
+    return hashlib.sha256(data).hexdigest()[:16]
+
+
+def _pickled(value):
+    """A digest of value's pickle (of its type's name, if it has none)."""
+    try:
+        return _digest(pickle.dumps(value, protocol=4))
+    except Exception:  # noqa: BLE001 - any pickling failure: the type is what is known
+        return _digest(f"{type(value).__module__}.{type(value).__qualname__}".encode())
+
+
+def _what(f):
+    """What an output computes, as its store records it: a built-in's kind
+    and argument; a function's module and qualified name with a digest of
+    its code (its source; the bytecode if it has none), defaults, closure
+    and bound object; a partial's function and arguments; another
+    callable's class and pickle. A function changed under the same name is
+    another output."""
+    if isinstance(f, _BUILT_IN):
+        return repr(f)
+    if isinstance(f, functools.partial):
+        return f"partial({_what(f.func)}, {_pickled((f.args, f.keywords))})"
+    func = getattr(f, "__func__", f)  # a bound method: its function, and its object below
+    code = getattr(func, "__code__", None)
+    if code is None:  # a callable object
+        return f"{type(f).__module__}.{type(f).__qualname__} ({_pickled(f)})"
+    try:
+        text = inspect.getsource(func).encode()
+    except (OSError, TypeError):  # made by exec or at a prompt: its bytecode
+        text = marshal.dumps(code)
+    closure = []
+    for cell in func.__closure__ or ():
+        try:
+            closure.append(cell.cell_contents)
+        except ValueError:  # a cell not filled yet
+            closure.append(None)
+    state = _digest(" ".join(_pickled(v) for v in [func.__defaults__, func.__kwdefaults__,
+                                                    getattr(f, "__self__", None)] + closure).encode())
+    return f"{func.__module__}.{func.__qualname__} ({_digest(text)} {state})"
+
+
+def _made_of(text, cases, settings, outputs, t_out):
+    """What a sweep is made of, as its store keeps it: a digest of the
+    model, the cases, the run settings and the output times, and what each
+    output computes (_what)."""
+    def digest(value):
+        return _digest(json.dumps(value, sort_keys=True, default=str).encode())
+
+    return {"model": digest(text), "cases": digest(cases), "settings": digest(settings),
+            "histories": digest(None if t_out is None else list(map(float, t_out))),
+            "outputs": {name: _what(f) for name, f in outputs.items()}}
+
+
+def _fingerprint(made_of):
+    return hashlib.sha256(json.dumps(made_of, sort_keys=True).encode()).hexdigest()
+
+
+def _differences(held, made_of):
+    """What differs between the sweep a store holds and this one, in words."""
+    if not isinstance(held, dict):
+        return "another model, cases, settings or outputs"
+    words = [f"another {part}" if part == "model" else f"other {part}" for part in
+             ("model", "cases", "settings", "histories") if held.get(part) != made_of[part]]
+    there, here = held.get("outputs") if isinstance(held.get("outputs"), dict) else {}, made_of["outputs"]
+    changed = [f"{name}: {there.get(name, 'none')} there, {here.get(name, 'none')} here"
+               for name in dict.fromkeys(list(there) + list(here)) if there.get(name) != here.get(name)]
+    if changed:
+        words.append("other outputs (" + "; ".join(changed) + ")")
+    return ", ".join(words) or "another sweep"
+
+
+_LOCK = "lagmb_sweep.lock"  # held by the sweep writing the store
+_MARKER = "lagmb_batch"     # a batch group's attribute, written last: its files; a batch without it is not whole
+_BATCH = re.compile(r"batch_([0-9]{6,})")
+_TMP = re.compile(r"tmp_[0-9]{6,}_[0-9a-f]{32}")  # a batch being written (this module's names only)
+_ZARR = ("zarr.json", ".zgroup", ".zattrs", ".zarray", ".zmetadata")
+
+
+def _held(path, who):
+    """The description in the store's root attributes (None if the Zarr
+    store has none); ModelError naming the store if it cannot be read."""
+    import zarr
+
+    try:
+        held = zarr.open_group(path, mode="r").attrs.get("lagmb_sweep")
+    except Exception as e:  # noqa: BLE001 - JSONDecodeError, GroupNotFoundError, ...: damaged
+        raise ModelError(f"{who}: the store {path!r} cannot be read: its zarr.json is damaged "
+                         f"({type(e).__name__}: {' '.join(str(e).split())[:200]})") from None
+    if held is None:
+        return None
+    if not isinstance(held, dict) or held.get("format") != _STORE_FORMAT:
+        made = held.get("format") if isinstance(held, dict) else None
+        raise ModelError(f"{who}: the store {path!r} was written by another version of lagmb (store format "
+                         f"{show(made)}; this one reads format {_STORE_FORMAT}): delete it to start again")
+    checks = {"fingerprint": lambda v: isinstance(v, str),
+              "cases": lambda v: isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= MAX_CASES,
+              "batch_size": lambda v: isinstance(v, int) and not isinstance(v, bool) and v >= 1,
+              "outputs": lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v),
+              "grid": lambda v: isinstance(v, str), "made_of": lambda v: isinstance(v, dict)}
+    for key, good in checks.items():
+        if not good(held.get(key)):
+            raise ModelError(f"{who}: the store {path!r} cannot be read: its description is damaged "
+                             f"({key}: {show(held.get(key))})")
+    return held
+
+
+def check_store(path, who="sweep"):
+    """The description of the sweep the store at ``path`` holds, or None
+    where a sweep may make one (no such folder, or an empty one). A
+    ModelError if ``path`` is a file, a folder that is not a sweep's store
+    (a sweep writes into no other folder: another program's Zarr store
+    included) or a store that cannot be read. mb.sweep and ``lagmb sweep
+    -o`` both check a store with it, before anything is written."""
+    path = os.fspath(path)
+    if os.path.lexists(path) and not os.path.isdir(path):
+        raise ModelError(f"{who}: the store {path!r} is a file; a store is a folder (e.g. study.zarr)")
+    if not os.path.isdir(path):
+        return None
+    try:
+        names = set(os.listdir(path)) - {_LOCK}
+    except OSError as e:
+        raise ModelError(f"{who}: the store {path!r} cannot be read: {e.strerror or e}") from None
+    if not names:
+        return None
+    if not names & set(_ZARR):
+        if _LOCK in os.listdir(path) or any(_BATCH.fullmatch(name) for name in names):
+            raise ModelError(f"{who}: the store {path!r} cannot be read: its zarr.json is missing (copied in "
+                             "part?): delete it to start again")
+        raise ModelError(f"{who}: {path!r} is a folder that is not a study's store: give a new folder name "
+                         "(e.g. study.zarr); a sweep writes into no other folder")
+    held = _held(path, who)
+    if held is None:
+        raise ModelError(f"{who}: {path!r} is a Zarr store, but not a study's (lagmb sweep's): give a new "
+                         "folder name; a sweep writes into no other store")
+    return held
+
+
+_GROUP_ATTRIBUTES = ("zarr.json", ".zattrs")  # where a group's attributes are (Zarr 3, Zarr 2): the marker's
+
+
+def _files(folder):
+    """{path in folder: [size, sha256]} of the batch group's files but the
+    one holding its attributes (and so its marker)."""
+    files = {}
+    for root, dirs, names in os.walk(folder):
+        dirs.sort()
+        for name in sorted(names):
+            full = os.path.join(root, name)
+            relative = os.path.relpath(full, folder).replace(os.sep, "/")
+            if relative not in _GROUP_ATTRIBUTES:
+                with open(full, "rb") as fh:
+                    data = fh.read()
+                files[relative] = [len(data), hashlib.sha256(data).hexdigest()]
+    return files
+
+
+def _marker(folder):
+    """The batch group's marker (None if it has none), read from its
+    attributes' file as JSON: quicker than opening the group with zarr."""
+    for name in _GROUP_ATTRIBUTES:
+        try:
+            with open(os.path.join(folder, name), encoding="utf-8") as fh:
+                held = json.load(fh)
+        except FileNotFoundError:
+            continue
+        attributes = held.get("attributes", {}) if name == "zarr.json" and isinstance(held, dict) else held
+        return attributes.get(_MARKER) if isinstance(attributes, dict) else None
+    return None
+
+
+def _batch_problem(folder, fingerprint, batch, first, last):
+    """Why the batch folder is not whole (None if it is): no marker (not
+    finished, or copied in part), another sweep's or another batch's, a file
+    missing, changed or added."""
+    try:
+        marker = _marker(folder)
+    except (OSError, ValueError) as e:
+        return f"its attributes cannot be read ({type(e).__name__})"
+    if marker is None:
+        return "it has no marker of its files (it was not finished, or was copied in part)"
+    if not isinstance(marker, dict) or not isinstance(marker.get("files"), dict):
+        return "its marker is damaged"
+    if [marker.get(k) for k in ("fingerprint", "batch", "first", "last")] != [fingerprint, batch, first, last]:
+        return "it holds another sweep's cases, or another batch's (copied in?)"
+    try:
+        found = _files(folder)
+    except OSError as e:
+        return f"its files cannot be read ({e.strerror or e})"
+    for name, size_hash in marker["files"].items():
+        if name not in found:
+            return f"its file {name} is missing"
+        if found[name] != size_hash:
+            return f"its file {name} differs from what was written"
+    added = [name for name in found if name not in marker["files"] and not os.path.basename(name).startswith(".")]
+    if added:
+        return f"it holds a file the sweep did not write ({added[0]})"
+    return None
+
+
+def _scan(path, held):
+    """(whole, damaged, ignored) of a store's batch folders: whole {batch:
+    (first, last)}, damaged {batch: why not whole}, ignored [names of
+    folders that are no batch of this study, e.g. beyond its cases]."""
+    n, size = held["cases"], held["batch_size"]
+    count = math.ceil(n / size)
+    whole, damaged, ignored = {}, {}, []
+    for name in sorted(os.listdir(path)):
+        if not name.startswith("batch_"):
+            continue
+        match = _BATCH.fullmatch(name)
+        batch = int(match.group(1)) if match else -1
+        if not 0 <= batch < count:
+            ignored.append(name)
+            continue
+        first, last = batch * size, min(n, (batch + 1) * size)
+        problem = _batch_problem(os.path.join(path, name), held["fingerprint"], batch, first, last)
+        if problem is None:
+            whole[batch] = (first, last)
+        else:
+            damaged[batch] = f"{name} (cases {first}..{last - 1}): {problem}"
+    return whole, damaged, ignored
+
+
+def _ignored_warning(path, held, ignored):
+    count = math.ceil(held["cases"] / held["batch_size"])
+    warnings.warn(f"sweep: the store {path!r}: {', '.join(ignored)} "
+                  f"{'is no batch' if len(ignored) == 1 else 'are no batches'} of its study ({held['cases']:,} "
+                  f"cases in batches batch_000000..batch_{count - 1:06d}): left out", UserWarning, stacklevel=3)
+
+
+class _Lock:
+    """The store's lock file, locked (flock; on Windows msvcrt) while a
+    sweep writes the store, holding its pid: a second sweep on the store is
+    refused naming it. The system lets go of a dead process's lock, so a
+    stale lock file is taken over."""
+
+    def __init__(self, folder, who):
+        path = os.path.join(folder, _LOCK)
+        try:
+            self.fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+        except OSError as e:
+            raise ModelError(f"{who}: the store {folder!r} cannot be written: {e.strerror or e}") from None
+        try:
+            self._lock(True)
+        except OSError as e:
+            if e.errno not in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK, errno.EDEADLK):
+                # a file system without locks (some network mounts): go on, unguarded
+                warnings.warn(f"{who}: the store {folder!r} cannot be locked ({e.strerror or e}): run no "
+                              "other sweep on it meanwhile", UserWarning, stacklevel=4)
+                return
+            holder = os.read(self.fd, 200).decode(errors="replace").split()
+            os.close(self.fd)
+            here = socket.gethostname()
+            who_holds = (f"pid {holder[0]}" + (f" on {holder[1]}" if len(holder) > 1 and holder[1] != here else "")
+                         if holder else "pid unknown")
+            raise ModelError(f"{who}: the store {folder!r} is in use by another sweep ({who_holds}): let it "
+                             "finish, or give another store") from None
+        os.ftruncate(self.fd, 0)
+        os.lseek(self.fd, 0, os.SEEK_SET)
+        os.write(self.fd, f"{os.getpid()} {socket.gethostname()}\n".encode())
+
+    def _lock(self, take):
+        try:
+            import fcntl
+        except ImportError:  # Windows: a byte far past the pid, so that the pid stays readable
+            import msvcrt
+
+            os.lseek(self.fd, 1 << 20, os.SEEK_SET)
+            msvcrt.locking(self.fd, msvcrt.LK_NBLCK if take else msvcrt.LK_UNLCK, 1)
+            os.lseek(self.fd, 0, os.SEEK_SET)
+            return
+        fcntl.flock(self.fd, (fcntl.LOCK_EX | fcntl.LOCK_NB) if take else fcntl.LOCK_UN)
+
+    def release(self):
+        try:
+            self._lock(False)
+        finally:
+            os.close(self.fd)
 
 
 class _Store:
     """A Zarr directory store: the sweep's description in the root
     attributes, and one group per finished batch ("batch_000012"), written
-    under a temporary name and renamed when complete, so a group that
-    exists is whole."""
+    under a temporary name, its marker of files last, then renamed: a batch
+    is whole when its marker says so. The store is locked while a sweep
+    writes it."""
 
-    def __init__(self, path, description):
+    def __init__(self, path, description, who):
         import zarr
 
-        self.path = os.fspath(path)
-        root = zarr.open_group(self.path, mode="a")
-        held = root.attrs.get("lagmb_sweep")
-        if held is None:
-            root.attrs["lagmb_sweep"] = description
-        elif held.get("fingerprint") != description["fingerprint"]:
-            raise ModelError(f"sweep: the store {self.path!r} holds another sweep (other cases, settings, outputs "
-                             "or model): give another store, or delete this one to start again")
-        for name in os.listdir(self.path):  # the leftovers of a batch interrupted while written
-            if name.startswith("tmp_"):
-                shutil.rmtree(os.path.join(self.path, name), ignore_errors=True)
+        self.path, self.who = os.fspath(path), who
+        check_store(self.path, who)  # before anything is written: nothing into a folder of another's
+        try:
+            os.makedirs(self.path, exist_ok=True)
+        except OSError as e:
+            raise ModelError(f"{who}: the store {self.path!r} cannot be made: {e.strerror or e}") from None
+        self.lock = _Lock(self.path, who)
+        try:
+            held = check_store(self.path, who)  # again under the lock: another sweep may have made it meanwhile
+            if held is None:
+                try:
+                    zarr.open_group(self.path, mode="a").attrs["lagmb_sweep"] = description
+                except OSError as e:
+                    raise ModelError(f"{who}: the store {self.path!r} cannot be written: {e.strerror or e}"
+                                     ) from None
+                held = description
+            elif held["fingerprint"] != description["fingerprint"]:
+                raise ModelError(f"{who}: the store {self.path!r} holds another sweep (made with "
+                                 f"{_differences(held['made_of'], description['made_of'])}): give another store, "
+                                 "or delete this one to start again")
+            self.held = held
+            for name in os.listdir(self.path):  # the leftovers of a batch interrupted while written
+                if _TMP.fullmatch(name):
+                    shutil.rmtree(os.path.join(self.path, name), ignore_errors=True)
+        except BaseException:
+            self.lock.release()
+            raise
 
-    def finished(self):
-        return sorted(int(name[len("batch_"):]) for name in os.listdir(self.path) if name.startswith("batch_"))
+    def write(self, batch, first, last, ds):
+        """The batch's Dataset into the store: whole, or not there."""
+        tmp = os.path.join(self.path, f"tmp_{batch:06d}_{uuid.uuid4().hex}")
+        import zarr
 
-    def write(self, batch, ds):
-        tmp = f"tmp_{batch:06d}_{uuid.uuid4().hex}"
-        ds.to_zarr(self.path, group=tmp, mode="w", consolidated=False)
-        os.rename(os.path.join(self.path, tmp), os.path.join(self.path, f"batch_{batch:06d}"))
+        ds.to_zarr(self.path, group=os.path.basename(tmp), mode="w", consolidated=False)
+        marker = {"fingerprint": self.held["fingerprint"], "batch": batch, "first": first, "last": last,
+                  "files": _files(tmp)}
+        zarr.open_group(tmp, mode="r+").attrs[_MARKER] = marker  # last: the batch is whole
+        target = os.path.join(self.path, f"batch_{batch:06d}")
+        if os.path.lexists(target) and not os.path.isdir(target):
+            os.remove(target)  # a file under a batch's name: not a batch
+        if os.path.isdir(target):
+            if _batch_problem(target, self.held["fingerprint"], batch, first, last) is None:
+                shutil.rmtree(tmp, ignore_errors=True)  # already there and whole: nothing to do
+                return
+            old = os.path.join(self.path, f"tmp_{batch:06d}_{uuid.uuid4().hex}")  # a damaged one: replaced
+            os.rename(target, old)
+            shutil.rmtree(old, ignore_errors=True)
+        os.rename(tmp, target)
+
+    def close(self):
+        self.lock.release()
 
 
 def open_store(path):
     """The Dataset of a sweep's store (what ``mb.sweep(..., store=path)``
-    wrote), its finished cases in case order."""
-    import xarray as xr
-    import zarr
-
+    wrote), its finished cases in case order. A batch that is not whole (not
+    finished, copied in part, changed) or no batch of the study (a folder
+    beyond its cases) is left out with a warning naming it; the sweep run
+    again computes it. A folder that is no sweep's store, or a store that
+    cannot be read, is a ModelError naming it and what is wrong."""
+    who = "sweep.open_store"
     path = os.fspath(path)
     if not os.path.isdir(path):
-        raise ModelError(f"sweep.open_store: no store at {path!r}")
-    description = zarr.open_group(path, mode="r").attrs.get("lagmb_sweep")
-    if description is None:
-        raise ModelError(f"sweep.open_store: {path!r} is not a sweep's store")
-    parts = [xr.open_zarr(path, group=name, consolidated=False).load()
-             for name in sorted(os.listdir(path)) if name.startswith("batch_")]
+        raise ModelError(f"{who}: no store at {path!r}")
+    held = check_store(path, who)
+    if held is None:
+        raise ModelError(f"{who}: {path!r} is not a sweep's store (an empty folder)")
+    whole, damaged, ignored = _scan(path, held)
+    if ignored:
+        _ignored_warning(path, held, ignored, who, stacklevel=2)
+    return _read(path, held, whole, damaged, who, "left out (the sweep run again computes them)", stacklevel=2)
+
+
+def _ignored_warning(path, held, ignored, who, stacklevel):
+    count = math.ceil(held["cases"] / held["batch_size"])
+    warnings.warn(f"{who}: the store {path!r}: {', '.join(ignored)} "
+                  f"{'is no batch' if len(ignored) == 1 else 'are no batches'} of its study ({held['cases']:,} "
+                  f"cases in batches batch_000000..batch_{count - 1:06d}): left out", UserWarning,
+                  stacklevel=stacklevel + 1)
+
+
+def _read(path, held, whole, damaged, who, fate, stacklevel):
+    """The Dataset of the store's whole batches; the damaged ones (and those
+    that cannot be read) named in a warning, with their fate."""
+    import xarray as xr
+
+    damaged = dict(damaged)
+    parts = []
+    for batch, (first, last) in sorted(whole.items()):
+        name = f"batch_{batch:06d}"
+        try:
+            part = xr.open_zarr(path, group=name, consolidated=False).load()
+            if list(part["case"].values) != list(range(first, last)):
+                raise ValueError(f"its cases are {show(list(part['case'].values))}")
+        except Exception as e:  # noqa: BLE001 - a chunk that cannot be decoded, ...: named, left out
+            damaged[batch] = (f"{name} (cases {first}..{last - 1}): it cannot be read ({type(e).__name__}: "
+                              f"{' '.join(str(e).split())[:200]})")
+            continue
+        parts.append(part)
+    if damaged:
+        warnings.warn(f"{who}: the store {path!r}: " + "; ".join(damaged[b] for b in sorted(damaged)) + f": {fate}",
+                      UserWarning, stacklevel=stacklevel + 1)
     if not parts:
-        raise ModelError(f"sweep.open_store: {path!r} holds no finished case yet")
+        raise ModelError(f"{who}: {path!r} holds no finished case yet")
     ds = xr.concat(parts, dim="case").sortby("case")
     # the variables in the order a sweep makes them (a store lists them by name)
-    order = ["status", "warnings", "steps", "wall_time"] + list(description.get("outputs", [])) + ["q"]
+    order = ["status", "warnings", "steps", "wall_time"] + list(held["outputs"]) + ["q"]
     ds = ds[[v for v in order if v in ds.data_vars] + [v for v in ds.data_vars if v not in order]]
-    ds.attrs["grid"] = description.get("grid", "")
+    ds.attrs = {"grid": held["grid"]}  # not the batches' markers
     return ds
 
 
@@ -481,8 +891,11 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     ``parameters``: the cases, as a grid ``{name: [values, ...]}`` (every
     combination, the last name varying fastest), a list of dicts
     ``[{name: value, ...}, ...]`` (names may differ between cases; a
-    missing one keeps the model's value), a pandas DataFrame, or a design
-    (:func:`monte_carlo`, :func:`latin_hypercube`, :func:`sobol`). Names are
+    missing one keeps the model's value), a pandas DataFrame (a missing
+    value, NaN, as in a list of dicts), or a design (:func:`monte_carlo`,
+    :func:`latin_hypercube`, :func:`sobol`); at most ``MAX_CASES``
+    (10,000,000) cases, and no more than the machine's memory holds (both
+    refused before any case is made). Names are
     those of ``model.parameters()`` (the FMU's and ``lagmb info``'s:
     ``"crank.mass"``, ``"spring.stiffness"``, ``"rod.angle.start"``) and the
     run settings ``t_end``, ``rtol``, ``atol``, ``method``, ``formulation``,
@@ -490,6 +903,8 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     ``max_steps``. Every name and value is checked before any
     case runs (ModelError naming the case: an unknown name lists the
     parameters; a value the element refuses gives the element's message).
+    A case's run setting is one number or name: a list (a per-coordinate
+    ``atol``) is a setting of the whole sweep (``atol=[...]``).
 
     ``outputs``: ``{name: f}`` with ``f(result)`` a number or an array (one
     shape in every case): a module-level function or the built-ins
@@ -510,13 +925,20 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     runs release the GIL; a ProcessPoolExecutor) or a
     ``dask.distributed.Client`` (``Client("tcp://scheduler:8786")`` runs on
     a cluster). Cases go in batches of ``batch_size`` consecutive cases per
-    task (default: the cases over 4 tasks per worker, at most 256).
+    task (default: the cases over 4 tasks per worker, at most 256). A
+    worker process that dies (killed, out of memory) stops the sweep with a
+    SimulationError; the batches finished by then stay in the store.
 
     ``store``: a directory (a Zarr store) where each batch is written as it
     finishes; a sweep run again with the same store and the same model,
-    cases, settings and outputs computes only the batches not there (an
-    interrupted one resumes; another sweep in the store is a ModelError).
-    ``lagmb.sweep.open_store(path)`` reads it back.
+    cases, settings and outputs (what each computes: a built-in's
+    argument, a function's code) computes only the batches not there (an
+    interrupted one resumes; a batch that is not whole, e.g. copied in
+    part, is computed again with a warning; another sweep in the store is
+    a ModelError saying what differs). The store is a new or empty folder,
+    or a sweep's store: any other folder is refused, nothing written into
+    it. One sweep at a time writes a store (another is a ModelError naming
+    its pid). ``lagmb.sweep.open_store(path)`` reads it back.
 
     The grid's shape: :func:`as_grid`. ``ds.attrs["computed_cases"]`` counts
     the cases this call ran (0 for a finished store).
@@ -542,35 +964,58 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
             raise ModelError(f"{who}: outputs must be {{name: function of the Result}}, got {name!r}: {f!r}")
         if name in ("status", "warnings", "steps", "wall_time", "q", "case"):
             raise ModelError(f"{who}: the output name {name!r} is taken by what every case records")
-    cases, grid = _cases(parameters, who)
+    coordinate_names = model.coordinate_names()
+    t_out = None
+    if histories is not None:
+        t_out = [float(t) for t in array(histories, f"{who}: histories")]
+        if not t_out:
+            raise ModelError(f"{who}: histories: give at least one output time")
+    # what a case holds in memory until the Dataset is made: refused up front if more than the machine has
+    per_case = _CASE_BYTES + 8 * len(outputs) + 16 * len(t_out or ()) * len(coordinate_names)
+    cases, grid = _cases(parameters, who, per_case)
     cases = _check_cases(model, cases, who)
     names = list(dict.fromkeys(k for case in cases for k in case))
-    t_out = None if histories is None else [float(t) for t in np.atleast_1d(histories)]
     text = model.to_text()
-    coordinate_names = model.coordinate_names()
     n = len(cases)
     workers = _workers(executor)
     if batch_size is None:
         batch_size = max(1, min(256, math.ceil(n / (4 * workers))))
     elif isinstance(batch_size, bool) or not isinstance(batch_size, numbers.Integral) or batch_size < 1:
-        raise ModelError(f"{who}: batch_size must be a positive integer, got {batch_size!r}")
-    batches = [(b, b * batch_size, min(n, (b + 1) * batch_size)) for b in range(math.ceil(n / batch_size))]
+        raise ModelError(f"{who}: batch_size must be a positive integer, got {show(batch_size)}")
+    batch_size = int(batch_size)
 
     held = None
     if store is not None:
-        description = {"format": _STORE_FORMAT, "fingerprint": _fingerprint(text, cases, run_settings, outputs, t_out),
-                       "cases": n, "batch_size": int(batch_size), "outputs": list(outputs),
+        made_of = _made_of(text, cases, run_settings, outputs, t_out)
+        description = {"format": _STORE_FORMAT, "fingerprint": _fingerprint(made_of), "made_of": made_of,
+                       "cases": n, "batch_size": batch_size, "outputs": list(outputs),
                        "grid": json.dumps([[g[0], [float(v) if isinstance(v, numbers.Real) else str(v)
                                                    for v in g[1]]] for g in grid]) if grid else ""}
-        held = _Store(store, description)
-        import zarr
+        held = _Store(store, description, who)  # locked until the sweep ends
+    try:
+        return _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordinate_names, executor,
+                      batch_size, progress, who)
+    finally:
+        if held is not None:
+            held.close()
 
-        batch_size_held = zarr.open_group(held.path, mode="r").attrs["lagmb_sweep"]["batch_size"]
-        if batch_size_held != batch_size:  # the batches of the store decide
-            batch_size = batch_size_held
-            batches = [(b, b * batch_size, min(n, (b + 1) * batch_size)) for b in range(math.ceil(n / batch_size))]
-        done = set(held.finished())
-        batches = [b for b in batches if b[0] not in done]
+
+def _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordinate_names, executor, batch_size,
+           progress, who):
+    """sweep's runs, its arguments checked (and its store, if any, locked)."""
+    n = len(cases)
+    done = set()
+    if held is not None:
+        batch_size = held.held["batch_size"]  # the batches of the store decide
+        whole, damaged, ignored = _scan(held.path, held.held)
+        done = set(whole)
+        if ignored:
+            _ignored_warning(held.path, held.held, ignored, who, stacklevel=3)
+        if damaged:
+            warnings.warn(f"{who}: the store {held.path!r}: " + "; ".join(damaged[b] for b in sorted(damaged))
+                          + ": computed again", UserWarning, stacklevel=3)
+    batches = [(b, b * batch_size, min(n, (b + 1) * batch_size)) for b in range(math.ceil(n / batch_size))
+               if b not in done]
 
     records = {}
     # a batch's store write (about 0.1 s) goes to a thread of its own, so the
@@ -585,14 +1030,17 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
         nonlocal finished, computed
         for i, record in result:
             records[i] = record
-        first, last = batch[1], batch[2]
+        b, first, last = batch
         if held is not None:
             part = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, range(first, last))
-            writes.append(writer.submit(held.write, batch[0], part))
+            writes.append(writer.submit(held.write, b, first, last, part))
+            for i in range(first, last):  # in the store now: the final Dataset is read from there
+                del records[i]
         finished += last - first
         computed += last - first
         bar(finished)
 
+    lost = _lost_worker(executor)
     try:
         if executor is None:
             for batch in batches:
@@ -617,13 +1065,26 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
                 raise ModelError(f"{who}: the tasks could not be sent to the executor ({e}); a process or Dask "
                                  "executor needs outputs it can pickle: module-level functions or the built-ins"
                                  ) from None
+            taken = set()
             try:
                 for future in _as_completed(executor, list(futures)):
                     take(futures[future], future.result())
+                    taken.add(future)
+            except lost:  # the batches finished before a worker died are kept
+                for f in futures:
+                    if f not in taken and f.done() and not f.cancelled() and f.exception() is None:
+                        take(futures[f], f.result())
+                    else:
+                        f.cancel()
+                raise
             except BaseException:
                 for f in futures:
                     f.cancel()
                 raise
+    except lost as e:
+        error = e
+    else:
+        error = None
     finally:
         if writer is not None:  # every finished batch reaches the store, even when the sweep stops
             writer.shutdown(wait=True)
@@ -632,13 +1093,35 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
             close()
     for w in writes:
         w.result()  # a write that failed (a full disk) is an error of the sweep
+    if error is not None:
+        kept = (f"the {finished:,} finished cases are in the store {held.path!r}: the same sweep computes the rest"
+                if held is not None else "its finished cases are lost (store= keeps them as they finish)")
+        raise SimulationError(f"{who}: a worker process died (killed, out of memory, or crashed) with "
+                              f"{n - finished:,} of {n:,} cases unfinished ({type(error).__name__}); {kept}"
+                              ) from error
 
     if held is not None:
-        ds = open_store(held.path)
+        whole, damaged, _ = _scan(held.path, held.held)
+        ds = _read(held.path, held.held, whole, damaged, who, "left out (written wrong just now: the sweep run "
+                   "again computes them)", stacklevel=3)
     else:
         ds = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names)
     ds.attrs["computed_cases"] = computed
     return ds
+
+
+def _lost_worker(executor):
+    """The exceptions that say a worker process died: a broken process pool,
+    a Dask worker killed."""
+    lost = (concurrent.futures.BrokenExecutor,)
+    if hasattr(executor, "scheduler_info"):
+        try:
+            from distributed import KilledWorker
+
+            lost += (KilledWorker,)
+        except ImportError:
+            pass
+    return lost
 
 
 sweep.final = final
@@ -650,4 +1133,5 @@ sweep.latin_hypercube = latin_hypercube
 sweep.sobol = sobol
 sweep.as_grid = as_grid
 sweep.open_store = open_store
+sweep.MAX_CASES = MAX_CASES
 sweep.Design = Design
