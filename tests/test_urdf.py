@@ -9,9 +9,11 @@ does not read are listed with the reason, and the test checks that loading
 each fails with that reason. Bad files of our own check the errors.
 """
 
+import math
 import os
 import site
 import sysconfig
+import warnings
 
 import numpy as np
 import pytest
@@ -543,3 +545,276 @@ def test_merged_links_are_frames_where_pinocchio_puts_them():
             frame = r.body(name)
             assert frame.position[k] == pytest.approx(placement.translation, abs=1e-12)
             assert frame.rotation[k] == pytest.approx(placement.rotation, abs=1e-12)
+
+
+# --- hostile files and arguments (issue 39) --------------------------------------------------------------
+
+def load_text(tmp_path, text, **options):
+    return mb.load_urdf(write(tmp_path, text), **options)
+
+
+def names(model):
+    return [values["name"] for _, values in model.elements()]
+
+
+def test_lower_limit_above_upper_is_an_error_and_equal_limits_lock_the_joint(tmp_path):
+    """lower > upper (before: the limits were dropped, the joint free) is a
+    UrdfError naming the joint, the line and both values. Equal limits lock
+    the joint at their value: it is read as a fixed joint there (the arm
+    merged into the ground, its frame turned 0.5 rad about y), a position
+    given to it or a mimic of it is refused; limits=False reads it as a
+    free joint. 0 and 0 (URDF's defaults, as example-robot-data's double
+    pendulum writes them) are no limits: the joint turns freely."""
+    with pytest.raises(mb.UrdfError) as error:
+        load_text(tmp_path, ARM.replace('lower="-1" upper="1"', 'lower="1" upper="-1"'))
+    assert "robot.urdf, line 6: joint 'shoulder': lower limit 1.0 is above the upper limit -1.0" in str(error.value)
+    locked = ARM.replace('lower="-1" upper="1"', 'lower="0.5" upper="0.5"')
+    model = load_text(tmp_path, locked)
+    assert model.bodies == [] and names(model) == []
+    frame = model.frames["upper"]
+    assert frame.body == "ground"
+    np.testing.assert_allclose(frame[2], [[np.cos(0.5), 0, np.sin(0.5)], [0, 1, 0], [-np.sin(0.5), 0, np.cos(0.5)]],
+                               atol=1e-15)
+    assert names(load_text(tmp_path, locked, limits=False)) == ["upper", "shoulder"]
+    with pytest.raises(mb.UrdfError, match="positions: joint 'shoulder' is locked at 0.5 by its equal limits"):
+        load_text(tmp_path, locked, positions={"shoulder": 0.2})
+    follower = locked.replace("</robot>", """<link name="fore"><inertial><mass value="1"/>
+      <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><axis xyz="0 1 0"/>
+      <mimic joint="shoulder"/></joint></robot>""")
+    with pytest.raises(mb.UrdfError, match="line 10: joint 'elbow': mimics 'shoulder', which is locked at 0.5"):
+        load_text(tmp_path, follower)
+    free = load_text(tmp_path, ARM.replace('lower="-1" upper="1"', 'lower="0" upper="0"'))
+    assert names(free) == ["upper", "shoulder"]
+    assert names(load_text(tmp_path, ARM.replace('lower="-1" upper="1" ', ''))) == ["upper", "shoulder"]
+
+
+@pytest.mark.parametrize("written", ["1_0", "\u0661", "0x1", "1\u00a00", "1,5", "--1", "1e", "one", "nan", "1e999"])
+def test_numbers_are_read_as_xml_schema_writes_them(tmp_path, written):
+    """A mass of "1_0" (Python's float() read 10), an Arabic-Indic one
+    (read as 1), hex, a no-break space, a comma, NaN and a number past a
+    double: each a UrdfError naming the file, the line, the link and the
+    attribute as written."""
+    with pytest.raises(mb.UrdfError) as error:
+        load_text(tmp_path, ARM.replace('<mass value="1"/>', f'<mass value="{written}"/>'))
+    assert "robot.urdf, line 3: link 'upper': <mass value=" in str(error.value)
+    assert repr(written)[1:-1] in str(error.value)
+
+
+def test_numbers_in_every_decimal_form_are_read(tmp_path):
+    """Signs, exponents, a leading or trailing point, blanks and line
+    breaks around and between numbers are XML Schema's decimals."""
+    text = ARM.replace('<mass value="1"/>', '<mass value=" +1.0E0 "/>').replace(
+        '<origin xyz="0.5 0 0"/>', '<origin xyz="\n .5\t0.  -0e-3 "/>')
+    model = load_text(tmp_path, text, limits=False)
+    assert model.elements()[0][1]["mass"] == 1.0
+    assert model.compiled().initial_state()[0][:3] == pytest.approx([0.5, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("option, value", [("limits", "no"), ("floating_base", 1), ("dynamics", None),
+                                           ("mimic", "False"), ("limits", np.array([True]))])
+def test_true_or_false_options_take_only_true_or_false(tmp_path, option, value):
+    """limits="no" loaded the limits (Python's truth of a string): each
+    True-or-False option refuses anything but a bool (numpy's bool too)."""
+    path = write(tmp_path, ARM)
+    with pytest.raises(mb.UrdfError, match=f"load_urdf: {option} must be True or False, got"):
+        mb.load_urdf(path, **{option: value})
+    assert names(mb.load_urdf(path, **{option: np.bool_(False)}))
+
+
+@pytest.mark.parametrize("arguments, words", [
+    (dict(positions={"shoulder": 10**400}), "positions: joint 'shoulder' is too large for a float"),
+    (dict(positions={"shoulder": 1e200}), "positions: joint 'shoulder' = 1e+200 is beyond what a model can hold"),
+    (dict(positions={"shoulder": "0.1"}), "positions: joint 'shoulder' must be a number, got '0.1'"),
+    (dict(positions="shoulder"), "load_urdf: positions must be a dict {joint: angle or slide}, got 'shoulder'"),
+    (dict(positions={5: 0.1}), "positions: 5 is not a revolute, continuous or prismatic joint of the file"),
+    (dict(gravity="down"), "load_urdf: gravity must be three finite numbers (x, y, z), got 'down'"),
+    (dict(gravity=None), "load_urdf: gravity must be three numbers (x, y, z), got None"),
+    (dict(gravity=(0, 0, float("nan"))), "load_urdf: gravity is not finite"),
+    (dict(package_dirs=5), "load_urdf: package_dirs must be a directory or a list of directories, got 5"),
+    (dict(package_dirs=[None]), "load_urdf: package_dirs must be a directory or a list of directories"),
+])
+def test_bad_arguments_are_named(tmp_path, arguments, words):
+    """Arguments of the wrong kind or size (before: OverflowError,
+    ValueError, TypeError): a UrdfError naming the argument and the value."""
+    with pytest.raises(mb.UrdfError) as error:
+        mb.load_urdf(write(tmp_path, ARM), **arguments)
+    assert words in str(error.value)
+
+
+@pytest.mark.parametrize("path", [5, None, "bad\0name.urdf", "/nowhere/robot.urdf"])
+def test_a_path_that_is_no_file_is_named(path):
+    with pytest.raises(mb.UrdfError, match="path must be a file name|cannot read the file"):
+        mb.load_urdf(path)
+
+
+def test_a_loop_of_joints_and_a_link_that_is_its_own_parent_are_named(tmp_path):
+    """Links a and b joined both ways beside a tree that has its root (and
+    a chain hanging below the loop), and a joint whose parent is its child:
+    before, KeyError; now a UrdfError naming the joints of the loop and the
+    line."""
+    loop = ARM.replace("</robot>", """<link name="a"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/>
+      </inertial></link><link name="b"/><link name="c"/>
+      <joint name="ab" type="revolute"><parent link="a"/><child link="b"/></joint>
+      <joint name="ba" type="revolute"><parent link="b"/><child link="a"/></joint>
+      <joint name="bc" type="fixed"><parent link="b"/><child link="c"/></joint></robot>""")
+    with pytest.raises(mb.UrdfError, match="line 9: joint 'ab': joints 'ab' -> 'ba' make a loop that the root link "
+                                           "'base' does not reach"):
+        load_text(tmp_path, loop)
+    itself = ARM.replace("</robot>", '<joint name="aa" type="fixed"><parent link="upper"/><child link="upper"/>'
+                                     '</joint></robot>')
+    with pytest.raises(mb.UrdfError, match="line 7: joint 'aa': link 'upper' is both its parent and its child"):
+        load_text(tmp_path, itself)
+
+
+def mimic_chain(n):
+    """n revolute joints j1..jn in a chain, each j(k+1) mimicking jk
+    (x1.001, +0.001)."""
+    parts = ['<robot name="chain"><link name="l0"/>']
+    for k in range(1, n + 1):
+        mimic = f'<mimic joint="j{k - 1}" multiplier="1.001" offset="0.001"/>' if k > 1 else ""
+        parts.append(f'<link name="l{k}"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>'
+                     f'</link><joint name="j{k}" type="revolute"><parent link="l{k - 1}"/><child link="l{k}"/>'
+                     f'<axis xyz="0 0 1"/>{mimic}</joint>')
+    return "\n".join(parts + ["</robot>"])
+
+
+def test_a_long_chain_of_mimics_loads_in_linear_time(tmp_path):
+    """3,000 joints each mimicking the one before (before: RecursionError
+    from 1,200, and the cycle check took 28 s for 3,000): the model loads
+    in seconds with each follower where its leader puts it, and a cycle
+    closed at the end of the chain is named."""
+    import time
+
+    start = time.perf_counter()
+    model = load_text(tmp_path, mimic_chain(3000), positions={"j1": 0.1})
+    assert time.perf_counter() - start < 20.0
+    expected = 0.1
+    for _ in range(2, 3001):
+        expected = 1.001 * expected + 0.001
+    assert model.elements()[-1][1]["name"] == "j3000_mimic"
+    angles = [kw["angle"] for method, kw in model.elements() if method == "add_revolute"]
+    assert angles[-1] == pytest.approx(expected, rel=1e-12)
+    cycle = mimic_chain(3000).replace('<axis xyz="0 0 1"/></joint>', '<axis xyz="0 0 1"/><mimic joint="j3000"/>'
+                                      '</joint>', 1)  # (j1's: j1 mimics j3000)
+    with pytest.raises(mb.UrdfError, match=r"line 2: joint 'j1': mimics in a cycle of 3000 joints \(j1 -> j3000 -> "
+                                           r"j2999 -> j2998 -> j2997 -> j2996 -> \.\.\. -> j3 -> j2 -> j1\)"):
+        load_text(tmp_path, cycle)
+
+
+def test_a_long_comment_loads_in_linear_time(tmp_path):
+    """A 20 MB comment (before: 10 MB took 15 s, expat rescanning the
+    unfinished token at each block read): under 5 s, and errors after it
+    still name their line."""
+    import time
+
+    comment = "<!--" + "x" * 20_000_000 + "\n-->"
+    start = time.perf_counter()
+    assert load_text(tmp_path, ARM.replace('<robot name="arm">', '<robot name="arm">' + comment)).bodies
+    assert time.perf_counter() - start < 5.0
+    with pytest.raises(mb.UrdfError, match="line 4: link 'upper': <mass value='-'>"):
+        load_text(tmp_path, ARM.replace('<robot name="arm">', '<robot name="arm">' + comment).replace(
+            'value="1"', 'value="-"'))
+
+
+@pytest.mark.parametrize("encoding", ["klingon", "utf-32", "rot13"])
+def test_an_encoding_that_cannot_be_read_is_named(tmp_path, encoding):
+    """An encoding Python does not know, or that expat cannot take (before:
+    LookupError, ValueError)."""
+    with pytest.raises(mb.UrdfError, match=f"line 1: the XML declaration's encoding '{encoding}' cannot be read"):
+        load_text(tmp_path, f'<?xml version="1.0" encoding="{encoding}"?>\n' + ARM)
+    latin = tmp_path / "latin.urdf"
+    latin.write_bytes(b'<?xml version="1.0" encoding="ISO-8859-1"?>\n' +
+                      ARM.replace("upper", "\xfcpper").encode("latin-1"))
+    assert [b.name for b in mb.load_urdf(latin, limits=False).bodies] == ["\xfcpper"]
+
+
+@pytest.mark.parametrize("change, words", [
+    (('<axis xyz="0 1 0"/>', '<axis xyz="0 1 0"/><origin xyz="1.797e308 0 0"/>'),
+     "line 5: joint 'shoulder': <origin xyz='1.797e308 0 0'>: 1.797e+308 is beyond what a model can hold"),
+    (('<origin xyz="0.5 0 0"/>', '<origin xyz="1e200 0 0"/>'),
+     "line 3: link 'upper': <origin xyz='1e200 0 0'>: 1e+200 is beyond"),
+    (('<mass value="1"/>', '<mass value="1e300"/>'), "line 3: link 'upper': <mass value='1e300'>: 1e+300 is beyond"),
+    (('iyy="0.1"', 'iyy="1e300"'), "line 4: link 'upper': <inertia iyy='1e300'>: 1e+300 is beyond"),
+    (('<axis xyz="0 1 0"/>', '<axis xyz="0 1 0"/><dynamics damping="1e300"/>'),
+     "line 5: joint 'shoulder': <dynamics damping='1e300'>: 1e+300 is beyond"),
+    (('</robot>', '<link name="heavy"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>'
+      '</link><joint name="weld" type="fixed"><parent link="upper"/><child link="heavy"/><origin xyz="2e80 0 0"/>'
+      '</joint></robot>'),
+     "line 3: link 'upper' (with 'heavy'): mass 2 kg, inertia about its centre of mass up to 2e+160 kg m^2: "
+     "beyond what a model can hold"),
+])
+def test_values_too_large_for_a_model_are_refused_at_load(tmp_path, change, words):
+    """A number past 1e150 (a square of it overflows; before: LinAlgError,
+    or "constraint_rank: q and t must be finite" in the first run), or a
+    body whose inertia m d^2 grows past it (two links 2e80 m apart): a
+    UrdfError naming the element."""
+    with pytest.raises(mb.UrdfError) as error:
+        load_text(tmp_path, ARM.replace(*change), limits=False)
+    assert words in str(error.value)
+
+
+def test_sums_and_products_too_large_for_a_model_are_refused_at_load(tmp_path):
+    """Origins each within 1e150 that add up past it down a chain, and a
+    chain of mimics whose values grow past it: the joint that puts a link
+    too far, the mimic that puts a joint too far."""
+    far = "".join(f'<link name="l{k}"/><joint name="f{k}" type="fixed"><parent link="l{k - 1}"/><child link="l{k}"/>'
+                  f'<origin xyz="9e149 0 0"/></joint>' for k in range(1, 3))
+    with pytest.raises(mb.UrdfError, match="joint 'f2': puts link 'l2' 1.8e\\+150 m from the root: beyond"):
+        load_text(tmp_path, f'<robot name="far"><link name="l0"/>{far}</robot>')
+    growing = mimic_chain(3).replace('multiplier="1.001"', 'multiplier="1e100"')
+    with pytest.raises(mb.UrdfError, match="line 4: joint 'j3': puts it at 1e\\+200 .*: beyond what a model can hold"):
+        load_text(tmp_path, growing, positions={"j1": 1.0})
+
+
+@pytest.mark.parametrize("axis", ["0 1e200 0", "0 1e-200 0", "0 5e-324 0", "0 1.7e308 0"])
+def test_an_axis_is_a_direction_at_any_scale(tmp_path, axis):
+    """Components 1e200 or 1e-200 (before: refused as "got (0, 0, 0)", or
+    as zero) are the direction y, as "0 1 0"; "0 0 0" stays an error."""
+    model = load_text(tmp_path, ARM.replace('<axis xyz="0 1 0"/>', f'<axis xyz="{axis}"/>'), limits=False)
+    assert model.elements()[1][1]["axis"] == (0.0, 1.0, 0.0)
+    with pytest.raises(mb.UrdfError, match="line 5: joint 'shoulder': the axis is zero"):
+        load_text(tmp_path, ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>'), limits=False)
+
+
+def test_names_lagmb_makes_do_not_collide_with_the_files(tmp_path):
+    """URDF keeps links and joints apart, lagmb has one namespace: a joint
+    named like a link is NAME_joint (quietly, as documented); a joint
+    'ground', a non-root link 'ground', the damping of 'shoulder' beside a
+    joint 'shoulder_damping' (before: a bare ModelError without file or
+    line) get their kind or a number added, and one UrdfWarning lists each
+    change."""
+    from lagmb.urdf import UrdfWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert names(load_text(tmp_path, ARM.replace('name="shoulder"', 'name="upper"'))) == \
+            ["upper", "upper_joint", "upper_joint_limit"]
+    text = ARM.replace('name="shoulder"', 'name="ground"').replace('<axis xyz="0 1 0"/>',
+                                                                   '<axis xyz="0 1 0"/><dynamics damping="0.1"/>')
+    text = text.replace("</robot>", """<link name="x"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/>
+      </inertial></link><joint name="ground_joint_damping" type="revolute"><parent link="upper"/>
+      <child link="x"/></joint></robot>""")
+    with pytest.warns(UrdfWarning) as caught:
+        model = load_text(tmp_path, text)
+    assert names(model) == ["upper", "x", "ground_joint", "ground_joint_damping_2", "ground_joint_limit",
+                            "ground_joint_damping"]
+    message = str(caught[0].message)
+    assert "robot.urdf: lagmb keeps one namespace for all names" in message
+    assert "joint 'ground' is 'ground_joint' (the ground has the name 'ground')" in message
+    assert ("the damping of joint 'ground' is 'ground_joint_damping_2' (joint 'ground_joint_damping' has the name "
+            "'ground_joint_damping')") in message
+    with pytest.warns(UrdfWarning, match="link 'ground' is 'ground_link'"):
+        model = load_text(tmp_path, ARM.replace('"upper"', '"ground"'))
+    assert [b.name for b in model.bodies] == ["ground_link"]
+
+
+def test_a_bad_shape_names_its_link_and_line(tmp_path):
+    """A sphere of radius -1 on the root link (before: "shape on 'ground'")
+    and on the arm: the link and the line of the shape."""
+    sphere = '<visual><geometry><sphere radius="-1"/></geometry></visual>'
+    for old, new, words in (('<link name="base"/>', f'<link name="base">{sphere}</link>', "line 2: link 'base'"),
+                            ('<link name="upper">', f'<link name="upper">{sphere}', "line 3: link 'upper'")):
+        with pytest.raises(mb.UrdfError) as error:
+            load_text(tmp_path, ARM.replace(old, new), limits=False)
+        assert f"{words}: <visual> a sphere's size must be positive" in str(error.value)

@@ -18,12 +18,14 @@ numbers, and imports in about 3 s (trimesh).
 """
 
 import math
-import numbers
 import os
+import re
+import warnings
 import xml.parsers.expat
 
 import numpy as np
 
+from . import _checks
 from .errors import ModelError
 from .model import Model
 
@@ -52,11 +54,23 @@ CHILDREN = {
     "joint": {"origin", "parent", "child", "axis", "limit", "dynamics", "mimic"},
 }
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+MOVING = ("revolute", "continuous", "prismatic")  # the joints with one coordinate
+
+#: The largest mass (kg), length (m), moment of inertia (kg m^2), joint value,
+#: mimic multiplier or offset, damping or friction a model may hold: lagmb
+#: squares them (norms of constraint rows, the parallel-axis term m d^2), and
+#: past about 1e154 a square overflows a double; 1e150 leaves room for sums.
+LARGEST = 1e150
 
 
 class UrdfError(ModelError):
     """A URDF file that cannot make a model: the message names the file,
     the line and the link or joint (a ModelError, so a ValueError)."""
+
+
+class UrdfWarning(UserWarning):
+    """load_urdf gave an element another name than the file's (a name
+    lagmb's one namespace already holds): the message lists each change."""
 
 
 class _Element:
@@ -76,7 +90,10 @@ class _Element:
 
 
 def _read_xml(path):
-    """The file's root element, every element with its line."""
+    """The file's root element, every element with its line. The whole
+    file is given to expat in one call: fed in blocks (ParseFile), expat
+    scans an unfinished token again with each block, so one long comment
+    or attribute took time quadratic in its length (10 MB: 15 s)."""
     parser = xml.parsers.expat.ParserCreate()
     stack, root = [], []
 
@@ -89,13 +106,25 @@ def _read_xml(path):
     parser.EndElementHandler = lambda tag: stack.pop()
     try:
         with open(path, "rb") as fh:
-            parser.ParseFile(fh)
+            data = fh.read()
     except OSError as e:
-        raise UrdfError(f"{path}: cannot read the file ({e.strerror})") from None
+        raise UrdfError(f"{path}: cannot read the file ({e.strerror or e})") from None
+    except ValueError as e:  # (a name holding a NUL character)
+        raise UrdfError(f"{path}: cannot read the file ({e})") from None
+    try:
+        parser.Parse(data, True)
     except xml.parsers.expat.ExpatError as e:
         raise UrdfError(f"{path}, line {e.lineno}: not well-formed XML ({xml.parsers.expat.ErrorString(e.code)})") \
             from None
+    except (LookupError, ValueError) as e:  # an encoding Python does not know, or expat cannot take (UTF-32)
+        declared = re.match(rb"\s*<\?xml[^>]*?encoding\s*=\s*[\"']([^\"']*)", data[:1000])
+        named = f" {declared.group(1).decode('ascii', 'replace')!r}" if declared else ""
+        raise UrdfError(f"{path}, line {parser.CurrentLineNumber}: the XML declaration's encoding{named} cannot be "
+                        f"read ({e}); write the file in UTF-8") from None
     return root[0]
+
+
+_XML_BLANKS = re.compile(r"[ \t\r\n]+")
 
 
 def _rotation_rpy(rpy):
@@ -111,10 +140,17 @@ class _Reader:
     """Reads one URDF file into links, joints and the tree they make."""
 
     def __init__(self, path, package_dirs):
-        self.path = os.fspath(path)
+        if not isinstance(path, (str, bytes, os.PathLike)):
+            raise UrdfError(f"load_urdf: path must be a file name (a str or os.PathLike), got {_checks.show(path)}")
+        self.path = os.fsdecode(path)
         # (one directory given as a string is one directory, not its letters)
-        self.package_dirs = [package_dirs] if isinstance(package_dirs, (str, os.PathLike)) else \
-            [os.fspath(d) for d in (package_dirs or [])]
+        dirs = [package_dirs] if isinstance(package_dirs, (str, bytes, os.PathLike)) else package_dirs
+        if dirs is None:
+            dirs = []
+        if not isinstance(dirs, (list, tuple)) or not all(isinstance(d, (str, bytes, os.PathLike)) for d in dirs):
+            raise UrdfError(f"load_urdf: package_dirs must be a directory or a list of directories, got "
+                            f"{_checks.show(package_dirs)}")
+        self.package_dirs = [os.fsdecode(d) for d in dirs]
         self.root = _read_xml(self.path)
         if self.root.tag != "robot":
             self.fail(self.root, f"the root element is <{self.root.tag}>, not <robot>")
@@ -136,18 +172,26 @@ class _Reader:
             if deep and child.tag in CHILDREN:
                 self.check_children(child, owner)
 
-    def numbers(self, element, key, count, owner, default=None):
+    def numbers(self, element, key, count, owner, default=None, largest=LARGEST):
+        """`count` finite numbers of an attribute, each within `largest`
+        (None: any finite number), written as XML Schema writes them."""
         text = element.attrib.get(key)
         if text is None:
             if default is None:
                 self.fail(element, f"<{element.tag}> needs the attribute {key}", owner)
             return np.array(default, dtype=float)
-        try:
-            values = np.array([float(x) for x in text.split()])
-        except ValueError:
-            self.fail(element, f"<{element.tag} {key}=\"{text}\">: not {count} number(s)", owner)
+        written = f"<{element.tag} {key}={_checks.show(text)}>"
+        try:  # (a list is split at XML's blanks only: "1\u00a02" is no pair)
+            values = np.array([_checks.decimal(word, written) for word in _XML_BLANKS.split(text.strip(" \t\r\n"))
+                               if word])
+        except ModelError as e:
+            self.fail(element, str(e), owner)
         if values.size != count or not np.all(np.isfinite(values)):
-            self.fail(element, f"<{element.tag} {key}=\"{text}\">: needs {count} finite number(s)", owner)
+            self.fail(element, f"{written}: needs {count} finite number{'s' if count > 1 else ''}", owner)
+        if largest is not None and np.abs(values).max() > largest:
+            self.fail(element, f"{written}: {np.abs(values).max():g} is beyond what a model can hold (at most "
+                               f"{largest:g}: lagmb squares masses, lengths and inertias, and larger squares "
+                               "overflow)", owner)
         return values
 
     def origin(self, element, owner):
@@ -155,7 +199,7 @@ class _Reader:
         o = element.one("origin") if element is not None else None
         if o is None:
             return np.eye(3), np.zeros(3)
-        return (_rotation_rpy(self.numbers(o, "rpy", 3, owner, (0.0, 0.0, 0.0))),
+        return (_rotation_rpy(self.numbers(o, "rpy", 3, owner, (0.0, 0.0, 0.0), largest=None)),
                 self.numbers(o, "xyz", 3, owner, (0.0, 0.0, 0.0)))
 
     def link(self, element):
@@ -165,7 +209,7 @@ class _Reader:
         owner = f"link '{name}'"
         self.check_children(element, owner)
         link = dict(name=name, element=element, mass=0.0, com=np.zeros(3), inertia=np.zeros((3, 3)),
-                    shapes=[], inertia_element=None)
+                    shapes=[], inertia_element=None, inertial_element=None)
         inertial = element.one("inertial")
         if inertial is not None:
             R, p = self.origin(inertial, owner)
@@ -186,7 +230,7 @@ class _Reader:
                 link["inertia_element"] = tensor
             elif mass > 0:
                 self.fail(inertial, "<inertial> has a mass but no <inertia>", owner)
-            link.update(mass=mass, com=p, inertia=R @ I @ R.T)
+            link.update(mass=mass, com=p, inertia=R @ I @ R.T, inertial_element=inertial)
         for kind in ("visual", "collision"):
             for shape in element.all(kind):
                 link["shapes"].append(self.shape(shape, kind, owner))
@@ -212,7 +256,7 @@ class _Reader:
                 self.fail(g, "<mesh> needs a filename", owner)
             values = dict(filename=self.resolve(filename, g, owner),
                           scale=self.numbers(g, "scale", 3, owner, (1.0, 1.0, 1.0)))
-        return dict(kind=kind, geometry=g.tag, R=R, p=p, **values)
+        return dict(kind=kind, geometry=g.tag, R=R, p=p, element=g, **values)
 
     def resolve(self, filename, element, owner):
         """The file a mesh names: package://PKG/PATH in package_dirs (each
@@ -263,22 +307,32 @@ class _Reader:
             if e is None or not e.attrib.get("link"):
                 self.fail(element, f"<{end} link=\"...\"> is missing", owner)
             ends[end] = e.attrib["link"]
+        if ends["parent"] == ends["child"]:
+            self.fail(element, f"link '{ends['child']}' is both its parent and its child", owner)
         R, p = self.origin(element, owner)
         axis_element = element.one("axis")
-        axis = self.numbers(axis_element, "xyz", 3, owner) if axis_element is not None else np.array([1.0, 0, 0])
+        axis = self.numbers(axis_element, "xyz", 3, owner, largest=None) if axis_element is not None else \
+            np.array([1.0, 0, 0])
         if kind in ("revolute", "continuous", "prismatic", "planar"):
-            norm = np.linalg.norm(axis)
-            if not norm > 0:
+            # a direction: scaled by its largest component first, so that 1e200 or 1e-200 neither
+            # overflows nor underflows in the norm
+            largest = np.abs(axis).max()
+            if not largest > 0:
                 self.fail(axis_element, "the axis is zero", owner)
-            axis = axis / norm
+            axis = axis / largest
+            axis = axis / np.linalg.norm(axis)
         joint = dict(name=name, element=element, type=kind, parent=ends["parent"], child=ends["child"], R=R, p=p,
-                     axis=axis, limit=None, damping=0.0, friction=0.0, mimic=None, elements={})
+                     axis=axis, limit=None, locked=None, damping=0.0, friction=0.0, mimic=None, elements={})
         limit = element.one("limit")
         if limit is not None and kind in ("revolute", "prismatic"):
-            lower = float(self.numbers(limit, "lower", 1, owner, (0.0,))[0])
-            upper = float(self.numbers(limit, "upper", 1, owner, (0.0,))[0])
+            lower = float(self.numbers(limit, "lower", 1, owner, (0.0,), largest=None)[0])
+            upper = float(self.numbers(limit, "upper", 1, owner, (0.0,), largest=None)[0])
+            if lower > upper:
+                self.fail(limit, f"lower limit {lower!r} is above the upper limit {upper!r}", owner)
             if lower < upper:
                 joint["limit"] = (lower, upper)
+            elif lower != 0.0:  # (0 and 0, URDF's defaults, are written for joints that move freely)
+                joint["locked"] = lower
             joint["elements"]["limit"] = limit
         dynamics = element.one("dynamics")
         if dynamics is not None:
@@ -303,15 +357,18 @@ class _Reader:
         for element in self.root.all("link"):
             link = self.link(element)
             if link["name"] in links:
-                self.fail(element, f"a second link named '{link['name']}'")
+                self.fail(element, f"a second link named '{link['name']}' (the first is on line "
+                                   f"{links[link['name']]['element'].line})")
             links[link["name"]] = link
         for element in self.root.all("joint"):
             joint = self.joint(element)
             if joint["name"] in joints:
-                self.fail(element, f"a second joint named '{joint['name']}'")
+                self.fail(element, f"a second joint named '{joint['name']}' (the first is on line "
+                                   f"{joints[joint['name']]['element'].line})")
             for end in ("parent", "child"):
                 if joint[end] not in links:
-                    self.fail(element, f"its {end} link '{joint[end]}' is not a link of the file", f"joint '{joint['name']}'")
+                    self.fail(element, f"its {end} link '{joint[end]}' is not a link of the file",
+                              f"joint '{joint['name']}'")
             joints[joint["name"]] = joint
         if not links:
             self.fail(self.root, "the robot has no links")
@@ -329,6 +386,25 @@ class _Reader:
             where = "no link is" if not roots else f"links {', '.join(repr(r) for r in roots)} are"
             raise UrdfError(f"{self.path}: {where} without a parent joint; a URDF tree has one root "
                             "(a loop of joints leaves none)")
+        reached, stack, children = {roots[0]}, [roots[0]], _children(joints)
+        while stack:
+            for joint in children.get(stack.pop(), []):
+                reached.add(joint["child"])
+                stack.append(joint["child"])
+        for name in links:  # a link the root does not reach hangs below a loop of joints: find the loop
+            if name not in reached:
+                seen, at = set(), name
+                while at not in seen:  # (up its parents until one repeats: that one is in the loop)
+                    seen.add(at)
+                    at = parent_joint[at]["parent"]
+                loop, start = [], at
+                while not loop or at != start:
+                    loop.append(parent_joint[at])
+                    at = parent_joint[at]["parent"]
+                loop.reverse()  # (parents first)
+                self.fail(loop[0]["element"], "joints " + " -> ".join(repr(j["name"]) for j in loop) +
+                          f" make a loop that the root link '{roots[0]}' does not reach: a URDF describes a tree "
+                          "(a closed loop is a joint added to the model after loading)", f"joint '{loop[0]['name']}'")
         return links, joints, roots[0], parent_joint
 
 
@@ -345,6 +421,51 @@ def _children(joints):
     return out
 
 
+class _Namespace:
+    """lagmb's one namespace for the names of a file that keeps several
+    (URDF: links and joints; MJCF: bodies, joints and equalities) and for
+    the names lagmb makes (NAME_limit): a name is kept while free, else a
+    file's element gets its kind added (NAME_joint), then a number
+    (NAME_joint_2, ...; NAME_limit_2 for a made name), first claimed first
+    served. Each change is listed in `renamed` for a warning, but for the
+    documented one (`quiet`: a joint named like a link or body is
+    NAME_joint)."""
+
+    def __init__(self):
+        self.holder = {"ground": ("ground", "the ground")}
+        self.renamed = []
+
+    def claim(self, wanted, kind, what, quiet=(), made=False):
+        """The model's name for `what` ("joint 'arm'", of `kind` "joint"),
+        which the file (or lagmb, `made`) calls `wanted`; `quiet`: the
+        kinds whose holding `wanted` makes NAME_KIND without a warning."""
+        name = wanted
+        if name in self.holder and not made:
+            name = f"{wanted}_{kind}"
+        base, k = name, 2
+        while name in self.holder:
+            name, k = f"{base}_{k}", k + 1
+        if name != wanted and not (name == f"{wanted}_{kind}" and self.holder[wanted][0] in quiet):
+            self.renamed.append(f"{what} is '{name}' ({self.holder[wanted][1]} has the name '{wanted}')")
+        self.holder[name] = (kind, what)
+        return name
+
+    def warn(self, path, category):
+        if self.renamed:
+            warnings.warn(category(f"{path}: lagmb keeps one namespace for all names, so: " +
+                                   "; ".join(self.renamed)), stacklevel=3)
+
+
+def _argument(check, value, name):
+    """An argument checked by lagmb._checks, its ModelError a UrdfError."""
+    try:
+        return check(value, name)
+    except UrdfError:
+        raise
+    except ModelError as e:
+        raise UrdfError(str(e)) from None
+
+
 def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_dirs=None,
               gravity=(0.0, 0.0, -9.81), mimic=True, positions=None):
     """A spatial :class:`lagmb.Model` of the robot a URDF file describes.
@@ -357,14 +478,22 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     joint keeps the URDF's name, and its angle or slide is the URDF's joint
     value (0 in the zero configuration). The model is built in the
     configuration of ``positions`` ({joint: angle or slide}, URDF names; 0
-    where not given), at rest. A joint named like a link (URDF keeps the two
-    apart, lagmb has one namespace) is called ``NAME_joint``.
+    where not given), at rest.
+
+    Names: lagmb has one namespace where URDF keeps links and joints apart.
+    A joint named like a link is called ``NAME_joint``; any other name
+    already taken (a joint named ``ground``, a joint ``j_damping`` beside the
+    damping of a joint ``j``) gets its kind and then a number added
+    (``ground_joint``, ``j_damping_2``), and a UrdfWarning lists each change.
 
     ``limits=True``: a revolute's or prismatic's ``<limit lower upper>``
     becomes a stop on it (``NAME_limit``, restitution 0: an impact at the
     limit; a joint that comes to rest pressing on its limit ends the run
     with SimulationError, as stops do); a joint whose zero lies outside its
     limits starts at their middle unless ``positions`` says otherwise.
+    Equal limits lock the joint at that value (it is read as a fixed joint
+    there), but for 0 and 0, URDF's defaults, which files write for joints
+    that turn freely (a wheel): no limits. ``lower > upper`` is an error.
     ``dynamics=True``: a revolute's, continuous's or prismatic's
     ``<dynamics damping friction>`` becomes joint friction on it
     (``NAME_damping``, or ``NAME_friction`` with a Coulomb part: viscous =
@@ -376,36 +505,46 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     as a joint of its own (as Pinocchio builds it by default).
     ``package_dirs``: directories holding the packages that ``package://``
     mesh names point into. Every mesh a link names must exist.
+    ``floating_base``, ``limits``, ``dynamics`` and ``mimic`` are True or
+    False (not strings or numbers).
 
     Links merged into another's body (and the root's links) become frames
     (``model.frames``; ``r.body(link)``, ``r.point(link, p)``); visual and
     collision geometry is kept as shapes (``model.shapes``) for
     ``lagmb.plotting.picture``.
 
-    Raises :class:`UrdfError` (a ModelError) naming the file, the line and
-    the link or joint for anything lagmb does not read: an unknown tag or
-    joint type, a link that is the child of two joints, a body without mass
-    or inertia, a missing mesh, a mimic of an unknown joint (or of itself,
-    or in a cycle), and (not built yet) revolute limits a full turn or more
-    apart and damping or friction of a planar joint.
+    Numbers are read as XML Schema writes them (``1_0`` and digits of other
+    scripts are errors, not 10 and 1). Raises :class:`UrdfError` (a
+    ModelError) naming the file, the line and the link or joint for
+    anything lagmb does not read: an unknown tag or joint type, a link that
+    is the child of two joints or of itself, a loop of joints, a body
+    without mass or inertia, a missing mesh, a mimic of an unknown joint (or
+    of itself, or in a cycle), lower limit above the upper, a mass, length,
+    inertia, joint value, mimic multiplier or offset, damping or friction
+    beyond 1e150 (lagmb squares them; larger squares overflow), and (not
+    built yet) revolute limits a full turn or more apart and damping or
+    friction of a planar joint; and for arguments of the wrong kind.
     """
+    floating_base, limits, dynamics, mimic = (_argument(_checks.flag, value, f"load_urdf: {name}") for name, value in
+                                              (("floating_base", floating_base), ("limits", limits),
+                                               ("dynamics", dynamics), ("mimic", mimic)))
+    gravity = _argument(_checks.vec3, gravity, "load_urdf: gravity")
+    if positions is not None and not isinstance(positions, dict):
+        raise UrdfError(f"load_urdf: positions must be a dict {{joint: angle or slide}}, got {_checks.show(positions)}")
     reader = _Reader(path, package_dirs)
     links, joints, root, _ = reader.read()
-    positions = dict(positions or {})
-    for name, value in positions.items():
-        if name not in joints or joints[name]["type"] not in ("revolute", "continuous", "prismatic"):
-            movable = [j["name"] for j in joints.values() if j["type"] in ("revolute", "continuous", "prismatic")]
-            raise UrdfError(f"{reader.path}: positions: '{name}' is not a revolute, continuous or prismatic joint "
-                            f"of the file (those are: {', '.join(movable)})")
-        if isinstance(value, bool) or not (isinstance(value, numbers.Real) and math.isfinite(value)):
-            raise UrdfError(f"{reader.path}: positions: joint '{name}' must be a finite number, got {value!r}")
+    if limits:  # a joint locked by equal limits is fixed at their value
+        for joint in joints.values():
+            if joint["locked"] is not None:
+                joint.update(moves_as=joint["type"], type="fixed")
+    positions = _positions(reader, joints, positions or {})
     children = _children(joints)
     followers = _followers(reader, joints) if mimic else {}
     for name in positions:
         if name in followers:
             raise UrdfError(f"{reader.path}: positions: joint '{name}' mimics '{followers[name]['joint']}': give "
                             f"the position of '{followers[name]['joint']}' (or load with mimic=False)")
-    value = _joint_values(joints, positions, followers, limits)
+    value = _joint_values(reader, joints, positions, followers, limits)
     for joint in joints.values():
         owner = f"joint '{joint['name']}'"
         if limits and joint["limit"] is not None and joint["type"] == "revolute" and \
@@ -429,19 +568,41 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             R_parent, p_parent = pose[link]
             R_joint, p_joint = R_parent @ joint["R"], p_parent + R_parent @ joint["p"]  # the joint's frame
             x = value.get(joint["name"], 0.0)
-            if joint["type"] in ("revolute", "continuous"):
+            moves_as = joint.get("moves_as", joint["type"])
+            if moves_as in ("revolute", "continuous"):
                 R_joint = R_joint @ _turn(joint["axis"], x)
-            elif joint["type"] == "prismatic":
+            elif moves_as == "prismatic":
                 p_joint = p_joint + R_joint @ (x * joint["axis"])
+            if np.abs(p_joint).max() > LARGEST:  # (origins within LARGEST each, but many in a chain)
+                reader.fail(joint["element"], f"puts link '{joint['child']}' {np.abs(p_joint).max():g} m from the "
+                            f"root: beyond what a model can hold (at most {LARGEST:g} m: lagmb squares lengths, and "
+                            "larger squares overflow)", f"joint '{joint['name']}'")
             pose[joint["child"]] = (R_joint, p_joint)
             group_of[joint["child"]] = group_of[link] if joint["type"] == "fixed" else joint["child"]
             stack.append(joint["child"])
     groups = {}
     for link in order:
         groups.setdefault(group_of[link], []).append(link)
-
-    model = Model(gravity=tuple(float(g) for g in gravity), dimension=3)
     ground = root if not floating_base else None
+
+    # names: the links', then the joints', then those lagmb makes
+    space = _Namespace()
+    link_name = {link: "ground" if link == "ground" and group_of[link] == ground else
+                 space.claim(link, "link", f"link '{link}'") for link in links}
+    joint_name = {name: space.claim(name, "joint", f"joint '{name}'", quiet=("link",))
+                  for name, joint in joints.items() if joint["type"] not in ("fixed", "floating")}
+
+    def body(link):
+        group = group_of[link]
+        return "ground" if group == ground else link_name[group]
+
+    def add(method, element, owner, *args, **kwargs):  # (the core's checks, naming the file's element and line)
+        try:
+            return method(*args, **kwargs)
+        except ModelError as e:
+            reader.fail(element, str(e), owner)
+
+    model = Model(gravity=tuple(gravity), dimension=3)
     for first, members in groups.items():
         if first == ground:
             continue
@@ -458,28 +619,29 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             reader.fail(links[first]["element"],
                         "has no mass: a body of lagmb needs mass and inertia (give the link an <inertial>, or join "
                         "it to a body by a fixed joint)", owner)
-        com = sum(links[m]["mass"] * (pose[m][1] + pose[m][0] @ links[m]["com"]) for m in members) / mass
+        centres = {m: pose[m][1] + pose[m][0] @ links[m]["com"] for m in members}
+        for m in members:
+            if links[m]["mass"] > 0 and np.abs(centres[m]).max() > LARGEST:
+                reader.fail(links[m]["inertial_element"], f"its centre of mass is {np.abs(centres[m]).max():g} m from "
+                            f"the root: beyond what a model can hold (at most {LARGEST:g} m)", f"link '{m}'")
+        com = sum(links[m]["mass"] * centres[m] for m in members) / mass
         inertia = np.zeros((3, 3))
-        for m in members:  # each link's inertia about the common centre, in world axes
-            R, p = pose[m]
-            d = p + R @ links[m]["com"] - com
-            inertia += R @ links[m]["inertia"] @ R.T + links[m]["mass"] * (d @ d * np.eye(3) - np.outer(d, d))
+        with np.errstate(over="ignore", invalid="ignore"):  # (m d^2 may overflow: refused below)
+            for m in members:  # each link's inertia about the common centre, in world axes
+                R, p = pose[m]
+                d = centres[m] - com
+                inertia += R @ links[m]["inertia"] @ R.T + links[m]["mass"] * (d @ d * np.eye(3) - np.outer(d, d))
+        if not (np.all(np.isfinite(inertia)) and np.abs(inertia).max() <= LARGEST and mass <= LARGEST):
+            reader.fail(links[first]["element"], f"mass {mass:g} kg, inertia about its centre of mass up to "
+                        f"{np.abs(inertia).max():g} kg m^2: beyond what a model can hold (at most {LARGEST:g})", owner)
         inertia_body = R0.T @ inertia @ R0
         moments = np.linalg.eigvalsh(inertia_body)
         if not moments.min() > 1e-12 * max(moments.max(), 1e-300):
             reader.fail(links[first]["element"],
-                        f"its principal moments of inertia {moments.tolist()} kg m^2 are not all positive: a "
-                        "body of lagmb needs every moment > 0", owner)
-        try:
-            model.add_body(first, mass, 0.5 * (inertia_body + inertia_body.T), position=tuple(com), orientation=R0)
-        except ModelError as e:  # (the core's checks of a body: name the file's link and line)
-            reader.fail(links[first]["element"], str(e), owner)
-
-    def body(link):
-        group = group_of[link]
-        return "ground" if group == ground else group
-
-    names = {}  # URDF joint name -> its name in the model
+                        f"its principal moments of inertia {moments.tolist()} kg m^2 are not all positive (each must "
+                        "be more than 1e-12 of the largest): a body of lagmb needs every moment > 0", owner)
+        add(model.add_body, links[first]["element"], owner, link_name[first], mass,
+            0.5 * (inertia_body + inertia_body.T), position=tuple(com), orientation=R0)
 
     for joint in joints.values():
         if joint["type"] in ("fixed", "floating"):
@@ -488,93 +650,150 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         at = p_parent + R_parent @ joint["p"]
         axis = R_parent @ joint["R"] @ joint["axis"]
         parent, child = body(joint["parent"]), body(joint["child"])
-        name = joint["name"]
-        if name in links:  # one namespace in lagmb, two in URDF
-            name = f"{name}_joint"
-            if name in links or name in joints:
-                reader.fail(joint["element"], f"has the name of a link, and so has '{name}'", f"joint '{joint['name']}'")
-        names[joint["name"]] = name
+        name, owner, element = joint_name[joint["name"]], f"joint '{joint['name']}'", joint["element"]
         x = value.get(joint["name"], 0.0)
         if joint["type"] in ("revolute", "continuous"):
-            model.add_revolute(name, parent, child, at=tuple(at), axis=tuple(axis), angle=x)
+            add(model.add_revolute, element, owner, name, parent, child, at=tuple(at), axis=tuple(axis), angle=x)
         elif joint["type"] == "prismatic":
-            model.add_translational(name, parent, child, at=tuple(at), axis=tuple(axis), slide=x)
+            add(model.add_translational, element, owner, name, parent, child, at=tuple(at), axis=tuple(axis),
+                slide=x)
         else:
-            model.add_planar(name, parent, child, at=tuple(at), normal=tuple(axis))
+            add(model.add_planar, element, owner, name, parent, child, at=tuple(at), normal=tuple(axis))
         if dynamics and (joint["damping"] > 0 or joint["friction"] > 0):  # (not planar: refused above)
-            model.add_joint_friction(f"{name}_friction" if joint["friction"] > 0 else f"{name}_damping", joint=name,
-                                     viscous=joint["damping"], preload=joint["friction"])
+            kind = "friction" if joint["friction"] > 0 else "damping"
+            add(model.add_joint_friction, joint["elements"]["dynamics"], owner,
+                space.claim(f"{name}_{kind}", kind, f"the {kind} of joint '{joint['name']}'", made=True), joint=name,
+                viscous=joint["damping"], preload=joint["friction"])
         if limits and joint["limit"] is not None:  # (revolute and prismatic joints only)
-            model.add_stop(f"{name}_limit", joint=name, lower=joint["limit"][0], upper=joint["limit"][1])
+            add(model.add_stop, joint["elements"]["limit"], owner,
+                space.claim(f"{name}_limit", "limit", f"the limit of joint '{joint['name']}'", made=True), joint=name,
+                lower=joint["limit"][0], upper=joint["limit"][1])
     for follower, m in followers.items():  # (after every joint: a leader may come later in the file)
-        model.add_joint_coupling(f"{names[follower]}_mimic", joint=names[follower], leader=names[m["joint"]],
-                                 multiplier=m["multiplier"], offset=m["offset"])
-    taken = {kw["name"] for _, kw in model.elements()}
+        add(model.add_joint_coupling, m["element"], f"joint '{follower}'",
+            space.claim(f"{joint_name[follower]}_mimic", "mimic", f"the mimic of joint '{follower}'", made=True),
+            joint=joint_name[follower], leader=joint_name[m["joint"]], multiplier=m["multiplier"], offset=m["offset"])
     for first, members in groups.items():
         for link in members:
             R, p = pose[link]
             # (a group's first link is its body; a root link called ground is the ground)
-            if (link != first or first == ground) and not (link == "ground" and first == ground):
-                if link in taken:
-                    reader.fail(links[link]["element"], f"its frame would take the name of the model's '{link}'",
-                                f"link '{link}'")
-                model.add_frame(link, body(link), position=tuple(p), orientation=R)
+            if (link != first or first == ground) and link_name[link] != "ground":
+                add(model.add_frame, links[link]["element"], f"link '{link}'", link_name[link], body(link),
+                    position=tuple(p), orientation=R)
             for shape in links[link]["shapes"]:
                 size = {"box": lambda: shape.get("size"), "cylinder": lambda: (shape["radius"], shape["length"]),
                         "sphere": lambda: (shape["radius"],), "mesh": lambda: shape["scale"]}[shape["geometry"]]()
-                model.add_shape(body(link), shape["geometry"], size, position=tuple(p + R @ shape["p"]),
-                                orientation=R @ shape["R"], mesh=shape.get("filename"), role=shape["kind"])
+                try:
+                    model.add_shape(body(link), shape["geometry"], size, position=tuple(p + R @ shape["p"]),
+                                    orientation=R @ shape["R"], mesh=shape.get("filename"), role=shape["kind"])
+                except ModelError as e:  # (the model names the body the shape is on; the file, its link)
+                    reader.fail(shape["element"], f"<{shape['kind']}> " +
+                                str(e).removeprefix(f"shape on '{body(link)}': "), f"link '{link}'")
+    space.warn(reader.path, UrdfWarning)
     return model
+
+
+def _positions(reader, joints, positions):
+    """{URDF joint: finite value} of the argument `positions`, each naming
+    a joint with one coordinate."""
+    out = {}
+    for name, value in positions.items():
+        joint = joints.get(name) if isinstance(name, str) else None
+        if joint is not None and joint.get("moves_as"):
+            raise UrdfError(f"{reader.path}: positions: joint '{name}' is locked at {joint['locked']!r} by its equal "
+                            "limits (load with limits=False to move it)")
+        if joint is None or joint["type"] not in MOVING:
+            movable = [j["name"] for j in joints.values() if j["type"] in MOVING]
+            raise UrdfError(f"{reader.path}: positions: {_checks.show(name)} is not a revolute, continuous or "
+                            f"prismatic joint of the file (those are: {', '.join(movable)})")
+        out[name] = _argument(_checks.real, value, f"{reader.path}: positions: joint '{name}'")
+        if abs(out[name]) > LARGEST:
+            raise UrdfError(f"{reader.path}: positions: joint '{name}' = {out[name]:g} is beyond what a model can "
+                            f"hold (at most {LARGEST:g})")
+    return out
 
 
 def _followers(reader, joints):
     """{joint: its <mimic>} for the joints that mimic another: both must
     have a coordinate (revolute, continuous, prismatic). A fixed joint's
     <mimic> couples nothing (it has no coordinate) and is passed over
-    (Talos's gripper has such elements)."""
-    moving = ("revolute", "continuous", "prismatic")
+    (Talos's gripper has such elements); a joint locked by its limits
+    cannot mimic nor be mimicked."""
     out = {}
     for joint in joints.values():
         m = joint["mimic"]
-        if m is None or joint["type"] == "fixed":
-            continue
         owner = f"joint '{joint['name']}'"
-        if joint["type"] not in moving:
+        if m is None or (joint["type"] == "fixed" and not joint.get("moves_as")):
+            continue
+        if joint.get("moves_as"):
+            reader.fail(m["element"], f"is locked at {joint['locked']!r} by its equal limits and mimics "
+                        f"'{m['joint']}' (load with limits=False or mimic=False)", owner)
+        if joint["type"] not in MOVING:
             reader.fail(m["element"], f"a {joint['type']} joint cannot mimic (only revolute, continuous and "
                         "prismatic joints have one coordinate)", owner)
         leader = joints.get(m["joint"])
         if leader is None:
             reader.fail(m["element"], f"mimics '{m['joint']}', which is not a joint of the file", owner)
-        if leader["type"] not in moving:
+        if leader.get("moves_as"):
+            reader.fail(m["element"], f"mimics '{m['joint']}', which is locked at {leader['locked']!r} by its equal "
+                        "limits (load with limits=False or mimic=False)", owner)
+        if leader["type"] not in MOVING:
             reader.fail(m["element"], f"mimics '{m['joint']}', a {leader['type']} joint (a leader must be revolute, "
                         "continuous or prismatic)", owner)
         if leader["name"] == joint["name"]:
             reader.fail(m["element"], "mimics itself", owner)
         out[joint["name"]] = m
-    for name in out:  # a cycle of mimics has no leader
-        seen, at = [name], out[name]["joint"]
-        while at in out:
-            if at in seen:
-                reader.fail(out[name]["element"], f"mimics in a cycle ({' -> '.join(seen + [at])})",
-                            f"joint '{name}'")
-            seen.append(at)
+    done = set()  # followers known to lead, through their leaders, to a joint that mimics none
+    for name in out:  # a cycle of mimics has no leader (each follower walked once: linear)
+        path, on_path, at = [], set(), name
+        while at in out and at not in done:
+            if at in on_path:
+                cycle = path[path.index(at):] + [at]
+                shown = cycle if len(cycle) <= 12 else cycle[:6] + ["..."] + cycle[-3:]
+                size = f" of {len(cycle) - 1} joints" if len(cycle) > 12 else ""
+                reader.fail(out[at]["element"], f"mimics in a cycle{size} ({' -> '.join(shown)})", f"joint '{at}'")
+            path.append(at)
+            on_path.add(at)
             at = out[at]["joint"]
+        done.update(path)
     return out
 
 
-def _joint_values(joints, positions, followers, limits):
+def _joint_values(reader, joints, positions, followers, limits):
     """Each joint's angle or slide in the configuration the model is built
     in: `positions`; where not given 0, or with `limits` the middle of the
-    joint's limits if 0 lies outside them (the Panda's fourth joint); a
-    mimic's multiplier x + offset of its leader's value."""
-    def of(name):
-        if name in followers:
-            m = followers[name]
-            return m["multiplier"] * of(m["joint"]) + m["offset"]
+    joint's limits if 0 lies outside them (the Panda's fourth joint), or
+    where equal limits lock it; a mimic's multiplier x + offset of its
+    leader's value (a chain of mimics followed without recursion)."""
+    def own(name):
+        joint = joints[name]
         if name in positions:
-            return float(positions[name])
-        limit = joints[name]["limit"]
+            return positions[name]
+        if joint.get("moves_as"):
+            return joint["locked"]
+        limit = joint["limit"]
         if limits and limit is not None and not limit[0] <= 0.0 <= limit[1]:
             return 0.5 * (limit[0] + limit[1])
         return 0.0
-    return {name: of(name) for name in joints}
+
+    value = {}
+    for name in joints:
+        chain, at = [], name
+        while at not in value and at in followers:
+            chain.append(at)
+            at = followers[at]["joint"]
+        if at not in value:
+            value[at] = own(at)
+        for follower in reversed(chain):
+            m = followers[follower]
+            with np.errstate(over="ignore"):
+                x = m["multiplier"] * value[m["joint"]] + m["offset"]
+            if not abs(x) <= LARGEST:
+                reader.fail(m["element"], f"puts it at {x:g} (multiplier x the value {value[m['joint']]:g} of "
+                            f"'{m['joint']}' + offset): beyond what a model can hold (at most {LARGEST:g})",
+                            f"joint '{follower}'")
+            value[follower] = x
+    for name, joint in joints.items():  # (a locked joint's value is its limits', not bounded by the reader)
+        if joint.get("moves_as") and abs(value[name]) > LARGEST:
+            reader.fail(joint["elements"]["limit"], f"locks the joint at {value[name]:g}: beyond what a model can "
+                        f"hold (at most {LARGEST:g})", f"joint '{name}'")
+    return value
