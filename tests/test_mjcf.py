@@ -408,3 +408,84 @@ def test_a_joint_equality_couples_two_joints(tmp_path):
     locked = mb.load_mjcf(held, contacts="ignore")
     r = mb.simulate(locked, 0.3, rtol=1e-9, n_out=4)
     assert r.joint("j1").angle == pytest.approx(np.full(4, j1_0), abs=1e-9)
+
+
+# --- names and arguments (issue 39) ----------------------------------------------------------------------
+
+def _names(model):
+    return [values["name"] for _, values in model.elements()]
+
+
+def test_a_body_and_a_joint_may_share_a_name(tmp_path):
+    """MuJoCo keeps bodies and joints apart (before: refused as "duplicate
+    name 'l2'"): the joint is l2_joint, quietly (documented), and moves as
+    MuJoCo's; a body named ground, a joint named like the damping lagmb
+    makes, an equality named like a body, and an unnamed joint whose name
+    lagmb makes (joint0) beside a body called so get their kind or a
+    number added, each change named in one MjcfWarning."""
+    path = tmp_path / "shared.xml"
+    path.write_text(CHAIN_TEXT.replace('name="j2"', 'name="l2"'))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        model = mb.load_mjcf(path, contacts="ignore")
+    assert _names(model) == ["l1", "l2", "l3", "l4", "j1", "l2_joint", "j3", "j4"]
+    assert _largest_difference_to_mj_forward(str(path), 2) < 1e-9
+    text = (CHAIN_TEXT.replace('name="l3"', 'name="ground"').replace('name="j3"', 'name="j1_damping"')
+            .replace(J1, '<joint type="hinge" axis="0 0 1" damping="0.1"/>').replace('name="l4"', 'name="joint0"')
+            .replace(WORLD, WORLD + '<equality><joint name="l1" joint1="j1_damping"/></equality>'))
+    path.write_text(text)
+    with pytest.warns(mb.MjcfWarning) as caught:
+        model = mb.load_mjcf(path, contacts="ignore")
+    assert _names(model) == ["l1", "l2", "ground_body", "joint0", "joint0_2", "joint0_2_damping", "j2",
+                             "j1_damping", "j4", "l1_equality"]
+    message = str(caught[0].message)
+    for change in ("body 'ground' is 'ground_body' (the ground has the name 'ground')",
+                   "equality 'l1' is 'l1_equality' (body 'l1' has the name 'l1')",
+                   "joint 0 (unnamed) is 'joint0_2' (body 'joint0' has the name 'joint0')"):
+        assert change in message
+
+
+def test_lagmbs_damping_name_taken_by_a_joint_gets_a_number(tmp_path):
+    path = tmp_path / "damped.xml"
+    path.write_text(CHAIN_TEXT.replace(*_with(J1, 'damping="0.1"')).replace('name="j2"', 'name="j1_damping"'))
+    with pytest.warns(mb.MjcfWarning, match="the damping of joint 'j1' is 'j1_damping_2' \\(joint 'j1_damping' has "
+                                            "the name 'j1_damping'\\)"):
+        model = mb.load_mjcf(path, contacts="ignore")
+    assert ("add_joint_friction", "j1_damping_2") in [(method, kw["name"]) for method, kw in model.elements()]
+
+
+@pytest.mark.parametrize("path, contacts, words", [
+    (5, "warn", "load_mjcf: path must be a file name (a str or os.PathLike), got 5"),
+    (None, "warn", "load_mjcf: path must be a file name (a str or os.PathLike), got None"),
+    (CHAIN + "\0.xml", "warn", "holds a NUL character"),
+    (CHAIN, np.array(["warn", "error"]), "load_mjcf: contacts must be 'warn', 'ignore' or 'error', got array("),
+    (CHAIN, None, "load_mjcf: contacts must be 'warn', 'ignore' or 'error', got None"),
+])
+def test_bad_arguments_are_named(path, contacts, words):
+    """A path that is no file name (before: TypeError), one holding a NUL
+    (MuJoCo read the file named by the part before it), contacts given an
+    array (before: ValueError of its truth): an MjcfError naming the
+    argument."""
+    with pytest.raises(mb.MjcfError) as error:
+        mb.load_mjcf(path, contacts=contacts)
+    assert words in str(error.value)
+
+
+@pytest.mark.parametrize("change, words", [
+    (('<body name="l2" pos="0.4 0 0"', '<body name="l2" pos="1e200 0 0"'), "body 'l2': its position, mass or inertia"),
+    (('mass="2"', 'mass="1e300"'), "body 'l1': its position, mass or inertia"),
+    (('<body name="tool" pos="0.15 0 0">', '<body name="tool" pos="1e100 0 0">'),
+     "body 'l4': its inertia about its centre of mass (1.06947e+199 kg m^2) is beyond"),
+])
+def test_values_too_large_for_a_model_are_refused_at_load(tmp_path, change, words):
+    """Past 1e150 (a square overflows; before: RuntimeWarnings and a
+    ModelError about a NaN inertia, or a failed first run): an MjcfError
+    naming the body."""
+    path = tmp_path / "far.xml"
+    assert change[0] in CHAIN_TEXT
+    path.write_text(CHAIN_TEXT.replace(*change))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(mb.MjcfError) as error:
+            mb.load_mjcf(path, contacts="ignore")
+    assert words in str(error.value) and "beyond what a model can hold" in str(error.value)

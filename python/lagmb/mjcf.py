@@ -16,9 +16,11 @@ import warnings
 
 import numpy as np
 
+from . import _checks
 from .errors import ModelError
 from .functions import Constant
 from .model import Model
+from .urdf import LARGEST, _Namespace
 
 
 class MjcfError(ModelError):
@@ -27,7 +29,9 @@ class MjcfError(ModelError):
 
 
 class MjcfWarning(UserWarning):
-    """Something of an MJCF file lagmb leaves out (contacts between geoms)."""
+    """Something of an MJCF file lagmb leaves out (contacts between geoms),
+    or a name it changes (MuJoCo keeps bodies, joints and equalities in
+    namespaces of their own, lagmb has one)."""
 
 
 def _mujoco():
@@ -52,7 +56,13 @@ def load_mjcf(path, *, contacts="warn"):
     reference configuration, ``joint`` (linear polycoef) a joint coupling,
     or with one joint a constant driver.
     Gravity is the model's. Names are MuJoCo's (``body3``, ``joint2``,
-    ``equality0`` where it has none). What the model's ``<option><flag>``
+    ``equality0`` where it has none); MuJoCo keeps bodies, joints and
+    equalities apart and lagmb has one namespace, so a joint named like a
+    body is called ``NAME_joint``, and any other name already taken (a body
+    named ``ground``, an equality named like a joint, a joint ``j_damping``
+    beside the damping of ``j``) gets its kind and then a number added
+    (``ground_body``, ``j_damping_2``), each change listed in an
+    MjcfWarning. What the model's ``<option><flag>``
     disables MuJoCo leaves out and so does lagmb: gravity (``gravity``),
     joint damping (``damper``), equality constraints (``equality`` or
     ``constraint``).
@@ -69,10 +79,14 @@ def load_mjcf(path, *, contacts="warn"):
     equality that does not hold in the reference configuration (a weld's
     ``relpose``).
     """
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise MjcfError(f"load_mjcf: path must be a file name (a str or os.PathLike), got {_checks.show(path)}")
+    path = os.fsdecode(path)
+    if "\0" in path:  # (MuJoCo would read the file named by the part before it)
+        raise MjcfError(f"load_mjcf: path {_checks.show(path)} holds a NUL character")
+    if not (isinstance(contacts, str) and contacts in ("warn", "ignore", "error")):
+        raise MjcfError(f"load_mjcf: contacts must be 'warn', 'ignore' or 'error', got {_checks.show(contacts)}")
     mujoco = _mujoco()
-    path = os.fspath(path)
-    if contacts not in ("warn", "ignore", "error"):
-        raise ModelError(f"load_mjcf: contacts must be 'warn', 'ignore' or 'error', got {contacts!r}")
     try:
         m = mujoco.MjModel.from_xml_path(path)
     except (ValueError, OSError) as e:
@@ -122,7 +136,27 @@ def load_mjcf(path, *, contacts="warn"):
     group = {0: 0}
     for b in range(1, m.nbody):
         group[b] = b if m.body_jntnum[b] > 0 else group[int(m.body_parentid[b])]
-    names = {0: "ground"}
+    equalities = range(0 if disabled(off.mjDSBL_EQUALITY, off.mjDSBL_CONSTRAINT) else m.neq)
+    names = {0: "ground"}  # body id -> its name in the model
+    label = {}  # (kind, id) -> the model's name of a body, joint or equality: the file's names first
+    space = _Namespace()
+    elements = [("body", obj.mjOBJ_BODY, b) for b in range(1, m.nbody) if group[b] == b] + \
+        [("joint", obj.mjOBJ_JOINT, j) for j in range(m.njnt) if m.jnt_type[j] != mujoco.mjtJoint.mjJNT_FREE] + \
+        [("equality", obj.mjOBJ_EQUALITY, e) for e in equalities if m.eq_active0[e]]
+    for given in (True, False):
+        for kind, code, index in elements:
+            text = mujoco.mj_id2name(m, code, index)
+            if bool(text) == given:
+                label[kind, index] = space.claim(text or f"{kind}{index}", kind,
+                                                 f"{kind} '{text}'" if text else f"{kind} {index} (unnamed)",
+                                                 quiet=("body",) if kind == "joint" else (), made=not text)
+
+    def add(what, method, *args, **kwargs):  # (the core's checks, naming MuJoCo's element)
+        try:
+            return method(*args, **kwargs)
+        except ModelError as e:
+            refuse(f"{what}: {e}")
+
     joint_value = {}  # MuJoCo joint id -> (its name in the model, its value at qpos0): hinges and slides
     gravity = np.zeros(3) if disabled(off.mjDSBL_GRAVITY) else m.opt.gravity
     model = Model(gravity=tuple(float(g) for g in gravity), dimension=3)
@@ -130,69 +164,84 @@ def load_mjcf(path, *, contacts="warn"):
         if group[b] != b:
             continue
         members = [c for c in range(1, m.nbody) if group[c] == b]
-        label = name(obj.mjOBJ_BODY, b, "body")
-        names[b] = label
+        what = f"body '{name(obj.mjOBJ_BODY, b, 'body')}'"
+        names[b] = label["body", b]
         if m.body_jntnum[b] > 1:
-            refuse(f"body '{label}' has {m.body_jntnum[b]} joints; lagmb takes one joint per body (joints "
+            refuse(f"{what} has {m.body_jntnum[b]} joints; lagmb takes one joint per body (joints "
                    "in series need bodies between them)")
+        for c in members:  # (beyond LARGEST, squares overflow: lagmb's equations hold none)
+            if not (np.abs(d.xipos[c]).max() <= LARGEST and np.abs(d.xpos[c]).max() <= LARGEST and
+                    m.body_mass[c] <= LARGEST and np.abs(m.body_inertia[c]).max() <= LARGEST):
+                refuse(f"body '{name(obj.mjOBJ_BODY, c, 'body')}': its position, mass or inertia is beyond what a "
+                       f"model can hold (at most {LARGEST:g} m, kg, kg m^2: lagmb squares them, and larger squares "
+                       "overflow)")
         mass = float(sum(m.body_mass[c] for c in members))
         com = sum(m.body_mass[c] * d.xipos[c] for c in members) / mass if mass > 0 else d.xpos[b].copy()
         inertia = np.zeros((3, 3))
-        for c in members:  # each body's principal inertia about the common centre, world axes
-            R = d.ximat[c].reshape(3, 3)
-            r = d.xipos[c] - com
-            inertia += R @ np.diag(m.body_inertia[c]) @ R.T + m.body_mass[c] * (r @ r * np.eye(3) - np.outer(r, r))
+        with np.errstate(over="ignore", invalid="ignore"):  # (m r^2 may overflow: refused below)
+            for c in members:  # each body's principal inertia about the common centre, world axes
+                R = d.ximat[c].reshape(3, 3)
+                r = d.xipos[c] - com
+                inertia += R @ np.diag(m.body_inertia[c]) @ R.T + m.body_mass[c] * (r @ r * np.eye(3) -
+                                                                                    np.outer(r, r))
+        if not np.abs(inertia).max() <= LARGEST:
+            refuse(f"{what}: its inertia about its centre of mass ({np.abs(inertia).max():g} kg m^2) is beyond what a "
+                   f"model can hold (at most {LARGEST:g})")
         R0 = d.xmat[b].reshape(3, 3)
         inertia_body = R0.T @ inertia @ R0
-        try:
-            model.add_body(label, mass, 0.5 * (inertia_body + inertia_body.T), position=tuple(com),
-                           orientation=R0)
-        except ModelError as e:
-            refuse(f"body '{label}': {e}")
+        add(what, model.add_body, names[b], mass, 0.5 * (inertia_body + inertia_body.T), position=tuple(com),
+            orientation=R0)
 
     for j in range(m.njnt):
         b = int(m.jnt_bodyid[j])
-        label = name(obj.mjOBJ_JOINT, j, "joint")
+        mj_name = name(obj.mjOBJ_JOINT, j, "joint")
+        what = f"joint '{mj_name}'"
         kind = int(m.jnt_type[j])
         parent = names[group[int(m.body_parentid[b])]]
         at, axis = tuple(d.xanchor[j]), tuple(d.xaxis[j])
         dof = int(m.jnt_dofadr[j])
         dofs = slice(dof, dof + (6 if kind == 0 else 3 if kind == 1 else 1))
-        for what, values in (("armature", m.dof_armature), ("frictionloss", m.dof_frictionloss)):
+        for quantity, values in (("armature", m.dof_armature), ("frictionloss", m.dof_frictionloss)):
             if np.any(values[dofs] != 0):
-                refuse(f"joint '{label}': {what} is not supported yet")
+                refuse(f"{what}: {quantity} is not supported yet")
         if m.jnt_stiffness[j] != 0 or np.any(m.jnt_stiffnesspoly[j] != 0):
-            refuse(f"joint '{label}': stiffness is not supported yet")
+            refuse(f"{what}: stiffness is not supported yet")
         if m.jnt_limited[j]:
-            refuse(f"joint '{label}': limits (range) are not read yet")
+            refuse(f"{what}: limits (range) are not read yet")
         value = float(m.qpos0[m.jnt_qposadr[j]]) if kind in (2, 3) else 0.0
         damping = 0.0 if disabled(off.mjDSBL_DAMPER) else float(m.dof_damping[dof])
         if damping and kind in (mujoco.mjtJoint.mjJNT_FREE, mujoco.mjtJoint.mjJNT_BALL):
-            refuse(f"joint '{label}': damping of a {('free', 'ball')[kind]} joint is not supported yet")
+            refuse(f"{what}: damping of a {('free', 'ball')[kind]} joint is not supported yet")
         if not disabled(off.mjDSBL_DAMPER) and np.any(m.dof_dampingpoly[dofs] != 0):
-            refuse(f"joint '{label}': nonlinear damping (damping with more than one coefficient) is not supported")
+            refuse(f"{what}: nonlinear damping (damping with more than one coefficient) is not supported")
         if kind == mujoco.mjtJoint.mjJNT_FREE:
             continue
+        if not (np.abs(at).max() <= LARGEST and abs(value) <= LARGEST and abs(damping) <= LARGEST):
+            refuse(f"{what}: its anchor, qpos0 value or damping is beyond what a model can hold (at most {LARGEST:g})")
+        label_j = label["joint", j]
         if kind == mujoco.mjtJoint.mjJNT_BALL:
-            model.add_spherical(label, parent, names[b], at=at)
+            add(what, model.add_spherical, label_j, parent, names[b], at=at)
         elif kind == mujoco.mjtJoint.mjJNT_SLIDE:
-            model.add_translational(label, parent, names[b], at=at, axis=axis, slide=value)
+            add(what, model.add_translational, label_j, parent, names[b], at=at, axis=axis, slide=value)
         else:
-            model.add_revolute(label, parent, names[b], at=at, axis=axis, angle=math.remainder(value, 2 * math.pi))
+            add(what, model.add_revolute, label_j, parent, names[b], at=at, axis=axis,
+                angle=math.remainder(value, 2 * math.pi))
         if damping:  # (a hinge's or a slide's)
-            model.add_joint_friction(f"{label}_damping", joint=label, viscous=damping)
-        joint_value[j] = (label, value if kind == mujoco.mjtJoint.mjJNT_SLIDE else math.remainder(value, 2 * math.pi))
+            add(what, model.add_joint_friction,
+                space.claim(f"{label_j}_damping", "damping", f"the damping of {what}", made=True), joint=label_j,
+                viscous=damping)
+        joint_value[j] = (label_j, value if kind == mujoco.mjtJoint.mjJNT_SLIDE else math.remainder(value, 2 * math.pi))
 
-    for e in range(0 if disabled(off.mjDSBL_EQUALITY, off.mjDSBL_CONSTRAINT) else m.neq):
-        label = name(obj.mjOBJ_EQUALITY, e, "equality")
+    for e in equalities:
+        what = f"equality '{name(obj.mjOBJ_EQUALITY, e, 'equality')}'"
         kind = int(m.eq_type[e])
         if kind == mujoco.mjtEq.mjEQ_JOINT:
             if m.eq_active0[e]:
-                _couple_joints(model, m, e, label, joint_value, refuse)
+                _couple_joints(model, m, e, what, label["equality", e], joint_value, refuse, add)
             continue
         if kind not in (mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtEq.mjEQ_WELD) or \
                 m.eq_objtype[e] != obj.mjOBJ_BODY:
-            refuse(f"equality '{label}': only connect and weld between bodies and joint equalities are read "
+            refuse(f"{what}: only connect and weld between bodies and joint equalities are read "
                    "(tendon and distance equalities are not supported yet)")
         if not m.eq_active0[e]:
             continue
@@ -200,19 +249,22 @@ def load_mjcf(path, *, contacts="warn"):
         gap = max((abs(d.efc_pos[r]) for r in range(d.nefc)
                    if d.efc_type[r] == mujoco.mjtConstraint.mjCNSTR_EQUALITY and d.efc_id[r] == e), default=0.0)
         if gap > 1e-9:
-            refuse(f"equality '{label}': MuJoCo holds its bodies elsewhere than where they are in the reference "
+            refuse(f"{what}: MuJoCo holds its bodies elsewhere than where they are in the reference "
                    f"configuration (qpos0; {gap:.3g} apart; a weld's relpose), and lagmb joins them as they are there")
         b1, b2 = int(m.eq_obj1id[e]), int(m.eq_obj2id[e])
         i, k = names[group[b1]], names[group[b2]]
         if kind == mujoco.mjtEq.mjEQ_CONNECT:
             anchor = d.xpos[b1] + d.xmat[b1].reshape(3, 3) @ m.eq_data[e][:3]
-            model.add_spherical(label, i, k, at=tuple(anchor))
+            if not np.abs(anchor).max() <= LARGEST:
+                refuse(f"{what}: its anchor is beyond what a model can hold (at most {LARGEST:g} m)")
+            add(what, model.add_spherical, label["equality", e], i, k, at=tuple(anchor))
         else:
-            model.add_weld(label, i, k)
+            add(what, model.add_weld, label["equality", e], i, k)
+    space.warn(path, MjcfWarning)
     return model
 
 
-def _couple_joints(model, m, e, label, joint_value, refuse):
+def _couple_joints(model, m, e, what, label, joint_value, refuse, add):
     """An MJCF <joint> equality, y - y0 = a0 + a1 (x - x0) (MuJoCo's
     polycoef; y joint1, x joint2, y0 and x0 their values at qpos0): a joint
     coupling y = a1 x + (y0 + a0 - a1 x0). Without joint2, y = y0 + a0: the
@@ -220,18 +272,20 @@ def _couple_joints(model, m, e, label, joint_value, refuse):
     a = m.eq_data[e][:5]
     j1, j2 = int(m.eq_obj1id[e]), int(m.eq_obj2id[e])
     if np.any(a[2:] != 0):
-        refuse(f"equality '{label}': a joint equality with polycoef beyond the linear term "
+        refuse(f"{what}: a joint equality with polycoef beyond the linear term "
                f"({' '.join(f'{c:g}' for c in a)}) is not supported")
     for j in (j1, j2):
         if j >= 0 and j not in joint_value:
-            refuse(f"equality '{label}': couples a ball or free joint (only hinge and slide joints have one "
-                   "coordinate)")
+            refuse(f"{what}: couples a ball or free joint (only hinge and slide joints have one coordinate)")
     name1, y0 = joint_value[j1]
     if j2 < 0:
-        model.drive_joint(label, name1, Constant(y0 + a[0]))
+        add(what, model.drive_joint, label, name1, Constant(y0 + a[0]))
         return
     name2, x0 = joint_value[j2]
     if a[1] == 0:
-        refuse(f"equality '{label}': polycoef a1 = 0 holds '{name1}' still without '{name2}'; leave joint2 out")
-    model.add_joint_coupling(label, name1, leader=name2, multiplier=float(a[1]),
-                             offset=float(y0 + a[0] - a[1] * x0))
+        refuse(f"{what}: polycoef a1 = 0 holds '{name1}' still without '{name2}'; leave joint2 out")
+    with np.errstate(over="ignore", invalid="ignore"):
+        offset = float(y0 + a[0] - a[1] * x0)
+    if not (abs(a[1]) <= LARGEST and abs(offset) <= LARGEST):
+        refuse(f"{what}: polycoef {a[0]:g} {a[1]:g} is beyond what a model can hold (at most {LARGEST:g})")
+    add(what, model.add_joint_coupling, label, name1, leader=name2, multiplier=float(a[1]), offset=offset)
