@@ -182,3 +182,52 @@ def test_what_cannot_be_differentiated_is_named():
         mb.simulate(rubbing, 0.1, sensitivities=["rod.mass"])
     with pytest.raises(mb.ModelError, match="integrates nothing"):
         mb.simulate(slider_crank(), 0.1, analysis="kinematic", sensitivities=["rod.mass"])
+
+
+def test_a_parameter_at_the_bound_of_its_range_is_differentiated_one_sided():
+    """Every damping defaults to 0, where a central difference would build a
+    model with a negative damping (refused): the sensitivity takes the model
+    at 0 and at +delta instead (issue 39). Its run agrees with the closed
+    form's derivative at c = 0 (a central difference of the formula, which
+    takes c < 0) and with a one-sided second-order difference of whole runs."""
+    model = damped_block()
+    k = model.parameters()["spring.stiffness"]
+    undamped = {"spring.damping": 0.0}
+    r = mb.simulate(model, 3.0, n_out=31, rtol=1e-10, atol=1e-12, parameters=undamped,
+                    sensitivities=["spring.damping"])
+    s = r.sensitivity("spring.damping")
+    assert s.value == 0.0
+    h = 1e-5
+    expected = (closed_form_height(r.t, k, h) - closed_form_height(r.t, k, -h)) / (2 * h)
+    assert_close(s.q[:, 1], expected, rel=1e-6)
+    assert_close(s.body("block").position[:, 1], expected, rel=1e-6)  # its accessors too
+
+    def height(c):
+        run = mb.simulate(model, 3.0, n_out=31, rtol=1e-12, atol=1e-14, method="ggl",
+                          parameters={"spring.damping": c})
+        return run.body("block").position[:, 1]
+
+    step = 1e-4
+    whole_runs = (-3 * height(0.0) + 4 * height(step) - height(2 * step)) / (2 * step)
+    assert_close(s.q[:, 1], whole_runs, rel=1e-6)
+
+
+def test_a_parameter_without_a_sensitivity_is_named_with_the_reason():
+    """model.parameters() lists numbers a run cannot be differentiated in:
+    the message names the parameter and says why, not a model the user did
+    not build (issue 39)."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    arm = m.add_body("arm", 1.0, (0.1, 0.1, 0.1), position=(0.0, 0.0, -0.5))
+    m.add_universal("u", m.ground, arm, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    # a component across the other axis: no nearby value keeps them perpendicular
+    with pytest.raises(mb.ModelError, match=r"'u\.axis_i\.y' = 0 has no sensitivity: the model takes no other "
+                                            r"value of it nearby \(at 0\.0001: universal 'u': axis_i and axis_j "
+                                            r"must be perpendicular"):
+        mb.simulate(m, 0.1, sensitivities=["u.axis_i.y"])
+    twice = mb.Model(gravity=(0.0, -G))
+    rod = twice.add_body("rod", 1.0, 1.0 / 12.0, position=(0.5, 0.0))
+    twice.add_revolute("a", twice.ground, rod, at=(0.0, 0.0))
+    twice.add_revolute("b", twice.ground, rod, at=(0.0, 0.0))  # the same pin again: a redundant pair
+    with pytest.raises(mb.ModelError, match=r"'b\.at\.y' = 0 has no sensitivity: which equations of 'b' are "
+                                            r"redundant at the start differs"):
+        mb.simulate(twice, 0.1, sensitivities=["b.at.y"])

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "lagmb/assembly/assembly.hpp"
+#include "lagmb/errors.hpp"
 #include "solvers/sparse_qr.hpp"
 
 namespace lagmb {
@@ -38,7 +39,13 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
   if (!model.finalized()) throw ModelError("constraint_rank: the model is not finalized");
   if (q.size() != model.n_coordinates())
     throw ModelError("constraint_rank: q must have " + std::to_string(model.n_coordinates()) + " entries");
-  if (!q.allFinite() || !std::isfinite(t)) throw ModelError("constraint_rank: q and t must be finite");
+  if (!std::isfinite(t)) throw ModelError("constraint_rank: t must be finite, got " + to_text(t));
+  // a q computed from a model whose magnitudes overflow (a probe of find_redundancy)
+  for (int i = 0; i < q.size(); ++i)
+    if (!std::isfinite(q[i]))
+      throw AssemblyError("the positions are not finite at " + coordinate_label(model, i) + " (t = " + to_text(t) +
+                              "): the model's magnitudes overflow double precision",
+                          t, {});
   ConstraintRank r;
   r.equations = model.n_constraints();
   r.coordinates = model.n_coordinates();
@@ -47,7 +54,20 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
   assemble_jacobian(model, d, q.data(), t);
   const SpMat JT = d.Phi_q.transpose();
   double max_norm = 0.0;
-  for (int c = 0; c < JT.cols(); ++c) max_norm = std::max(max_norm, JT.col(c).norm());
+  for (int c = 0; c < JT.cols(); ++c) {
+    // an entry past 1e150 overflows what a rank or a solve forms of it (its
+    // square): a point 1e200 m from its body, a multiplier of 1e300
+    double largest = 0.0;
+    for (SpMat::InnerIterator it(JT, c); it; ++it)
+      largest = std::isnan(largest + it.value()) ? NAN : std::max(largest, std::abs(it.value()));
+    if (!(largest <= 1e150))
+      throw AssemblyError("the equations of '" + model.constraint_name_of_row(c) + "' overflow double precision at t = " +
+                              to_text(t) + ": their Jacobian has entries up to " + to_text(largest) +
+                              ", whose squares, which a solve forms, are past 1e300. A point, length, ratio or "
+                              "multiplier of it, or a body's position, is out of range",
+                          t, {});
+    max_norm = std::max(max_norm, JT.col(c).norm());
+  }
   const SparseQR qr(JT, tol * std::max(max_norm, 1e-300));
   if (!qr.ok()) throw std::runtime_error("lagmb: sparse QR of Phi_q^T failed");
   r.rank = qr.rank();

@@ -374,10 +374,12 @@ VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX 
   double err = max_abs(d.Phi);
   const int max_iter = 100, max_moves = 8;
   int iterations = 0, moves = 0;
-  while (err > tol) {
+  while (!(err <= tol)) {  // (NaN: not assembled)
     poll_interrupt();
-    if (iterations++ >= max_iter || !std::isfinite(err))
-      fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge", &phi_given);
+    if (!std::isfinite(err))
+      fail_assembly(model, d, t, 1e3 * tol, "the constraint equations are not finite: they overflow double precision",
+                    &phi_given);
+    if (iterations++ >= max_iter) fail_assembly(model, d, t, 1e3 * tol, "Newton did not converge", &phi_given);
     assemble_jacobian(model, d, q.data(), t);
     if (!kkt.factorize(d)) fail_assembly(model, d, t, 1e3 * tol, "singular augmented matrix", &phi_given);
     kkt.solve(zero_n, -d.Phi, dq, kappa);

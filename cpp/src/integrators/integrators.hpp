@@ -28,7 +28,10 @@ struct SensitivityPlan {
   /// The models at p_i +- delta_i (first: the forms below refer to them).
   std::vector<std::shared_ptr<const Model>> models;
   std::vector<std::string> names;
-  std::vector<double> delta;  // the step of F's difference in p_i
+  /// Half the span between the two models' values of p_i, by which F's
+  /// differences divide: their step, or half of it at a bound of p_i's
+  /// range (a damping of 0), where the model at p_i is the one beyond it
+  std::vector<double> delta;
   std::vector<double> scale;  // IDAS' pbar: abs(p_i), 1 where p_i = 0
   /// The GGL forms of the models at p_i + delta_i and p_i - delta_i (joined to the run).
   std::vector<std::unique_ptr<DaeFormulation>> plus, minus;

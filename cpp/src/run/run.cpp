@@ -1,6 +1,7 @@
 #include "run/run.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -342,28 +343,63 @@ void Run::start_sensitivities(const std::vector<std::string>& names) {
     // relative for a parameter of the geometry) below what a sensitivity
     // is asked for; 1e-6 made the rounding 1e-10 and the error test fail
     const double p = it->second, scale = p != 0.0 ? std::abs(p) : 1.0, delta = 1e-4 * scale;
+    // the models at p + delta and p - delta; at a bound of p's range (a
+    // damping of 0) the model at p stands for the side beyond it, and the
+    // differences are one-sided: half their span is what delta[i] holds
+    std::shared_ptr<const Model> models[2];
+    std::string refused[2];
+    double values[2] = {p + delta, p - delta};
+    for (int side = 0; side < 2; ++side) try {
+        models[side] = lagmb::with_parameters(model, {{name, values[side]}});
+      } catch (const ModelError& e) {
+        refused[side] = e.what();
+      }
+    const std::string parameter = "'" + name + "' = " + to_text(p);
+    if (!models[0] && !models[1])
+      throw ModelError(who + parameter + " has no sensitivity: the model takes no other value of it nearby (at " +
+                       to_text(values[0]) + ": " + refused[0] + "; at " + to_text(values[1]) + ": " + refused[1] +
+                       ")");
+    const double span = (models[0] ? delta : 0.0) + (models[1] ? delta : 0.0);
+    for (int side = 0; side < 2; ++side)
+      if (!models[side]) models[side] = lagmb::with_parameters(model, {{name, values[side] = p}});
     sens->names.push_back(name);
-    sens->delta.push_back(delta);
+    sens->delta.push_back(0.5 * span);
     sens->scale.push_back(scale);
     VecX y[2], yp[2];
     for (int side = 0; side < 2; ++side) {
-      std::shared_ptr<const Model> at = lagmb::with_parameters(model, {{name, side == 0 ? p + delta : p - delta}});
+      std::shared_ptr<const Model> at = models[side];
       auto form = std::make_unique<GglFormulation>(*at);
       Data d(*at);
       AugmentedSystem k(*at);
       Redundancy redundancy;
-      const ConsistentState st = dynamic_start(*at, options, d, k, redundancy);
-      if (st.dropped_rows != start.dropped_rows)
-        throw ModelError(who + "changing '" + name + "' changes which constraint rows are redundant at the start: "
-                         "the run is not differentiable in it there");
+      ConsistentState st;
+      try {
+        st = dynamic_start(*at, options, d, k, redundancy);
+      } catch (const SimulationError& e) {  // (an AssemblyError among them)
+        throw ModelError(who + parameter + " has no sensitivity: the model with it at " + to_text(values[side]) +
+                         " cannot start: " + e.what());
+      }
+      if (st.dropped_rows != start.dropped_rows) {
+        std::vector<int> changed;
+        std::set_symmetric_difference(st.dropped_rows.begin(), st.dropped_rows.end(), start.dropped_rows.begin(),
+                                      start.dropped_rows.end(), std::back_inserter(changed));
+        std::vector<std::string> names;
+        for (int r : changed)
+          if (std::find(names.begin(), names.end(), model.constraint_name_of_row(r)) == names.end())
+            names.push_back(model.constraint_name_of_row(r));
+        throw ModelError(who + parameter + " has no sensitivity: which equations of " + quoted_names(names) +
+                         " are redundant at the start differs between its value and " + to_text(values[side]) +
+                         " (a redundant set, such as two joints holding one motion, that the change breaks or "
+                         "makes): the run is not differentiable in it there");
+      }
       form->join_run(data);
       y[side].resize(form->size()), yp[side].resize(form->size());
       form->initial(st, y[side].data(), yp[side].data());
       (side == 0 ? sens->plus : sens->minus).push_back(std::move(form));
       sens->models.push_back(std::move(at));
     }
-    sens->s0.push_back((y[0] - y[1]) / (2.0 * delta));
-    sens->sp0.push_back((yp[0] - yp[1]) / (2.0 * delta));
+    sens->s0.push_back((y[0] - y[1]) / span);
+    sens->sp0.push_back((yp[0] - yp[1]) / span);
   }
   consistent_sensitivities(*sens);
   outputs.sensitivity_names = sens->names;

@@ -138,11 +138,15 @@ class Run {
   void record(double t, const double* q, const double* v, bool solve);
   /// Sets up forward sensitivities to the parameters `names`
   /// (Model::parameters' names) before the stepper starts: the models at
-  /// p_i +- delta_i (delta_i = 1e-4 abs(p_i), 1e-4 where p_i = 0),
-  /// their GGL forms joined to this run, and the initial sensitivities from
-  /// their consistent starts. ModelError for a method other than GGL with
-  /// IDA, a model with events or joint friction, an unknown or repeated
-  /// name, or a parameter whose change alters which rows are redundant.
+  /// p_i +- delta_i (delta_i = 1e-4 abs(p_i), 1e-4 where p_i = 0; the
+  /// model at p_i for a side beyond a bound of its range: a one-sided
+  /// difference), their GGL forms joined to this run, and the initial
+  /// sensitivities from their consistent starts. ModelError for a method
+  /// other than GGL with IDA, a model with events or joint friction, an
+  /// unknown or repeated name, or a parameter with no sensitivity, each
+  /// saying why: no other value of it nearby is allowed (a component of a
+  /// universal joint's axis), a model with another value cannot start, or
+  /// its change alters which rows are redundant.
   void start_sensitivities(const std::vector<std::string>& names);
 
   /// A new stepper of the run's method from the consistent state `from` at
