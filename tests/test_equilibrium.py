@@ -108,6 +108,20 @@ def test_without_the_stability_check_the_same_rest_state_and_stability_unknown()
     assert "stability not checked" in repr(unchecked)
 
 
+def test_the_options_are_checked_by_name():
+    """A string for a flag was read by its truth ("False" is true) and the
+    stability check skipped or an unstable rest state returned (issue 39)."""
+    m = torsion_pendulum(0.0, start=math.pi / 2)
+    for name in ("allow_unstable", "stability"):
+        for bad in ("False", 0, None):
+            with pytest.raises(mb.ModelError, match=f"equilibrium: {name} must be True or False, got {bad!r}"):
+                mb.equilibrium(m, **{name: bad})
+    for bad, said in ((float("nan"), "tol must be finite"), (1.0, r"tol must be in \(0, 1\)"),
+                      (0, "max_iterations must be in 1..")):
+        with pytest.raises(mb.ModelError, match=said):
+            mb.equilibrium(m, **({"max_iterations": bad} if "iterations" in said else {"tol": bad}))
+
+
 def test_the_rows_left_out_as_redundant_are_named():
     """A parallelogram of three equal cranks hanging from the ground and a
     bar joining their ends: the third crank repeats a constraint the other

@@ -927,3 +927,133 @@ def test_a_driven_chain_with_a_heavy_body_assembles():
     q = m.assemble()[0]
     r = mb.simulate(m, 1e-3, n_out=2, analysis="dynamic")
     assert r.residual.max() < 1e-9 and np.isfinite(q).all()
+
+
+# --- round 4 (issue 39): pickled results, edits during a run, overflow inside --------
+
+
+def crank_and_pendulum():
+    """A crank driven at 2 rad/s with a pendulum on its tip and a spring."""
+    m = mb.Model(gravity=(0.0, -G))
+    crank = m.add_body("crank", 1.0, 1.0 / 12.0, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, crank, at=(0.0, 0.0))
+    m.drive_joint("motor", "pin", mb.Linear(2.0))
+    bob = m.add_body("bob", 0.5, 0.01, position=(1.0, -0.5), angle=-math.pi / 2)
+    m.add_revolute("tip", crank, bob, at=(1.0, 0.0))
+    m.add_spring_damper("spring", m.ground, (1.0, -1.5), bob, (1.0, -0.5), stiffness=20.0, damping=0.3)
+    return m
+
+
+def test_results_and_analyses_pickle_and_answer_as_the_originals_bit_for_bit():
+    """Result, Equilibrium, Modes and LinearSystem held the compiled model
+    (TypeError: cannot pickle 'lagmb._core.Model'). They travel as the model's
+    description and their arrays; the compiled model is rebuilt, with the
+    parameter values the run was given."""
+    import pickle
+
+    m = crank_and_pendulum()
+    r = mb.simulate(m, 1.0, parameters={"bob.mass": 0.7}, sensitivities=["spring.stiffness"])
+    r2 = pickle.loads(pickle.dumps(r))
+    assert r2.model is not m and r2.model.parameters() == m.parameters()
+    for ask in (lambda x: x.q, lambda x: x.lam, lambda x: x.body("bob").position, lambda x: x.point("bob", (0, 0.1)),
+                lambda x: x.reaction("tip"), lambda x: x.effort("motor"), lambda x: x.energy,
+                lambda x: x.joint("tip").angle, lambda x: x.residual,
+                lambda x: x.sensitivity("spring.stiffness").reaction("tip")):
+        assert np.array_equal(ask(r), ask(r2))  # the run's bob.mass 0.7, not the model's 0.5
+    assert r2.stats == r.stats and len(r2) == len(r)
+
+    hanging = pendulum()
+    hanging.add_rotational_spring_damper("twist", hanging.ground, "rod", stiffness=30.0, damping=0.2)
+    eq = mb.equilibrium(hanging)
+    modes, lin = mb.modes(hanging, eq), mb.linearize(hanging, eq, outputs=["pin.reaction.y"])
+    eq2, modes2, lin2 = pickle.loads(pickle.dumps((eq, modes, lin)))
+    assert np.array_equal(eq2.q, eq.q) and np.array_equal(eq2.reaction("pin"), eq.reaction("pin"))
+    assert np.array_equal(eq2.body("rod").position, eq.body("rod").position) and eq2.stable is True
+    assert np.array_equal(modes2.shapes, modes.shapes) and np.array_equal(modes2.omega, modes.omega)
+    assert modes2.kinds == modes.kinds and modes2.equilibrium.model is not hanging
+    for key in ("A", "B", "C", "D"):
+        assert np.array_equal(getattr(lin2, key), getattr(lin, key))
+    assert np.array_equal(lin2.descriptor().A, lin.descriptor().A) and lin2.states == lin.states
+    # the unpickled equilibrium is one of the unpickled model, where modes takes it
+    assert np.array_equal(mb.modes(eq2.model, eq2).omega, modes.omega)
+
+
+def test_a_run_in_a_process_pool_comes_back_as_a_result():
+    """ProcessPoolExecutor().submit(mb.simulate, m, 1.0).result() failed
+    pickling the Result back."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    m = crank_and_pendulum()
+    with ProcessPoolExecutor(max_workers=1) as pool:
+        r = pool.submit(mb.simulate, m, 1.0).result(timeout=120)
+    here = mb.simulate(m, 1.0)
+    assert np.array_equal(r.q, here.q) and np.array_equal(r.effort("motor"), here.effort("motor"))
+
+
+def test_a_model_edited_by_another_thread_during_a_run_keeps_the_run_and_its_result():
+    """The finished run raised "no body or element named 'extra'" from the
+    live model (its warnings read the model's bodies) and the run was lost.
+    A run works from a snapshot taken at its start: the Result answers for
+    what ran, warns that the model changed, and its .model is that snapshot
+    (the live model's handles still name its elements)."""
+    m = chain(30)
+    edited = threading.Event()
+
+    def nudge(t):  # a force the run evaluates: once under way, the model is edited from another thread
+        if t > 0.05 and not edited.is_set():
+            editor = threading.Thread(target=lambda: (m.add_body("extra", 1.0, 0.1, position=(0.0, 5.0)),
+                                                      edited.set()))
+            editor.start()
+            editor.join()
+        return (0.0, 0.0)
+
+    m.add_force("nudge", "link29", nudge)
+    with pytest.warns(UserWarning, match="the model was changed .* while it ran"):
+        r = mb.simulate(m, 0.2)
+    assert edited.is_set() and "extra" in [b.name for b in m.bodies]
+    assert r.model is not m and "extra" not in [b.name for b in r.model.bodies]
+    assert r.q.shape[1] == 90 and np.isfinite(r.body(m.bodies[3]).position).all()
+    assert r.reaction("joint2").shape == (len(r), 3)
+    with pytest.raises(mb.ModelError, match="no body or element named 'extra'"):
+        r.body("extra")
+    # the model now has the extra body, and a new run has it
+    assert mb.simulate(m, 0.1).q.shape[1] == 93
+
+
+def test_sensitivities_must_be_a_list_of_names():
+    for bad in (5, [1.0], None.__class__):
+        with pytest.raises(mb.ModelError, match="simulate: sensitivities must be a list of parameter names"):
+            mb.simulate(pendulum(), 0.1, sensitivities=bad)
+
+
+@pytest.mark.parametrize("build, element", [
+    ("""m = mb.Model(dimension=3, gravity=(0.0, 0.0, -9.81))
+        rod = m.add_body("rod", 1.0, (0.1, 0.1, 0.1), position=(1e200, 0.0, 0.0))
+        m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))""", "pin"),
+    ("""m = mb.Model(dimension=3, gravity=(0.0, 0.0, -9.81))
+        a = m.add_body("a", 1.0, (0.1, 0.1, 0.1), position=(0.5, 0.0, 0.0))
+        b = m.add_body("b", 1.0, (0.1, 0.1, 0.1), position=(0.5, 0.0, -1.0))
+        ja = m.add_revolute("ja", m.ground, a, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+        jb = m.add_revolute("jb", m.ground, b, at=(0.0, 0.0, -1.0), axis=(0.0, 1.0, 0.0))
+        m.add_joint_coupling("mimic", jb, ja, 1e300)""", "mimic"),
+])
+def test_a_model_that_overflows_inside_names_the_element_not_an_internal_function(build, element):
+    """A centre 1e200 m from its joint, a mimic multiplier of 1e300: finite
+    numbers whose products overflow stopped every analysis with
+    "constraint_rank: q and t must be finite"."""
+    out = in_subprocess(f"""
+        import warnings
+        import lagmb as mb
+        warnings.simplefilter("ignore")
+        {build}
+        for call in (lambda: mb.simulate(m, 0.1), lambda: mb.equilibrium(m), m.degrees_of_freedom, m.assemble):
+            try:
+                call()
+            except mb.AssemblyError as e:
+                print(e)
+    """)
+    lines = out.strip().splitlines()
+    assert len(lines) == 4, out
+    for line in lines:
+        assert line.startswith(f"the equations of '{element}' overflow double precision at t = 0"), line
+        assert "constraint_rank" not in line

@@ -268,6 +268,37 @@ def test_bad_input_is_named():
     with pytest.raises(mb.ModelError, match="input 'angle' drives the motion of 'motor'"):
         mb.linearize(driven, at=mb.equilibrium(driven))
     assert mb.linearize(driven, inputs=[], outputs=["motor.effort"]).A.shape == (0, 0)
+    # the operating point's numbers are checked, each by name (issue 39)
+    for bad, said in (("1.0", r"input 'angle' must be a number, got '1\.0'"),
+                      (float("inf"), "input 'angle' must be finite, got inf")):
+        with pytest.raises(mb.ModelError, match=said):
+            mb.linearize(driven, at=(np.zeros(3), np.zeros(3)), inputs=[], input_values={"angle": bad})
+    with pytest.raises(mb.ModelError, match=r"input_values must be a dict \{input name: value\}, got \[\('angle'"):
+        mb.linearize(driven, at=(np.zeros(3), np.zeros(3)), inputs=[], input_values=[("angle", 1.0)])
+    with pytest.raises(mb.ModelError, match="linearize: q must be a sequence of finite numbers, got 'abc'"):
+        mb.linearize(model, at=("abc", np.zeros(3)))
+    with pytest.raises(mb.ModelError, match="linearize: t must be a number, got 'now'"):
+        mb.linearize(model, at=(np.zeros(3), np.zeros(3), "now"))
+
+
+def test_a_model_whose_drivers_move_has_no_equilibrium_to_linearize_about_and_says_so():
+    """at=None asks for mb.equilibrium, a state at rest; a driver that moves
+    has none: the message names it and says to give at=(q, v, t) instead of
+    calling a state nobody gave inconsistent (issue 39)."""
+    model = hanging_rod()
+    model.add_body("idle", 1.0, 1.0, position=(3.0, 0.0))
+    model.add_revolute("idle_pin", model.ground, "idle", at=(3.0, 0.0))
+    model.drive_joint("held", "idle_pin", 0.0)  # a driver at rest is no reason: not named
+    model.drive_joint("motor", "pin", mb.Linear(2.0, start=-math.pi / 2))  # from where the rod hangs
+    with pytest.raises(mb.ModelError, match=r"linearize: the model has no equilibrium to linearize about: its "
+                                            r"drivers 'motor' move at t = 0 .*give at=\(q, v, t\)"):
+        mb.linearize(model)
+    # a state of the motion is what it takes (fully driven: no states left)
+    r = mb.simulate(model, 0.5)
+    assert mb.linearize(model, at=(r.q[-1], r.v[-1], r.t[-1])).A.shape == (0, 0)
+    # given an equilibrium of it anyway, the message names the equations its state breaks
+    with pytest.raises(mb.ModelError, match=r"at is not a consistent state .* in the equations of 'motor'"):
+        mb.linearize(model, at=mb.equilibrium(model))
 
 
 def test_the_lqr_example_designed_on_the_linearization_balances_the_pole_from_0_6_rad():

@@ -133,6 +133,11 @@ def test_a_fully_driven_mechanism_has_no_modes_and_bad_input_is_named():
         mb.modes(hanging_rod(), at=(0.0, 1.0))
     with pytest.raises(mb.ModelError, match="another model"):
         mb.modes(hanging_rod(), at=mb.equilibrium(hanging_rod()))
+    # tol: a fraction of the largest omega^2 (issue 39: NaN and -1 were taken)
+    for bad, said in ((float("nan"), "tol must be finite, got nan"), (-1, "tol must be positive and finite, got -1"),
+                      (0.0, "tol must be positive"), (1.0, "tol must be below 1"), ("1e-9", "tol must be a number")):
+        with pytest.raises(mb.ModelError, match=f"modes: {said}"):
+            mb.modes(hanging_rod(), tol=bad)
 
 
 # --- the sparse path: count=k -------------------------------------------------

@@ -505,3 +505,22 @@ def test_simulators_on_two_threads_keep_their_inputs():
         for k in range(200):
             alone.advance(0.005 * (k + 1))
         np.testing.assert_array_equal(ends[torque], alone.q)
+
+
+def test_a_simulator_does_not_pickle_and_says_what_to_send_instead():
+    """Its integrator's state lives in this process (issue 39): pickling or
+    copying it is a ModelError naming what travels (the model, the result,
+    the state's numbers), and those do."""
+    import copy
+    import pickle
+
+    sim = mb.Simulator(motor_pendulum(torque=1.0))
+    sim.advance(0.2)
+    for send in (pickle.dumps, copy.copy):
+        with pytest.raises(mb.ModelError, match=r"a Simulator cannot be pickled or copied.*the model \(it pickles\)"
+                                                r".*sim\.result\(\) \(it pickles\).*\(sim\.t, sim\.q, sim\.v, "
+                                                r"sim\.inputs\)"):
+            send(sim)
+    r = pickle.loads(pickle.dumps(sim.result()))
+    assert np.array_equal(r.q[-1], sim.q) and r.t[-1] == sim.t
+    assert pickle.loads(pickle.dumps(sim.model)).parameters() == sim.model.parameters()

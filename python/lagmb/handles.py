@@ -103,14 +103,16 @@ def name_of(model, item, accepts, what, context):
     ("joint", "driver"); what: the argument ("body_i", "joint", "element");
     context: who asks, for messages ("stop 'limit'", "Result.reaction").
     A string is returned as given (the caller or the core says if there is
-    no such element); a handle must belong to ``model`` and have one of the
-    accepted roles; anything else is refused. Raises ModelError.
+    no such element); a handle must belong to ``model`` (or to the model
+    that ``model``, a run's snapshot, copies) and have one of the accepted
+    roles; anything else is refused. Raises ModelError.
     """
     expected = " or ".join(_ROLE_WORDS[r] for r in accepts)
     if isinstance(item, str):
         return item
     if isinstance(item, Handle):
-        if item.model is not model:
+        # (a run's snapshot of a model takes the handles of the model it copies)
+        if item.model is not model and item.model is not getattr(model, "_source", None):
             raise ModelError(
                 f"{context}: {what} {item!r} is a handle of another model ({_model_text(item.model)}), "
                 f"not of this one ({_model_text(model)})")

@@ -32,6 +32,7 @@ import numbers
 import numpy as np
 
 from . import _core
+from ._checks import array, positive, real, show
 from .errors import ModelError
 from .statics import Equilibrium, equilibrium
 
@@ -125,8 +126,8 @@ def modes(model, at=None, *, tol=1e-9, count=None):
     Cm = Phi^T C Phi, 2k of them): the full system's own where the damping
     does not couple those modes to the others (damping proportional to M
     and K), otherwise an approximation. A mode is rigid-body when
-    ``abs(omega^2)`` is below ``tol`` times that diagonal ratio (on the dense
-    path: times the largest omega^2). With few degrees of freedom (at most 2 k + 20)
+    ``abs(omega^2)`` is below ``tol`` (in (0, 1)) times that diagonal ratio
+    (on the dense path: times the largest omega^2). With few degrees of freedom (at most 2 k + 20)
     the sparse path takes them all from an orthonormal basis of the motions
     the joints allow (a sparse projection) and keeps the k lowest. SciPy is
     needed for the sparse path only.
@@ -138,10 +139,12 @@ def modes(model, at=None, *, tol=1e-9, count=None):
     eigenvalues still say how the motion grows or decays, see
     ``mb.linearize``).
     """
-    from ._checks import show
     from .model import checked as _model
 
     _model(model, "modes")
+    tol = positive(tol, "modes: tol")
+    if not tol < 1:
+        raise ModelError(f"modes: tol must be below 1 (a fraction of the largest omega^2), got {tol!r}")
     if count is not None:
         if isinstance(count, bool) or not isinstance(count, numbers.Real) or not (
                 isinstance(count, numbers.Integral) or (math.isfinite(count) and float(count).is_integer())):
@@ -498,27 +501,42 @@ def _independent(Z, names, chosen, who):
     return sorted(rows)
 
 
+def _elements_of_rows(core, rows):
+    """The names of the elements that own constraint rows, quoted, each once."""
+    names = list(dict.fromkeys(core.constraint_name_of_row(int(r)) for r in rows))
+    return ", ".join(repr(x) for x in names) if names else "(none)"
+
+
 def _operating_point(model, core, at, input_values, who):
     """(q, v, t, u, dropped_rows or None, the Equilibrium or None)."""
     n = core.n_coordinates
     infos = core.inputs
     u = np.array([i["initial"] for i in infos], dtype=float)
-    given = dict(input_values or {})
-    if isinstance(at, dict):
-        given.update(at.get("inputs", {}) or {})
+    given = {}
+    for where, values in (("input_values", input_values), ("at['inputs']", at.get("inputs") if isinstance(
+            at, dict) else None)):
+        if values is not None and not isinstance(values, dict):
+            raise ModelError(f"{who}: {where} must be a dict {{input name: value}}, got {show(values)}")
+        given.update(values or {})
     names = [i["name"] for i in infos]
     for name, value in given.items():
         if name not in names:
-            raise ModelError(f"{who}: no input {name!r}; the model's inputs are "
+            raise ModelError(f"{who}: no input {show(name)}; the model's inputs are "
                              f"{', '.join(names) if names else '(none)'}")
-        value = float(value)
-        if not np.isfinite(value):
-            raise ModelError(f"{who}: input {name!r} must be finite, got {value}")
-        u[names.index(name)] = value
+        u[names.index(name)] = real(value, f"{who}: input {name!r}")
     if at is None:
         if input_values:
             raise ModelError(f"{who}: input_values with at=None: mb.equilibrium holds the inputs at their initial "
                              "values, so the equilibrium would not be one at these; give at= a consistent state")
+        # at rest, a driver's rate is Phi_t: one that moves leaves no state at rest
+        rates = np.abs(np.asarray(core.constraint_values(np.asarray(core.initial_state()[0], dtype=float),
+                                                         0.0)[1], dtype=float))
+        moving = np.flatnonzero(rates > 1e-8)
+        if moving.size:
+            raise ModelError(f"{who}: the model has no equilibrium to linearize about: its drivers "
+                             f"{_elements_of_rows(core, moving)} move at t = 0 (a rate up to "
+                             f"{rates.max():.3g}), so no state at rest follows them; give at=(q, v, t), a "
+                             "state of the motion, e.g. a Result's point (r.q[i], r.v[i], r.t[i])")
         at = equilibrium(model, allow_unstable=True)
     if isinstance(at, Equilibrium):
         if at.model is not model:
@@ -534,13 +552,11 @@ def _operating_point(model, core, at, input_values, who):
     else:
         raise ModelError(f"{who}: at must be None, an Equilibrium, (q, v) or (q, v, t), or a dict with q, v, t "
                          f"(e.g. a Result's point: (r.q[i], r.v[i], r.t[i])), got {type(at).__name__}")
-    q = np.asarray(q, dtype=float).ravel()
-    v = np.zeros(n) if v is None else np.asarray(v, dtype=float).ravel()
+    q = array(q, f"{who}: q")
+    v = np.zeros(n) if v is None else array(v, f"{who}: v")
     if q.shape != (n,) or v.shape != (n,):
         raise ModelError(f"{who}: q and v must have the model's {n} coordinates, got {q.size} and {v.size}")
-    t = float(t)
-    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(v)) and np.isfinite(t)):
-        raise ModelError(f"{who}: the state (q, v, t) must be finite")
+    t = real(t, f"{who}: t")
     return q, v, t, u, None, None
 
 
@@ -708,8 +724,10 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     A reaction is linear in the multipliers (exact); how it and a joint's
     angle depend on q is taken by central differences.
 
-    ModelError for: an ``at`` that is not a consistent state of this model
-    (max abs(Phi) or abs(Phi_q v + Phi_t) above 1e-8), unknown input, output
+    ModelError for: ``at=None`` where a driver moves at t = 0 (naming it: no
+    state at rest follows it, give ``at=(q, v, t)``), an ``at`` that is not
+    a consistent state of this model (max abs(Phi) or abs(Phi_q v + Phi_t)
+    above 1e-8, naming the elements), unknown input, output
     or coordinate names (the known ones listed), joint friction (its force
     switches with the sign of the rate), an input that drives a motion.
     Dense linear algebra: for models of up to a few hundred coordinates.
@@ -734,9 +752,13 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     phi = np.abs(np.asarray(tangent["Phi"])).max(initial=0.0)
     vel = np.abs(np.asarray(tangent["velocity_residual"])).max(initial=0.0)
     if phi > 1e-8 * scale or vel > 1e-8 * (1.0 + np.abs(v).max(initial=0.0)):
+        broken = _elements_of_rows(core, np.flatnonzero(
+            (np.abs(np.asarray(tangent["Phi"])) > 1e-8 * scale)
+            | (np.abs(np.asarray(tangent["velocity_residual"])) > 1e-8 * (1.0 + np.abs(v).max(initial=0.0)))))
         raise ModelError(f"{who}: at is not a consistent state of the model: max abs(Phi) {phi:.3g}, max "
-                         f"abs(Phi_q v + Phi_t) {vel:.3g} (give a state the joints allow, e.g. a Result's point, "
-                         "or an Equilibrium)")
+                         f"abs(Phi_q v + Phi_t) {vel:.3g}, in the equations of {broken} (give a state the joints "
+                         "and drivers allow, e.g. a Result's point, or an Equilibrium of a model whose drivers "
+                         "are at rest)")
     dropped = [int(r) for r in tangent["dropped_rows"]]
     a, lam = np.asarray(tangent["a"]), np.asarray(tangent["lam"])
 

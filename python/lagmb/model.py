@@ -1,6 +1,7 @@
 """Building a mechanism: bodies, joints, gravity (docs/design.md, section 2.7)."""
 
 import copy
+import threading
 
 import numpy as np
 
@@ -44,6 +45,9 @@ class Model:
         # compiled() gives the immutable core Model
         self._spec = _core.ModelSpec(self.dimension)
         self._compiled = None  # kept until the description changes
+        # an edit and a compile or a run's snapshot wait for each other (a
+        # run in one thread, add_* in another); _edits counts the changes
+        self._lock, self._edits = threading.RLock(), 0
         self.ground = Body("ground", self, -1)
         self.gravity = None
         if gravity is not None:
@@ -59,8 +63,10 @@ class Model:
         functions shared), its own handles. Results of this model keep
         pointing to this one."""
         other = Model.__new__(Model)
-        other._spec = copy.copy(self._spec)
-        other._compiled = self._compiled
+        other._lock, other._edits = threading.RLock(), 0
+        with self._lock:  # the description and its compiled model together
+            other._spec = copy.copy(self._spec)
+            other._compiled = self._compiled
         other.ground = Body("ground", other, -1)
         other.gravity = self.gravity
         other.dimension = self.dimension
@@ -117,8 +123,10 @@ class Model:
         core = {}
         for param in kind.params:
             core[param.name] = self._value(param, values[param.name], what)
-        self._spec.add(kind.name, name, core)  # checks it against the model so far; ModelError
-        self._compiled = None
+        with self._lock:
+            self._spec.add(kind.name, name, core)  # checks it against the model so far; ModelError
+            self._compiled = None
+            self._edits += 1
         if kind.role == "body":
             return Body(name, self, self._spec.body_index(name), kind.name)
         return Handle(name, self, kind.name, kind.role)
@@ -148,9 +156,36 @@ class Model:
         coordinates and rows and builds patterns, in time linear in the
         model's size; it runs no solver (redundant equations are found where
         a run starts). Several threads may run one compiled model."""
-        if self._compiled is None:
-            self._compiled = self._spec.compile()
-        return self._compiled
+        with self._lock:
+            if self._compiled is None:
+                self._compiled = self._spec.compile()
+            return self._compiled
+
+    def _snapshot(self):
+        """The model as a run or an analysis sees it from its start: a
+        detached copy (description, frames, shapes) whose compiled() is the
+        one the run uses, taken at one instant, so that an edit made
+        meanwhile (add_* from another thread) reaches neither. Handles of
+        this model stand for its elements there (``_source``)."""
+        with self._lock:
+            snapshot = self.copy()
+            snapshot.compiled()
+            snapshot._source, snapshot._edits = self, self._edits
+        return snapshot
+
+    def _run_model(self, snapshot, into=None):
+        """The model a Result of a run that started from ``snapshot``
+        answers for: this one, unless it was edited since the snapshot was
+        taken, then the snapshot (with a UserWarning, or into the list
+        ``into``), so that the Result still answers for what was run."""
+        if self._edits == snapshot._edits:
+            return self
+        import warnings
+
+        warning = UserWarning("the model was changed (add_* from another thread) while it ran: the result "
+                              "answers for the model as it was at the start (its .model is a copy of that)")
+        (into.append if into is not None else lambda w: warnings.warn(w, stacklevel=4))(warning)
+        return snapshot
 
     def to_text(self):
         """The model's description as text (``ModelSpec``'s, as the FMU

@@ -29,6 +29,21 @@ def element_name(model, core, item, accepts, what, context):
 _CONSTRAINTS = ("joint", "driver")  # the elements with multipliers
 
 
+def core_state(model, core):
+    """What rebuilds the compiled model ``core`` of ``model`` elsewhere (a
+    pickled Result or Equilibrium): the model, which pickles as its
+    description, and {name: value} of the parameters ``core`` was made with
+    (simulate's ``parameters=``) where they differ from the model's own."""
+    own = {p["name"]: p["value"] for p in model.compiled().parameters}
+    return model, {p["name"]: p["value"] for p in core.parameters if own.get(p["name"]) != p["value"]}
+
+
+def rebuilt_core(model, parameters):
+    """The compiled model core_state described."""
+    core = model.compiled()
+    return core.with_parameters(parameters) if parameters else core
+
+
 def _E(p):
     """E(p) (k, 3, 4) of Euler parameters p (k, 4): omega = 2 E(p) p'
     (global axes; lagmb/spatial.hpp)."""
@@ -153,11 +168,16 @@ class Result:
     a and lam are solved from the augmented system at each output state, so
     M a + Phi_q^T lam = Q holds for exactly the reported q and v. Derived
     quantities (energy, residual, reactions) are computed when first asked.
+    A Result pickles (a process pool returns it), with the model as the run
+    saw it.
     """
 
-    def __init__(self, model, core_model, raw):
+    def __init__(self, model, core_model, raw, snapshot=None):
         self.model = model
         self._core = core_model
+        # the model as the run saw it (Model._snapshot; None: model): its
+        # frames, and its description when pickled (model may change since)
+        self._snapshot = snapshot if snapshot is not None else model
         # read-only: the derived quantities rely on t, q, v, a and lam being
         # the run's own, with one row per output
         self._t, self._q, self._v, self._a, self._lam = (
@@ -183,6 +203,18 @@ class Result:
         self.sensitivity_names = list(raw.get("sensitivity_names", []))
         self._sensitivities = raw.get("sensitivities")
         self._sensitivity_a = raw.get("sensitivity_a")
+
+    def __reduce__(self):
+        """Pickled as the run's model (its description as the run saw it:
+        it pickles as Model does, a Python time function by pickle's rules),
+        the parameter values the run was given and the arrays: the copy
+        rebuilds the compiled model and answers every query as this one,
+        bit for bit. Its .model is the copy's own model."""
+        raw = dict(t=self._t, q=self._q, v=self._v, a=self._a, lam=self._lam, inputs=self._inputs,
+                   stats=self.stats, events=self.events, dropped_rows=self.redundant_rows,
+                   sensitivity_names=self.sensitivity_names, sensitivities=self._sensitivities,
+                   sensitivity_a=self._sensitivity_a)
+        return _unpickled_result, (*core_state(self._snapshot, self._core), raw)
 
     def __len__(self):
         return len(self._t)
@@ -227,7 +259,7 @@ class Result:
         return BodyPath(self, first, count)
 
     def _frame(self, name):
-        frames = getattr(self.model, "_frames", {})
+        frames = getattr(self._snapshot, "_frames", {})
         return frames.get(name) if isinstance(name, str) else None
 
     def point(self, body, local_point):
@@ -341,6 +373,10 @@ class Result:
                 f"{self.stats.get('steps', 0)} steps>")
 
 
+def _unpickled_result(model, parameters, raw):
+    return Result(model, rebuilt_core(model, parameters), raw)
+
+
 def _difference(plus, minus, scale):
     """(plus - minus) * scale for arrays, attribute by attribute for paths
     (BodyPath, JointPath, FramePath)."""
@@ -386,7 +422,8 @@ class Sensitivity:
       the sensitivity s (f is smooth in the state: a relative step of 1e-6,
       error about 1e-10 relative) and f_p (a reaction's geometry, a spring's
       energy) by a central difference between the models at p +- 1e-6 abs(p)
-      evaluated at the run's states.
+      evaluated at the run's states (one-sided at a bound of p's range: a
+      damping of 0).
     """
 
     def __init__(self, result, index, parameter):
@@ -406,7 +443,9 @@ class Sensitivity:
     def _results(self):
         """The Results moved by +- h along the sensitivity (the model of the
         run), the step h, and the Results of the run's states under the
-        models at p +- delta, and delta."""
+        models at p + delta and p - delta, and the distance between them:
+        2 delta, or delta where p is at a bound of its range (a damping of
+        0), which takes the model at p itself for the side beyond it."""
         if self._along is None:
             r = self._result
             pairs = [(r.q, self.q), (r.v, self.v), (r.a, self.a), (r._lam, self.lam)]
@@ -420,17 +459,27 @@ class Sensitivity:
                             a=r.a + sign * h * self.a, lam=r._lam + sign * h * self.lam, inputs=r._inputs,
                             stats=r.stats, dropped_rows=r.redundant_rows)
 
-            along = [Result(r.model, r._core, raw(sign)) for sign in (1.0, -1.0)]
+            along = [Result(r.model, r._core, raw(sign), r._snapshot) for sign in (1.0, -1.0)]
             delta = 1e-6 * (abs(self.value) if self.value != 0.0 else 1.0)
-            at_p = [Result(r.model, r._core.with_parameters({self.parameter: self.value + sign * delta}), raw(0.0))
-                    for sign in (1.0, -1.0)]
-            self._along = (along, h, at_p, delta)
+            cores, span, refused = [], 0.0, []
+            for sign in (1.0, -1.0):
+                try:
+                    cores.append(r._core.with_parameters({self.parameter: self.value + sign * delta}))
+                    span += delta
+                except ModelError as e:  # beyond a bound: the model at p itself on this side
+                    cores.append(r._core)
+                    refused.append(str(e))
+            if span == 0.0:
+                raise ModelError(f"Sensitivity: {self.parameter!r} = {self.value:g} allows no nearby value to "
+                                 f"differentiate by: {'; '.join(refused)}")
+            at_p = [Result(r.model, core, raw(0.0), r._snapshot) for core in cores]
+            self._along = (along, h, at_p, span)
         return self._along
 
     def _derivative(self, ask):
-        along, h, at_p, delta = self._results()
+        along, h, at_p, span = self._results()
         return _sum(_difference(ask(along[0]), ask(along[1]), 0.5 / h),
-                    _difference(ask(at_p[0]), ask(at_p[1]), 0.5 / delta))
+                    _difference(ask(at_p[0]), ask(at_p[1]), 1.0 / span))
 
     def body(self, body):
         """d/dp of ``Result.body(body)``: its attributes' derivatives."""

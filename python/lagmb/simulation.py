@@ -5,7 +5,7 @@ import numpy as np
 from . import _core
 from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
 from ._checks import parameters as _parameters, positive as _positive, real as _real
-from ._checks import text as _text
+from ._checks import show as _show, text as _text
 from .errors import ModelError, translated
 from .model import checked as _model
 from .result import Result
@@ -16,11 +16,11 @@ DEFAULTS = _core.default_options()
 _D = DEFAULTS
 
 
-def _translate(model=None, core=None):
+def _translate(model=None, core=None, snapshot=None):
     """errors.translated, the partial outputs of a failed run of `model`
-    (compiled: `core`) as a Result."""
+    (compiled: `core`; as the run saw it: `snapshot`) as a Result."""
     def partial_result(raw):
-        partial = Result(model, core, raw)
+        partial = Result(model, core, raw, snapshot)
         return partial if len(partial.t) else None
 
     return translated(partial_result if model is not None else None)
@@ -137,11 +137,15 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     form (which ``method="auto"`` then runs; another method is a
     ModelError), its staggered corrector reusing the run's Newton matrix:
     F_y s + F_y' s' + F_p = 0 with the form's exact blocks, F_p a central
-    difference of the residual between the models at p +- 1e-4 abs(p), and
+    difference of the residual between the models at p +- 1e-4 abs(p)
+    (one-sided at a bound of p's range, such as a damping of 0), and
     the initial sensitivities from those models' consistent starts; they
     take part in the error test. ModelError for a model with stops or
     contact (the motion jumps at their events), joint friction, or a fully
-    driven model.
+    driven model, and for a parameter that has no sensitivity, naming it
+    and why (no other value of it nearby makes a model: a component of a
+    universal joint's axis; its change alters which equations are
+    redundant: a joint of a redundant pair).
 
     Raises ModelError for bad arguments, AssemblyError if the joints cannot
     be assembled, SimulationError (with ``.t`` and the partial ``.result``)
@@ -151,6 +155,10 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     the source), or an equation left out as redundant at the start is
     violated later (naming the conflicting elements); EquilibriumError
     if ``start="equilibrium"`` finds none.
+
+    The run works from the model as it is when it starts: an edit from
+    another thread during the run changes neither the run nor its Result
+    (its ``.model`` is then a copy of the model as it ran, with a warning).
     """
     _model(model, "simulate")
     t0 = _real(t0, "t0")
@@ -180,19 +188,32 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     if progress is not None and not callable(progress):
         raise ModelError(f"progress must be a callable t -> None, got {progress!r}")
     analysis = _text(analysis, "analysis")  # the core parses the choice
-    core = _parameters(model, parameters, "simulate")
-    if sensitivities is None:
-        sensitivities = []
-    elif isinstance(sensitivities, str) or not all(isinstance(x, str) for x in sensitivities):
-        raise ModelError(f"simulate: sensitivities must be a list of parameter names, got {sensitivities!r}")
-    with _translate(model, core):
+    # the model as it is now: an edit from another thread during the run
+    # changes neither the run nor its Result
+    snapshot = model._snapshot()
+    core = _parameters(snapshot, parameters, "simulate")
+    sensitivities = _names(sensitivities, "simulate: sensitivities", "parameter names")
+    with _translate(model, core, snapshot):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
-        raw = _core.simulate(core, options, progress, list(sensitivities))
+        raw = _core.simulate(core, options, progress, sensitivities)
     # (_warnings: a list that takes lagmb's warnings instead, for a sweep's case in a thread)
-    model._warn_redundant(raw.get("dropped_rows", []), into=_warnings)
+    snapshot._warn_redundant(raw.get("dropped_rows", []), into=_warnings)
     if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
-        model._warn_moved(core, raw["q"][0], into=_warnings)
-    return Result(model, core, raw)
+        snapshot._warn_moved(core, raw["q"][0], into=_warnings)
+    return Result(model._run_model(snapshot, into=_warnings), core, raw, snapshot)
+
+
+def _names(value, who, what):
+    """A list of strings given as a list (or tuple, ...) of them; None: []."""
+    if value is None:
+        return []
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise ModelError(f"{who} must be a list of {what}, got {_show(value)}")
+    value = list(value)
+    for x in value:
+        if not isinstance(x, str):
+            raise ModelError(f"{who} must be a list of {what}, got {_show(x)} among them")
+    return value
 
 
 def method_options(method=None, formulation=_D["formulation"], integrator=None):

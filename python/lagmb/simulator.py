@@ -51,13 +51,14 @@ class Simulator:
         if interval < 0:
             raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
         self.model = model
-        self._core_model = _parameters(model, parameters, "Simulator")
-        with _translate(model, self._core_model):
+        self._snapshot = model._snapshot()  # the model it runs, whatever edits follow
+        self._core_model = _parameters(self._snapshot, parameters, "Simulator")
+        with _translate(model, self._core_model, self._snapshot):
             self._sim = _core.Simulator(self._core_model, options, interval)
         start_state = self._sim.result()
-        model._warn_redundant(start_state.get("dropped_rows", []))
+        self._snapshot._warn_redundant(start_state.get("dropped_rows", []))
         if options["start"] == "given":
-            model._warn_moved(self._core_model, start_state["q"][0])
+            self._snapshot._warn_moved(self._core_model, start_state["q"][0])
 
     # the current state, consistent: copies
     @property
@@ -138,7 +139,7 @@ class Simulator:
 
     def result(self):
         """Everything recorded so far, as a :class:`lagmb.Result`."""
-        return Result(self.model, self._core_model, self._sim.result())
+        return Result(self.model._run_model(self._snapshot), self._core_model, self._sim.result(), self._snapshot)
 
     @property
     def stats(self):
@@ -147,6 +148,13 @@ class Simulator:
 
     def __repr__(self):
         return f"Simulator(t={self.t!r}, inputs={self.inputs!r})"
+
+    def __reduce__(self):
+        raise ModelError(
+            "a Simulator cannot be pickled or copied: its integrator's state lives in this process. Send "
+            "what the other side needs instead: the model (it pickles) and the options to start a Simulator "
+            "there, and the run so far as sim.result() (it pickles) or the state as numbers (sim.t, sim.q, "
+            "sim.v, sim.inputs)")
 
     def _input_name(self, name):
         """An input's name, given as its name or the handle of the element it feeds."""
@@ -159,4 +167,4 @@ class Simulator:
         raise ModelError(f"an input is named by a string or a handle, got {_show(name)}")
 
     def _translated(self):
-        return _translate(self.model, self._core_model)
+        return _translate(self.model, self._core_model, self._snapshot)

@@ -5,7 +5,7 @@ import numpy as np
 
 from . import _core
 from .errors import EquilibriumError, ModelError
-from .result import element_name, rotation_matrices
+from .result import core_state, element_name, rebuilt_core, rotation_matrices
 
 
 class EquilibriumBody:
@@ -43,9 +43,10 @@ class Equilibrium:
       ``|Q - Phi_q^T lam|``, N or N m) and constraint_residual (max ``|Phi|``).
     """
 
-    def __init__(self, model, core, raw, t):
+    def __init__(self, model, core, raw, t, snapshot=None):
         self.model = model
         self._core = core
+        self._snapshot = snapshot if snapshot is not None else model  # the model as it was solved (pickling)
         self.t = float(t)
         self.q = np.asarray(raw["q"], dtype=float)
         self.lam = np.asarray(raw["lam"], dtype=float)
@@ -56,6 +57,16 @@ class Equilibrium:
         self.softest_mode = np.asarray(raw["softest_mode"], dtype=float)
         self.force_residual = float(raw["force_residual"])
         self.constraint_residual = float(raw["constraint_residual"])
+
+    def __reduce__(self):
+        """Pickled as its model's description and its numbers (Result's way):
+        the copy answers as this one, bit for bit; its .model is the copy's
+        own model (Modes and LinearSystem pickle with it)."""
+        raw = dict(q=self.q, lam=self.lam, stable=self.stable, dropped_rows=self.dropped_rows,
+                   iterations=self.iterations, stiffness_eigenvalues=self.stiffness_eigenvalues,
+                   softest_mode=self.softest_mode, force_residual=self.force_residual,
+                   constraint_residual=self.constraint_residual)
+        return _unpickled_equilibrium, (*core_state(self._snapshot, self._core), raw, self.t)
 
     def _name(self, item, accepts, what, context):
         return element_name(self.model, self._core, item, accepts, what, context)
@@ -86,6 +97,10 @@ class Equilibrium:
                 f"{self.iterations} Newton iterations>")
 
 
+def _unpickled_equilibrium(model, parameters, raw, t):
+    return Equilibrium(model, rebuilt_core(model, parameters), raw, t)
+
+
 def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=False, stability=True):
     """Static equilibrium of a model at time t (at rest: v = 0).
 
@@ -107,7 +122,7 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     """
     from .simulation import _translate
 
-    from ._checks import integer as _integer, real as _real
+    from ._checks import INT_MAX, flag as _flag, integer as _integer, real as _real
     from .model import checked as _model
 
     _model(model, "equilibrium")
@@ -115,11 +130,14 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     tol = _real(tol, "tol")
     if not 0 < tol < 1:
         raise ModelError(f"tol must be in (0, 1), got {tol!r}")
-    max_iterations = _integer(max_iterations, "max_iterations", 1, 2**31 - 1)
-    core = model.compiled()
-    with _translate(model, core):
+    max_iterations = _integer(max_iterations, "max_iterations", 1, INT_MAX)
+    allow_unstable = _flag(allow_unstable, "equilibrium: allow_unstable")
+    stability = _flag(stability, "equilibrium: stability")
+    snapshot = model._snapshot()  # an edit from another thread meanwhile changes nothing here
+    core = snapshot.compiled()
+    with _translate(model, core, snapshot):
         try:
-            raw = _core.equilibrium(core, t, tol, max_iterations, bool(allow_unstable), bool(stability))
+            raw = _core.equilibrium(core, t, tol, max_iterations, allow_unstable, stability)
         except _core.UserFunctionError as e:  # a force or driver function failed
             raise EquilibriumError(f"equilibrium: {e}") from e.__cause__
-    return Equilibrium(model, core, raw, t)
+    return Equilibrium(model, core, raw, t, snapshot)
