@@ -279,6 +279,9 @@ def test_bad_input_is_named():
         mb.linearize(model, at=("abc", np.zeros(3)))
     with pytest.raises(mb.ModelError, match="linearize: t must be a number, got 'now'"):
         mb.linearize(model, at=(np.zeros(3), np.zeros(3), "now"))
+    for which in ("inputs", "outputs"):  # (a TypeError from list() before)
+        with pytest.raises(mb.ModelError, match=f"linearize: {which} must be a list of {which[:-1]} names, got 5"):
+            mb.linearize(model, **{which: 5})
 
 
 def test_a_model_whose_drivers_move_has_no_equilibrium_to_linearize_about_and_says_so():
