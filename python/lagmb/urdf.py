@@ -17,6 +17,7 @@ accepts an unknown joint type and unknown tags without a word, keeps no line
 numbers, and imports in about 3 s (trimesh).
 """
 
+import collections.abc
 import math
 import os
 import re
@@ -144,10 +145,12 @@ class _Reader:
             raise UrdfError(f"load_urdf: path must be a file name (a str or os.PathLike), got {_checks.show(path)}")
         self.path = os.fsdecode(path)
         # (one directory given as a string is one directory, not its letters)
-        dirs = [package_dirs] if isinstance(package_dirs, (str, bytes, os.PathLike)) else package_dirs
-        if dirs is None:
-            dirs = []
-        if not isinstance(dirs, (list, tuple)) or not all(isinstance(d, (str, bytes, os.PathLike)) for d in dirs):
+        try:
+            dirs = [package_dirs] if isinstance(package_dirs, (str, bytes, os.PathLike)) else \
+                [] if package_dirs is None else list(package_dirs)
+        except TypeError:
+            dirs = None
+        if dirs is None or not all(isinstance(d, (str, bytes, os.PathLike)) for d in dirs):
             raise UrdfError(f"load_urdf: package_dirs must be a directory or a list of directories, got "
                             f"{_checks.show(package_dirs)}")
         self.package_dirs = [os.fsdecode(d) for d in dirs]
@@ -529,7 +532,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
                                               (("floating_base", floating_base), ("limits", limits),
                                                ("dynamics", dynamics), ("mimic", mimic)))
     gravity = _argument(_checks.vec3, gravity, "load_urdf: gravity")
-    if positions is not None and not isinstance(positions, dict):
+    if positions is not None and not isinstance(positions, collections.abc.Mapping):
         raise UrdfError(f"load_urdf: positions must be a dict {{joint: angle or slide}}, got {_checks.show(positions)}")
     reader = _Reader(path, package_dirs)
     links, joints, root, _ = reader.read()
