@@ -818,3 +818,19 @@ def test_a_bad_shape_names_its_link_and_line(tmp_path):
         with pytest.raises(mb.UrdfError) as error:
             load_text(tmp_path, ARM.replace(old, new), limits=False)
         assert f"{words}: <visual> a sphere's size must be positive" in str(error.value)
+
+
+def test_names_that_still_collide_or_that_lagmb_cannot_hold_name_both_lines(tmp_path):
+    """Two links (or two joints) of one name: the second's line and the
+    first's; a joint name lagmb's names cannot take (a leading blank, a
+    tab): the core's refusal with the file, the line and the joint."""
+    second = ARM.replace("</robot>", '<link name="upper"/></robot>')
+    with pytest.raises(mb.UrdfError, match="line 7: a second link named 'upper' \\(the first is on line 3\\)"):
+        load_text(tmp_path, second)
+    second = ARM.replace("</robot>", '<link name="x"/><joint name="shoulder" type="fixed"><parent link="upper"/>'
+                                     '<child link="x"/></joint></robot>')
+    with pytest.raises(mb.UrdfError, match="line 7: a second joint named 'shoulder' \\(the first is on line 5\\)"):
+        load_text(tmp_path, second)
+    for name in (" shoulder", "a&#9;b"):
+        with pytest.raises(mb.UrdfError, match="line 5: joint '.*': .*name"):
+            load_text(tmp_path, ARM.replace('name="shoulder"', f'name="{name}"'))

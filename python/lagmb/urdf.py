@@ -463,8 +463,6 @@ def _argument(check, value, name):
     """An argument checked by lagmb._checks, its ModelError a UrdfError."""
     try:
         return check(value, name)
-    except UrdfError:
-        raise
     except ModelError as e:
         raise UrdfError(str(e)) from None
 
@@ -788,8 +786,7 @@ def _joint_values(reader, joints, positions, followers, limits):
             value[at] = own(at)
         for follower in reversed(chain):
             m = followers[follower]
-            with np.errstate(over="ignore"):
-                x = m["multiplier"] * value[m["joint"]] + m["offset"]
+            x = m["multiplier"] * value[m["joint"]] + m["offset"]  # (floats: inf past a double, no error)
             if not abs(x) <= LARGEST:
                 reader.fail(m["element"], f"puts it at {x:g} (multiplier x the value {value[m['joint']]:g} of "
                             f"'{m['joint']}' + offset): beyond what a model can hold (at most {LARGEST:g})",
