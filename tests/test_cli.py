@@ -267,6 +267,33 @@ def test_usage_errors_exit_2(four_bar, tmp_path):
     assert p.returncode == 2 and "--t-end" in p.stderr
 
 
+@pytest.mark.parametrize("command, options, message", [
+    ("run", ["--t-end", "1_0"], "argument --t-end: '1_0' is not a decimal number"),
+    ("run", ["--n-out", "1_01"], "argument --n-out: '1_01' is not a decimal number"),
+    ("run", ["--n-out", "2.5"], "argument --n-out: '2.5' is not a whole number"),
+    ("run", ["--rtol", "1e-6\u0661"], "argument --rtol: '1e-6\u0661' is not a decimal number"),
+    ("accuracy", ["--tolerances", "1e-3", "1e-6_0"], "argument --tolerances: '1e-6_0' is not a decimal number"),
+    ("modes", ["--at-time", "0_5"], "argument --at-time: '0_5' is not a decimal number"),
+    ("run", ["--animate", "x.gif", "--view", "1_0,20"], "--view 1_0,20: must be two numbers ELEV,AZIM"),
+    ("run", ["--animate", "x.gif", "--fps", "1_0"], "--fps 1_0: must be a number above 0 and at most 50"),
+])
+def test_numbers_are_read_as_toml_writes_them_not_as_float_does(four_bar, tmp_path, command, options, message):
+    """float() and int() read '1_0' as 10 and other scripts' digits as
+    digits: every number option refuses them, exit 2 naming it."""
+    p = lagmb(command, four_bar, *options, cwd=tmp_path)
+    assert p.returncode == 2 and message in p.stderr, p.stderr
+    assert p.stdout == "" and "Traceback" not in p.stderr
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="needs Linux's /proc, where even root cannot write")
+def test_an_output_that_cannot_be_written_is_refused_before_the_run(four_bar):
+    for option, path in [("--html", "/proc/lagmb_view.html"), ("-o", "/proc/lagmb_results.npz")]:
+        p = lagmb("run", four_bar, "--t-end", "0.1", option, path)
+        assert p.returncode == 2 and p.stdout == "", p.stderr  # no run, no summary
+        assert p.stderr.startswith(f"lagmb run: {option} {path}: cannot make a file in /proc: ")
+        assert len(p.stderr.splitlines()) == 1
+
+
 def test_failed_run_exits_1_and_writes_partial_results(four_bar, tmp_path):
     # 60 steps between outputs 0.5 s apart are too few at rtol 1e-8
     four_bar.write_text(four_bar.read_text().replace("n_out = 401", "n_out = 5\nmax_steps = 60\nformulation = \"ggl\""))

@@ -22,6 +22,11 @@
 """
 
 import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -215,9 +220,17 @@ def test_plot_sweep_draws_heat_maps_bands_and_designs(tmp_path):
     (["--vary", "rod.mass=1,-2"], "--vary rod.mass=1,-2: sweep: case 1: rod.mass = -2.0: body 'rod': mass must be"),
     (["--vary", "rod.mass=1:2"], "--vary rod.mass=1:2: A:B:N has three parts"),
     (["--vary", "rod.mass=1:2:1.5"], "--vary rod.mass=1:2:1.5: N = 1.5 must be a whole number of values"),
-    (["--vary", "rod.mass=1,heavy"], "--vary rod.mass=1,heavy: 'heavy' is not a number"),
+    (["--vary", "rod.mass=1,heavy"], "--vary rod.mass=1,heavy: 'heavy' is not a decimal number"),
     (["--vary", "rod.mass=1,,2"], "--vary rod.mass=1,,2: an empty value"),
     (["--vary", "rod.mass=nan,1"], "--vary rod.mass=nan,1: nan must be a finite number"),
+    # read as TOML writes numbers: float() takes '1_0' for 10 and the Arabic-Indic digit one for 1
+    (["--vary", "rod.mass=1_0"], "--vary rod.mass=1_0: '1_0' is not a decimal number"),
+    (["--vary", "rod.mass=1,\u0661"], "--vary rod.mass=1,\u0661: '\u0661' is not a decimal number"),
+    (["--vary", "rod.mass=1:2:1_0"], "--vary rod.mass=1:2:1_0: '1_0' is not a decimal number"),
+    (["--vary", "rod.mass=1:2:10000", "--vary", "slider.mass=1:2:10000"],
+     "--vary: 100,000,000 cases (10000 x 10000): at most 10,000,000 in one study"),
+    (["--vary", "rod.mass=1:2:100000000"], "--vary rod.mass=1:2:100000000: N = 100000000: at most 10,000,000 values"),
+    (["--vary", "atol=1e-6,1e-8", "--vary", "rod.mass=1e400"], "--vary rod.mass=1e400: '1e400' is too large for a float"),
     (["--vary", "rod.mass"], "--vary rod.mass: must be NAME=SPEC"),
     (["--vary", "rod.mass=1,2", "--vary", "rod.mass=3"], "--vary rod.mass=3: rod.mass is varied twice"),
     ([], "give at least one --vary NAME=SPEC"),
@@ -263,3 +276,93 @@ def test_bad_stores_and_plots_exit_2(capsys, tmp_path):
     assert code == 2 and err.startswith("lagmb sweep: --vary rod.mass=1,2: --plot") and "give no --vary" in err
     code, out, err = lagmb(capsys, "sweep", "--plot", store, "-o", tmp_path / "study.mp4")
     assert code == 2 and f"-o {tmp_path / 'study.mp4'}: must end in one of the formats" in err
+
+
+def test_number_options_are_read_as_toml_writes_numbers(capsys):
+    for option, value in [("--t-end", "0_05"), ("--workers", "1_0"), ("--batch-size", "2.5")]:
+        code, out, err = lagmb(capsys, "sweep", SCENE, "--vary", "rod.mass=1,2", option, value)
+        assert code == 2 and out == ""
+        assert f"argument {option}: '{value}' is not a" in err, err
+
+
+def test_o_takes_a_study_s_store_only_and_one_sweep_at_a_time(capsys, tmp_path):
+    zarr = pytest.importorskip("zarr")
+    args = ["sweep", SCENE, "--vary", "rod.mass=1,2", "--t-end", T_END, "--output", "peak_effort=motor"]
+    foreign = tmp_path / "other.zarr"
+    zarr.open_group(str(foreign), mode="w").attrs["owner"] = "another program"
+    code, out, err = lagmb(capsys, *args, "-o", foreign)
+    assert code == 2 and err.startswith(f"lagmb sweep: -o {foreign}: ") and "a Zarr store, but not a study's" in err
+    assert sorted(p.name for p in foreign.iterdir()) == ["zarr.json"]  # left alone
+    store = tmp_path / "study.zarr"
+    assert lagmb(capsys, *args, "-o", store)[0] == 0
+    lock = studies._Lock(str(store), "sweep")  # as a sweep writing the store holds it
+    try:
+        code, out, err = lagmb(capsys, *args, "-o", store)
+    finally:
+        lock.release()
+    assert code == 2 and err.startswith(f"lagmb sweep: -o {store}: sweep: the store '{store}' is in use by another "
+                                        f"sweep (pid {os.getpid()})")
+    assert lagmb(capsys, *args, "-o", store)[0] == 0
+
+
+def test_a_damaged_store_is_completed_and_the_warning_says_which_batch(capsys, tmp_path):
+    store = tmp_path / "study.zarr"
+    args = ["sweep", SCENE, "--vary", "rod.mass=1:2:6", "--t-end", T_END, "--output", "peak_effort=motor",
+            "--batch-size", "2", "-o", store]
+    code, first, err = lagmb(capsys, *args)
+    assert code == 0, err
+    shutil.rmtree(store / "batch_000001")  # as a copy cut short would leave it
+    (store / "batch_000001").mkdir()
+    code, again, err = lagmb(capsys, *args)
+    assert code == 0
+    assert err == (f"lagmb sweep: UserWarning: sweep: the store '{store}': batch_000001 (cases 2..3): it has no "
+                   "marker of its files (it was not finished, or was copied in part): computed again\n")
+    assert "computed 2 of 6 cases" in again and table(again) == table(first)
+
+
+def test_a_urdf_file_is_swept_as_run_and_info_take_it(capsys, tmp_path):
+    from builders import ARM_URDF
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM_URDF)
+    code, out, err = lagmb(capsys, "sweep", path, "--vary", "upper.mass=1,2", "--t-end", "0.3", "--no-limits",
+                           "--output", "final=upper.x")
+    assert code == 0, err
+    ds = mb.sweep(mb.load_urdf(path, limits=False), {"upper.mass": [1.0, 2.0]}, t_end=0.3,
+                  outputs={"x": mb.sweep.final("upper.x")}, progress=False)
+    head, rows = table(out)
+    assert head == ["case", "upper.mass", "status", "final_upper.x"]
+    assert [float(r[3]) for r in rows] == [float(f"{x:.6g}") for x in ds["x"].values]
+    code, out, err = lagmb(capsys, "sweep", path, "--vary", "upper.mass=1,2")
+    assert code == 2 and "no end time" in err
+
+
+def test_ctrl_c_during_a_sweep_on_workers_prints_one_line(tmp_path):
+    """SIGINT to the whole process group, as a terminal's Ctrl-C: the
+    workers ignore it (they printed a traceback each) and are stopped;
+    lagmb prints its one line and exits 130, the finished batches in the
+    store. The 60 cases are computed long before their 60 batches are
+    written: the Ctrl-C comes when the workers wait for tasks."""
+    store = tmp_path / "study.zarr"
+    proc = subprocess.Popen([sys.executable, "-m", "lagmb", "sweep", SCENE, "--vary", "rod.mass=1:3:60",
+                             "--t-end", T_END, "--workers", "2", "--batch-size", "1", "-o", str(store)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not (store.is_dir() and sum(
+                p.name.startswith("batch_") for p in store.iterdir()) >= 10):
+            time.sleep(0.02)
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=60)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, err
+    assert err == (f"lagmb sweep: interrupted; the finished cases are in {store}: the same command finishes the "
+                   "study\n")
+
+
+def test_a_worker_of_lagmb_sweep_ignores_ctrl_c():
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(1, initializer=cli._quiet_worker) as ex:
+        assert ex.submit(signal.getsignal, signal.SIGINT).result() == signal.SIG_IGN

@@ -34,6 +34,7 @@ from ._version import __version__
 from .errors import ModelError, SimulationError
 from .registry import BY_METHOD, SPATIAL_BY_METHOD, markdown
 from .scene.schema import ELEMENT_TABLES, elements, methods
+from .studies import MAX_CASES  # a typo such as 0:1:1e9 is refused, not a machine filled with case lists
 
 OK, FAILED, USAGE, INTERNAL = 0, 1, 2, 3
 
@@ -42,6 +43,29 @@ class _Exit(Exception):
     def __init__(self, code, message):
         super().__init__(message)
         self.code = code
+
+
+def _number(text):
+    """argparse type: a number as TOML and XML Schema write it
+    (lagmb._checks.decimal; float() would read '1_0' as 10)."""
+    from ._checks import decimal
+
+    try:
+        return decimal(text, "number")
+    except ModelError as e:
+        raise argparse.ArgumentTypeError(str(e).partition(": ")[2]) from None
+
+
+def _whole(text):
+    """argparse type: a whole number, written as _number reads it."""
+    from ._checks import INT_MAX
+
+    value = _number(text)
+    if not (math.isfinite(value) and value.is_integer()):
+        raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a whole number")
+    if abs(value) > INT_MAX:
+        raise argparse.ArgumentTypeError(f"{text.strip()!r} is too large (at most {INT_MAX:,})")
+    return int(value)
 
 
 def _parser():
@@ -76,9 +100,9 @@ def _parser():
                      help="draw the paths of these points in the animation: a body (its centre of mass), a "
                           "joint or other element (where it attaches to its moving body), or BODY:X,Y "
                           "(BODY:X,Y,Z in space; m, in the body's axes)")
-    run.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
-    run.add_argument("--rtol", type=float, metavar="R", help="relative tolerance, instead of the scene's")
-    run.add_argument("--n-out", type=int, metavar="N", help="number of output times, instead of the scene's")
+    run.add_argument("--t-end", type=_number, metavar="T", help="end time, instead of the scene's")
+    run.add_argument("--rtol", type=_number, metavar="R", help="relative tolerance, instead of the scene's")
+    run.add_argument("--n-out", type=_whole, metavar="N", help="number of output times, instead of the scene's")
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
     _robot_options(run)
 
@@ -105,9 +129,9 @@ def _parser():
     acc.add_argument("scene", help="the scene file (.toml)")
     acc.add_argument("--methods", nargs="+", metavar="M",
                      help="methods (default: all): " + ", ".join(_method_names()))
-    acc.add_argument("--tolerances", nargs="+", type=float, metavar="RTOL",
+    acc.add_argument("--tolerances", nargs="+", type=_number, metavar="RTOL",
                      help="relative tolerances (default: 1e-3 .. 1e-11)")
-    acc.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
+    acc.add_argument("--t-end", type=_number, metavar="T", help="end time, instead of the scene's")
     acc.add_argument("-o", "--output", metavar="JSON", help="write the table as JSON")
     acc.add_argument("--plot", metavar="PNG", help="draw error vs CPU time and drift vs time")
     acc.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
@@ -130,13 +154,13 @@ def _parser():
                                        "mode's kind, frequency, damping ratio and the coordinate it moves "
                                        "most, lowest frequency first; --gif animates one.")
     modes.add_argument("scene", help="the scene file (.toml), or a robot's URDF file (.urdf)")
-    modes.add_argument("--at-time", type=float, metavar="T",
+    modes.add_argument("--at-time", type=_number, metavar="T",
                        help="the time the equilibrium holds at, for drivers and forces that depend on time "
                             "(default the scene's t0, else 0)")
-    modes.add_argument("--count", type=int, metavar="K", help="list the K lowest modes only (default all)")
+    modes.add_argument("--count", type=_whole, metavar="K", help="list the K lowest modes only (default all)")
     modes.add_argument("--gif", metavar="GIF",
                        help="animate a mode: its shape about the equilibrium (lagmb.plotting.animate_mode)")
-    modes.add_argument("--mode", type=int, metavar="I",
+    modes.add_argument("--mode", type=_whole, metavar="I",
                        help="the mode --gif animates, by its number in the table (default the first "
                             "vibration mode)")
     modes.add_argument("--view", metavar="ELEV,AZIM",
@@ -349,9 +373,32 @@ def _output(scene, given, option, key, problem):
     if not os.path.isdir(folder):
         refuse(f"{folder} is not a folder")
     target = path if os.path.exists(path) else folder
-    if not os.access(target, os.W_OK):
-        refuse(f"{target} is not writable")
+    why = _cannot_write(target)
+    if why:
+        refuse(why)
     return path
+
+
+def _cannot_write(target):
+    """Why a file cannot be written (target a file) or made (target a
+    folder), or None: tried, not read from the permission bits, which root
+    passes everywhere (a folder such as /proc refuses it all the same)."""
+    import tempfile
+
+    where = f"cannot make a file in {target}" if os.path.isdir(target) else f"cannot write {target}"
+    try:
+        if os.path.isdir(target):
+            fd, probe = tempfile.mkstemp(dir=target, prefix=".lagmb-probe-")
+            os.close(fd)
+            os.remove(probe)
+        elif os.path.isfile(target):
+            with open(target, "ab"):  # opened to append, nothing written: the file is left as it is
+                pass
+        elif not os.access(target, os.W_OK):  # a device or a pipe: not opened (a pipe would wait)
+            return f"{where}: permission denied"
+    except OSError as e:
+        return f"{where}: {e.strerror or e}"
+    return None
 
 
 def _results_format_problem(path):
@@ -456,7 +503,10 @@ def _run(args):
 
             folder = os.path.dirname(os.path.abspath(html_page))
             os.makedirs(folder, exist_ok=True)
-            page = view_page(result, html_page, title=os.path.basename(str(scene.path or args.scene)))
+            try:
+                page = view_page(result, html_page, title=os.path.basename(str(scene.path or args.scene)))
+            except ModelError as e:  # it could not be written after all
+                raise _Exit(USAGE, f"--html {html_page}: {e}") from None
             say(f"  interactive view written to {html_page} ({page.size / 1e6:.2f} MB; open it in a browser)")
         if not (out or plot or animate or html_page):
             say("  nothing written: -o FILE (.npz or .csv), --plot, --animate or --html keep the outputs")
@@ -471,8 +521,8 @@ def _view(scene, given):
     view = tuple(scene.output.get("view", (25.0, -60.0)))
     if given is not None:
         try:
-            view = tuple(float(x) for x in given.split(","))
-        except ValueError:
+            view = tuple(_number(x) for x in given.split(","))
+        except argparse.ArgumentTypeError:
             view = ()
         if len(view) != 2 or not all(math.isfinite(x) for x in view):
             raise _Exit(USAGE, f"--view {given}: must be two numbers ELEV,AZIM (degrees)")
@@ -502,17 +552,35 @@ def _animation_options(args, scene, animate):
     motion = {}
     try:
         if args.fps is not None:
-            motion["fps"] = plotting._checked("--fps", args.fps, 0.0, plotting._MAX_FPS)
+            motion["fps"] = plotting._checked("--fps", _typed(args.fps), 0.0, plotting._MAX_FPS)
         if args.speed is not None:
-            motion["speed"] = plotting._checked("--speed", args.speed, 0.0)
+            motion["speed"] = plotting._checked("--speed", _typed(args.speed), 0.0)
         if args.frames is not None:
-            motion["frames"] = plotting._checked("--frames", args.frames, 0, whole=True)
+            motion["frames"] = plotting._checked("--frames", _typed(args.frames), 0, whole=True)
         if args.trace:
             plotting.trace_points(scene.model, args.trace, context="--trace")
             motion["trace"] = list(args.trace)
     except ModelError as e:
         raise _Exit(USAGE, str(e)) from None
     return motion
+
+
+class _NoNumber(str):
+    """Text of the command line that _number does not read ('1_0'): shown
+    as typed, and float() of it fails, as for any word."""
+
+    def __float__(self):
+        raise ValueError(f"{str(self)!r} is not a decimal number")
+
+
+def _typed(text):
+    """A number option's text for a checker that calls float(): as typed,
+    or a _NoNumber if _number does not read it (float() takes '1_0' for 10)."""
+    try:
+        _number(text)
+    except argparse.ArgumentTypeError:
+        return _NoNumber(text)
+    return text
 
 
 def _summary(scene, r, say):
@@ -700,7 +768,6 @@ _SWEEP_KINDS = {  # --output KIND: what its ARG names (None: no ARG)
 }
 _SWEEP_ROWS = 20          # more cases than this: the first and last rows and each output's range
 _SWEEP_ENDS = 5           # rows shown at each end then
-_SWEEP_MAX_CASES = 10**8  # a typo such as 0:1:1e9 is refused, not a machine filled with case lists
 _INTEGER_SETTINGS = ("n_out", "max_steps")
 
 
@@ -713,7 +780,8 @@ def _sweep_parser(sub):
                     "output's range); -o keeps them in a Zarr store, written as the cases finish, so the same "
                     "command run again finishes an interrupted study. With --plot STORE: draw a study's "
                     "outputs against its parameters instead.")
-    sweep.add_argument("scene", nargs="?", help="the scene file (.toml)")
+    sweep.add_argument("scene", nargs="?", help="the scene file (.toml), or a robot's URDF file (.urdf; give "
+                                                "--t-end)")
     sweep.add_argument("--vary", action="append", metavar="NAME=SPEC",
                        help="a parameter and its values. NAME: a parameter of `lagmb info SCENE --parameters` "
                             "(crank.mass, B.at.y, rod.angle.start, ...) or a run setting (t_end, rtol, atol, "
@@ -731,18 +799,19 @@ def _sweep_parser(sub):
                        help="the Zarr store (a folder, e.g. study.zarr) the cases are written to as they "
                             "finish; the same command again computes only the cases not there. With --plot: "
                             "the figure (default: the store's name with .png)")
-    sweep.add_argument("--workers", type=int, metavar="N",
+    sweep.add_argument("--workers", type=_whole, metavar="N",
                        help="run the cases on N processes (default 1: in this process)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run the cases on a Dask cluster, its scheduler's address (tcp://host:8786); "
                             "its workers run them (no --workers)")
-    sweep.add_argument("--t-end", type=float, metavar="T", help="end time, instead of the scene's")
-    sweep.add_argument("--batch-size", type=int, metavar="B",
+    sweep.add_argument("--t-end", type=_number, metavar="T", help="end time, instead of the scene's")
+    sweep.add_argument("--batch-size", type=_whole, metavar="B",
                        help="cases per task and per batch written to the store (default: the cases over 4 "
                             "tasks per worker, at most 256)")
     sweep.add_argument("--plot", metavar="STORE",
                        help="draw the study in STORE (a plot per output against the varied parameters, "
                             "lagmb.plotting.plot_sweep) to -o, instead of running one")
+    _robot_options(sweep)
 
 
 def _sweep(args):
@@ -752,7 +821,7 @@ def _sweep(args):
         return _sweep_plot(args)
     if not args.scene:
         raise _Exit(USAGE, "give a scene file and --vary NAME=SPEC (or --plot STORE to draw a study)")
-    scene = _load(args.scene)
+    scene = _load(args.scene, args)
     # the options first: a mistake there costs no run
     grid, typed = _sweep_grid(args.vary)
     outputs = _sweep_outputs(scene, args.outputs or [])
@@ -765,20 +834,18 @@ def _sweep(args):
                            "cases on its own workers; give one or the other")
     if args.batch_size is not None and args.batch_size < 1:
         raise _Exit(USAGE, f"--batch-size {args.batch_size}: must be at least 1")
+    try:
+        import xarray  # noqa: F401 - the results' type
+        if args.out:
+            import zarr  # noqa: F401
+    except ImportError:
+        raise _Exit(USAGE, "lagmb sweep needs xarray (and zarr for -o): pip install 'lagmb[sweep]'") from None
     store = _sweep_store(args.out) if args.out else None
     t_end = args.t_end if args.t_end is not None else scene.settings.get("t_end")
     if t_end is None and scene.settings.get("t_out") is not None:
         t_end = scene.settings["t_out"][-1]  # the sweep's cases take n_out output times, not t_out
     if t_end is None and "t_end" not in grid:
         raise _Exit(USAGE, f"{args.scene}: no end time: give t_end in [simulation], --t-end or --vary t_end=...")
-    try:
-        import xarray  # noqa: F401 - the results' type
-        if store:
-            import zarr  # noqa: F401
-    except ImportError:
-        raise _Exit(USAGE, "lagmb sweep needs xarray (and zarr for -o): pip install 'lagmb[sweep]'") from None
-    from concurrent.futures import BrokenExecutor
-
     from .studies import sweep
 
     n = math.prod(len(values) for values in grid.values())
@@ -797,20 +864,24 @@ def _sweep(args):
     elif args.workers and args.workers > 1:
         from concurrent.futures import ProcessPoolExecutor
 
-        executor = ProcessPoolExecutor(args.workers)
+        executor = ProcessPoolExecutor(args.workers, initializer=_quiet_worker)
         where = f"on {args.workers} processes"
     start = time.monotonic()
     interrupted = False
+    ended = False
     try:
         ds = sweep(scene, grid, outputs=outputs, t_end=t_end, executor=executor, store=store, progress=True,
                    batch_size=args.batch_size)
+        ended = True
     except ModelError as e:  # names a --vary, the store, or else the scene as a whole
         raise _Exit(USAGE, _sweep_error(str(e), args, typed)) from None
     except KeyboardInterrupt:
         if not store:
             raise
         interrupted = True
-    except (BrokenExecutor, OSError) as e:  # a worker process killed (out of memory), a cluster lost, a disk full
+    except SimulationError as e:  # a worker process died (killed, out of memory): mb.sweep says what is kept
+        raise _Exit(FAILED, f"{args.scene}: the study stopped: {' '.join(str(e).split())}") from None
+    except OSError as e:  # a cluster lost, a disk full
         text = " ".join(str(e).split()).rstrip(".")
         raise _Exit(FAILED, f"{args.scene}: the study stopped: {type(e).__name__}" + (f": {text}" if text else "")
                     + (f"; the finished cases are in {store}: the same command finishes the study" if store
@@ -819,6 +890,8 @@ def _sweep(args):
         if hasattr(executor, "scheduler_info"):
             executor.close()
         elif executor is not None:
+            if not ended:  # interrupted or failed: the running batches are not waited for
+                _stop_workers(executor)
             executor.shutdown(wait=True, cancel_futures=True)
     if interrupted:
         import gc
@@ -851,6 +924,25 @@ def _sweep(args):
     return OK
 
 
+def _quiet_worker():
+    """A --workers process ignores Ctrl-C (SIGINT goes to the terminal's
+    whole process group): lagmb stops it, and prints one line, not each
+    worker's traceback."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _stop_workers(executor):
+    """Ends a process pool's workers now, their batches unfinished."""
+    terminate = getattr(executor, "terminate_workers", None)  # Python 3.14
+    if terminate is not None:
+        terminate()
+        return
+    for process in list((getattr(executor, "_processes", None) or {}).values()):
+        process.terminate()
+
+
 def _count(n, one):
     return f"{n:,} {one}{'' if n == 1 else 's'}"
 
@@ -870,9 +962,9 @@ def _sweep_grid(specs):
             raise _Exit(USAGE, f"--vary {spec}: {name} is varied twice (--vary {typed[name]})")
         grid[name], typed[name] = _sweep_values(spec, name, text.strip()), spec
     n = math.prod(len(values) for values in grid.values())
-    if n > _SWEEP_MAX_CASES:
+    if n > MAX_CASES:
         raise _Exit(USAGE, f"--vary: {n:,} cases (" + " x ".join(str(len(v)) for v in grid.values())
-                           + f"): at most {_SWEEP_MAX_CASES:,} in one study")
+                           + f"): at most {MAX_CASES:,} in one study")
     return grid, typed
 
 
@@ -882,10 +974,9 @@ def _sweep_values(spec, name, text):
 
     def number(s):
         try:
-            v = float(s)
-        except ValueError:
-            raise _Exit(USAGE, f"--vary {spec}: {s.strip()!r} is not a number; SPEC is A:B:N (N values from A "
-                               "to B) or V1,V2,...") from None
+            v = _number(s)
+        except argparse.ArgumentTypeError as e:
+            raise _Exit(USAGE, f"--vary {spec}: {e}; SPEC is A:B:N (N values from A to B) or V1,V2,...") from None
         if not math.isfinite(v):
             raise _Exit(USAGE, f"--vary {spec}: {s.strip()} must be a finite number")
         return v
@@ -898,8 +989,8 @@ def _sweep_values(spec, name, text):
         if not count.is_integer() or count < 2:
             raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()} must be a whole number of values, at least "
                                f"2 (one value: {name}=V)")
-        if count > _SWEEP_MAX_CASES:
-            raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()}: at most {_SWEEP_MAX_CASES:,} values")
+        if count > MAX_CASES:
+            raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()}: at most {MAX_CASES:,} values")
         if a == b:
             raise _Exit(USAGE, f"--vary {spec}: A:B:N runs from A to B: give A and B apart")
         values = np.linspace(a, b, int(count)).tolist()
@@ -968,39 +1059,29 @@ def _listed(what, names):
 
 
 def _sweep_store(path):
-    """The -o store, checked before any case runs: a new folder, or a
-    study's store (the same study resumes; another is refused by mb.sweep)."""
-    if os.path.lexists(path) and not os.path.isdir(path):
-        raise _Exit(USAGE, f"-o {path}: is a file; a store is a folder (e.g. study.zarr)")
-    if os.path.isdir(path):
-        if not any(os.path.exists(os.path.join(path, meta)) for meta in ("zarr.json", ".zgroup")):
-            if os.listdir(path):
-                raise _Exit(USAGE, f"-o {path}: a folder that is not a study's store; give a new name "
-                                   "(e.g. study.zarr)")
-        else:
-            try:
-                import zarr
+    """The -o store, checked before any case runs as mb.sweep checks it
+    (lagmb.studies.check_store: a new folder, or a study's store; no folder
+    of another's), in a folder that can take it."""
+    from .studies import check_store
 
-                held = zarr.open_group(path, mode="r").attrs.get("lagmb_sweep")
-            except Exception:  # noqa: BLE001 - unreadable: not a store of ours
-                held = None
-            if held is None:
-                raise _Exit(USAGE, f"-o {path}: a Zarr store, but not a study's (lagmb sweep's); give a new name")
-        target = path
-    else:
-        target = os.path.dirname(os.path.abspath(path))
-        while not os.path.lexists(target):  # missing folders are made when writing
-            target = os.path.dirname(target)
-        if not os.path.isdir(target):
-            raise _Exit(USAGE, f"-o {path}: {target} is not a folder")
-    if not os.access(target, os.W_OK):
-        raise _Exit(USAGE, f"-o {path}: {target} is not writable")
+    try:
+        check_store(path)
+    except ModelError as e:
+        raise _Exit(USAGE, f"-o {path}: {e}") from None
+    target = path
+    while not os.path.lexists(target):  # missing folders are made when writing
+        target = os.path.dirname(os.path.abspath(target))
+    if not os.path.isdir(target):
+        raise _Exit(USAGE, f"-o {path}: {target} is not a folder")
+    why = _cannot_write(target)
+    if why:
+        raise _Exit(USAGE, f"-o {path}: {why}")
     return path
 
 
 def _sweep_error(text, args, typed):
     """mb.sweep's ModelError as a usage error naming the option it is about."""
-    if "holds another sweep" in text:
+    if args.out and repr(args.out) in text:  # the store: another sweep's, in use, damaged
         return f"-o {args.out}: {text}"
     for name, spec in typed.items():
         if f"'{name}'" in text or f" {name} = " in text:

@@ -1087,7 +1087,7 @@ def _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordin
         error = None
     finally:
         if writer is not None:  # every finished batch reaches the store, even when the sweep stops
-            writer.shutdown(wait=True)
+            _finish_writes(writer, writes)
         close = getattr(bar, "close", None)
         if close:
             close()
@@ -1108,6 +1108,22 @@ def _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordin
         ds = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names)
     ds.attrs["computed_cases"] = computed
     return ds
+
+
+def _finish_writes(writer, writes):
+    """Waits for the store's writes; a Ctrl-C meanwhile lets the write under
+    way end (no batch cut short) and starts no other. It waits on the
+    writes, not on the thread: an interrupted Thread.join (Python < 3.13)
+    takes the thread for ended, and the write under way would be cut at exit."""
+    try:
+        concurrent.futures.wait(writes)
+    except KeyboardInterrupt:
+        for w in writes:
+            w.cancel()  # those not started
+        concurrent.futures.wait(writes)
+        raise
+    finally:
+        writer.shutdown(wait=False)
 
 
 def _lost_worker(executor):
