@@ -3,6 +3,7 @@ any executor (in process, threads, processes, a Dask LocalCluster), failed
 cases recorded, interrupted studies resumed from their store, designs
 reproducible, bad input refused before any case runs."""
 
+import errno
 import os
 import re
 import signal
@@ -292,6 +293,8 @@ def test_a_sweep_writes_into_no_folder_but_a_store_of_its_own(tmp_path):
     empty = tmp_path / "empty"
     empty.mkdir()
     assert four_cases(empty).sizes["case"] == 4  # an empty folder becomes a store
+    with pytest.raises(mb.ModelError, match=r"the store must be a folder's path \(a str or a pathlib\.Path\), got 7"):
+        four_cases(7)
 
 
 def damaged_copies(tmp_path):
@@ -398,6 +401,59 @@ def test_a_store_is_used_by_one_sweep_at_a_time(tmp_path):
     # the lock file of a process that is gone is taken over
     (store / "lagmb_sweep.lock").write_text("999999999 elsewhere\n")
     assert resume(tmp_path, store).attrs["computed_cases"] == 0
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="forks a worker process")
+def test_the_lock_of_a_process_that_died_is_taken_over_even_while_its_forked_workers_live(tmp_path):
+    store = tmp_path / "study.zarr"
+    four_cases(store)
+    # the sweep's process locks the store, forks a worker (which inherits the
+    # lock file's descriptor, as a process pool's fork does) and dies
+    script = (f"import os, sys, time\nfrom lagmb import studies\nlock = studies._Lock({str(store)!r}, 'sweep')\n"
+              "worker = os.fork()\nif worker == 0:\n    time.sleep(60)\n    os._exit(0)\n"
+              "print(worker, flush=True)\nos._exit(0)\n")
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    worker = int(proc.stdout.readline())
+    try:
+        assert proc.wait(timeout=60) == 0
+        os.kill(worker, 0)  # the worker lives on
+        assert four_cases(store).attrs["computed_cases"] == 0  # and the store is not "in use"
+    finally:
+        os.kill(worker, signal.SIGKILL)
+        proc.stdout.close()
+
+
+def test_two_sweeps_of_one_process_on_one_store_are_one_too_many(tmp_path):
+    import threading
+
+    store = tmp_path / "study.zarr"
+    release = threading.Event()
+
+    def held_until_released(r):
+        release.wait(60)
+        return 0.0
+
+    first = ThreadPoolExecutor(1).submit(four_cases, store, {"held": held_until_released})
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not (store / "zarr.json").exists():
+            time.sleep(0.01)
+        with pytest.raises(mb.ModelError, match=rf"is in use by another sweep \(pid {os.getpid()}, this process\)"):
+            four_cases(store, {"held": held_until_released})
+    finally:
+        release.set()
+    assert first.result().sizes["case"] == 4
+
+
+def test_a_store_on_a_file_system_without_locks_is_used_with_a_warning(tmp_path, monkeypatch):
+    fcntl = pytest.importorskip("fcntl")
+
+    def no_locks(*args):
+        raise OSError(errno.ENOLCK, "No locks available")
+
+    monkeypatch.setattr(fcntl, "lockf", no_locks)
+    with pytest.warns(UserWarning, match=r"cannot be locked \(No locks available\): run no other sweep on it"):
+        assert four_cases(tmp_path / "study.zarr").sizes["case"] == 4
 
 
 def test_a_batch_written_twice_is_not_an_error(tmp_path):

@@ -295,13 +295,17 @@ def test_o_takes_a_study_s_store_only_and_one_sweep_at_a_time(capsys, tmp_path):
     assert sorted(p.name for p in foreign.iterdir()) == ["zarr.json"]  # left alone
     store = tmp_path / "study.zarr"
     assert lagmb(capsys, *args, "-o", store)[0] == 0
-    lock = studies._Lock(str(store), "sweep")  # as a sweep writing the store holds it
+    # another process holds the store's lock, as a sweep writing it does
+    holder = subprocess.Popen([sys.executable, "-c", "import sys; from lagmb import studies; "
+                               f"lock = studies._Lock({str(store)!r}, 'sweep'); print('held', flush=True); "
+                               "sys.stdin.read()"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
+        assert holder.stdout.readline() == "held\n"
         code, out, err = lagmb(capsys, *args, "-o", store)
     finally:
-        lock.release()
+        holder.communicate("")
     assert code == 2 and err.startswith(f"lagmb sweep: -o {store}: sweep: the store '{store}' is in use by another "
-                                        f"sweep (pid {os.getpid()})")
+                                        f"sweep (pid {holder.pid})")
     assert lagmb(capsys, *args, "-o", store)[0] == 0
 
 

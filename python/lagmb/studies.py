@@ -25,6 +25,7 @@ import pickle
 import re
 import shutil
 import socket
+import threading
 import uuid
 import warnings
 
@@ -559,6 +560,16 @@ def _held(path, who):
     return held
 
 
+def _path(given, who):
+    try:
+        path = os.fspath(given)
+    except TypeError:
+        path = None
+    if not isinstance(path, str):
+        raise ModelError(f"{who}: the store must be a folder's path (a str or a pathlib.Path), got {show(given)}")
+    return path
+
+
 def check_store(path, who="sweep"):
     """The description of the sweep the store at ``path`` holds, or None
     where a sweep may make one (no such folder, or an empty one). A
@@ -566,7 +577,7 @@ def check_store(path, who="sweep"):
     (a sweep writes into no other folder: another program's Zarr store
     included) or a store that cannot be read. mb.sweep and ``lagmb sweep
     -o`` both check a store with it, before anything is written."""
-    path = os.fspath(path)
+    path = _path(path, who)
     if os.path.lexists(path) and not os.path.isdir(path):
         raise ModelError(f"{who}: the store {path!r} is a file; a store is a folder (e.g. study.zarr)")
     if not os.path.isdir(path):
@@ -683,54 +694,75 @@ def _ignored_warning(path, held, ignored):
                   f"cases in batches batch_000000..batch_{count - 1:06d}): left out", UserWarning, stacklevel=3)
 
 
+_HELD = set()  # the lock files this process holds: a POSIX lock does not stop the process that holds it
+_HELD_GUARD = threading.Lock()
+
+
 class _Lock:
-    """The store's lock file, locked (flock; on Windows msvcrt) while a
-    sweep writes the store, holding its pid: a second sweep on the store is
-    refused naming it. The system lets go of a dead process's lock, so a
-    stale lock file is taken over."""
+    """The store's lock file, locked while a sweep writes the store and
+    holding its pid: a second sweep on the store (of another process, or of
+    this one) is refused naming it. A POSIX record lock (fcntl.lockf; on
+    Windows msvcrt.locking) belongs to the process, not to its open file:
+    the system lets go of it when the process ends, forked worker processes
+    included, so the lock file of a process that is gone is taken over."""
 
     def __init__(self, folder, who):
-        path = os.path.join(folder, _LOCK)
-        try:
-            self.fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
-        except OSError as e:
-            raise ModelError(f"{who}: the store {folder!r} cannot be written: {e.strerror or e}") from None
-        try:
-            self._lock(True)
-        except OSError as e:
-            if e.errno not in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK, errno.EDEADLK):
-                # a file system without locks (some network mounts): go on, unguarded
-                warnings.warn(f"{who}: the store {folder!r} cannot be locked ({e.strerror or e}): run no "
-                              "other sweep on it meanwhile", UserWarning, stacklevel=4)
-                return
-            holder = os.read(self.fd, 200).decode(errors="replace").split()
-            os.close(self.fd)
-            here = socket.gethostname()
-            who_holds = (f"pid {holder[0]}" + (f" on {holder[1]}" if len(holder) > 1 and holder[1] != here else "")
+        self.path = os.path.realpath(os.path.join(folder, _LOCK))
+        self.fd, self.locked = None, False
+        with _HELD_GUARD:
+            if self.path in _HELD:
+                raise ModelError(f"{who}: the store {folder!r} is in use by another sweep (pid {os.getpid()}, this "
+                                 "process): let it finish, or give another store")
+            try:
+                self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o666)
+            except OSError as e:
+                raise ModelError(f"{who}: the store {folder!r} cannot be written: {e.strerror or e}") from None
+            try:
+                self._lock(True)
+            except OSError as e:
+                if e.errno not in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK, errno.EDEADLK):
+                    # a file system without locks (some network mounts): go on, unguarded
+                    warnings.warn(f"{who}: the store {folder!r} cannot be locked ({e.strerror or e}): run no "
+                                  "other sweep on it meanwhile", UserWarning, stacklevel=4)
+                    _HELD.add(self.path)
+                    return
+                os.lseek(self.fd, 0, os.SEEK_SET)
+                holder = os.read(self.fd, 200).decode(errors="replace").split()
+                os.close(self.fd)
+                here = socket.gethostname()
+                whose = (f"pid {holder[0]}" + (f" on {holder[1]}" if len(holder) > 1 and holder[1] != here else "")
                          if holder else "pid unknown")
-            raise ModelError(f"{who}: the store {folder!r} is in use by another sweep ({who_holds}): let it "
-                             "finish, or give another store") from None
+                raise ModelError(f"{who}: the store {folder!r} is in use by another sweep ({whose}): let it "
+                                 "finish, or give another store") from None
+            self.locked = True
+            _HELD.add(self.path)
         os.ftruncate(self.fd, 0)
         os.lseek(self.fd, 0, os.SEEK_SET)
         os.write(self.fd, f"{os.getpid()} {socket.gethostname()}\n".encode())
 
     def _lock(self, take):
+        # a byte far past the pid: Windows's lock keeps others from reading the bytes it covers
         try:
             import fcntl
-        except ImportError:  # Windows: a byte far past the pid, so that the pid stays readable
+        except ImportError:
             import msvcrt
 
             os.lseek(self.fd, 1 << 20, os.SEEK_SET)
-            msvcrt.locking(self.fd, msvcrt.LK_NBLCK if take else msvcrt.LK_UNLCK, 1)
-            os.lseek(self.fd, 0, os.SEEK_SET)
+            try:
+                msvcrt.locking(self.fd, msvcrt.LK_NBLCK if take else msvcrt.LK_UNLCK, 1)
+            finally:
+                os.lseek(self.fd, 0, os.SEEK_SET)
             return
-        fcntl.flock(self.fd, (fcntl.LOCK_EX | fcntl.LOCK_NB) if take else fcntl.LOCK_UN)
+        fcntl.lockf(self.fd, (fcntl.LOCK_EX | fcntl.LOCK_NB) if take else fcntl.LOCK_UN, 1, 1 << 20)
 
     def release(self):
         try:
-            self._lock(False)
+            if self.locked:
+                self._lock(False)
         finally:
             os.close(self.fd)
+            with _HELD_GUARD:
+                _HELD.discard(self.path)
 
 
 class _Store:
@@ -743,7 +775,7 @@ class _Store:
     def __init__(self, path, description, who):
         import zarr
 
-        self.path, self.who = os.fspath(path), who
+        self.path, self.who = _path(path, who), who
         check_store(self.path, who)  # before anything is written: nothing into a folder of another's
         try:
             os.makedirs(self.path, exist_ok=True)
@@ -804,7 +836,7 @@ def open_store(path):
     again computes it. A folder that is no sweep's store, or a store that
     cannot be read, is a ModelError naming it and what is wrong."""
     who = "sweep.open_store"
-    path = os.fspath(path)
+    path = _path(path, who)
     if not os.path.isdir(path):
         raise ModelError(f"{who}: no store at {path!r}")
     held = check_store(path, who)
