@@ -570,13 +570,14 @@ def _path(given, who):
     return path
 
 
-def check_store(path, who="sweep"):
+def check_store(path, who="sweep", writing=True):
     """The description of the sweep the store at ``path`` holds, or None
     where a sweep may make one (no such folder, or an empty one). A
     ModelError if ``path`` is a file, a folder that is not a sweep's store
     (a sweep writes into no other folder: another program's Zarr store
     included) or a store that cannot be read. mb.sweep and ``lagmb sweep
-    -o`` both check a store with it, before anything is written."""
+    -o`` both check a store with it, before anything is written
+    (``writing``: the message says to give another folder); open_store too."""
     path = _path(path, who)
     if os.path.lexists(path) and not os.path.isdir(path):
         raise ModelError(f"{who}: the store {path!r} is a file; a store is a folder (e.g. study.zarr)")
@@ -592,12 +593,13 @@ def check_store(path, who="sweep"):
         if _LOCK in os.listdir(path) or any(_BATCH.fullmatch(name) for name in names):
             raise ModelError(f"{who}: the store {path!r} cannot be read: its zarr.json is missing (copied in "
                              "part?): delete it to start again")
-        raise ModelError(f"{who}: {path!r} is a folder that is not a study's store: give a new folder name "
-                         "(e.g. study.zarr); a sweep writes into no other folder")
+        raise ModelError(f"{who}: {path!r} is a folder that is not a study's store"
+                         + (": give a new folder name (e.g. study.zarr); a sweep writes into no other folder"
+                            if writing else ""))
     held = _held(path, who)
     if held is None:
-        raise ModelError(f"{who}: {path!r} is a Zarr store, but not a study's (lagmb sweep's): give a new "
-                         "folder name; a sweep writes into no other store")
+        raise ModelError(f"{who}: {path!r} is a Zarr store, but not a study's (lagmb sweep's)"
+                         + (": give a new folder name; a sweep writes into no other store" if writing else ""))
     return held
 
 
@@ -839,7 +841,7 @@ def open_store(path):
     path = _path(path, who)
     if not os.path.isdir(path):
         raise ModelError(f"{who}: no store at {path!r}")
-    held = check_store(path, who)
+    held = check_store(path, who, writing=False)
     if held is None:
         raise ModelError(f"{who}: {path!r} is not a sweep's store (an empty folder)")
     whole, damaged, ignored = _scan(path, held)
