@@ -570,6 +570,45 @@ def test_stl_files_are_read_binary_and_ascii(tmp_path):
         assert plotting._read_stl(tmp_path / name) == pytest.approx(triangles)
 
 
+def _ascii_stl(*vertex_lines, end="endloop\nendfacet\nendsolid t\n"):
+    return ("solid t\nfacet normal 0 0 1\nouter loop\n" + "".join(f"vertex {v}\n" for v in vertex_lines) + end).encode()
+
+
+_HEADER = b"lagmb test".ljust(80, b" ")
+
+
+@pytest.mark.parametrize("content, message", [
+    (_ascii_stl("0 0 0", "1 0 0", "0 1 0", end=""), r"ends \(line 6\) where 'endloop' belongs \(cut short\?\)"),
+    (_ascii_stl("0 0 0", "1 0"), r"line 6: 'endloop' is not a decimal number"),
+    (_ascii_stl("0 0 0", "1 0 0", "0 1 0", end="endloop\nendfacet\n"),
+     r"ends \(line 8\) where 'facet' or 'endsolid' belongs \(cut short\?\)"),
+    (_ascii_stl("one two three", "1 0 0", "0 1 0"), r"line 4: 'one' is not a decimal number"),
+    (_ascii_stl("1_0 0 0", "1 0 0", "0 1 0"), r"line 4: '1_0' is not a decimal number"),
+    (_ascii_stl("0 0 0", "1 0 0", "0 1 0", "1 1 0"), r"line 7: 'vertex' where 'endloop' belongs"),
+    (_ascii_stl("nan 0 0", "1 0 0", "0 1 0"), r"line 4: a vertex coordinate 'nan' is not finite"),
+    (_ascii_stl("1e999 0 0", "1 0 0", "0 1 0"), r"line 4: '1e999' is too large for a float"),
+    (b"", r"0 bytes: too short for a binary STL .* and not an ASCII one"),
+    (_HEADER + np.uint32(5).tobytes() + bytes(120),
+     r"a binary STL of 5 triangles .* is 84 \+ 50 x 5 = 334 bytes long; the file has 204 bytes \(cut short"),
+    (_HEADER + np.uint32(4_000_000_000).tobytes() + bytes(50),
+     r"a binary STL of 4000000000 triangles .* = 200000000084 bytes long; the file has 134 bytes"),
+    (b"solid".ljust(80) + np.uint32(2).tobytes() + bytes(50), r"a binary STL of 2 triangles"),
+    (_HEADER + np.uint32(1).tobytes() + np.array([0, 0, 1, np.inf, 0, 0, 1, 0, 0, 0, 1, 0], "<f4").tobytes() + bytes(2),
+     r"triangle 1 of 1 has a vertex that is not finite: \[\[inf, 0\.0, 0\.0\]"),
+])
+def test_a_broken_stl_file_is_named_with_what_is_wrong(tmp_path, content, message):
+    (tmp_path / "bad.stl").write_bytes(content)
+    with pytest.raises(mb.ModelError, match=r"STL file '.*bad\.stl'(, |: )" + message):
+        plotting._read_stl(tmp_path / "bad.stl")
+
+
+def test_an_ascii_stl_may_hold_several_solids_named_anything(tmp_path):
+    text = ("solid my facet\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1E0 0 0\n"
+            "   vertex 0 1 0\n  endloop\n endfacet\nendsolid my facet\nSOLID empty\nENDSOLID\n")
+    (tmp_path / "s.stl").write_text(text)
+    assert plotting._read_stl(tmp_path / "s.stl") == pytest.approx(np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]))
+
+
 def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):
     """plotting.picture: a box, a cylinder, a sphere and an STL mesh on a
     swinging rod are drawn (4), a COLLADA mesh is counted out; the PNG is
@@ -590,3 +629,19 @@ def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):
     planar.add_body("b", 1.0, 0.1)
     with pytest.raises(mb.ModelError, match="draws spatial models"):
         plotting.picture(mb.simulate(planar, 0.1, n_out=2), tmp_path / "p.png")
+
+
+def test_picture_names_a_bad_argument_and_draws_a_mesh_of_no_triangles(mpl, tmp_path):
+    (tmp_path / "empty.stl").write_text("solid empty\nendsolid empty\n")
+    m = mb.Model(dimension=3)
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
+    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    m.add_shape(rod, "mesh", (1.0, 1.0, 1.0), mesh=str(tmp_path / "empty.stl"), role="collision")
+    r = mb.simulate(m, 0.2, n_out=3)
+    assert plotting.picture(r, tmp_path / "empty.png") == 1
+    for kwargs, message in (({"time": "late"}, "time must be a number, got 'late'"),
+                            ({"time": math.nan}, "time must be finite, got nan"),
+                            ({"role": "visible"}, "role must be 'visual' or 'collision', got 'visible'"),
+                            ({"view": (20.0,)}, r"view \(elevation, azimuth in degrees\) must be a pair")):
+        with pytest.raises(mb.ModelError, match="plotting.picture: " + message):
+            plotting.picture(r, tmp_path / "bad.png", **kwargs)
