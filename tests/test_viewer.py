@@ -230,3 +230,152 @@ def test_an_imported_robot_plays_with_its_meshes(chromium, tmp_path):
                         "return [r.left, r.top, r.right, r.bottom]; })()")
     assert drawn_pixels(shot, [int(x) for x in box]) > 2000
     page.close()
+
+
+# --- hostile names, bad arguments, what a page cannot draw (issue 39) ------
+
+HOSTILE = ["<!--<script>", "</script><script>alert(1)</script>", "%%POSES%%", "%%THREE%%"]
+
+
+def hostile_chain():
+    """A chain of rods named HOSTILE, each pinned by a joint named 'pin'
+    plus its rod's name."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    previous = m.ground
+    for i, name in enumerate(HOSTILE):
+        rod = m.add_body(name, 1.0, 0.1 / 12, position=(0.1 * i + 0.05, 0.0))
+        m.add_revolute("pin" + name, previous, rod, at=(0.1 * i, 0.0))
+        previous = rod
+    return m
+
+
+def test_hostile_names_start_the_page_and_show_as_text(chromium, tmp_path):
+    """A name holding "<!--<script>" once made the HTML tokenizer swallow the
+    data's </script> (the viewer never started), and placeholders in names
+    or the title were substituted (three.js copied into the title)."""
+    r = mb.simulate(hostile_chain(), 0.1, n_out=11)
+    outputs = [f"pin{name}.reaction.x" for name in HOSTILE]
+    path = tmp_path / "hostile.html"
+    v = view(r, path, outputs=outputs, title=" ".join(HOSTILE))
+    assert v.size < 1.2 * view(r, None, outputs=outputs).size  # three.js once, not again in the title
+    page, _ = open_page(chromium, path)
+    state = page.evaluate("lagmbViewer.state()")
+    assert state["bodies"] == 4 and state["plots"] == outputs
+    assert page.evaluate("document.title") == " ".join(HOSTILE)
+    assert page.evaluate("document.querySelector('#info .title').textContent") == " ".join(HOSTILE)
+    shown = page.evaluate("[...document.querySelectorAll('.plot .name')].map((d) => d.textContent)")
+    assert shown == [f"{name} (N)" for name in outputs]
+    assert page.evaluate("document.scripts.length") == 4  # three.js, the data, the poses, the viewer: none added
+    page.close()
+
+
+def test_a_sweep_of_a_hostile_parameter_lists_its_cases(chromium, tmp_path):
+    model = hostile_chain()
+    ds = mb.sweep(model, {"<!--<script>.mass": [1.0, 2.0]}, t_end=0.05,
+                  histories=np.linspace(0.0, 0.05, 6), progress=False)
+    index = mb.view_sweep(ds, model, tmp_path / "study")
+    page, _ = open_page_of_sweep(chromium, index)
+    assert page.evaluate("lagmbSweep.cases()") == 2
+    labels = page.evaluate("[...document.querySelectorAll('#cases div')].map((d) => d.textContent)")
+    assert labels == ["case 0: <!--<script>.mass = 1", "case 1: <!--<script>.mass = 2"]
+    page.close()
+    for kwargs, message in (({"cases": "0"}, "cases must be a list of case numbers, got '0'"),
+                            ({"cases": [1.5]}, r"cases\[0\] must be an integer, got 1\.5"),
+                            ({"folder": 5}, r"folder must be a file name \(str or os\.PathLike\), got 5")):
+        with pytest.raises(mb.ModelError, match="lagmb.view_sweep: " + message):
+            mb.view_sweep(ds, model, **{"folder": tmp_path / "x", **kwargs})
+
+
+def pendulum():
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", 1.0, 0.1 / 12, position=(0.05, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m
+
+
+@pytest.mark.parametrize("argument, value, message", [
+    ("max_frames", 0, r"max_frames must be in 1\.\.\d+, got 0"),
+    ("max_frames", -1, r"max_frames must be in 1\.\.\d+, got -1"),
+    ("max_frames", math.nan, "max_frames must be an integer, got nan"),
+    ("max_frames", True, "max_frames must be an integer, got True"),
+    ("outputs", [None], r"outputs\[0\] must be a string, got None"),
+    ("outputs", 5, "outputs must be a list of strings, got 5"),
+    ("title", 5, "title must be a string, got 5"),
+    ("lines", ["ok", 7], r"lines\[1\] must be a string, got 7"),
+    ("loop", "yes", "loop must be True or False, got 'yes'"),
+    ("trace", 5, "trace: expected a body.*got 5"),
+    ("trace", [("rod", (0.0, "a"))], r"trace point \(0\.0, 'a'\): must be 2 numbers"),
+    ("trace", "rod:1_0,0", "trace 'rod:1_0,0': '1_0' is not a decimal number"),
+    ("path", 5, r"path must be a file name \(str or os\.PathLike\), got 5"),
+])
+def test_a_bad_argument_of_view_is_named_with_its_value(argument, value, message):
+    r = mb.simulate(pendulum(), 0.1, n_out=3)
+    kwargs = {"path": None, argument: value}
+    with pytest.raises(mb.ModelError, match="lagmb.view: " + message):
+        view(r, **kwargs)
+
+
+@pytest.mark.parametrize("argument, value, message", [
+    ("amplitude", math.nan, "amplitude must be finite, got nan"),
+    ("amplitude", math.inf, "amplitude must be finite, got inf"),
+    ("amplitude", "big", "amplitude must be a number, got 'big'"),
+    ("frames", 0, r"frames must be in 1\.\.100000, got 0"),
+    ("frames", 2.5, "frames must be an integer, got 2.5"),
+])
+def test_a_bad_argument_of_view_mode_is_named_with_its_value(argument, value, message):
+    modes = mb.modes(pendulum())
+    with pytest.raises(mb.ModelError, match="lagmb.view_mode: " + message):
+        mb.view_mode(modes, 0, None, **{argument: value})
+
+
+def test_what_a_page_cannot_draw_is_refused_and_named(tmp_path):
+    """NaN or Infinity once went into the page's JSON (which JSON.parse
+    refuses: a blank page) or its float32 poses, without a word."""
+    m = mb.Model(gravity=(0.0, 0.0))
+    m.add_body("near", 1.0, 0.1, position=(0.0, 0.0))
+    m.add_body("far", 1.0, 0.1, position=(2e160, 0.0))
+    r = mb.simulate(m, 0.1, n_out=3)
+    with pytest.raises(mb.ModelError, match=r"the position of body 'far' at t = 0 is too large to draw .*float32.*"
+                                            r"\(2e\+160, 0\)"):
+        view(r, tmp_path / "far.html")
+    assert not (tmp_path / "far.html").exists()
+    from lagmb.result import Result
+
+    model = pendulum()
+    q = np.tile([0.05, 0.0, 0.0], (3, 1))
+    q[1:, 2] = math.nan  # the rod's angle, from the second output on
+    zero = np.zeros_like(q)
+    r = Result(model, model.compiled(), {"t": np.array([0.0, 0.1, 0.2]), "q": q, "v": zero, "a": zero,
+                                         "lam": np.zeros((3, 2)), "stats": {}})
+    with pytest.raises(mb.ModelError, match=r"the angle of body 'rod' at t = 0\.1 is not finite: nan"):
+        view(r, None)
+    with pytest.raises(mb.ModelError, match=r"the traced point \(1e\+300, 0\.0\) of body 'rod' at t = 0 is too large"):
+        view(mb.simulate(pendulum(), 0.1, n_out=3), None, trace=[("rod", (1e300, 0.0))])
+
+
+def test_the_page_embeds_its_json_safely():
+    from lagmb.viewer import _fill, _script_json
+
+    text = _script_json({"name": "</script><!--<script>&\u2028\u2029"})
+    assert not set("<>&\u2028\u2029") & set(text)
+    import json
+    assert json.loads(text) == {"name": "</script><!--<script>&\u2028\u2029"}
+    assert _fill("%%A%%|%%B%%", {"A": "%%B%%", "B": "%%A%%"}) == "%%B%%|%%A%%"
+
+
+def test_a_broken_stl_mesh_is_named_by_view(tmp_path):
+    (tmp_path / "cut.stl").write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0")
+    m = mb.Model(dimension=3)
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
+    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    m.add_shape(rod, "mesh", (1.0, 1.0, 1.0), mesh=str(tmp_path / "cut.stl"), role="visual")
+    r = mb.simulate(m, 0.1, n_out=3)
+    with pytest.raises(mb.ModelError, match=r"STL file '.*cut\.stl': ends \(line 5\) where a number belongs"):
+        view(r, None)
+    # a mesh scaled past float32 (the page's numbers)
+    (tmp_path / "cut.stl").write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                      "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n")
+    m.add_shape(rod, "mesh", (1e39, 1.0, 1.0), mesh=str(tmp_path / "cut.stl"), role="visual")
+    with pytest.raises(mb.ModelError, match=r"the mesh shape of body 'rod' \('.*cut\.stl'\) reaches past what the "
+                                            r"page draws \(float32.*size \(1e\+39, 1\.0, 1\.0\)"):
+        view(mb.simulate(m, 0.1, n_out=3), None)

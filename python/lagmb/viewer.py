@@ -21,13 +21,16 @@ import io
 import json
 import math
 import os
+import re
 import zipfile
 from functools import lru_cache
 
 import numpy as np
 
+from . import _checks
+from ._checks import show
 from .errors import ModelError
-from .plotting import _Scene, _shape, _shape_faces, _stats_line
+from .plotting import _Scene, _shape, _shape_faces, _stats_line, trace_points
 
 _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
             (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.50, 0.50, 0.50), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81)]
@@ -53,6 +56,46 @@ def _three_js():
         raise ModelError("lagmb.view: the trimesh wheel's viewer template no longer holds three.js and its "
                          "TrackballControls where lagmb reads them (trimesh 5.x does)")
     return lib.replace("</script", "<\\/script")
+
+
+_FLOAT32_MAX = float(np.finfo(np.float32).max)  # the page's numbers are float32
+
+# JSON inside <script>: the HTML tokenizer reads the script's text before
+# JSON.parse does, and "<!--<script>" or "</script>" in a name would end it
+# or make it swallow the closing tag; "<", ">" and "&" are written as JSON
+# escapes, and so are U+2028/2029 (line ends to older JavaScript).
+_SCRIPT_SAFE = {ord("<"): "\\u003c", ord(">"): "\\u003e", ord("&"): "\\u0026", 0x2028: "\\u2028",
+                0x2029: "\\u2029"}
+_PLACEHOLDER = re.compile(r"%%([A-Z]+)%%")
+
+
+def _script_json(data):
+    """data as JSON text that is safe inside a <script> element."""
+    try:
+        text = json.dumps(data, allow_nan=False)
+    except ValueError:  # the checks of view() name what is not finite; this is their backstop
+        raise ModelError("lagmb.view: the page's data holds a number that is not finite") from None
+    return text.translate(_SCRIPT_SAFE)
+
+
+def _fill(template, values):
+    """The template with each %%NAME%% replaced by values[NAME], in one pass:
+    the values (user text among them) are never searched for placeholders."""
+    return _PLACEHOLDER.sub(lambda m: values[m.group(1)], template)
+
+
+def _drawable(values, what, t):
+    """values, one row per frame at the times t, as the page draws them
+    (float32): a ModelError names what and the first time where one is not
+    finite or past float32's range."""
+    v = np.asarray(values, dtype=float).reshape(len(t), -1)
+    bad = ~(np.abs(v) <= _FLOAT32_MAX)
+    if bad.any():
+        k = int(np.flatnonzero(bad.any(axis=1))[0])
+        shown = ", ".join(f"{x:g}" for x in v[k])
+        why = ("is not finite" if not np.all(np.isfinite(v[k]))
+               else f"is too large to draw (the page's float32 numbers end at {_FLOAT32_MAX:.3g})")
+        raise ModelError(f"lagmb.view: {what} at t = {t[k]:g} {why}: " + (f"({shown})" if v.shape[1] > 1 else shown))
 
 
 def _b64(array, dtype="<f4"):
@@ -111,6 +154,11 @@ def _mesh(faces, shape, colour):
         first = len(vertices)
         vertices.extend(face)
         triangles.extend((first, first + k, first + k + 1) for k in range(1, len(face) - 1))
+    if not np.all(np.abs(np.asarray(vertices)) <= _FLOAT32_MAX):
+        raise ModelError(f"lagmb.view: the {shape.kind} shape of body {shape.body!r}"
+                         + (f" ({shape.mesh!r})" if shape.kind == "mesh" else "")
+                         + f" reaches past what the page draws (float32, up to {_FLOAT32_MAX:.3g}): size "
+                         f"{show(tuple(shape.size))}")
     return {"type": "mesh", "vertices": _b64(np.array(vertices)), "faces": _b64(np.array(triangles), "<u4"),
             "colour": colour}
 
@@ -157,6 +205,17 @@ def _spatial_parts(scene, body, colour, width, shapes):
     return parts
 
 
+def _texts(value, name):
+    """A list of strings given as one string or an iterable of them."""
+    if isinstance(value, str):
+        return [value]
+    try:
+        items = list(value)
+    except TypeError:
+        raise ModelError(f"{name} must be a list of strings, got {show(value)}") from None
+    return [_checks.text(item, f"{name}[{k}]") for k, item in enumerate(items)]
+
+
 def _output_series(result, name):
     """(values (k,), unit) of one output by name."""
     model = result.model
@@ -193,6 +252,17 @@ def _output_series(result, name):
                      "'<driver>.effort', '<joint>.angle' or '<joint>.slide'")
 
 
+def _path(path, name):
+    """A file name given as str or os.PathLike, as a str."""
+    try:
+        path = os.fspath(path)
+    except TypeError:
+        raise ModelError(f"{name} must be a file name (str or os.PathLike), got {show(path)}") from None
+    if not isinstance(path, str):
+        raise ModelError(f"{name} must be a file name as text, got {show(path)}")
+    return path
+
+
 class View:
     """A page written by :func:`view`: ``path`` (None when kept in memory),
     ``size`` (bytes) and, in a notebook, the page itself inline
@@ -216,7 +286,9 @@ def view_mode(modes, index=0, path="mode.html", *, amplitude=None, frames=100):
     pose plus amplitude sin(omega t) times the mode's shape over one period
     (a rigid-body or unstable mode: back and forth over one cycle of phase),
     the amplitude as :func:`lagmb.plotting.animate_mode` chooses it unless
-    given. ModelError for a bad index (naming how many modes there are)."""
+    given (a finite number); ``frames``: frames per period, 1 .. 100000.
+    ModelError for a bad index (naming how many modes there are) or a bad
+    amplitude or frame count (naming it)."""
     from .linear import Modes
     from .plotting import _mode_amplitude, _posed
 
@@ -227,9 +299,13 @@ def view_mode(modes, index=0, path="mode.html", *, amplitude=None, frames=100):
         raise ModelError(f"lagmb.view_mode: index {index!r}: there are {count} modes"
                          + (f" (0 .. {count - 1})" if count else " (nothing can move)"))
     index = int(index)
+    frames = _checks.integer(frames, "lagmb.view_mode: frames", 1, 100_000)
+    if amplitude is not None:
+        amplitude = _checks.real(amplitude, "lagmb.view_mode: amplitude")
     equilibrium = modes.equilibrium
     shape = np.asarray(modes.shapes[index], dtype=float)
-    amplitude = _mode_amplitude(equilibrium, shape) if amplitude is None else float(amplitude)
+    if amplitude is None:
+        amplitude = _mode_amplitude(equilibrium, shape)
     kind, omega = modes.kinds[index], float(modes.omega[index])
     phase = 2.0 * math.pi * np.arange(frames + 1) / frames
     times = phase / omega if kind == "vibration" and omega > 0 else phase / (2.0 * math.pi)
@@ -260,13 +336,18 @@ def view_sweep(ds, model, folder="sweep_view", *, cases=None, outputs=None):
     if list(ds["coordinate"].values) != names:
         raise ModelError("lagmb.view_sweep: the sweep's coordinates are not this model's: give the model it ran")
     all_cases = [int(c) for c in ds["case"].values]
-    chosen = all_cases if cases is None else [int(c) for c in cases]
+    if cases is None:
+        chosen = all_cases
+    elif isinstance(cases, (str, bytes)) or not hasattr(cases, "__iter__"):
+        raise ModelError(f"lagmb.view_sweep: cases must be a list of case numbers, got {show(cases)}")
+    else:
+        chosen = [_checks.integer(c, f"lagmb.view_sweep: cases[{k}]", 0, _checks.INT_MAX) for k, c in enumerate(cases)]
     unknown = [c for c in chosen if c not in all_cases]
     if unknown:
         raise ModelError(f"lagmb.view_sweep: no case {unknown[0]} in the sweep (cases {all_cases[0]} .. {all_cases[-1]})")
     if len(chosen) > 200:
         raise ModelError(f"lagmb.view_sweep: {len(chosen)} cases: choose at most 200 (cases=[...]); each is a page")
-    folder = os.fspath(folder)
+    folder = _path(folder, "lagmb.view_sweep: folder")
     try:
         os.makedirs(folder, exist_ok=True)
     except OSError as e:
@@ -289,11 +370,11 @@ def view_sweep(ds, model, folder="sweep_view", *, cases=None, outputs=None):
             zero = np.zeros_like(q)
             raw = {"t": t, "q": q, "v": zero, "a": zero, "lam": np.zeros((len(t), core.n_constraints)),
                    "stats": {"steps": int(row["steps"].item())}}
-            view(Result(model, core, raw), os.path.join(folder, page), outputs=outputs or [],
+            view(Result(model, core, raw), os.path.join(folder, page), outputs=[] if outputs is None else outputs,
                  title=f"case {case}: {label}", lines=[label, f"{len(t)} frames from the sweep's histories"])
         entries.append({"case": case, "label": label or f"case {case}", "status": status,
                         "page": page if status == "ok" else None})
-    index = _SWEEP_INDEX.replace("%%DATA%%", json.dumps(entries).replace("</", "<\\/"))
+    index = _fill(_SWEEP_INDEX, {"DATA": _script_json(entries)})
     with open(os.path.join(folder, "index.html"), "w", encoding="utf-8") as f:
         f.write(index)
     return os.path.join(folder, "index.html")
@@ -350,18 +431,23 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     "der(...)", "<joint>.reaction.x" (".y", ".torque"; in space ".z",
     ".torque.x" ...), "<driver>.effort", "<joint>.angle" / ".slide". Default:
     the energy and each driver's effort. Clicking a plot jumps to that time.
-    ``trace``: points drawn as lines up to the current time, [(body,
-    local point), ...]. ``title``: the page's (default: the bodies and the
-    method). ``max_frames``: outputs beyond it are thinned evenly (the
-    page holds 7 float32 numbers per body per frame). ``loop``: playing
-    starts again at the end (:func:`view_mode`); ``lines``: the text under
-    the title (default: the bodies, the method and its counts).
+    ``trace``: points drawn as lines up to the current time, as
+    :func:`lagmb.plotting.animate` takes them ((body, local point), a body,
+    an element, "body:x,y", or a list). ``title``: the page's (default: the
+    bodies and the method). ``max_frames``: outputs beyond it are thinned
+    evenly (the page holds 7 float32 numbers per body per frame). ``loop``:
+    playing starts again at the end (:func:`view_mode`); ``lines``: the
+    text under the title (default: the bodies, the method and its counts).
+    Names and titles are shown as text, whatever characters they hold.
 
     Planar models are drawn in their plane (x, y), bodies as bars between
     their joints; spatial ones with their shapes (a URDF's meshes, STL) or
     else the box of their inertia and axes. ModelError for a Result without
-    its model, an unknown output (the names listed), or a path that cannot
-    be written.
+    its model, an unknown output (the names listed), a bad argument (named
+    with its value), a path that cannot be written, an STL file that
+    cannot be read (named, with what is wrong), or what the page cannot
+    draw: a position, output or traced point that is not finite or past
+    float32's range (named, with the time).
     """
     from .result import Result
 
@@ -372,6 +458,15 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
                          "mb.simulate(model, ...) and view its Result")
     if len(result.t) == 0:
         raise ModelError("lagmb.view: the Result has no outputs to show")
+    path = None if path is None else _path(path, "lagmb.view: path")
+    max_frames = _checks.integer(max_frames, "lagmb.view: max_frames", 1, _checks.INT_MAX)
+    loop = _checks.flag(loop, "lagmb.view: loop")
+    if title is not None:
+        _checks.text(title, "lagmb.view: title")
+    if outputs is not None:
+        outputs = _texts(outputs, "lagmb.view: outputs")
+    if lines is not None:
+        lines = _texts(lines, "lagmb.view: lines")
     model = result.model
     scene = _Scene(result)
     dimension = scene.dimension
@@ -379,10 +474,16 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     frames = np.arange(k_all) if k_all <= max_frames else np.unique(np.linspace(0, k_all - 1, max_frames).round()
                                                                    .astype(int))
     t = np.asarray(result.t, dtype=float)[frames]
+    bad = np.flatnonzero(~(np.abs(t) <= _FLOAT32_MAX))
+    if len(bad):
+        raise ModelError(f"lagmb.view: the time of output {frames[bad[0]]} is {t[bad[0]]!r}: the page draws "
+                         f"finite times within float32's range ({_FLOAT32_MAX:.3g})")
     bodies = scene.bodies
 
     # the size of the scene, from every frame's body positions and attachment points
     points = [result.body(b).position[frames] for b in bodies]
+    for body, p in zip(bodies, points):
+        _drawable(p, f"the position of body {body!r}", t)
     for name in scene.joints + scene.drivers:
         for body, local in scene.attachments(name):
             if body == "ground":
@@ -429,33 +530,31 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         if dimension == 2:
             poses[:, i, 0:2] = motion.position[frames]
             angle = np.asarray(motion.angle, dtype=float)[frames]
+            _drawable(angle, f"the angle of body {body!r}", t)
             poses[:, i, 5] = np.sin(0.5 * angle)
             poses[:, i, 6] = np.cos(0.5 * angle)
         else:
             poses[:, i, 0:3] = motion.position[frames]
             p = np.asarray(motion.orientation, dtype=float)[frames]
+            _drawable(p, f"the orientation (Euler parameters) of body {body!r}", t)
             p = p / np.linalg.norm(p, axis=1, keepdims=True)
             poses[:, i, 3:6] = p[:, 1:4]
             poses[:, i, 6] = p[:, 0]
 
     # traces and plots
     traces = []
-    for j, item in enumerate(trace or []):
-        try:
-            body, local = item
-        except (TypeError, ValueError):
-            raise ModelError(f"lagmb.view: trace takes (body, local point) pairs, got {item!r}") from None
+    for j, (body, local) in enumerate(trace_points(model, trace, "lagmb.view: trace")):
         p = np.asarray(result.point(body, local), dtype=float)[frames]
+        _drawable(p, f"the traced point {show(tuple(float(x) for x in local))} of body {body!r}", t)
         if dimension == 2:
             p = np.column_stack([p, np.zeros(len(p))])
         traces.append({"points": _b64(p), "colour": list(_PALETTE[(j + 3) % len(_PALETTE)])})
     if outputs is None:
         outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers if result._core.element_kind(d).endswith("_driver")][:3]
-    elif isinstance(outputs, str):
-        outputs = [outputs]
     plots = []
     for name in outputs:
         values, unit = _output_series(result, name)
+        _drawable(values[frames], f"output {name!r}", t)
         plots.append({"name": name, "unit": unit, "values": _b64(values[frames])})
 
     # the camera and the ground
@@ -491,13 +590,10 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         "loop": bool(loop),
     }
     template = (importlib.resources.files("lagmb") / "viewer.html").read_text(encoding="utf-8")
-    page = (template.replace("%%TITLE%%", html.escape(title or "lagmb"))
-            .replace("%%THREE%%", _three_js())
-            .replace("%%DATA%%", json.dumps(data).replace("</", "<\\/"))
-            .replace("%%POSES%%", _b64(poses)))
+    page = _fill(template, {"TITLE": html.escape(title or "lagmb"), "THREE": _three_js(),
+                            "DATA": _script_json(data), "POSES": _b64(poses)})
     if path is None:
         return View(page, None)
-    path = os.fspath(path)
     try:
         with open(path, "w", encoding="utf-8") as f:
             f.write(page)
