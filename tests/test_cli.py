@@ -269,7 +269,7 @@ def test_usage_errors_exit_2(four_bar, tmp_path):
 
 @pytest.mark.parametrize("command, options, message", [
     ("run", ["--t-end", "1_0"], "argument --t-end: '1_0' is not a decimal number"),
-    ("run", ["--n-out", "1_01"], "argument --n-out: '1_01' is not a decimal number"),
+    ("run", ["--n-out", "1_01"], "argument --n-out: '1_01' is not a whole number"),
     ("run", ["--n-out", "2.5"], "argument --n-out: '2.5' is not a whole number"),
     ("run", ["--rtol", "1e-6\u0661"], "argument --rtol: '1e-6\u0661' is not a decimal number"),
     ("accuracy", ["--tolerances", "1e-3", "1e-6_0"], "argument --tolerances: '1e-6_0' is not a decimal number"),

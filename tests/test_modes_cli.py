@@ -147,7 +147,7 @@ def test_count_lists_the_lowest_and_at_time_is_the_equilibrium_s_time(capsys, tm
 
 @pytest.mark.parametrize("options, message", [
     (["--count", "0"], "--count 0: must be at least 1"),
-    (["--count", "two"], "--count: invalid int value: 'two'"),
+    (["--count", "two"], "--count: 'two' is not a whole number"),
     (["--mode", "-1", "--gif", "x.gif"], "--mode -1: must be the number of a mode"),
     (["--mode", "0"], "--mode 0: there is no animation to apply it to; give --gif"),
     (["--view", "10,20"], "--view 10,20: there is no animation to apply it to; give --gif"),

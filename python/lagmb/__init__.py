@@ -26,7 +26,7 @@ from .errors import EquilibriumError, KinematicOnlyError
 from .statics import Equilibrium, equilibrium
 from .linear import Descriptor, LinearSystem, Modes, linearize, modes
 from .joints import JointSpace, inverse_dynamics
-from .urdf import UrdfError, load_urdf
+from .urdf import UrdfError, UrdfWarning, load_urdf
 from .mjcf import MjcfError, MjcfWarning, load_mjcf
 from .studies import sweep
 from .viewer import View, view, view_mode, view_sweep
@@ -80,6 +80,7 @@ __all__ = [
     "JointSpace",
     "inverse_dynamics",
     "UrdfError",
+    "UrdfWarning",
     "load_urdf",
     "MjcfError",
     "MjcfWarning",

@@ -57,14 +57,14 @@ def _number(text):
 
 
 def _whole(text):
-    """argparse type: a whole number, written as _number reads it."""
-    from ._checks import INT_MAX
-
-    value = _number(text)
+    """argparse type: a whole number, written as _number reads it (its
+    range is the option's own check, which names the limit)."""
+    try:
+        value = _number(text)
+    except argparse.ArgumentTypeError:
+        value = math.nan
     if not (math.isfinite(value) and value.is_integer()):
         raise argparse.ArgumentTypeError(f"{text.strip()!r} is not a whole number")
-    if abs(value) > INT_MAX:
-        raise argparse.ArgumentTypeError(f"{text.strip()!r} is too large (at most {INT_MAX:,})")
     return int(value)
 
 

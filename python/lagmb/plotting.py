@@ -557,10 +557,11 @@ def _checked(name, value, low, high=None, whole=False):
     if high is not None:
         words += f" and at most {high:g}"
     try:
-        number = float(value)
+        # a string as the command line gives it, read as TOML writes numbers ("1_0" is no 10)
+        number = decimal(value, name) if isinstance(value, str) else float(value)
         good = not isinstance(value, bool) and math.isfinite(number) and number > low \
             and (high is None or number <= high) and (not whole or number == int(number))
-    except (TypeError, ValueError, OverflowError):
+    except (TypeError, ValueError, OverflowError, ModelError):
         good = False
     if not good:
         reason = " (GIF viewers show a frame shorter than 20 ms for 100 ms)" if high == _MAX_FPS else ""
