@@ -33,6 +33,17 @@ def rod_chain(n, L=1.0, m=1.0, g=9.81):
     return model
 
 
+def hinged_rod_with_mesh(mesh, role, t_end=0.1, size=(1.0, 1.0, 1.0)):
+    """A run of a 1 kg rod in space, 1 m along x from a hinge about y at the
+    origin, drawn by the STL file `mesh` (a shape of `role`, scaled by `size`): 3 outputs over
+    t_end (test_plotting and test_viewer read broken meshes with it)."""
+    m = mb.Model(dimension=3)
+    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
+    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    m.add_shape(rod, "mesh", size, mesh=str(mesh), role=role)
+    return mb.simulate(m, t_end, n_out=3)
+
+
 #: A one-link arm as a URDF file: hinged about y at the origin, its 1 kg centre
 #: of mass 0.5 m out along x, limits -1 .. 1 rad (tests/test_urdf.py, test_cli.py).
 ARM_URDF = """<robot name="arm">

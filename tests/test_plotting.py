@@ -23,7 +23,7 @@ import pytest
 
 import lagmb as mb
 from lagmb import plotting
-from builders import gif_durations
+from builders import gif_durations, hinged_rod_with_mesh
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples")
@@ -633,11 +633,7 @@ def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):
 
 def test_picture_names_a_bad_argument_and_draws_a_mesh_of_no_triangles(mpl, tmp_path):
     (tmp_path / "empty.stl").write_text("solid empty\nendsolid empty\n")
-    m = mb.Model(dimension=3)
-    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
-    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
-    m.add_shape(rod, "mesh", (1.0, 1.0, 1.0), mesh=str(tmp_path / "empty.stl"), role="collision")
-    r = mb.simulate(m, 0.2, n_out=3)
+    r = hinged_rod_with_mesh(tmp_path / "empty.stl", "collision", t_end=0.2)
     assert plotting.picture(r, tmp_path / "empty.png") == 1
     for kwargs, message in (({"time": "late"}, "time must be a number, got 'late'"),
                             ({"time": math.nan}, "time must be finite, got nan"),

@@ -17,6 +17,7 @@ import lagmb as mb
 from lagmb.viewer import view
 
 import browser
+from builders import hinged_rod_with_mesh
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -365,17 +366,13 @@ def test_the_page_embeds_its_json_safely():
 
 def test_a_broken_stl_mesh_is_named_by_view(tmp_path):
     (tmp_path / "cut.stl").write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0")
-    m = mb.Model(dimension=3)
-    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
-    m.add_revolute("hinge", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
-    m.add_shape(rod, "mesh", (1.0, 1.0, 1.0), mesh=str(tmp_path / "cut.stl"), role="visual")
-    r = mb.simulate(m, 0.1, n_out=3)
+    r = hinged_rod_with_mesh(tmp_path / "cut.stl", "visual")
     with pytest.raises(mb.ModelError, match=r"STL file '.*cut\.stl': ends \(line 5\) where a number belongs"):
         view(r, None)
     # a mesh scaled past float32 (the page's numbers)
     (tmp_path / "cut.stl").write_text("solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                                       "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n")
-    m.add_shape(rod, "mesh", (1e39, 1.0, 1.0), mesh=str(tmp_path / "cut.stl"), role="visual")
+    r = hinged_rod_with_mesh(tmp_path / "cut.stl", "visual", size=(1e39, 1.0, 1.0))
     with pytest.raises(mb.ModelError, match=r"the mesh shape of body 'rod' \('.*cut\.stl'\) reaches past what the "
                                             r"page draws \(float32.*size \(1e\+39, 1\.0, 1\.0\)"):
-        view(mb.simulate(m, 0.1, n_out=3), None)
+        view(r, None)
