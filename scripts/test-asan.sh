@@ -6,7 +6,8 @@
 # It leaves the normal build and the installed package alone: the sanitized
 # module is built in build/asan (configured by CMake directly, only the _core
 # and FMU runtime targets and the static lagmb_core they link) and staged in build/asan/pkg/lagmb
-# next to symlinks to python/lagmb/*.py and its subpackages (scene/);
+# next to symlinks to what python/lagmb holds (modules, subpackages, the
+# viewer's page template) but a compiled module and the FMU runtime;
 # PYTHONPATH puts that directory ahead of site-packages. Any sanitizer report
 # fails the run: UB aborts (-fno-sanitize-recover), as do out-of-range
 # std::vector/std::array indexing (-D_GLIBCXX_ASSERTIONS; UBSan sees v[i] of a
@@ -39,8 +40,9 @@ t1=$(date +%s)
 
 so=$(ls $BUILD/_core*.so)
 rm -rf $PKG && mkdir -p $PKG/lagmb
-for f in python/lagmb/*.py; do ln -s "$ROOT/$f" $PKG/lagmb/; done
-for f in python/lagmb/*/__init__.py; do ln -s "$ROOT/${f%/__init__.py}" $PKG/lagmb/; done
+for f in python/lagmb/*; do
+  case "${f##*/}" in __pycache__|fmu_runtime|*.so) ;; *) ln -s "$ROOT/$f" $PKG/lagmb/ ;; esac
+done
 ln -s "$ROOT/$so" $PKG/lagmb/
 mkdir -p $PKG/lagmb/fmu_runtime  # what `lagmb fmu` puts in an FMU (tests/test_fmu.py)
 for f in $BUILD/liblagmb_fmu.so cpp/fmu/fmi3.c cpp/fmu/lagmb_fmu.h; do ln -s "$ROOT/$f" $PKG/lagmb/fmu_runtime/; done

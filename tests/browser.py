@@ -41,7 +41,10 @@ class Browser:
             os.dup2(b, 4)
 
         # fds 3 and 4 stay open in the child (dup2 above makes them; close_fds closes the rest after it)
-        self.proc = subprocess.Popen(args, pass_fds=(3, 4), preexec_fn=on_fds_3_and_4,
+        # not the sanitizer runtimes make test-asan preloads into this process
+        # (Chromium under a preloaded ASan spins and never answers)
+        env = {k: v for k, v in os.environ.items() if k not in ("LD_PRELOAD", "ASAN_OPTIONS", "UBSAN_OPTIONS")}
+        self.proc = subprocess.Popen(args, pass_fds=(3, 4), preexec_fn=on_fds_3_and_4, env=env,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.close(to_chrome_r)
         os.close(from_chrome_w)
