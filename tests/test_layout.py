@@ -86,9 +86,10 @@ def test_the_umbrella_header_includes_every_public_header():
 #: each imports only from its own layer or the ones before, at the top of a
 #: file or inside a function alike (a late import is still a dependency).
 PYTHON_LAYERS = [
-    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles"],
+    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes"],
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
+    ["_drawing"],
     ["scene", "plotting", "demo", "urdf", "mjcf", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
@@ -124,3 +125,20 @@ def test_python_imports_point_down():
             if target != mine and rank[target] > rank[mine]:
                 upward.append(f"{path.relative_to(package)} imports {target}")
     assert upward == []
+
+
+def test_no_module_reads_private_names_of_plotting():
+    """What the viewer and the command line share with the pictures sits in
+    its own module (lagmb._drawing, lagmb._meshes), not among plotting's
+    private names."""
+    import ast
+
+    package = ROOT / "python" / "lagmb"
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        if "plotting" in path.relative_to(package).parts:
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and node.module.endswith("plotting"):
+                found += [f"{path.relative_to(package)}: {a.name}" for a in node.names if a.name.startswith("_")]
+    assert found == []

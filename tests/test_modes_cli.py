@@ -255,7 +255,7 @@ def test_an_unstable_mode_is_shown_back_and_forth_in_the_time_asked(tmp_path, mp
 
 
 def test_the_default_amplitude_moves_the_rod_s_tip_a_tenth_of_its_length():
-    from lagmb.plotting import _mode_amplitude
+    from lagmb._drawing import mode_amplitude as _mode_amplitude
 
     modes = mb.modes(hanging_rod())
     # the shape is 1 rad of turn (its largest entry, the angle); the tip moves L per radian,
@@ -264,7 +264,7 @@ def test_the_default_amplitude_moves_the_rod_s_tip_a_tenth_of_its_length():
 
 
 def test_spatial_bodies_keep_unit_euler_parameters_along_a_shape():
-    from lagmb.plotting import _posed
+    from lagmb._drawing import posed as _posed
 
     modes = mb.modes(ball_joint())
     eq = modes.equilibrium

@@ -22,7 +22,8 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from lagmb import plotting
+from lagmb import _drawing, _meshes, plotting
+from lagmb.plotting import frames as gif_frames, planar as planar_drawing, spatial as spatial_drawing
 from builders import gif_durations, hinged_rod_with_mesh
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -192,7 +193,7 @@ def test_bodies_are_drawn_through_their_joints():
     ground joints stay at A and D."""
     m, (A, B, C, D) = fourbar()
     r = mb.simulate(m, t_end=0.5, n_out=11)
-    scene = plotting._Scene(r)
+    scene = _drawing.Scene(r)
     assert scene.joints == ["A", "B", "C", "D"] and scene.drivers == []
     ends = {}
     for name, (p, q) in zip(("crank", "coupler", "rocker"), ((A, B), (B, C), (D, C))):
@@ -217,10 +218,10 @@ def test_drawing_uses_the_model_outline_and_attachments():
     apex = 0.5 * (B + C) + np.array([0.0, 0.8])
     m.add_force("load", "coupler", (0.0, -1.0), point=apex)
     r = mb.simulate(m, t_end=0.1, n_out=3)
-    scene = plotting._Scene(r)
+    scene = _drawing.Scene(r)
     assert scene.joints == ["A", "B", "C", "D"] and scene.by_role["force"] == ["load"]
     assert len(scene.outlines["coupler"]) == 3
-    local, closed = plotting._shape(scene.outlines["coupler"])
+    local, closed = _drawing.outline_shape(scene.outlines["coupler"])
     assert closed and len(local) == 3
     (bi, pi), (bj, pj) = scene.attachments("B")
     assert (bi, bj) == ("crank", "coupler")
@@ -240,7 +241,7 @@ def test_drawing_uses_the_model_outline_and_attachments():
     ([(0, 0), (1, 0), (1, 1), (0, 1), (0.5, 0.5)], 4, True),  # inner point left out
 ])
 def test_body_shapes(outline, n, closed):
-    local, is_closed = plotting._shape([np.array(p, float) for p in outline])
+    local, is_closed = _drawing.outline_shape([np.array(p, float) for p in outline])
     assert len(local) == n and is_closed == closed
     if outline and not closed and len(outline) == 3:
         np.testing.assert_allclose(sorted(local[:, 0]), [-1.0, 1.0])
@@ -255,16 +256,16 @@ def test_frame_plan_plays_the_span_in_span_over_speed():
     frames of 30 or 40 ms that add up to 2 s; half speed doubles the frames;
     a cap of 20 frames makes each last 100 ms. Frame i shows t0 + i span/n."""
     t = np.linspace(1.0, 3.0, 401)
-    times, durations = plotting._frame_plan(t, fps=25, speed=1.0)
+    times, durations = gif_frames._frame_plan(t, fps=25, speed=1.0)
     assert len(times) == 50 and set(durations) == {40}
     np.testing.assert_allclose(times, 1.0 + 0.04 * np.arange(50), rtol=0, atol=1e-12)
-    times, durations = plotting._frame_plan(t, fps=30, speed=1.0)
+    times, durations = gif_frames._frame_plan(t, fps=30, speed=1.0)
     assert len(times) == 60 and set(durations) == {30, 40} and sum(durations) == 2000
-    times, durations = plotting._frame_plan(t, fps=25, speed=0.5)
+    times, durations = gif_frames._frame_plan(t, fps=25, speed=0.5)
     assert len(times) == 100 and sum(durations) == 4000
-    times, durations = plotting._frame_plan(t, fps=25, speed=1.0, frames=20)
+    times, durations = gif_frames._frame_plan(t, fps=25, speed=1.0, frames=20)
     assert len(times) == 20 and set(durations) == {100}
-    times, durations = plotting._frame_plan(t, fps=50, speed=100.0)  # 20 ms: one frame per 20 ms at most
+    times, durations = gif_frames._frame_plan(t, fps=50, speed=100.0)  # 20 ms: one frame per 20 ms at most
     assert len(times) == 1
 
 
@@ -293,9 +294,9 @@ def test_a_run_shorter_than_a_second_plays_in_one_by_default_and_says_so(mpl, tm
     speed is given it is slowed down to last 1 s (25 frames), and the title
     says the speed; speed=1 keeps real time."""
     r = mb.simulate(double_pendulum(), t_end=0.2, n_out=21)
-    times, _ = plotting._frame_plan(r.t, fps=25, speed=0.2)
-    scene = plotting._Scene(r)
-    drawing = plotting._planar_drawing(scene, plotting._resample(r, times), [], (320, 240), 100, 0.2)
+    times, _ = gif_frames._frame_plan(r.t, fps=25, speed=0.2)
+    scene = _drawing.Scene(r)
+    drawing = planar_drawing._planar_drawing(scene, gif_frames._resample(r, times), [], (320, 240), 100, 0.2)
     assert drawing.fig.axes[0].get_title() == "lagmb: 2 bodies, 2 joints, played at 0.2 × real time"
     plotting.animate(r, tmp_path / "slow.gif", size=(320, 240))
     assert len(gif_durations(tmp_path / "slow.gif")) == 25 and sum(gif_durations(tmp_path / "slow.gif")) == 1000
@@ -325,8 +326,8 @@ def test_frames_between_outputs_are_interpolated_from_positions_and_velocities()
     at the outputs themselves they are the outputs."""
     coarse = mb.simulate(double_pendulum(), t_end=1.0, n_out=21)
     fine = mb.simulate(double_pendulum(), t_end=1.0, n_out=101)
-    times, _ = plotting._frame_plan(coarse.t, fps=25, speed=1.0)
-    shown = plotting._resample(coarse, times)
+    times, _ = gif_frames._frame_plan(coarse.t, fps=25, speed=1.0)
+    shown = gif_frames._resample(coarse, times)
     np.testing.assert_allclose(shown.t, fine.t[:-1:4], rtol=0, atol=1e-12)
     error = np.max(np.abs(shown.q - fine.q[:-1:4]))
     straight = np.column_stack([np.interp(times, coarse.t, q) for q in coarse.q.T])
@@ -375,24 +376,24 @@ def test_a_rod_pinned_at_one_end_is_drawn_to_both_ends(mpl):
     bob = m.add_body("bob", mass=1.0, inertia=1e-6, position=(2.0, -1.0))
     m.add_revolute("string", "lower", bob, at=(1.0, -1.0))
     r = mb.simulate(m, t_end=0.2, n_out=3)
-    scene = plotting._Scene(r)
+    scene = _drawing.Scene(r)
     assert len(scene.outlines["upper"]) == 2  # two joints: drawn between them
     np.testing.assert_allclose(scene.drawn_outline("upper"), [[-0.5, 0.0], [0.5, 0.0]], atol=1e-12)
     np.testing.assert_allclose(scene.drawn_outline("bob"), [[-1.0, 0.0], [math.sqrt(3e-6), 0.0]], atol=1e-12)
     # the lower rod now has two joints (elbow and string); alone, one:
     m1 = double_pendulum()
     r1 = mb.simulate(m1, t_end=0.2, n_out=3)
-    scene1 = plotting._Scene(r1)
+    scene1 = _drawing.Scene(r1)
     assert len(scene1.outlines["lower"]) == 1
     np.testing.assert_allclose(scene1.drawn_outline("lower"), [[-0.5, 0.0], [0.5, 0.0]], atol=1e-12)
     # and the line drawn at the first frame runs from the elbow (1, 0) to the tip (1, -1)
-    drawing = plotting._planar_drawing(scene1, r1, [], (320, 240), 100, 1.0)
+    drawing = planar_drawing._planar_drawing(scene1, r1, [], (320, 240), 100, 1.0)
     drawing.update(0)
     x, y = drawing.artists["bodies"][1].get_data()
     np.testing.assert_allclose(sorted(zip(x, y), key=lambda p: -p[1]), [[1.0, 0.0], [1.0, -1.0]], atol=1e-9)
     # a body pinned at its centre with one more point (the cam of examples/cam_follower.toml, its
     # contact circle 0.02 m off the pivot) is not taken for a rod
-    cam = plotting._Scene(mb.load_scene(os.path.join(EXAMPLES, "cam_follower.toml")).run(t_end=0.01, n_out=2))
+    cam = _drawing.Scene(mb.load_scene(os.path.join(EXAMPLES, "cam_follower.toml")).run(t_end=0.01, n_out=2))
     np.testing.assert_allclose(cam.drawn_outline("cam"), cam.outlines["cam"])
     assert len(cam.outlines["cam"]) == 2
 
@@ -405,10 +406,10 @@ def test_a_spatial_body_is_drawn_with_its_axes_turning_with_it(mpl):
     inertia box (a flat square: the inertia (2, 2, 4) g m^2 of a disc) has
     its corners where the rotation puts them."""
     r = mb.load_scene(os.path.join(EXAMPLES, "heavy_top.toml")).run(n_out=201)
-    times, _ = plotting._frame_plan(r.t, fps=25, speed=1.0)
-    shown = plotting._resample(r, times)
-    scene = plotting._Scene(r)
-    drawing = plotting._spatial_drawing(scene, shown, [], (320, 240), 100, (20.0, -70.0), 1.0)
+    times, _ = gif_frames._frame_plan(r.t, fps=25, speed=1.0)
+    shown = gif_frames._resample(r, times)
+    scene = _drawing.Scene(r)
+    drawing = spatial_drawing._spatial_drawing(scene, shown, [], (320, 240), 100, (20.0, -70.0), 1.0)
     top = r.body("top")
     lengths = drawing.triad_lengths["top"]  # x and y a fifth past the square, z a 25th of the scene
     corners = scene.box("top")
@@ -567,7 +568,7 @@ def test_stl_files_are_read_binary_and_ascii(tmp_path):
         "endloop\nendfacet\n" for tri in triangles) + "endsolid t\n"
     (tmp_path / "a.stl").write_text(ascii_text)
     for name in ("b.stl", "a.stl"):
-        assert plotting._read_stl(tmp_path / name) == pytest.approx(triangles)
+        assert _meshes.read_stl(tmp_path / name) == pytest.approx(triangles)
 
 
 def _ascii_stl(*vertex_lines, end="endloop\nendfacet\nendsolid t\n"):
@@ -599,14 +600,14 @@ _HEADER = b"lagmb test".ljust(80, b" ")
 def test_a_broken_stl_file_is_named_with_what_is_wrong(tmp_path, content, message):
     (tmp_path / "bad.stl").write_bytes(content)
     with pytest.raises(mb.ModelError, match=r"STL file '.*bad\.stl'(, |: )" + message):
-        plotting._read_stl(tmp_path / "bad.stl")
+        _meshes.read_stl(tmp_path / "bad.stl")
 
 
 def test_an_ascii_stl_may_hold_several_solids_named_anything(tmp_path):
     text = ("solid my facet\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1E0 0 0\n"
             "   vertex 0 1 0\n  endloop\n endfacet\nendsolid my facet\nSOLID empty\nENDSOLID\n")
     (tmp_path / "s.stl").write_text(text)
-    assert plotting._read_stl(tmp_path / "s.stl") == pytest.approx(np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]))
+    assert _meshes.read_stl(tmp_path / "s.stl") == pytest.approx(np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]]]))
 
 
 def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):

@@ -437,13 +437,13 @@ def test_a_joint_kind_declares_the_coordinate_it_has(kind):
 def test_every_kind_has_a_plotting_role(kind):
     """Drawings and summaries count an element by its role: a pendulum with
     a stop is "1 body, 1 joint, 1 stop"."""
-    from lagmb import plotting
+    from lagmb import _drawing
 
     m, handle = EXAMPLES[kind]()
     role = registry.BY_NAME[kind].role
     assert role in registry.ROLES
     r = mb.simulate(m, 0.01, n_out=2)
-    scene = plotting._Scene(r)
+    scene = _drawing.Scene(r)
     assert handle.name in scene.by_role[role]
     one, many = registry.ROLE_WORDS[role]
     n = len(scene.by_role[role])
@@ -492,10 +492,10 @@ def test_methods_scene_schema_and_handles_come_from_the_registry():
 
 
 def test_a_pendulum_with_a_stop_is_summarised_by_role():
-    from lagmb import plotting
+    from lagmb import _drawing
 
     m, _ = example_stop()
-    scene = plotting._Scene(mb.simulate(m, 0.01, n_out=2))
+    scene = _drawing.Scene(mb.simulate(m, 0.01, n_out=2))
     assert scene.summary() == "1 body, 1 joint, 1 stop"
 
 

@@ -68,7 +68,7 @@ def test_each_element_is_built_once_to_describe_and_compile_a_model():
 def test_a_result_keeps_the_model_it_was_computed_with():
     """Growing the model after a run leaves the run's compiled model, its
     accessors and its drawing as they were."""
-    from lagmb import plotting
+    from lagmb import _drawing
 
     m = pendulum()
     r = mb.simulate(m, 0.2, n_out=3)
@@ -77,7 +77,7 @@ def test_a_result_keeps_the_model_it_was_computed_with():
     assert r._core.n_coordinates == 3 and m.compiled().n_coordinates == 6
     assert r.q.shape == (3, 3)
     assert np.isfinite(r.reaction("pin")).all()
-    scene = plotting._Scene(r)
+    scene = _drawing.Scene(r)
     assert scene.bodies == ["rod"] and scene.joints == ["pin"]
     assert scene.summary() == "1 body, 1 joint"
 

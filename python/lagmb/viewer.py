@@ -30,7 +30,8 @@ import numpy as np
 from . import _checks
 from ._checks import show
 from .errors import ModelError
-from .plotting import _Scene, _shape, _shape_faces, _stats_line, trace_points
+from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line
+from .plotting import trace_points
 
 _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
             (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.50, 0.50, 0.50), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81)]
@@ -167,7 +168,7 @@ def _planar_parts(scene, body, colour, width):
     parts = []
     if body in scene.particles:
         return [{"type": "sphere", "radius": 1.5 * width, "colour": colour}]
-    points, closed = _shape(scene.drawn_outline(body))
+    points, closed = outline_shape(scene.drawn_outline(body))
     if len(points) == 0:
         parts.append({"type": "sphere", "radius": 1.5 * width, "colour": colour})
     for k in range(len(points) - (0 if closed else 1)):
@@ -180,7 +181,7 @@ def _spatial_parts(scene, body, colour, width, shapes):
     mine = [s for s in shapes if s.body == body]
     for role in ("visual", "collision"):  # the visual shapes, or else the collision ones lagmb reads (STL)
         for shape in (s for s in mine if s.role == role):
-            faces = _shape_faces(shape)
+            faces = shape_faces(shape)
             if faces:
                 parts.append(_mesh(faces, shape, colour))
         if parts:
@@ -290,7 +291,6 @@ def view_mode(modes, index=0, path="mode.html", *, amplitude=None, frames=100):
     ModelError for a bad index (naming how many modes there are) or a bad
     amplitude or frame count (naming it)."""
     from .linear import Modes
-    from .plotting import _mode_amplitude, _posed
 
     if not isinstance(modes, Modes):
         raise ModelError(f"lagmb.view_mode: modes must be what mb.modes(model) returns, got {type(modes).__name__}")
@@ -305,11 +305,11 @@ def view_mode(modes, index=0, path="mode.html", *, amplitude=None, frames=100):
     equilibrium = modes.equilibrium
     shape = np.asarray(modes.shapes[index], dtype=float)
     if amplitude is None:
-        amplitude = _mode_amplitude(equilibrium, shape)
+        amplitude = mode_amplitude(equilibrium, shape)
     kind, omega = modes.kinds[index], float(modes.omega[index])
     phase = 2.0 * math.pi * np.arange(frames + 1) / frames
     times = phase / omega if kind == "vibration" and omega > 0 else phase / (2.0 * math.pi)
-    shown = _posed(equilibrium, equilibrium.q + amplitude * np.sin(phase)[:, None] * shape[None, :], times)
+    shown = posed(equilibrium, equilibrium.q + amplitude * np.sin(phase)[:, None] * shape[None, :], times)
     frequency = 0.0 if kind == "rigid-body" else float(modes.frequencies[index])
     return view(shown, path, outputs=[], title=f"mode {index}: {frequency:.4g} Hz ({kind})", loop=True,
                 lines=[f"mode {index} of {count}: {kind}, {frequency:.6g} Hz, omega {omega:.6g} rad/s"
@@ -468,7 +468,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     if lines is not None:
         lines = _texts(lines, "lagmb.view: lines")
     model = result.model
-    scene = _Scene(result)
+    scene = Scene(result)
     dimension = scene.dimension
     k_all = len(result.t)
     frames = np.arange(k_all) if k_all <= max_frames else np.unique(np.linspace(0, k_all - 1, max_frames).round()
@@ -579,7 +579,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
 
     lines = lines if lines is not None else [", ".join(filter(None, [count(len(bodies), "body").replace("bodys", "bodies"),
                                      count(len(scene.joints), "joint"), count(len(scene.drivers), "driver")])),
-             f"method {stats.get('method', stats.get('formulation', '?'))}: {_stats_line(stats)}",
+             f"method {stats.get('method', stats.get('formulation', '?'))}: {stats_line(stats)}",
              f"t = {t[0]:g} .. {t[-1]:g} s, {len(frames)} frames"]
     data = {
         "title": title or "lagmb", "lines": lines, "dimension": dimension, "size": size, "up": up,

@@ -1,0 +1,40 @@
+"""Pictures of a run: time histories (plot_result) and a GIF of the mechanism
+(animate); a GIF of a vibration mode of mb.modes (animate_mode); a still
+picture of a spatial model's shapes (picture); response plots of a
+parameter study (plot_sweep).
+
+matplotlib is an optional extra (``pip install 'lagmb[plot]'``); it is imported
+only when a function here is called, so ``import lagmb`` never needs it.
+Figures are drawn on matplotlib's Agg canvas without pyplot: nothing here
+changes the backend or the figure registry of the caller's session.
+
+    from lagmb.plotting import plot_result, animate
+    plot_result(r, "run.png")
+    animate(r, "run.gif", trace=[("coupler", (0.0, 0.5))])
+
+One module per picture: history (plot_result), animation (animate, drawn
+by planar or spatial), modes (animate_mode), pictures (picture), sweeps
+(plot_sweep); frames plans and writes the GIFs and _figures holds the
+matplotlib set-up they share. What a drawing shows of the model is
+lagmb._drawing (shared with the browser viewer)."""
+
+from .animation import animate
+from .frames import trace_points
+from .history import plot_result
+from .modes import animate_mode
+from .pictures import picture
+from .sweeps import plot_sweep
+
+# (the names the module had before it was split, kept importable from here)
+import math, os, re  # noqa: E401,F401,I001
+import numpy as np  # noqa: F401
+from .._checks import decimal, real, show, vec2  # noqa: F401
+from ..errors import ModelError  # noqa: F401
+from ..handles import Handle, name_of  # noqa: F401
+from ..registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD  # noqa: F401
+
+# what lagmb.cli reads of the animation settings and sweep plots (its own import lines are another change's)
+from .frames import _MAX_FPS, _checked  # noqa: F401,E402
+from .sweeps import _sweep_outputs  # noqa: F401,E402
+
+__all__ = ["animate", "animate_mode", "picture", "plot_result", "plot_sweep", "trace_points"]

@@ -1,0 +1,44 @@
+"""The matplotlib pieces every picture of lagmb.plotting uses: matplotlib
+imported only when a picture is drawn (with the install hint when it is
+missing), a Figure on an Agg canvas outside pyplot, writing it, colours and
+legends."""
+
+import os
+
+_HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
+
+
+def _matplotlib():
+    """The matplotlib pieces used here, or an ImportError with the install hint."""
+    try:
+        import matplotlib  # noqa: F401
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+    except ImportError as e:
+        raise ImportError(_HINT) from e
+    return Figure, FigureCanvasAgg
+
+
+def _figure(figsize, **kwargs):
+    """A Figure on an Agg canvas, outside pyplot (closing it is dropping it)."""
+    Figure, FigureCanvasAgg = _matplotlib()
+    fig = Figure(figsize=figsize, **kwargs)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _save(fig, path, **kwargs):
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    fig.savefig(path, **kwargs)
+
+
+def _colour(i):
+    return f"C{i % 10}"
+
+
+def _legend(ax, title=None, handles=None, ncol=1):
+    kwargs = {"handles": handles} if handles is not None else {}
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8,
+              title=title, title_fontsize=8, frameon=False, ncol=ncol, **kwargs)

@@ -1,0 +1,141 @@
+"""The drawing of a spatial run's frames in perspective (mplot3d): bodies as
+lines to their attachment points, their inertia boxes and turning axes."""
+
+import numpy as np
+
+from ._figures import _colour, _figure
+from .frames import _Drawing, _speed_words, _time_format
+
+_TRIAD_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")  # body axes x, y, z: red, green, blue
+_POKE = 1.2  # a body's axes reach this far past its inertia box
+
+
+def _box_edges(corners):
+    """(36, 3) the 12 edges of a box with corners (8, 3) (index bits z y x)
+    as one polyline, NaN between edges."""
+    pairs = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
+    gap = np.full(3, np.nan)
+    return np.array([p for a, b in pairs for p in (corners[a], corners[b], gap)])
+
+
+def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
+    """The spatial drawing of the frames ``shown``: each body as lines from
+    its centre of mass to the points where elements attach to it (a rod
+    pinned at one end drawn whole, as in the plane; a dot alone if none),
+    the edges of its inertia box (the uniform box with its mass and
+    inertia, Scene.box) and its axes (a triad: x red, y green, z blue,
+    reaching a fifth past the box, at least a 25th of the scene) that turn
+    with it, so that spin shows;
+    white circles at the joints, triangles at joints to the ground, grey
+    lines for spring-dampers and distance links, traced points' paths;
+    equal scales on the three axes, in m, seen from view = (elevation,
+    azimuth) in degrees."""
+    result = scene.result
+    t = np.asarray(shown.t)
+    elevation, azimuth = (float(x) for x in view)
+    outlines = {b: scene.drawn_outline(b) + [p for tb, p in trace if tb == b] for b in scene.bodies}
+    centres = {b: shown.body(b).position for b in scene.bodies}
+    spokes = {b: [scene.path(b, p, result=shown) for p in outlines[b]] for b in scene.bodies}
+    rotations = {b: getattr(shown.body(b), "rotation", None) for b in scene.bodies}
+    corners = {b: scene.box(b) for b in scene.bodies if rotations[b] is not None}
+    corners = {b: c for b, c in corners.items() if c is not None}
+    boxes = {b: _box_edges(c) for b, c in corners.items()}
+    traces = [scene.path(b, p) for b, p in trace]
+    trace_frames = [scene.path(b, p, result=shown) for b, p in trace]
+    reached = np.searchsorted(np.asarray(result.t), t, side="right")
+    joints, supports, links = [], [], []
+    for kind, kw in scene.elements:
+        att = scene.attachments(kw["name"])
+        if kind in ("add_spring_damper", "add_distance") and len(att) == 2:
+            links.append((scene.path(*att[0], result=shown), scene.path(*att[1], result=shown)))
+        elif scene.kind_of.get(kw["name"]) and kw["name"] in scene.joints and att:
+            moving = [(b, p) for b, p in att if b != "ground"]
+            if moving:
+                joints.append(scene.path(*moving[-1], result=shown))
+            supports += [p for b, p in att if b == "ground"]
+    # the limits: everything drawn, over all outputs and frames
+    everywhere = [result.body(b).position for b in scene.bodies] \
+        + [scene.path(b, p) for b in scene.bodies for p in outlines[b]]
+    for b, c in corners.items():  # with the axes that poke out of the box
+        everywhere.append((result.body(b).position[:, None, :]
+                           + np.einsum("kij,nj->kni", result.body(b).rotation, _POKE * c)).reshape(-1, 3))
+    clouds = everywhere + list(centres.values()) + [s for paths in spokes.values() for s in paths] + traces \
+        + joints + [p for link in links for p in link] + [np.asarray(p)[None, :] for p in supports]
+    pts = np.concatenate([np.asarray(c).reshape(-1, 3) for c in clouds]) if clouds else np.zeros((1, 3))
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(3)
+    half = 0.55 * max(float(np.max(np.ptp(pts, axis=0))) if len(pts) else 0.0, 1e-3)
+    # the body axes drawn: poking out of the box along them, at least a 25th of the scene
+    turning = [b for b in scene.bodies if rotations[b] is not None]
+    triad = {b: np.maximum(0.08 * half, _POKE * np.abs(corners[b]).max(axis=0) if b in corners else 0.0)
+             for b in turning}
+
+    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    ax = fig.add_subplot(projection="3d")
+    ax.view_init(elev=elevation, azim=azimuth)
+    for axis, set_lim, label in zip(range(3), (ax.set_xlim, ax.set_ylim, ax.set_zlim), "xyz"):
+        set_lim(centre[axis] - half, centre[axis] + half)
+        getattr(ax, f"set_{label}label")(f"{label} (m)")
+    if hasattr(ax, "set_box_aspect"):
+        ax.set_box_aspect((1, 1, 1))
+    ax.set_title(f"lagmb: {scene.summary()}{_speed_words(speed)}", fontsize=10)
+    if supports:
+        s = np.array(supports, dtype=float)
+        ax.plot(s[:, 0], s[:, 1], s[:, 2], "^", ms=9, color="0.75", mec="0.2")
+    trace_colours = [_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
+    for c, path_ in zip(trace_colours, traces):
+        ax.plot(*path_.T, color=c, lw=1, alpha=0.2)
+
+    # per frame: the lines of every body's box, axes, spokes in one array each
+    box_frames = {b: centres[b][:, None, :] + np.einsum("kij,nj->kni", rotations[b], edges)
+                  for b, edges in boxes.items()}
+    gap = np.full((len(t), 1, 3), np.nan)
+    triad_frames = []
+    for axis in range(3):
+        parts = []
+        for b in turning:
+            c = centres[b][:, None, :]
+            parts += [c, c + triad[b][axis] * rotations[b][:, None, :, axis], gap]
+        triad_frames.append(np.concatenate(parts, axis=1) if parts else np.zeros((len(t), 0, 3)))
+
+    trace_done = [ax.plot([], [], [], color=c, lw=1.3)[0] for c in trace_colours]
+    link_art = [ax.plot([], [], [], color="0.35", lw=1.2)[0] for _ in links]
+    box_art = {b: ax.plot([], [], [], color=_colour(scene.bodies.index(b)), lw=1.0, alpha=0.8)[0]
+               for b in boxes}
+    body_art = [ax.plot([], [], [], color=_colour(i), lw=4, solid_capstyle="round")[0]
+                for i, _ in enumerate(scene.bodies)]
+    triad_art = [ax.plot([], [], [], color=c, lw=1.6)[0] for c in _TRIAD_COLOURS] if turning else []
+    centre_art = ax.plot([], [], [], "o", ms=3.5, color="0.1")[0]
+    joint_art = ax.plot([], [], [], "o", ms=5.5, mfc="white", mec="0.15", mew=1.2)[0]
+    stamp = ax.text2D(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
+                      family="monospace")
+    stamp_format = _time_format(t)
+
+    def update(k):
+        for b, art in zip(scene.bodies, body_art):
+            c = centres[b][k]
+            xyz = np.array([c] + [p for s in spokes[b] for p in (s[k], c)]) if spokes[b] else c[None, :]
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+            art.set_marker("" if spokes[b] else "o")
+        for b, art in box_art.items():
+            xyz = box_frames[b][k]
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+        for art, xyz in zip(triad_art, triad_frames):
+            art.set_data_3d(xyz[k, :, 0], xyz[k, :, 1], xyz[k, :, 2])
+        c = np.array([centres[b][k] for b in scene.bodies]).reshape(-1, 3)
+        centre_art.set_data_3d(c[:, 0], c[:, 1], c[:, 2])
+        j = np.array([p[k] for p in joints]).reshape(-1, 3)
+        joint_art.set_data_3d(j[:, 0], j[:, 1], j[:, 2])
+        for art, (p, q) in zip(link_art, links):
+            xyz = np.array([p[k], q[k]])
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+        for art, path_, at in zip(trace_done, traces, trace_frames):
+            xyz = np.concatenate([path_[:reached[k]], at[k][None, :]])
+            art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
+        stamp.set_text(stamp_format.format(t[k]))
+
+    artists = {"traces": trace_done, "links": link_art, "boxes": list(box_art.values()), "bodies": body_art,
+               "triad": triad_art, "centres": centre_art, "joints": joint_art, "stamp": stamp}
+    drawing = _Drawing(fig, artists, update)
+    drawing.triad_lengths = triad  # {body: (3,) m}
+    return drawing
