@@ -86,7 +86,7 @@ def test_the_umbrella_header_includes_every_public_header():
 #: each imports only from its own layer or the ones before, at the top of a
 #: file or inside a function alike (a late import is still a dependency).
 PYTHON_LAYERS = [
-    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes"],
+    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations"],
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["_drawing"],

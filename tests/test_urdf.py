@@ -174,7 +174,7 @@ def _free_flyer_accelerations(model, js, q, v, qdd, base):
     frame's velocity in its own axes, linear then angular) from lagmb's."""
     k = [b.name for b in model.bodies].index(base)
     p, pd_, pdd = q[7 * k + 3:7 * k + 7], v[7 * k + 3:7 * k + 7], qdd[7 * k + 3:7 * k + 7]
-    from lagmb.joints import _E, _rotation_of
+    from lagmb._rotations import E as _E, matrix as _rotation_of
     R = _rotation_of(p)
     omega, alpha = 2 * _E(p) @ pd_, 2 * _E(p) @ pdd
     return R, omega, alpha, k
@@ -203,7 +203,7 @@ def test_a_floating_base_moves_as_pinocchios_free_flyer(relpath):
         q_pin[:3], q_pin[3:7] = origin, np.r_[quaternion[1:], quaternion[0]]
         v_pin[:3], v_pin[3:6] = v_local, w_local
         expected = pin.aba(pm, pd, q_pin, v_pin, np.zeros(pm.nv))
-        from lagmb.joints import _rotation_of
+        from lagmb._rotations import matrix as _rotation_of
         R = _rotation_of(quaternion)
         omega = R @ w_local
         centre = origin + R @ com_local

@@ -11,6 +11,7 @@ function the joint's drivers hold).
 
 import numpy as np
 
+from . import _rotations
 from .errors import ModelError, translated
 from .model import Model
 
@@ -21,46 +22,6 @@ _MOVING = {"add_revolute": "turns", "add_translational": "slides"}
 def _unit(x):
     x = np.asarray(x, dtype=float)
     return x / np.linalg.norm(x)
-
-
-def _quaternion_of(R):
-    """The unit quaternion (w, x, y, z) of a rotation matrix, w >= 0
-    (Shepperd: from the largest of 4 w^2, 4 x^2, 4 y^2, 4 z^2 and the
-    off-diagonal sums, so that no component comes from the square root of a
-    difference that cancels)."""
-    t = np.array([1.0 + R[0, 0] + R[1, 1] + R[2, 2], 1.0 + R[0, 0] - R[1, 1] - R[2, 2],
-                  1.0 - R[0, 0] + R[1, 1] - R[2, 2], 1.0 - R[0, 0] - R[1, 1] + R[2, 2]])
-    k = int(np.argmax(t))
-    s = 2.0 * np.sqrt(t[k])
-    if k == 0:
-        p = [s / 4, (R[2, 1] - R[1, 2]) / s, (R[0, 2] - R[2, 0]) / s, (R[1, 0] - R[0, 1]) / s]
-    elif k == 1:
-        p = [(R[2, 1] - R[1, 2]) / s, s / 4, (R[0, 1] + R[1, 0]) / s, (R[0, 2] + R[2, 0]) / s]
-    elif k == 2:
-        p = [(R[0, 2] - R[2, 0]) / s, (R[0, 1] + R[1, 0]) / s, s / 4, (R[1, 2] + R[2, 1]) / s]
-    else:
-        p = [(R[1, 0] - R[0, 1]) / s, (R[0, 2] + R[2, 0]) / s, (R[1, 2] + R[2, 1]) / s, s / 4]
-    p = np.array(p)
-    return (p if p[0] >= 0 else -p) / np.linalg.norm(p)
-
-
-def _rotation_of(p):
-    w, x, y, z = p
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-
-
-def _turn(axis, angle):
-    """Rotation by `angle` about the unit `axis` (Rodrigues)."""
-    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    return np.eye(3) + np.sin(angle) * K + (1.0 - np.cos(angle)) * (K @ K)
-
-
-def _E(p):
-    """E(p) (3 x 4): omega = 2 E(p) p' in global axes (lagmb's spatial.hpp)."""
-    w, x, y, z = p
-    return np.array([[-x, w, -z, y], [-y, z, w, -x], [-z, -y, x, w]])
 
 
 class JointSpace:
@@ -83,7 +44,7 @@ class JointSpace:
         self._R0, self._r0 = {"ground": np.eye(3)}, {"ground": np.zeros(3)}
         for k, name in enumerate(self._bodies):
             self._r0[name] = q0[7 * k:7 * k + 3]
-            self._R0[name] = _rotation_of(q0[7 * k + 3:7 * k + 7])
+            self._R0[name] = _rotations.matrix(q0[7 * k + 3:7 * k + 7])
         parent_of, joints = {}, {}
         for method, values in model.elements():
             if method not in _MOVING:
@@ -102,7 +63,7 @@ class JointSpace:
             # initial configuration has the joint's given angle or slide)
             R_rel, r_rel = Rp.T @ self._R0[body_j], Rp.T @ (self._r0[body_j] - rp)
             if _MOVING[method] == "turns":
-                back = _turn(axis_p, -float(values.get("angle") or 0.0))
+                back = _rotations.turn(axis_p, -float(values.get("angle") or 0.0))
                 R_rel, r_rel = back @ R_rel, back @ (r_rel - at_p) + at_p
             else:
                 r_rel = r_rel - float(values.get("slide") or 0.0) * axis_p
@@ -141,7 +102,7 @@ class JointSpace:
         r, v, w, a, al = ({"ground": zero} for _ in range(5))
         for body in self.free:
             given = (free or {}).get(body, {})
-            R[body] = _rotation_of(_unit(given["orientation"])) if "orientation" in given else self._R0[body]
+            R[body] = _rotations.matrix(_unit(given["orientation"])) if "orientation" in given else self._R0[body]
             r[body] = np.asarray(given.get("position", self._r0[body]), dtype=float)
             v[body] = np.asarray(given.get("velocity", zero), dtype=float)
             w[body] = np.asarray(given.get("angular_velocity", zero), dtype=float)
@@ -157,7 +118,7 @@ class JointSpace:
             s = r[P] + R[P] @ j["at"]  # a point of the axis, global
             wP, vP = w[P], v[P]
             if j["kind"] == "turns":
-                turn = _turn(j["axis"], x)
+                turn = _rotations.turn(j["axis"], x)
                 R[C] = R[P] @ turn @ j["R"]
                 r[C] = r[P] + R[P] @ (turn @ (j["r"] - j["at"]) + j["at"])
                 d, e = r[C] - r[P], r[C] - s
@@ -177,12 +138,12 @@ class JointSpace:
         n = 7 * len(self._bodies)
         q, qd, qdd = np.zeros(n), np.zeros(n), np.zeros(n)
         for k, body in enumerate(self._bodies):
-            p = _quaternion_of(R[body])
-            pd = 0.5 * _E(p).T @ w[body]
+            p = _rotations.quaternion(R[body])
+            pd = 0.5 * _rotations.E(p).T @ w[body]
             q[7 * k:7 * k + 7] = np.concatenate([r[body], p])
             qd[7 * k:7 * k + 7] = np.concatenate([v[body], pd])
             # alpha = 2 E(p) p'' and p . p'' = -|p'|^2 (p stays a unit quaternion)
-            qdd[7 * k:7 * k + 7] = np.concatenate([a[body], 0.5 * _E(p).T @ al[body] - (pd @ pd) * p])
+            qdd[7 * k:7 * k + 7] = np.concatenate([a[body], 0.5 * _rotations.E(p).T @ al[body] - (pd @ pd) * p])
         return q, qd, qdd
 
     def with_rates(self, rates):
@@ -195,7 +156,7 @@ class JointSpace:
             if method == "add_body":
                 k = self._index[values["name"]]
                 values = dict(values, velocity=tuple(v[7 * k:7 * k + 3]),
-                              angular_velocity=tuple(2.0 * _E(q[7 * k + 3:7 * k + 7]) @ v[7 * k + 3:7 * k + 7]))
+                              angular_velocity=tuple(2.0 * _rotations.E(q[7 * k + 3:7 * k + 7]) @ v[7 * k + 3:7 * k + 7]))
             getattr(out, method)(**values)
         return out
 

@@ -5,7 +5,7 @@ import threading
 
 import numpy as np
 
-from . import _core
+from . import _core, _rotations
 from . import registry
 from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
 from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
@@ -562,10 +562,7 @@ def _rotation(orientation):
     a = np.asarray(orientation, dtype=float)
     if a.shape == (3, 3):
         return a
-    w, x, y, z = a / np.linalg.norm(a)
-    return np.array([[w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z]])
+    return _rotations.matrix(a / np.linalg.norm(a))
 
 
 class Frame(tuple):

@@ -4,7 +4,8 @@ from functools import cached_property
 
 import numpy as np
 
-from . import _core
+from . import _core, _rotations
+from ._rotations import matrix as rotation_matrices  # (statics reads it from here)
 from .errors import KinematicOnlyError, ModelError, SimulationError
 from .handles import name_of
 
@@ -44,26 +45,6 @@ def rebuilt_core(model, parameters):
     return core.with_parameters(parameters) if parameters else core
 
 
-def _E(p):
-    """E(p) (k, 3, 4) of Euler parameters p (k, 4): omega = 2 E(p) p'
-    (global axes; lagmb/spatial.hpp)."""
-    e0, e1, e2, e3 = p[:, 0], p[:, 1], p[:, 2], p[:, 3]
-    return np.stack([np.stack([-e1, e0, -e3, e2], axis=1),
-                     np.stack([-e2, e3, e0, -e1], axis=1),
-                     np.stack([-e3, -e2, e1, e0], axis=1)], axis=1)
-
-
-def rotation_matrices(p):
-    """A(p) (k, 3, 3), body axes into global axes, of unit Euler parameters
-    p (k, 4) (w, x, y, z)."""
-    p = np.asarray(p, dtype=float).reshape(-1, 4)
-    w, x, y, z = p.T
-    return np.stack([
-        np.stack([w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=1),
-        np.stack([2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)], axis=1),
-        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z], axis=1)], axis=1)
-
-
 class BodyPath:
     """The motion of one body.
 
@@ -85,7 +66,7 @@ class BodyPath:
             self.velocity = cols(result.v, 0, 3)
             self.acceleration = cols(result.a, 0, 3)
             self.orientation = cols(result.q, 3, 7)
-            E = _E(self.orientation)
+            E = _rotations.E(self.orientation)
             self.angular_velocity = 2.0 * np.einsum("kij,kj->ki", E, cols(result.v, 3, 7))
             self.angular_acceleration = 2.0 * np.einsum("kij,kj->ki", E, cols(result.a, 3, 7))
             self.rotation = rotation_matrices(self.orientation)

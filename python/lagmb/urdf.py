@@ -26,7 +26,7 @@ import xml.parsers.expat
 
 import numpy as np
 
-from . import _checks
+from . import _checks, _rotations
 from .errors import ModelError
 from .model import Model
 
@@ -128,15 +128,6 @@ def _read_xml(path):
 _XML_BLANKS = re.compile(r"[ \t\r\n]+")
 
 
-def _rotation_rpy(rpy):
-    """R = Rz(yaw) Ry(pitch) Rx(roll): URDF's fixed-axis roll, pitch, yaw."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
 class _Reader:
     """Reads one URDF file into links, joints and the tree they make."""
 
@@ -202,7 +193,7 @@ class _Reader:
         o = element.one("origin") if element is not None else None
         if o is None:
             return np.eye(3), np.zeros(3)
-        return (_rotation_rpy(self.numbers(o, "rpy", 3, owner, (0.0, 0.0, 0.0), largest=None)),
+        return (_rotations.from_rpy(self.numbers(o, "rpy", 3, owner, (0.0, 0.0, 0.0), largest=None)),
                 self.numbers(o, "xyz", 3, owner, (0.0, 0.0, 0.0)))
 
     def link(self, element):
@@ -411,12 +402,6 @@ class _Reader:
         return links, joints, roots[0], parent_joint
 
 
-def _turn(axis, angle):
-    """Rotation by `angle` about the unit `axis` (Rodrigues)."""
-    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1.0 - math.cos(angle)) * (K @ K)
-
-
 def _children(joints):
     out = {}
     for joint in joints.values():
@@ -571,7 +556,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             x = value.get(joint["name"], 0.0)
             moves_as = joint.get("moves_as", joint["type"])
             if moves_as in ("revolute", "continuous"):
-                R_joint = R_joint @ _turn(joint["axis"], x)
+                R_joint = R_joint @ _rotations.turn(joint["axis"], x)
             elif moves_as == "prismatic":
                 p_joint = p_joint + R_joint @ (x * joint["axis"])
             if np.abs(p_joint).max() > LARGEST:  # (origins within LARGEST each, but many in a chain)

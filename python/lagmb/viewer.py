@@ -27,10 +27,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import _checks
+from . import _checks, _rotations
 from ._checks import show
-from .errors import ModelError
 from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line
+from .errors import ModelError
 from .plotting import trace_points
 
 _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
@@ -109,14 +109,9 @@ def _quaternion_z(angle):
 
 
 def _quaternion_of(R):
-    """(x, y, z, w) of a rotation matrix."""
-    R = np.asarray(R, dtype=float)
-    w = math.sqrt(max(0.0, 1.0 + R[0, 0] + R[1, 1] + R[2, 2])) / 2.0
-    x = math.copysign(math.sqrt(max(0.0, 1.0 + R[0, 0] - R[1, 1] - R[2, 2])) / 2.0, R[2, 1] - R[1, 2])
-    y = math.copysign(math.sqrt(max(0.0, 1.0 - R[0, 0] + R[1, 1] - R[2, 2])) / 2.0, R[0, 2] - R[2, 0])
-    z = math.copysign(math.sqrt(max(0.0, 1.0 - R[0, 0] - R[1, 1] + R[2, 2])) / 2.0, R[1, 0] - R[0, 1])
-    q = np.array([x, y, z, w])
-    return list(q / np.linalg.norm(q))
+    """(x, y, z, w), three.js's order, of a rotation matrix."""
+    w, x, y, z = _rotations.quaternion(R)
+    return [float(x), float(y), float(z), float(w)]
 
 
 def _bar(a, b, width, colour, z=0.0):

@@ -3,6 +3,7 @@ efforts, energy and the constraint residual, one subplot under the other."""
 
 import numpy as np
 
+from .. import _rotations
 from .._drawing import Scene, stats_line
 from ._figures import _colour, _figure, _legend, _matplotlib, _save
 
@@ -153,9 +154,7 @@ def _angle(result, body):
     b = result.body(body)
     if not hasattr(b, "orientation"):
         return b.angle
-    p = b.orientation
-    cos_half = np.abs(p @ p[0])  # the w of p0* p
-    return 2.0 * np.arccos(np.clip(cos_half, 0.0, 1.0))
+    return _rotations.turned(b.orientation, b.orientation[0])
 
 
 def _lines(ax, t, series, total, what, ylabel):
