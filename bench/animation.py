@@ -8,7 +8,8 @@ Two runs, each drawn into 300 frames at the default size (640 x 480):
 The plotting module is lagmb.plotting as imported (the installed lagmb:
 install this tree, or put a copy of it first on PYTHONPATH), and with
 ``--before REV`` also the plotting.py of that git revision, loaded beside it
-(its relative imports read the imported lagmb). A revision whose animate
+(its relative imports read the imported lagmb; a revision from before issue
+40, which made lagmb.plotting a package). A revision whose animate
 has no ``speed`` is asked for max_frames=300 (its frames were outputs); one
 with ``speed`` for 300 frames at 25 frames/s (the planar run in real time,
 the spatial one at 1/6 speed). The runs themselves are not timed.
@@ -97,15 +98,19 @@ def time_animate(plotting, r, path, repeat):
 
 
 def _drawing(plotting, r):
-    """(drawing, durations) of FRAMES frames of r by the imported plotting.py."""
+    """(drawing, durations) of FRAMES frames of r by the imported lagmb.plotting
+    (a package since issue 40: its frames, planar and spatial modules)."""
+    from lagmb._drawing import Scene
+    from lagmb.plotting import frames, planar, spatial
+
     span = float(r.t[-1] - r.t[0])
     speed = span * 25 / FRAMES
-    times, durations = plotting._frame_plan(r.t, 25, speed, FRAMES)
-    shown = plotting._resample(r, times)
-    scene = plotting._Scene(r)
+    times, durations = frames._frame_plan(r.t, 25, speed, FRAMES)
+    shown = frames._resample(r, times)
+    scene = Scene(r)
     if scene.dimension == 3:
-        return plotting._spatial_drawing(scene, shown, [], (640, 480), 100, (20.0, -70.0), speed), durations
-    return plotting._planar_drawing(scene, shown, [], (640, 480), 100, speed), durations
+        return spatial._spatial_drawing(scene, shown, [], (640, 480), 100, (20.0, -70.0), speed), durations
+    return planar._planar_drawing(scene, shown, [], (640, 480), 100, speed), durations
 
 
 def _redrawn_pillowwriter(drawing, durations, path):
@@ -159,9 +164,9 @@ def _blitted_palette_each(drawing, durations, path):
 
 
 def _blitted_one_palette(drawing, durations, path):
-    from lagmb import plotting
+    from lagmb.plotting import frames
 
-    plotting._write_gif(drawing, path, durations)
+    frames._write_gif(drawing, path, durations)
 
 
 STAGES = {"redrawn, PillowWriter (the old way)": _redrawn_pillowwriter,
@@ -204,7 +209,7 @@ def main():
         versions.append((f"before ({args.before})", plotting_of(args.before)))
     head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                           text=True).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--", "python/lagmb/plotting.py"], cwd=ROOT,
+    dirty = subprocess.run(["git", "status", "--porcelain", "--", "python/lagmb/plotting"], cwd=ROOT,
                            capture_output=True, text=True).stdout.strip()
     versions.append((f"now ({head}{' + changes' if dirty else ''})", plotting))
     folder = args.keep or tempfile.mkdtemp(prefix="lagmb-gifs-")
