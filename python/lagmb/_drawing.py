@@ -2,7 +2,8 @@
 (lagmb.plotting) and the browser viewer (lagmb.view): the Scene (bodies,
 elements by role, where they attach, the inertia a body is drawn with), a
 body's planar outline shape, the faces of a spatial shape (box, cylinder,
-sphere, STL mesh) and the caption's words.
+sphere, STL mesh), the caption's words, the points a drawing traces
+(trace_points) and a model posed along a vibration mode.
 
 What it reads of the model comes from ``model.elements()`` (the add_* and
 drive_* calls with their arguments, counted by the role the registry of
@@ -15,7 +16,10 @@ import os
 
 import numpy as np
 
+from ._checks import decimal, show
 from ._meshes import read_stl
+from .errors import ModelError
+from .handles import Handle, name_of
 from .registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD
 
 
@@ -247,6 +251,79 @@ def shape_faces(shape):
     if not shape.mesh.lower().endswith(".stl") or not os.path.isfile(shape.mesh):
         return None
     return list(read_stl(shape.mesh) * np.asarray(shape.size))
+
+
+# --- the points a drawing traces -------------------------------------------------
+
+
+def trace_points(model, trace, context="animate: trace"):
+    """The traced points as [(body name, local point)] from what ``animate``
+    and ``lagmb run --trace`` take: a body (handle or name: its centre of
+    mass), an element (a joint, force, spring: by handle or name; the point
+    where it attaches to its moving body, the last it names), a pair
+    (body, local point), or "body:x,y" ("body:x,y,z" in space); one of them
+    or a list. A ModelError names what cannot be traced, after ``context``."""
+    size = getattr(model, "dimension", 2)
+
+    def said(item):
+        return str(item) if context.startswith("--") else repr(item)
+
+    if trace is None:
+        return []
+    if isinstance(trace, (str, Handle)) or (isinstance(trace, (tuple, list)) and len(trace) == 2
+                                             and isinstance(trace[0], (str, Handle)) and np.ndim(trace[1]) == 1):
+        trace = [trace]  # one of them
+    try:
+        trace = list(trace)
+    except TypeError:
+        raise ModelError(f"{context}: expected a body, an element, (body, point), "
+                         f"'body:{'x,y' if size == 2 else 'x,y,z'}' or a list of them, got {show(trace)}") from None
+    bodies = [b.name for b in model.bodies]
+
+    def body_named(body, item):
+        body = name_of(model, body, ("body",), "body", context)
+        if body not in bodies:
+            raise ModelError(f"{context} {said(item)}: no body named {body!r}; the bodies are " + ", ".join(bodies))
+        return body
+
+    out = []
+    for item in trace:
+        if isinstance(item, (tuple, list)) and len(item) == 2:
+            body, point = body_named(item[0], item), item[1]
+        elif isinstance(item, str) and ":" in item:
+            body, text = item.split(":", 1)
+            point = [decimal(x, f"{context} {said(item)}") for x in text.split(",")]
+            if len(point) != size:
+                raise ModelError(f"{context} {said(item)}: a point on a body is body:{'x,y' if size == 2 else 'x,y,z'} "
+                                 "(m, in the body's own axes)")
+            body = body_named(body, item)
+        elif isinstance(item, Handle) and item.role == "body":
+            out.append((body_named(item, item), np.zeros(size)))
+            continue
+        elif isinstance(item, (str, Handle)):
+            if item in bodies:
+                out.append((item, np.zeros(size)))
+                continue
+            try:
+                attached = model.attachments(item)
+            except ModelError:
+                raise ModelError(f"{context} {said(item)}: no body or element of that name; the bodies are "
+                                 + ", ".join(bodies)) from None
+            moving = [(b, p) for b, p in attached if b != "ground"]
+            if not moving:
+                raise ModelError(f"{context} {said(item)}: it attaches to no moving body")
+            out.append((moving[-1][0], np.asarray(moving[-1][1], dtype=float)))
+            continue
+        else:
+            raise ModelError(f"{context}: expected a body, an element, (body, point) or 'body:x,y', got {item!r}")
+        try:
+            point = np.asarray(point, dtype=float).reshape(size)
+        except (TypeError, ValueError):
+            raise ModelError(f"{context} point {point!r}: must be {size} numbers") from None
+        if not np.all(np.isfinite(point)):
+            raise ModelError(f"{context} point {tuple(point.tolist())}: must be finite")
+        out.append((body, point))
+    return out
 
 
 # --- a model posed (a vibration mode's shape) ---------------------------------

@@ -29,9 +29,8 @@ import numpy as np
 
 from . import _checks, _rotations
 from ._checks import show
-from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line
+from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line, trace_points
 from .errors import ModelError
-from .plotting import trace_points
 
 _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
             (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.50, 0.50, 0.50), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81)]

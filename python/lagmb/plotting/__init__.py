@@ -18,8 +18,8 @@ by planar or spatial), modes (animate_mode), pictures (picture), sweeps
 matplotlib set-up they share. What a drawing shows of the model is
 lagmb._drawing (shared with the browser viewer)."""
 
+from .._drawing import trace_points
 from .animation import animate
-from .frames import trace_points
 from .history import plot_result
 from .modes import animate_mode
 from .pictures import picture

@@ -19,6 +19,14 @@ def _matplotlib():
     return Figure, FigureCanvasAgg
 
 
+def _pillow():
+    """Pillow, which writes the GIFs, or an ImportError with the install hint."""
+    try:
+        from PIL import Image  # noqa: F401
+    except ImportError as e:
+        raise ImportError(_HINT) from e
+
+
 def _figure(figsize, **kwargs):
     """A Figure on an Agg canvas, outside pyplot (closing it is dropping it)."""
     Figure, FigureCanvasAgg = _matplotlib()

@@ -3,10 +3,10 @@
 
 import numpy as np
 
-from .._drawing import Scene
+from .._drawing import Scene, trace_points
 from ..errors import ModelError
-from ._figures import _HINT, _matplotlib
-from .frames import _FPS, _MAX_FPS, _MAX_FRAMES, _checked, _frame_plan, _resample, _write_gif, trace_points
+from ._figures import _matplotlib, _pillow
+from .frames import _FPS, _MAX_FPS, _MAX_FRAMES, _checked, _frame_plan, _resample, _write_gif
 from .planar import _planar_drawing
 from .spatial import _spatial_drawing
 
@@ -60,10 +60,7 @@ def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size
     the picture in pixels. Returns the path written.
     """
     _matplotlib()
-    try:
-        from PIL import Image  # noqa: F401 - there before anything is drawn
-    except ImportError as e:
-        raise ImportError(_HINT) from e
+    _pillow()  # there before anything is drawn
     if max_frames is not None:
         if frames is not None:
             raise ModelError("animate: give frames or its old name max_frames, not both")

@@ -8,7 +8,7 @@ import numpy as np
 
 from .._drawing import Scene, counted, mode_amplitude, posed
 from ..errors import ModelError
-from ._figures import _HINT, _matplotlib
+from ._figures import _matplotlib, _pillow
 from .frames import _MAX_FPS, _checked, _write_gif
 from .planar import _planar_drawing
 from .spatial import _spatial_drawing
@@ -54,10 +54,7 @@ def animate_mode(modes, index=0, path=None, *, amplitude=None, cycles=2, fps=25,
     from ..linear import Modes
 
     _matplotlib()
-    try:
-        from PIL import Image  # noqa: F401 - there before anything is drawn
-    except ImportError as e:
-        raise ImportError(_HINT) from e
+    _pillow()  # there before anything is drawn
     if not isinstance(modes, Modes):
         raise ModelError(f"animate_mode: modes must be what mb.modes(model) returns, got {type(modes).__name__}")
     count = len(modes)
