@@ -541,6 +541,7 @@ def _animation_options(args, scene, animate):
     option and the value as typed); they need an animation (--animate or
     [output] animate)."""
     plotting = _plotting()
+    from .plotting import frames
     given = [(option, value) for option, value in (("--fps", args.fps), ("--speed", args.speed),
                                                    ("--frames", args.frames)) if value is not None]
     if args.trace:
@@ -552,11 +553,11 @@ def _animation_options(args, scene, animate):
     motion = {}
     try:
         if args.fps is not None:
-            motion["fps"] = plotting._checked("--fps", _typed(args.fps), 0.0, plotting._MAX_FPS)
+            motion["fps"] = frames.checked_setting("--fps", _typed(args.fps), 0.0, frames.MAX_FPS)
         if args.speed is not None:
-            motion["speed"] = plotting._checked("--speed", _typed(args.speed), 0.0)
+            motion["speed"] = frames.checked_setting("--speed", _typed(args.speed), 0.0)
         if args.frames is not None:
-            motion["frames"] = plotting._checked("--frames", _typed(args.frames), 0, whole=True)
+            motion["frames"] = frames.checked_setting("--frames", _typed(args.frames), 0, whole=True)
         if args.trace:
             plotting.trace_points(scene.model, args.trace, context="--trace")
             motion["trace"] = list(args.trace)
@@ -1177,9 +1178,10 @@ def _sweep_plot(args):
     except Exception as e:  # noqa: BLE001 - a folder zarr cannot read
         raise _Exit(USAGE, f"--plot {store}: not a study's store ({type(e).__name__}: {e})") from None
     plotting = _plotting()
+    from .plotting import sweeps
     kinds = list(_SWEEP_KINDS)
     try:  # the store keeps no order: lagmb sweep's kinds in --output's order, then the others by name
-        drawn = sorted(plotting._sweep_outputs(ds), key=lambda name: (
+        drawn = sorted(sweeps.sweep_outputs(ds), key=lambda name: (
             next((k for k, kind in enumerate(kinds) if name.startswith(kind)), len(kinds)), name))
         plotting.plot_sweep(ds, path, outputs=drawn)
     except ValueError as e:

@@ -25,16 +25,4 @@ from .modes import animate_mode
 from .pictures import picture
 from .sweeps import plot_sweep
 
-# (the names the module had before it was split, kept importable from here)
-import math, os, re  # noqa: E401,F401,I001
-import numpy as np  # noqa: F401
-from .._checks import decimal, real, show, vec2  # noqa: F401
-from ..errors import ModelError  # noqa: F401
-from ..handles import Handle, name_of  # noqa: F401
-from ..registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD  # noqa: F401
-
-# what lagmb.cli reads of the animation settings and sweep plots (its own import lines are another change's)
-from .frames import _MAX_FPS, _checked  # noqa: F401,E402
-from .sweeps import _sweep_outputs  # noqa: F401,E402
-
 __all__ = ["animate", "animate_mode", "picture", "plot_result", "plot_sweep", "trace_points"]

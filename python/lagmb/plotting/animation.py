@@ -6,7 +6,7 @@ import numpy as np
 from .._drawing import Scene, trace_points
 from ..errors import ModelError
 from ._figures import _matplotlib, _pillow
-from .frames import _FPS, _MAX_FPS, _MAX_FRAMES, _checked, _frame_plan, _resample, _write_gif
+from .frames import _FPS, MAX_FPS, _MAX_FRAMES, checked_setting, _frame_plan, _resample, _write_gif
 from .planar import _planar_drawing
 from .spatial import _spatial_drawing
 
@@ -65,10 +65,10 @@ def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size
         if frames is not None:
             raise ModelError("animate: give frames or its old name max_frames, not both")
         frames = max_frames
-    fps = _FPS if fps is None else _checked("animate: fps", fps, 0.0, _MAX_FPS)
+    fps = _FPS if fps is None else checked_setting("animate: fps", fps, 0.0, MAX_FPS)
     if speed is not None:
-        speed = _checked("animate: speed", speed, 0.0)
-    frames = _MAX_FRAMES if frames is None else _checked("animate: frames", frames, 0, whole=True)
+        speed = checked_setting("animate: speed", speed, 0.0)
+    frames = _MAX_FRAMES if frames is None else checked_setting("animate: frames", frames, 0, whole=True)
     t = np.asarray(result.t)
     if len(t) == 0:
         raise ModelError("animate: the result has no outputs")

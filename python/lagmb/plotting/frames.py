@@ -12,7 +12,7 @@ from .._drawing import unit_orientations
 from ..errors import ModelError
 
 _FPS = 25       # default frames per second: 40 ms a frame, four ticks of a GIF's 10 ms clock
-_MAX_FPS = 50   # GIF viewers show a frame of 10 ms for 100 ms: 20 ms is the shortest kept
+MAX_FPS = 50   # GIF viewers show a frame of 10 ms for 100 ms: 20 ms is the shortest kept
 _MAX_FRAMES = 1000  # unless asked: Pillow holds every frame until the GIF is written (0.3 MB at 640 x 480)
 
 
@@ -30,7 +30,7 @@ def _frame_plan(t, fps, speed, frames=None):
     span = t1 - t0
     playing = span / speed
     n = int(round(span * fps / speed)) if span > 0 else 1
-    n = min(n, int(math.floor(playing * _MAX_FPS + 1e-9)))  # no frame shorter than 20 ms
+    n = min(n, int(math.floor(playing * MAX_FPS + 1e-9)))  # no frame shorter than 20 ms
     if frames is not None:
         n = min(n, int(frames))
     n = max(n, 1)
@@ -95,7 +95,7 @@ def _speed_words(speed):
     return f", played at {speed:.3g} × real time"
 
 
-def _checked(name, value, low, high=None, whole=False):
+def checked_setting(name, value, low, high=None, whole=False):
     """An animation setting: a number (whole if asked) above low and at most
     high, else a ModelError naming it and the value as given ("animate: fps
     0: must be ..."; from the command line "--fps 0: ...")."""
@@ -110,7 +110,7 @@ def _checked(name, value, low, high=None, whole=False):
     except (TypeError, ValueError, OverflowError, ModelError):
         good = False
     if not good:
-        reason = " (GIF viewers show a frame shorter than 20 ms for 100 ms)" if high == _MAX_FPS else ""
+        reason = " (GIF viewers show a frame shorter than 20 ms for 100 ms)" if high == MAX_FPS else ""
         shown = value if name.startswith("--") else repr(value)
         raise ModelError(f"{name} {shown}: must be {words}{reason}")
     return int(number) if whole else number

@@ -9,7 +9,7 @@ import numpy as np
 from .._drawing import Scene, counted, mode_amplitude, posed
 from ..errors import ModelError
 from ._figures import _matplotlib, _pillow
-from .frames import _MAX_FPS, _checked, _write_gif
+from .frames import MAX_FPS, checked_setting, _write_gif
 from .planar import _planar_drawing
 from .spatial import _spatial_drawing
 
@@ -63,15 +63,15 @@ def animate_mode(modes, index=0, path=None, *, amplitude=None, cycles=2, fps=25,
         raise ModelError(f"animate_mode: index {index!r}: there {'is' if count == 1 else 'are'} "
                          f"{counted(count, 'mode')} ({which})")
     index = int(index)
-    fps = _checked("animate_mode: fps", fps, 0.0, _MAX_FPS)
-    cycles = _checked("animate_mode: cycles", cycles, 0, whole=True)
+    fps = checked_setting("animate_mode: fps", fps, 0.0, MAX_FPS)
+    cycles = checked_setting("animate_mode: cycles", cycles, 0, whole=True)
     frames = int(round(cycles * _MODE_CYCLE * fps)) if frames is None \
-        else _checked("animate_mode: frames", frames, 1, whole=True)
+        else checked_setting("animate_mode: frames", frames, 1, whole=True)
     frames = max(frames, 2)
     equilibrium = modes.equilibrium
     shape = np.asarray(modes.shapes[index], dtype=float)
     amplitude = mode_amplitude(equilibrium, shape) if amplitude is None \
-        else _checked("animate_mode: amplitude", amplitude, 0.0)
+        else checked_setting("animate_mode: amplitude", amplitude, 0.0)
 
     kind, omega, frequency = modes.kinds[index], float(modes.omega[index]), float(modes.frequencies[index])
     if kind == "rigid-body":  # its omega is round-off about 0

@@ -11,7 +11,7 @@ _SWEEP_RECORDS = ("status", "warnings", "steps", "wall_time", "q")  # what every
 _SWEEP_LINES = 8  # values of a second parameter drawn as lines; more: a heat map
 
 
-def _sweep_outputs(ds, outputs=None):
+def sweep_outputs(ds, outputs=None):
     """The outputs plot_sweep draws: those named (checked), else every
     output with one number per case."""
     def scalar(name):
@@ -137,7 +137,7 @@ def plot_sweep(ds, path=None, outputs=None, *, dpi=120):
         ds = open_store(ds)
     if "case" not in ds.dims or "status" not in ds:
         raise ValueError("plot_sweep: not a parameter study: give mb.sweep's Dataset or the path of its store")
-    names = _sweep_outputs(ds, outputs)
+    names = sweep_outputs(ds, outputs)
     _matplotlib()
     varied, fixed = _sweep_parameters(ds)
     ok = ds["status"].values == "ok"
