@@ -1,7 +1,8 @@
 """lagmb: planar and spatial multibody dynamics with Lagrange multipliers.
 
 Bodies keep Cartesian coordinates; joints add constraints Phi(q, t) = 0;
-the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS IDA.
+the equations M qdd + Phi_q^T lam = Q are integrated with SUNDIALS (IDAS,
+CVODE or ARKODE; docs/methods.md says which method a model gets).
 
     import lagmb as mb
     m = mb.Model(gravity=(0.0, -9.81))

@@ -1,4 +1,5 @@
-// The augmented (saddle-point) system of one instant, solved with sparse LU.
+// The augmented (saddle-point) system of one instant, solved through its Schur
+// complement (sparse Cholesky) or, without a positive definite M, sparse LU.
 #pragma once
 
 #include <Eigen/SparseCholesky>
@@ -19,8 +20,8 @@ namespace lagmb {
 /// singular positions); solve() then refines the solution against the
 /// unregularized K, so for a full-rank Phi_q the answer is exact.
 ///
-/// With every mass and inertia positive (M, diagonal, is then positive
-/// definite), K is solved through its Schur complement (range-space method):
+/// With every mass and inertia positive (M, block diagonal by body, is then
+/// positive definite), K is solved through its Schur complement (range-space method):
 ///   S = Phi_q M^-1 Phi_q^T + eps I   (symmetric positive definite for any Phi_q),
 ///   S lam = Phi_q M^-1 b1 - b2,   x1 = M^-1 (b1 - Phi_q^T lam),
 /// with a sparse Cholesky factorization of S. Its cost is linear in a

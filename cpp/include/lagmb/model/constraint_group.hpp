@@ -57,7 +57,7 @@ struct has_coordinate<Kind, std::void_t<decltype(std::declval<const Kind&>().coo
 /// during a run (a contact's impact speed) declares
 ///   static constexpr int run_state_size;   doubles per element
 ///   int run_state = -1;                    its offset, set by the Model
-/// and reads them at run + run_state from the run's Data::run_state. The
+/// and reads them at run + run_state from the run's Data::run->state. The
 /// Model itself is never written during a run.
 template <class Kind, class = void>
 struct run_state_size_of : std::integral_constant<int, 0> {};

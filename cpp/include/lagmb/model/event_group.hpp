@@ -72,7 +72,7 @@ class EventGroupBase {
   /// All event functions of the group, in element order, written at g.
   virtual void values(const double* q, const double* v, double t, double* g) const = 0;
   virtual int direction(int k, int r) const = 0;
-  /// run: the run's element state (Data::run_state), which the crossing may write.
+  /// run: the run's element state (Data::run->state), which the crossing may write.
   virtual EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const = 0;
 };
 

@@ -95,7 +95,7 @@ class Model {
   template <class Kind>
   void add_friction(Kind element);
   /// Gives an element of a kind with per-run state its offset in
-  /// Data::run_state (once: a contact is both a force and an event element).
+  /// Data::run->state (once: a contact is both a force and an event element).
   template <class Kind>
   void reserve_run_state(Kind& element) {
     if constexpr (run_state_size_v<Kind> > 0)
@@ -198,7 +198,7 @@ class Model {
   }
   const std::vector<std::unique_ptr<ForceGroupBase>>& force_groups() const { return forces_; }
   /// Event groups (stops, contact switches). What they record during a run
-  /// goes to the run's Data::run_state, never into the Model.
+  /// goes to the run's Data::run->state, never into the Model.
   const std::vector<std::unique_ptr<EventGroupBase>>& event_groups() const { return events_; }
   /// Force groups whose Q depends on q or v.
   const std::vector<const ForceGroupBase*>& state_dependent_forces() const {
@@ -248,7 +248,7 @@ class Model {
 
   /// Mean body mass (kg): regularization and multiplier tolerances scale with it.
   double mass_scale() const { return mass_scale_; }
-  /// Doubles of per-run element state (Data::run_state); 0 for most models.
+  /// Doubles of per-run element state (Data::run->state); 0 for most models.
   int run_state_size() const { return run_state_size_; }
 
  private:

@@ -22,7 +22,7 @@ struct SimulatorState {
   double t = 0.0;
   VecX q, v;
   VecX inputs;     // one per Model::inputs()
-  VecX run_state;  // Data::run_state (a contact's impact speed)
+  VecX run_state;  // Data::run->state (a contact's impact speed)
   long events = 0;  // event records up to t
   std::uint64_t model_id = 0;  // Model::id() of the model it belongs to
 };
