@@ -80,6 +80,17 @@ def test_the_umbrella_header_includes_every_public_header():
     assert missing == []
 
 
+
+def test_unit_tests_include_public_headers_only():
+    """The C++ unit tests (cpp/tests) check the core as its users see it:
+    they include lagmb's public headers and their own helpers (check.hpp,
+    models.hpp), not cpp/src's internal ones, which may move under them."""
+    tests = CPP / "tests"
+    internal = [f"{path.name} includes {name}" for path in sorted(tests.glob("*.[ch]pp"))
+                for name in INCLUDE.findall(path.read_text())
+                if not ((CPP / "include" / name).exists() or (tests / name).exists())]
+    assert sorted(tests.glob("test_*.cpp")) and internal == []
+
 # --- the Python package -------------------------------------------------------
 
 #: The Python modules by layer, lowest first (docs/design.md, section 2):
