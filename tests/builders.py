@@ -1,21 +1,80 @@
-"""lagmb models (and a helper or two) shared by several test files.
+"""lagmb models, scene texts and command runners shared by several test files.
 
 Kept apart from references.py so that the references stay free of lagmb.
 """
 
+import math
+import subprocess
+import sys
+
 import lagmb as mb
 
 
-def seed_pendulum(L=1.0, m=1.0, g=9.81):
-    """The seed pendulum: a uniform rod of length L, mass m, J = m L^2/12,
-    centre of mass at (L/2, 0), angle 0, pinned to the ground at the origin
-    by the revolute "pin" (which therefore sits at the rod's local point
-    (-L/2, 0)), gravity (0, -g), at rest."""
+def pendulum(L=1.0, m=1.0, g=9.81, angle=0.0, angular_velocity=0.0, inertia=None):
+    """The pendulum of the tests (the seed pendulum with the defaults): a
+    uniform rod "rod" of length L and mass m (J = m L^2/12 unless `inertia` is
+    given) pinned at one end to the ground at the origin by the revolute
+    "pin", its centre L/2 out at `angle` from +x, turning at
+    `angular_velocity` (at rest by default); gravity (0, -g)."""
     model = mb.Model(gravity=(0.0, -g))
-    rod = model.add_body("rod", mass=m, inertia=m * L**2 / 12.0,
-                         position=(0.5 * L, 0.0), angle=0.0)
+    inertia = m * L**2 / 12.0 if inertia is None else inertia
+    c, s = math.cos(angle), math.sin(angle)
+    motion = {}
+    if angular_velocity:  # the centre moves on its circle about the pin
+        motion = dict(velocity=(-0.5 * L * s * angular_velocity, 0.5 * L * c * angular_velocity),
+                      angular_velocity=angular_velocity)
+    rod = model.add_body("rod", mass=m, inertia=inertia, position=(0.5 * L * c, 0.5 * L * s), angle=angle,
+                         **motion)
     model.add_revolute("pin", model.ground, rod, at=(0.0, 0.0))
     return model
+
+
+def pendulum_scene(L=1.0, m=1.0, g=9.81, angle=0.0, inertia=None):
+    """The scene text ([model], [[bodies]], [[joints]]) of pendulum() with the
+    same arguments (at rest); a test appends the tables it needs
+    ([simulation], [output], drivers, ...). Numbers are written with repr,
+    so the text reads back as the same floats."""
+    inertia = m * L**2 / 12.0 if inertia is None else inertia
+    c, s = math.cos(angle), math.sin(angle)
+    angle_line = f"angle = {angle!r}\n" if angle else ""
+    return f"""\
+[model]
+gravity = [0.0, {-g!r}]
+
+[[bodies]]
+name = "rod"
+mass = {float(m)!r}
+inertia = {float(inertia)!r}
+position = [{0.5 * L * c!r}, {0.5 * L * s!r}]
+{angle_line}
+[[joints]]
+type = "revolute"
+name = "pin"
+body_i = "ground"
+body_j = "rod"
+at = [0.0, 0.0]
+"""
+
+
+def lagmb_command(*args, cwd=None, timeout=300, **options):
+    """The `lagmb` command (python -m lagmb) run on args (str() of each) in a
+    child process: the CompletedProcess, its output captured as text.
+    `options` go to subprocess.run (e.g. preexec_fn)."""
+    return subprocess.run([sys.executable, "-m", "lagmb", *map(str, args)], cwd=cwd, capture_output=True,
+                          text=True, timeout=timeout, **options)
+
+
+def lagmb_main(capsys, *args):
+    """(exit status, stdout, stderr) of the lagmb command run in this process
+    (lagmb.cli.main; argparse's usage errors exit through SystemExit)."""
+    from lagmb import cli
+
+    try:
+        code = cli.main([str(a) for a in args])
+    except SystemExit as e:
+        code = e.code
+    out, err = capsys.readouterr()
+    return code, out, err
 
 
 def rod_chain(n, L=1.0, m=1.0, g=9.81):

@@ -16,8 +16,6 @@ import csv
 import os
 import re
 import shutil
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -25,16 +23,12 @@ import pytest
 from lagmb.progress import Progress
 from lagmb.scene import load_scene
 
-from builders import ARM_URDF, gif_durations
+from builders import ARM_URDF, gif_durations, pendulum_scene
+from builders import lagmb_command as lagmb
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 FOUR_BAR_NAMES = ["crank", "coupler", "rocker"]
-
-
-def lagmb(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "lagmb", *map(str, args)], cwd=cwd,
-                          capture_output=True, text=True, timeout=300)
 
 
 @pytest.fixture
@@ -431,19 +425,7 @@ def test_progress_shows_after_the_delay_on_a_terminal_only():
     assert quiet.text == pipe.text == late.text == ""
 
 
-KINEMATIC_SCENE = """[model]
-gravity = [0.0, -9.81]
-[[bodies]]
-name = "rod"
-mass = 0.0
-inertia = 0.0
-position = [0.5, 0.0]
-[[joints]]
-type = "revolute"
-name = "pin"
-body_i = "ground"
-body_j = "rod"
-at = [0.0, 0.0]
+KINEMATIC_SCENE = pendulum_scene(m=0.0) + """
 [[drivers]]
 type = "joint"
 name = "motor"

@@ -14,6 +14,7 @@ import pytest
 from scipy.optimize import brentq
 
 import lagmb as mb
+import builders
 
 G, MASS, K = 9.81, 2.0, 400.0
 
@@ -54,11 +55,8 @@ def torsion_pendulum(k, theta0=0.0, start=0.0, L=1.0, mass=1.0):
     """A uniform rod (length L, pin at its end at the origin, centre at
     l = L/2) on a rotational spring to the ground (stiffness k, free angle
     theta0), released at angle `start`."""
-    m = mb.Model(gravity=(0.0, -G))
-    e = np.array([math.cos(start), math.sin(start)])
-    rod = m.add_body("rod", mass, mass * L**2 / 12, position=0.5 * L * e, angle=start)
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    m.add_rotational_spring_damper("spring", m.ground, rod, stiffness=k, free_angle=theta0)
+    m = builders.pendulum(L=L, m=mass, g=G, angle=start)
+    m.add_rotational_spring_damper("spring", m.ground, "rod", stiffness=k, free_angle=theta0)
     return m
 
 

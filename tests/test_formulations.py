@@ -19,7 +19,7 @@ The references are independent of lagmb:
 * slider-crank (``examples/slider_crank.toml``): the crank is driven at
   10 rad/s, so the mechanism has 0 degrees of freedom and its motion is pure
   kinematics, written here in closed form (``slider_crank_exact``).
-* seed pendulum (``builders.seed_pendulum()``): period
+* seed pendulum (``builders.pendulum()``): period
   T = 4 sqrt(2L/(3g)) K(sin(pi/4)) and the pin force in closed form
   (``references.compound_pendulum_period``, ``references.rod_pin_force``).
 
@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from builders import rod_chain, seed_pendulum
+from builders import pendulum, rod_chain
 from references import RodChain, compound_pendulum_period, hermite_root, rod_pin_force
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -298,7 +298,7 @@ def adams_run():
     atol 1e-14, outputs every 1 ms plus T/4, T/2, 3T/4, T."""
     t_out = np.union1d(np.linspace(0.0, 2.0, 2001),
                        [T_PERIOD / 4, T_PERIOD / 2, 3 * T_PERIOD / 4, T_PERIOD])
-    return mb.simulate(seed_pendulum(L, M, G), t_out=t_out, rtol=1e-12, atol=1e-14,
+    return mb.simulate(pendulum(L, M, G), t_out=t_out, rtol=1e-12, atol=1e-14,
                        **mb.METHODS["projection-adams"])
 
 
@@ -365,7 +365,7 @@ def test_index3_runs_a_long_seed_pendulum():
     pendulum for 100 s at the default tolerances with max |Phi| below 1e-6 m.
     It does not today (strict xfail: a fix must update this test and the
     documented limit)."""
-    r = mb.simulate(seed_pendulum(), t_end=100.0, n_out=1001, formulation="index3")
+    r = mb.simulate(pendulum(), t_end=100.0, n_out=1001, formulation="index3")
     assert r.residual.max() < 1e-6
 
 
@@ -402,7 +402,7 @@ def test_invalid_combinations_raise_model_error(options, words):
     integration, and the message names the offending option and values
     (case-insensitive)."""
     with pytest.raises(mb.ModelError) as exc:
-        mb.simulate(seed_pendulum(), t_end=0.1, **options)
+        mb.simulate(pendulum(), t_end=0.1, **options)
     message = str(exc.value).lower()
     for w in words:
         assert w.lower() in message, (w, str(exc.value))
@@ -415,8 +415,8 @@ def test_baumgarte_with_adams_and_index1_is_accepted():
     them: measured index1 5.3e-7 (4.0e-6 without), projection-adams 1.2e-6
     (9.7e-6 without); asserted: below 1e-5 with, and with < without."""
     for options in (dict(formulation="index1"), dict(formulation="projection", integrator="adams")):
-        plain = mb.simulate(seed_pendulum(), t_end=1.0, **options)
-        stab = mb.simulate(seed_pendulum(), t_end=1.0, baumgarte=(10.0, 10.0), **options)
+        plain = mb.simulate(pendulum(), t_end=1.0, **options)
+        stab = mb.simulate(pendulum(), t_end=1.0, baumgarte=(10.0, 10.0), **options)
         assert stab.residual.max() < 1e-5
         assert stab.residual.max() < plain.residual.max()
 
@@ -428,6 +428,6 @@ def test_baumgarte_with_adams_and_index1_is_accepted():
 def test_malformed_options_raise_model_error(options):
     """Malformed values raise mb.ModelError naming the option."""
     with pytest.raises(mb.ModelError) as exc:
-        mb.simulate(seed_pendulum(), t_end=0.1, **options)
+        mb.simulate(pendulum(), t_end=0.1, **options)
     name = next(iter(k for k in options if k != "formulation"))
     assert name in str(exc.value).lower()

@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
+import builders
 
 G = 9.81
 ALPHA = 0.4  # incline angle (rad); tan(ALPHA) = 0.4228
@@ -87,10 +88,7 @@ def test_block_slides_with_closed_form_acceleration(formulation):
 def friction_pendulum(mu=0.3, r_pin=0.05, viscous=0.02, preload=0.01, omega0=0.0):
     """Uniform rod (L = 1 m, m = 1 kg) pinned to the ground at one end,
     horizontal; revolute friction in the pin."""
-    m = mb.Model(gravity=(0.0, -G))
-    rod = m.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0), angle=0.0,
-                     velocity=(0.0, 0.5 * omega0), angular_velocity=omega0)
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m = builders.pendulum(g=G, angular_velocity=omega0)
     m.add_joint_friction("pin_friction", "pin", mu=mu, pin_radius=r_pin, viscous=viscous, preload=preload,
                          slip_velocity=V_S)
     return m
@@ -279,20 +277,7 @@ def test_friction_in_a_scene_file_gives_the_same_run(tmp_path):
 
 def test_scene_friction_key_errors(tmp_path):
     """Unknown key and bad values in a joint_friction table name file, table and key."""
-    base = """
-[[bodies]]
-name = "rod"
-mass = 1.0
-inertia = 0.1
-position = [0.5, 0.0]
-
-[[joints]]
-type = "revolute"
-name = "pin"
-body_i = "ground"
-body_j = "rod"
-at = [0.0, 0.0]
-
+    base = builders.pendulum_scene(inertia=0.1) + """
 [[forces]]
 type = "joint_friction"
 name = "f"

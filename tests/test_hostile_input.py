@@ -22,6 +22,7 @@ import pytest
 
 import lagmb as mb
 from lagmb import _core
+from builders import pendulum
 
 G = 9.81
 
@@ -35,14 +36,6 @@ def in_subprocess(code, timeout=120):
         f"exit status {proc.returncode} (signal {-proc.returncode} if negative)\n"
         f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
     return proc.stdout
-
-
-def pendulum():
-    """A uniform rod (1 m, 1 kg) pinned at the origin, horizontal."""
-    m = mb.Model(gravity=(0.0, -G))
-    rod = m.add_body("rod", 1.0, 1.0 / 12.0, position=(0.5, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    return m
 
 
 def chain(n):

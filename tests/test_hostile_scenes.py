@@ -33,6 +33,8 @@ import textwrap
 
 import pytest
 
+from builders import lagmb_command, pendulum_scene
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = sorted(glob.glob(os.path.join(os.path.dirname(HERE), "examples", "*.toml")))
 MEMORY_LIMIT = 2 << 30  # a regression reading /dev/zero fails here, not in the OOM killer
@@ -46,9 +48,7 @@ def _limit_memory():
 
 
 def lagmb(*args, cwd=None, timeout=120):
-    return subprocess.run([sys.executable, "-m", "lagmb", *map(str, args)], cwd=cwd,
-                          capture_output=True, text=True, timeout=timeout,
-                          preexec_fn=_limit_memory)
+    return lagmb_command(*args, cwd=cwd, timeout=timeout, preexec_fn=_limit_memory)
 
 
 def assert_one_line_error(p, *names):
@@ -62,23 +62,7 @@ def assert_one_line_error(p, *names):
     return lines[0]
 
 
-PENDULUM = """\
-[model]
-gravity = [0.0, -9.81]
-
-[[bodies]]
-name = "rod"
-mass = 1.0
-inertia = 0.08333333333333333
-position = [0.5, 0.0]
-
-[[joints]]
-type = "revolute"
-name = "pin"
-body_i = "ground"
-body_j = "rod"
-at = [0.0, 0.0]
-
+PENDULUM = pendulum_scene() + """
 [simulation]
 t_end = 0.05
 n_out = 11

@@ -6,17 +6,12 @@ validation and the work-precision presets (mb.METHODS)."""
 import inspect
 import os
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 import lagmb as mb
-from builders import seed_pendulum
-
-
-pendulum = seed_pendulum  # a uniform rod (1 m, 1 kg) pinned at the origin, horizontal
+from builders import lagmb_command, pendulum
 
 
 def options_of(method):
@@ -148,8 +143,7 @@ def test_the_work_precision_presets_are_the_variable_step_methods():
 
 
 def test_lagmb_info_lists_the_methods():
-    out = subprocess.run([sys.executable, "-m", "lagmb", "info", "--methods"], capture_output=True,
-                         text=True, timeout=60)
+    out = lagmb_command("info", "--methods", timeout=60)
     assert out.returncode == 0, out.stderr
     lines = out.stdout.splitlines()
     for m in mb.methods():

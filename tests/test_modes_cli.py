@@ -26,31 +26,14 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from lagmb import cli
-from builders import gif_durations
+from builders import gif_durations, pendulum_scene
+from builders import lagmb_main as lagmb
 
 G = 9.81
 L = 1.3
 MASS = 2.0
 
-PENDULUM = f"""
-[model]
-gravity = [0.0, -{G}]
-
-[[bodies]]
-name = "rod"
-mass = {MASS}
-inertia = {MASS * L**2 / 12!r}
-position = [{0.5 * L * math.cos(-1.0)!r}, {0.5 * L * math.sin(-1.0)!r}]   # 1 rad below horizontal
-angle = -1.0
-
-[[joints]]
-type = "revolute"
-name = "pin"
-body_i = "ground"
-body_j = "rod"
-at = [0.0, 0.0]
-"""
+PENDULUM = pendulum_scene(L=L, m=MASS, g=G, angle=-1.0)  # 1 rad below horizontal
 
 BALL_MASS, BALL_L, BALL_INERTIA = 3.0, 0.4, (0.05, 0.06, 0.08)
 
@@ -86,16 +69,6 @@ def mpl():
     """Skip where the plot extra is not installed."""
     pytest.importorskip("PIL")
     return pytest.importorskip("matplotlib")
-
-
-def lagmb(capsys, *args):
-    """(exit status, stdout, stderr) of the lagmb command, run in this process."""
-    try:
-        code = cli.main([str(a) for a in args])
-    except SystemExit as e:  # argparse's usage errors
-        code = e.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def rows(out):

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
+import builders
 
 G = 9.81
 
@@ -19,13 +20,10 @@ G = 9.81
 def pendulum(mass=1.0, length=1.0, stiffness=0.0, push=None, inertia=None):
     """A rod pinned at the origin, a spring to a point above, and a force
     input (``push``) at its tip; the inertia of a uniform rod unless given."""
-    m = mb.Model(gravity=(0.0, -G))
-    inertia = mass * length**2 / 12 if inertia is None else inertia
-    rod = m.add_body("rod", mass=mass, inertia=inertia, position=(length / 2, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    m.add_spring_damper("spring", m.ground, (0.0, 1.0), rod, (length, 0.0), stiffness=stiffness, free_length=1.0)
+    m = builders.pendulum(L=length, m=mass, g=G, inertia=inertia)
+    m.add_spring_damper("spring", m.ground, (0.0, 1.0), "rod", (length, 0.0), stiffness=stiffness, free_length=1.0)
     if push is not None:
-        m.add_force("tip", rod, (0.0, push), point=(length, 0.0))
+        m.add_force("tip", "rod", (0.0, push), point=(length, 0.0))
     return m
 
 

@@ -19,6 +19,8 @@ from lagmb import registry
 from lagmb.scene import load_scene
 from lagmb.scene.schema import ELEMENTS, SPATIAL_ELEMENTS
 
+from builders import lagmb_command
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
@@ -462,15 +464,10 @@ def test_the_modelling_reference_is_the_registry():
 
 
 def test_lagmb_info_kinds_prints_the_reference():
-    import subprocess
-    import sys
-
-    out = subprocess.run([sys.executable, "-m", "lagmb", "info", "--kinds"], capture_output=True, text=True,
-                         timeout=120)
+    out = lagmb_command("info", "--kinds", timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout == registry.markdown()
-    refused = subprocess.run([sys.executable, "-m", "lagmb", "info", "--kinds", "--methods"],
-                             capture_output=True, text=True, timeout=120)
+    refused = lagmb_command("info", "--kinds", "--methods", timeout=120)
     assert refused.returncode == 2 and "--kinds" in refused.stderr
 
 

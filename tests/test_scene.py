@@ -22,28 +22,13 @@ import pytest
 import lagmb as mb
 from lagmb.scene import Scene, SceneError, load_scene, save_scene
 
+from builders import pendulum_scene
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 G = 9.81
 
-PENDULUM = """\
-# the seed pendulum
-[model]
-gravity = [0.0, -9.81]
-
-[[bodies]]
-name = "rod"
-mass = 1.0
-inertia = 0.08333333333333333
-position = [0.5, 0.0]
-
-[[joints]]
-type = "revolute"
-name = "pin"
-body_i = "ground"
-body_j = "rod"
-at = [0.0, 0.0]
-
+PENDULUM = "# the seed pendulum\n" + pendulum_scene() + """
 [simulation]
 t_end = 1.0
 rtol = 1e-8

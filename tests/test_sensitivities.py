@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
+import builders
 
 G = 9.81
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -49,10 +50,7 @@ def assert_close(actual, expected, rel=1e-6):
 
 
 def compound_pendulum(L=1.3, mass=2.0):
-    m = mb.Model(gravity=(0.0, -G))
-    rod = m.add_body("rod", mass, mass * L**2 / 12, position=(L / 2, 0.0), angle=0.0)
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    return m
+    return builders.pendulum(L=L, m=mass, g=G)
 
 
 @pytest.mark.parametrize("name", ["rod.mass", "rod.inertia", "rod.position.x"])

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from builders import rod_chain, seed_pendulum
+from builders import pendulum, rod_chain
 
 EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples")
 
@@ -24,7 +24,7 @@ def example(name):
 
 def motor_pendulum(torque=0.0):
     """The seed pendulum with an input torque "motor" on the rod."""
-    model = seed_pendulum()
+    model = pendulum()
     model.add_torque("motor", "rod", torque=mb.Input(torque))
     return model
 
@@ -93,7 +93,7 @@ def test_every_method_advances_in_chunks(method):
         options["step"] = 1e-3
     else:
         options.update(rtol=1e-8, atol=1e-10)
-    model = seed_pendulum()
+    model = pendulum()
     reference = mb.simulate(model, t_end=1.0, n_out=21, **options)
     sim = mb.Simulator(model, **options)
     for t in reference.t[1:]:
@@ -158,7 +158,7 @@ def test_restarts_are_the_input_changes():
 def test_a_driver_input_moves_the_driven_joint():
     """A crank driven through an input angle: setting 0.3 rad turns it there
     (the positions are assembled anew), where it stays at rest."""
-    model = seed_pendulum(g=0.0)
+    model = pendulum(g=0.0)
     model.drive_joint("motor", "pin", f=mb.Input(0.0))
     sim = mb.Simulator(model)
     sim.advance(0.2)
@@ -177,7 +177,7 @@ def test_simulate_runs_an_input_at_its_initial_value():
     """Outside a simulator an input holds its initial value: simulate gives
     the run of the same model with that constant."""
     with_input = mb.simulate(motor_pendulum(torque=2.0), t_end=1.0, rtol=1e-8)
-    constant = seed_pendulum()
+    constant = pendulum()
     constant.add_torque("motor", "rod", torque=2.0)
     np.testing.assert_array_equal(with_input.q, mb.simulate(constant, t_end=1.0, rtol=1e-8).q)
     assert np.all(with_input.input("motor") == 2.0)
@@ -314,11 +314,11 @@ def test_bad_inputs_are_named():
         sim.set_input("push", "fast")
     assert sim.input("push") == 0.0  # unchanged
     with pytest.raises(mb.ModelError, match="the model has no inputs"):
-        mb.Simulator(seed_pendulum()).set_input("motor", 1.0)
+        mb.Simulator(pendulum()).set_input("motor", 1.0)
 
 
 def test_time_only_goes_forward():
-    sim = mb.Simulator(seed_pendulum())
+    sim = mb.Simulator(pendulum())
     sim.advance(0.5)
     with pytest.raises(mb.ModelError, match=r"t = 0.2 is before the simulator's time 0.5"):
         sim.advance(0.2)
@@ -331,16 +331,16 @@ def test_time_only_goes_forward():
 def test_options_of_simulate_alone_are_refused():
     for bad in (dict(t_end=1.0), dict(n_out=5), dict(analysis="kinematic"), dict(progress=print)):
         with pytest.raises(TypeError):
-            mb.Simulator(seed_pendulum(), **bad)
+            mb.Simulator(pendulum(), **bad)
     with pytest.raises(mb.ModelError, match="rtol"):
-        mb.Simulator(seed_pendulum(), rtol=-1.0)
+        mb.Simulator(pendulum(), rtol=-1.0)
     with pytest.raises(mb.ModelError, match="output_interval"):
-        mb.Simulator(seed_pendulum(), output_interval=-0.1)
+        mb.Simulator(pendulum(), output_interval=-0.1)
     with pytest.raises(mb.ModelError, match="set_state takes what state"):
-        mb.Simulator(seed_pendulum()).set_state((0.0, [0.0]))
+        mb.Simulator(pendulum()).set_state((0.0, [0.0]))
     other = mb.Simulator(rod_chain(2)).state()
     with pytest.raises(mb.ModelError, match="another model"):
-        mb.Simulator(seed_pendulum()).set_state(other)
+        mb.Simulator(pendulum()).set_state(other)
 
 
 def test_after_a_failure_the_outputs_stay_and_the_simulator_stops():
@@ -353,7 +353,7 @@ def test_after_a_failure_the_outputs_stay_and_the_simulator_stops():
             raise RuntimeError("sensor lost")
         return 0.0
 
-    model = seed_pendulum()
+    model = pendulum()
     model.add_torque("motor", "rod", torque=torque)
     sim = mb.Simulator(model, output_interval=0.05)
     sim.advance(0.2)
@@ -433,7 +433,7 @@ def test_events_and_breakpoints_in_chunks():
     np.testing.assert_allclose(impacts, [e["t"] for e in one_run.events], atol=1e-6)
     assert sim.stats["events"] == one_run.stats["events"]
 
-    model = seed_pendulum()
+    model = pendulum()
     model.add_torque("kick", "rod", torque=mb.SmoothStep(0.2, 0.4, 0.0, 1.0))
     sim = mb.Simulator(model, rtol=1e-8)
     for k in range(10):
@@ -471,7 +471,7 @@ def test_advances_ending_just_before_a_breakpoint_are_inside_the_last_step(metho
 def test_an_output_interval_that_cannot_fit_is_refused():
     """1e-12 s between outputs over 1 s would be 1e12 outputs: refused with
     the count, before any is made; a shorter advance goes."""
-    sim = mb.Simulator(seed_pendulum(), output_interval=1e-12)
+    sim = mb.Simulator(pendulum(), output_interval=1e-12)
     with pytest.raises(mb.ModelError, match=r"asks for 1e\+12 outputs"):
         sim.advance(1.0)
     sim.advance(1e-11)

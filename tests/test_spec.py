@@ -14,13 +14,7 @@ import pytest
 
 import lagmb as mb
 from lagmb import _core
-
-
-def pendulum():
-    m = mb.Model(gravity=(0.0, -9.81))
-    rod = m.add_body("rod", 1.0, 1 / 12, position=(0.5, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    return m
+from builders import pendulum
 
 
 def test_compiled_model_is_built_once_and_kept_until_the_model_changes():

@@ -21,6 +21,7 @@ import pytest
 from scipy.special import ellipk
 
 import lagmb as mb
+import builders
 
 G = 9.81
 FORMULATIONS = ["ggl", "index3", "index1", "projection"]
@@ -29,12 +30,7 @@ TIME_TOL = {"ggl": 1e-8, "index3": 1e-6, "index1": 1e-8, "projection": 1e-8}
 
 
 def pendulum(restitution, lower=-math.pi / 2, angle=0.0, angular_velocity=0.0, **stop):
-    m = mb.Model(gravity=(0.0, -G))
-    c, s = math.cos(angle), math.sin(angle)
-    rod = m.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5 * c, 0.5 * s), angle=angle,
-                     velocity=(-0.5 * s * angular_velocity, 0.5 * c * angular_velocity),
-                     angular_velocity=angular_velocity)
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m = builders.pendulum(g=G, angle=angle, angular_velocity=angular_velocity)
     m.add_stop("stop", "pin", lower=lower, restitution=restitution, **stop)
     return m
 

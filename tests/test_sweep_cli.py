@@ -33,6 +33,7 @@ import pytest
 
 import lagmb as mb
 from lagmb import cli, plotting, studies
+from builders import lagmb_main as lagmb
 
 xr = pytest.importorskip("xarray")
 pytest.importorskip("zarr")
@@ -43,16 +44,6 @@ OUTPUTS = ["--output", "peak_reaction=B", "--output", "peak_effort=motor", "--ou
            "--output", "energy_drift"]
 BUILT_IN = {"peak_reaction_B": mb.sweep.peak_reaction("B"), "peak_effort_motor": mb.sweep.peak_effort("motor"),
             "final_slider.x": mb.sweep.final("slider.x"), "energy_drift": mb.sweep.energy_drift()}
-
-
-def lagmb(capsys, *args):
-    """(exit status, stdout, stderr) of the lagmb command, run in this process."""
-    try:
-        code = cli.main([str(a) for a in args])
-    except SystemExit as e:  # argparse's usage errors
-        code = e.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def table(out):

@@ -17,7 +17,7 @@ import lagmb as mb
 from lagmb.viewer import view
 
 import browser
-from builders import hinged_rod_with_mesh
+from builders import hinged_rod_with_mesh, lagmb_command, pendulum
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -142,18 +142,12 @@ def test_a_thousand_link_chain_is_sent_as_poses_and_loads(chromium, tmp_path):
 
 
 def test_lagmb_run_writes_the_page_with_html(tmp_path):
-    import subprocess
-    import sys
-
-    def lagmb(*args):
-        return subprocess.run([sys.executable, "-m", "lagmb", *map(str, args)], capture_output=True, text=True)
-
     page = tmp_path / "out" / "four_bar.html"
-    done = lagmb("run", EXAMPLES / "four_bar.toml", "--t-end", "0.5", "--html", page)
+    done = lagmb_command("run", EXAMPLES / "four_bar.toml", "--t-end", "0.5", "--html", page)
     assert done.returncode == 0, done.stderr
     assert "interactive view written to" in done.stdout and page.is_file()
     assert "WebGLRenderer" in page.read_text() and "four_bar.toml" in page.read_text()
-    bad = lagmb("run", EXAMPLES / "four_bar.toml", "--html", tmp_path / "four_bar.txt")
+    bad = lagmb_command("run", EXAMPLES / "four_bar.toml", "--html", tmp_path / "four_bar.txt")
     assert bad.returncode == 2 and "--html" in bad.stderr and "must end in .html" in bad.stderr
 
 
@@ -287,11 +281,9 @@ def test_a_sweep_of_a_hostile_parameter_lists_its_cases(chromium, tmp_path):
             mb.view_sweep(ds, model, **{"folder": tmp_path / "x", **kwargs})
 
 
-def pendulum():
-    m = mb.Model(gravity=(0.0, -9.81))
-    rod = m.add_body("rod", 1.0, 0.1 / 12, position=(0.05, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
-    return m
+def short_pendulum():
+    """A 0.1 m rod of 1 kg (J = 0.1/12 kg m^2) pinned at the origin, level."""
+    return pendulum(L=0.1, inertia=0.1 / 12)
 
 
 @pytest.mark.parametrize("argument, value, message", [
@@ -310,7 +302,7 @@ def pendulum():
     ("path", 5, r"path must be a file name \(str or os\.PathLike\), got 5"),
 ])
 def test_a_bad_argument_of_view_is_named_with_its_value(argument, value, message):
-    r = mb.simulate(pendulum(), 0.1, n_out=3)
+    r = mb.simulate(short_pendulum(), 0.1, n_out=3)
     kwargs = {"path": None, argument: value}
     with pytest.raises(mb.ModelError, match="lagmb.view: " + message):
         view(r, **kwargs)
@@ -324,7 +316,7 @@ def test_a_bad_argument_of_view_is_named_with_its_value(argument, value, message
     ("frames", 2.5, "frames must be an integer, got 2.5"),
 ])
 def test_a_bad_argument_of_view_mode_is_named_with_its_value(argument, value, message):
-    modes = mb.modes(pendulum())
+    modes = mb.modes(short_pendulum())
     with pytest.raises(mb.ModelError, match="lagmb.view_mode: " + message):
         mb.view_mode(modes, 0, None, **{argument: value})
 
@@ -342,7 +334,7 @@ def test_what_a_page_cannot_draw_is_refused_and_named(tmp_path):
     assert not (tmp_path / "far.html").exists()
     from lagmb.result import Result
 
-    model = pendulum()
+    model = short_pendulum()
     q = np.tile([0.05, 0.0, 0.0], (3, 1))
     q[1:, 2] = math.nan  # the rod's angle, from the second output on
     zero = np.zeros_like(q)
@@ -351,7 +343,7 @@ def test_what_a_page_cannot_draw_is_refused_and_named(tmp_path):
     with pytest.raises(mb.ModelError, match=r"the angle of body 'rod' at t = 0\.1 is not finite: nan"):
         view(r, None)
     with pytest.raises(mb.ModelError, match=r"the traced point \(1e\+300, 0\.0\) of body 'rod' at t = 0 is too large"):
-        view(mb.simulate(pendulum(), 0.1, n_out=3), None, trace=[("rod", (1e300, 0.0))])
+        view(mb.simulate(short_pendulum(), 0.1, n_out=3), None, trace=[("rod", (1e300, 0.0))])
 
 
 def test_the_page_embeds_its_json_safely():

@@ -10,8 +10,6 @@ rtol 1e-4 .. 1e-8.
 
 import json
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +17,7 @@ import pytest
 
 import lagmb as mb
 import lagmb.accuracy
-from builders import seed_pendulum
+from builders import lagmb_command, pendulum
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -42,7 +40,7 @@ PROMISED = ["method", "formulation", "integrator", "rtol", "atol", "reference", 
 @pytest.fixture(scope="module")
 def wp():
     """The study (15 runs plus the reference, about 0.1 s)."""
-    return mb.work_precision(seed_pendulum(), T_END, methods=METHODS, tolerances=TOLERANCES)
+    return mb.work_precision(pendulum(), T_END, methods=METHODS, tolerances=TOLERANCES)
 
 
 def test_promised_columns_are_documented_and_exported():
@@ -97,13 +95,13 @@ def test_error_column_is_the_distance_to_the_reference(wp):
     row = next(r for r in wp.rows if r["method"] == "ggl" and r["rtol"] == 1e-6)
     assert row["reference"] == "projection-bdf rtol 1e-10"
     ref = wp.reference_for("ggl")
-    r = mb.simulate(seed_pendulum(), t_out=ref.t, rtol=1e-6, atol=1e-8, **mb.METHODS["ggl"])
+    r = mb.simulate(pendulum(), t_out=ref.t, rtol=1e-6, atol=1e-8, **mb.METHODS["ggl"])
     assert abs(np.abs(r.q - ref.q).max() - row["error"]) <= 1e-15
     assert abs(np.abs(r.q[-1] - ref.q[-1]).max() - row["error_final"]) <= 1e-15
     assert abs(r.residual.max() - row["drift_position"]) <= 1e-15
     assert wp.reference_info["projection-bdf rtol 1e-10"]["rtol"] == pytest.approx(1e-10)
     assert wp.reference_for("projection-adams") is wp.reference["ggl rtol 1e-10"]
-    tight = mb.simulate(seed_pendulum(), t_out=ref.t, rtol=1e-12, atol=1e-14)
+    tight = mb.simulate(pendulum(), t_out=ref.t, rtol=1e-12, atol=1e-14)
     smallest = min(r["error"] for r in wp.rows)
     assert np.abs(tight.q - ref.q).max() <= 0.25 * smallest
 
@@ -183,7 +181,7 @@ def test_unknown_method_raises_model_error():
     """An unknown method name raises mb.ModelError naming it and listing the
     known ones, before anything runs."""
     with pytest.raises(mb.ModelError) as exc:
-        mb.work_precision(seed_pendulum(), 0.1, methods=["ggl", "runge-kutta"], tolerances=[1e-4])
+        mb.work_precision(pendulum(), 0.1, methods=["ggl", "runge-kutta"], tolerances=[1e-4])
     assert "runge-kutta" in str(exc.value)
     for m in mb.METHODS:
         assert m in str(exc.value)
@@ -196,10 +194,8 @@ def test_command_line_accuracy(tmp_path):
     promised columns, all "ok"; the PNG starts with the PNG signature."""
     pytest.importorskip("matplotlib")
     out, png = tmp_path / "x.json", tmp_path / "x.png"
-    proc = subprocess.run(
-        [sys.executable, "-m", "lagmb", "accuracy", str(EXAMPLES / "seed_pendulum.toml"),
-         "--tolerances", "1e-4", "1e-6", "-o", str(out), "--plot", str(png)],
-        capture_output=True, text=True, timeout=120)
+    proc = lagmb_command("accuracy", EXAMPLES / "seed_pendulum.toml", "--tolerances", "1e-4", "1e-6", "-o", out,
+                         "--plot", png, timeout=120)
     assert proc.returncode == 0, proc.stderr
     with open(out) as f:
         data = json.load(f)
