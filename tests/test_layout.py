@@ -153,3 +153,38 @@ def test_no_module_reads_private_names_of_plotting():
             if isinstance(node, ast.ImportFrom) and node.module and node.module.endswith("plotting"):
                 found += [f"{path.relative_to(package)}: {a.name}" for a in node.names if a.name.startswith("_")]
     assert found == []
+
+
+# --- the layers as docs/design.md lists them -------------------------------------
+
+
+def design_layer_tables():
+    """The two tables of docs/design.md section 2.0: the C++ layer folders
+    (first column) and the Python layers (the modules of each row)."""
+    text = (ROOT / "docs" / "design.md").read_text()
+    section = text.split("### 2.0 Layers", 1)[1].split("\n### ", 1)[0]
+    tables, rows = [], None
+    for line in section.splitlines():
+        if line.startswith("|"):
+            if rows is None:
+                rows = []
+                tables.append(rows)
+            cells = [c.strip() for c in line.strip("|").split("|")]
+            if set(cells[0]) <= set("-: "):  # the rule under the head
+                continue
+            rows.append(cells)
+        else:
+            rows = None
+    cpp, python = (table[1:] for table in tables)  # without the heads
+    return ([re.fullmatch(r"`(\w+)`", row[0]).group(1) for row in cpp],
+            [re.findall(r"`(\w+)`", row[1]) for row in python])
+
+
+def test_design_lists_the_layers_the_tests_enforce():
+    """docs/design.md names every C++ layer folder, in CMake's order, and
+    each Python layer with the modules test_python_imports_point_down
+    places in it, so the document cannot drift from the code."""
+    cpp, python = design_layer_tables()
+    assert cpp == layers()
+    assert sorted(cpp) == sorted(p.name for p in (CPP / "src").iterdir() if p.is_dir())
+    assert python == PYTHON_LAYERS
