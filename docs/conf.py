@@ -43,7 +43,7 @@ rst_prolog = r"""
 
 # --- user guide (Markdown) -------------------------------------------------
 myst_enable_extensions = ["dollarmath"]
-# anchors for headings, as GitHub makes them: modelling.md#joints, design.md#41-choosing-the-analysis
+# anchors for headings, as GitHub makes them: modelling.md#joints, methods.md#choosing-the-analysis
 myst_heading_anchors = 4
 
 # --- API reference ------------------------------------------------------------

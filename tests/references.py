@@ -6,7 +6,7 @@ checked on its own in ``test_references.py`` (energy conservation, special
 cases, agreement between two independent formulations), so a failure in a
 lagmb test points at lagmb and not at the reference.
 
-Conventions (same as docs/design.md section 1)
+Conventions (same as docs/modelling.md, "Equations and signs")
 ----------------------------------------
 * A planar body has q = (x, y, phi): centre of mass and angle, phi measured
   counter-clockwise from the global +x axis.

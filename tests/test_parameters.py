@@ -1,5 +1,5 @@
 """Run-time parameters: the numbers given to a model's elements, changed
-per run without rebuilding the model (docs/design.md, "The run").
+per run without rebuilding the model (docs/design.md, 2.2, "Run-time parameters").
 
 A run with parameters={...} must be the run of a model built with those
 values, bit for bit; the model itself keeps its values; one compiled model

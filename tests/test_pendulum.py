@@ -7,7 +7,7 @@ rod at the global origin, i.e. at the rod's local point (-L/2, 0); gravity
 vertical (t = T/4), reaches the opposite horizontal phi = -pi at T/2 and is
 back at phi = 0 at T = 1.9333 s.
 
-Sign convention (docs/design.md 1.2): M qdd + Phi_q^T lam = Q.  The revolute's
+Sign convention (docs/modelling.md, "Equations and signs"): M qdd + Phi_q^T lam = Q.  The revolute's
 equations are Phi = (point on body j) - (point on body i); here body i is
 the ground, so
 
