@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from builders import seed_pendulum
+from builders import pendulum
 
 
 def _rod_kwargs(**over):
@@ -137,7 +137,7 @@ def test_revolute_with_unknown_body_name():
 
 @pytest.fixture(scope="module")
 def short_run():
-    return mb.simulate(seed_pendulum(), t_end=0.1, n_out=3, rtol=1e-8, atol=1e-10)
+    return mb.simulate(pendulum(), t_end=0.1, n_out=3, rtol=1e-8, atol=1e-10)
 
 
 @pytest.mark.parametrize(
@@ -181,7 +181,7 @@ def test_bad_simulation_settings(kwargs, word):
     """Settings that make no sense are the caller's error: ValueError (not a
     SimulationError) naming the setting or the bad value."""
     with pytest.raises(ValueError, match=re.escape(word)):
-        mb.simulate(seed_pendulum(), **kwargs)
+        mb.simulate(pendulum(), **kwargs)
 
 
 # --------------------------------------------------------------------------
@@ -300,12 +300,12 @@ def test_a_consistent_model_assembles_without_a_word():
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        mb.simulate(seed_pendulum(), 0.1, n_out=3)
-        mb.Simulator(seed_pendulum())
+        mb.simulate(pendulum(), 0.1, n_out=3)
+        mb.Simulator(pendulum())
 
 
 def test_a_redundant_joint_is_named_at_the_callers_line():
-    m = seed_pendulum()
+    m = pendulum()
     m.add_revolute("again", m.ground, "rod", at=(0.0, 0.0))
     with pytest.warns(mb.RedundantConstraintWarning) as seen:
         mb.simulate(m, 0.1, n_out=3)
@@ -321,7 +321,7 @@ def test_step_limit_raises_simulation_error_with_partial_result(capfd):
     reached (0 < t < t_end) and a Result with the outputs before it, each of
     which is a valid state (|Phi| < 1e-9); SUNDIALS prints nothing.
     max_steps bounds the steps between two outputs: 200 do not reach 1 s."""
-    m = seed_pendulum()
+    m = pendulum()
     with pytest.raises(mb.SimulationError, match="max_steps") as info:
         mb.simulate(m, t_end=2.0, n_out=3, rtol=1e-8, atol=1e-10, max_steps=200, formulation="ggl")
     err = info.value
@@ -387,4 +387,4 @@ def test_failure_on_a_long_chain_is_not_called_a_singular_position():
 @pytest.mark.parametrize("rtol", [1e-15, 0.0, -1e-6])
 def test_rtol_beyond_double_precision_is_rejected(rtol):
     with pytest.raises(mb.ModelError, match="rtol"):
-        mb.simulate(seed_pendulum(), t_end=1.0, rtol=rtol)
+        mb.simulate(pendulum(), t_end=1.0, rtol=rtol)

@@ -32,7 +32,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from builders import seed_pendulum
+from builders import pendulum
 from references import compound_pendulum_period, cross2, hermite_root, rod_pin_force
 
 L = 1.0
@@ -53,7 +53,7 @@ T_OUT = np.union1d(np.linspace(0.0, 2.0, 201), [T / 4, T / 2, 3 * T / 4, T])
 def run():
     """One run of the seed pendulum over 2 s at rtol 1e-10, atol 1e-12,
     output at T_OUT."""
-    return mb.simulate(seed_pendulum(L, M, G), t_end=2.0, t_out=T_OUT,
+    return mb.simulate(pendulum(L, M, G), t_end=2.0, t_out=T_OUT,
                        rtol=RTOL, atol=ATOL)
 
 
@@ -266,7 +266,7 @@ def test_period_large_amplitude():
     and phidd (interpolation error ~1e-12 s).  Both times agree with the
     closed form to 1e-6 relative, and the turning angles are -pi and 0 to
     1e-6 rad."""
-    r = mb.simulate(seed_pendulum(L, M, G), t_end=2.0, n_out=2001,
+    r = mb.simulate(pendulum(L, M, G), t_end=2.0, n_out=2001,
                     rtol=RTOL, atol=ATOL)
     phi, phid, phidd = r.q[:, 2], r.v[:, 2], r.a[:, 2]
 
@@ -300,7 +300,7 @@ def test_solve_accelerations_at_release():
     accelerates at (0, -3g/4); then m ydd + lam2 = -m g gives
     lam = (0, -m g/4), i.e. the reaction on the rod -lam = (0, m g/4).
     Tolerance 1e-12 of g (m g)."""
-    qdd, lam = mb.solve_accelerations(seed_pendulum(L, M, G),
+    qdd, lam = mb.solve_accelerations(pendulum(L, M, G),
                                       np.array([0.5 * L, 0.0, 0.0]), np.zeros(3), t=0.0)
     qdd = np.asarray(qdd)
     lam = np.asarray(lam)
@@ -318,7 +318,7 @@ def test_solve_accelerations_general_state(phi, phid):
     = (L/2)(-sin(phi) phidd - cos(phi) phid^2, cos(phi) phidd - sin(phi) phid^2);
     lam = -m a_G + Q_xy (from m r_G'' + lam = (0, -m g)).
     Tolerance 1e-12 of g (m g)."""
-    model = seed_pendulum(L, M, G)
+    model = pendulum(L, M, G)
     half = 0.5 * L
     q = np.array([half * math.cos(phi), half * math.sin(phi), phi])
     v = np.array([-half * math.sin(phi) * phid, half * math.cos(phi) * phid, phid])
@@ -349,7 +349,7 @@ def test_stats_reported_and_deterministic(run):
     assert s["lu_factorizations"] + s["augmented_factorizations"] >= 1
     assert s["wall_time"] >= 0.0
 
-    again = mb.simulate(seed_pendulum(L, M, G), t_end=2.0, t_out=T_OUT,
+    again = mb.simulate(pendulum(L, M, G), t_end=2.0, t_out=T_OUT,
                         rtol=RTOL, atol=ATOL)
     for key in ("steps", "residual_evals", "jacobian_evals", "lu_factorizations"):
         assert again.stats[key] == s[key], key
