@@ -153,3 +153,26 @@ def test_no_module_reads_private_names_of_plotting():
             if isinstance(node, ast.ImportFrom) and node.module and node.module.endswith("plotting"):
                 found += [f"{path.relative_to(package)}: {a.name}" for a in node.names if a.name.startswith("_")]
     assert found == []
+
+
+def test_kinds_are_known_by_their_registry_entry_not_their_name():
+    """What an element is (a driver; a joint with an angle or a slide) is
+    read from its kind's entry (lagmb.registry: role, coordinates), so a new
+    kind needs nothing in Python: no module names a driver or joint kind to
+    decide it. Outside the rule: urdf and mjcf (their formats' own joint
+    types) and plotting (a kind's picture is drawing, not semantics)."""
+    import ast
+
+    from lagmb import registry
+
+    named = {"_driver"} | {name for k in registry.ALL_KINDS if k.role == "driver" or k.coordinate
+                           for name in (k.name, k.method)} - {"drive_joint", "drive_body"}
+    package = ROOT / "python" / "lagmb"
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        where = path.relative_to(package)
+        if where.parts[0] in ("urdf.py", "mjcf.py", "plotting"):
+            continue
+        found += [f"{where}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
+                  if isinstance(node, ast.Constant) and node.value in named]
+    assert found == []

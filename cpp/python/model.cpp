@@ -278,6 +278,15 @@ void bind_model(py::module_& m) {
              if (r.type == ElementRef::kEvent) return model.event_groups()[r.group]->kind();
              return model.force_groups()[r.group]->kind();
            })
+      .def(
+          "given_kind",
+          [](const Model& model, const std::string& name) -> py::object {
+            const KindInfo* kind = model.given_kind(name);
+            return kind ? py::object(py::str(kind->name)) : py::object(py::none());
+          },
+          py::arg("name"), "The registry kind the body or element was added as (lagmb.registry.BY_NAME), or None.")
+      .def("coordinate_names", &coordinate_names,
+           "The names of the coordinates q in order: body.x, body.y, body.angle, ... (coordinates.hpp).")
       .def("initial_state",
            [](const Model& model) { return py::make_tuple(model.initial_q(), model.initial_v()); })
       .def(

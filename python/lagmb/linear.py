@@ -31,7 +31,7 @@ import numbers
 
 import numpy as np
 
-from . import _core
+from . import _core, registry
 from ._checks import array, positive, real, show
 from .errors import ModelError
 from .statics import Equilibrium, equilibrium
@@ -445,18 +445,6 @@ class Descriptor:
         return f"<lagmb.Descriptor: {len(self.states)} states, {len(self.inputs)} inputs, {len(self.outputs)} outputs>"
 
 
-def _coordinate_names(model, core):
-    """The model's coordinates by the FMU's names: body.x, body.y, body.angle
-    in the plane; body.x, .y, .z, .e0 ... .e3 in space."""
-    names = [f"q{i}" for i in range(core.n_coordinates)]
-    for body in model.bodies:
-        first, count = core.body_coordinates(body.name)
-        suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")
-        for k in range(count):
-            names[first + k] = f"{body.name}.{suffixes[k]}"
-    return names
-
-
 def _preference(names):
     """The order in which coordinates are taken as independent: angles (a
     planar body's angle, the vector part e1..e3 of a spatial body's Euler
@@ -567,7 +555,7 @@ class _Outputs:
         self.model, self.core, self.point, self.who = model, core, point, who
         q, v, lam, t, u = point
         n, m = len(q), len(lam)
-        coords = _coordinate_names(model, core)
+        coords = list(core.coordinate_names())
         self.names, rows = [], []
         for name in names:
             if not isinstance(name, str):
@@ -607,9 +595,8 @@ class _Outputs:
         core = self.core
         if not core.has(element):
             return False
-        kind = core.element_kind(element)
         if what == "driver":
-            return "driver" in kind
+            return registry.is_driver(core, element)
         if what == "joint":
             return core.joint_coordinate(element) is not None
         try:
@@ -791,7 +778,7 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     # the minimal coordinates: dq = T z, z = L dq
     Z = _null_space(J, 1e-10)
     k = Z.shape[1]
-    names = _coordinate_names(model, core)
+    names = list(core.coordinate_names())
     if isinstance(coordinates, str) and coordinates == "orthonormal":
         T, L = Z, Z.T
         state_names = [f"z{i + 1}" for i in range(k)]

@@ -27,7 +27,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import _checks, _rotations
+from . import _checks, _rotations, registry
 from ._checks import show
 from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line, trace_points
 from .errors import ModelError
@@ -233,7 +233,7 @@ def _output_series(result, name):
             if c in components:
                 k = components.index(c)
                 return np.asarray(result.reaction(element)[:, k], dtype=float), "N m" if c.startswith("torque") else "N"
-        if not rate and what == "effort" and core.element_kind(element).endswith("_driver"):
+        if not rate and what == "effort" and registry.is_driver(core, element):
             return np.asarray(result.effort(element), dtype=float), "N or N m"
         if what in ("angle", "slide") and core.joint_coordinate(element) is not None:
             path = result.joint(element)
@@ -544,7 +544,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
             p = np.column_stack([p, np.zeros(len(p))])
         traces.append({"points": _b64(p), "colour": list(_PALETTE[(j + 3) % len(_PALETTE)])})
     if outputs is None:
-        outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers if result._core.element_kind(d).endswith("_driver")][:3]
+        outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers][:3]
     plots = []
     for name in outputs:
         values, unit = _output_series(result, name)

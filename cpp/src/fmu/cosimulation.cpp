@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/model/model.hpp"
 
 namespace lagmb {
@@ -37,7 +38,7 @@ std::string driven_unit(const ModelSpec& spec, const ModelSpec::Element& driver)
   if (const std::string c = text("coordinate"); !c.empty()) return c == "angle" ? "rad" : "m";
   if (const std::string joint = text("joint"); !joint.empty())
     if (const auto* e = element_of(spec, joint))
-      return e->args.kind().name.find("revolute") != std::string::npos ? "rad" : "m";
+      return e->args.kind().coordinate == "angle" ? "rad" : "m";
   return "";
 }
 
@@ -134,10 +135,8 @@ CoSimulation::CoSimulation(CoSimulationSetup setup)
     parameters_.push_back(p.value);
   }
   for (const Body& b : model->bodies()) {
-    static const char* planar[] = {"x", "y", "angle"};
-    static const char* spatial[] = {"x", "y", "z", "e0", "e1", "e2", "e3"};
     for (int c = 0; c < b.n_coordinates(); ++c) {
-      const std::string coordinate = b.spatial ? spatial[c] : planar[c];
+      const std::string coordinate = body_coordinate_name(b, c);
       const bool angle = coordinate == "angle", euler = coordinate[0] == 'e';
       const std::string unit = angle ? "rad" : euler ? "" : "m";
       const std::string rate = angle ? "rad/s" : euler ? "1/s" : "m/s";

@@ -64,7 +64,7 @@ VecX efforts(const Model& model, const std::string& element, const OutputView& o
   require(model, out, false, false, true);
   const ElementRef& r = constraint_element(model, element, "a driver");
   const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
-  if (std::string(g.kind()).find("driver") == std::string::npos)
+  if (const KindInfo* kind = model.given_kind(element); !kind || kind->role != Role::kDriver)
     throw ModelError("'" + element + "' is " + model.describe(element) + ", not a driver");
   const int row = g.placement(r.index).row0, m = model.n_constraints();
   VecX e(out.k);
