@@ -97,7 +97,8 @@ def test_unit_tests_include_public_headers_only():
 #: each imports only from its own layer or the ones before, at the top of a
 #: file or inside a function alike (a late import is still a dependency).
 PYTHON_LAYERS = [
-    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations"],
+    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations",
+     "_output_names"],
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["_drawing"],

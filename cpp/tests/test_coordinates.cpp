@@ -1,5 +1,5 @@
 // What a model says about its coordinates and elements by its kinds
-// (lagmb/model/coordinates.hpp, Model::given_kind): the names of q as
+// (lagmb/model/coordinates.hpp, Model::given_kind): the names and units of q as
 // Python's Model.coordinate_names and the FMU give them, and each joint
 // kind's declared coordinate (KindInfo::coordinate) agreeing with the
 // coordinate its equations have (ConstraintGroupBase::coordinate).
@@ -9,6 +9,7 @@
 #include "check.hpp"
 #include "lagmb/assembly/analysis.hpp"
 #include "lagmb/model/coordinates.hpp"
+#include "lagmb/run/outputs.hpp"
 #include "models.hpp"
 
 using namespace lagmb_test;
@@ -36,6 +37,7 @@ TEST_CASE(planar_names_are_x_y_angle_and_a_particle_has_no_angle) {
   const auto model = spec.compile();
   const std::vector<std::string> want = {"rod.x", "rod.y", "rod.angle", "bob.x", "bob.y"};
   CHECK(coordinate_names(*model) == want);
+  CHECK(coordinate_units(*model) == std::vector<std::string>({"m", "m", "rad", "m", "m"}));
   CHECK(coordinate_label(*model, 2) == "body 'rod' angle");
   CHECK(coordinate_label(*model, 4) == "body 'bob' y");
   CHECK_THROWS(ModelError, body_coordinate_name(model->bodies()[1], 2), "has no coordinate 2");
@@ -45,6 +47,7 @@ TEST_CASE(spatial_names_are_the_position_then_the_euler_parameters) {
   const auto model = spatial_pendulum();
   const std::vector<std::string> want = {"rod.x", "rod.y", "rod.z", "rod.e0", "rod.e1", "rod.e2", "rod.e3"};
   CHECK(coordinate_names(*model) == want);
+  CHECK(coordinate_units(*model) == std::vector<std::string>({"m", "m", "m", "", "", "", ""}));
   CHECK(coordinate_label(*model, 5) == "body 'rod' e2");
   CHECK(is_body_coordinate_name("angle") && is_body_coordinate_name("e3") && !is_body_coordinate_name("mass"));
 }
@@ -59,6 +62,17 @@ TEST_CASE(given_kind_gives_each_element_its_registry_kind) {
   CHECK(model->given_kind("pin")->name == "revolute" && model->given_kind("pin")->role == Role::kJoint);
   CHECK(model->given_kind("motor")->name == "joint_driver" && model->given_kind("motor")->role == Role::kDriver);
   CHECK_THROWS(ModelError, model->given_kind("nothing"), "no body or element named 'nothing'");
+}
+
+// The output names of a reaction end in these ("hinge.reaction.torque.x"),
+// one per column of reactions().
+TEST_CASE(a_reaction_has_three_components_in_the_plane_and_six_in_space) {
+  const OutputView none;
+  CHECK(reaction_components(2) == std::vector<std::string>({"x", "y", "torque"}));
+  CHECK(int(reaction_components(3).size()) == 6 && reaction_components(3)[3] == "torque.x");
+  CHECK(reactions(*pendulum(), "pin", none).cols() == int(reaction_components(2).size()));
+  CHECK(reactions(*spatial_pendulum(), "pin", none).cols() == int(reaction_components(3).size()));
+  CHECK_THROWS(ModelError, reaction_components(4), "dimension must be 2 or 3");
 }
 
 // Python (Result.joint, JointSpace) and the FMU's units read the joint

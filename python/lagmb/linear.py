@@ -31,7 +31,7 @@ import numbers
 
 import numpy as np
 
-from . import _core, registry
+from . import _core, _output_names, registry
 from ._checks import array, positive, real, show
 from .errors import ModelError
 from .statics import Equilibrium, equilibrium
@@ -561,20 +561,19 @@ class _Outputs:
             if not isinstance(name, str):
                 raise ModelError(f"{who}: output names are strings, got {name!r}")
             Cq, Cv, Cl, value = np.zeros(n), np.zeros(n), np.zeros(m), None
-            rate = name.startswith("der(") and name.endswith(")")
-            base = name[4:-1] if rate else name
-            element, _, what = base.partition(".")
-            if base in coords:
-                j = coords.index(base)
+            out = _output_names.parse(name)
+            rate, element, what = out.rate, out.element, out.what
+            if out.base in coords:
+                j = coords.index(out.base)
                 (Cv if rate else Cq)[j] = 1.0
                 value = (v if rate else q)[j]
-            elif not rate and what.startswith("reaction.") and self._is(element, "constraint"):
-                value = self._reaction(element, what[len("reaction."):], Cq, Cl, name)
+            elif not rate and out.reaction_component is not None and self._is(element, "constraint"):
+                value = self._reaction(element, out.reaction_component, Cq, Cl, name)
             elif not rate and what == "effort" and self._is(element, "driver"):
                 row0, _ = core.constraint_rows(element)
                 Cl[row0] = -1.0
                 value = -lam[row0]
-            elif what in ("angle", "slide") and self._is(element, "joint"):
+            elif what in _output_names.JOINT_COORDINATES and self._is(element, "joint"):
                 value = self._joint(element, what, rate, Cq, Cv, name)
             else:
                 raise ModelError(f"{who}: no output {name!r}; outputs are coordinates and their rates "
@@ -616,8 +615,7 @@ class _Outputs:
     def _reaction(self, element, component, Cq, Cl, name):
         core = self.core
         q, v, lam, t, u = self.point
-        components = (["x", "y", "z", "torque.x", "torque.y", "torque.z"] if self.model.dimension == 3
-                      else ["x", "y", "torque"])
+        components = _output_names.REACTION_COMPONENTS[self.model.dimension]
         if component not in components:
             raise ModelError(f"{self.who}: no output {name!r}; a reaction's components are "
                              f"{', '.join(components)}")

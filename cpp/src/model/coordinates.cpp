@@ -21,6 +21,11 @@ const char* body_coordinate_name(const Body& body, int k) {
   return (body.spatial ? kSpatial : kPlanar)[k];
 }
 
+const char* body_coordinate_unit(const Body& body, int k) {
+  const std::string name = body_coordinate_name(body, k);
+  return name == "angle" ? "rad" : name[0] == 'e' ? "" : "m";
+}
+
 bool is_body_coordinate_name(const std::string& name) {
   for (const char* c : kPlanar)
     if (name == c) return true;
@@ -34,6 +39,14 @@ std::vector<std::string> coordinate_names(const Model& model) {
   std::vector<std::string> out(size_t(model.n_coordinates()));
   for (const Body& b : model.bodies())
     for (int k = 0; k < b.n_coordinates(); ++k) out[size_t(b.first_coord + k)] = b.name + "." + body_coordinate_name(b, k);
+  return out;
+}
+
+std::vector<std::string> coordinate_units(const Model& model) {
+  if (!model.finalized()) throw ModelError("coordinate_units: the model is not finalized");
+  std::vector<std::string> out(size_t(model.n_coordinates()));
+  for (const Body& b : model.bodies())
+    for (int k = 0; k < b.n_coordinates(); ++k) out[size_t(b.first_coord + k)] = body_coordinate_unit(b, k);
   return out;
 }
 
