@@ -7,7 +7,9 @@ and each parameter's type, default, unit and one-line documentation. This
 module reads that declaration and derives from it what Python needs: the
 signature and docstring of each Model.add_* / drive_* method, the scene
 schema (lagmb.scene.schema), the roles handles and drawings count, and the
-element reference of docs/modelling.md (``lagmb info --kinds``).
+element reference of docs/modelling.md (``lagmb info --kinds``). What an
+element of a compiled model is (a driver, a joint with an angle or a slide)
+is read from its Kind (:func:`kind_of`), never from its kind's name.
 """
 
 import inspect
