@@ -97,7 +97,8 @@ def test_unit_tests_include_public_headers_only():
 #: each imports only from its own layer or the ones before, at the top of a
 #: file or inside a function alike (a late import is still a dependency).
 PYTHON_LAYERS = [
-    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations"],
+    ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations",
+     "_output_names"],
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["_drawing"],
@@ -188,3 +189,26 @@ def test_design_lists_the_layers_the_tests_enforce():
     assert cpp == layers()
     assert sorted(cpp) == sorted(p.name for p in (CPP / "src").iterdir() if p.is_dir())
     assert python == PYTHON_LAYERS
+
+
+def test_kinds_are_known_by_their_registry_entry_not_their_name():
+    """What an element is (a driver; a joint with an angle or a slide) is
+    read from its kind's entry (lagmb.registry: role, coordinates), so a new
+    kind needs nothing in Python: no module names a driver or joint kind to
+    decide it. Outside the rule: urdf and mjcf (their formats' own joint
+    types) and plotting (a kind's picture is drawing, not semantics)."""
+    import ast
+
+    from lagmb import registry
+
+    named = {"_driver"} | {name for k in registry.ALL_KINDS if k.role == "driver" or k.coordinate
+                           for name in (k.name, k.method)} - {"drive_joint", "drive_body"}
+    package = ROOT / "python" / "lagmb"
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        where = path.relative_to(package)
+        if where.parts[0] in ("urdf.py", "mjcf.py", "plotting"):
+            continue
+        found += [f"{where}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
+                  if isinstance(node, ast.Constant) and node.value in named]
+    assert found == []

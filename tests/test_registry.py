@@ -436,6 +436,18 @@ def test_a_joint_kind_declares_the_coordinate_it_has(kind):
 
 
 @pytest.mark.parametrize("kind", kinds())
+def test_an_element_of_a_compiled_model_knows_its_kind(kind):
+    """Result, the viewer and linearize ask the compiled model what an
+    element was added as (registry.kind_of), not the name of its kind."""
+    m, handle = EXAMPLES[kind]()
+    core = m.compiled()
+    assert registry.kind_of(core, handle.name) is registry.BY_NAME[kind]
+    assert registry.is_driver(core, handle.name) == (registry.BY_NAME[kind].role == "driver")
+    with pytest.raises(mb.ModelError, match="no body or element named 'nothing'"):
+        registry.kind_of(core, "nothing")
+
+
+@pytest.mark.parametrize("kind", kinds())
 def test_every_kind_has_a_plotting_role(kind):
     """Drawings and summaries count an element by its role: a pendulum with
     a stop is "1 body, 1 joint, 1 stop"."""

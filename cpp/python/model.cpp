@@ -278,6 +278,16 @@ void bind_model(py::module_& m) {
              if (r.type == ElementRef::kEvent) return model.event_groups()[r.group]->kind();
              return model.force_groups()[r.group]->kind();
            })
+      .def(
+          "given_kind",
+          [](const Model& model, const std::string& name) -> py::object {
+            const KindInfo* kind = model.given_kind(name);
+            return kind ? py::object(py::str(kind->name)) : py::object(py::none());
+          },
+          py::arg("name"), "The registry kind the body or element was added as (lagmb.registry.BY_NAME), or None.")
+      .def("coordinate_names", &coordinate_names,
+           "The names of the coordinates q in order: body.x, body.y, body.angle, ... (coordinates.hpp).")
+      .def("coordinate_units", &coordinate_units, "Their units: rad, m, or '' (an Euler parameter).")
       .def("initial_state",
            [](const Model& model) { return py::make_tuple(model.initial_q(), model.initial_v()); })
       .def(
@@ -506,6 +516,9 @@ void bind_model(py::module_& m) {
         return out;
       },
       "The types of element parameters (lagmb/model/registry.hpp, param_types()), in order.");
+  m.def("reaction_components", &reaction_components, py::arg("dimension"),
+        "The names of a reaction's components (Model.reaction's columns): x, y, torque; in space x, y, z, "
+        "torque.x, torque.y, torque.z.");
   m.def("kinds", &kinds_to_python, "The registry of element kinds (lagmb/model/registry.hpp) as plain data.");
 }
 

@@ -32,7 +32,7 @@ class Scene:
         self.result = result
         model, core = result.model, result._core  # core: the compiled model the run used
         self.dimension = getattr(model, "dimension", 2)
-        kinds = BY_METHOD if self.dimension == 2 else SPATIAL_BY_METHOD
+        self.kinds = kinds = BY_METHOD if self.dimension == 2 else SPATIAL_BY_METHOD  # Model method -> Kind
         # what the run simulated: the model may have grown since
         self.elements = [(method, kw) for method, kw in model.elements() if core.has(kw["name"])]
         bodies = [b for b in model.bodies if core.has(b.name)]
@@ -134,7 +134,8 @@ class Scene:
         if kind == "drive_body":
             return "N m" if kw.get("coordinate") == "angle" else "N"
         if kind == "drive_joint":
-            return "N" if self.kind_of.get(kw.get("joint")) in ("add_translational", "add_cylindrical") else "N m"
+            joint = self.kinds.get(self.kind_of.get(kw.get("joint")))
+            return "N" if joint is not None and "slide" in joint.coordinates else "N m"  # (a cylindrical's driver slides)
         return "N or N m"
 
 

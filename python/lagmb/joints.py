@@ -11,12 +11,14 @@ function the joint's drivers hold).
 
 import numpy as np
 
-from . import _rotations
+from . import _rotations, registry
 from .errors import ModelError, translated
 from .model import Model
 
-#: The kinds whose joints JointSpace moves, and what they move.
-_MOVING = {"add_revolute": "turns", "add_translational": "slides"}
+#: The joint coordinates JointSpace moves along (a kind's coordinates,
+#: lagmb.registry), and what a joint with that one coordinate does; a joint
+#: with two (cylindrical) has no one joint value.
+_MOVING = {("angle",): "turns", ("slide",): "slides"}
 
 
 def _unit(x):
@@ -47,7 +49,8 @@ class JointSpace:
             self._R0[name] = _rotations.matrix(q0[7 * k + 3:7 * k + 7])
         parent_of, joints = {}, {}
         for method, values in model.elements():
-            if method not in _MOVING:
+            moves = _MOVING.get(registry.SPATIAL_BY_METHOD[method].coordinates)
+            if moves is None:
                 continue
             name = values["name"]
             body_i, body_j = str(values["body_i"]), str(values["body_j"])
@@ -62,12 +65,12 @@ class JointSpace:
             # the child's pose in the parent's axes at joint value 0 (the
             # initial configuration has the joint's given angle or slide)
             R_rel, r_rel = Rp.T @ self._R0[body_j], Rp.T @ (self._r0[body_j] - rp)
-            if _MOVING[method] == "turns":
+            if moves == "turns":
                 back = _rotations.turn(axis_p, -float(values.get("angle") or 0.0))
                 R_rel, r_rel = back @ R_rel, back @ (r_rel - at_p) + at_p
             else:
                 r_rel = r_rel - float(values.get("slide") or 0.0) * axis_p
-            joints[name] = dict(name=name, parent=body_i, child=body_j, kind=_MOVING[method], axis=axis_p, at=at_p,
+            joints[name] = dict(name=name, parent=body_i, child=body_j, kind=moves, axis=axis_p, at=at_p,
                                 R=R_rel, r=r_rel)
         # parents before children
         self.joints, placed = [], {"ground"} | {b for b in self._bodies if b not in parent_of}

@@ -31,7 +31,7 @@ import numbers
 
 import numpy as np
 
-from . import _core
+from . import _core, _output_names, registry
 from ._checks import array, positive, real, show
 from .errors import ModelError
 from .statics import Equilibrium, equilibrium
@@ -445,18 +445,6 @@ class Descriptor:
         return f"<lagmb.Descriptor: {len(self.states)} states, {len(self.inputs)} inputs, {len(self.outputs)} outputs>"
 
 
-def _coordinate_names(model, core):
-    """The model's coordinates by the FMU's names: body.x, body.y, body.angle
-    in the plane; body.x, .y, .z, .e0 ... .e3 in space."""
-    names = [f"q{i}" for i in range(core.n_coordinates)]
-    for body in model.bodies:
-        first, count = core.body_coordinates(body.name)
-        suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")
-        for k in range(count):
-            names[first + k] = f"{body.name}.{suffixes[k]}"
-    return names
-
-
 def _preference(names):
     """The order in which coordinates are taken as independent: angles (a
     planar body's angle, the vector part e1..e3 of a spatial body's Euler
@@ -567,26 +555,25 @@ class _Outputs:
         self.model, self.core, self.point, self.who = model, core, point, who
         q, v, lam, t, u = point
         n, m = len(q), len(lam)
-        coords = _coordinate_names(model, core)
+        coords = list(core.coordinate_names())
         self.names, rows = [], []
         for name in names:
             if not isinstance(name, str):
                 raise ModelError(f"{who}: output names are strings, got {name!r}")
             Cq, Cv, Cl, value = np.zeros(n), np.zeros(n), np.zeros(m), None
-            rate = name.startswith("der(") and name.endswith(")")
-            base = name[4:-1] if rate else name
-            element, _, what = base.partition(".")
-            if base in coords:
-                j = coords.index(base)
+            out = _output_names.parse(name)
+            rate, element, what = out.rate, out.element, out.what
+            if out.base in coords:
+                j = coords.index(out.base)
                 (Cv if rate else Cq)[j] = 1.0
                 value = (v if rate else q)[j]
-            elif not rate and what.startswith("reaction.") and self._is(element, "constraint"):
-                value = self._reaction(element, what[len("reaction."):], Cq, Cl, name)
+            elif not rate and out.reaction_component is not None and self._is(element, "constraint"):
+                value = self._reaction(element, out.reaction_component, Cq, Cl, name)
             elif not rate and what == "effort" and self._is(element, "driver"):
                 row0, _ = core.constraint_rows(element)
                 Cl[row0] = -1.0
                 value = -lam[row0]
-            elif what in ("angle", "slide") and self._is(element, "joint"):
+            elif what in _output_names.JOINT_COORDINATES and self._is(element, "joint"):
                 value = self._joint(element, what, rate, Cq, Cv, name)
             else:
                 raise ModelError(f"{who}: no output {name!r}; outputs are coordinates and their rates "
@@ -607,9 +594,8 @@ class _Outputs:
         core = self.core
         if not core.has(element):
             return False
-        kind = core.element_kind(element)
         if what == "driver":
-            return "driver" in kind
+            return registry.is_driver(core, element)
         if what == "joint":
             return core.joint_coordinate(element) is not None
         try:
@@ -629,8 +615,7 @@ class _Outputs:
     def _reaction(self, element, component, Cq, Cl, name):
         core = self.core
         q, v, lam, t, u = self.point
-        components = (["x", "y", "z", "torque.x", "torque.y", "torque.z"] if self.model.dimension == 3
-                      else ["x", "y", "torque"])
+        components = _output_names.REACTION_COMPONENTS[self.model.dimension]
         if component not in components:
             raise ModelError(f"{self.who}: no output {name!r}; a reaction's components are "
                              f"{', '.join(components)}")
@@ -791,7 +776,7 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     # the minimal coordinates: dq = T z, z = L dq
     Z = _null_space(J, 1e-10)
     k = Z.shape[1]
-    names = _coordinate_names(model, core)
+    names = list(core.coordinate_names())
     if isinstance(coordinates, str) and coordinates == "orthonormal":
         T, L = Z, Z.T
         state_names = [f"z{i + 1}" for i in range(k)]

@@ -215,14 +215,7 @@ class Model:
         """The names of the coordinates q in order, as the FMU names them:
         body.x, body.y, body.angle in the plane; body.x, .y, .z, .e0 ...
         .e3 (Euler parameters) in space."""
-        core = self.compiled()
-        names = [f"q{i}" for i in range(core.n_coordinates)]
-        for name, _ in self._spec.bodies:
-            first, count = core.body_coordinates(name)
-            suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")
-            for k in range(count):
-                names[first + k] = f"{name}.{suffixes[k]}"
-        return names
+        return list(self.compiled().coordinate_names())
 
     def parameters(self):
         """{name: value} of every number given to an element that a run may

@@ -7,7 +7,9 @@ and each parameter's type, default, unit and one-line documentation. This
 module reads that declaration and derives from it what Python needs: the
 signature and docstring of each Model.add_* / drive_* method, the scene
 schema (lagmb.scene.schema), the roles handles and drawings count, and the
-element reference of docs/modelling.md (``lagmb info --kinds``).
+element reference of docs/modelling.md (``lagmb info --kinds``). What an
+element of a compiled model is (a driver, a joint with an angle or a slide)
+is read from its Kind (:func:`kind_of`), never from its kind's name.
 """
 
 import inspect
@@ -53,6 +55,13 @@ class Kind(NamedTuple):
         """How messages call one: "revolute", "joint driver", ..."""
         return self.name.replace("_", " ")
 
+    @property
+    def coordinates(self):
+        """The joint coordinates it has, of "angle" and "slide": ("angle",)
+        for a revolute, ("angle", "slide") for a cylindrical joint, () for
+        a kind without one."""
+        return tuple(self.coordinate.split(" and ")) if self.coordinate else ()
+
 
 def _read():
     kinds = []
@@ -77,6 +86,21 @@ ROLE_WORDS = {"body": ("body", "bodies"), "joint": ("joint", "joints"), "driver"
               "force": ("force element", "force elements"),
               "friction": ("joint friction", "joint frictions"), "stop": ("stop", "stops"),
               "contact": ("contact", "contacts")}
+
+
+def kind_of(core, name):
+    """The Kind body or element `name` of a compiled model (core) was added
+    as, or None for one the model made itself; ModelError (from the core)
+    if it has no such name. What an element is, its role and coordinates,
+    is read here, never from the name of its kind."""
+    kind = core.given_kind(name)
+    return None if kind is None else BY_NAME[kind]
+
+
+def is_driver(core, name):
+    """Whether element `name` of a compiled model is a driver (its kind's role)."""
+    kind = kind_of(core, name)
+    return kind is not None and kind.role == "driver"
 
 
 

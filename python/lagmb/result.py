@@ -4,7 +4,7 @@ from functools import cached_property
 
 import numpy as np
 
-from . import _core, _rotations
+from . import _core, _rotations, registry
 from ._rotations import matrix as rotation_matrices  # (statics reads it from here)
 from .errors import KinematicOnlyError, ModelError, SimulationError
 from .handles import name_of
@@ -119,8 +119,9 @@ class JointPath:
     def __init__(self, result, name):
         core = result._core
         kind = core.element_kind(name)
-        turns = kind in ("revolute", "spatial_revolute", "cylindrical")
-        slides = kind in ("translational", "spatial_translational", "cylindrical")
+        declared = registry.kind_of(core, name)
+        coordinates = declared.coordinates if declared else ()
+        turns, slides = "angle" in coordinates, "slide" in coordinates
         if not (turns or slides):
             raise ModelError(f"Result.joint: '{name}' is a {kind}, not a revolute, translational or cylindrical joint")
         motion = {}
@@ -290,7 +291,7 @@ class Result:
         """(k,) the force (N) or torque (N m) a driver applies to impose its
         motion, positive along the driven coordinate."""
         name = self._name(driver, ("driver",), "driver", "Result.effort")
-        if not self._core.element_kind(name).endswith("_driver"):
+        if not registry.is_driver(self._core, name):
             raise ModelError(f"'{name}' is not a driver")
         return -self.multipliers(name)[:, 0]
 

@@ -27,7 +27,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import _checks, _rotations
+from . import _checks, _output_names, _rotations, registry
 from ._checks import show
 from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line, trace_points
 from .errors import ModelError
@@ -215,31 +215,28 @@ def _output_series(result, name):
     """(values (k,), unit) of one output by name."""
     model = result.model
     coords = model.coordinate_names()
-    rate = name.startswith("der(") and name.endswith(")")
-    base = name[4:-1] if rate else name
+    out = _output_names.parse(name)
     if name in ("energy", "residual", "velocity_residual"):
         return np.asarray(getattr(result, name), dtype=float), {"energy": "J", "residual": "", "velocity_residual": ""}[name]
-    if base in coords:
-        j = coords.index(base)
-        unit = "rad" if base.endswith(".angle") else "" if ".e" in base[-3:] else "m"
-        return np.asarray((result.v if rate else result.q)[:, j], dtype=float), unit + ("/s" if rate and unit else "")
-    element, _, what = base.partition(".")
-    core = result._core
+    if out.base in coords:
+        j = coords.index(out.base)
+        unit = model.compiled().coordinate_units()[j]
+        return np.asarray((result.v if out.rate else result.q)[:, j], dtype=float), unit + ("/s" if out.rate and unit else "")
+    element, what, core = out.element, out.what, result._core
     if element and core.has(element):
-        if not rate and what.startswith("reaction."):
-            components = (["x", "y", "z", "torque.x", "torque.y", "torque.z"] if model.dimension == 3
-                          else ["x", "y", "torque"])
-            c = what[len("reaction."):]
+        c = out.reaction_component
+        if not out.rate and c is not None:
+            components = _output_names.REACTION_COMPONENTS[model.dimension]
             if c in components:
                 k = components.index(c)
                 return np.asarray(result.reaction(element)[:, k], dtype=float), "N m" if c.startswith("torque") else "N"
-        if not rate and what == "effort" and core.element_kind(element).endswith("_driver"):
+        if not out.rate and what == "effort" and registry.is_driver(core, element):
             return np.asarray(result.effort(element), dtype=float), "N or N m"
-        if what in ("angle", "slide") and core.joint_coordinate(element) is not None:
+        if what in _output_names.JOINT_COORDINATES and core.joint_coordinate(element) is not None:
             path = result.joint(element)
-            values = path.rate if rate else getattr(path, what, None)
+            values = path.rate if out.rate else getattr(path, what, None)
             if values is not None:
-                return np.asarray(values, dtype=float), ("rad" if what == "angle" else "m") + ("/s" if rate else "")
+                return np.asarray(values, dtype=float), ("rad" if what == "angle" else "m") + ("/s" if out.rate else "")
     raise ModelError(f"lagmb.view: no output {name!r}; outputs are energy, residual, velocity_residual, the "
                      f"coordinates ({', '.join(coords[:60])}{f', ... ({len(coords)} in all)' if len(coords) > 60 else ''}) "
                      "and their "
@@ -544,7 +541,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
             p = np.column_stack([p, np.zeros(len(p))])
         traces.append({"points": _b64(p), "colour": list(_PALETTE[(j + 3) % len(_PALETTE)])})
     if outputs is None:
-        outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers if result._core.element_kind(d).endswith("_driver")][:3]
+        outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers][:3]
     plots = []
     for name in outputs:
         values, unit = _output_series(result, name)

@@ -9,18 +9,14 @@
 
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/errors.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "solvers/sparse_qr.hpp"
 
 namespace lagmb {
 
 std::string coordinate_label(const Model& model, int coord) {
   const Body& b = model.body_of_coordinate(coord);
-  // planar (x, y, angle), particle (x, y), spatial (r, Euler parameters p)
-  static const char* planar[] = {"x", "y", "angle"};
-  static const char* spatial[] = {"x", "y", "z", "e0", "e1", "e2", "e3"};
-  const int k = coord - b.first_coord;
-  if (k < 0 || k >= b.n_coordinates()) return "coordinate " + std::to_string(coord);
-  return "body '" + b.name + "' " + (b.spatial ? spatial : planar)[k];
+  return "body '" + b.name + "' " + body_coordinate_name(b, coord - b.first_coord);
 }
 
 std::vector<std::pair<int, double>> turning_coordinates(const Model& model) {

@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/model/model.hpp"
 
 namespace lagmb {
@@ -37,7 +38,7 @@ std::string driven_unit(const ModelSpec& spec, const ModelSpec::Element& driver)
   if (const std::string c = text("coordinate"); !c.empty()) return c == "angle" ? "rad" : "m";
   if (const std::string joint = text("joint"); !joint.empty())
     if (const auto* e = element_of(spec, joint))
-      return e->args.kind().name.find("revolute") != std::string::npos ? "rad" : "m";
+      return e->args.kind().coordinate == "angle" ? "rad" : "m";
   return "";
 }
 
@@ -134,13 +135,9 @@ CoSimulation::CoSimulation(CoSimulationSetup setup)
     parameters_.push_back(p.value);
   }
   for (const Body& b : model->bodies()) {
-    static const char* planar[] = {"x", "y", "angle"};
-    static const char* spatial[] = {"x", "y", "z", "e0", "e1", "e2", "e3"};
     for (int c = 0; c < b.n_coordinates(); ++c) {
-      const std::string coordinate = b.spatial ? spatial[c] : planar[c];
-      const bool angle = coordinate == "angle", euler = coordinate[0] == 'e';
-      const std::string unit = angle ? "rad" : euler ? "" : "m";
-      const std::string rate = angle ? "rad/s" : euler ? "1/s" : "m/s";
+      const std::string coordinate = body_coordinate_name(b, c), unit = body_coordinate_unit(b, c);
+      const std::string rate = (unit.empty() ? "1" : unit) + "/s";
       add({b.name + "." + coordinate, "output", "continuous", unit, "coordinate of body " + b.name},
           {Slot::kCoordinate, b.first_coord + c});
       add({"der(" + b.name + "." + coordinate + ")", "output", "continuous", rate, "its rate"},
@@ -150,11 +147,9 @@ CoSimulation::CoSimulation(CoSimulationSetup setup)
   for (const std::string& name : setup_.reactions) {
     if (!model->has(name) || model->find(name).type != ElementRef::kConstraint)
       throw ModelError("co-simulation: reaction of '" + name + "': not a joint or driver of the model");
-    static const char* planar[] = {"x", "y", "torque"};
-    static const char* spatial[] = {"x", "y", "z", "torque.x", "torque.y", "torque.z"};
-    const bool space = model->dimension() == 3;
-    for (int c = 0; c < (space ? 6 : 3); ++c) {
-      const std::string component = space ? spatial[c] : planar[c];
+    const std::vector<std::string>& components = reaction_components(model->dimension());
+    for (int c = 0; c < int(components.size()); ++c) {
+      const std::string& component = components[size_t(c)];
       add({name + ".reaction." + component, "output", "continuous", component.rfind("torque", 0) == 0 ? "N m" : "N",
            "force and torque of " + name + " on its second body, global axes"},
           {Slot::kReaction, 0, c, name});

@@ -297,6 +297,13 @@ const ElementRef& Model::find(const std::string& name) const {
   return it->second;
 }
 
+const KindInfo* Model::given_kind(const std::string& name) const {
+  find(name);  // the message for a name the model does not have
+  for (auto e = given_.rbegin(); e != given_.rend(); ++e)
+    if (e->name == name) return &e->args.kind();
+  return nullptr;
+}
+
 std::string Model::constraint_name_of_row(int row) const {
   if (!finalized_) throw ModelError("constraint_name_of_row: the model is not finalized");
   if (row < 0 || row >= m_)

@@ -33,6 +33,14 @@ const ElementRef& constraint_element(const Model& model, const std::string& elem
 
 }  // namespace
 
+const std::vector<std::string>& reaction_components(int dimension) {
+  static const std::vector<std::string> planar = {"x", "y", "torque"};
+  static const std::vector<std::string> spatial = {"x", "y", "z", "torque.x", "torque.y", "torque.z"};
+  if (dimension != 2 && dimension != 3)
+    throw ModelError("reaction_components: dimension must be 2 or 3, got " + std::to_string(dimension));
+  return dimension == 2 ? planar : spatial;
+}
+
 OutputView OutputView::of(const Trajectory& tr) {
   OutputView o;
   o.k = tr.size();
@@ -64,7 +72,7 @@ VecX efforts(const Model& model, const std::string& element, const OutputView& o
   require(model, out, false, false, true);
   const ElementRef& r = constraint_element(model, element, "a driver");
   const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
-  if (std::string(g.kind()).find("driver") == std::string::npos)
+  if (const KindInfo* kind = model.given_kind(element); !kind || kind->role != Role::kDriver)
     throw ModelError("'" + element + "' is " + model.describe(element) + ", not a driver");
   const int row = g.placement(r.index).row0, m = model.n_constraints();
   VecX e(out.k);

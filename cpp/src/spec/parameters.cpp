@@ -3,17 +3,11 @@
 
 #include <cmath>
 
+#include "lagmb/model/coordinates.hpp"
+
 namespace lagmb {
 
 namespace {
-
-/// The name of a body's coordinate (an FMU output) that a parameter of
-/// the same name would shadow.
-bool body_coordinate(const std::string& suffix) {
-  for (const char* c : {"x", "y", "z", "angle", "e0", "e1", "e2", "e3"})
-    if (suffix == c) return true;
-  return false;
-}
 
 const char* component_name(int c) { return c == 0 ? "x" : c == 1 ? "y" : "z"; }
 
@@ -32,7 +26,8 @@ std::vector<ParameterInfo> parameters(const Model& model) {
           suffix += std::string(".") + component_name(component);
           info.name += std::string(".") + component_name(component);
         }
-        if (kind.role == Role::kBody && body_coordinate(suffix)) info.name += ".start";
+        // a body's coordinate of that name (an FMU output) would be shadowed
+        if (kind.role == Role::kBody && is_body_coordinate_name(suffix)) info.name += ".start";
         out.push_back(std::move(info));
       };
       if (p.type == ParamType::kReal) {

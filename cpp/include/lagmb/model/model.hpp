@@ -109,6 +109,10 @@ class Model {
   void record_given(const std::string& name, const Args& args) { given_.push_back({name, args}); }
   /// The elements as given, in the order added.
   const std::vector<GivenElement>& given_elements() const { return given_; }
+  /// The kind body or element `name` was added as (its role, its
+  /// coordinate: registry.hpp); null for one the model made itself.
+  /// ModelError if the model has no such name.
+  const KindInfo* given_kind(const std::string& name) const;
   /// Gravity as set (absent if never set).
   const std::optional<Vec3>& given_gravity() const { return given_gravity_; }
   /// Notes a time function of a driver or force (for breakpoints()).

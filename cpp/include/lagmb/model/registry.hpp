@@ -84,7 +84,8 @@ struct Param {
 };
 
 /// What an element stands for: where its handle may go, how results and
-/// drawings count it.
+/// drawings count it, which elements have an effort (kDriver; never found
+/// by a kind's name: Model::given_kind).
 enum class Role { kBody, kJoint, kDriver, kForce, kFriction, kStop, kContact };
 const char* role_name(Role role);
 
@@ -106,7 +107,8 @@ struct KindInfo {
   int dimension = 2;
   /// A joint's scalar coordinate, as its kind's coordinate() gives it
   /// (joint_coordinate.hpp): "angle", "slide", "angle and slide"; "" none.
-  /// Messages name the kinds that have one.
+  /// Messages name the kinds that have one; Python (Result.joint,
+  /// JointSpace, drawings) and the FMU's units read it here, never a kind's name.
   std::string coordinate = {};
 
   const Param* param(const std::string& key) const;

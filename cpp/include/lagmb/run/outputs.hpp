@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "lagmb/analyses/joint_space.hpp"
 #include "lagmb/model/model.hpp"
@@ -35,6 +36,11 @@ struct OutputView {
 /// global axes, or in the element's own axes with joint_axes (the planar
 /// torque unchanged). From -Phi_c^T lam of the element's rows.
 OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes = false);
+
+/// The names of reactions()' columns, as an output name ends
+/// ("hinge.reaction.torque"): x, y, torque in the plane (dimension 2);
+/// x, y, z, torque.x, torque.y, torque.z in space (3).
+const std::vector<std::string>& reaction_components(int dimension);
 
 /// (k) what the driver `element` applies along what it drives (N or N m,
 /// positive along increasing driven coordinate): -lam of its row.
