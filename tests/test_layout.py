@@ -101,7 +101,7 @@ PYTHON_LAYERS = [
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["_drawing"],
-    ["scene", "plotting", "demo", "urdf", "mjcf", "studies", "viewer"],
+    ["scene", "plotting", "demo", "urdf", "mjcf", "_store", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 
