@@ -34,7 +34,6 @@ from ._version import __version__
 from .errors import ModelError, SimulationError
 from .registry import BY_METHOD, SPATIAL_BY_METHOD, markdown
 from .scene.schema import ELEMENT_TABLES, elements, methods
-from .studies import MAX_CASES  # a typo such as 0:1:1e9 is refused, not a machine filled with case lists
 
 OK, FAILED, USAGE, INTERNAL = 0, 1, 2, 3
 
@@ -769,7 +768,6 @@ _SWEEP_KINDS = {  # --output KIND: what its ARG names (None: no ARG)
 }
 _SWEEP_ROWS = 20          # more cases than this: the first and last rows and each output's range
 _SWEEP_ENDS = 5           # rows shown at each end then
-_INTEGER_SETTINGS = ("n_out", "max_steps")
 
 
 def _sweep_parser(sub):
@@ -949,65 +947,15 @@ def _count(n, one):
 
 
 def _sweep_grid(specs):
-    """({name: values}, {name: the --vary as typed}) from the --vary options."""
-    if not specs:
-        raise _Exit(USAGE, "give at least one --vary NAME=SPEC (e.g. --vary rod.mass=1:3:5 or "
-                           "--vary rod.mass=1,2,4)")
-    grid, typed = {}, {}
-    for spec in specs:
-        name, eq, text = spec.partition("=")
-        name = name.strip()
-        if not eq or not name:
-            raise _Exit(USAGE, f"--vary {spec}: must be NAME=SPEC, SPEC A:B:N (N values from A to B) or V1,V2,...")
-        if name in grid:
-            raise _Exit(USAGE, f"--vary {spec}: {name} is varied twice (--vary {typed[name]})")
-        grid[name], typed[name] = _sweep_values(spec, name, text.strip()), spec
-    n = math.prod(len(values) for values in grid.values())
-    if n > MAX_CASES:
-        raise _Exit(USAGE, f"--vary: {n:,} cases (" + " x ".join(str(len(v)) for v in grid.values())
-                           + f"): at most {MAX_CASES:,} in one study")
-    return grid, typed
+    """({name: values}, {name: the --vary as typed}) from the --vary options
+    (lagmb.studies.grid_from_text reads them)."""
+    from .studies import grid_from_text
 
-
-def _sweep_values(spec, name, text):
-    """The values of --vary NAME=SPEC: A:B:N as numpy.linspace(A, B, N), or V1,V2,..."""
-    import numpy as np
-
-    def number(s):
-        try:
-            v = _number(s)
-        except argparse.ArgumentTypeError as e:
-            raise _Exit(USAGE, f"--vary {spec}: {e}; SPEC is A:B:N (N values from A to B) or V1,V2,...") from None
-        if not math.isfinite(v):
-            raise _Exit(USAGE, f"--vary {spec}: {s.strip()} must be a finite number")
-        return v
-
-    if ":" in text:
-        parts = text.split(":")
-        if len(parts) != 3:
-            raise _Exit(USAGE, f"--vary {spec}: A:B:N has three parts (N values from A to B), got {len(parts)}")
-        a, b, count = (number(p) for p in parts)
-        if not count.is_integer() or count < 2:
-            raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()} must be a whole number of values, at least "
-                               f"2 (one value: {name}=V)")
-        if count > MAX_CASES:
-            raise _Exit(USAGE, f"--vary {spec}: N = {parts[2].strip()}: at most {MAX_CASES:,} values")
-        if a == b:
-            raise _Exit(USAGE, f"--vary {spec}: A:B:N runs from A to B: give A and B apart")
-        values = np.linspace(a, b, int(count)).tolist()
-    else:
-        items = text.split(",")
-        if any(not s.strip() for s in items):
-            raise _Exit(USAGE, f"--vary {spec}: an empty value; SPEC is A:B:N (N values from A to B) or V1,V2,...")
-        values = [number(s) for s in items]
-        twice = next((v for k, v in enumerate(values) if v in values[:k]), None)
-        if twice is not None:
-            raise _Exit(USAGE, f"--vary {spec}: {twice:g} is listed twice")
-    if name in _INTEGER_SETTINGS:
-        if any(not float(v).is_integer() for v in values):
-            raise _Exit(USAGE, f"--vary {spec}: {name} takes whole numbers")
-        values = [int(v) for v in values]
-    return values
+    try:
+        grid = grid_from_text(specs or [], who="--vary")
+    except ModelError as e:
+        raise _Exit(USAGE, str(e)) from None
+    return grid, dict(zip(grid, specs))
 
 
 def _sweep_outputs(scene, specs):

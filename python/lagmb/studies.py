@@ -26,7 +26,7 @@ import warnings
 
 import numpy as np
 
-from ._checks import array, real, show
+from ._checks import array, decimal, real, show
 from ._store import MAX_CASES, Store, description, ignored_warning, open_store, read, scan
 from ._store import check_store  # noqa: F401 - public here: mb.sweep's and lagmb sweep -o's check of a store
 from .errors import ModelError, SimulationError
@@ -221,6 +221,89 @@ def sobol(bounds, n, seed):
     high)}), scipy.stats.qmc, reproducible from ``seed`` (n a power of 2
     keeps its balance)."""
     return _qmc("sobol", bounds, n, seed)
+
+
+# --- a grid written as text -------------------------------------------------------
+
+_WHOLE_SETTINGS = ("n_out", "max_steps")  # run settings that take whole numbers
+_SPEC = "SPEC is A:B:N (N values from A to B) or V1,V2,..."
+
+
+def grid_from_text(specs, who="sweep.grid_from_text"):
+    """The grid ``{name: [values, ...]}`` that :func:`sweep` takes, from
+    texts ``"NAME=SPEC"`` as ``lagmb sweep --vary`` reads them: SPEC
+    ``A:B:N`` is N values from A to B, both included (``numpy.linspace``),
+    ``V1,V2,...`` a list; numbers are written as TOML writes them ("1e-3",
+    not "1_0"). The names keep their order (the last varies fastest);
+    ``n_out`` and ``max_steps`` get whole numbers. A text that is no such
+    SPEC, a name given twice, a value listed twice or more than MAX_CASES
+    cases is a ModelError naming the text; ``who`` begins the message (an
+    option of a command line, "--vary", is shown before the text as typed)."""
+    if isinstance(specs, str):
+        specs = [specs]
+
+    def about(spec):
+        return f"{who} {spec}" if who.startswith("--") else f"{who}: {spec!r}"
+
+    if not specs:
+        if who.startswith("--"):
+            raise ModelError(f"give at least one {who} NAME=SPEC (e.g. {who} rod.mass=1:3:5 or "
+                             f"{who} rod.mass=1,2,4)")
+        raise ModelError(f"{who}: give at least one 'NAME=SPEC' (e.g. 'rod.mass=1:3:5' or 'rod.mass=1,2,4')")
+    grid, typed = {}, {}
+    for spec in specs:
+        name, eq, text = str(spec).partition("=")
+        name = name.strip()
+        if not eq or not name:
+            raise ModelError(f"{about(spec)}: must be NAME=SPEC, SPEC A:B:N (N values from A to B) or V1,V2,...")
+        if name in grid:
+            raise ModelError(f"{about(spec)}: {name} is varied twice ({about(typed[name])})")
+        grid[name], typed[name] = _values_from_text(about(spec), name, text.strip()), spec
+    n = math.prod(len(values) for values in grid.values())
+    if n > MAX_CASES:
+        raise ModelError(f"{who}: {n:,} cases (" + " x ".join(str(len(v)) for v in grid.values())
+                         + f"): at most {MAX_CASES:,} in one study")
+    return grid
+
+
+def _values_from_text(about, name, text):
+    """The values of NAME=SPEC (SPEC as text): A:B:N as numpy.linspace(A, B,
+    N), or V1,V2,...; ``about`` begins each message."""
+    def number(s):
+        try:
+            v = decimal(s, "number")
+        except ModelError as e:
+            raise ModelError(f"{about}: {str(e).partition(': ')[2]}; {_SPEC}") from None
+        if not math.isfinite(v):
+            raise ModelError(f"{about}: {s.strip()} must be a finite number")
+        return v
+
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise ModelError(f"{about}: A:B:N has three parts (N values from A to B), got {len(parts)}")
+        a, b, count = (number(p) for p in parts)
+        if not count.is_integer() or count < 2:
+            raise ModelError(f"{about}: N = {parts[2].strip()} must be a whole number of values, at least 2 (one "
+                             f"value: {name}=V)")
+        if count > MAX_CASES:
+            raise ModelError(f"{about}: N = {parts[2].strip()}: at most {MAX_CASES:,} values")
+        if a == b:
+            raise ModelError(f"{about}: A:B:N runs from A to B: give A and B apart")
+        values = np.linspace(a, b, int(count)).tolist()
+    else:
+        items = text.split(",")
+        if any(not s.strip() for s in items):
+            raise ModelError(f"{about}: an empty value; {_SPEC}")
+        values = [number(s) for s in items]
+        twice = next((v for k, v in enumerate(values) if v in values[:k]), None)
+        if twice is not None:
+            raise ModelError(f"{about}: {twice:g} is listed twice")
+    if name in _WHOLE_SETTINGS:
+        if any(not float(v).is_integer() for v in values):
+            raise ModelError(f"{about}: {name} takes whole numbers")
+        values = [int(v) for v in values]
+    return values
 
 
 # --- the cases ------------------------------------------------------------------
@@ -796,6 +879,7 @@ sweep.monte_carlo = monte_carlo
 sweep.latin_hypercube = latin_hypercube
 sweep.sobol = sobol
 sweep.as_grid = as_grid
+sweep.grid_from_text = grid_from_text
 sweep.open_store = open_store
 sweep.MAX_CASES = MAX_CASES
 sweep.Design = Design
