@@ -153,3 +153,23 @@ def test_no_module_reads_private_names_of_plotting():
             if isinstance(node, ast.ImportFrom) and node.module and node.module.endswith("plotting"):
                 found += [f"{path.relative_to(package)}: {a.name}" for a in node.names if a.name.startswith("_")]
     assert found == []
+
+
+def test_each_subcommand_of_the_command_line_stands_alone():
+    """lagmb.cli is a module per subcommand (add_parser, handle) and the
+    package's __init__ that dispatches by its table: a subcommand's module
+    imports, of lagmb.cli, only the shared lagmb.cli._common."""
+    import ast
+
+    cli = ROOT / "python" / "lagmb" / "cli"
+    found = []
+    for path in sorted(cli.glob("*.py")):
+        if path.name in ("__init__.py", "__main__.py", "_common.py"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1 and node.module != "_common":
+                found.append(f"{path.name} imports .{node.module or ''}")
+        names = {n.name for n in ast.parse(path.read_text()).body if isinstance(n, ast.FunctionDef)}
+        if not {"add_parser", "handle"} <= names:
+            found.append(f"{path.name} lacks add_parser or handle")
+    assert found == []

@@ -66,11 +66,11 @@ def table(out):
 
 
 def test_a_spec_gives_linspace_or_the_list_and_several_make_the_grid(capsys):
-    grid, typed = cli._sweep_grid(["rod.mass=0.5:2:4", "slider.mass=0.2,0.4", "n_out=11,21"])
+    grid, typed = cli.sweep._grid(["rod.mass=0.5:2:4", "slider.mass=0.2,0.4", "n_out=11,21"])
     assert grid == {"rod.mass": list(np.linspace(0.5, 2.0, 4)), "slider.mass": [0.2, 0.4], "n_out": [11, 21]}
     assert grid["rod.mass"] == [0.5, 1.0, 1.5, 2.0] and all(type(n) is int for n in grid["n_out"])
     assert typed["rod.mass"] == "rod.mass=0.5:2:4"
-    assert cli._sweep_grid(["crank.angle.start=-1:1:3"])[0] == {"crank.angle.start": [-1.0, 0.0, 1.0]}
+    assert cli.sweep._grid(["crank.angle.start=-1:1:3"])[0] == {"crank.angle.start": [-1.0, 0.0, 1.0]}
 
     code, out, err = lagmb(capsys, "sweep", SCENE, "--vary", "rod.mass=0.5:2:4", "--vary", "slider.mass=0.2,0.4",
                            "--t-end", T_END, "--output", "peak_effort=motor")
@@ -368,5 +368,5 @@ def test_ctrl_c_during_a_sweep_on_workers_prints_one_line(tmp_path):
 def test_a_worker_of_lagmb_sweep_ignores_ctrl_c():
     from concurrent.futures import ProcessPoolExecutor
 
-    with ProcessPoolExecutor(1, initializer=cli._quiet_worker) as ex:
+    with ProcessPoolExecutor(1, initializer=cli.sweep._quiet_worker) as ex:
         assert ex.submit(signal.getsignal, signal.SIGINT).result() == signal.SIG_IGN
