@@ -39,6 +39,28 @@ def four_bar(tmp_path):
     return path
 
 
+def test_the_help_and_the_usage_name_every_subcommand_and_option():
+    """lagmb --help lists each subcommand of lagmb.cli's table with its
+    help; the usage in lagmb.cli's docstring shows each subcommand and
+    every option each takes (short or long)."""
+    import argparse
+
+    from lagmb import cli
+
+    p = lagmb("--help")
+    assert p.returncode == 0, p.stderr
+    listed = re.findall(r"^    (\w+)  +\S", p.stdout, re.M)
+    assert listed == list(cli.COMMANDS)
+    parsers = next(a for a in cli._parser()._actions if isinstance(a, argparse._SubParsersAction)).choices
+    assert list(parsers) == list(cli.COMMANDS)
+    for name, parser in parsers.items():
+        assert f"lagmb {name} " in cli.__doc__, name
+        for action in parser._actions:
+            if action.option_strings and not isinstance(action, argparse._HelpAction):
+                assert any(re.search(rf"(?<![\w-]){re.escape(o)}(?![\w-])", cli.__doc__) for o in
+                           action.option_strings), f"lagmb {name} {action.option_strings[-1]}"
+
+
 def test_run_npz(four_bar, tmp_path):
     out = tmp_path / "x.npz"
     p = lagmb("run", four_bar, "-o", out, "--t-end", "0.5", "--quiet")

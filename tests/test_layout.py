@@ -102,7 +102,7 @@ PYTHON_LAYERS = [
     ["model"],
     ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["_drawing"],
-    ["scene", "plotting", "demo", "urdf", "mjcf", "studies", "viewer"],
+    ["scene", "plotting", "demo", "urdf", "mjcf", "_store", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 
@@ -211,4 +211,23 @@ def test_kinds_are_known_by_their_registry_entry_not_their_name():
             continue
         found += [f"{where}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
                   if isinstance(node, ast.Constant) and node.value in named]
+
+
+def test_each_subcommand_of_the_command_line_stands_alone():
+    """lagmb.cli is a module per subcommand (add_parser, handle) and the
+    package's __init__ that dispatches by its table: a subcommand's module
+    imports, of lagmb.cli, only the shared lagmb.cli._common."""
+    import ast
+
+    cli = ROOT / "python" / "lagmb" / "cli"
+    found = []
+    for path in sorted(cli.glob("*.py")):
+        if path.name in ("__init__.py", "__main__.py", "_common.py"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1 and node.module != "_common":
+                found.append(f"{path.name} imports .{node.module or ''}")
+        names = {n.name for n in ast.parse(path.read_text()).body if isinstance(n, ast.FunctionDef)}
+        if not {"add_parser", "handle"} <= names:
+            found.append(f"{path.name} lacks add_parser or handle")
     assert found == []

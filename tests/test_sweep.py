@@ -409,7 +409,7 @@ def test_the_lock_of_a_process_that_died_is_taken_over_even_while_its_forked_wor
     four_cases(store)
     # the sweep's process locks the store, forks a worker (which inherits the
     # lock file's descriptor, as a process pool's fork does) and dies
-    script = (f"import os, sys, time\nfrom lagmb import studies\nlock = studies._Lock({str(store)!r}, 'sweep')\n"
+    script = (f"import os, sys, time\nfrom lagmb import _store\nlock = _store.Lock({str(store)!r}, 'sweep')\n"
               "worker = os.fork()\nif worker == 0:\n    time.sleep(60)\n    os._exit(0)\n"
               "print(worker, flush=True)\nos._exit(0)\n")
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
@@ -457,12 +457,12 @@ def test_a_store_on_a_file_system_without_locks_is_used_with_a_warning(tmp_path,
 
 
 def test_a_batch_written_twice_is_not_an_error(tmp_path):
-    from lagmb import studies
+    from lagmb import _store, studies
 
     store = tmp_path / "study.zarr"
     ds = four_cases(store)
     held = studies.check_store(store)
-    writer = studies._Store(store, held, "sweep")
+    writer = _store.Store(store, held, "sweep")
     try:
         part = ds.isel(case=[0, 1])
         writer.write(0, 0, 2, part)  # already there and whole
@@ -531,3 +531,44 @@ def test_a_data_frame_s_missing_value_keeps_the_model_s_value_as_a_list_of_dicts
     framed = mb.sweep(scene(), table, t_end=0.02, outputs={"x_end": slider_x_end}, progress=False)
     assert list(framed["status"].values) == ["ok"] * 3
     np.testing.assert_array_equal(framed["x_end"].values, listed["x_end"].values)
+
+
+def test_a_grid_written_as_text_is_linspace_or_the_list_in_the_order_given():
+    """mb.sweep.grid_from_text reads NAME=SPEC as lagmb sweep --vary does:
+    A:B:N is numpy.linspace(A, B, N), V1,V2,... the list, names in the order
+    given, whole-number settings as ints; the grid is mb.sweep's."""
+    from lagmb import studies
+
+    assert studies.grid_from_text is mb.sweep.grid_from_text
+    grid = studies.grid_from_text(["rod.mass=0.5:2:4", " slider.mass = 0.2, 0.4", "n_out=11,21"])
+    assert grid == {"rod.mass": [0.5, 1.0, 1.5, 2.0], "slider.mass": [0.2, 0.4], "n_out": [11, 21]}
+    assert list(grid) == ["rod.mass", "slider.mass", "n_out"] and all(type(n) is int for n in grid["n_out"])
+    assert grid["rod.mass"] == list(np.linspace(0.5, 2.0, 4))
+    assert studies.grid_from_text("crank.angle.start=-1:1:3") == {"crank.angle.start": [-1.0, 0.0, 1.0]}
+    ds = mb.sweep(scene(), studies.grid_from_text(["rod.mass=1,2"]), t_end=0.05, progress=False)
+    assert list(ds["rod.mass"].values) == [1.0, 2.0] and list(ds["status"].values) == ["ok", "ok"]
+
+
+@pytest.mark.parametrize("specs, message", [
+    (["rod.mass=1:2"], "'rod.mass=1:2': A:B:N has three parts (N values from A to B), got 2"),
+    (["rod.mass=1:2:1.5"], "'rod.mass=1:2:1.5': N = 1.5 must be a whole number of values, at least 2 (one value: "
+                           "rod.mass=V)"),
+    (["rod.mass=1:1:3"], "'rod.mass=1:1:3': A:B:N runs from A to B: give A and B apart"),
+    (["rod.mass=1,heavy"], "'rod.mass=1,heavy': 'heavy' is not a decimal number; SPEC is A:B:N"),
+    (["rod.mass=1_0"], "'rod.mass=1_0': '1_0' is not a decimal number"),
+    (["rod.mass=1,,2"], "'rod.mass=1,,2': an empty value"),
+    (["rod.mass=inf,1"], "'rod.mass=inf,1': inf must be a finite number"),
+    (["rod.mass=1,2,1"], "'rod.mass=1,2,1': 1 is listed twice"),
+    (["n_out=10,20.5"], "'n_out=10,20.5': n_out takes whole numbers"),
+    (["rod.mass"], "'rod.mass': must be NAME=SPEC"),
+    (["rod.mass=1,2", "rod.mass=3"], "'rod.mass=3': rod.mass is varied twice (sweep.grid_from_text: 'rod.mass=1,2')"),
+    (["a=1:2:10000", "b=1:2:10000"], ": 100,000,000 cases (10000 x 10000): at most 10,000,000 in one study"),
+    ([], ": give at least one 'NAME=SPEC'"),
+])
+def test_a_grid_text_that_is_no_spec_is_a_model_error_naming_it(specs, message):
+    with pytest.raises(mb.ModelError) as e:
+        mb.sweep.grid_from_text(specs)
+    assert str(e.value).startswith("sweep.grid_from_text") and message in str(e.value)
+    with pytest.raises(mb.ModelError) as e:  # as the command line's option names it
+        mb.sweep.grid_from_text(specs, who="--vary")
+    assert "sweep.grid_from_text" not in str(e.value)

@@ -57,11 +57,11 @@ def table(out):
 
 
 def test_a_spec_gives_linspace_or_the_list_and_several_make_the_grid(capsys):
-    grid, typed = cli._sweep_grid(["rod.mass=0.5:2:4", "slider.mass=0.2,0.4", "n_out=11,21"])
+    grid, typed = cli.sweep._grid(["rod.mass=0.5:2:4", "slider.mass=0.2,0.4", "n_out=11,21"])
     assert grid == {"rod.mass": list(np.linspace(0.5, 2.0, 4)), "slider.mass": [0.2, 0.4], "n_out": [11, 21]}
     assert grid["rod.mass"] == [0.5, 1.0, 1.5, 2.0] and all(type(n) is int for n in grid["n_out"])
     assert typed["rod.mass"] == "rod.mass=0.5:2:4"
-    assert cli._sweep_grid(["crank.angle.start=-1:1:3"])[0] == {"crank.angle.start": [-1.0, 0.0, 1.0]}
+    assert cli.sweep._grid(["crank.angle.start=-1:1:3"])[0] == {"crank.angle.start": [-1.0, 0.0, 1.0]}
 
     code, out, err = lagmb(capsys, "sweep", SCENE, "--vary", "rod.mass=0.5:2:4", "--vary", "slider.mass=0.2,0.4",
                            "--t-end", T_END, "--output", "peak_effort=motor")
@@ -287,8 +287,8 @@ def test_o_takes_a_study_s_store_only_and_one_sweep_at_a_time(capsys, tmp_path):
     store = tmp_path / "study.zarr"
     assert lagmb(capsys, *args, "-o", store)[0] == 0
     # another process holds the store's lock, as a sweep writing it does
-    holder = subprocess.Popen([sys.executable, "-c", "import sys; from lagmb import studies; "
-                               f"lock = studies._Lock({str(store)!r}, 'sweep'); print('held', flush=True); "
+    holder = subprocess.Popen([sys.executable, "-c", "import sys; from lagmb import _store; "
+                               f"lock = _store.Lock({str(store)!r}, 'sweep'); print('held', flush=True); "
                                "sys.stdin.read()"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
         assert holder.stdout.readline() == "held\n"
@@ -359,5 +359,5 @@ def test_ctrl_c_during_a_sweep_on_workers_prints_one_line(tmp_path):
 def test_a_worker_of_lagmb_sweep_ignores_ctrl_c():
     from concurrent.futures import ProcessPoolExecutor
 
-    with ProcessPoolExecutor(1, initializer=cli._quiet_worker) as ex:
+    with ProcessPoolExecutor(1, initializer=cli.sweep._quiet_worker) as ex:
         assert ex.submit(signal.getsignal, signal.SIGINT).result() == signal.SIG_IGN

@@ -1,5 +1,7 @@
 """Results of a run as numpy arrays (docs/design.md, section 2.7)."""
 
+import csv
+import os
 from functools import cached_property
 
 import numpy as np
@@ -8,6 +10,7 @@ from . import _core, _rotations, registry
 from ._rotations import matrix as rotation_matrices  # (statics reads it from here)
 from .errors import KinematicOnlyError, ModelError, SimulationError
 from .handles import name_of
+from .registry import BY_METHOD, SPATIAL_BY_METHOD
 
 
 def _frozen(x):
@@ -28,6 +31,15 @@ def element_name(model, core, item, accepts, what, context):
 
 
 _CONSTRAINTS = ("joint", "driver")  # the elements with multipliers
+RESULTS_FORMATS = (".npz", ".csv")  # what Result.save writes
+
+
+def results_format_problem(path):
+    """Why Result.save cannot write ``path`` (its suffix is neither .npz nor
+    .csv), or None."""
+    if os.path.splitext(path)[1].lower() not in RESULTS_FORMATS:
+        return "the results file must end in .npz or .csv"
+    return None
 
 
 def core_state(model, core):
@@ -339,6 +351,71 @@ class Result:
             raise ModelError(f"Result.sensitivity: this run has no sensitivity to {parameter!r}; "
                              + (f"it has {have}" if have else "run simulate(..., sensitivities=[...]) for them"))
         return Sensitivity(self, self.sensitivity_names.index(parameter), parameter)
+
+    def save(self, path, *, reactions=None, efforts=None, frame="global", energy=False):
+        """Writes the run to ``path`` as ``lagmb run -o`` does, by its suffix
+        (missing folders are made):
+
+        - .npz (numpy.savez): arrays t, q, v, a, energy, residual,
+          coordinates (their names, :meth:`Model.coordinate_names`), lam
+          (not for a kinematic analysis), ``reaction_NAME`` (k, 3) or (k,
+          6) per joint or driver in ``reactions`` (default: every joint)
+          and ``effort_NAME`` per driver in ``efforts`` (default: every
+          driver);
+        - .csv: a header row, then one row per output time: t, the
+          coordinates, per element in ``reactions`` NAME.fx, NAME.fy,
+          NAME.torque (NAME.f1, NAME.f2 with frame="joint"), per driver in
+          ``efforts`` NAME.effort (default: none of either), and the energy
+          with ``energy=True``; floats as repr, so they read back exactly.
+
+        ``frame``: the reactions' frame, as :meth:`reaction` takes it. A
+        kinematic analysis has no reactions or efforts (none by default;
+        asking is its KinematicOnlyError). Another suffix is a ModelError."""
+        path = os.fspath(path)
+        problem = results_format_problem(path)
+        if problem:
+            raise ModelError(f"Result.save: {path}: {problem}")
+        npz = path.lower().endswith(".npz")
+        kinematic = self.stats.get("analysis") == "kinematic"
+        if reactions is None:
+            reactions = self._names_of("joint") if npz and not kinematic else []
+        if efforts is None:
+            efforts = self._names_of("driver") if npz and not kinematic else []
+        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+        if npz:
+            arrays = dict(t=self.t, q=self.q, v=self.v, a=self.a, energy=self.energy, residual=self.residual,
+                          coordinates=np.array(self.model.coordinate_names()))
+            if not kinematic:
+                arrays["lam"] = self.lam
+            for name in reactions:
+                arrays[f"reaction_{name}"] = self.reaction(name, frame=frame)
+            for name in efforts:
+                arrays[f"effort_{name}"] = self.effort(name)
+            with open(path, "wb") as fh:
+                np.savez(fh, **arrays)
+            return
+        columns = ["t"] + self.model.coordinate_names()
+        blocks = [self.t[:, None], self.q]
+        force = ("f1", "f2") if frame == "joint" else ("fx", "fy")
+        for name in reactions:
+            columns += [f"{name}.{force[0]}", f"{name}.{force[1]}", f"{name}.torque"]
+            blocks.append(self.reaction(name, frame=frame))
+        for name in efforts:
+            columns.append(f"{name}.effort")
+            blocks.append(np.asarray(self.effort(name))[:, None])
+        if energy:
+            columns.append("energy")
+            blocks.append(self.energy[:, None])
+        data = np.hstack([np.asarray(b, dtype=float).reshape(len(self.t), -1) for b in blocks])
+        with open(path, "w", newline="", encoding="utf-8") as fh:
+            w = csv.writer(fh, lineterminator="\n")
+            w.writerow(columns)
+            w.writerows(data.tolist())  # floats as repr: they read back exactly
+
+    def _names_of(self, role):
+        """The names of the run's elements of a role ("joint", "driver"), in the order added."""
+        kinds = BY_METHOD if self.model.dimension == 2 else SPATIAL_BY_METHOD
+        return [given["name"] for method, given in self.model.elements() if kinds[method].role == role]
 
     def _finite(self, values, what):
         """values, read-only, if all are finite; else SimulationError naming
