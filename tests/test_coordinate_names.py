@@ -6,13 +6,13 @@ are the names each gave before it was one (issue 40)."""
 import os
 
 import lagmb as mb
-from builders import ARM_URDF, seed_pendulum
+from builders import ARM_URDF, pendulum
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def test_a_planar_body_has_x_y_angle_and_a_particle_x_y():
-    model = seed_pendulum()
+    model = pendulum()
     model.add_particle("bob", mass=0.5, position=(2.0, 0.0))
     model.add_distance("string", "rod", (1.0, 0.0), "bob", (2.0, 0.0))
     assert model.coordinate_names() == ["rod.x", "rod.y", "rod.angle", "bob.x", "bob.y"]
@@ -42,5 +42,5 @@ def test_the_fmu_and_linearize_name_the_coordinates_alike():
 
     variables = mb._core.CoSimulation(setup_text(scene)).variables
     assert [v["name"] for v in variables if v["description"].startswith("coordinate of body")] == names
-    linear = mb.linearize(seed_pendulum(), outputs=["rod.angle", "der(rod.x)"])
+    linear = mb.linearize(pendulum(), outputs=["rod.angle", "der(rod.x)"])
     assert list(linear.outputs) == ["rod.angle", "der(rod.x)"]

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import lagmb as mb
-from builders import seed_pendulum
+from builders import pendulum
 
 EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples")
 
@@ -94,7 +94,7 @@ def test_a_kinematic_analysis_writes_no_multipliers(tmp_path):
 
 @pytest.mark.parametrize("name", ["run.txt", "run", "run.npz.gz"])
 def test_another_suffix_is_refused(tmp_path, name):
-    r = mb.simulate(seed_pendulum(), t_end=0.1, n_out=3)
+    r = mb.simulate(pendulum(), t_end=0.1, n_out=3)
     with pytest.raises(mb.ModelError, match=r"the results file must end in \.npz or \.csv"):
         r.save(tmp_path / name)
     assert not os.listdir(tmp_path)

@@ -26,6 +26,7 @@ import warnings
 
 import numpy as np
 
+from . import _output_names
 from ._checks import array, decimal, real, show
 from ._store import MAX_CASES, Store, description, ignored_warning, open_store, read, scan
 from ._store import check_store  # noqa: F401 - public here: mb.sweep's and lagmb sweep -o's check of a store
@@ -51,15 +52,14 @@ class Final:
         self.coordinate = str(coordinate)
 
     def __call__(self, r):
-        rate = self.coordinate.startswith("der(") and self.coordinate.endswith(")")
-        name = self.coordinate[4:-1] if rate else self.coordinate
-        body, _, which = name.rpartition(".")
-        first, count = r._core.body_coordinates(body)
-        suffixes = ("x", "y", "z", "e0", "e1", "e2", "e3") if count == 7 else ("x", "y", "angle")
-        if which not in suffixes[:count]:
-            raise ModelError(f"final: no coordinate {name!r} (body {body!r} has {', '.join(suffixes[:count])})")
-        j = first + suffixes.index(which)
-        return float((r.v if rate else r.q)[-1, j])
+        output = _output_names.parse(self.coordinate)
+        names = r._core.coordinate_names()
+        if output.base not in names:
+            body = output.base.rpartition(".")[0]
+            first, count = r._core.body_coordinates(body)
+            has = ", ".join(n.rpartition(".")[2] for n in names[first:first + count])
+            raise ModelError(f"final: no coordinate {output.base!r} (body {body!r} has {has})")
+        return float((r.v if output.rate else r.q)[-1, names.index(output.base)])
 
     def __repr__(self):
         return f"final({self.coordinate!r})"

@@ -6,6 +6,7 @@ import os
 import sys
 import warnings
 
+from .. import _output_names
 from ..errors import ModelError, SimulationError
 from ..registry import BY_METHOD, SPATIAL_BY_METHOD
 from ._common import (FAILED, OK, USAGE, Exit, cannot_write, load, need_matplotlib, number, option_number,
@@ -243,7 +244,7 @@ def _outputs(scene, specs):
                 raise Exit(USAGE, f"--output {spec}: {scene.path} has no driver {arg!r}; "
                                   + _listed("its drivers", drivers))
             if kind == "final":
-                plain = arg[4:-1] if arg.startswith("der(") and arg.endswith(")") else arg
+                plain = _output_names.parse(arg).base
                 if plain not in coordinates:
                     raise Exit(USAGE, f"--output {spec}: {scene.path} has no coordinate {plain!r}; "
                                       + _listed("its coordinates", coordinates)
