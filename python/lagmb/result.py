@@ -154,7 +154,7 @@ class JointPath:
 class Result:
     """States at the output times of a run.
 
-    t (k,), q, v, a (k, n) and lam (k, m) in the sign of docs/design.md section 1.2.
+    t (k,), q, v, a (k, n) and lam (k, m) in the sign of docs/modelling.md, 'Equations and signs'.
     events: the events handled during the run (impacts at stops, contact
     switches), in time order, each a dict with t, element, kind ("impact",
     "restart", "rest"), label ("lower", "upper", "onset", ...),

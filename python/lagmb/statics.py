@@ -28,8 +28,8 @@ class Equilibrium:
 
     Attributes:
 
-    - q (n,), lam (m,): coordinates and multipliers (sign of docs/design.md
-      section 1: Q(q, 0, t) = Phi_q^T lam).
+    - q (n,), lam (m,): coordinates and multipliers (sign of docs/modelling.md,
+      'Equations and signs': Q(q, 0, t) = Phi_q^T lam).
     - t: the time it holds at.
     - stable: the tangent stiffness reduced to the motions the joints
       allow is positive definite (a strict minimum of the potential);

@@ -13,7 +13,7 @@
 
 namespace lagmb {
 
-/// What a run computes (simulate; docs/design.md section 4.1).
+/// What a run computes (simulate; docs/methods.md, 'Choosing the analysis').
 enum class Analysis {
   kAuto,             // inverse dynamics at 0 degrees of freedom (kinematic if a body is massless), else dynamic
   kDynamic,          // the DAE integrated

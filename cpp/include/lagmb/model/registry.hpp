@@ -2,7 +2,7 @@
 // declared once, in the source file next to its equations
 // (cpp/src/elements/<kind>.cpp). The Python add_* methods and their checks,
 // the scene schema, `lagmb info`, the plotting roles and the element tables
-// of docs/modelling.md are all read from here (docs/design.md, section 3).
+// of docs/modelling.md are all read from here (docs/design.md, section 2.3).
 #pragma once
 
 #include <array>
