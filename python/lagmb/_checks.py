@@ -89,30 +89,28 @@ def array(value, name):
     return x
 
 
-def vec2(value, name):
-    """A pair of finite numbers (x, y) as a float array."""
+def _vector(value, name, n, what, count):
+    """n finite numbers as a float array; what names them in the messages
+    ("a pair of", "three ... (x, y, z)"), count alone where the shape is wrong."""
     try:
         x = np.asarray(value, dtype=float).reshape(-1)
     except (TypeError, ValueError, OverflowError):
-        raise ModelError(f"{name} must be a pair of finite numbers, got {show(value)}") from None
-    if x.shape != (2,):
-        raise ModelError(f"{name} must be a pair of numbers, got {show(value)}")
+        raise ModelError(f"{name} must be {what}, got {show(value)}") from None
+    if x.shape != (n,):
+        raise ModelError(f"{name} must be {count}, got {show(value)}")
     if not np.all(np.isfinite(x)):
         raise ModelError(f"{name} is not finite: {show(value)}")
     return x
+
+
+def vec2(value, name):
+    """A pair of finite numbers (x, y) as a float array."""
+    return _vector(value, name, 2, "a pair of finite numbers", "a pair of numbers")
 
 
 def vec3(value, name):
     """Three finite numbers (x, y, z) as a float array."""
-    try:
-        x = np.asarray(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError, OverflowError):
-        raise ModelError(f"{name} must be three finite numbers (x, y, z), got {show(value)}") from None
-    if x.shape != (3,):
-        raise ModelError(f"{name} must be three numbers (x, y, z), got {show(value)}")
-    if not np.all(np.isfinite(x)):
-        raise ModelError(f"{name} is not finite: {show(value)}")
-    return x
+    return _vector(value, name, 3, "three finite numbers (x, y, z)", "three numbers (x, y, z)")
 
 
 def matrix_or_vector(value, name, length, what):
