@@ -114,14 +114,8 @@ def signature(kind):
     return inspect.Signature(out)
 
 
-_TYPE_WORDS = {"text": "text", "real": "number", "vec2": "(x, y)", "bool": "bool",
-               "body": "body handle or name", "joint": "joint handle or name", "choice": "one of",
-               "motion": "number, time function or callable t -> (y, dy, ddy)",
-               "function": "number, time function or callable t -> y",
-               "function_pair": "(fx, fy) of numbers or time functions, or a callable t -> (fx, fy)",
-               "vec3": "(x, y, z)", "orientation": "(w, x, y, z) or 3 x 3 rotation matrix",
-               "inertia": "(Ixx, Iyy, Izz) or 3 x 3 tensor",
-               "function_triple": "(x, y, z) of numbers or time functions, or a callable t -> (x, y, z)"}
+# what a parameter of each type takes, in the words of the core's table of types
+_TYPE_WORDS = {t["name"]: t["takes"] for t in _core.param_types()}
 
 
 def describe(param):

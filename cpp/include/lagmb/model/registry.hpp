@@ -58,7 +58,7 @@ using Value = std::variant<std::monostate, double, Vec2, bool, std::string, Body
 struct ParamTypeInfo {
   ParamType type;
   const char* name;                 // "real", "vec2", "function_pair", ...
-  const char* takes;                // one line for docs
+  const char* takes;                // what a user gives, as docstrings and the element reference say it
   bool (*holds)(const Value& value);  // whether a value is of this type
 };
 /// Every parameter type, in the order of ParamType.
