@@ -390,6 +390,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   tr.stats.formulation = "kinematic";
   tr.stats.method_choice = "none: a kinematic analysis integrates no equations of motion";
   tr.stats.integrator = "newton";
+  tr.stats.method = "kinematic";
   tr.t.reserve(t_out.size());
   tr.q.reserve(t_out.size() * n);
   tr.v.reserve(t_out.size() * n);

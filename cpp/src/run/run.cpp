@@ -4,6 +4,8 @@
 #include <iterator>
 #include <map>
 #include <sstream>
+#include <string_view>
+#include <type_traits>
 
 #include "lagmb/analyses/equilibrium.hpp"
 #include "lagmb/analyses/stiffness.hpp"
@@ -17,20 +19,25 @@ namespace lagmb {
 
 namespace {
 
-/// Adds the counts of a stepper (or of the run's own evaluations) to a run's.
+/// Adds the counts of a stepper (or of the run's own evaluations) to a
+/// run's: every count (a long) of Stats summed, the factor's nonzeros (a
+/// size) their maximum; the rest (order, step, names) is not a count.
 void add_counts(Stats& total, const Stats& part) {
-  total.steps += part.steps;
-  total.residual_evals += part.residual_evals;
-  total.jacobian_evals += part.jacobian_evals;
-  total.lu_factorizations += part.lu_factorizations;
-  total.augmented_factorizations += part.augmented_factorizations;
-  total.projections += part.projections;
-  total.newton_iterations += part.newton_iterations;
-  total.error_test_failures += part.error_test_failures;
-  total.convergence_failures += part.convergence_failures;
-  total.element_evaluations += part.element_evaluations;
-  total.symbolic_analyses += part.symbolic_analyses;
-  total.factor_nonzeros = std::max(total.factor_nonzeros, part.factor_nonzeros);  // a size, not a count
+  Stats::for_each_member([&](const char* name, auto member) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(total.*member)>, long>) {
+      if (std::string_view(name) == "factor_nonzeros")
+        total.*member = std::max(total.*member, part.*member);
+      else
+        total.*member += part.*member;
+    }
+  });
+}
+
+/// The names of the method a run steps with, in its counts.
+void name_method(Stats& s, const Method& method) {
+  s.formulation = name_of(method.formulation);
+  s.integrator = name_of(method.integrator);
+  s.method = method.name;
 }
 
 }  // namespace
@@ -255,8 +262,7 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
   outputs.p = int(model.inputs().size());
   outputs.dropped_rows = start.dropped_rows;
   outputs.run_model = with_parameters;
-  outputs.stats.formulation = name_of(method.formulation);
-  outputs.stats.integrator = name_of(method.integrator);
+  name_method(outputs.stats, method);
   outputs.stats.analysis = name_of(Analysis::kDynamic);
   if (options.formulation == Formulation::kAuto) {
     method_choice = choose_method(model, options).why;
@@ -484,8 +490,7 @@ Stats Run::stats() const {
   s.input_changes = input_changes;
   // the start, the outputs' solves and the checks of the dropped rows
   s.element_evaluations += data.element_evaluations + watch->element_evaluations();
-  s.formulation = name_of(current_->formulation);
-  s.integrator = name_of(current_->integrator);
+  name_method(s, *current_);
   s.method_choice = method_choice;
   s.analysis = name_of(Analysis::kDynamic);
   if (events) {
