@@ -91,6 +91,19 @@ def test_unit_tests_include_public_headers_only():
                 if not ((CPP / "include" / name).exists() or (tests / name).exists())]
     assert sorted(tests.glob("test_*.cpp")) and internal == []
 
+def test_assemble_names_fill_matrices():
+    """assemble_* names the assembly kernels (lagmb/assembly/assembly.hpp),
+    which fill Data's matrices and vectors at one state; what solves for a
+    state (positions on Phi = 0, a consistent start) is a solve_* of the
+    analyses layer (lagmb/analyses/consistent_state.hpp). The run-level
+    assemble(model, t), Python's Model.assemble(), is the one other."""
+    declared = re.compile(r"^[A-Za-z][^;/()]*\b(assemble\w*)\(", re.M)
+    found = sorted(f"{path.relative_to(CPP)}: {name}" for path in sources() if path.suffix == ".hpp"
+                   for name in declared.findall(path.read_text()))
+    stray = [f for f in found if not f.startswith("include/lagmb/assembly/assembly.hpp:")]
+    assert stray == ["include/lagmb/run/simulate.hpp: assemble"]
+
+
 # --- the Python package -------------------------------------------------------
 
 #: The Python modules by layer, lowest first (docs/design.md, section 2):

@@ -6,7 +6,7 @@
 #pragma once
 
 
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "assembly/saddle_point.hpp"
 
 namespace lagmb {

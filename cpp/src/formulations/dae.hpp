@@ -2,7 +2,7 @@
 #pragma once
 
 #include "assembly/saddle_point.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/model/data.hpp"
 
 namespace lagmb {

@@ -2,6 +2,7 @@
 // its Newton system and the coordinate projection.
 #include "formulations/projection.hpp"
 
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/trajectory.hpp"
 

@@ -12,7 +12,7 @@
 
 #include "formulations/dae.hpp"
 #include "lagmb/integrators/methods.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/options.hpp"
 #include "lagmb/trajectory.hpp"
 

@@ -10,7 +10,7 @@
 #include "lagmb/analyses/equilibrium.hpp"
 #include "lagmb/analyses/stiffness.hpp"
 #include "lagmb/errors.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/integrators/methods.hpp"
 #include "lagmb/spec/parameters.hpp"
