@@ -104,6 +104,16 @@ def test_assemble_names_fill_matrices():
     assert stray == ["include/lagmb/run/simulate.hpp: assemble"]
 
 
+def test_runs_know_formulations_by_their_interface():
+    """The run (cpp/src/run) takes its formulations through DaeFormulation
+    and the methods table (formulations/dae.hpp, integrators/methods.hpp),
+    never a concrete one by name: a new formulation touches no run code."""
+    concrete = re.compile(r"\b(?!Dae)[A-Z]\w*Formulation\b(?!::)")
+    named = [f"{path.name}: {name}" for path in sorted((CPP / "src" / "run").glob("*.[ch]pp"))
+             for name in concrete.findall(path.read_text())]
+    assert named == []
+
+
 # --- the Python package -------------------------------------------------------
 
 #: The Python modules by layer, lowest first (docs/design.md, section 2):

@@ -1,6 +1,8 @@
 // A DAE form of the equations of motion, F(t, y, y') = 0, for IDA.
 #pragma once
 
+#include <memory>
+
 #include "assembly/saddle_point.hpp"
 #include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/model/data.hpp"
@@ -216,5 +218,10 @@ class Index1Formulation final : public MultiplierDae {
   VecX scratch_;
   std::vector<int> F3v_;
 };
+
+/// The formulation forward sensitivities are integrated with (IDAS): the
+/// one whose sensitivity_products give F's exact derivatives (GGL), of
+/// `model`; the run joins it (join_run).
+std::unique_ptr<DaeFormulation> make_sensitivity_formulation(const Model& model);
 
 }  // namespace lagmb

@@ -7,6 +7,10 @@
 
 namespace lagmb {
 
+std::unique_ptr<DaeFormulation> make_sensitivity_formulation(const Model& model) {
+  return std::make_unique<GglFormulation>(model);
+}
+
 GglFormulation::GglFormulation(const Model& model)
     : MultiplierDae(model, 2 * model.n_coordinates() + 2 * model.n_constraints()) {
   const int V = n_, U = 2 * n_ + m_;  // first rows/columns of v, mu
