@@ -114,6 +114,16 @@ def test_runs_know_formulations_by_their_interface():
     assert named == []
 
 
+def test_a_runs_data_are_made_of_the_runs():
+    """Every Data of a run (each formulation's, the event runner's, the
+    checks') is made of the run's Data by Data's constructor, which shares
+    the run's values: no site joins one by hand, so none can forget to
+    and read stale inputs."""
+    joined = [f"{path.relative_to(CPP)}" for path in sources() + sorted((CPP / "tests").glob("*.[ch]pp"))
+              if re.search(r"\b(join_run|share_values)\b", path.read_text())]
+    assert joined == []
+
+
 # --- the Python package -------------------------------------------------------
 
 #: The Python modules by layer, lowest first (docs/design.md, section 2):

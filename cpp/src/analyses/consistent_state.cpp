@@ -266,8 +266,7 @@ ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, V
   ConsistentState s = make_consistent(model, d, kkt, std::move(q), std::move(v), t);
   if (!r.rows.empty()) {
     // kkt holds the kept rows at s.q; the dropped ones from a full evaluation
-    Data full(model);
-    full.share_values(d);
+    Data full(model, &d, Data::Rows::kEvery);
     assemble_jacobian(model, full, s.q.data(), t);
     name_partners(model, full, kkt, r);
     assemble_phi_t(model, full, s.q.data(), t);

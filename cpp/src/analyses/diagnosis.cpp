@@ -86,8 +86,7 @@ std::string non_finite_source(const Model& model, const Data& run, const double*
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(q[i]) || !std::isfinite(v[i]))
       return "the state is not finite at " + coordinate_label(model, i);
-  Data d(model);
-  d.share_values(run);
+  Data d(model, &run, Data::Rows::kEvery);
   try {
     assemble_forces(model, d, q, v, t);
     for (int i = 0; i < n; ++i)

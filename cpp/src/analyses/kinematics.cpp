@@ -227,8 +227,7 @@ class KinematicSolver {
       square_ = std::make_unique<SquareJacobian>(model_, d_.dropped_rows);
     factorized_ = false;
     if (!redundancy.rows.empty()) {
-      Data full(model_);
-      full.share_values(d_);
+      Data full(model_, &d_, Data::Rows::kEvery);
       assemble_jacobian(model_, full, q.data(), t);
       assemble_jacobian(model_, d_, q.data(), t);
       if (kkt_.factorize(d_)) name_partners(model_, full, kkt_, redundancy);

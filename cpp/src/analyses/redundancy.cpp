@@ -158,9 +158,7 @@ void name_partners(const Model& model, const Data& full, AugmentedSystem& kkt, R
 }
 
 RedundancyWatch::RedundancyWatch(const Model& model, const Data& run, Redundancy redundancy)
-    : model_(model), r_(std::move(redundancy)), full_(model) {
-  full_.share_values(run);
-}
+    : model_(model), r_(std::move(redundancy)), full_(model, &run, Data::Rows::kEvery) {}
 
 std::string RedundancyWatch::violation(const double* q, double t) {
   if (r_.rows.empty()) return "";

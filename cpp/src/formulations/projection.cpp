@@ -8,9 +8,9 @@
 
 namespace lagmb {
 
-ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, double beta)
+ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, double beta, const Data* run)
     : model_(model),
-      d_(model),
+      d_(model, run),
       kkt_(model),
       n_(model.n_coordinates()),
       nc_(model.n_constraints()),

@@ -44,7 +44,7 @@ class Run {
   const Model& model;                                  // what the run integrates
   const SimulationOptions& options;
   const Method& method;  // the method asked for or chosen at the start (see current_method)
-  Data data;  // the run's: plan.run and every formulation's Data join it
+  Data data;  // the run's (plan.run): every other Data of the run is made of it
   AugmentedSystem kkt;
   ConsistentState start;
   std::unique_ptr<EventRunner> events;  // null without event elements
@@ -64,7 +64,7 @@ class Run {
   /// (Model::parameters' names) before the stepper starts: the models at
   /// p_i +- delta_i (delta_i = 1e-4 abs(p_i), 1e-4 where p_i = 0; the
   /// model at p_i for a side beyond a bound of its range: a one-sided
-  /// difference), their GGL forms joined to this run, and the initial
+  /// difference), their GGL forms made of this run's Data, and the initial
   /// sensitivities from their consistent starts. ModelError for a method
   /// other than GGL with IDA, a model with events or joint friction, an
   /// unknown or repeated name, or a parameter with no sensitivity, each

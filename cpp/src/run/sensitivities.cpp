@@ -1,5 +1,5 @@
 // Forward sensitivities of a run to its parameters: the models at p +- delta,
-// their formulations joined to the run and the consistent initial
+// their formulations made of the run's Data and the consistent initial
 // sensitivities (Run::start_sensitivities).
 #include "run/run.hpp"
 
@@ -20,12 +20,10 @@ void Run::consistent_sensitivities(SensitivityPlan& sens) {
   // which an error test at rtol 1e-10 cannot start from: each is made
   // exact by the least change in the M-metric, and s_q' = s_v (F1, mu = 0)
   const int n = model.n_coordinates(), m = model.n_constraints(), N = 2 * n + 2 * m;
-  const std::unique_ptr<DaeFormulation> base = make_sensitivity_formulation(model);
-  base->join_run(data);
+  const std::unique_ptr<DaeFormulation> base = make_sensitivity_formulation(model, data);
   VecX y(N), yp(N), plus(N), minus(N);
   base->initial(start, y.data(), yp.data());
-  Data d(model);
-  d.join_run(model, data);
+  Data d(model, &data);
   AugmentedSystem k(model);
   assemble_jacobian(model, d, start.q.data(), options.t0);
   if (!k.factorize(d)) throw SimulationError("simulate: sensitivities: the augmented matrix is singular at the start", options.t0);
@@ -104,7 +102,7 @@ void Run::start_sensitivities(const std::vector<std::string>& names) {
     VecX y[2], yp[2];
     for (int side = 0; side < 2; ++side) {
       std::shared_ptr<const Model> at = models[side];
-      std::unique_ptr<DaeFormulation> form = make_sensitivity_formulation(*at);
+      std::unique_ptr<DaeFormulation> form = make_sensitivity_formulation(*at, data);
       Data d(*at);
       AugmentedSystem k(*at);
       Redundancy redundancy;
@@ -128,7 +126,6 @@ void Run::start_sensitivities(const std::vector<std::string>& names) {
                          " (a redundant set, such as two joints holding one motion, that the change breaks or "
                          "makes): the run is not differentiable in it there");
       }
-      form->join_run(data);
       y[side].resize(form->size()), yp[side].resize(form->size());
       form->initial(st, y[side].data(), yp[side].data());
       (side == 0 ? sens->plus : sens->minus).push_back(std::move(form));
