@@ -907,7 +907,7 @@ def test_a_four_bar_that_cannot_close_blames_its_coupler_not_euler_parameters():
 def test_a_driven_chain_with_a_heavy_body_assembles():
     """Found by the spatial fuzzer: a cylindrical joint driven 0.5 m, a
     universal joint to a 1,000 kg body; with a mass of 1 it assembled, with
-    1,000 the assembly refused it; the safeguards of assemble_positions
+    1,000 the assembly refused it; the safeguards of solve_positions
     (unit Euler parameters at every trial, bounded turns) close it."""
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
     a = m.add_body("a", 0.69, (0.02875, 0.01725, 0.02875), position=(1.383, 1.038, 1.006),

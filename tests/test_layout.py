@@ -75,7 +75,7 @@ def test_the_umbrella_header_includes_every_public_header():
     # the kinds' containers come with the model; the basic headers with any
     indirect = {"lagmb/model/constraint_group.hpp", "lagmb/model/force_group.hpp", "lagmb/model/event_group.hpp",
                 "lagmb/model/friction_group.hpp", "lagmb/space.hpp", "lagmb/spatial.hpp", "lagmb/sparsity.hpp",
-                "lagmb/time_function.hpp", "lagmb/interrupt.hpp"}
+                "lagmb/time_function.hpp", "lagmb/interrupt.hpp", "lagmb/dual.hpp"}
     missing = sorted(public - indirect - set(INCLUDE.findall(umbrella)))
     assert missing == []
 
@@ -90,6 +90,39 @@ def test_unit_tests_include_public_headers_only():
                 for name in INCLUDE.findall(path.read_text())
                 if not ((CPP / "include" / name).exists() or (tests / name).exists())]
     assert sorted(tests.glob("test_*.cpp")) and internal == []
+
+def test_assemble_names_fill_matrices():
+    """assemble_* names the assembly kernels (lagmb/assembly/assembly.hpp),
+    which fill Data's matrices and vectors at one state; what solves for a
+    state (positions on Phi = 0, a consistent start) is a solve_* of the
+    analyses layer (lagmb/analyses/consistent_state.hpp). The run-level
+    assemble(model, t), Python's Model.assemble(), is the one other."""
+    declared = re.compile(r"^[A-Za-z][^;/()]*\b(assemble\w*)\(", re.M)
+    found = sorted(f"{path.relative_to(CPP)}: {name}" for path in sources() if path.suffix == ".hpp"
+                   for name in declared.findall(path.read_text()))
+    stray = [f for f in found if not f.startswith("include/lagmb/assembly/assembly.hpp:")]
+    assert stray == ["include/lagmb/run/simulate.hpp: assemble"]
+
+
+def test_runs_know_formulations_by_their_interface():
+    """The run (cpp/src/run) takes its formulations through DaeFormulation
+    and the methods table (formulations/dae.hpp, integrators/methods.hpp),
+    never a concrete one by name: a new formulation touches no run code."""
+    concrete = re.compile(r"\b(?!Dae)[A-Z]\w*Formulation\b(?!::)")
+    named = [f"{path.name}: {name}" for path in sorted((CPP / "src" / "run").glob("*.[ch]pp"))
+             for name in concrete.findall(path.read_text())]
+    assert named == []
+
+
+def test_a_runs_data_are_made_of_the_runs():
+    """Every Data of a run (each formulation's, the event runner's, the
+    checks') is made of the run's Data by Data's constructor, which shares
+    the run's values: no site joins one by hand, so none can forget to
+    and read stale inputs."""
+    joined = [f"{path.relative_to(CPP)}" for path in sources() + sorted((CPP / "tests").glob("*.[ch]pp"))
+              if re.search(r"\b(join_run|share_values)\b", path.read_text())]
+    assert joined == []
+
 
 # --- the Python package -------------------------------------------------------
 

@@ -8,6 +8,7 @@
 
 #include "check.hpp"
 #include "lagmb/assembly/assembly.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/assembly/augmented.hpp"
 #include "models.hpp"
 
@@ -109,25 +110,6 @@ TEST_CASE(accelerations_and_multipliers_solve_the_augmented_system) {
       check_solves_the_augmented_system(*model, q, 3.0 * random_vector(n, random));
     }
   }
-}
-
-// make_consistent: from positions and velocities moved off the constraints,
-// a state on them (Phi = 0, Phi_q v = 0) whose qdd and lam solve the system.
-TEST_CASE(make_consistent_returns_a_state_on_the_constraints) {
-  std::mt19937 random(41);
-  const auto model = slider_crank();
-  Data d(*model);
-  AugmentedSystem kkt(*model);
-  const int n = model->n_coordinates();
-  const ConsistentState s = make_consistent(*model, d, kkt, model->initial_q() + 1e-3 * random_vector(n, random),
-                                            model->initial_v() + random_vector(n, random), 0.0);
-  assemble_constraints(*model, d, s.q.data(), 0.0);
-  CHECK_NEAR(d.Phi.lpNorm<Eigen::Infinity>(), 0.0, 1e-10);
-  assemble_jacobian(*model, d, s.q.data(), 0.0);
-  CHECK_NEAR((d.Phi_q * s.v).lpNorm<Eigen::Infinity>(), 0.0, 1e-10);
-  const Solved again = accelerations(*model, d, s.q, s.v);
-  CHECK_NEAR((again.a - s.qdd).lpNorm<Eigen::Infinity>(), 0.0, 1e-9 * (1.0 + s.qdd.lpNorm<Eigen::Infinity>()));
-  CHECK_NEAR((again.lam - s.lam).lpNorm<Eigen::Infinity>(), 0.0, 1e-9 * (1.0 + s.lam.lpNorm<Eigen::Infinity>()));
 }
 
 LAGMB_TEST_MAIN()

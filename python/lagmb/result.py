@@ -185,12 +185,7 @@ class Result:
                                      (len(self._t), len(names)))
         self._inputs = _frozen(np.asarray(inputs, dtype=float))
         self._input_names = names
-        self.stats = dict(raw["stats"])
-        # the method's listed name (lagmb.methods()) beside its parts
-        name = next((m["name"] for m in _core.methods() if m["formulation"] == self.stats.get("formulation")
-                     and m["integrator"] == self.stats.get("integrator")), None)
-        if name is not None:
-            self.stats["method"] = name
+        self.stats = dict(raw["stats"])  # (its "method": the listed name, set by the core)
         self.events = [dict(e) for e in raw.get("events", [])]
         self.redundant_rows = list(raw.get("dropped_rows", []))
         # forward sensitivities (simulate(..., sensitivities=[...])): (k, count, 2n + m) and (k, count, n)

@@ -26,6 +26,8 @@
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/assembly/augmented.hpp"
 
+#include "lagmb/analyses/consistent_state.hpp"
+#include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/analyses/equilibrium.hpp"
 #include "lagmb/analyses/joint_space.hpp"
 #include "lagmb/analyses/kinematics.hpp"

@@ -30,6 +30,9 @@ struct Stats {
   double wall_time = 0.0;  // s
   std::string formulation;
   std::string integrator;
+  /// The method's listed name (methods(), docs/methods.md) of formulation
+  /// with integrator; a kinematic analysis's "kinematic".
+  std::string method;
   /// "given", or what formulation "auto" chose and why (choose_method).
   std::string method_choice = "given";
   /// "dynamic" (the DAE integrated), "kinematic" or "inverse_dynamics" (a
@@ -52,20 +55,30 @@ struct Stats {
   long factor_nonzeros = 0;
 
   /// f(name, field) for every field, in this order: the one list bindings
-  /// and reports read (Python's r.stats is this dict).
+  /// and reports read (Python's r.stats is this dict) and add_counts sums.
   template <class F>
   void for_each_field(F&& f) const {
-    f("steps", steps), f("residual_evals", residual_evals), f("jacobian_evals", jacobian_evals);
-    f("lu_factorizations", lu_factorizations), f("augmented_factorizations", augmented_factorizations);
-    f("projections", projections), f("newton_iterations", newton_iterations);
-    f("error_test_failures", error_test_failures), f("convergence_failures", convergence_failures);
-    f("element_evaluations", element_evaluations), f("last_order", last_order), f("last_step", last_step);
-    f("wall_time", wall_time), f("formulation", formulation), f("integrator", integrator);
-    f("method_choice", method_choice);
-    f("analysis", analysis), f("kinematic_solves", kinematic_solves), f("events", events);
-    f("impacts", impacts), f("root_evals", root_evals), f("restarts", restarts), f("input_changes", input_changes);
-    f("symbolic_analyses", symbolic_analyses);
-    f("factor_nonzeros", factor_nonzeros);
+    for_each_member([&](const char* name, auto member) { f(name, this->*member); });
+  }
+  /// f(name, &Stats::field) for every field, in for_each_field's order:
+  /// the fields of two Stats side by side (a run's counts summed).
+  template <class F>
+  static void for_each_member(F&& f) {
+    f("steps", &Stats::steps), f("residual_evals", &Stats::residual_evals);
+    f("jacobian_evals", &Stats::jacobian_evals), f("lu_factorizations", &Stats::lu_factorizations);
+    f("augmented_factorizations", &Stats::augmented_factorizations), f("projections", &Stats::projections);
+    f("newton_iterations", &Stats::newton_iterations), f("error_test_failures", &Stats::error_test_failures);
+    f("convergence_failures", &Stats::convergence_failures);
+    f("element_evaluations", &Stats::element_evaluations), f("last_order", &Stats::last_order);
+    f("last_step", &Stats::last_step), f("wall_time", &Stats::wall_time);
+    f("formulation", &Stats::formulation), f("integrator", &Stats::integrator);
+    f("method_choice", &Stats::method_choice);
+    f("analysis", &Stats::analysis), f("kinematic_solves", &Stats::kinematic_solves), f("events", &Stats::events);
+    f("impacts", &Stats::impacts), f("root_evals", &Stats::root_evals), f("restarts", &Stats::restarts);
+    f("input_changes", &Stats::input_changes);
+    f("symbolic_analyses", &Stats::symbolic_analyses);
+    f("factor_nonzeros", &Stats::factor_nonzeros);
+    f("method", &Stats::method);  // last: where r.stats had it when Python added it
   }
 };
 

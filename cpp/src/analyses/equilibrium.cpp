@@ -13,7 +13,8 @@
 #include "lagmb/analyses/linearization.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 #include "solvers/sparse_qr.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
+#include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/errors.hpp"
 
 namespace lagmb {
@@ -202,7 +203,7 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
   {
     // every row assembled, then the rows redundant there left out (redundancy.hpp)
     AugmentedSystem kkt(model);
-    q = assemble_positions(model, solver.data(), kkt, model.initial_q(), o.t);
+    q = solve_positions(model, solver.data(), kkt, model.initial_q(), o.t);
     solver.data().drop_rows(model, find_redundancy(model, solver.data(), kkt, q, o.t).rows);
   }
   VecX unbalanced;

@@ -10,7 +10,8 @@
 
 #include "lagmb/assembly/analysis.hpp"
 #include "lagmb/assembly/assembly.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
+#include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/options.hpp"
 #include "lagmb/interrupt.hpp"
@@ -41,7 +42,7 @@ int degrees_of_freedom(const Model& model, double t) {
   AugmentedSystem kkt(model);
   VecX q = model.initial_q();
   try {
-    q = assemble_positions(model, d, kkt, q, t);
+    q = solve_positions(model, d, kkt, q, t);
   } catch (const SimulationError&) {
     return constraint_rank(model, q, t).degrees_of_freedom();  // the run itself will report the assembly
   } catch (const UserFunctionError&) {
@@ -219,15 +220,14 @@ class KinematicSolver {
   /// DOF the kept rows make the square Jacobian.
   VecX assemble(const VecX& q0, double t) {
     d_.drop_rows(model_, {});
-    VecX q = assemble_positions(model_, d_, kkt_, q0, t);
+    VecX q = solve_positions(model_, d_, kkt_, q0, t);
     redundancy = find_redundancy(model_, d_, kkt_, q, t);
     d_.drop_rows(model_, redundancy.rows);
     if (SquareJacobian::applies(model_, d_.dropped_rows))
       square_ = std::make_unique<SquareJacobian>(model_, d_.dropped_rows);
     factorized_ = false;
     if (!redundancy.rows.empty()) {
-      Data full(model_);
-      full.share_values(d_);
+      Data full(model_, &d_, Data::Rows::kEvery);
       assemble_jacobian(model_, full, q.data(), t);
       assemble_jacobian(model_, d_, q.data(), t);
       if (kkt_.factorize(d_)) name_partners(model_, full, kkt_, redundancy);
@@ -390,6 +390,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   tr.stats.formulation = "kinematic";
   tr.stats.method_choice = "none: a kinematic analysis integrates no equations of motion";
   tr.stats.integrator = "newton";
+  tr.stats.method = "kinematic";
   tr.t.reserve(t_out.size());
   tr.q.reserve(t_out.size() * n);
   tr.v.reserve(t_out.size() * n);

@@ -6,7 +6,7 @@
 
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/analyses/redundancy.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/model/data.hpp"
 

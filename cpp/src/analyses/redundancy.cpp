@@ -1,16 +1,19 @@
 #include "lagmb/analyses/redundancy.hpp"
 
+#include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
 
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/assembly/analysis.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/assembly/augmented.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/time_function.hpp"
+#include "solvers/sparse_qr.hpp"
 
 namespace lagmb {
 
@@ -30,6 +33,46 @@ double extent(const Model& model, const VecX& q) {
 }
 
 }  // namespace
+
+ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol) {
+  if (!model.finalized()) throw ModelError("constraint_rank: the model is not finalized");
+  if (q.size() != model.n_coordinates())
+    throw ModelError("constraint_rank: q must have " + std::to_string(model.n_coordinates()) + " entries");
+  if (!std::isfinite(t)) throw ModelError("constraint_rank: t must be finite, got " + to_text(t));
+  // a q computed from a model whose magnitudes overflow (a probe of find_redundancy)
+  for (int i = 0; i < q.size(); ++i)
+    if (!std::isfinite(q[i]))
+      throw AssemblyError("the positions are not finite at " + coordinate_label(model, i) + " (t = " + to_text(t) +
+                              "): the model's magnitudes overflow double precision",
+                          t, {});
+  ConstraintRank r;
+  r.equations = model.n_constraints();
+  r.coordinates = model.n_coordinates();
+  if (r.equations == 0) return r;
+  Data d(model);
+  assemble_jacobian(model, d, q.data(), t);
+  const SpMat JT = d.Phi_q.transpose();
+  double max_norm = 0.0;
+  for (int c = 0; c < JT.cols(); ++c) {
+    // an entry past 1e150 overflows what a rank or a solve forms of it (its
+    // square): a point 1e200 m from its body, a multiplier of 1e300
+    double largest = 0.0;
+    for (SpMat::InnerIterator it(JT, c); it; ++it)
+      largest = std::isnan(largest + it.value()) ? NAN : std::max(largest, std::abs(it.value()));
+    if (!(largest <= 1e150))
+      throw AssemblyError("the equations of '" + model.constraint_name_of_row(c) + "' overflow double precision at t = " +
+                              to_text(t) + ": their Jacobian has entries up to " + to_text(largest) +
+                              ", whose squares, which a solve forms, are past 1e300. A point, length, ratio or "
+                              "multiplier of it, or a body's position, is out of range",
+                          t, {});
+    max_norm = std::max(max_norm, JT.col(c).norm());
+  }
+  const SparseQR qr(JT, tol * std::max(max_norm, 1e-300));
+  if (!qr.ok()) throw std::runtime_error("lagmb: sparse QR of Phi_q^T failed");
+  r.rank = qr.rank();
+  r.dependent_rows = qr.dependent_columns();
+  return r;
+}
 
 std::string quoted_names(const std::vector<std::string>& names) {
   if (names.empty()) return "the other equations";
@@ -82,7 +125,7 @@ Redundancy find_redundancy(const Model& model, Data& d, AugmentedSystem& kkt, co
     const double t1 = t0 + dt;
     VecX q1;
     try {
-      q1 = assemble_positions(model, d, kkt, q0 + dq + dt * drive, t1);
+      q1 = solve_positions(model, d, kkt, q0 + dq + dt * drive, t1);
     } catch (const SimulationError&) {
       continue;  // no configuration there (past a reach, or conflicting drivers)
     } catch (const UserFunctionError&) {
@@ -115,9 +158,7 @@ void name_partners(const Model& model, const Data& full, AugmentedSystem& kkt, R
 }
 
 RedundancyWatch::RedundancyWatch(const Model& model, const Data& run, Redundancy redundancy)
-    : model_(model), r_(std::move(redundancy)), full_(model) {
-  full_.share_values(run);
-}
+    : model_(model), r_(std::move(redundancy)), full_(model, &run, Data::Rows::kEvery) {}
 
 std::string RedundancyWatch::violation(const double* q, double t) {
   if (r_.rows.empty()) return "";
@@ -145,58 +186,6 @@ std::string RedundancyWatch::violation(const double* q, double t) {
     return s.str();
   }
   return "";
-}
-
-namespace {
-
-/// AssemblyError if a dropped row's equation at velocity or acceleration
-/// level, residual[row], exceeds tol: its dependent set conflicts.
-void check_dropped(const Redundancy& r, const VecX& residual, double tol, double t,
-                   const char* level) {
-  for (size_t k = 0; k < r.rows.size(); ++k) {
-    const double e = std::abs(residual[r.rows[k]]);
-    if (e <= tol) continue;
-    std::ostringstream s;
-    s << "the model cannot start at t = " << t << ": the equation of '" << r.partners[k][0]
-      << "' depends on " << quoted_names({r.partners[k].begin() + 1, r.partners[k].end()})
-      << " at the initial position, but its " << level << " constraint conflicts with them (residual " << e
-      << "). Two elements prescribe the same motion differently (e.g. a joint and a body driven at "
-         "different rates): remove or reconcile one.";
-    std::vector<std::pair<std::string, double>> violated;
-    for (const auto& name : r.partners[k]) violated.emplace_back(name, e);
-    throw AssemblyError(s.str(), t, std::move(violated));
-  }
-}
-
-}  // namespace
-
-ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, VecX v, double t,
-                            Redundancy* redundancy) {
-  d.drop_rows(model, {});
-  q = assemble_positions(model, d, kkt, std::move(q), t);
-  Redundancy r = find_redundancy(model, d, kkt, q, t);
-  d.drop_rows(model, r.rows);
-  ConsistentState s = make_consistent(model, d, kkt, std::move(q), std::move(v), t);
-  if (!r.rows.empty()) {
-    // kkt holds the kept rows at s.q; the dropped ones from a full evaluation
-    Data full(model);
-    full.share_values(d);
-    assemble_jacobian(model, full, s.q.data(), t);
-    name_partners(model, full, kkt, r);
-    assemble_phi_t(model, full, s.q.data(), t);
-    VecX rv = full.phi_t;
-    add_jacobian_times(full, s.v.data(), rv.data());
-    const double tol_v = 1e-8 * (1.0 + max_abs(s.v) + max_abs(full.phi_t));
-    check_dropped(r, rv, tol_v, t, "velocity");
-    assemble_gamma(model, full, s.q.data(), s.v.data(), t);
-    VecX ra = -full.gamma;
-    add_jacobian_times(full, s.qdd.data(), ra.data());
-    const double tol_a = 1e-8 * (1.0 + max_abs(s.qdd) + max_abs(full.gamma));
-    check_dropped(r, ra, tol_a, t, "acceleration");
-    d.element_evaluations += full.element_evaluations;
-  }
-  if (redundancy) *redundancy = std::move(r);
-  return s;
 }
 
 }  // namespace lagmb

@@ -5,7 +5,7 @@
 
 namespace lagmb {
 
-Data::Data(const Model& model)
+Data::Data(const Model& model, const Data* of_run, Rows rows)
     : Phi(VecX::Zero(model.n_constraints())),
       phi_t(VecX::Zero(model.n_constraints())),
       gamma(VecX::Zero(model.n_constraints())),
@@ -18,12 +18,16 @@ Data::Data(const Model& model)
       M(model.mass_pattern()),
       M_inv(model.mass_pattern()),
       M_qa(model.mass_pattern()),
-      run(std::make_shared<RunValues>()) {
+      run(of_run ? of_run->run : std::make_shared<RunValues>()) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
   init_mass(model, *this);
-  run->inputs.resize(int(model.inputs().size()));
-  for (int k = 0; k < run->inputs.size(); ++k) run->inputs[k] = model.inputs()[k].initial;
-  run->state = VecX::Zero(model.run_state_size());
+  if (of_run) {
+    if (rows == Rows::kRun) drop_rows(model, of_run->dropped_rows);
+  } else {
+    run->inputs.resize(int(model.inputs().size()));
+    for (int k = 0; k < run->inputs.size(); ++k) run->inputs[k] = model.inputs()[k].initial;
+    run->state = VecX::Zero(model.run_state_size());
+  }
   if (!model.friction_groups().empty()) {
     friction_Q_q = model.force_q_pattern();
     friction_Q_v = model.force_v_pattern();
@@ -45,12 +49,6 @@ void Data::drop_rows(const Model& model, std::vector<int> rows) {
     for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
       if (std::binary_search(dropped_rows.begin(), dropped_rows.end(), J.innerIndexPtr()[k]))
         dropped_slots.push_back(k);
-}
-
-void Data::join_run(const Model& model, const Data& run) {
-  if (&run == this) return;
-  drop_rows(model, run.dropped_rows);
-  share_values(run);
 }
 
 namespace {

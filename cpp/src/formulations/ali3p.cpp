@@ -11,7 +11,8 @@
 
 namespace lagmb {
 
-Ali3pFormulation::Ali3pFormulation(const Model& model, const ConsistentState& start, double rtol, const VecX& atol)
+Ali3pFormulation::Ali3pFormulation(const Model& model, const ConsistentState& start, double rtol, const VecX& atol,
+                                   const Data* run)
     : q(start.q),
       v(start.v),
       a(start.qdd),
@@ -20,7 +21,7 @@ Ali3pFormulation::Ali3pFormulation(const Model& model, const ConsistentState& st
       v_prev(v),
       a_prev(a),
       model_(model),
-      d_(model),
+      d_(model, run),
       kkt_(model),
       n_(model.n_coordinates()),
       m_(model.n_constraints()),

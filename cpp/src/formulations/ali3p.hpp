@@ -6,7 +6,7 @@
 #pragma once
 
 
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "assembly/saddle_point.hpp"
 
 namespace lagmb {
@@ -32,9 +32,9 @@ class Ali3pFormulation {
  public:
   /// From a consistent start; rtol, atol are Newton's convergence test and
   /// the projections' target.
-  Ali3pFormulation(const Model& model, const ConsistentState& start, double rtol, const VecX& atol);
-  /// Joins the run: its dropped rows and run state (Data::join_run).
-  void join_run(const Data& run) { d_.join_run(model_, run); }
+  /// `run`: the run's Data, whose values and dropped rows d_ takes (null: its own).
+  Ali3pFormulation(const Model& model, const ConsistentState& start, double rtol, const VecX& atol,
+                   const Data* run = nullptr);
 
   /// Takes the current state as the start of the next step.
   void begin_step();

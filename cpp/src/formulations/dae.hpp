@@ -1,8 +1,10 @@
 // A DAE form of the equations of motion, F(t, y, y') = 0, for IDA.
 #pragma once
 
+#include <memory>
+
 #include "assembly/saddle_point.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/model/data.hpp"
 
 namespace lagmb {
@@ -44,8 +46,6 @@ class DaeFormulation {
   virtual const double* v(const double* y) const = 0;
   /// Elements the formulation's assembly kernels evaluated so far.
   virtual long element_evaluations() const { return 0; }
-  /// Joins the run: its dropped rows and run state (Data::join_run).
-  virtual void join_run(const Data& run) = 0;
   /// Forward sensitivities (IDAS): out_i = F_y s_i + F_y' sp_i for each of
   /// the k directions (s_i, sp_i), with F's exact derivatives at (t, y, y').
   /// `same_state`: (t, y, y') are those of the last call, whose blocks are
@@ -80,12 +80,12 @@ class MultiplierDae : public DaeFormulation {
   const double* q(const double* y) const override { return y; }
   const double* v(const double* y) const override { return y + n_; }
   long element_evaluations() const override { return d_.element_evaluations; }
-  void join_run(const Data& run) override { d_.join_run(model_, run); }
   /// y = (q, v, lam, 0...), y' = (v, qdd, 0...) from the consistent start.
   void initial(const ConsistentState& s, double* y, double* yp) const override;
 
  protected:
-  MultiplierDae(const Model& model, int size);
+  /// `run`: the run's Data, whose values and dropped rows d_ takes (null: its own).
+  MultiplierDae(const Model& model, int size, const Data* run);
   /// Declares the F1, F2 blocks and Phi_q at (F3, q); call before adding the form's own.
   void declare_common(SparsityPattern& p) const;
   /// Builds J_ from p and binds the common slots.
@@ -143,7 +143,7 @@ class MultiplierDae : public DaeFormulation {
 ///   [ (Phi_q v + Phi_t)_q              Phi_q               0         0    ]
 class GglFormulation final : public MultiplierDae {
  public:
-  explicit GglFormulation(const Model& model);
+  explicit GglFormulation(const Model& model, const Data* run = nullptr);
   const char* name() const override { return "ggl"; }
   void ids(double* id) const override;
   void index_levels(int* level) const override;
@@ -182,7 +182,7 @@ class GglFormulation final : public MultiplierDae {
 /// only as far as the integration error lets them.
 class Index3Formulation final : public MultiplierDae {
  public:
-  explicit Index3Formulation(const Model& model);
+  explicit Index3Formulation(const Model& model, const Data* run = nullptr);
   const char* name() const override { return "index3"; }
   bool scale_relative_tolerance() const override { return true; }
   void ids(double* id) const override;
@@ -203,7 +203,7 @@ class Index3Formulation final : public MultiplierDae {
 /// Equilibration r1 = r2 = r3 = h, cv = 1, cl = cj.
 class Index1Formulation final : public MultiplierDae {
  public:
-  Index1Formulation(const Model& model, double alpha, double beta);
+  Index1Formulation(const Model& model, double alpha, double beta, const Data* run = nullptr);
   const char* name() const override { return "index1"; }
   void ids(double* id) const override;
   void index_levels(int* level) const override;
@@ -216,5 +216,10 @@ class Index1Formulation final : public MultiplierDae {
   VecX scratch_;
   std::vector<int> F3v_;
 };
+
+/// The formulation forward sensitivities are integrated with (IDAS): the
+/// one whose sensitivity_products give F's exact derivatives (GGL), of
+/// `model`, a Data of `run` (the run's Data).
+std::unique_ptr<DaeFormulation> make_sensitivity_formulation(const Model& model, const Data& run);
 
 }  // namespace lagmb

@@ -7,8 +7,12 @@
 
 namespace lagmb {
 
-GglFormulation::GglFormulation(const Model& model)
-    : MultiplierDae(model, 2 * model.n_coordinates() + 2 * model.n_constraints()) {
+std::unique_ptr<DaeFormulation> make_sensitivity_formulation(const Model& model, const Data& run) {
+  return std::make_unique<GglFormulation>(model, &run);
+}
+
+GglFormulation::GglFormulation(const Model& model, const Data* run)
+    : MultiplierDae(model, 2 * model.n_coordinates() + 2 * model.n_constraints(), run) {
   const int V = n_, U = 2 * n_ + m_;  // first rows/columns of v, mu
   SparsityPattern p(size_, size_);
   declare_common(p);  // with F3 x q: Phi_q

@@ -6,8 +6,8 @@
 
 namespace lagmb {
 
-Index1Formulation::Index1Formulation(const Model& model, double alpha, double beta)
-    : MultiplierDae(model, 2 * model.n_coordinates() + model.n_constraints()), alpha_(alpha), beta_(beta) {
+Index1Formulation::Index1Formulation(const Model& model, double alpha, double beta, const Data* run)
+    : MultiplierDae(model, 2 * model.n_coordinates() + model.n_constraints(), run), alpha_(alpha), beta_(beta) {
   SparsityPattern p(size_, size_);
   declare_common(p);  // with F3 x q: the pattern of Phi_q
   add_block(p, model.jacobian_pattern(), 2 * n_, n_);  // F3 x v

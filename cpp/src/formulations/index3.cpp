@@ -6,8 +6,8 @@
 
 namespace lagmb {
 
-Index3Formulation::Index3Formulation(const Model& model)
-    : MultiplierDae(model, 2 * model.n_coordinates() + model.n_constraints()) {
+Index3Formulation::Index3Formulation(const Model& model, const Data* run)
+    : MultiplierDae(model, 2 * model.n_coordinates() + model.n_constraints(), run) {
   SparsityPattern p(size_, size_);
   declare_common(p);  // with F3 x q: Phi_q
   bind_common(p);

@@ -7,9 +7,9 @@
 
 namespace lagmb {
 
-MultiplierDae::MultiplierDae(const Model& model, int size)
+MultiplierDae::MultiplierDae(const Model& model, int size, const Data* run)
     : model_(model),
-      d_(model),
+      d_(model, run),
       n_(model.n_coordinates()),
       m_(model.n_constraints()),
       size_(size),

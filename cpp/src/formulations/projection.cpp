@@ -2,14 +2,15 @@
 // its Newton system and the coordinate projection.
 #include "formulations/projection.hpp"
 
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/trajectory.hpp"
 
 namespace lagmb {
 
-ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, double beta)
+ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, double beta, const Data* run)
     : model_(model),
-      d_(model),
+      d_(model, run),
       kkt_(model),
       n_(model.n_coordinates()),
       nc_(model.n_constraints()),

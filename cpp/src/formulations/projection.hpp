@@ -20,11 +20,10 @@ struct Stats;
 class ProjectionFormulation {
  public:
   /// alpha, beta: Baumgarte terms (for Adams, which CVODE cannot project).
-  ProjectionFormulation(const Model& model, double alpha, double beta);
+  /// `run`: the run's Data, whose values and dropped rows d_ takes (null: its own).
+  ProjectionFormulation(const Model& model, double alpha, double beta, const Data* run = nullptr);
   int n() const { return n_; }
   int n_constraints() const { return nc_; }
-  /// Joins the run: its dropped rows and run state (Data::join_run).
-  void join_run(const Data& run) { d_.join_run(model_, run); }
 
   /// f = (v, qdd) at (t, y); false if the augmented matrix is singular or
   /// qdd is not finite (recoverable: the integrator cuts the step).

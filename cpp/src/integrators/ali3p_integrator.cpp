@@ -25,14 +25,12 @@ class Ali3pStepper final : public Stepper {
  public:
   Ali3pStepper(const Model& model, const ConsistentState& start, const IntegrationPlan& plan)
       : form_(model, start, plan.options->newton_rtol,
-              VecX::Constant(model.n_coordinates(), plan.options->newton_atol)),
+              VecX::Constant(model.n_coordinates(), plan.options->newton_atol), plan.run),
         m_(model.n_constraints()),
         h_(plan.options->max_step),
         t_(plan.t0),
         stop_(plan.t_end),
-        t_prev_(plan.t0) {
-    if (plan.run) form_.join_run(*plan.run);
-  }
+        t_prev_(plan.t0) {}
 
   const char* name() const override { return "ALI3-P"; }
   void set_stop(double stop) override { stop_ = stop; }

@@ -105,9 +105,7 @@ struct CvodeSession : OdeSession {
 /// refers to the state vector and the callbacks' data).
 struct CvodeParts {
   CvodeParts(const Model& model, double alpha, double beta, const ConsistentState& start, const IntegrationPlan& plan)
-      : ode_(model, alpha, beta), user_(ode_), s(start, plan.atol) {
-    if (plan.run) ode_.join_run(*plan.run);
-  }
+      : ode_(model, alpha, beta, plan.run), user_(ode_), s(start, plan.atol) {}
   ProjectionFormulation ode_;
   OdeUserData user_;
   CvodeSession s;

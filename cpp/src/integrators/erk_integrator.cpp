@@ -63,9 +63,7 @@ void quintic_hermite(double s, double h, int n, const double* q0, const double* 
 /// refers to the state vector and the callbacks' data).
 struct ErkParts {
   ErkParts(const Model& model, const ConsistentState& start, const IntegrationPlan& plan)
-      : ode_(model, 0.0, 0.0), user_(ode_), s(start, plan.atol) {
-    if (plan.run) ode_.join_run(*plan.run);
-  }
+      : ode_(model, 0.0, 0.0, plan.run), user_(ode_), s(start, plan.atol) {}
   ProjectionFormulation ode_;
   OdeUserData user_;
   ErkSession s;

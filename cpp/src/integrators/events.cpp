@@ -31,8 +31,7 @@ std::string fmt(double x) { return to_text(x); }
 
 }  // namespace
 
-EventRunner::EventRunner(const Model& model, const Data& run) : model_(model), d_(model), kkt_(model) {
-  d_.join_run(model, run);
+EventRunner::EventRunner(const Model& model, const Data& run) : model_(model), d_(model, &run), kkt_(model) {
   const auto& groups = model.event_groups();
   for (int gi = 0; gi < int(groups.size()); ++gi) {
     for (int k = 0; k < groups[gi]->size(); ++k)

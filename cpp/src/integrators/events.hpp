@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/model/data.hpp"
 #include "lagmb/trajectory.hpp"
 

@@ -196,8 +196,7 @@ class IdaStepper final : public Stepper {
  public:
   IdaStepper(std::unique_ptr<DaeFormulation> formulation, const ConsistentState& start, const IntegrationPlan& plan)
       : dae_(std::move(formulation)), plan(plan) {
-    DaeFormulation& dae = *dae_;
-    if (plan.run) dae.join_run(*plan.run);
+    DaeFormulation& dae = *dae_;  // (made of the plan's run Data: methods.cpp)
     const int N = dae.size();
     s.y = N_VNew_Serial(N, s.ctx);
     s.yp = N_VNew_Serial(N, s.ctx);

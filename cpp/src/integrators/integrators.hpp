@@ -12,7 +12,7 @@
 
 #include "formulations/dae.hpp"
 #include "lagmb/integrators/methods.hpp"
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/options.hpp"
 #include "lagmb/trajectory.hpp"
 
@@ -33,7 +33,7 @@ struct SensitivityPlan {
   /// range (a damping of 0), where the model at p_i is the one beyond it
   std::vector<double> delta;
   std::vector<double> scale;  // IDAS' pbar: abs(p_i), 1 where p_i = 0
-  /// The GGL forms of the models at p_i + delta_i and p_i - delta_i (joined to the run).
+  /// The GGL forms of the models at p_i + delta_i and p_i - delta_i (Data of the run).
   std::vector<std::unique_ptr<DaeFormulation>> plus, minus;
   /// The sensitivities of y and y' at the start: central differences of the
   /// consistent starts of the models at p_i +- delta_i.
@@ -51,7 +51,7 @@ struct IntegrationPlan {
   std::vector<double> t_out;
   std::vector<double> breakpoints;  // inside (t0, t_end): stop and restart there
   class EventRunner* events = nullptr;  // the model's event functions; null: none
-  const Data* run = nullptr;  // the run's Data: each integrator's own Data joins it (Data::join_run)
+  const Data* run = nullptr;  // the run's Data: each integrator's own Data is made of it (Data's constructor)
   /// Steps between outputs after which the method gives up as too stiff
   /// for it (IntegratorFailure::integrator_gave_up), so that formulation
   /// "auto" runs on with GGL; 0: none (only max_steps).

@@ -25,7 +25,7 @@ std::unique_ptr<Stepper> cvode(const Model& model, const ConsistentState& start,
 
 template <class Dae>
 std::unique_ptr<Stepper> ida(const Model& model, const ConsistentState& start, const IntegrationPlan& plan) {
-  return make_ida_stepper(std::make_unique<Dae>(model), start, plan);
+  return make_ida_stepper(std::make_unique<Dae>(model, plan.run), start, plan);
 }
 
 const std::vector<Entry>& entries() {
@@ -50,8 +50,8 @@ const std::vector<Entry>& entries() {
     m.drifts = true;
     add(m, [](const Model& model, const ConsistentState& start, const IntegrationPlan& plan) {
       const SimulationOptions& o = *plan.options;
-      return make_ida_stepper(std::make_unique<Index1Formulation>(model, o.baumgarte_alpha, o.baumgarte_beta),
-                              start, plan);
+      return make_ida_stepper(
+          std::make_unique<Index1Formulation>(model, o.baumgarte_alpha, o.baumgarte_beta, plan.run), start, plan);
     });
     m = {"projection-bdf", F::kProjection, I::kBdf, "CVODE",
          "ODE in accelerations from the augmented system, BDF, positions and velocities projected after each step",

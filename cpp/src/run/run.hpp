@@ -1,97 +1,21 @@
-// What simulate and a Simulator share to start and check a dynamic run.
+// The Run: what simulate and a Simulator share of a dynamic run. Its jobs'
+// parts have their own files: the options (run_options), the method choice
+// of formulation "auto" (method_choice), the start (start), the outputs'
+// recording (recording) and the sensitivities (sensitivities.cpp).
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <memory>
 #include <string>
 
 #include "integrators/events.hpp"
 #include "integrators/integrators.hpp"
 #include "lagmb/analyses/redundancy.hpp"
+#include "run/method_choice.hpp"
+#include "run/recording.hpp"
+#include "run/run_options.hpp"
+#include "run/start.hpp"
 
 namespace lagmb {
-
-/// Times closer than kTimeResolution max(|t|, 1 s) are one time to a run
-/// (about 45 units in the last place of t): an end time, an advance or an
-/// output interval shorter than that is refused.
-constexpr double kTimeResolution = 1e-14;
-inline double shortest_span(double t0, double t1) {
-  return kTimeResolution * std::max({std::abs(t0), std::abs(t1), 1.0});
-}
-
-/// The latest time a run reaches, |t| <= 1e9 s (about 32 years): near t the
-/// integrators' smallest step is about 100 eps |t| (2e-5 s here; IDA's
-/// bound), so much later a mechanism's motion cannot be resolved.
-constexpr double kLatestTime = 1e9;
-/// ModelError "who: what = t ..." unless |t| <= kLatestTime.
-inline void check_time(double t, const std::string& who, const char* what) {
-  if (!(std::abs(t) <= kLatestTime))
-    throw ModelError(who + ": " + what + " = " + to_text(t) + " is beyond the times a run can resolve, |t| <= " +
-                     to_text(kLatestTime) + " s (the integrators' smallest step there is 100 eps |t|)");
-}
-
-/// The options every dynamic run takes (tolerances, method, bounds, start);
-/// ModelError beginning with "who: " for one that is wrong. Returns the
-/// method (formulation "auto": choose_method's).
-const Method& validate_run_options(const Model& model, const SimulationOptions& o, const std::string& who);
-
-/// What formulation "auto" runs, and why (Stats::method_choice):
-///   - GGL where the forces switch faster than any step can follow: a
-///     contact (its onset and release; an explicit step could pass a whole
-///     contact) or joint friction from the joints' loads;
-///   - GGL where the applied forces are stiff: their fastest rate rho
-///     (force_rates at the initial state: springs, bushings, dampers, the
-///     smoothed sign of joint friction) times the run's span above
-///     kStiffSpan, where an explicit method would take more than about
-///     kStiffSpan / 5 steps for stability alone;
-///   - else the explicit projection-erk (Fehlberg 7(8) with projections),
-///     which on non-stiff mechanisms reaches an error in a fraction of the
-///     implicit methods' time (bench/auto_method.py); should it give up
-///     (its error test, or kAutoStiffSteps between two outputs), GGL takes
-///     over from its last step (Run::switch_to_ggl).
-struct MethodChoice {
-  const Method* method = nullptr;
-  std::string why;
-};
-constexpr double kStiffSpan = 1000.0;
-MethodChoice choose_method(const Model& model, const SimulationOptions& o);
-
-/// The consistent state a dynamic run starts from at o.t0: the model's
-/// initial positions and velocities or, with o.start == Start::kEquilibrium, the
-/// static equilibrium at rest; assembled with the rows found redundant there
-/// left out (start_state; `redundancy` gets them). A failing user function
-/// is a SimulationError at t0.
-ConsistentState dynamic_start(const Model& model, const SimulationOptions& o, Data& d, AugmentedSystem& kkt,
-                              Redundancy& redundancy);
-
-/// The plan of a dynamic run from the options (no outputs or breakpoints
-/// yet); `run` is the run's Data.
-IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const Method& method, const Data& run);
-
-/// The event runner of a model with event elements (null without): a joint
-/// that starts at a limit, moving into it, gets its impact at t (`start`
-/// changes); SimulationError if that fails.
-std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start);
-
-/// a and lam at the recorded outputs of `tr` from `first` on, from the
-/// augmented system, appended output by output (tr.a holds size_t(k) * n
-/// values once k are solved). Returns "" or why an output could not be
-/// solved (a user function failing there, joint friction whose load does not
-/// converge, a non-finite result); the outputs from that one on are then
-/// unsolved.
-std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first = 0);
-
-/// Appends the output (t, q, v) and the input values to `tr`, and with
-/// `solve` its a and lam;
-/// first checks the rows left out as redundant (`watch`). Throws
-/// IntegratorFailure (diagnose = false) with why, keeping only the outputs
-/// solved before.
-void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
-                   double t, const double* q, const double* v, const VecX& inputs, bool solve);
-
-/// Outputs of `tr` whose a and lam were solved.
-int solved_outputs(const Trajectory& tr);
 
 /// Everything one dynamic run changes, in one place (docs/design.md 2.8):
 /// the model it runs (the one given, or built with the run's parameters),
@@ -120,7 +44,7 @@ class Run {
   const Model& model;                                  // what the run integrates
   const SimulationOptions& options;
   const Method& method;  // the method asked for or chosen at the start (see current_method)
-  Data data;  // the run's: plan.run and every formulation's Data join it
+  Data data;  // the run's (plan.run): every other Data of the run is made of it
   AugmentedSystem kkt;
   ConsistentState start;
   std::unique_ptr<EventRunner> events;  // null without event elements
@@ -140,7 +64,7 @@ class Run {
   /// (Model::parameters' names) before the stepper starts: the models at
   /// p_i +- delta_i (delta_i = 1e-4 abs(p_i), 1e-4 where p_i = 0; the
   /// model at p_i for a side beyond a bound of its range: a one-sided
-  /// difference), their GGL forms joined to this run, and the initial
+  /// difference), their GGL forms made of this run's Data, and the initial
   /// sensitivities from their consistent starts. ModelError for a method
   /// other than GGL with IDA, a model with events or joint friction, an
   /// unknown or repeated name, or a parameter with no sensitivity, each

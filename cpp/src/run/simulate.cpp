@@ -8,7 +8,7 @@
 #include "integrators/events.hpp"
 #include "integrators/integrators.hpp"
 #include "run/run.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/analyses/equilibrium.hpp"
 #include "lagmb/analyses/kinematics.hpp"

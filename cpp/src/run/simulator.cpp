@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "integrators/integrators.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/analyses/kinematics.hpp"
 #include "lagmb/integrators/methods.hpp"

@@ -10,6 +10,21 @@
 
 namespace lagmb {
 
+/// Rank of Phi_q(q, t) and the rows found dependent on the others.
+struct ConstraintRank {
+  int rank = 0;
+  int equations = 0;
+  int coordinates = 0;
+  std::vector<int> dependent_rows;
+  /// Degrees of freedom: coordinates - rank.
+  int degrees_of_freedom() const { return coordinates - rank; }
+};
+
+/// Rank-revealing sparse QR (COLAMD ordering, column pivoting by norm) of
+/// Phi_q^T; a column (equation) whose remaining norm falls below
+/// tol * (largest column norm) counts as dependent.
+ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, double tol = 1e-9);
+
 /// The rows of Phi a run drops, and the elements each depends on.
 struct Redundancy {
   std::vector<int> rows;  // sorted
@@ -60,16 +75,6 @@ class RedundancyWatch {
   Redundancy r_;
   Data full_;  // every row evaluated
 };
-
-/// The consistent state a run starts from: positions assembled with every
-/// row of Phi, then the rows found redundant there (find_redundancy) dropped
-/// in d, then make_consistent. The dropped rows must hold at velocity and
-/// acceleration level too (a consistent redundancy does: its equations are
-/// combinations of the kept ones); otherwise the equations conflict, e.g.
-/// two drivers prescribing one angle at different rates, and AssemblyError
-/// names them. `redundancy`, if given, receives what was decided.
-ConsistentState start_state(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, VecX v, double t,
-                            Redundancy* redundancy = nullptr);
 
 /// "'A', 'B' and 'C'".
 std::string quoted_names(const std::vector<std::string>& names);

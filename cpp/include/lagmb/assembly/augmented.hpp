@@ -1,10 +1,12 @@
 // The augmented (saddle-point) system of one instant, solved through its Schur
-// complement (sparse Cholesky) or, without a positive definite M, sparse LU.
+// complement (sparse Cholesky) or, without a positive definite M, sparse LU:
+// assembled, factorized and solved here; what is solved with it for a
+// consistent state (positions, velocities, accelerations) is in
+// lagmb/analyses/consistent_state.hpp.
 #pragma once
 
 #include <Eigen/SparseCholesky>
 #include <array>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -106,45 +108,5 @@ class AugmentedSystem {
   Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
   int symbolic_analyses_ = 0;
 };
-
-/// q, v, qdd and lam that satisfy Phi = 0, Phi_q v + Phi_t = 0 and the
-/// augmented system at time t.
-struct ConsistentState {
-  VecX q, v, qdd, lam;
-  std::vector<int> dropped_rows;  // the rows left out (Data::dropped_rows)
-};
-
-/// Makes (q, v) consistent at time t:
-///  1. positions by Newton least-change in the M-metric:
-///       [M Phi_q^T; Phi_q 0] [dq; kappa] = [0; -Phi],  q += dq, until |Phi| small;
-///  2. velocities by M-orthogonal projection:
-///       [M Phi_q^T; Phi_q 0] [v; kappa] = [M v0; -Phi_t];
-///  3. accelerations and multipliers: [M Phi_q^T; Phi_q 0] [qdd; lam] = [Q; gamma].
-/// The rows d drops stay dropped (see start_state, redundancy.hpp). Throws AssemblyError
-/// naming the constraint elements still violated.
-ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kkt, VecX q,
-                                VecX v, double t);
-
-/// Step 1 alone: positions satisfying Phi(q, t) = 0, by least change from q.
-VecX assemble_positions(const Model& model, Data& d, AugmentedSystem& kkt, VecX q, double t);
-
-/// Step 3 alone: qdd and lam at the state (q, v, t).
-void solve_accelerations(const Model& model, Data& d, AugmentedSystem& kkt, const double* q,
-                         const double* v, double t, double* qdd, double* lam);
-
-/// Joint friction Q_f(q, v, lam) takes its load from the multipliers, so the
-/// equations that give lam become nonlinear in it. From d.Q (forces without
-/// friction) and the frictionless lam, iterates: d.Q = Q + Q_f(lam_k), then
-/// solve(lam) gives lam_{k+1} from that d.Q, until |lam_{k+1} - lam_k|_inf
-/// <= 1e-12 (|lam|_inf + mass scale), at most 2000 times (the convergence is
-/// linear); throws SimulationError if it does not converge (friction so large
-/// that the load-friction loop locks). Leaves d.Q with friction.
-void iterate_friction_load(const Model& model, Data& d, const double* q, const double* v, double t, VecX& lam,
-                           const std::function<void(VecX& lam)>& solve);
-
-/// iterate_friction_load on the augmented system: kkt factorized at q,
-/// d.gamma, and the frictionless (qdd, lam) in; both updated.
-void solve_friction(const Model& model, Data& d, AugmentedSystem& kkt, const double* q, const double* v,
-                    double t, VecX& qdd, VecX& lam);
 
 }  // namespace lagmb

@@ -13,7 +13,18 @@ namespace lagmb {
 /// in place. A Model is never written by a run: one Model may be run by
 /// several threads at once, each with its own Data.
 struct Data {
-  explicit Data(const Model& model);
+  /// Which rows a Data of a run counts: the run's (its dropped rows left
+  /// out), or every row (to check or name the dropped ones).
+  enum class Rows { kRun, kEvery };
+  /// A Data with run values of its own (the inputs at their initial values,
+  /// no element state): a run's own, or one outside any run. With `run`, a
+  /// Data of that run instead: it reads the run's values (what a
+  /// Simulator's inputs or an event change, every Data of the run sees)
+  /// and with Rows::kRun leaves out the run's dropped rows. A run's
+  /// scratch Data (each formulation's, the event runner's, the checks') are
+  /// made so, from the run's Data: none joins later, so none reads stale
+  /// values.
+  explicit Data(const Model& model, const Data* run = nullptr, Rows rows = Rows::kRun);
 
   VecX Phi;     // constraint residual Phi(q, t)                   (m)
   VecX phi_t;   // partial time derivative Phi_t                  (m)
@@ -63,10 +74,6 @@ struct Data {
   std::shared_ptr<RunValues> run;
   /// The instant t of this run, as the kernels take it (time and inputs).
   Instant at(double t) const { return {t, run->inputs.data()}; }
-  /// Makes this Data part of `run`: its dropped rows and the same run values.
-  void join_run(const Model& model, const Data& run);
-  /// Reads the run values of `run` (not its dropped rows: every row counts).
-  void share_values(const Data& run) { this->run = run.run; }
 };
 
 }  // namespace lagmb

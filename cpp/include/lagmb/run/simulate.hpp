@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "lagmb/assembly/augmented.hpp"
+#include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/model/model.hpp"
 #include "lagmb/options.hpp"
