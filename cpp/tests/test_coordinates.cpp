@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "check.hpp"
-#include "lagmb/assembly/analysis.hpp"
 #include "lagmb/model/coordinates.hpp"
 #include "lagmb/run/outputs.hpp"
 #include "models.hpp"

@@ -22,7 +22,6 @@
 #include "lagmb/solvers/sparse_lu.hpp"
 #include "lagmb/solvers/sundials.hpp"
 
-#include "lagmb/assembly/analysis.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/assembly/augmented.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/analyses/redundancy.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/interrupt.hpp"

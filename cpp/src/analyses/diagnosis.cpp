@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/errors.hpp"
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "assembly/saddle_point.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/analyses/linearization.hpp"

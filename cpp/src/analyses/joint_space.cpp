@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "elements/build.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/elements/drivers.hpp"
 #include "lagmb/elements/spatial_drivers.hpp"

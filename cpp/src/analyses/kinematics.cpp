@@ -8,7 +8,7 @@
 #include <memory>
 #include <sstream>
 
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/analyses/diagnosis.hpp"

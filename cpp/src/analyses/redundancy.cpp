@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "lagmb/analyses/consistent_state.hpp"
-#include "lagmb/assembly/analysis.hpp"
+#include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/assembly/augmented.hpp"
 #include "lagmb/errors.hpp"

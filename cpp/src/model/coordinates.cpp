@@ -1,4 +1,4 @@
-// The names of a model's coordinates (coordinates.hpp).
+// The names of a model's coordinates and which turn (coordinates.hpp).
 #include "lagmb/model/coordinates.hpp"
 
 #include "lagmb/errors.hpp"
@@ -47,6 +47,22 @@ std::vector<std::string> coordinate_units(const Model& model) {
   std::vector<std::string> out(size_t(model.n_coordinates()));
   for (const Body& b : model.bodies())
     for (int k = 0; k < b.n_coordinates(); ++k) out[size_t(b.first_coord + k)] = body_coordinate_unit(b, k);
+  return out;
+}
+
+std::string coordinate_label(const Model& model, int coord) {
+  const Body& b = model.body_of_coordinate(coord);
+  return "body '" + b.name + "' " + body_coordinate_name(b, coord - b.first_coord);
+}
+
+std::vector<std::pair<int, double>> turning_coordinates(const Model& model) {
+  std::vector<std::pair<int, double>> out;
+  for (const Body& b : model.bodies()) {
+    if (b.spatial)
+      for (int i = 3; i < 7; ++i) out.emplace_back(b.first_coord + i, 2.0);
+    else if (!b.particle)
+      out.emplace_back(b.angle_coord(), 1.0);
+  }
   return out;
 }
 

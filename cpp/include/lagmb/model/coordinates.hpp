@@ -1,8 +1,10 @@
 // The names of a model's coordinates q: one table for every place that
-// names them (messages, the FMU's variables, Model.coordinate_names in Python).
+// names them (messages, the FMU's variables, Model.coordinate_names in Python),
+// and which of them turn.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lagmb/elements/body.hpp"
@@ -29,5 +31,15 @@ bool is_body_coordinate_name(const std::string& name);
 std::vector<std::string> coordinate_names(const Model& model);
 /// Their units, in the same order (body_coordinate_unit).
 std::vector<std::string> coordinate_units(const Model& model);
+
+/// "body 'rod' angle": the body and the role of coordinate `coord` of q,
+/// as messages name it.
+std::string coordinate_label(const Model& model, int coord);
+
+/// The coordinates of q that turn, with the angle per unit of each: a
+/// planar body's angle (1) and a spatial body's Euler parameters (2: a turn
+/// by theta moves p by about theta / 2). What the step limits of assembly,
+/// equilibrium and kinematic analysis bound.
+std::vector<std::pair<int, double>> turning_coordinates(const Model& model);
 
 }  // namespace lagmb
