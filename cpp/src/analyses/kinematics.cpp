@@ -223,8 +223,8 @@ class KinematicSolver {
     VecX q = solve_positions(model_, d_, kkt_, q0, t);
     redundancy = find_redundancy(model_, d_, kkt_, q, t);
     d_.drop_rows(model_, redundancy.rows);
-    if (SquareJacobian::applies(model_, d_.dropped_rows))
-      square_ = std::make_unique<SquareJacobian>(model_, d_.dropped_rows);
+    if (SquareJacobian::applies(model_, d_.dropped_rows()))
+      square_ = std::make_unique<SquareJacobian>(model_, d_.dropped_rows());
     factorized_ = false;
     if (!redundancy.rows.empty()) {
       Data full(model_, &d_, Data::Rows::kEvery);

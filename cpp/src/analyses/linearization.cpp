@@ -151,7 +151,7 @@ StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double
   // the dropped rows are 0 = 0: their G rows zero too
   SpMat kept(m, m);
   kept.setIdentity();
-  for (int row : d.dropped_rows) kept.coeffRef(row, row) = 0.0;
+  for (int row : d.dropped_rows()) kept.coeffRef(row, row) = 0.0;
   r.G_q = kept * (gamma_q - Phi_q_a);
   r.G_v = kept * r.G_v;
 
@@ -163,7 +163,7 @@ StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double
     assemble_constraints(model, d, q.data(), t);
     return VecX(d.Phi);
   });
-  for (int row : d.dropped_rows) r.Phi_u.row(row).setZero();
+  for (int row : d.dropped_rows()) r.Phi_u.row(row).setZero();
   return r;
 }
 

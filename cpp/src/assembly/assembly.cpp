@@ -18,12 +18,11 @@ Data::Data(const Model& model, const Data* of_run, Rows rows)
       M(model.mass_pattern()),
       M_inv(model.mass_pattern()),
       M_qa(model.mass_pattern()),
-      run(of_run ? of_run->run : std::make_shared<RunValues>()) {
+      run(of_run ? of_run->run : std::make_shared<RunValues>()),
+      left_out_(of_run && rows == Rows::kRun ? of_run->left_out_ : std::make_shared<LeftOutRows>()) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
   init_mass(model, *this);
-  if (of_run) {
-    if (rows == Rows::kRun) drop_rows(model, of_run->dropped_rows);
-  } else {
+  if (!of_run) {
     run->inputs.resize(int(model.inputs().size()));
     for (int k = 0; k < run->inputs.size(); ++k) run->inputs[k] = model.inputs()[k].initial;
     run->state = VecX::Zero(model.run_state_size());
@@ -42,23 +41,23 @@ void Data::drop_rows(const Model& model, std::vector<int> rows) {
   rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   for (int r : rows)
     if (r < 0 || r >= model.n_constraints()) throw std::logic_error("lagmb: dropped row out of range");
-  dropped_rows = std::move(rows);
-  dropped_slots.clear();
+  std::vector<int> slots;
   const SpMat& J = model.jacobian_pattern();
   for (int c = 0; c < J.outerSize(); ++c)
     for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
-      if (std::binary_search(dropped_rows.begin(), dropped_rows.end(), J.innerIndexPtr()[k]))
-        dropped_slots.push_back(k);
+      if (std::binary_search(rows.begin(), rows.end(), J.innerIndexPtr()[k])) slots.push_back(k);
+  left_out_->rows = std::move(rows);
+  left_out_->slots = std::move(slots);
 }
 
 namespace {
 
 // rows dropped for the run read 0 = 0 (a no-op for most models)
 void drop_rows(const Data& d, VecX& x) {
-  for (int r : d.dropped_rows) x[r] = 0.0;
+  for (int r : d.dropped_rows()) x[r] = 0.0;
 }
 void drop_rows(const Data& d, SpMat& A) {
-  for (int s : d.dropped_slots) A.valuePtr()[s] = 0.0;
+  for (int s : d.dropped_slots()) A.valuePtr()[s] = 0.0;
 }
 
 }  // namespace

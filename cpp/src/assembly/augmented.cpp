@@ -194,7 +194,7 @@ bool AugmentedSystem::factorize_schur(const Data& d) {
   }
   // a dropped (redundant) row has no entries; a unit diagonal keeps S definite, and its
   // right side is zero, so its multiplier stays 0
-  for (int r : d.dropped_rows) S[s_diag_[new_of_old_[r]]] = 1.0 / mass_scale_;
+  for (int r : d.dropped_rows()) S[s_diag_[new_of_old_[r]]] = 1.0 / mass_scale_;
   // first S0 itself (eps = 0): exact, no refinement...
   chol_.factorize(S_);
   if (chol_.info() == Eigen::Success && pivots_above(1e-8)) {

@@ -92,7 +92,7 @@ void MultiplierDae::momentum_jacobian(double t, double cj, const double* y, cons
 void MultiplierDae::pin_dropped_multipliers() {
   // alg_diag_[k] is the diagonal of unknown 2n + k: lam rows first, then mu (GGL)
   double* J = J_.valuePtr();
-  for (int r : d_.dropped_rows)
+  for (int r : d_.dropped_rows())
     for (size_t k = r; k < alg_diag_.size(); k += m_) J[alg_diag_[k]] = 1.0;
 }
 

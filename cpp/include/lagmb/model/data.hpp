@@ -52,10 +52,20 @@ struct Data {
   /// started (redundancy.hpp). The kernels write them as 0 = 0 with a zero
   /// Jacobian row, so their multipliers are 0 and the other rows of each
   /// redundant set carry its reaction. Empty (the default): every row counts.
-  std::vector<int> dropped_rows;
-  std::vector<int> dropped_slots;  // their entries in the values of Phi_q
-  /// Sets dropped_rows (sorted) and their Jacobian slots.
+  /// A Data of a run (Rows::kRun) shares the run's set: rows the run leaves
+  /// out or takes back at any time, every Data of the run sees at once.
+  const std::vector<int>& dropped_rows() const { return left_out_->rows; }
+  /// Their entries in the values of Phi_q.
+  const std::vector<int>& dropped_slots() const { return left_out_->slots; }
+  /// Sets the rows left out (sorted) and their Jacobian slots, in the set
+  /// this Data reads: for a Data of a run (Rows::kRun), the run's.
   void drop_rows(const Model& model, std::vector<int> rows);
+
+  Data(Data&&) = default;
+  Data& operator=(Data&&) = default;
+  // no copies: a copy would share or not share the run's rows by accident
+  Data(const Data&) = delete;
+  Data& operator=(const Data&) = delete;
 
   /// What the run sets and the kernels read beside q, v and t (cf.
   /// mjData::ctrl): the input values and the elements' run state. Shared by
@@ -74,6 +84,13 @@ struct Data {
   std::shared_ptr<RunValues> run;
   /// The instant t of this run, as the kernels take it (time and inputs).
   Instant at(double t) const { return {t, run->inputs.data()}; }
+
+ private:
+  struct LeftOutRows {
+    std::vector<int> rows;   // sorted
+    std::vector<int> slots;  // their entries in the values of Phi_q
+  };
+  std::shared_ptr<LeftOutRows> left_out_;
 };
 
 }  // namespace lagmb
