@@ -20,7 +20,7 @@ void build_spatial_body(Model& m, const std::string& name, const Args& a) {
   if (!(b.mass >= 0))
     throw ModelError(label + ": mass must be positive (or 0: massless, kinematics only) and finite, got " +
                      to_text(b.mass));
-  b.inertia_tensor = a.inertia("inertia");
+  b.inertia_tensor = a.inertia("inertia", a.flag("rigid_inertia"));
   b.inertia = b.inertia_tensor.trace() / 3.0;
   b.r0 = a.vec3("position");
   b.p0 = a.orientation("orientation");
@@ -58,6 +58,10 @@ KindInfo spatial_body_kind() {
                                     "body axes into global axes"),
                  param::vec3("velocity", Vec3::Zero(), "m/s", "initial velocity of the centre of mass"),
                  param::vec3("angular_velocity", Vec3::Zero(), "rad/s", "initial angular velocity (global axes)"),
+                 param::flag("rigid_inertia", true,
+                             "True: refuse principal moments that break the triangle inequality (no rigid body has "
+                             "them); False: accept them (robot files hold such inertias; the mass matrix needs "
+                             "positive semi-definite moments only)"),
              },
              build_spatial_body};
   k.dimension = 3;

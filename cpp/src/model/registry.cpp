@@ -212,7 +212,7 @@ Vec4 Args::orientation(const std::string& key) const {
   return euler::from_matrix(R);
 }
 
-Mat3 Args::inertia(const std::string& key) const {
+Mat3 Args::inertia(const std::string& key, bool triangle) const {
   const Value& v = get(key);
   const std::string what = kind_->name + ": " + key;
   Mat3 J;
@@ -231,10 +231,10 @@ Mat3 Args::inertia(const std::string& key) const {
   Eigen::SelfAdjointEigenSolver<Mat3> eig(scale > 0.0 ? Mat3(J / scale) : J);
   const Vec3 m = eig.eigenvalues() * (scale > 0.0 ? scale : 1.0);  // ascending
   if (!(m[0] >= 0.0)) throw ModelError(what + " must be positive semi-definite; its principal moments are " + to_text(m));
-  if (!(m[2] <= (m[0] + m[1]) * (1.0 + 1e-9)))
+  if (triangle && !(m[2] <= (m[0] + m[1]) * (1.0 + 1e-9)))
     throw ModelError(what + ": principal moments " + to_text(m) +
                      " break the triangle inequality (no rigid body has them: each must be at most the sum of the "
-                     "other two)");
+                     "other two; rigid_inertia=False accepts them)");
   return J;
 }
 
