@@ -512,6 +512,10 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     Pinocchio runs them) is built with them and a UrdfWarning names its link
     and moments; ``strict=True`` refuses it. An ``<origin>`` in a ``<link>``
     is ignored with a UrdfWarning naming its line (as urdfdom ignores it).
+    A link without mass or with a zero principal moment is a body with
+    those numbers: it runs where its joints hold it (a massless link
+    between two revolutes with intersecting axes), and simulate names it
+    where they leave it free to move.
     ``floating_base``, ``limits``, ``dynamics``, ``mimic`` and ``strict``
     are True or False (not strings or numbers).
 
@@ -524,10 +528,10 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     scripts are errors, not 10 and 1). Raises :class:`UrdfError` (a
     ModelError) naming the file, the line and the link or joint for
     anything lagmb does not read: an unknown tag or joint type, a link that
-    is the child of two joints or of itself, a loop of joints, a body
-    without mass or inertia, a file with no moving body (all links fixed to
-    the root, which is the ground unless ``floating_base``), a missing mesh, a mimic of an unknown joint (or
-    of itself, or in a cycle), lower limit above the upper, a mass, length,
+    is the child of two joints or of itself, a loop of joints, a file with
+    no moving body (all links fixed to the root, which is the ground unless
+    ``floating_base``), a missing mesh, a mimic of an unknown joint (or of
+    itself, or in a cycle), lower limit above the upper, a mass, length,
     inertia, joint value, mimic multiplier or offset, damping or friction
     beyond 1e150 (lagmb squares them; larger squares overflow), and (not
     built yet) revolute limits a full turn or more apart and damping or
@@ -631,16 +635,13 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
                             f"(principal moments {moments.tolist()} kg m^2)", f"link '{m}'")
         mass = sum(links[m]["mass"] for m in members)
         owner = f"link '{first}'" + (f" (with {', '.join(repr(m) for m in members[1:])})" if len(members) > 1 else "")
-        if not mass > 0:
-            reader.fail(links[first]["element"],
-                        "has no mass: a body of lagmb needs mass and inertia (give the link an <inertial>, or join "
-                        "it to a body by a fixed joint)", owner)
         centres = {m: pose[m][1] + pose[m][0] @ links[m]["com"] for m in members}
         for m in members:
             if links[m]["mass"] > 0 and np.abs(centres[m]).max() > LARGEST:
                 reader.fail(links[m]["inertial_element"], f"its centre of mass is {np.abs(centres[m]).max():g} m from "
                             f"the root: beyond what a model can hold (at most {LARGEST:g} m)", f"link '{m}'")
-        com = sum(links[m]["mass"] * centres[m] for m in members) / mass
+        # (a massless group: its first link's origin)
+        com = sum(links[m]["mass"] * centres[m] for m in members) / mass if mass > 0 else pose[first][1]
         inertia = np.zeros((3, 3))
         with np.errstate(over="ignore", invalid="ignore"):  # (m d^2 may overflow: refused below)
             for m in members:  # each link's inertia about the common centre, in world axes
@@ -651,11 +652,13 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             reader.fail(links[first]["element"], f"mass {mass:g} kg, inertia about its centre of mass up to "
                         f"{np.abs(inertia).max():g} kg m^2: beyond what a model can hold (at most {LARGEST:g})", owner)
         inertia_body = R0.T @ inertia @ R0
-        moments = np.linalg.eigvalsh(inertia_body)
-        if not moments.min() > 1e-12 * max(moments.max(), 1e-300):
-            reader.fail(links[first]["element"],
-                        f"its principal moments of inertia {moments.tolist()} kg m^2 are not all positive (each must "
-                        "be more than 1e-12 of the largest): a body of lagmb needs every moment > 0", owner)
+        moments, axes = np.linalg.eigh(0.5 * (inertia_body + inertia_body.T))
+        # a zero moment (a massless link, a point mass) as exactly 0, not round-off: the body runs through the
+        # augmented system's LU where its joints hold it (simulate names it where they do not)
+        zero = moments <= 1e-9 * abs(moments).max() + 1e-15
+        if zero.any():
+            moments = np.where(zero, 0.0, moments)
+            inertia_body = axes @ np.diag(moments) @ axes.T
         # (the core's test, to the same 1e-9: with strict it refuses them itself)
         rigid = strict or moments[2] <= (moments[0] + moments[1]) * (1.0 + 1e-9)
         if not rigid:

@@ -18,7 +18,7 @@ void build_spatial_body(Model& m, const std::string& name, const Args& a) {
   b.spatial = true;
   b.mass = a.real("mass");
   if (!(b.mass >= 0))
-    throw ModelError(label + ": mass must be positive (or 0: massless, kinematics only) and finite, got " +
+    throw ModelError(label + ": mass must be positive (or 0: massless, run where its joints hold it) and finite, got " +
                      to_text(b.mass));
   b.inertia_tensor = a.inertia("inertia", a.flag("rigid_inertia"));
   b.inertia = b.inertia_tensor.trace() / 3.0;
@@ -48,7 +48,7 @@ KindInfo spatial_body_kind() {
              "A rigid body in space with coordinates r (its centre of mass, x, y, z) and Euler parameters p "
              "(a unit quaternion w, x, y, z: its orientation, body axes into global axes).",
              {
-                 param::real("mass", "kg", "mass (0: massless, for kinematic analysis only)"),
+                 param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
                  param::inertia("inertia",
                                 "inertia about the centre of mass in body axes: principal moments (Ixx, Iyy, Izz) "
                                 "or a 3 x 3 tensor"),
