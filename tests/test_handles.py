@@ -176,8 +176,8 @@ def _public_add_and_drive_methods(dimension=2):
 
     kinds = BY_METHOD if dimension == 2 else SPATIAL_BY_METHOD
     names = [name for name, f in inspect.getmembers(mb.Model, inspect.isfunction)
-             if name.startswith(("add_", "drive_")) and name not in ("add_frame", "add_shape")]
-    # each from the registry (frames and shapes are no part of the equations: no elements)
+             if name.startswith(("add_", "drive_")) and name not in ("add_frame", "add_shape", "add_joint_alias")]
+    # each from the registry (frames, shapes and joint aliases are no part of the equations: no elements)
     assert set(names) == set(BY_METHOD) | set(SPATIAL_BY_METHOD)
     return sorted(name for name in names if name in kinds)
 

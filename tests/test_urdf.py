@@ -42,18 +42,19 @@ URDFS = sorted(os.path.relpath(os.path.join(d, f), ROBOTS) for d, _, files in os
 
 #: The files lagmb does not read, and the words of the error that says why.
 SKIPPED = {
-    "human_description/robots/human.urdf": "'left_upperleg_virtual': has no mass",
-    "romeo_description/urdf/romeo.urdf": "'LFinger11Link': has no mass",
-    "romeo_description/urdf/romeo_small.urdf": "break the triangle inequality",
     "romeo_description/urdf/romeo_laas_small.urdf": "mesh 'file:///usr/Romeo",
-    "icub_description/robots/icub.urdf": "link 'r_hip_1': its principal moments of inertia [0.0, 0.0, 0.0]",
-    "icub_description/robots/icub_reduced.urdf": "link 'r_hip_1': its principal moments of inertia [0.0, 0.0, 0.0]",
-    "so_arm_description/urdf/so101.urdf": "<origin> in <link> is not supported",
     "ur_description/urdf/ur3.urdf": "the robot has no links",
+    # (flying robots: on a fixed base nothing moves; they load with floating_base=True)
+    "hector_description/robots/quadrotor_base.urdf": "nothing moves: the root link is the ground",
+    "iris_description/robots/iris_simple.urdf": "nothing moves: the root link and the links fixed to it",
 }
-#: Files with one link: on a fixed base nothing moves (they load; there is
-#: no joint to compare).
-ONE_LINK = {"hector_description/robots/quadrotor_base.urdf", "iris_description/robots/iris_simple.urdf"}
+#: Files that load but whose motion does not follow from their forces, and
+#: the words of the error that says why: Romeo's finger links are massless
+#: at the ends of their chains, free to turn (Pinocchio's ABA divides by
+#: their zero inertia).
+NOT_DETERMINED = {
+    "romeo_description/urdf/romeo.urdf": "massless: 'LFinger11Link' (mass 0, principal moments (0, 0, 0))",
+}
 
 GRAVITY = (0.0, 0.0, -9.81)
 
@@ -107,15 +108,28 @@ def test_joint_accelerations_equal_pinocchio_aba(relpath):
             load(relpath)
         return
     model = load(relpath)
-    if relpath in ONE_LINK:
-        assert len(model.bodies) == 0
-        return
     js = mb.JointSpace(model)
     pm = pinocchio_model(relpath)
-    pd = pm.createData()
     assert len(js.joints) == pm.nv == pm.njoints - 1
-    rng = np.random.default_rng(7)
-    for _ in range(5):
+    if relpath in NOT_DETERMINED:
+        q, v, _ = js.coordinates(*random_state(pm, js, np.random.default_rng(7))[:2])
+        with pytest.raises(mb.ModelError, match=NOT_DETERMINED[relpath].replace("(", r"\(").replace(")", r"\)")):
+            mb.solve_accelerations(model, q, v)
+        return
+    for name, (value, rate, acceleration), (position, speed, expected), scale in \
+            against_aba(model, js, pm, np.random.default_rng(7), 5):
+        assert abs(np.remainder(value - position + np.pi, 2 * np.pi) - np.pi) < 1e-12
+        assert abs(rate - speed) < 1e-12
+        assert abs(acceleration - expected) <= 1e-8 * scale, name
+
+
+def against_aba(model, js, pm, rng, count):
+    """At `count` random states, for each joint: (name, lagmb's (value,
+    rate, acceleration), the state's (value, rate) and Pinocchio ABA's
+    acceleration, the largest |acceleration| of ABA or 1)."""
+    pd = pm.createData()
+    out = []
+    for _ in range(count):
         positions, rates, q_pin, v_pin = random_state(pm, js, rng)
         expected = pin.aba(pm, pd, q_pin, v_pin, np.zeros(pm.nv))
         q, v, _ = js.coordinates(positions, rates)
@@ -123,13 +137,12 @@ def test_joint_accelerations_equal_pinocchio_aba(relpath):
         scale = max(1.0, np.abs(expected).max())
         for jid in range(1, pm.njoints):
             name = lagmb_name(js, pm.names[jid])
-            value, rate, acceleration = js.motion(name, q, v, qdd)
-            assert abs(np.remainder(value - positions[name] + np.pi, 2 * np.pi) - np.pi) < 1e-12
-            assert abs(rate - rates[name]) < 1e-12
-            assert abs(acceleration - expected[pm.joints[jid].idx_v]) <= 1e-8 * scale, name
+            out.append((name, js.motion(name, q, v, qdd),
+                        (positions[name], rates[name], expected[pm.joints[jid].idx_v]), scale))
+    return out
 
 
-@pytest.mark.parametrize("relpath", [p for p in URDFS if p not in SKIPPED and p not in ONE_LINK])
+@pytest.mark.parametrize("relpath", [p for p in URDFS if p not in SKIPPED])
 def test_joint_efforts_equal_pinocchio_rnea(relpath):
     """mb.inverse_dynamics at 3 random states (positions, rates and
     accelerations in [-1, 1]) gives the joint torques and forces of
@@ -181,7 +194,8 @@ def _free_flyer_accelerations(model, js, q, v, qdd, base):
 
 
 @pytest.mark.parametrize("relpath", ["solo_description/robots/solo12.urdf", "anymal_b_simple_description/robots/anymal.urdf",
-                                     "talos_data/robots/talos_reduced.urdf"])
+                                     "talos_data/robots/talos_reduced.urdf",
+                                     "hector_description/robots/quadrotor_base.urdf"])
 def test_a_floating_base_moves_as_pinocchios_free_flyer(relpath):
     """floating_base=True: the root is a free body. At random states (its
     pose and twist random too) the base's acceleration and every joint's
@@ -512,10 +526,62 @@ def test_package_dirs_find_meshes(tmp_path):
         mb.load_urdf(path, limits=False, package_dirs=[tmp_path / "elsewhere"])
 
 
-def test_a_massless_link_between_joints_is_refused(tmp_path):
-    text = ARM.replace('<mass value="1"/>', '<mass value="0"/>')
-    with pytest.raises(mb.UrdfError, match="line 3: link 'upper': has no mass"):
-        mb.load_urdf(write(tmp_path, text), limits=False)
+#: A universal joint of two revolutes through a massless link (the cross),
+#: the hip of many robots: x then z, both through the origin, and a leg of
+#: 2 kg below it.
+CROSS_URDF = """<robot name="hip">
+  <link name="pelvis"/>
+  <link name="cross"/>
+  <link name="leg"><inertial><origin xyz="0.1 0.05 -0.4"/><mass value="2"/>
+    <inertia ixx="0.03" iyy="0.04" izz="0.02" ixy="0.001" ixz="0" iyz="0"/></inertial></link>
+  <joint name="hip_x" type="revolute"><parent link="pelvis"/><child link="cross"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="hip_z" type="revolute"><parent link="cross"/><child link="leg"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_a_massless_link_between_two_revolutes_runs_as_pinocchio(tmp_path):
+    """The cross of a universal joint has no mass and no inertia: its two
+    joints, with intersecting axes that are not parallel, leave it no motion
+    of its own, so [M Phi_q^T; Phi_q 0] is regular although M is singular,
+    and the accelerations (its LU) equal Pinocchio's ABA to 1e-9 relative
+    at random states; a run (GGL, which formulation "auto" picks) keeps the
+    energy to 1e-7 J, and the projection and index-1 formulations (the
+    same LU) follow it to 1e-8 m."""
+    path = write(tmp_path, CROSS_URDF)
+    model = mb.load_urdf(path, limits=False)
+    js = mb.JointSpace(model)
+    pm = pin.buildModelFromUrdf(str(path))
+    pm.gravity.linear[:] = GRAVITY
+    for name, ours, theirs, _ in against_aba(model, js, pm, np.random.default_rng(3), 5):
+        assert ours[2] == pytest.approx(theirs[2], rel=1e-9), name
+    model = js.with_rates({"hip_x": 1.0, "hip_z": -2.0})
+    r = mb.simulate(model, 1.0, n_out=11, rtol=1e-10, atol=1e-12)
+    assert r.stats["method_choice"].startswith("auto: ggl") and "without mass or inertia" in r.stats["method_choice"]
+    assert np.ptp(r.energy) < 1e-7
+    for formulation in ("projection", "index1"):
+        other = mb.simulate(model, 1.0, n_out=11, formulation=formulation, rtol=1e-10, atol=1e-12)
+        np.testing.assert_allclose(other.q, r.q, rtol=0, atol=1e-8)
+
+
+def test_a_massless_link_free_to_turn_is_refused_at_the_start(tmp_path):
+    """A massless link at the end of a chain turns with no mass to follow
+    it: its acceleration is not determined. It loads (Pinocchio reads it),
+    and simulate, the Simulator and solve_accelerations refuse it naming
+    the link."""
+    text = CROSS_URDF.replace('<mass value="2"/>', '<mass value="0"/>').replace(
+        'ixx="0.03" iyy="0.04" izz="0.02" ixy="0.001"', 'ixx="0" iyy="0" izz="0" ixy="0"')
+    model = mb.load_urdf(write(tmp_path, text), limits=False)
+    words = r"the motion is not determined by the forces.*massless: 'cross' \(mass 0.*'leg' \(mass 0"
+    with pytest.raises(mb.ModelError, match="simulate: " + words):
+        mb.simulate(model, 1.0)
+    with pytest.raises(mb.ModelError, match="Simulator: " + words):
+        mb.Simulator(model)
+    q, v, _ = mb.JointSpace(model).coordinates({}, {})
+    with pytest.raises(mb.ModelError, match="solve_accelerations: " + words):
+        mb.solve_accelerations(model, q, v)
 
 
 def test_merged_links_are_frames_where_pinocchio_puts_them():
@@ -834,3 +900,88 @@ def test_names_that_still_collide_or_that_lagmb_cannot_hold_name_both_lines(tmp_
     for name in (" shoulder", "a&#9;b"):
         with pytest.raises(mb.UrdfError, match="line 5: joint '.*': .*name"):
             load_text(tmp_path, ARM.replace('name="shoulder"', f'name="{name}"'))
+
+
+# --- the robots people have (issue 41) -------------------------------------------------------------------
+
+def test_an_inertia_that_breaks_the_triangle_inequality_runs_with_a_warning(tmp_path):
+    """Moments (0.01, 0.3, 0.01) kg m^2: I_yy is more than I_xx + I_zz, which
+    no rigid body has, but files hold such numbers and Pinocchio runs them.
+    The arm loads with a UrdfWarning naming the link, its line and its
+    moments, and swings about y with the angular acceleration
+    m g r / (I_yy + m r^2) of the moment as written; strict=True refuses it."""
+    text = ARM.replace('iyy="0.1" izz="0.1"', 'iyy="0.3" izz="0.01"')
+    with pytest.warns(mb.UrdfWarning) as caught:
+        model = load_text(tmp_path, text, limits=False)
+    message = str(caught[0].message)
+    assert "robot.urdf, line 4: link 'upper': its principal moments of inertia [0.01, 0.01, 0.3" in message
+    assert "break the triangle inequality" in message and "strict=True refuses them" in message
+    r = mb.simulate(model, 0.1, n_out=3, rtol=1e-10, atol=1e-12)
+    assert r.joint("shoulder").acceleration[0] == pytest.approx(9.81 * 0.5 / (0.3 + 0.25), rel=1e-12)
+    with pytest.raises(mb.UrdfError, match="line 3: link 'upper': .*break the triangle inequality"):
+        load_text(tmp_path, text, limits=False, strict=True)
+    with pytest.raises(mb.UrdfError, match="strict"):
+        load_text(tmp_path, text, strict="yes")
+    with pytest.raises(mb.ModelError, match="triangle inequality .*rigid_inertia=False accepts them"):
+        mb.Model(dimension=3).add_body("b", 1.0, (0.01, 0.3, 0.01))
+
+
+def test_an_origin_in_a_link_is_ignored_with_a_warning(tmp_path):
+    """<origin> directly in <link> means nothing in URDF (a link is placed by
+    its parent joint); urdfdom ignores it, and so does lagmb, with a
+    UrdfWarning naming the file, the line and the link: the arm swings as
+    without it."""
+    text = ARM.replace('<link name="upper">', '<link name="upper"><origin xyz="1 2 3"/>')
+    with pytest.warns(mb.UrdfWarning, match="robot.urdf, line 3: link 'upper': <origin> in <link> is ignored"):
+        model = load_text(tmp_path, text, limits=False)
+    assert model.elements() == load_text(tmp_path, ARM, limits=False).elements()
+
+
+def test_a_joint_and_a_link_of_one_name_are_each_found(tmp_path):
+    """URDF keeps links and joints apart: a joint 'upper' turning the link
+    'upper' is the model's joint upper_joint, and 'upper' its alias, so
+    r.joint('upper') (and r.reaction, a stop's joint) is the joint while
+    r.body('upper') is the link. The hinge's vertical force on the arm
+    released at rest is m (g - r alpha) (r = 0.5 m, alpha = m g r /
+    (I_yy + m r^2)): gravity less the force that accelerates its centre."""
+    text = ARM.replace('name="shoulder"', 'name="upper"')
+    model = load_text(tmp_path, text, limits=False)
+    assert names(model) == ["upper", "upper_joint"]
+    r = mb.simulate(model, 0.05, n_out=3, rtol=1e-10, atol=1e-12)
+    np.testing.assert_array_equal(r.joint("upper").angle, r.joint("upper_joint").angle)
+    np.testing.assert_array_equal(r.reaction("upper"), r.reaction("upper_joint"))
+    assert r.body("upper").position[0] == pytest.approx([0.5, 0.0, 0.0])
+    alpha = 9.81 * 0.5 / (0.1 + 0.25)
+    assert r.reaction("upper")[0, 2] == pytest.approx(9.81 - 0.5 * alpha, rel=1e-9)
+    model.add_stop("upper_stop", joint="upper", lower=-0.5, upper=0.5)  # (the alias where a joint is asked for)
+    assert model.elements()[-1][1]["joint"] == "upper_joint"
+    with pytest.raises(mb.ModelError, match="an alias is a body's or frame's name"):
+        model.add_joint_alias("somewhere", "upper_joint")
+
+
+def test_so100s_gripper_link_and_gripper_joint_are_each_found():
+    """so100.urdf has a link and a joint both named 'gripper': r.joint and
+    r.body each find their own, and the joint's acceleration equals
+    Pinocchio's ABA for its joint 'gripper'."""
+    relpath = "so_arm_description/urdf/so100.urdf"
+    model = load(relpath)
+    pm = pinocchio_model(relpath)
+    pd = pm.createData()
+    r = mb.simulate(model, 0.01, n_out=2, rtol=1e-10, atol=1e-12)
+    expected = pin.aba(pm, pd, pin.neutral(pm), np.zeros(pm.nv), np.zeros(pm.nv))
+    gripper = pm.joints[pm.getJointId("gripper")].idx_v
+    assert r.joint("gripper").acceleration[0] == pytest.approx(expected[gripper], rel=1e-9, abs=1e-12)
+    added = {kw["name"]: kw for method, kw in model.elements() if method == "add_body"}
+    assert r.body("gripper").position[0] == pytest.approx(added["gripper"]["position"], abs=1e-12)
+
+
+def test_a_file_where_nothing_moves_suggests_a_floating_base(tmp_path):
+    """A flying robot's single link on a fixed base has nothing to move: a
+    UrdfError says so and suggests floating_base=True, with which the link
+    falls freely (z = -g t^2 / 2)."""
+    text = '<robot name="drone"><link name="frame"><inertial><mass value="2"/>' \
+           '<inertia ixx="0.1" iyy="0.1" izz="0.2"/></inertial></link></robot>'
+    with pytest.raises(mb.UrdfError, match="line 1: link 'frame': nothing moves: .*floating_base=True"):
+        load_text(tmp_path, text)
+    r = mb.simulate(load_text(tmp_path, text, floating_base=True), 0.5, n_out=2, rtol=1e-10, atol=1e-12)
+    assert r.body("frame").position[-1] == pytest.approx([0.0, 0.0, -9.81 * 0.5 ** 2 / 2], abs=1e-10)

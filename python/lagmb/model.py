@@ -57,6 +57,7 @@ class Model:
         # frames and shapes: named places and geometry on bodies, for results
         # and pictures; no part of the equations (add_frame, add_shape)
         self._frames, self._shapes, self._annotations = {}, [], []
+        self._joint_aliases = {}  # {a body's or frame's name: the joint it also names} (add_joint_alias)
 
     def copy(self):
         """An independent copy to edit: the same bodies and elements (time
@@ -72,6 +73,7 @@ class Model:
         other.dimension = self.dimension
         other._frames, other._shapes = dict(self._frames), list(self._shapes)
         other._annotations = list(self._annotations)
+        other._joint_aliases = dict(self._joint_aliases)
         return other
 
     __copy__ = copy
@@ -97,9 +99,9 @@ class Model:
         return name, index
 
     def _joint(self, joint, context):
-        """The name of a joint given by its handle or name (the core checks
-        that a name is a joint of the right kind)."""
-        return name_of(self, joint, ("joint",), "joint", context)
+        """The name of a joint given by its handle, name or alias (the core
+        checks that a name is a joint of the right kind)."""
+        return self.joint_name(name_of(self, joint, ("joint",), "joint", context))
 
     def _name(self, name):
         if not isinstance(name, str):
@@ -369,6 +371,31 @@ class Model:
     def frames(self):
         """{name: Frame} of the frames added (add_frame)."""
         return dict(self._frames)
+
+    def add_joint_alias(self, name, joint):
+        """A second name for a joint where the name is a body's or frame's:
+        a file that keeps joints and links apart (URDF) may give a joint its
+        link's name; load_urdf calls the joint NAME_joint and adds NAME as
+        its alias. Where a joint is asked for (``r.joint``, ``r.reaction``,
+        ``r.multipliers``, a stop's or coupling's ``joint``), the alias is the
+        joint; where a body is (``r.body``), the name is the body or frame."""
+        context = f"joint alias '{name}'"
+        name = _text(self._name(name), "alias")
+        joint = name_of(self, joint, ("joint",), "joint", context)
+        elements = {kw["name"]: method for method, kw in self.elements()}
+        if elements.get(name) != "add_body" and name not in self._frames:
+            raise ModelError(f"{context}: an alias is a body's or frame's name (a joint's own name is free, "
+                             "or another element's)")
+        if joint not in elements or name in self._joint_aliases:
+            raise ModelError(f"{context}: " + (f"no joint named '{joint}'" if joint not in elements else
+                                               f"'{name}' is already the alias of '{self._joint_aliases[name]}'"))
+        self._joint_aliases[name] = joint
+        self._annotations.append(("add_joint_alias", dict(name=name, joint=joint)))
+
+    def joint_name(self, name):
+        """The joint a name stands for: the joint its alias names
+        (add_joint_alias), else the name itself."""
+        return self._joint_aliases.get(name, name)
 
     def add_shape(self, body, kind, size, position=(0.0, 0.0, 0.0), orientation=None, *, mesh=None,
                   role="visual"):

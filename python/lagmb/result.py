@@ -23,8 +23,11 @@ def element_name(model, core, item, accepts, what, context):
     """The name of a body or element (its handle or its name) of the run's
     model `model`, compiled as `core`; ModelError if there is none, or if a
     handle is of another model or not one of the roles `accepts` (see
-    handles.name_of for `what` and `context`)."""
+    handles.name_of for `what` and `context`). Where a joint is accepted, a
+    joint's alias (Model.add_joint_alias) is that joint."""
     name = name_of(model, item, accepts, what, context)
+    if "joint" in accepts and hasattr(model, "joint_name"):
+        name = model.joint_name(name)
     if not core.has(name):
         raise ModelError(f"{context}: no body or element named '{name}' in this model")
     return name

@@ -43,6 +43,10 @@ IGNORED = {"robot": {"material", "transmission", "gazebo", "sensor", "ros2_contr
            "link": {"contact", "self_filter", "collision_checking", "kinematic", "gravity", "surface"},
            "visual": {"material"},
            "collision": {"material", "verbose"}}
+#: Tags left out with a UrdfWarning, because the file means something by
+#: them that URDF does not say: <origin> in <link> (a link is placed by its
+#: parent joint; urdfdom, which Pinocchio uses, ignores it too).
+WARNED = {"link": {"origin"}}
 
 #: What each element may hold; anything else is a ModelError.
 CHILDREN = {
@@ -150,14 +154,24 @@ class _Reader:
             self.fail(self.root, f"the root element is <{self.root.tag}>, not <robot>")
 
     def fail(self, element, what, owner=None):
-        where = f"{self.path}, line {element.line}"
-        raise UrdfError(f"{where}: {owner + ': ' if owner else ''}{what}")
+        raise UrdfError(self.at(element, what, owner))
+
+    def warn(self, element, what, owner=None):
+        warnings.warn(UrdfWarning(self.at(element, what, owner)), stacklevel=3)
+
+    def at(self, element, what, owner):
+        """A message naming the file, the element's line and its owner."""
+        return f"{self.path}, line {element.line}: {owner + ': ' if owner else ''}{what}"
 
     def check_children(self, element, owner, deep=True):
         """ModelError for a tag this element (and, if deep, what it holds) may
         not hold (IGNORED ones pass)."""
         allowed, ignored = CHILDREN.get(element.tag, set()), IGNORED.get(element.tag, set())
         for child in element.children:
+            if child.tag in WARNED.get(element.tag, ()):
+                self.warn(child, f"<{child.tag}> in <{element.tag}> is ignored (URDF does not read it there; "
+                                 "urdfdom ignores it too)", owner)
+                continue
             if child.tag in ignored:
                 continue
             if child.tag not in allowed:
@@ -453,7 +467,7 @@ def _argument(check, value, name):
 
 
 def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_dirs=None,
-              gravity=(0.0, 0.0, -9.81), mimic=True, positions=None):
+              gravity=(0.0, 0.0, -9.81), mimic=True, positions=None, strict=False):
     """A spatial :class:`lagmb.Model` of the robot a URDF file describes.
 
     Links joined by fixed joints become one body, named after the first link
@@ -467,7 +481,9 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     where not given), at rest.
 
     Names: lagmb has one namespace where URDF keeps links and joints apart.
-    A joint named like a link is called ``NAME_joint``; any other name
+    A joint named like a link is called ``NAME_joint``, and NAME is its
+    alias (Model.add_joint_alias): ``r.joint(NAME)`` is the joint and
+    ``r.body(NAME)`` the link's body or frame. Any other name
     already taken (a joint named ``ground``, a joint ``j_damping`` beside the
     damping of a joint ``j``) gets its kind and then a number added
     (``ground_joint``, ``j_damping_2``), and a UrdfWarning lists each change.
@@ -491,8 +507,17 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     as a joint of its own (as Pinocchio builds it by default).
     ``package_dirs``: directories holding the packages that ``package://``
     mesh names point into. Every mesh a link names must exist.
-    ``floating_base``, ``limits``, ``dynamics`` and ``mimic`` are True or
-    False (not strings or numbers).
+    ``strict=False``: a body whose principal moments of inertia break the
+    triangle inequality (no rigid body has them, but files hold them and
+    Pinocchio runs them) is built with them and a UrdfWarning names its link
+    and moments; ``strict=True`` refuses it. An ``<origin>`` in a ``<link>``
+    is ignored with a UrdfWarning naming its line (as urdfdom ignores it).
+    A link without mass or with a zero principal moment is a body with
+    those numbers: it runs where its joints hold it (a massless link
+    between two revolutes with intersecting axes), and simulate names it
+    where they leave it free to move.
+    ``floating_base``, ``limits``, ``dynamics``, ``mimic`` and ``strict``
+    are True or False (not strings or numbers).
 
     Links merged into another's body (and the root's links) become frames
     (``model.frames``; ``r.body(link)``, ``r.point(link, p)``); visual and
@@ -503,17 +528,19 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     scripts are errors, not 10 and 1). Raises :class:`UrdfError` (a
     ModelError) naming the file, the line and the link or joint for
     anything lagmb does not read: an unknown tag or joint type, a link that
-    is the child of two joints or of itself, a loop of joints, a body
-    without mass or inertia, a missing mesh, a mimic of an unknown joint (or
-    of itself, or in a cycle), lower limit above the upper, a mass, length,
+    is the child of two joints or of itself, a loop of joints, a file with
+    no moving body (all links fixed to the root, which is the ground unless
+    ``floating_base``), a missing mesh, a mimic of an unknown joint (or of
+    itself, or in a cycle), lower limit above the upper, a mass, length,
     inertia, joint value, mimic multiplier or offset, damping or friction
     beyond 1e150 (lagmb squares them; larger squares overflow), and (not
     built yet) revolute limits a full turn or more apart and damping or
     friction of a planar joint; and for arguments of the wrong kind.
     """
-    floating_base, limits, dynamics, mimic = (_argument(_checks.flag, value, f"load_urdf: {name}") for name, value in
-                                              (("floating_base", floating_base), ("limits", limits),
-                                               ("dynamics", dynamics), ("mimic", mimic)))
+    floating_base, limits, dynamics, mimic, strict = (
+        _argument(_checks.flag, value, f"load_urdf: {name}") for name, value in
+        (("floating_base", floating_base), ("limits", limits), ("dynamics", dynamics), ("mimic", mimic),
+         ("strict", strict)))
     gravity = _argument(_checks.vec3, gravity, "load_urdf: gravity")
     if positions is not None and not isinstance(positions, collections.abc.Mapping):
         raise UrdfError(f"load_urdf: positions must be a dict {{joint: angle or slide}}, got {_checks.show(positions)}")
@@ -570,6 +597,12 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     for link in order:
         groups.setdefault(group_of[link], []).append(link)
     ground = root if not floating_base else None
+    if list(groups) == [ground] and not any(j.get("moves_as") for j in joints.values()):  # (locked: by choice)
+        joined = f" and the links fixed to it ({', '.join(repr(m) for m in groups[root][1:])})" \
+            if len(groups[root]) > 1 else ""
+        reader.fail(links[root]["element"], f"nothing moves: the root link{joined} {'are' if joined else 'is'} "
+                    "the ground, and no joint lets a link move against it; load with floating_base=True to make the root a free body (a "
+                    "flying robot)", f"link '{root}'")
 
     # names: the links', then the joints', then those lagmb makes
     space = _Namespace()
@@ -589,6 +622,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             reader.fail(element, str(e), owner)
 
     model = Model(gravity=tuple(gravity), dimension=3)
+    aliased = []  # (the file's name, the model's) of each joint named like a link
     for first, members in groups.items():
         if first == ground:
             continue
@@ -601,16 +635,13 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
                             f"(principal moments {moments.tolist()} kg m^2)", f"link '{m}'")
         mass = sum(links[m]["mass"] for m in members)
         owner = f"link '{first}'" + (f" (with {', '.join(repr(m) for m in members[1:])})" if len(members) > 1 else "")
-        if not mass > 0:
-            reader.fail(links[first]["element"],
-                        "has no mass: a body of lagmb needs mass and inertia (give the link an <inertial>, or join "
-                        "it to a body by a fixed joint)", owner)
         centres = {m: pose[m][1] + pose[m][0] @ links[m]["com"] for m in members}
         for m in members:
             if links[m]["mass"] > 0 and np.abs(centres[m]).max() > LARGEST:
                 reader.fail(links[m]["inertial_element"], f"its centre of mass is {np.abs(centres[m]).max():g} m from "
                             f"the root: beyond what a model can hold (at most {LARGEST:g} m)", f"link '{m}'")
-        com = sum(links[m]["mass"] * centres[m] for m in members) / mass
+        # (a massless group: its first link's origin)
+        com = sum(links[m]["mass"] * centres[m] for m in members) / mass if mass > 0 else pose[first][1]
         inertia = np.zeros((3, 3))
         with np.errstate(over="ignore", invalid="ignore"):  # (m d^2 may overflow: refused below)
             for m in members:  # each link's inertia about the common centre, in world axes
@@ -621,13 +652,22 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             reader.fail(links[first]["element"], f"mass {mass:g} kg, inertia about its centre of mass up to "
                         f"{np.abs(inertia).max():g} kg m^2: beyond what a model can hold (at most {LARGEST:g})", owner)
         inertia_body = R0.T @ inertia @ R0
-        moments = np.linalg.eigvalsh(inertia_body)
-        if not moments.min() > 1e-12 * max(moments.max(), 1e-300):
-            reader.fail(links[first]["element"],
-                        f"its principal moments of inertia {moments.tolist()} kg m^2 are not all positive (each must "
-                        "be more than 1e-12 of the largest): a body of lagmb needs every moment > 0", owner)
+        moments, axes = np.linalg.eigh(0.5 * (inertia_body + inertia_body.T))
+        # a zero moment (a massless link, a point mass) as exactly 0, not round-off: the body runs through the
+        # augmented system's LU where its joints hold it (simulate names it where they do not)
+        zero = moments <= 1e-9 * abs(moments).max() + 1e-15
+        if zero.any():
+            moments = np.where(zero, 0.0, moments)
+            inertia_body = axes @ np.diag(moments) @ axes.T
+        # (the core's test, to the same 1e-9: with strict it refuses them itself)
+        rigid = strict or moments[2] <= (moments[0] + moments[1]) * (1.0 + 1e-9)
+        if not rigid:
+            reader.warn(links[first]["inertia_element"] or links[first]["element"],
+                        f"its principal moments of inertia {moments.tolist()} kg m^2 break the triangle inequality "
+                        "(no rigid body has them: the largest is more than the sum of the other two); built with "
+                        "them, as Pinocchio builds them (strict=True refuses them)", owner)
         add(model.add_body, links[first]["element"], owner, link_name[first], mass,
-            0.5 * (inertia_body + inertia_body.T), position=tuple(com), orientation=R0)
+            0.5 * (inertia_body + inertia_body.T), position=tuple(com), orientation=R0, rigid_inertia=rigid)
 
     for joint in joints.values():
         if joint["type"] in ("fixed", "floating"):
@@ -645,6 +685,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
                 slide=x)
         else:
             add(model.add_planar, element, owner, name, parent, child, at=tuple(at), normal=tuple(axis))
+        if name != joint["name"] and link_name.get(joint["name"]) == joint["name"]:  # (named like a link)
+            aliased.append((joint["name"], name))
         if dynamics and (joint["damping"] > 0 or joint["friction"] > 0):  # (not planar: refused above)
             kind = "friction" if joint["friction"] > 0 else "damping"
             add(model.add_joint_friction, joint["elements"]["dynamics"], owner,
@@ -674,6 +716,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
                 except ModelError as e:  # (the model names the body the shape is on; the file, its link)
                     reader.fail(shape["element"], f"<{shape['kind']}> " +
                                 str(e).removeprefix(f"shape on '{body(link)}': "), f"link '{link}'")
+    for alias, name in aliased:  # (after the frames: an alias may be a frame's name)
+        model.add_joint_alias(alias, name)
     space.warn(reader.path, UrdfWarning)
     return model
 

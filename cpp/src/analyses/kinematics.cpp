@@ -1,6 +1,7 @@
 #include "lagmb/analyses/kinematics.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <chrono>
@@ -31,6 +32,42 @@ std::vector<int> massless_bodies(const Model& model) {
     if (!(b.mass > 0) || (!b.particle && no_inertia)) out.push_back(int(i));
   }
   return out;
+}
+
+void require_determined_motion(const Model& model, const VecX& q, double t, const std::string& who) {
+  const std::vector<int> massless = massless_bodies(model);
+  if (massless.empty()) return;
+  // regular iff M is positive definite on the motions the constraints allow (the null space N of
+  // Phi_q): an LU of a singular matrix may still "succeed" on round-off pivots, so the test is N^T M N's
+  // eigenvalues (dense, at the start only, and only for a model with massless bodies)
+  Data d(model);
+  assemble_mass(model, d, q.data());
+  assemble_jacobian(model, d, q.data(), t);
+  const int n = model.n_coordinates();
+  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(n, n);
+  if (model.n_constraints() > 0) {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Eigen::MatrixXd(d.Phi_q).transpose());
+    qr.setThreshold(1e-10);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, n);
+    N = Q.rightCols(n - int(qr.rank()));
+  }
+  if (N.cols() == 0) return;  // (nothing moves)
+  const Eigen::MatrixXd reduced = N.transpose() * Eigen::MatrixXd(d.M) * N;
+  const VecX e = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (reduced + reduced.transpose())).eigenvalues();
+  if (e[0] > 1e-12 * std::abs(e[e.size() - 1])) return;
+  std::ostringstream s;
+  s << who << ": the motion is not determined by the forces: the augmented matrix [M Phi_q^T; Phi_q 0] is "
+    << "singular, so a body without mass or inertia is free to move where no mass follows it (massless:";
+  for (size_t k = 0; k < massless.size() && k < 4; ++k) {
+    const Body& b = model.body(massless[k]);
+    s << " '" << b.name << "' (mass " << b.mass;
+    if (b.spatial) s << ", principal moments " << to_text(principal_moments(b.inertia_tensor));
+    else if (!b.particle) s << ", inertia " << b.inertia;
+    s << ")";
+  }
+  if (massless.size() > 4) s << " and " << massless.size() - 4 << " more";
+  s << "). Give such a body mass and inertia, or join it to one that has them.";
+  throw ModelError(s.str());
 }
 
 int degrees_of_freedom(const Model& model, double t) {

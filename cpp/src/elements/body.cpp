@@ -10,7 +10,7 @@ namespace {
 // 0 is allowed (a massless body, for kinematic analysis); simulate refuses it in a dynamic run
 void require_mass(double x, const std::string& element, const char* what) {
   if (!(x >= 0))
-    throw ModelError(element + ": " + what + " must be positive (or 0: massless, kinematics only) and finite, got " +
+    throw ModelError(element + ": " + what + " must be positive (or 0: massless, run where its joints hold it) and finite, got " +
                      to_text(x));
 }
 
@@ -47,7 +47,7 @@ KindInfo body_kind() {
   return {"body", "add_body", "bodies", "", Role::kBody,
           "A rigid body with coordinates x, y (its centre of mass) and phi (its angle).",
           {
-              param::real("mass", "kg", "mass (0: massless, for kinematic analysis only)"),
+              param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
               param::real("inertia", "kg m^2", "moment of inertia about the centre of mass"),
               param::vec2("position", Vec2::Zero(), "m", "initial position of the centre of mass"),
               param::real("angle", 0.0, "rad", "initial angle"),
@@ -62,7 +62,7 @@ KindInfo particle_kind() {
           "A point mass with coordinates x, y and no angle: it takes revolutes, distances, "
           "springs and forces at its centre, not joints that need an angle.",
           {
-              param::real("mass", "kg", "mass (0: massless, for kinematic analysis only)"),
+              param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
               param::point("position", {}, "initial position"),
               param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity"),
           },

@@ -18,9 +18,9 @@ void build_spatial_body(Model& m, const std::string& name, const Args& a) {
   b.spatial = true;
   b.mass = a.real("mass");
   if (!(b.mass >= 0))
-    throw ModelError(label + ": mass must be positive (or 0: massless, kinematics only) and finite, got " +
+    throw ModelError(label + ": mass must be positive (or 0: massless, run where its joints hold it) and finite, got " +
                      to_text(b.mass));
-  b.inertia_tensor = a.inertia("inertia");
+  b.inertia_tensor = a.inertia("inertia", a.flag("rigid_inertia"));
   b.inertia = b.inertia_tensor.trace() / 3.0;
   b.r0 = a.vec3("position");
   b.p0 = a.orientation("orientation");
@@ -48,7 +48,7 @@ KindInfo spatial_body_kind() {
              "A rigid body in space with coordinates r (its centre of mass, x, y, z) and Euler parameters p "
              "(a unit quaternion w, x, y, z: its orientation, body axes into global axes).",
              {
-                 param::real("mass", "kg", "mass (0: massless, for kinematic analysis only)"),
+                 param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
                  param::inertia("inertia",
                                 "inertia about the centre of mass in body axes: principal moments (Ixx, Iyy, Izz) "
                                 "or a 3 x 3 tensor"),
@@ -58,6 +58,10 @@ KindInfo spatial_body_kind() {
                                     "body axes into global axes"),
                  param::vec3("velocity", Vec3::Zero(), "m/s", "initial velocity of the centre of mass"),
                  param::vec3("angular_velocity", Vec3::Zero(), "rad/s", "initial angular velocity (global axes)"),
+                 param::flag("rigid_inertia", true,
+                             "True: refuse principal moments that break the triangle inequality (no rigid body has "
+                             "them); False: accept them (robot files hold such inertias; the mass matrix needs "
+                             "positive semi-definite moments only)"),
              },
              build_spatial_body};
   k.dimension = 3;

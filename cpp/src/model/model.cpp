@@ -256,8 +256,10 @@ void Model::build_mass() {
       for (int r = 0; r < 4; ++r) s.slots[4 * k + r] = slot(mass_pattern_, s.p + r, s.p + k);
     s.J = b.inertia_tensor;
     s.jbar = b.inertia_tensor.trace() / 3.0;
-    // a massless spatial body (kinematics only) has no inverse; M^-1 is then never used
-    s.J_inverse = positive_mass_ ? Mat3(b.inertia_tensor.inverse()) : Mat3::Zero();
+    // a body without inertia has no inverse: its block of M^-1 is 0 (M^-1 is then used for scales only;
+    // the augmented system takes its LU)
+    const bool invertible = Eigen::LLT<Mat3>(b.inertia_tensor).info() == Eigen::Success && b.inertia_tensor.trace() > 0.0;
+    s.J_inverse = invertible ? Mat3(b.inertia_tensor.inverse()) : Mat3::Zero();
     spatial_masses_.push_back(s);
   }
 }

@@ -212,7 +212,7 @@ Vec4 Args::orientation(const std::string& key) const {
   return euler::from_matrix(R);
 }
 
-Mat3 Args::inertia(const std::string& key) const {
+Mat3 Args::inertia(const std::string& key, bool triangle) const {
   const Value& v = get(key);
   const std::string what = kind_->name + ": " + key;
   Mat3 J;
@@ -230,11 +230,13 @@ Mat3 Args::inertia(const std::string& key) const {
   // solved scaled: the solver squares entries
   Eigen::SelfAdjointEigenSolver<Mat3> eig(scale > 0.0 ? Mat3(J / scale) : J);
   const Vec3 m = eig.eigenvalues() * (scale > 0.0 ? scale : 1.0);  // ascending
-  if (!(m[0] >= 0.0)) throw ModelError(what + " must be positive semi-definite; its principal moments are " + to_text(m));
-  if (!(m[2] <= (m[0] + m[1]) * (1.0 + 1e-9)))
+  // (a zero moment comes out of the eigensolver as -1e-17 of the largest: round-off, not negative)
+  if (!(m[0] >= -1e-12 * std::abs(m[2])))
+    throw ModelError(what + " must be positive semi-definite; its principal moments are " + to_text(m));
+  if (triangle && !(m[2] <= (m[0] + m[1]) * (1.0 + 1e-9)))
     throw ModelError(what + ": principal moments " + to_text(m) +
                      " break the triangle inequality (no rigid body has them: each must be at most the sum of the "
-                     "other two)");
+                     "other two; rigid_inertia=False accepts them)");
   return J;
 }
 

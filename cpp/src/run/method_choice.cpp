@@ -20,6 +20,10 @@ MethodChoice choose_method(const Model& model, const SimulationOptions& o) {
       return choose(Formulation::kGgl, Integrator::kDefault,
                     std::string("the model has a ") + g->kind() + " ('" + g->name(0) +
                         "'), whose onset an explicit step could pass over");
+  if (!model.positive_mass())  // (the stiffness estimate below needs M^-1)
+    return choose(Formulation::kGgl, Integrator::kDefault,
+                  "the model has a body without mass or inertia, whose accelerations only the augmented system "
+                  "gives");
   if (!model.friction_groups().empty())
     return choose(Formulation::kGgl, Integrator::kDefault,
                   "the model has joint friction from the joints' loads ('" + model.friction_groups().front()->name(0) +

@@ -109,9 +109,7 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
     throw ModelError("solve_accelerations: q and v must have " + std::to_string(n) + " entries");
   if (!q.allFinite() || !v.allFinite() || !std::isfinite(t))
     throw ModelError("solve_accelerations: q, v and t must be finite");
-  if (const auto massless = massless_bodies(model); !massless.empty())
-    throw ModelError("solve_accelerations: body '" + model.body(massless.front()).name +
-                     "' is massless, so its accelerations are not determined by forces");
+  require_determined_motion(model, q, t, "solve_accelerations");
   Data d(model);
   // one instant: the rows dependent here are left out (their multipliers 0)
   d.drop_rows(model, constraint_rank(model, q, t).dependent_rows);
@@ -126,21 +124,17 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
 Analysis resolve_analysis(const Model& model, const SimulationOptions& o) {
   const Analysis a = o.analysis;
   const std::vector<int> massless = massless_bodies(model);
-  auto refuse_massless = [&] {
-    const Body& b = model.body(massless.front());
-    std::ostringstream s;
-    s << "simulate: body '" << b.name << "' is massless (mass " << b.mass;
-    if (b.spatial)
-      s << ", principal moments of inertia " << to_text(principal_moments(b.inertia_tensor));
-    else if (!b.particle)
-      s << ", inertia " << b.inertia;
-    s << "), so its accelerations are not determined by forces: a dynamic analysis needs every mass and "
-      << "inertia > 0 (in space every principal moment). For a mechanism whose motion is fully prescribed by "
-      << "drivers use analysis=\"kinematic\".";
-    throw ModelError(s.str());
+  // massless bodies run where the augmented matrix is regular (its LU: no M^-1 is needed)
+  auto require_determined = [&] {
+    try {
+      require_determined_motion(model, model.initial_q(), o.t0, "simulate");
+    } catch (const ModelError& e) {
+      throw ModelError(std::string(e.what()) + " For a mechanism whose motion is fully prescribed by drivers use "
+                       "analysis=\"kinematic\".");
+    }
   };
   if (a == Analysis::kDynamic) {
-    if (!massless.empty()) refuse_massless();
+    require_determined();
     return a;
   }
   // stops and contact switch on events, which only the integrators find
@@ -152,7 +146,7 @@ Analysis resolve_analysis(const Model& model, const SimulationOptions& o) {
   const int dof = degrees_of_freedom(model, o.t0);
   if (a == Analysis::kAuto) {
     if (dof > 0 || events) {
-      if (!massless.empty()) refuse_massless();
+      require_determined();
       return Analysis::kDynamic;
     }
     return massless.empty() ? Analysis::kInverseDynamics : Analysis::kKinematic;

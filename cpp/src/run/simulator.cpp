@@ -24,10 +24,7 @@ Simulator::Simulator(const Model& given, const SimulationOptions& options, doubl
   if (options_.analysis != Analysis::kAuto && options_.analysis != Analysis::kDynamic)
     throw ModelError(std::string("Simulator: a simulator integrates the equations of motion (analysis 'dynamic'); ") +
                      "for a '" + name_of(options_.analysis) + "' analysis call simulate");
-  if (const auto massless = massless_bodies(model); !massless.empty())
-    throw ModelError("Simulator: body '" + model.body(massless.front()).name +
-                     "' is massless, so its motion does not follow from forces (a fully driven model with "
-                     "massless bodies is solved by simulate's kinematic analysis)");
+  require_determined_motion(model, model.initial_q(), options_.t0, "Simulator");
   const int n = model.n_coordinates(), m = model.n_constraints();
   run_ = std::make_unique<Run>(given, std::move(with), options_, *method_, /*stop_at_end=*/false);
   run_->plan.breakpoints = model.breakpoints();  // the loop takes those after its start

@@ -47,6 +47,14 @@ int degrees_of_freedom(const Model& model, double t = 0.0);
 
 /// Bodies with a zero mass or (rigid bodies) a zero inertia, by index.
 std::vector<int> massless_bodies(const Model& model);
+/// ModelError (from `who`) unless the motion of a model with massless
+/// bodies follows from its forces at q: the augmented matrix
+/// [M Phi_q^T; Phi_q 0] (its independent rows) is regular. A massless link
+/// between two joints that hold it (two revolutes with intersecting axes)
+/// passes; one its joints leave free to move (at the end of a chain) does
+/// not, and the message names the massless bodies. Nothing to check (and
+/// no cost) when every body has mass and inertia.
+void require_determined_motion(const Model& model, const VecX& q, double t, const std::string& who);
 /// The principal moments of an inertia tensor, ascending.
 Vec3 principal_moments(const Mat3& J);
 

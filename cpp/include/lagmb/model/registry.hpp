@@ -133,9 +133,10 @@ class Args {
   /// Unit Euler parameters (w, x, y, z) from a quaternion (of length 1 to
   /// 1e-3, normalized) or a rotation matrix (orthonormal, det +1, to 1e-6).
   Vec4 orientation(const std::string& key) const;
-  /// A symmetric positive semi-definite inertia tensor that satisfies the
-  /// triangle inequalities, from principal moments or a 3 x 3 tensor.
-  Mat3 inertia(const std::string& key) const;
+  /// A symmetric positive semi-definite inertia tensor from principal
+  /// moments or a 3 x 3 tensor; with `triangle`, one that satisfies the
+  /// triangle inequalities (as the inertia of every rigid body does).
+  Mat3 inertia(const std::string& key, bool triangle = true) const;
   bool flag(const std::string& key) const;
   const std::string& text(const std::string& key) const;
   int body(const std::string& key) const;
