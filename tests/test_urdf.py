@@ -17,6 +17,7 @@ import warnings
 
 import numpy as np
 import pytest
+import scipy.linalg
 
 import lagmb as mb
 from builders import ARM_URDF as ARM
@@ -570,6 +571,38 @@ def test_a_massless_link_between_two_revolutes_runs_as_pinocchio(tmp_path):
     for formulation in ("projection", "index1"):
         other = mb.simulate(model, 1.0, n_out=11, formulation=formulation, rtol=1e-10, atol=1e-12)
         np.testing.assert_allclose(other.q, r.q, rtol=0, atol=1e-8)
+
+
+def test_a_massless_link_has_the_equilibrium_and_modes_pinocchio_gives(tmp_path):
+    """The hip with its massless cross, at rest: the leg's centre of mass turns
+    under the z axis (hip_z = -atan(0.05 / 0.1)) and the rest is a saddle
+    (at hip_x = 0 gravity does not feel hip_z, and the two couple through
+    the offset 0.1118 m), so one mode vibrates and one is unstable. Its
+    omega^2 are the generalized eigenvalues of Pinocchio's stiffness (central
+    differences of RNEA's gravity torques) and mass matrix (CRBA) at that
+    rest, to 1e-6 relative: equilibrium and modes work through the
+    augmented system although M is singular."""
+    path = write(tmp_path, CROSS_URDF)
+    model = mb.load_urdf(path, limits=False)
+    modes = mb.modes(model)
+    js = mb.JointSpace(model)
+    rest = modes.equilibrium
+    q_joints = np.array([js.motion(joint, rest.q, np.zeros_like(rest.q))[0] for joint in js.joints])
+    assert q_joints == pytest.approx([0.0, -math.atan2(0.05, 0.1)], abs=1e-9)
+    assert not rest.stable
+    pm = pin.buildModelFromUrdf(str(path))
+    pm.gravity.linear[:] = GRAVITY
+    pd = pm.createData()
+    zero = np.zeros(pm.nv)
+    assert np.abs(pin.rnea(pm, pd, q_joints, zero, zero)).max() < 1e-9  # Pinocchio's rest too
+    mass = pin.crba(pm, pd, q_joints)
+    mass = np.triu(mass) + np.triu(mass, 1).T
+    h = 1e-5
+    stiffness = np.column_stack([(pin.rnea(pm, pd, q_joints + h * e, zero, zero)
+                                  - pin.rnea(pm, pd, q_joints - h * e, zero, zero)) / (2 * h) for e in np.eye(pm.nv)])
+    omega_squared = scipy.linalg.eigh(0.5 * (stiffness + stiffness.T), mass, eigvals_only=True)
+    assert sorted(modes.omega_squared) == pytest.approx(sorted(omega_squared), rel=1e-6)
+    assert sorted(modes.kinds) == ["unstable", "vibration"]
 
 
 def test_a_massless_link_free_to_turn_is_refused_at_the_start(tmp_path):
