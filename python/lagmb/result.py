@@ -26,7 +26,7 @@ def element_name(model, core, item, accepts, what, context):
     handles.name_of for `what` and `context`). Where a joint is accepted, a
     joint's alias (Model.add_joint_alias) is that joint."""
     name = name_of(model, item, accepts, what, context)
-    if "joint" in accepts and hasattr(model, "joint_name"):
+    if "joint" in accepts:
         name = model.joint_name(name)
     if not core.has(name):
         raise ModelError(f"{context}: no body or element named '{name}' in this model")
