@@ -91,12 +91,11 @@ def test_slider_hits_translational_stop(formulation):
 
 
 @pytest.mark.parametrize("formulation", ["ggl", "projection"])
-def test_bouncing_to_rest_stops_with_a_clear_error(formulation):
+def test_bouncing_on_the_incline_comes_to_rest_on_the_stop(formulation):
     """e = 0.5 on the incline: the bounce speeds are e^k v* at the closed-form
-    times t1 + sum_{i<k} 2 e^(i+1) v* / (g sin a) (1e-6 s); once a rebound is
-    slower than rest_speed = 1e-2 m/s while gravity presses the block on the
-    stop, the run ends with SimulationError naming the stop (no hang: the
-    impacts would otherwise pile up towards the Zeno time)."""
+    times t1 + sum_{i<k} 2 e^(i+1) v* / (g sin a) (1e-6 s); the first rebound
+    slower than rest_speed = 1e-2 m/s is captured at its impact (the run goes
+    on: the block rests on the stop, which carries m g sin a, 1e-9)."""
     e, a, d, rest = 0.5, math.radians(30.0), 0.3, 1e-2
     acc = G * math.sin(a)
     t1 = math.sqrt(2.0 * d / acc)
@@ -109,27 +108,32 @@ def test_bouncing_to_rest_stops_with_a_clear_error(formulation):
             break
         t += 2.0 * e * v / acc
         v *= e
-    with pytest.raises(mb.SimulationError, match="stop 'end' came to rest against its lower limit") as info:
-        mb.simulate(incline(e, rest_speed=rest), t_end=3.0, rtol=1e-10, atol=1e-12, formulation=formulation,
+    r = mb.simulate(incline(e, rest_speed=rest), t_end=3.0, rtol=1e-10, atol=1e-12, formulation=formulation,
                     n_out=301)
-    assert abs(info.value.t - times[-1]) <= 1e-6
-    ev = info.value.result.events
-    assert len(ev) == len(times)
-    assert ev[-1]["kind"] == "rest" and all(x["kind"] == "impact" for x in ev[:-1])
+    ev = r.events
+    assert [x["kind"] for x in ev] == ["impact"] * len(times) + ["capture"]
+    assert abs(ev[-1]["t"] - times[-1]) <= 1e-6
     for x, tk, vk in zip(ev, times, speeds):
         assert abs(x["t"] - tk) <= 1e-6
         assert abs(x["speed_before"] + vk) <= 1e-6 * v1
+    resting = r.t > times[-1]
+    assert np.max(np.abs(r.joint("rail").slide[resting] + d)) <= 1e-10
+    assert np.max(np.abs(r.effort("end")[resting] - 2.0 * acc)) <= 1e-9 * 2.0 * acc
 
 
 def test_plastic_impact_pressed_on_the_stop_is_resting():
     """e = 0 with gravity pressing the block down the incline: it comes to
-    rest at the first impact (t1 closed form, 1e-8 s): SimulationError."""
+    rest at the first impact (t1 closed form, 1e-8 s), captured: the stop
+    then carries m g sin(a) (1e-9) and the block stays at the limit (1e-10 m)."""
     acc = G * math.sin(math.radians(30.0))
     t1 = math.sqrt(2.0 * 0.3 / acc)
-    with pytest.raises(mb.SimulationError, match="'end' came to rest") as info:
-        mb.simulate(incline(0.0), t_end=1.0, rtol=1e-10, atol=1e-12)
-    assert abs(info.value.t - t1) <= 1e-8
-    assert info.value.result.events[0]["speed_after"] == pytest.approx(0.0, abs=1e-12)
+    r = mb.simulate(incline(0.0), t_end=1.0, rtol=1e-10, atol=1e-12)
+    assert [x["kind"] for x in r.events] == ["impact", "capture"]
+    assert abs(r.events[0]["t"] - t1) <= 1e-8
+    assert r.events[0]["speed_after"] == pytest.approx(0.0, abs=1e-12)
+    resting = r.t > t1
+    assert np.max(np.abs(r.joint("rail").slide[resting] + 0.3)) <= 1e-10
+    assert np.max(np.abs(r.effort("end")[resting] - 2.0 * acc)) <= 1e-9 * 2.0 * acc
 
 
 @pytest.mark.parametrize("formulation", ["ggl", "projection"])
@@ -195,20 +199,23 @@ def test_bad_stops_are_rejected():
 
 
 @pytest.mark.parametrize("formulation", ["ggl", "projection"])
-def test_stops_cost_nothing_until_they_act(formulation):
-    """A stop that is never reached leaves the steps, residual evaluations
-    and factorizations exactly as without it (root functions do not change
-    the step sequence); a model without stops evaluates no root function."""
+def test_a_stop_never_reached_changes_nothing(formulation):
+    """A stop that is never reached leaves the motion as without it (to the
+    run's accuracy at rtol 1e-8: 1e-6 rad)
+    and logs no event; a model without stops evaluates no root function. (The
+    step counts are not compared: they move with rounding -- a change of
+    4e-16 in the rod's mass changes them by some 9 % at rtol 1e-8 -- and the
+    stop's rows, left out while open, change the order of a factorization's
+    sums.)"""
     plain = mb.Model(gravity=(0.0, -G))
     rod = plain.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
     plain.add_revolute("pin", plain.ground, rod, at=(0.0, 0.0))
     r0 = mb.simulate(plain, t_end=2.0, rtol=1e-8, formulation=formulation)
     r1 = mb.simulate(pendulum(0.5, lower=-3.5), t_end=2.0, rtol=1e-8, formulation=formulation)
     assert r0.stats["root_evals"] == 0 and r0.events == []
-    assert r1.stats["root_evals"] > 0 and r1.events == []
-    for key in ("steps", "residual_evals", "jacobian_evals", "lu_factorizations"):
-        assert r0.stats[key] == r1.stats[key], key
-    assert np.array_equal(r0.q, r1.q)
+    assert r1.stats["root_evals"] > 0 and r1.events == [] and r1.stats["captures"] == 0
+    assert np.max(np.abs(r1.joint("pin").angle - r0.joint("pin").angle)) <= 1e-6
+    assert np.all(r1.effort("stop") == 0.0)
 
 
 def test_stop_in_a_scene_file(tmp_path):

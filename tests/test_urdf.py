@@ -392,17 +392,20 @@ def test_bad_files_are_named_by_line_and_element(tmp_path, change, words):
 
 def test_limits_are_stops(tmp_path):
     """limits=True: <limit lower upper> is a stop on the joint
-    (shoulder_limit). The arm falls onto its upper limit (1 rad) and, with
-    restitution 0, comes to rest there pressed by gravity: resting against a
-    stop is not modelled, so the run ends with SimulationError naming it,
-    the motion up to the impact kept in the partial result."""
+    (shoulder_limit). The arm (1 kg, centre 0.5 m out) falls onto its upper
+    limit (1 rad) and, with restitution 0, comes to rest there: the stop
+    captures it, the angle stays at the limit (1e-10 rad) and the stop's
+    torque is the weight's torque about the axis, -m g (L/2) cos(1) along the
+    angle (1e-9 relative)."""
     model = mb.load_urdf(write(tmp_path, ARM))
     assert ("add_stop", "shoulder_limit") in [(method, values["name"]) for method, values in model.elements()]
-    with pytest.raises(mb.SimulationError, match="'shoulder_limit' came to rest against its upper limit") as error:
-        mb.simulate(model, 2.0, n_out=201, rtol=1e-9, atol=1e-11)
-    partial = error.value.result
-    assert partial.events[0]["label"] == "upper" and partial.events[0]["kind"] == "rest"
-    assert np.max(partial.joint("shoulder").angle) <= 1.0 + 1e-9
+    r = mb.simulate(model, 2.0, n_out=201, rtol=1e-9, atol=1e-11)
+    assert [(x["kind"], x["label"]) for x in r.events] == [("impact", "upper"), ("capture", "upper")]
+    resting = r.t > r.events[0]["t"]
+    assert np.max(np.abs(r.joint("shoulder").angle[resting] - 1.0)) <= 1e-10
+    assert np.max(r.joint("shoulder").angle) <= 1.0 + 1e-10
+    static = -9.81 * 0.5 * math.cos(1.0)
+    assert np.max(np.abs(r.effort("shoulder_limit")[resting] - static)) <= 1e-9 * abs(static)
     wide = ARM.replace('lower="-1" upper="1"', 'lower="-4" upper="4"')
     with pytest.raises(mb.UrdfError, match=r"line 6: joint 'shoulder': position limits \(-4.0, 4.0\) span a full "
                                            "turn"):

@@ -24,6 +24,16 @@ inline std::shared_ptr<const Model> pendulum() {
   return spec.compile();
 }
 
+/// The pendulum with a stop ("stop") on its pin: lower -pi/4, upper pi/4.
+inline std::shared_ptr<const Model> pendulum_with_stop() {
+  ModelSpec spec;
+  spec.set_gravity(Vec2(0.0, -kG));
+  spec.add("body", "rod", {{"mass", 1.0}, {"inertia", 1.0 / 12.0}, {"position", Vec2(0.5, 0.0)}});
+  spec.add("revolute", "pin", {{"body_i", "ground"}, {"body_j", "rod"}, {"at", Vec2(0.0, 0.0)}});
+  spec.add("stop", "stop", {{"joint", "pin"}, {"lower", -0.7853981633974483}, {"upper", 0.7853981633974483}});
+  return spec.compile();
+}
+
 /// The same rod in space on a spherical joint ("pin"), gravity along -z.
 inline std::shared_ptr<const Model> spatial_pendulum() {
   ModelSpec spec(3);

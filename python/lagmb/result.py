@@ -158,9 +158,9 @@ class Result:
     """States at the output times of a run.
 
     t (k,), q, v, a (k, n) and lam (k, m) in the sign of docs/modelling.md, 'Equations and signs'.
-    events: the events handled during the run (impacts at stops, contact
-    switches), in time order, each a dict with t, element, kind ("impact",
-    "restart", "rest"), label ("lower", "upper", "onset", ...),
+    events: the events handled during the run (impacts at stops, captures
+    and releases of stops, contact switches), in time order, each a dict with
+    t, element, kind ("impact", "capture", "release", "restart"), label ("lower", "upper", "onset", ...),
     speed_before and speed_after (the element's g' around the jump).
     a and lam are solved from the augmented system at each output state, so
     M a + Phi_q^T lam = Q holds for exactly the reported q and v. Derived
@@ -297,12 +297,20 @@ class Result:
         name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")
         return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint", self._inputs)
 
-    def effort(self, driver):
-        """(k,) the force (N) or torque (N m) a driver applies to impose its
-        motion, positive along the driven coordinate."""
-        name = self._name(driver, ("driver",), "driver", "Result.effort")
+    def effort(self, element):
+        """(k,) the force (N) or torque (N m) along a joint coordinate that a
+        driver applies to impose its motion, or that a stop applies while the
+        joint rests on a limit (0 while it is off its limits); positive along
+        the coordinate. A stop's two rows are its lower and upper gaps,
+        g = s - lower and upper - s, whose multipliers push with -lam along
+        +g: the force along s is lam_upper - lam_lower."""
+        name = self._name(element, ("driver", "stop"), "driver or stop", "Result.effort")
+        kind = registry.kind_of(self._core, name)
+        if kind is not None and kind.role == "stop":
+            lam = self.multipliers(name)
+            return lam[:, 1] - lam[:, 0]
         if not registry.is_driver(self._core, name):
-            raise ModelError(f"'{name}' is not a driver")
+            raise ModelError(f"'{name}' is not a driver or a stop")
         return -self.multipliers(name)[:, 0]
 
     def friction(self, element):

@@ -41,6 +41,8 @@ struct Stats {
   long kinematic_solves = 0;  // position solves of a kinematic analysis (outputs + sub-steps)
   long events = 0;    // event-function crossings handled (stops, contact switches)
   long impacts = 0;   // of which velocity jumps
+  long captures = 0;  // unilateral rows closed (a stop comes to rest on its limit)
+  long releases = 0;  // unilateral rows opened (a stop would have to pull)
   long root_evals = 0;  // evaluations of the event functions
   /// Restarts of the integrator at order 1: at breakpoints of the time
   /// functions, after events' actions, and (a Simulator) at input changes
@@ -74,7 +76,8 @@ struct Stats {
     f("formulation", &Stats::formulation), f("integrator", &Stats::integrator);
     f("method_choice", &Stats::method_choice);
     f("analysis", &Stats::analysis), f("kinematic_solves", &Stats::kinematic_solves), f("events", &Stats::events);
-    f("impacts", &Stats::impacts), f("root_evals", &Stats::root_evals), f("restarts", &Stats::restarts);
+    f("impacts", &Stats::impacts), f("captures", &Stats::captures);
+    f("releases", &Stats::releases), f("root_evals", &Stats::root_evals), f("restarts", &Stats::restarts);
     f("input_changes", &Stats::input_changes);
     f("symbolic_analyses", &Stats::symbolic_analyses);
     f("factor_nonzeros", &Stats::factor_nonzeros);
@@ -86,7 +89,7 @@ struct Stats {
 struct EventRecord {
   double t = 0.0;
   std::string element;
-  std::string kind;   // "impact", "restart" (a force switches), "rest"
+  std::string kind;   // "impact", "capture", "release" (a stop), "restart" (a force switches)
   std::string label;  // "lower", "upper", "onset", "release", ...
   double speed_before = 0.0;  // g' before (negative: approaching), rad/s or m/s
   double speed_after = 0.0;   // g' after the jump

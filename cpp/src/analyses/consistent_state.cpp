@@ -175,7 +175,7 @@ ConsistentState make_consistent(const Model& model, Data& d, AugmentedSystem& kk
   if (!model.friction_groups().empty()) solve_friction(model, d, kkt, q.data(), v.data(), t, s.qdd, s.lam);
   s.q = std::move(q);
   s.v = std::move(v);
-  s.dropped_rows = d.dropped_rows();
+  s.dropped_rows = d.redundant_rows();
   // a start, a restart after an input's jump or an event: never hand an
   // integrator what it cannot weigh
   if (!(s.q.allFinite() && s.v.allFinite() && s.qdd.allFinite() && s.lam.allFinite())) {

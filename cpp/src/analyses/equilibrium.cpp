@@ -160,7 +160,7 @@ std::vector<std::pair<std::string, double>> largest(const Model& model, const Ve
 void stability(const Model& model, const Data& d, double t, Equilibrium& e) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   e.stability_checked = true;
-  const RestTangent rest = tangent_at_rest(model, e.q, e.lam, t, d.dropped_rows());
+  const RestTangent rest = tangent_at_rest(model, e.q, e.lam, t, d.redundant_rows());
   const Eigen::MatrixXd K = 0.5 * (rest.K + rest.K.transpose());
   Eigen::MatrixXd Z;
   if (m == 0) {
@@ -295,25 +295,28 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
     throw EquilibriumError("equilibrium: the forces at the position found are not finite: " +
                            non_finite_source(model, solver.data(), q.data(), rest.data(), o.t));
   }
-  e.dropped_rows = solver.data().dropped_rows();
+  e.dropped_rows = solver.data().redundant_rows();
   if (o.stability) stability(model, solver.data(), o.t, e);
-  // resting against a stop is not modelled: an equilibrium beyond a limit is
-  // not one the mechanism can reach
-  const VecX zero_v = VecX::Zero(model.n_coordinates());
-  for (const auto& g : model.event_groups()) {
-    if (!g->bounds_motion() || g->size() == 0) continue;
-    std::vector<double> values;
-    for (int k = 0; k < g->size(); ++k) values.resize(values.size() + g->roots(k));
-    g->values(q.data(), zero_v.data(), o.t, values.data());
-    for (int k = 0, i = 0; k < g->size(); ++k)
-      for (int r = 0; r < g->roots(k); ++r, ++i)
-        if (values[i] < 0.0) {
+  // the search holds no stop: an equilibrium beyond a limit is not one the
+  // mechanism can reach
+  if (!model.unilateral_rows().empty()) {
+    Data gaps(model);
+    gaps.close_rows(model, model.unilateral_rows());
+    assemble_constraints(model, gaps, q.data(), o.t);
+    for (const auto& g : model.constraint_groups()) {
+      if (!g->unilateral()) continue;
+      for (int k = 0; k < g->size(); ++k)
+        for (int r = 0; r < g->rows(k); ++r) {
+          const double gap = gaps.Phi[g->placement(k).row0 + r];
+          if (!g->unilateral_row(k, r).exists || !(gap < 0.0)) continue;
           std::ostringstream s;
-          s << "the static equilibrium found at t = " << o.t << " lies beyond the limit of '" << g->name(k)
-            << "' (by " << -values[i] << "): resting against a stop is not modelled, so this mechanism has no "
-            << "equilibrium lagmb can represent within its limits.";
+          s << "the static equilibrium found at t = " << o.t << " lies beyond the " << g->unilateral_row(k, r).label
+            << " limit of '" << g->name(k) << "' (by " << -gap << "): the search does not hold stops, so this "
+            << "mechanism has no equilibrium it can find within its limits (a run with damping comes to rest on "
+            << "the stop).";
           throw EquilibriumError(s.str());
         }
+    }
   }
   if (e.stability_checked && !e.stable && !o.allow_unstable && e.stiffness_eigenvalues.size() && e.stiffness_eigenvalues[0] < 0 &&
       e.stiffness_eigenvalues[0] < -1e-9 * e.stiffness_eigenvalues.cwiseAbs().maxCoeff()) {

@@ -86,7 +86,9 @@ int degrees_of_freedom(const Model& model, double t) {
     return constraint_rank(model, q, t).degrees_of_freedom();
   }
   // the generic rank near the assembled position (a singular start counts as its neighbours)
-  return n - (m - int(find_redundancy(model, d, kkt, q, t).rows.size()));
+  // (a stop's rows, unilateral, are no equations of the motion)
+  const int equations = m - int(model.unilateral_rows().size());
+  return n - (equations - int(find_redundancy(model, d, kkt, q, t).rows.size()));
 }
 
 namespace {

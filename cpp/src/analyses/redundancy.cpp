@@ -46,7 +46,9 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
                               "): the model's magnitudes overflow double precision",
                           t, {});
   ConstraintRank r;
-  r.equations = model.n_constraints();
+  // a stop's rows (unilateral, open) are not equations of the motion
+  const std::vector<int>& unilateral = model.unilateral_rows();
+  r.equations = model.n_constraints() - int(unilateral.size());
   r.coordinates = model.n_coordinates();
   if (r.equations == 0) return r;
   Data d(model);
@@ -70,7 +72,8 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
   const SparseQR qr(JT, tol * std::max(max_norm, 1e-300));
   if (!qr.ok()) throw std::runtime_error("lagmb: sparse QR of Phi_q^T failed");
   r.rank = qr.rank();
-  r.dependent_rows = qr.dependent_columns();
+  for (int row : qr.dependent_columns())
+    if (!std::binary_search(unilateral.begin(), unilateral.end(), row)) r.dependent_rows.push_back(row);
   return r;
 }
 

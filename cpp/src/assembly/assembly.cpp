@@ -1,6 +1,7 @@
 #include "lagmb/assembly/assembly.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace lagmb {
@@ -22,6 +23,12 @@ Data::Data(const Model& model, const Data* of_run, Rows rows)
       left_out_(of_run && rows == Rows::kRun ? of_run->left_out_ : std::make_shared<LeftOutRows>()) {
   if (!model.finalized()) throw std::logic_error("lagmb: Data needs a finalized Model");
   init_mass(model, *this);
+  if (left_out_ != (of_run ? of_run->left_out_ : nullptr)) {
+    // a set of its own: every row but the unilateral ones (those a run has
+    // closed, for a Data of every row of that run)
+    if (of_run) left_out_->closed = of_run->left_out_->closed;
+    leave_out(model);
+  }
   if (!of_run) {
     run->inputs.resize(int(model.inputs().size()));
     for (int k = 0; k < run->inputs.size(); ++k) run->inputs[k] = model.inputs()[k].initial;
@@ -36,18 +43,46 @@ Data::Data(const Model& model, const Data* of_run, Rows rows)
   }
 }
 
-void Data::drop_rows(const Model& model, std::vector<int> rows) {
+namespace {
+
+std::vector<int> sorted_rows(const Model& model, std::vector<int> rows) {
   std::sort(rows.begin(), rows.end());
   rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
   for (int r : rows)
     if (r < 0 || r >= model.n_constraints()) throw std::logic_error("lagmb: dropped row out of range");
-  std::vector<int> slots;
+  return rows;
+}
+
+}  // namespace
+
+void Data::drop_rows(const Model& model, std::vector<int> rows) {
+  left_out_->redundant = sorted_rows(model, std::move(rows));
+  leave_out(model);
+}
+
+void Data::close_rows(const Model& model, std::vector<int> rows) {
+  rows = sorted_rows(model, std::move(rows));
+  const auto& unilateral = model.unilateral_rows();
+  for (int r : rows)
+    if (!std::binary_search(unilateral.begin(), unilateral.end(), r))
+      throw std::logic_error("lagmb: only a unilateral row can be closed");
+  left_out_->closed = std::move(rows);
+  leave_out(model);
+}
+
+void Data::leave_out(const Model& model) {
+  LeftOutRows& l = *left_out_;
+  std::vector<int> open;
+  std::set_difference(model.unilateral_rows().begin(), model.unilateral_rows().end(), l.closed.begin(),
+                      l.closed.end(), std::back_inserter(open));
+  l.rows.clear();
+  std::set_union(l.redundant.begin(), l.redundant.end(), open.begin(), open.end(), std::back_inserter(l.rows));
+  l.slots.clear();
+  if (l.rows.empty()) return;
   const SpMat& J = model.jacobian_pattern();
   for (int c = 0; c < J.outerSize(); ++c)
     for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
-      if (std::binary_search(rows.begin(), rows.end(), J.innerIndexPtr()[k])) slots.push_back(k);
-  left_out_->rows = std::move(rows);
-  left_out_->slots = std::move(slots);
+      if (std::binary_search(l.rows.begin(), l.rows.end(), J.innerIndexPtr()[k])) l.slots.push_back(k);
 }
 
 namespace {

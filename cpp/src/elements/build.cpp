@@ -106,12 +106,12 @@ double initial_joint_value(const Model& m, const JointCoordinate& c) {
   return joint_reading(c, 0.0)(at, {}).value;
 }
 
-StopValues stop_values(const Args& a, const std::string& label) {
+StopLimits stop_limits(const Args& a, const std::string& label) {
   const std::optional<double> lower = a.optional_real("lower"), upper = a.optional_real("upper");
   if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");
   if (lower && upper && !(*lower < *upper))
     throw ModelError(label + ": lower = " + to_text(*lower) + " must be below upper = " + to_text(*upper));
-  StopValues v;
+  StopLimits v;
   v.has_lower = bool(lower);
   v.has_upper = bool(upper);
   v.lower = lower.value_or(0.0);
@@ -119,9 +119,13 @@ StopValues stop_values(const Args& a, const std::string& label) {
   v.restitution = a.real("restitution");
   if (!(v.restitution >= 0.0 && v.restitution <= 1.0))
     throw ModelError(label + ": restitution must be in [0, 1], got " + to_text(v.restitution));
-  // 0 would let rebounds shrink to rounding level (Zeno) before the rest test fires
-  v.rest_speed = a.real("rest_speed");
-  require_positive(v.rest_speed, label, "rest_speed");
+  if (const std::optional<double> rest = a.optional_real("rest_speed")) {
+    require_positive(*rest, label, "rest_speed");
+    v.rest_speed = *rest;
+  }
+  // a bounce series must end by capture, never by rebounds shrinking to rounding level
+  v.capture_time = a.real("capture_time");
+  require_positive(v.capture_time, label, "capture_time");
   return v;
 }
 
@@ -131,7 +135,10 @@ std::vector<Param> stop_params() {
       param::optional_real("lower", "rad or m", "lower limit (None: none)"),
       param::optional_real("upper", "rad or m", "upper limit (None: none)"),
       param::real("restitution", 0.0, "", "Newton's coefficient of restitution e in [0, 1]"),
-      param::real("rest_speed", 1e-3, "rad/s or m/s", "rebounds slower than this stop the run"),
+      param::optional_real("rest_speed", "rad/s or m/s",
+                           "rebounds slower than this come to rest on the limit (None: capture_time decides)"),
+      param::real("capture_time", 1e-6, "s",
+                  "a rebound whose remaining bounces would end within this time comes to rest on the limit"),
   };
 }
 

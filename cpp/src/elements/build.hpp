@@ -7,6 +7,7 @@
 #include <array>
 #include <string>
 
+#include "lagmb/elements/stop.hpp"
 #include "lagmb/elements/joint_coordinate.hpp"
 #include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/elements/projected_offset.hpp"
@@ -81,11 +82,8 @@ KindInfo in_space(KindInfo k);
 /// What a joint stop (planar or spatial) is given: its limits, checked (one
 /// at least, lower below upper), restitution in [0, 1] and rest_speed > 0;
 /// and the parameters that give them (stop_params, after the joint).
-struct StopValues {
-  bool has_lower = false, has_upper = false;
-  double lower = 0.0, upper = 0.0, restitution = 0.0, rest_speed = 0.0;
-};
-StopValues stop_values(const Args& a, const std::string& label);
+/// A stop's limits and contact values (stop.hpp), checked.
+StopLimits stop_limits(const Args& a, const std::string& label);
 std::vector<Param> stop_params();
 
 /// The unit global direction given as `key`; ModelError for a zero vector.

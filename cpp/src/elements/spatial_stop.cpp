@@ -15,7 +15,7 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
   if (c.turns && c.slides)
     throw ModelError(label + ": '" + a.text("joint") + "' turns and slides (a cylindrical joint); a stop limits a "
                      "revolute's angle or a translational's slide");
-  const build::StopValues v = build::stop_values(a, label);
+  const StopLimits v = build::stop_limits(a, label);
   // a spatial angle is read within a turn: the limits must lie within one
   if (c.turns && v.has_lower && v.has_upper && !(v.upper - v.lower < 2.0 * kPi))
     throw ModelError(label + ": upper - lower = " + to_text(v.upper - v.lower) +
@@ -26,10 +26,8 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
   s.joint = build::joint_reading(c, v.has_lower && v.has_upper ? 0.5 * (v.lower + v.upper)
                                     : v.has_lower              ? v.lower + 0.5 * kPi
                                                                : v.upper - 0.5 * kPi);
-  s.has_lower = v.has_lower, s.has_upper = v.has_upper;
-  s.lower = v.lower, s.upper = v.upper;
-  s.restitution = v.restitution, s.rest_speed = v.rest_speed;
-  m.add_event_element(std::move(s));
+  static_cast<StopLimits&>(s) = v;
+  m.add_constraint(std::move(s));
 }
 
 }  // namespace
@@ -39,9 +37,10 @@ KindInfo spatial_stop_kind() {
       {"spatial_stop", "add_stop", "stops", "", Role::kStop,
        "Limits a revolute's angle (limits less than 2 pi apart) or a translational's slide to lower <= s <= "
        "upper (their "
-       "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is an impact: s' reverses with Newton's "
-       "restitution e and the integrator restarts; a rebound slower than rest_speed while the motion presses on "
-       "the limit stops the run with SimulationError naming the stop (resting contact is not modelled).",
+       "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is "
+       "an impact: s' reverses with Newton's restitution e and the integrator restarts. A joint that comes to rest "
+       "on the limit is captured: the limit holds as a joint equation whose multiplier is the stop's force "
+       "(Result.effort), until the stop would have to pull, where it releases.",
        build::stop_params(),
        build_spatial_stop});
 }

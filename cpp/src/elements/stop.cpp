@@ -10,14 +10,11 @@ namespace {
 void build_stop(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
   const build::JointOf c = build::joint_coordinate(m, a.text("joint"), label);
-  const build::StopValues v = build::stop_values(a, label);
   JointStop s = build::joining<JointStop>(m, name, c.body_i, c.body_j);
+  static_cast<StopLimits&>(s) = build::stop_limits(a, label);
   s.slide = c.slides;
   s.along = c.along;
-  s.has_lower = v.has_lower, s.has_upper = v.has_upper;
-  s.lower = v.lower, s.upper = v.upper;
-  s.restitution = v.restitution, s.rest_speed = v.rest_speed;
-  m.add_event_element(std::move(s));
+  m.add_constraint(std::move(s));
 }
 
 }  // namespace
@@ -27,9 +24,10 @@ KindInfo stop_kind() {
           "Limits a joint coordinate s to lower <= s <= upper: a revolute's relative angle or a "
           "translational's slide (0 in the initial configuration). Reaching a limit with approaching "
           "speed is an impact: s' reverses with Newton's restitution e (s'+ = -e s'-) and the integrator "
-          "restarts; a rebound slower than rest_speed while the motion presses on the limit stops the "
-          "run with SimulationError naming the stop (resting contact is not modelled). Impacts are "
-          "listed in Result.events.",
+          "restarts. A joint that comes to rest on the limit (restitution 0, a rebound slower than "
+          "rest_speed, or bounces that would end within capture_time) is captured: the limit holds as a "
+          "joint equation whose multiplier is the stop's force (Result.effort), until the stop would have "
+          "to pull, where it releases. Impacts, captures and releases are listed in Result.events.",
           build::stop_params(),
           build_stop};
 }

@@ -27,6 +27,9 @@ class DaeFormulation {
   /// Whether the relative tolerance of index-k components is divided by
   /// h^(k-1) too (needed where they stay in the error test).
   virtual bool scale_relative_tolerance() const { return false; }
+  /// Components that belong to rows the run leaves out (their multipliers,
+  /// held at 0): the error norms count the others only.
+  virtual int left_out_components() const { return 0; }
   /// Per-component absolute tolerances from the user's per-coordinate atol
   /// (for q_i and v_i; multipliers get the mean, scaled). For index-k
   /// components these are in the units of (variable x time^(k-1)): the
@@ -73,6 +76,9 @@ class DaeFormulation {
 /// Phi_q^T (same pattern: a joint's friction reads only its own multipliers).
 class MultiplierDae : public DaeFormulation {
  public:
+  int left_out_components() const override {
+    return m_ ? int(d_.dropped_rows().size() * (alg_diag_.size() / m_)) : 0;
+  }
   int size() const override { return size_; }
   SpMat& matrix() override { return J_; }
   const VecX& row_scale() const override { return row_scale_; }

@@ -99,6 +99,8 @@ bool ProjectionFormulation::setup(double gamma) {
   for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d_.Phi_q.valuePtr()[k];
   // -gamma^2 K - gamma Q_v; K's values stay in d_ for solve()
   saddle_.add_tangent(d_, x, q, v, t_lin_, lam_lin_.data(), qdd_lin_.data(), gamma * gamma, gamma);
+  // a row left out (redundant, or an open stop) has no entries: its mu is 0
+  for (int r : d_.dropped_rows()) x[diag_[n_ + r]] = 1.0;
   ++factorizations_;
   gamma_setup_ = gamma;
   return lu_.factorize(N_);

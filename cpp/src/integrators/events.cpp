@@ -1,6 +1,7 @@
 #include "integrators/events.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,27 +12,18 @@ namespace lagmb {
 
 namespace {
 
-/// Scatters a local row (over c: 6 or 14 entries) into a global row (over q).
-VecX global_row(const VecX& local, const LocalCoords& coord, int n) {
-  VecX g = VecX::Zero(n);
-  for (int a = 0; a < int(local.size()); ++a)
-    if (coord[a] >= 0) g[coord[a]] += local[a];
-  return g;
-}
-
-/// The local entries of a global vector (0 where coord is -1).
-VecX local_of(const VecX& x, const LocalCoords& coord, int size) {
-  VecX c = VecX::Zero(size);
-  for (int a = 0; a < size; ++a)
-    if (coord[a] >= 0) c[a] = x[coord[a]];
-  return c;
-}
-
 std::string fmt(double x) { return to_text(x); }
+
+IntegratorFailure plain_failure(const std::string& message, double t) {
+  IntegratorFailure f(message, t);
+  f.diagnose = false;
+  return f;
+}
 
 }  // namespace
 
-EventRunner::EventRunner(const Model& model, const Data& run) : model_(model), d_(model, &run), kkt_(model) {
+EventRunner::EventRunner(const Model& model, const Data& run)
+    : model_(model), d_(model, &run), rows_(model, &run, Data::Rows::kEvery), kkt_(model) {
   const auto& groups = model.event_groups();
   for (int gi = 0; gi < int(groups.size()); ++gi) {
     for (int k = 0; k < groups[gi]->size(); ++k)
@@ -40,7 +32,25 @@ EventRunner::EventRunner(const Model& model, const Data& run) : model_(model), d
         dir_.push_back(groups[gi]->direction(k, r));
       }
   }
-  g_.resize(roots_.size());
+  rows_.close_rows(model, model.unilateral_rows());
+  const auto& constraints = model.constraint_groups();
+  for (int gi = 0; gi < int(constraints.size()); ++gi) {
+    if (!constraints[gi]->unilateral()) continue;
+    unilateral_groups_.push_back(gi);
+    for (int k = 0; k < constraints[gi]->size(); ++k)
+      for (int r = 0; r < constraints[gi]->rows(k); ++r)
+        contacts_.push_back({constraints[gi]->placement(k).row0 + r, constraints[gi]->unilateral_row(k, r)});
+  }
+  std::sort(contacts_.begin(), contacts_.end(), [](const Contact& a, const Contact& b) { return a.row < b.row; });
+  // a gap crossing to negative (an impact), a force crossing to negative (a release)
+  dir_.insert(dir_.end(), contacts_.size(), -1);
+  g_.resize(dir_.size());
+  qdd_.resize(model.n_coordinates());
+  lam_.resize(model.n_constraints());
+}
+
+bool EventRunner::is_closed(int row) const {
+  return std::binary_search(d_.closed_rows().begin(), d_.closed_rows().end(), row);
 }
 
 void EventRunner::values(double t, const double* q, const double* v, double* g) {
@@ -50,21 +60,59 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
     group->values(q, v, t, g + offset);
     for (int k = 0; k < group->size(); ++k) offset += group->roots(k);
   }
+  if (contacts_.empty()) return;
+  const Instant at = rows_.at(t);
+  for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q, at, rows_.Phi.data());
+  if (!d_.closed_rows().empty()) solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
+  // an open gap within rounding of 0 (a restart after a rebound) reads by
+  // its rate: leaving, it is inside, so that a flight shorter than the next
+  // step still shows as a sign change; otherwise just past the limit (a
+  // restart never puts a root function at exactly 0: SUNDIALS would warn)
+  const double at_limit = 1e-10;
+  bool rates = false;
+  for (const Contact& c : contacts_)
+    if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= at_limit) rates = true;
+  if (rates) {
+    for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->jacobian(q, at, rows_.Phi_q.valuePtr());
+    rows_.phi_t.setZero();  // (scratch: Phi_q v of the gaps)
+    add_jacobian_times(rows_, v, rows_.phi_t.data());
+  }
+  for (const Contact& c : contacts_) {
+    double x = !c.info.exists ? 1.0 : is_closed(c.row) ? -lam_[c.row] : rows_.Phi[c.row];
+    if (rates && !is_closed(c.row) && c.info.exists && std::abs(x) <= at_limit)
+      x = rows_.phi_t[c.row] > 0.0 ? at_limit : std::min(x, -1e-300);
+    g[offset++] = x != 0.0 ? x : -1e-300;
+  }
 }
 
-bool EventRunner::start(double t, const VecX& q, VecX& v) {
+bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, v, true); }
+
+bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
   values(t, q.data(), v.data(), g_.data());
-  std::vector<int> fired(roots_.size(), 0);
+  std::vector<int> fired(g_.size(), 0);
   bool any = false;
   const double tol = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
-  for (size_t i = 0; i < roots_.size(); ++i) {
-    if (dir_[i] >= 0 || !(g_[i] < 0.0)) continue;
-    auto& group = *model_.event_groups()[roots_[i].group];
-    if (g_[i] < -tol) {
-      const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data());
-      throw ModelError(std::string(group.kind()) + " '" + group.name(roots_[i].element) +
-                       "': the initial configuration is beyond its " +
-                       (a.label[0] ? a.label : (roots_[i].index == 0 ? "lower" : "upper")) + " limit (by " +
+  const double force_tol = 1e-8 * (1.0 + lam_.lpNorm<Eigen::Infinity>());
+  const size_t base = roots_.size();
+  for (size_t i = 0; i < g_.size(); ++i) {
+    if (dir_[i] >= 0) continue;
+    const bool contact = i >= base;
+    if (!contact && !at_start) continue;  // (an event element's switch waits for its crossing)
+    const bool closed = contact && is_closed(contacts_[i - base].row);
+    // a stop at its limit is in contact; a closed one whose force turned to pull lets go
+    if (!(g_[i] < (closed ? force_tol : contact ? tol : 0.0))) continue;
+    if (at_start && !closed && g_[i] < -tol) {
+      std::string kind, name, label;
+      if (contact) {
+        const Contact& c = contacts_[i - base];
+        name = model_.constraint_name_of_row(c.row);
+        kind = model_.constraint_groups()[model_.find(name).group]->kind();
+        label = c.info.label;
+      } else {
+        auto& group = *model_.event_groups()[roots_[i].group];
+        kind = group.kind(), name = group.name(roots_[i].element), label = roots_[i].index == 0 ? "lower" : "upper";
+      }
+      throw ModelError(kind + " '" + name + "': the initial configuration is beyond its " + label + " limit (by " +
                        fmt(-g_[i]) + ")");
     }
     fired[i] = 1;
@@ -72,61 +120,66 @@ bool EventRunner::start(double t, const VecX& q, VecX& v) {
   }
   if (!any) return false;
   const VecX v0 = v;
+  const std::vector<int> closed0 = d_.closed_rows();
   handle(t, q, v, fired);
-  return v != v0;
+  return v != v0 || d_.closed_rows() != closed0;
 }
 
 bool EventRunner::missed(double t, const double* q, const double* v, std::vector<int>& fired) {
   values(t, q, v, g_.data());
-  fired.assign(roots_.size(), 0);
+  fired.assign(g_.size(), 0);
   bool any = false;
-  for (size_t i = 0; i < roots_.size(); ++i)
-    if (dir_[i] < 0 && g_[i] < -1e-10) {
+  const size_t base = roots_.size();
+  const double force_tol = 1e-8 * (1.0 + lam_.lpNorm<Eigen::Infinity>());
+  for (size_t i = 0; i < g_.size(); ++i) {
+    const bool pulling = i >= base && is_closed(contacts_[i - base].row);
+    if (dir_[i] < 0 && g_[i] < (pulling ? -force_tol : -1e-10)) {
       fired[i] = 1;  // the action decides: leaving velocities do nothing
       any = true;
     }
+  }
   return any;
 }
 
-bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
-  const int n = model_.n_coordinates();
-  bool restart = false;
-  std::vector<VecX> C;              // impact gradients over q
-  std::vector<EventAction> act;
-  std::vector<size_t> which;
-  for (size_t i = 0; i < roots_.size(); ++i) {
-    if (!fired[i]) continue;
-    auto& group = *model_.event_groups()[roots_[i].group];
-    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data());
-    if (a.type == EventAction::kNone) continue;
-    ++events;
-    restart = true;
-    // Zeno guard: events piling up at (almost) one instant must not hang the run
-    burst_ = (t - t_last_ <= 1e-9 * (1.0 + std::abs(t))) ? burst_ + 1 : 0;
-    t_last_ = t;
-    if (burst_ >= 1000) {
-      IntegratorFailure f(std::string(group.kind()) + " '" + group.name(roots_[i].element) +
-                              "': 1000 events in a row at t = " + fmt(t) +
-                              " without the time advancing (events accumulating: Zeno behaviour); the run stops here.",
-                          t);
-      f.diagnose = false;
-      throw f;
-    }
-    if (a.type == EventAction::kRestart) {
-      records.push_back({t, group.name(roots_[i].element), "restart", a.label, a.speed, a.speed});
-      continue;
-    }
-    C.push_back(global_row(a.gradient, group.coordinates(roots_[i].element), n));
-    act.push_back(a);
-    which.push_back(i);
-  }
-  if (C.empty()) return restart;
+void EventRunner::count_event(double t, const std::string& element, const char* kind) {
+  ++events;
+  // Zeno guard: events piling up at (almost) one instant must not hang the run
+  burst_ = (t - t_last_ <= 1e-9 * (1.0 + std::abs(t))) ? burst_ + 1 : 0;
+  t_last_ = t;
+  if (burst_ >= 1000)
+    throw plain_failure(std::string(kind) + " '" + element + "': 1000 events in a row at t = " + fmt(t) +
+                            " without the time advancing (events accumulating: Zeno behaviour); the run stops here.",
+                        t);
+}
 
-  // M-orthogonal jump keeping the joints: v+ = v- + X p with
-  // [M Phi_q^T; Phi_q 0] [X; Y] = [C^T; 0] and C v+ = -E C v-.
-  const int k = int(C.size()), m = model_.n_constraints();
+void EventRunner::contact_rows(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
+                               std::vector<VecX>& C, VecX& curvature) {
+  assemble_jacobian(model_, rows_, q.data(), t);
+  assemble_gamma(model_, rows_, q.data(), v.data(), t);
+  const SpMat JT = rows_.Phi_q.transpose();  // column r: row r of Phi_q
+  C.clear();
+  curvature.resize(int(which.size()));
+  for (size_t j = 0; j < which.size(); ++j) {
+    const int row = contacts_[which[j]].row;
+    C.push_back(VecX(JT.col(row)));
+    curvature[int(j)] = rows_.gamma[row];
+  }
+}
+
+void EventRunner::driven_through(int contact, double t) const {
+  throw plain_failure("stop '" + model_.constraint_name_of_row(contacts_[contact].row) + "' is reached at t = " +
+                          fmt(t) + " along a motion the joints and drivers prescribe: no impact or stop force can "
+                          "change it (a driver pushing through the limit); the run stops here.",
+                      t);
+}
+
+void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<int>& which,
+                          const std::vector<VecX>& C, const VecX& e) {
+  // M-orthogonal jump keeping the joints and the closed stops: v+ = v- + X p with
+  // [M Phi_q^T; Phi_q 0] [X; Y] = [C^T; 0] and C v+ = -E C v-
+  const int n = model_.n_coordinates(), m = model_.n_constraints(), k = int(which.size());
   assemble_jacobian(model_, d_, q.data(), t);
-  if (!kkt_.factorize(d_)) throw IntegratorFailure("the augmented matrix is singular at an impact, t = " + fmt(t), t);
+  if (!kkt_.factorize(d_)) throw plain_failure("the augmented matrix is singular at an impact, t = " + fmt(t), t);
   Eigen::MatrixXd X(n, k), A(k, k);
   VecX x(n), y(m), zero_m = VecX::Zero(m), b(k);
   for (int j = 0; j < k; ++j) {
@@ -135,60 +188,189 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   }
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
-    b[i] = -(1.0 + act[i].restitution) * C[i].dot(v);
-    // A(i, i) is the mobility along the limit left by the joints; next to the
-    // free body's C M^-1 C^T it is 0 when drivers prescribe that motion, and
-    // no impulse can change it: a driver pushing through its own stop
-    const double free_mobility = C[i].dot(d_.M_inv * C[i]);
-    if (!(A(i, i) > 1e-10 * free_mobility)) {
-      auto& group = *model_.event_groups()[roots_[which[i]].group];
-      IntegratorFailure f(std::string(group.kind()) + " '" + group.name(roots_[which[i]].element) +
-                              "' is reached at t = " + fmt(t) + " along a motion the joints and drivers prescribe: " +
-                              "no impact can change it (a driver pushing through the limit); the run stops here.",
-                          t);
-      f.diagnose = false;
-      throw f;
-    }
+    b[i] = -(1.0 + e[i]) * C[i].dot(v);
+    // A(i, i) is the mobility along the limit the joints leave; next to the
+    // free body's C M^-1 C^T it is 0 where drivers prescribe that motion
+    if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) driven_through(which[i], t);
   }
-  const VecX before = v;
   v += X * A.fullPivLu().solve(b);
-  impacts += k;
+}
 
-  // coming to rest: a slow rebound while the motion presses on the limit
-  VecX qdd(n), lam(m);
-  bool have_qdd = false;
+std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
+                                            const std::vector<int>& leaving) {
+  const int n = model_.n_coordinates(), m = model_.n_constraints(), k = int(which.size());
+  std::vector<VecX> C;
+  VecX curvature;
+  contact_rows(t, q, v, which, C, curvature);
+  // every candidate open, the other closed rows held: b = g'' without their forces
+  std::vector<int> held;
+  for (int row : d_.closed_rows())
+    if (std::none_of(which.begin(), which.end(), [&](int c) { return contacts_[c].row == row; })) held.push_back(row);
+  d_.close_rows(model_, held);
+  solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd_.data(), lam_.data());
+  // a force f_j >= 0 along the gradient C_j (f_j = -lam_j) adds X_j f_j to qdd: g'' = b + A f
+  Eigen::MatrixXd A(k, k), X(n, k);
+  VecX b(k), x(n), y(m), zero_m = VecX::Zero(m);
   for (int j = 0; j < k; ++j) {
-    const auto& r = roots_[which[j]];
-    auto& group = *model_.event_groups()[r.group];
-    const double s0 = C[j].dot(before), s1 = C[j].dot(v);
-    records.push_back({t, group.name(r.element), "impact", act[j].label, s0, s1});
-    if (!(s1 < act[j].rest_speed)) continue;
-    if (!have_qdd) {
-      solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd.data(), lam.data());
-      have_qdd = true;
-    }
-    const VecX cd = local_of(v, group.coordinates(r.element), int(act[j].gradient.size()));
-    const double gdd = C[j].dot(qdd) + cd.dot(act[j].hessian * cd);
-    if (gdd < -1e-9 * (1.0 + C[j].norm() * qdd.norm())) {
-      records.back().kind = "rest";
-      std::ostringstream msg;
-      msg << group.kind() << " '" << group.name(r.element) << "' came to rest against its " << act[j].label
-          << " limit at t = " << t << ": the rebound speed " << s1 << " is below rest_speed = " << act[j].rest_speed
-          << " and the motion presses on the limit (acceleration " << gdd
-          << "). Resting contact is not modelled: the run stops here (impact " << impacts
-          << "); the events so far are in the partial result.";
-      IntegratorFailure f(msg.str(), t);
-      f.diagnose = false;
-      throw f;
+    b[j] = C[j].dot(qdd_) - curvature[j];
+    kkt_.solve(C[j], zero_m, x, y);
+    X.col(j) = x;
+  }
+  std::vector<char> in(k, 1), may_close(k, 1), is_leaving(k, 0);
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
+    is_leaving[i] = std::find(leaving.begin(), leaving.end(), which[i]) != leaving.end();
+    if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {  // a motion drivers prescribe
+      if (b[i] < 0.0) driven_through(which[i], t);
+      may_close[i] = in[i] = 0;
     }
   }
-  return true;
+  // principal pivoting with the least-index rule (Murty 1974), from "all
+  // closed": it ends for the P-matrices of independent stops. Tolerances in
+  // acceleration units; a released row opens at a force within rounding of 0
+  const double tol = 1e-9 * (1.0 + b.lpNorm<Eigen::Infinity>());
+  VecX f = VecX::Zero(k), w = b;
+  for (int iteration = 0;; ++iteration) {
+    if (iteration > 50 + 4 * k * k)
+      throw plain_failure("the stop forces at t = " + fmt(t) + " could not be resolved: the pivoting over " +
+                              std::to_string(k) + " stops in contact did not end (dependent stops?)",
+                          t);
+    std::vector<int> S;
+    for (int i = 0; i < k; ++i)
+      if (in[i]) S.push_back(i);
+    f.setZero();
+    if (!S.empty()) {
+      Eigen::MatrixXd A_SS(S.size(), S.size());
+      VecX b_S(S.size());
+      for (size_t a = 0; a < S.size(); ++a) {
+        b_S[a] = -b[S[a]];
+        for (size_t c = 0; c < S.size(); ++c) A_SS(a, c) = A(S[a], S[c]);
+      }
+      const VecX f_S = A_SS.fullPivLu().solve(b_S);
+      for (size_t a = 0; a < S.size(); ++a) f[S[a]] = f_S[a];
+    }
+    w = b + A * f;
+    int flip = -1;
+    for (int i = 0; i < k && flip < 0; ++i) {
+      if (in[i] && f[i] * A(i, i) < (is_leaving[i] ? tol : -tol)) flip = i;
+      if (!in[i] && may_close[i] && w[i] < -2.0 * tol) flip = i;
+    }
+    if (flip < 0) break;
+    in[flip] = !in[flip];
+  }
+  std::vector<int> closed = held;
+  for (int i = 0; i < k; ++i)
+    if (in[i]) closed.push_back(contacts_[which[i]].row);
+  std::sort(closed.begin(), closed.end());
+  return closed;
+}
+
+bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
+  bool restart = false;
+  for (size_t i = 0; i < roots_.size(); ++i) {
+    if (!fired[i]) continue;
+    auto& group = *model_.event_groups()[roots_[i].group];
+    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data());
+    if (a.type == EventAction::kNone) continue;
+    count_event(t, group.name(roots_[i].element), group.kind());
+    restart = true;
+    records.push_back({t, group.name(roots_[i].element), "restart", a.label, a.speed, a.speed});
+  }
+  if (contacts_.empty()) return restart;
+
+  // the stops' crossings: gaps closing (impacts, or a joint arriving at rest) and forces turning to pull
+  std::vector<int> arriving, leaving;
+  for (size_t c = 0; c < contacts_.size(); ++c)
+    if (fired[roots_.size() + c] && contacts_[c].info.exists)
+      (is_closed(contacts_[c].row) ? leaving : arriving).push_back(int(c));
+  if (arriving.empty() && leaving.empty()) return restart;
+  std::vector<VecX> C;
+  VecX curvature;
+  contact_rows(t, q, v, arriving, C, curvature);
+  const double v_scale = 1e-9 * (1.0 + v.lpNorm<Eigen::Infinity>());
+  std::vector<int> hit, resting;
+  std::vector<VecX> C_hit;
+  VecX s_before(int(arriving.size()));
+  for (size_t j = 0; j < arriving.size(); ++j) {
+    const double s = C[j].dot(v);  // g'
+    if (s < -v_scale) {
+      hit.push_back(arriving[j]);
+      C_hit.push_back(C[j]);
+    } else if (s <= v_scale) {
+      resting.push_back(arriving[j]);
+    }
+  }
+  const std::vector<int> closed_before = d_.closed_rows();
+  std::vector<int> captured;
+  if (!hit.empty()) {
+    const int k = int(hit.size());
+    const VecX v_before = v;
+    VecX e(k), s0(k);
+    for (int j = 0; j < k; ++j) e[j] = contacts_[hit[j]].info.restitution, s0[j] = C_hit[j].dot(v);
+    impulse(t, q, v, hit, C_hit, e);
+    impacts += k;
+    // a rebound ends on the limit (captured) when e = 0, when it is slower
+    // than rest_speed, or when the motion presses on the limit (g'' < 0 with
+    // the row open) and the remaining bounces, flights of 2 s1 / |g''|
+    // shrinking by e each, add up to less than capture_time
+    solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd_.data(), lam_.data());
+    std::vector<VecX> C_after;
+    VecX curvature_after;  // gamma_r at the rebound velocity
+    contact_rows(t, q, v, hit, C_after, curvature_after);
+    bool redo = false;
+    for (int j = 0; j < k; ++j) {
+      const UnilateralRow& info = contacts_[hit[j]].info;
+      const double s1 = C_hit[j].dot(v);
+      const double g_dd = C_hit[j].dot(qdd_) - curvature_after[j];
+      const bool slow = info.rest_speed > 0.0 && s1 < info.rest_speed;
+      const bool short_series = g_dd < 0.0 && 2.0 * s1 < info.capture_time * (1.0 - e[j]) * -g_dd;
+      if (e[j] == 0.0 || slow || short_series) {
+        captured.push_back(hit[j]);
+        if (e[j] != 0.0) redo = true;
+        e[j] = 0.0;
+      }
+    }
+    if (redo) {  // the captured ones plastic: no rebound
+      v = v_before;
+      impulse(t, q, v, hit, C_hit, e);
+    }
+    for (int j = 0; j < k; ++j) {
+      const std::string name = model_.constraint_name_of_row(contacts_[hit[j]].row);
+      count_event(t, name, "stop");
+      records.push_back({t, name, "impact", contacts_[hit[j]].info.label, s0[j], C_hit[j].dot(v)});
+    }
+    restart = true;
+  }
+  if (captured.empty() && resting.empty() && leaving.empty()) return restart;
+
+  // the active set among the stops at rest on their limits: those closed,
+  // captured now, or arriving at rest
+  std::vector<int> candidates = leaving;
+  for (size_t c = 0; c < contacts_.size(); ++c)
+    if (is_closed(contacts_[c].row) && std::find(leaving.begin(), leaving.end(), int(c)) == leaving.end())
+      candidates.push_back(int(c));
+  candidates.insert(candidates.end(), captured.begin(), captured.end());
+  candidates.insert(candidates.end(), resting.begin(), resting.end());
+  std::sort(candidates.begin(), candidates.end());
+  const std::vector<int> closed = rest_contacts(t, q, v, candidates, leaving);
+  d_.close_rows(model_, closed);
+  for (int c : candidates) {
+    const int row = contacts_[c].row;
+    const bool was = std::binary_search(closed_before.begin(), closed_before.end(), row);
+    const bool now = std::binary_search(closed.begin(), closed.end(), row);
+    if (was == now) continue;
+    const std::string name = model_.constraint_name_of_row(row);
+    count_event(t, name, "stop");
+    records.push_back({t, name, now ? "capture" : "release", contacts_[c].info.label, 0.0, 0.0});
+    ++(now ? captures : releases);
+  }
+  return restart || closed != closed_before;
 }
 
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
   // the state at a root is interpolated: put the positions back on Phi = 0
-  // (least change) and the velocities on Phi_q v + Phi_t = 0 before the
-  // index-2 and index-3 forms restart from it
+  // (least change; the closed stops' rows included) and the velocities on
+  // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it
   return make_consistent(model_, d_, kkt_, q, v, t);
 }
 

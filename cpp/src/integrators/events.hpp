@@ -1,6 +1,9 @@
-// The event runner: evaluates the event functions of a model's event
-// elements for the integrators, and applies the elements' actions at their
-// crossings (impacts, restarts). The steppers never name a kind.
+// The event runner: evaluates the event functions of a model for the
+// integrators — those of its event elements (contact switches) and those of
+// its unilateral rows (stops: the gap of an open row, the force of a closed
+// one) — and applies what happens at their crossings: restarts, impacts,
+// and the active set's captures and releases (docs/design.md 5.1). The
+// steppers never name a kind.
 #pragma once
 
 #include <cmath>
@@ -14,42 +17,80 @@ namespace lagmb {
 
 class EventRunner {
  public:
-  /// run: the run's Data (its dropped rows, and the run state that
-  /// crossings write and the run's force kernels read).
+  /// run: the run's Data (its left-out rows, which the active set changes,
+  /// and the run state that crossings write and the run's force kernels read).
   EventRunner(const Model& model, const Data& run);
-  /// Number of event functions over all event elements (0: none).
-  int size() const { return int(roots_.size()); }
+  /// Number of event functions (0: none).
+  int size() const { return int(dir_.size()); }
   /// SUNDIALS root directions (-1: downward crossings only, 0: both).
   int* directions() { return dir_.data(); }
-  /// g at (q, v, t), all event functions.
+  /// g at (q, v, t), all event functions: the event elements' in their
+  /// order, then one per unilateral row (Model::unilateral_rows): an open
+  /// row's gap g_r = Phi_r, a closed row's force f_r = -lam_r (solved at q, v).
   void values(double t, const double* q, const double* v, double* g);
   /// At the start: a joint beyond a limit is a ModelError; one at a limit
-  /// with approaching velocity gets its impact now. Returns true if v changed.
+  /// gets its impact (moving into it) or its capture (pressing on it) now.
+  /// Returns true if the state or the active set changed.
   bool start(double t, const VecX& q, VecX& v);
+  /// The same where the equations jump (a new input value, a breakpoint of a
+  /// time function): closed stops whose force would pull are released,
+  /// joints at a limit get their impact or capture. Returns true if the
+  /// state or the active set changed (then restart from consistent()).
+  bool settle(double t, const VecX& q, VecX& v, bool at_start = false);
   /// After a step that found no root: event functions of direction -1 that
   /// are below zero with the motion still going further (a crossing the
   /// integrator missed) are flagged in `fired`. Returns true if any.
   bool missed(double t, const double* q, const double* v, std::vector<int>& fired);
   /// Applies the actions of the flagged crossings at (t, q, v); v gets the
-  /// velocity jump of impacts. Returns true if the integrator must restart.
-  /// Throws IntegratorFailure when a stop comes to rest against its limit.
+  /// velocity jump of impacts, the run's Data its new active set. Returns
+  /// true if the integrator must restart.
   bool handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
-  /// q, v with accelerations and multipliers: the state to restart from.
+  /// q, v with accelerations and multipliers, on the rows now closed: the state to restart from.
   ConsistentState consistent(double t, const VecX& q, const VecX& v);
 
   std::vector<EventRecord> records;
-  long events = 0, impacts = 0, root_evals = 0;
+  long events = 0, impacts = 0, captures = 0, releases = 0, root_evals = 0;
 
  private:
   struct Root {
     int group, element, index;
   };
+  /// A unilateral row and what its element says it does.
+  struct Contact {
+    int row;
+    UnilateralRow info;
+  };
+  bool is_closed(int row) const;
+  /// Counts an event at t; IntegratorFailure after 1000 at one instant (Zeno).
+  void count_event(double t, const std::string& element, const char* kind);
+  /// Rows of the contacts `which` (indices into contacts_) of Phi_q at q, and
+  /// their curvature terms (gamma_r at q, v): g_r'' = C_r qdd - gamma_r.
+  void contact_rows(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
+                    std::vector<VecX>& C, VecX& curvature);
+  /// The impulse at an impact of the contacts `which` (approaching),
+  /// restitution e each: v += X p with C v+ = -e C v-, the closed rows and
+  /// joints held (the M-orthogonal jump).
+  void impulse(double t, const VecX& q, VecX& v, const std::vector<int>& which, const std::vector<VecX>& C,
+               const VecX& e);
+  /// The active set at rest contact: of the contacts `which` (all at g = 0,
+  /// g' = 0), those whose force f >= 0 holds them while the others'
+  /// accelerations g'' >= 0 (an LCP at acceleration level, solved by
+  /// principal pivoting); `leaving`: contacts whose release was found,
+  /// which open where their force is within rounding of 0.
+  std::vector<int> rest_contacts(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
+                                 const std::vector<int>& leaving);
+  [[noreturn]] void driven_through(int contact, double t) const;
+
   const Model& model_;
-  Data d_;
+  Data d_;      // of the run: its left-out rows
+  Data rows_;   // every row, unilateral ones closed: the gaps and their gradients
   AugmentedSystem kkt_;
-  std::vector<Root> roots_;
+  std::vector<Root> roots_;      // of the event elements
+  std::vector<Contact> contacts_;  // the unilateral rows, ascending
+  std::vector<int> unilateral_groups_;
   std::vector<int> dir_;
   std::vector<double> g_;
+  VecX qdd_, lam_;
   double t_last_ = -INFINITY;
   int burst_ = 0;
 };

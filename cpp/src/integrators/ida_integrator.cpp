@@ -49,7 +49,10 @@ struct Callbacks {
 /// governs both the Newton convergence test and, for components in the error
 /// test, the error test; forms that keep such components in the error test
 /// scale the relative part as well (RADAU5 scales the whole error). Index-1
-/// components get 1 / (rtol |y| + atol).
+/// components get 1 / (rtol |y| + atol). The multipliers of rows the run
+/// leaves out (an open stop, a redundant row) stay 0 and add nothing to a
+/// norm but its count N: the weights are scaled by sqrt(N / (N - those)),
+/// so that the WRMS norms are those of the rows that count.
 int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
   auto* cb = static_cast<Callbacks*>(data);
   sun::real h = 0.0;
@@ -57,7 +60,9 @@ int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
   const double inv_h = 1.0 / (h > 0.0 && !cb->fresh ? h : cb->h_default);
   const double* y = N_VGetArrayPointer(yv);
   double* ewt = N_VGetArrayPointer(ewtv);
-  for (sun::index i = 0, N = N_VGetLength(yv); i < N; ++i) {
+  const sun::index N = N_VGetLength(yv);
+  const double counted = std::sqrt(double(N) / double(N - cb->dae->left_out_components()));
+  for (sun::index i = 0; i < N; ++i) {
     double a = cb->abstol[i], r = cb->rtol * std::abs(y[i]);
     for (int k = 1; k < cb->level[i]; ++k) {
       a *= inv_h;
@@ -65,7 +70,7 @@ int weights_fn(N_Vector yv, N_Vector ewtv, void* data) {
     }
     const double tol = r + a;
     if (!(tol > 0.0)) return -1;
-    ewt[i] = 1.0 / tol;
+    ewt[i] = counted / tol;
   }
   return 0;
 }

@@ -66,7 +66,19 @@ bool StepLoop::act(double t, bool at_stop) {
     // from the (continuous, consistent) state instead of stepping across
     ++next_break_;
     ++restarts_;
-    stepper_.restart(t);
+    bool settled = false;
+    if (plan_.events) {  // a force's jump may release a stop or press a joint on its limit
+      const int n = int(plan_.atol.size());
+      q_event_ = Eigen::Map<const VecX>(stepper_.positions(), n);
+      v_event_ = Eigen::Map<const VecX>(stepper_.velocities(), n);
+      try {
+        settled = plan_.events->settle(t, q_event_, v_event_);
+        if (settled) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
+      } catch (const SimulationError& e) {
+        throw IntegratorFailure(std::string("at a breakpoint: ") + e.what(), t);
+      }
+    }
+    if (!settled) stepper_.restart(t);
     stepper_.set_stop(stop_time());
     return true;
   }

@@ -176,12 +176,15 @@ void Model::finalize() {
   // rows: constraint elements in the order they were added
   m_ = 0;
   row_owner_.clear();
+  unilateral_rows_.clear();
   for (size_t e = 0; e < constraint_order_.size(); ++e) {
     auto [g, k] = constraint_order_[e];
     ConstraintGroupBase& group = *constraints_[g];
     ElementPlacement& p = group.placement(k);
     p.row0 = m_;
     p.coord = local_coordinates(group.bodies(k));
+    if (group.unilateral())
+      for (int r = 0; r < group.rows(k); ++r) unilateral_rows_.push_back(m_ + r);
     m_ += group.rows(k);
     row_owner_.insert(row_owner_.end(), group.rows(k), int(e));
   }
@@ -297,6 +300,12 @@ const ElementRef& Model::find(const std::string& name) const {
   auto it = names_.find(name);
   if (it == names_.end()) throw ModelError("no body or element named '" + name + "'");
   return it->second;
+}
+
+std::string Model::event_element_name() const {
+  if (!events_.empty()) return events_.front()->name(0);
+  if (!unilateral_rows_.empty()) return constraint_name_of_row(unilateral_rows_.front());
+  return "";
 }
 
 const KindInfo* Model::given_kind(const std::string& name) const {

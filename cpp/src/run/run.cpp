@@ -163,6 +163,8 @@ Stats Run::stats() const {
   if (events) {
     s.events = events->events;
     s.impacts = events->impacts;
+    s.captures = events->captures;
+    s.releases = events->releases;
     s.root_evals = events->root_evals;
   }
   return s;

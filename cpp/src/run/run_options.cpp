@@ -59,9 +59,9 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
     throw ModelError(at + "formulation '" + name_of(method.formulation) + "' does not include joint friction ('" +
                      model.friction_groups().front()->name(0) + "'); the methods that do: " +
                      those(&Method::friction));
-  if (!method.events && !model.event_groups().empty())
+  if (!method.events && model.has_events())
     throw ModelError(at + "formulation '" + name_of(method.formulation) +
-                     "' has no root finding for stops or contact events ('" + model.event_groups().front()->name(0) +
+                     "' has no root finding for stops or contact events ('" + model.event_element_name() +
                      "'); the methods that have: " + those(&Method::events));
   if (!method.contact)
     for (const auto& g : model.event_groups())

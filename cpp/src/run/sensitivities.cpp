@@ -52,8 +52,8 @@ void Run::start_sensitivities(const std::vector<std::string>& names) {
   if (current_->formulation != Formulation::kGgl)
     throw ModelError(who + "they are integrated by IDAS with the GGL form (method 'ggl'), not with " +
                      current_->name);
-  if (!model.event_groups().empty())
-    throw ModelError(who + "the model has '" + model.event_groups().front()->name(0) +
+  if (model.has_events())
+    throw ModelError(who + "the model has '" + model.event_element_name() +
                      "' (a stop or contact): at its events the motion jumps, and so would the sensitivities; "
                      "remove it to differentiate the run");
   if (!model.friction_groups().empty())

@@ -138,10 +138,10 @@ Analysis resolve_analysis(const Model& model, const SimulationOptions& o) {
     return a;
   }
   // stops and contact switch on events, which only the integrators find
-  const bool events = !model.event_groups().empty();
+  const bool events = model.has_events();
   if (events && a != Analysis::kAuto)
     throw ModelError(std::string("simulate: analysis \"") + name_of(a) + "\" solves the constraints at the output times only and " +
-                     "would miss the events of '" + model.event_groups().front()->name(0) +
+                     "would miss the events of '" + model.event_element_name() +
                      "' (stops, contact): use analysis=\"dynamic\"");
   const int dof = degrees_of_freedom(model, o.t0);
   if (a == Analysis::kAuto) {
@@ -224,9 +224,10 @@ Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& 
   tr.q.reserve(plan.t_out.size() * n);
   tr.v.reserve(plan.t_out.size() * n);
   // a contact's damping depends on the impact speed of the contact in
-  // progress (event state): with event elements, a and lam are solved when
-  // an output is recorded, not from the final state after the run
-  const bool solve_when_recorded = !model.event_groups().empty();
+  // progress (event state), the multipliers on the stops closed then: with
+  // events, a and lam are solved when an output is recorded, not from the
+  // final state after the run
+  const bool solve_when_recorded = model.has_events();
   auto record = [&](const double* q, const double* v) {
     run.record(plan.t_out[tr.t.size()], q, v, solve_when_recorded);
   };

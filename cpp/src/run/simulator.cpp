@@ -151,7 +151,9 @@ void Simulator::new_stepper() {
 
 void Simulator::restart_for_inputs() {
   // a jump in a force, or in a driver's value (positions assembled anew)
-  const ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
+  ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
+  // a stop held by the old value may let go (or one at its limit be pressed on) at the new one
+  if (run_->events && run_->events->settle(t_, start.q, start.v)) start = run_->events->consistent(t_, start.q, start.v);
   run_->restart_stepper(t_, start);
   ++run_->input_changes;
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;

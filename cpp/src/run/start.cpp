@@ -37,9 +37,9 @@ IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const M
 }
 
 std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start) {
-  if (model.event_groups().empty()) return nullptr;
+  if (!model.has_events()) return nullptr;
   auto events = std::make_unique<EventRunner>(model, run);
-  // a joint that starts at a limit, moving into it, gets its impact at t
+  // a joint that starts at a limit gets its impact (moving into it) or its capture (pressing on it) at t
   try {
     if (events->start(t, start.q, start.v)) start = events->consistent(t, start.q, start.v);
   } catch (const IntegratorFailure& e) {

@@ -1,12 +1,12 @@
 // The spatial kind "spatial_stop" (registry.hpp; its builder in
-// cpp/src/elements/spatial_stop.cpp): a joint limit in space, with impacts.
+// cpp/src/elements/spatial_stop.cpp): a joint limit in space, a pair of
+// unilateral rows (docs/design.md 5.1).
 #pragma once
 
-#include <cmath>
 #include <string>
 
 #include "lagmb/elements/spatial_drivers.hpp"
-#include "lagmb/model/event_group.hpp"
+#include "lagmb/elements/stop.hpp"
 
 namespace lagmb {
 
@@ -15,52 +15,46 @@ namespace lagmb {
 /// or a quarter turn inside a lone limit, so that the reading never wraps
 /// inside the allowed range) or translational joint (its slide,
 /// spatial::joint_slide), the joint's `angle` or `slide` in the initial
-/// configuration (0 by default). Allowed: lower <=
-/// s <= upper. As the planar JointStop (stop.hpp): event functions
-///   g_0 = s - lower,   g_1 = upper - s       (an absent limit reads g = 1),
-/// counted when crossed downward; a crossing with approaching velocity
-/// g' = dg/dc . cd < 0 is an impact along dg/dc with Newton's restitution;
-/// a state exactly at a limit reads as just beyond it (g = -1e-300).
-struct SpatialJointStop {
+/// configuration (0 by default). Allowed: lower <= s <= upper. As the
+/// planar JointStop (stop.hpp): rows
+///   Phi_0 = g_0 = s - lower >= 0,   Phi_1 = g_1 = upper - s >= 0,
+/// left out while open, closed by the event runner while the joint rests on
+/// that limit; the stop's force along s is lam_1 - lam_0.
+struct SpatialJointStop : StopLimits {
   using Space = Spatial;
-  static constexpr int roots = 2;
-  static constexpr bool bounds_motion = true;
+  static constexpr int rows = 2;
+  static constexpr bool time_dependent = false;
+  static constexpr bool unilateral = true;
   static constexpr const char* kind = "spatial_stop";
+  using Rows = Eigen::Matrix<double, 2, 1>;
+  using Jac = Eigen::Matrix<double, 2, 14>;
 
   std::string name;
   int body_i = -1, body_j = -1;
   spatial::JointReading joint;  // its center: the middle of the limits
-  bool has_lower = false, has_upper = false;
-  double lower = 0.0, upper = 0.0;
-  double restitution = 0.0;
-  double rest_speed = 0.0;  // rad/s or m/s
 
-  spatial::ScalarTerm coordinate(const spatial::Loc& c, bool hessian) const {
+  Rows phi(const spatial::Loc& c, double) const { return gaps(joint(c, {}).value); }
+  Jac jacobian(const spatial::Loc& c, double) const {
+    Jac J;
+    J.row(0) = joint(c, {}).gradient;
+    J.row(1) = -J.row(0);
+    return J;
+  }
+  void hessians(const spatial::Loc& c, double, spatial::Mat14* H) const {
     spatial::Want want;
-    want.hessian = hessian;
-    return joint(c, want);
+    want.hessian = true;
+    H[0] = joint(c, want).hessian;
+    H[1] = -H[0];
   }
-  double root(int r, const spatial::Loc& c, const spatial::Loc&, double) const {
-    if (r == 0 ? !has_lower : !has_upper) return 1.0;
-    const double s = coordinate(c, false).value;
-    const double g = r == 0 ? s - lower : upper - s;
-    return g != 0.0 ? g : -1e-300;
+  Jac rates(const spatial::Loc& c, const spatial::Loc& cd, double) const {
+    spatial::Want want;
+    want.rate = &cd;
+    Jac V;
+    V.row(0) = joint(c, want).gradient_rate;
+    V.row(1) = -V.row(0);
+    return V;
   }
-  int direction(int) const { return -1; }
-  EventAction crossing(int r, const spatial::Loc& c, const spatial::Loc& cd, double) const {
-    EventAction a;
-    if (r == 0 ? !has_lower : !has_upper) return a;
-    const double sign = r == 0 ? 1.0 : -1.0;
-    const spatial::ScalarTerm s = coordinate(c, true);
-    if (!(sign * s.gradient.dot(cd) < 0.0)) return a;  // leaving or at rest: no impact
-    a.type = EventAction::kImpact;
-    a.gradient = sign * s.gradient.transpose();
-    a.hessian = sign * s.hessian;
-    a.restitution = restitution;
-    a.rest_speed = rest_speed;
-    a.label = r == 0 ? "lower" : "upper";
-    return a;
-  }
+  Mat3 axes(const spatial::Loc&, double) const { return Mat3::Identity(); }
 };
 
 }  // namespace lagmb

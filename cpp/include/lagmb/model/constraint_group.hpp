@@ -111,6 +111,26 @@ struct has_rates<Kind, std::void_t<decltype(std::declval<const Kind&>().rates(
                            std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
                                std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
 
+/// A unilateral kind (a joint stop: docs/design.md 5.1) declares
+///   static constexpr bool unilateral = true;
+///   UnilateralRow unilateral_row(int r) const;
+/// Its rows are gaps g_r >= 0 (Phi_r = g_r), open (left out, as a
+/// redundant row is: Data::close_rows) unless the run's active set has
+/// closed them; while closed, g_r = 0 and the multiplier is the force:
+/// f_r = -lam_r >= 0 pushes along +dg_r/dq. The event runner
+/// (cpp/src/integrators/events.cpp) opens and closes them.
+struct UnilateralRow {
+  bool exists = true;         // false: a limit the element does not have (the row stays open)
+  double restitution = 0.0;   // Newton's e at an impact
+  double rest_speed = 0.0;    // > 0: rebounds slower than this are captured (m/s, rad/s)
+  double capture_time = 0.0;  // rebounds whose remaining bounces take less than this are captured (s)
+  const char* label = "";     // "lower", "upper"
+};
+template <class Kind, class = void>
+struct is_unilateral : std::false_type {};
+template <class Kind>
+struct is_unilateral<Kind, std::void_t<decltype(Kind::unilateral)>> : std::bool_constant<Kind::unilateral> {};
+
 class ConstraintGroupBase {
  public:
   virtual ~ConstraintGroupBase() = default;
@@ -151,6 +171,9 @@ class ConstraintGroupBase {
   /// The scalar coordinate of element k (a revolute's angle, a
   /// translational's slide), if its kind has one.
   virtual std::optional<JointCoordinate> coordinate(int k) const = 0;
+  /// Whether the kind's rows are unilateral (gaps), and what row r of element k does at contact.
+  virtual bool unilateral() const = 0;
+  virtual UnilateralRow unilateral_row(int k, int r) const = 0;
 };
 
 template <class Kind>
@@ -185,6 +208,13 @@ class ConstraintGroup final : public ConstraintGroupBase {
       return items[k].coordinate();
     else
       return std::nullopt;
+  }
+  bool unilateral() const override { return is_unilateral<Kind>::value; }
+  UnilateralRow unilateral_row(int k, int r) const override {
+    if constexpr (is_unilateral<Kind>::value)
+      return items[k].unilateral_row(r);
+    else
+      return {false};
   }
   ElementPlacement& placement(int k) override { return place_[k]; }
   const ElementPlacement& placement(int k) const override { return place_[k]; }

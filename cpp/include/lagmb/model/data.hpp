@@ -48,18 +48,26 @@ struct Data {
   /// Elements evaluated by the assembly kernels (added per group call).
   long element_evaluations = 0;
 
-  /// Rows of Phi this run leaves out, found consistently redundant where it
-  /// started (redundancy.hpp). The kernels write them as 0 = 0 with a zero
-  /// Jacobian row, so their multipliers are 0 and the other rows of each
-  /// redundant set carry its reaction. Empty (the default): every row counts.
+  /// Rows of Phi this run leaves out: those found consistently redundant
+  /// where it started (redundancy.hpp) and the open unilateral rows (a
+  /// stop not in contact: Model::unilateral_rows not closed). The kernels
+  /// write them as 0 = 0 with a zero Jacobian row, so their multipliers are
+  /// 0 and the other rows of each redundant set carry its reaction. A Data
+  /// of its own leaves out every unilateral row and nothing else.
   /// A Data of a run (Rows::kRun) shares the run's set: rows the run leaves
   /// out or takes back at any time, every Data of the run sees at once.
   const std::vector<int>& dropped_rows() const { return left_out_->rows; }
   /// Their entries in the values of Phi_q.
   const std::vector<int>& dropped_slots() const { return left_out_->slots; }
-  /// Sets the rows left out (sorted) and their Jacobian slots, in the set
-  /// this Data reads: for a Data of a run (Rows::kRun), the run's.
+  /// The rows left out as redundant (sorted), and the unilateral rows closed.
+  const std::vector<int>& redundant_rows() const { return left_out_->redundant; }
+  const std::vector<int>& closed_rows() const { return left_out_->closed; }
+  /// Sets the rows left out as redundant, in the set this Data reads: for a
+  /// Data of a run (Rows::kRun), the run's. The closed rows stay closed.
   void drop_rows(const Model& model, std::vector<int> rows);
+  /// Sets the unilateral rows that are closed (the active set); the others
+  /// of Model::unilateral_rows are left out. The redundant rows stay.
+  void close_rows(const Model& model, std::vector<int> rows);
 
   Data(Data&&) = default;
   Data& operator=(Data&&) = default;
@@ -87,9 +95,13 @@ struct Data {
 
  private:
   struct LeftOutRows {
-    std::vector<int> rows;   // sorted
-    std::vector<int> slots;  // their entries in the values of Phi_q
+    std::vector<int> redundant;  // sorted
+    std::vector<int> closed;     // sorted unilateral rows in contact
+    std::vector<int> rows;       // redundant and open unilateral rows, sorted
+    std::vector<int> slots;      // their entries in the values of Phi_q
   };
+  /// rows and slots from redundant and closed.
+  void leave_out(const Model& model);
   std::shared_ptr<LeftOutRows> left_out_;
 };
 

@@ -1,6 +1,6 @@
 // One container per event kind and the loops that run over it.
 //
-// An event kind (e.g. JointStop, SpatialJointStop) owns event functions g_r(q, v, t), r = 0 ..
+// An event kind (e.g. a planar contact's onset) owns event functions g_r(q, v, t), r = 0 ..
 // roots - 1, whose zero crossings the integrators locate (IDARootInit /
 // CVodeRootInit), and says what happens at a crossing. It is a plain struct
 // with, in the local coordinates c and velocities cd of its two bodies (as in
@@ -18,7 +18,9 @@
 // The runner (cpp/src/integrators/events.cpp) applies the actions; the steppers only see
 // "a root was found" and restart from the state the runner hands back. A
 // model without event elements has no group: no root functions are given to
-// SUNDIALS and nothing is evaluated.
+// SUNDIALS and nothing is evaluated. (Stops are not event kinds: their
+// limits are unilateral constraint rows, constraint_group.hpp, whose
+// events the runner derives from the rows themselves.)
 #pragma once
 
 #include <array>
@@ -35,24 +37,12 @@ class Model;
 /// What an element asks for at a crossing of one of its event functions.
 struct EventAction {
   enum Type {
-    kNone,     // nothing (e.g. the velocity is leaving): continue, no restart needed
-    kRestart,  // the equations change here (a force switches): restart at order 1
-    kImpact    // a velocity jump: impulse along `gradient`, then restart
+    kNone,    // nothing (e.g. the velocity is leaving): continue, no restart needed
+    kRestart  // the equations change here (a force switches): restart at order 1
   } type = kNone;
-  /// Impact: the gradient of the unilateral coordinate g (g >= 0 allowed),
-  /// over the element's local coordinates (6 in the plane, 14 in space), and
-  /// the Newton restitution e: after the jump gradient . v+ = -e gradient . v-.
-  VecX gradient;
-  double restitution = 0.0;
-  /// Impact: rebound speeds below this (in the units of g') count as coming
-  /// to rest against the limit.
-  double rest_speed = 0.0;
-  /// Impact: d2g/dc2, for the acceleration g'' = gradient . cdd + cd^T H cd
-  /// that tells resting from leaving (local, as gradient).
-  Eigen::MatrixXd hessian;
-  /// Restart: the event function's rate g' at the crossing, for the record.
+  /// The event function's rate g' at the crossing, for the record.
   double speed = 0.0;
-  /// Which limit or contact, for the record ("lower", "upper", "onset", ...).
+  /// Which switch, for the record ("onset", ...).
   const char* label = "";
 };
 

@@ -204,6 +204,13 @@ class Model {
   /// Event groups (stops, contact switches). What they record during a run
   /// goes to the run's Data::run->state, never into the Model.
   const std::vector<std::unique_ptr<EventGroupBase>>& event_groups() const { return events_; }
+  /// The rows of unilateral kinds (stops; constraint_group.hpp), ascending:
+  /// open (left out) unless a run's active set closes them.
+  const std::vector<int>& unilateral_rows() const { return unilateral_rows_; }
+  /// Whether a run has event functions: event elements or unilateral rows.
+  bool has_events() const { return !events_.empty() || !unilateral_rows_.empty(); }
+  /// An element with event functions, for messages ("" if none).
+  std::string event_element_name() const;
   /// Force groups whose Q depends on q or v.
   const std::vector<const ForceGroupBase*>& state_dependent_forces() const {
     return state_dependent_;
@@ -294,6 +301,7 @@ class Model {
   bool positive_mass_ = false;
   SpMat jacobian_pattern_, hessian_pattern_, force_q_pattern_, force_v_pattern_;
   std::vector<int> row_owner_;  // row -> index into constraint_order_
+  std::vector<int> unilateral_rows_;
   std::vector<int> coord_owner_;
   double mass_scale_ = 1.0;
   int run_state_size_ = 0;
