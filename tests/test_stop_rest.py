@@ -216,3 +216,29 @@ def test_a_captured_stop_in_a_closed_loop():
     d = 1e-6
     dV = np.array([1.0, 2.0, 2.0]) * G @ (heights(a + d) - heights(a - d)) / (2.0 * d)
     assert abs(r.effort("stop")[-1] - dV) <= 1e-6 * G
+
+
+def test_stops_that_depend_on_each_other_close_one_row():
+    """Two fingers on vertical rails, coupled (finger 2 mirrors finger 1, as a
+    URDF <mimic>), each with a stop 0.1 m down: they fall together (g, from
+    rest: t = sqrt(2 d / g)), and at the stops the two rows are dependent: one
+    closes and holds both (the other's gap follows it), its force the two
+    fingers' weight, 0.7 g (1e-9), with no chatter (one capture, no release)."""
+    m = mb.Model(dimension=3, gravity=(0.0, -G, 0.0))
+    f1 = m.add_body("f1", 0.5, (0.01, 0.01, 0.01), position=(0.1, 0.0, 0.0))
+    f2 = m.add_body("f2", 0.2, (0.01, 0.01, 0.01), position=(-0.1, 0.0, 0.0))
+    m.add_translational("finger1", m.ground, f1, at=(0.1, 0, 0), axis=(0, 1, 0))
+    m.add_translational("finger2", m.ground, f2, at=(-0.1, 0, 0), axis=(0, 1, 0))
+    m.add_joint_coupling("mirror", "finger2", leader="finger1", multiplier=1.0)
+    m.add_stop("stop1", "finger1", lower=-0.1)
+    m.add_stop("stop2", "finger2", lower=-0.1)
+    r = mb.simulate(m, t_end=1.0, rtol=1e-10, atol=1e-12, n_out=101)
+    t_hit = math.sqrt(2.0 * 0.1 / G)
+    captures = [x for x in r.events if x["kind"] == "capture"]
+    assert len(captures) == 1 and r.stats["releases"] == 0
+    assert abs(captures[0]["t"] - t_hit) <= 1e-8
+    resting = r.t > t_hit
+    for joint in ("finger1", "finger2"):
+        assert np.max(np.abs(r.joint(joint).slide[resting] + 0.1)) <= 1e-10
+    held = r.effort("stop1") + r.effort("stop2")
+    assert np.max(np.abs(held[resting] - 0.7 * G)) <= 1e-9 * 0.7 * G

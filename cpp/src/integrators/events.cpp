@@ -216,17 +216,20 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
     kkt_.solve(C[j], zero_m, x, y);
     X.col(j) = x;
   }
-  std::vector<char> in(k, 1), may_close(k, 1), is_leaving(k, 0);
+  std::vector<char> in(k, 0), may_close(k, 1), is_leaving(k, 0);
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
     is_leaving[i] = std::find(leaving.begin(), leaving.end(), which[i]) != leaving.end();
     if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {  // a motion drivers prescribe
       if (b[i] < 0.0) driven_through(which[i], t);
-      may_close[i] = in[i] = 0;
+      may_close[i] = 0;
     }
   }
   // principal pivoting with the least-index rule (Murty 1974), from "all
-  // closed": it ends for the P-matrices of independent stops. Tolerances in
+  // open": it ends for the P-matrices of independent stops, and of stops that
+  // depend on each other (a mimic coupling's two fingers on their limits) it
+  // closes the first that is needed only: the others' gaps follow it (their
+  // g'' = 0), so the closed rows never become dependent. Tolerances in
   // acceleration units; a released row opens at a force within rounding of 0
   const double tol = 1e-9 * (1.0 + b.lpNorm<Eigen::Infinity>());
   VecX f = VecX::Zero(k), w = b;
