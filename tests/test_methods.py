@@ -34,7 +34,7 @@ def test_the_table_lists_each_method_once_with_what_it_supports():
     for m in table:
         assert m["description"] and m["solver"] and m["max_order"] >= 1
     ali3p = next(m for m in table if m["name"] == "ali3p")
-    assert ali3p["fixed_step"] and not ali3p["events"] and not ali3p["friction"]
+    assert ali3p["fixed_step"] and ali3p["events"] and not ali3p["contact"] and not ali3p["friction"]
 
 
 @pytest.mark.parametrize("method", mb.methods(), ids=lambda m: m["name"])
@@ -114,9 +114,9 @@ def test_ali3p_takes_its_newton_tolerance_not_rtol():
 
 def test_what_a_method_does_not_model_is_refused_naming_the_methods_that_do():
     m = pendulum()
-    m.add_stop("limit", "pin", lower=-1.0, restitution=0.5)
+    m.add_joint_friction("pin_friction", "pin", mu=0.2, pin_radius=0.01)
     ali3p = next(x for x in mb.methods() if x["name"] == "ali3p")
-    with pytest.raises(mb.ModelError, match="root finding.*'limit'.*the methods that have: ggl"):
+    with pytest.raises(mb.ModelError, match="does not include joint friction.*'pin_friction'.*the methods that do: ggl"):
         mb.simulate(m, t_end=0.1, **options_of(ali3p))
 
 

@@ -10,11 +10,18 @@
 // where the local error of the step is large; the step is then retried
 // with lengths 0.5, 1.5, 0.25, 1.75 h (counted in Stats::convergence_failures)
 // so that it lands beside the singular position; the next steps take h again.
+//
+// Events (stops): after each step the event functions are evaluated at its
+// end; a downward sign change is located on the step's cubic Hermite
+// interpolant (regula falsi, Illinois variant), and the step is taken again
+// to end there, so that the runner acts on a state of the method's own
+// solution; the steps after the event take h again.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "formulations/ali3p.hpp"
+#include "integrators/events.hpp"
 #include "integrators/integrators.hpp"
 
 namespace lagmb {
@@ -30,7 +37,8 @@ class Ali3pStepper final : public Stepper {
         h_(plan.options->max_step),
         t_(plan.t0),
         stop_(plan.t_end),
-        t_prev_(plan.t0) {}
+        t_prev_(plan.t0),
+        events_(plan.events && plan.events->size() > 0 ? plan.events : nullptr) {}
 
   const char* name() const override { return "ALI3-P"; }
   void set_stop(double stop) override { stop_ = stop; }
@@ -70,12 +78,30 @@ class Ali3pStepper final : public Stepper {
         at_stop = true;
       }
     }
-    const double t1 = at_stop ? stop_ : t_prev_ + h;
+    double t1 = at_stop ? stop_ : t_prev_ + h;
     form_.finish_step(t1, h);
+    if (events_ && crossing(t1, h)) {  // the step again, to the earliest crossing
+      const double t_root = root_time_;
+      form_.undo_step();
+      form_.v = form_.v_prev, form_.a = form_.a_prev;
+      h = t_root - t_prev_;
+      if (!form_.newton(t_root, h, it, err)) fail(t_root, "the Newton iteration did not converge at an event", it, err);
+      t1 = t_root;
+      at_stop = false;
+      form_.finish_step(t1, h);
+    }
     t_ = t1;
     ++steps_;
     return t_;
   }
+
+  bool root_found(std::vector<int>& fired) override {
+    if (!at_root_) return false;
+    fired = fired_;
+    at_root_ = false;
+    return true;
+  }
+  const double* velocities() const override { return form_.v.data(); }
 
   void interpolate(double t, const double*& q, const double*& v) override {
     // cubic Hermite through (q, v) at both ends of the last step
@@ -100,6 +126,7 @@ class Ali3pStepper final : public Stepper {
   void restart(double t) override {
     form_.restart(t);
     t_ = t_prev_ = t;
+    g_valid_ = false;
   }
 
   void reset(double t, const ConsistentState& state) override {
@@ -108,6 +135,7 @@ class Ali3pStepper final : public Stepper {
     form_.a = form_.a_prev = state.qdd;
     form_.lam = form_.lam_prev = state.lam;
     t_ = t_prev_ = t;
+    g_valid_ = false;
   }
 
   const double* positions() const override { return form_.q.data(); }
@@ -135,12 +163,76 @@ class Ali3pStepper final : public Stepper {
     throw IntegratorFailure(msg.str(), t_prev_);
   }
 
+  /// The event functions at time t on the last step's interpolant (into g).
+  void values_at(double t, std::vector<double>& g) {
+    const double *q = nullptr, *v = nullptr;
+    interpolate(t, q, v);
+    events_->values(t, q, v, g.data());
+  }
+
+  /// Whether an event function of direction -1 crossed downward in the step
+  /// just converged (t_prev_, t1]; then root_time_ is the earliest crossing
+  /// and fired_ flags the functions crossing there (within the time
+  /// tolerance). g at the step's start is kept from the step before (or
+  /// evaluated after a restart).
+  bool crossing(double t1, double h) {
+    const int count = events_->size();
+    const int* dir = events_->directions();
+    t_ = t1;  // (interpolate() reads the step as [t_prev_, t_])
+    if (!g_valid_) {
+      g_start_.resize(count);
+      events_->values(t_prev_, form_.q_prev.data(), form_.v_prev.data(), g_start_.data());
+    }
+    g_end_.resize(count);
+    events_->values(t1, form_.q.data(), form_.v.data(), g_end_.data());
+    const double t_tol = 1e-12 * (std::abs(t1) + h);
+    double earliest = INFINITY;
+    std::vector<double> root(count, INFINITY);
+    std::vector<double> g(count);
+    for (int i = 0; i < count; ++i) {
+      if (dir[i] >= 0 || !(g_start_[i] > 0.0 && g_end_[i] < 0.0)) continue;
+      // Illinois regula falsi on g_i along the interpolant
+      double a = t_prev_, b = t1, ga = g_start_[i], gb = g_end_[i];
+      int side = 0;
+      for (int it = 0; it < 100 && b - a > t_tol; ++it) {
+        const double c = std::clamp(b - gb * (b - a) / (gb - ga), a + 0.01 * (b - a), b - 0.01 * (b - a));
+        values_at(c, g);
+        if (g[i] > 0.0) {
+          a = c, ga = g[i];
+          if (side == 1) gb *= 0.5;
+          side = 1;
+        } else {
+          b = c, gb = g[i];
+          if (side == -1) ga *= 0.5;
+          side = -1;
+        }
+      }
+      root[i] = b;  // (the end past the crossing: the runner acts there)
+      earliest = std::min(earliest, b);
+    }
+    g_start_ = g_end_;
+    g_valid_ = true;
+    if (!(earliest < INFINITY)) return false;
+    fired_.assign(count, 0);
+    for (int i = 0; i < count; ++i)
+      if (root[i] <= earliest + 10.0 * t_tol) fired_[i] = 1;
+    root_time_ = earliest;
+    at_root_ = true;
+    g_valid_ = false;  // (the state after the event is new)
+    return true;
+  }
+
   Ali3pFormulation form_;
   int m_;
   double h_;
   double t_, stop_, t_prev_;
   VecX q_out_, v_out_;
   long steps_ = 0, retries_ = 0;
+  EventRunner* events_;  // null: no event functions
+  std::vector<double> g_start_, g_end_;
+  bool g_valid_ = false, at_root_ = false;
+  std::vector<int> fired_;
+  double root_time_ = 0.0;
 };
 
 }  // namespace

@@ -77,7 +77,6 @@ const std::vector<Entry>& entries() {
          "singular positions",
          2};
     m.fixed_step = true;
-    m.events = false;
     m.contact = false;
     m.friction = false;
     add(m, &make_ali3p_stepper);
