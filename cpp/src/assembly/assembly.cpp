@@ -95,10 +95,22 @@ void drop_rows(const Data& d, SpMat& A) {
   for (int s : d.dropped_slots()) A.valuePtr()[s] = 0.0;
 }
 
+/// A unilateral group whose rows are all open in d (every stop off its
+/// limits): its rows read 0 = 0, so it is not evaluated (an open stop costs
+/// its gap functions only, which the event runner evaluates).
+bool all_open(const Model& model, const Data& d, int group) {
+  if (!model.constraint_groups()[group]->unilateral()) return false;
+  for (int r : d.closed_rows())
+    if (model.group_of_row(r) == group) return false;
+  return true;
+}
+
 }  // namespace
 
 void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
-  for (const auto& g : model.constraint_groups()) {
+  for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
+    if (all_open(model, d, gi)) continue;
+    const auto& g = model.constraint_groups()[gi];
     g->phi(q, d.at(t), d.Phi.data());
     d.element_evaluations += g->size();
   }
@@ -106,7 +118,9 @@ void assemble_constraints(const Model& model, Data& d, const double* q, double t
 }
 
 void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
-  for (const auto& g : model.constraint_groups()) {
+  for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
+    if (all_open(model, d, gi)) continue;
+    const auto& g = model.constraint_groups()[gi];
     g->jacobian(q, d.at(t), d.Phi_q.valuePtr());
     d.element_evaluations += g->size();
   }
@@ -124,7 +138,9 @@ void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
 }
 
 void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
-  for (const auto& g : model.constraint_groups()) {
+  for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
+    if (all_open(model, d, gi)) continue;
+    const auto& g = model.constraint_groups()[gi];
     g->gamma(q, v, d.at(t), d.gamma.data());
     d.element_evaluations += g->size();
   }
@@ -133,7 +149,9 @@ void assemble_gamma(const Model& model, Data& d, const double* q, const double* 
 
 void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
                                 double t) {
-  for (const auto& g : model.constraint_groups()) {
+  for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
+    if (all_open(model, d, gi)) continue;
+    const auto& g = model.constraint_groups()[gi];
     g->velocity_jacobian(q, v, d.at(t), d.Vq.valuePtr());
     d.element_evaluations += g->size();
   }
@@ -144,7 +162,9 @@ void assemble_constraint_hessian(const Model& model, Data& d, const double* q, d
                                  const double* w) {
   // (the weights of dropped rows are their multipliers: zero)
   d.H.coeffs().setZero();
-  for (const auto& g : model.constraint_groups()) {
+  for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
+    if (all_open(model, d, gi)) continue;
+    const auto& g = model.constraint_groups()[gi];
     g->add_hessian(q, d.at(t), w, d.H.valuePtr());
     d.element_evaluations += g->size();
   }

@@ -233,6 +233,8 @@ class Model {
   bool has(const std::string& name) const { return names_.count(name) > 0; }
   /// Name of the constraint element owning row `row` of Phi.
   std::string constraint_name_of_row(int row) const;
+  /// Index of the constraint group (constraint_groups()) owning row `row` of Phi.
+  int group_of_row(int row) const { return constraint_order_[row_owner_[row]].first; }
   /// Body owning coordinate `coord` of q.
   const Body& body_of_coordinate(int coord) const;
   /// Positions in q of the local coordinates of a pair of bodies:
