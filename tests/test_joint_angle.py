@@ -11,6 +11,8 @@ the outputs are. Each check is against a closed form or the planar model,
 whose angles are coordinates and never wrap.
 """
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -63,6 +65,9 @@ def test_the_angle_counts_turns_between_outputs_far_apart():
     # three outputs say so; the joint starts at 3 rad (its given angle)
     r = mb.simulate(wheel(3, stiffness=0.0, start=3.0), t_end=1.0, n_out=3, **TIGHT)
     np.testing.assert_allclose(r.joint("axle").angle, 3.0 + SPIN * r.t, rtol=1e-9)
+    # the count travels with the result (a process pool pickles it)
+    copy = pickle.loads(pickle.dumps(r))
+    np.testing.assert_array_equal(copy.joint("axle").angle, r.joint("axle").angle)
 
 
 def test_a_driver_turns_a_joint_three_turns_in_three_outputs():
