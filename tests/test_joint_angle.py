@@ -65,6 +65,12 @@ def test_the_angle_counts_turns_between_outputs_far_apart():
     # three outputs say so; the joint starts at 3 rad (its given angle)
     r = mb.simulate(wheel(3, stiffness=0.0, start=3.0), t_end=1.0, n_out=3, **TIGHT)
     np.testing.assert_allclose(r.joint("axle").angle, 3.0 + SPIN * r.t, rtol=1e-9)
+    # a cylindrical joint's angle counts its turns too
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, 0.0))
+    m.add_body("wheel", 1.0, (I_AXIS, I_AXIS, I_AXIS), angular_velocity=(0.0, 0.0, SPIN))
+    m.add_cylindrical("sleeve", m.ground, "wheel", (0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0))
+    turning = mb.simulate(m, t_end=1.0, n_out=3, **TIGHT)
+    np.testing.assert_allclose(turning.joint("sleeve").angle, SPIN * turning.t, rtol=1e-9)
     # the count travels with the result (a process pool pickles it)
     copy = pickle.loads(pickle.dumps(r))
     np.testing.assert_array_equal(copy.joint("axle").angle, r.joint("axle").angle)
@@ -78,6 +84,7 @@ def test_a_driver_turns_a_joint_three_turns_in_three_outputs():
         m = wheel(3, stiffness=0.0, start=0.5)
         m.drive_joint("motor", "axle", mb.Linear(6 * np.pi, 0.5))
         r = mb.simulate(m, t_end=1.0, n_out=3, analysis=analysis, **TIGHT)
+        assert (r.stats["analysis"] == "dynamic") == (analysis == "dynamic")
         np.testing.assert_allclose(r.joint("axle").angle, 0.5 + 6 * np.pi * r.t, rtol=1e-9)
 
 
