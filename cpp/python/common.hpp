@@ -38,6 +38,8 @@ inline py::dict to_python(Trajectory&& tr) {
   out["a"] = to_numpy(std::move(tr.a), {k, tr.n});
   out["lam"] = to_numpy(std::move(tr.lam), {k, tr.m});
   if (tr.inputs.size() == size_t(k) * size_t(tr.p)) out["inputs"] = to_numpy(std::move(tr.inputs), {k, tr.p});
+  if (tr.run_state.size() == size_t(k) * size_t(tr.state_size))
+    out["run_state"] = to_numpy(std::move(tr.run_state), {k, tr.state_size});
   py::dict stats;
   tr.stats.for_each_field([&](const char* name, const auto& value) { stats[name] = value; });
   out["stats"] = stats;
@@ -95,10 +97,19 @@ inline void require_inputs(const Model& model, const RowMajor& inputs, Eigen::In
                      std::to_string(model.inputs().size()) + ")");
 }
 
+/// A run's element state at each output (Result's run_state): one row per
+/// output and Model::run_state_size columns, or empty.
+inline void require_state(const Model& model, const RowMajor& state, Eigen::Index outputs) {
+  if (state.size() && (state.rows() != outputs || state.cols() != Eigen::Index(model.run_state_size())))
+    throw ModelError("state must have one row per output and " + std::to_string(model.run_state_size()) +
+                     " columns (the model's run state)");
+}
+
 /// The outputs Python holds as a core OutputView (no copy): t, and the
-/// arrays given (null: not read); `inputs` empty: their initial values.
+/// arrays given (null: not read); `inputs` empty: their initial values;
+/// `state` empty: the run state at a run's start.
 inline OutputView view_of(const Eigen::VectorXd& t, const RowMajor* q, const RowMajor* v, const RowMajor* lam,
-                   const RowMajor& inputs) {
+                   const RowMajor& inputs, const RowMajor& state = RowMajor()) {
   OutputView out;
   out.k = int(t.size());
   out.t = t.data();
@@ -106,6 +117,7 @@ inline OutputView view_of(const Eigen::VectorXd& t, const RowMajor* q, const Row
   out.v = v ? v->data() : nullptr;
   out.lam = lam ? lam->data() : nullptr;
   out.inputs = inputs.size() ? inputs.data() : nullptr;
+  out.state = state.size() ? state.data() : nullptr;
   return out;
 }
 

@@ -203,6 +203,9 @@ void bind_model(py::module_& m) {
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)
       .def_property_readonly("dimension", &Model::dimension)
+      .def_property_readonly("run_state_size", &Model::run_state_size,
+                             "Doubles of per-run element state (a Result's run_state columns): the turns of the "
+                             "spatial joints, a contact's impact speed")
       .def_property_readonly("inputs",
                              [](const Model& model) {
                                py::list out;
@@ -293,38 +296,43 @@ void bind_model(py::module_& m) {
       .def(
           "reaction",
           [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
-             const RowMajor& lam, bool joint_axes, const RowMajor& inputs) {
+             const RowMajor& lam, bool joint_axes, const RowMajor& inputs, const RowMajor& state) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, lam, model.n_constraints(), "lam");
             require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
             require_inputs(model, inputs, q.rows());
-            return reactions(model, name, view_of(t, &q, nullptr, &lam, inputs), joint_axes);
+            require_state(model, state, q.rows());
+            return reactions(model, name, view_of(t, &q, nullptr, &lam, inputs, state), joint_axes);
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
-          py::arg("inputs") = RowMajor(),
+          py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor(),
           "Force and torque about the centre of mass that the element applies to its second body\n"
           "((x, y) and the torque in the plane, (x, y, z) and (x, y, z) in space); with joint_axes,\n"
           "in the element's own axes.")
       .def(
           "joint_motion",
           [](const Model& model, const std::string& joint, bool slide, const RowMajor& q, const RowMajor& v,
-             const RowMajor& a) {
+             const RowMajor& a, const RowMajor& state) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             if (a.size()) require_rows(model, a, model.n_coordinates(), "a");
             if (v.rows() != q.rows() || (a.size() && a.rows() != q.rows()))
               throw ModelError("q, v and a must have one row per state");
+            require_state(model, state, q.rows());
             RowMajor out(q.rows(), 3);
             for (Eigen::Index k = 0; k < q.rows(); ++k) {
               const JointMotion m = joint_motion(model, joint, slide, q.row(k).data(), v.row(k).data(),
-                                                 a.size() ? a.row(k).data() : nullptr);
+                                                 a.size() ? a.row(k).data() : nullptr,
+                                                 state.size() ? state.row(k).data() : nullptr);
               out.row(k) << m.value, m.rate, m.acceleration;
             }
             return out;
           },
           py::arg("joint"), py::arg("slide"), py::arg("q"), py::arg("v"), py::arg("a") = RowMajor(),
+          py::arg("state") = RowMajor(),
           "(value, rate, acceleration) of a joint's angle (or, with slide, its slide) at each state (rows of q, "
-          "v, a)")
+          "v, a); a spatial angle within half a turn of the one the run's state holds (rows of `state`: a "
+          "Result's run_state), or without it of the joint's initial angle")
       .def(
           "inverse_dynamics",
           [](const Model& model, const std::vector<std::pair<std::string, bool>>& joints, const Eigen::VectorXd& t,
@@ -381,34 +389,39 @@ void bind_model(py::module_& m) {
       .def(
           "energy",
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v,
-             const RowMajor& inputs) {
+             const RowMajor& inputs, const RowMajor& state) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
             require_inputs(model, inputs, q.rows());
-            return energy(model, view_of(t, &q, &v, nullptr, inputs));
+            require_state(model, state, q.rows());
+            return energy(model, view_of(t, &q, &v, nullptr, inputs, state));
           },
-          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor())
+          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor())
       .def(
           "residual",
-          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& inputs) {
+          [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& inputs,
+             const RowMajor& state) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_outputs(t, {{&q, "q"}});
             require_inputs(model, inputs, q.rows());
-            return constraint_residual(model, view_of(t, &q, nullptr, nullptr, inputs));
+            require_state(model, state, q.rows());
+            return constraint_residual(model, view_of(t, &q, nullptr, nullptr, inputs, state));
           },
-          py::arg("t"), py::arg("q"), py::arg("inputs") = RowMajor(), "max |Phi| at each state")
+          py::arg("t"), py::arg("q"), py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor(),
+          "max |Phi| at each state")
       .def(
           "velocity_residual",
           [](const Model& model, const Eigen::VectorXd& t, const RowMajor& q, const RowMajor& v,
-             const RowMajor& inputs) {
+             const RowMajor& inputs, const RowMajor& state) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
             require_inputs(model, inputs, q.rows());
-            return velocity_residual(model, view_of(t, &q, &v, nullptr, inputs));
+            require_state(model, state, q.rows());
+            return velocity_residual(model, view_of(t, &q, &v, nullptr, inputs, state));
           },
-          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor(),
+          py::arg("t"), py::arg("q"), py::arg("v"), py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor(),
           "max |Phi_q v + Phi_t| at each state")
       .def(
           "constraint_jacobian",

@@ -127,9 +127,9 @@ class JointPath:
     has (the angle, for a cylindrical joint: ``slide_rate`` and
     ``slide_acceleration`` for its slide). In the initial configuration the
     joint's ``angle`` or ``slide`` (0 unless given);
-    a spatial angle is continued across +-pi from output to output (it
-    counts turns, as a robot's joint value does), a planar one is the
-    bodies' angle difference."""
+    a spatial angle counts the joint's turns (the run counts them after
+    every step, model/joint_turns.hpp: right however far apart the outputs
+    are), a planar one is the bodies' angle difference."""
 
     def __init__(self, result, name):
         core = result._core
@@ -142,10 +142,9 @@ class JointPath:
         motion = {}
         for slide, present in ((False, turns), (True, slides)):
             if present:
-                motion[slide] = core.joint_motion(name, slide, result.q, result.v, result.a)
+                motion[slide] = core.joint_motion(name, slide, result.q, result.v, result.a, result._run_state)
         if turns:
-            angle = motion[False][:, 0]
-            self.angle = _frozen(np.unwrap(angle) if result.model.dimension == 3 else angle)
+            self.angle = _frozen(motion[False][:, 0])
         if slides:
             self.slide = _frozen(motion[True][:, 0])
         first = motion[False] if turns else motion[True]
@@ -188,6 +187,14 @@ class Result:
                                      (len(self._t), len(names)))
         self._inputs = _frozen(np.asarray(inputs, dtype=float))
         self._input_names = names
+        # the run's element state at each output (k, s): the turns of the
+        # spatial joints, which angles read there count (model/joint_turns.hpp);
+        # absent (an older pickle): the state a run starts with
+        state = raw.get("run_state")
+        size = core_model.run_state_size
+        if state is None or np.shape(state) != (len(self._t), size):
+            state = np.zeros((len(self._t), size))
+        self._run_state = _frozen(np.asarray(state, dtype=float))
         self.stats = dict(raw["stats"])  # (its "method": the listed name, set by the core)
         self.events = [dict(e) for e in raw.get("events", [])]
         self.redundant_rows = list(raw.get("dropped_rows", []))
@@ -203,7 +210,7 @@ class Result:
         rebuilds the compiled model and answers every query as this one,
         bit for bit. Its .model is the copy's own model."""
         raw = dict(t=self._t, q=self._q, v=self._v, a=self._a, lam=self._lam, inputs=self._inputs,
-                   stats=self.stats, events=self.events, dropped_rows=self.redundant_rows,
+                   run_state=self._run_state, stats=self.stats, events=self.events, dropped_rows=self.redundant_rows,
                    sensitivity_names=self.sensitivity_names, sensitivities=self._sensitivities,
                    sensitivity_a=self._sensitivity_a)
         return _unpickled_result, (*core_state(self._snapshot, self._core), raw)
@@ -295,7 +302,8 @@ class Result:
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
         name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")
-        return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint", self._inputs)
+        return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint", self._inputs,
+                                   self._run_state)
 
     def effort(self, element):
         """(k,) the force (N) or torque (N m) along a joint coordinate that a
@@ -333,17 +341,17 @@ class Result:
         """(k,) kinetic + potential energy (J) of the conservative forces.
         SimulationError if it overflows double precision (e.g. a body 1e308 m
         up under gravity), rather than an inf or a NaN."""
-        return self._finite(self._core.energy(self.t, self.q, self.v, self._inputs), "the energy")
+        return self._finite(self._core.energy(self.t, self.q, self.v, self._inputs, self._run_state), "the energy")
 
     @cached_property
     def residual(self):
         """(k,) max |Phi| (position-level constraint violation)."""
-        return self._finite(self._core.residual(self.t, self.q, self._inputs), "the constraint residual")
+        return self._finite(self._core.residual(self.t, self.q, self._inputs, self._run_state), "the constraint residual")
 
     @cached_property
     def velocity_residual(self):
         """(k,) max ``|Phi_q v + Phi_t|`` (velocity-level constraint violation)."""
-        return self._finite(self._core.velocity_residual(self.t, self.q, self.v, self._inputs),
+        return self._finite(self._core.velocity_residual(self.t, self.q, self.v, self._inputs, self._run_state),
                             "the velocity residual")
 
     def sensitivity(self, parameter):
@@ -522,7 +530,7 @@ class Sensitivity:
             def raw(sign, core=None):
                 return dict(t=r.t, q=r.q + sign * h * self.q, v=r.v + sign * h * self.v,
                             a=r.a + sign * h * self.a, lam=r._lam + sign * h * self.lam, inputs=r._inputs,
-                            stats=r.stats, dropped_rows=r.redundant_rows)
+                            run_state=r._run_state, stats=r.stats, dropped_rows=r.redundant_rows)
 
             along = [Result(r.model, r._core, raw(sign), r._snapshot) for sign in (1.0, -1.0)]
             delta = 1e-6 * (abs(self.value) if self.value != 0.0 else 1.0)

@@ -73,13 +73,15 @@ class Input final : public TimeFunction {
 };
 std::shared_ptr<Input> input(double initial, std::string name = "");
 
-/// When a kernel evaluates the model: the time and the run's input values
-/// (Model::inputs order; Data::at makes one). Kernels pass it down to the
-/// elements that follow a function of time or an input; nothing is bound to
-/// a thread.
+/// When a kernel evaluates the model: the time, the run's input values
+/// (Model::inputs order) and the run's element state (Data::RunValues::state:
+/// e.g. the turns a spatial joint has made, model/joint_turns.hpp); Data::at
+/// makes one. Kernels pass it down to the elements that follow a function of
+/// time or an input, or read the run's state; nothing is bound to a thread.
 struct Instant {
   double t = 0.0;
   const double* inputs = nullptr;
+  const double* state = nullptr;  // null: outside a run (every element at its initial state)
 };
 
 /// What an element follows: a function of time, or an input of the model

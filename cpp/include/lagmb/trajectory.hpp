@@ -106,6 +106,11 @@ struct Trajectory {
   /// (p per output): what a Simulator was given; their initial values in simulate.
   int p = 0;
   std::vector<double> inputs;
+  /// The run's element state (Data::RunValues::state, Model::run_state_size
+  /// per output, row-major) at each output: what the elements read there
+  /// beside q and v (the turns of the spatial joints, a contact's impact speed).
+  int state_size = 0;
+  std::vector<double> run_state;
   Stats stats;
   std::vector<EventRecord> events;
   /// Rows of Phi left out as redundant (found where the run started); they
@@ -131,6 +136,7 @@ struct Trajectory {
     a.resize(std::min(a.size(), kk * size_t(n)));
     lam.resize(std::min(lam.size(), kk * size_t(m)));
     inputs.resize(std::min(inputs.size(), kk * size_t(p)));
+    run_state.resize(std::min(run_state.size(), kk * size_t(state_size)));
     const size_t count = sensitivity_names.size();
     sensitivities.resize(std::min(sensitivities.size(), kk * count * size_t(2 * n + m)));
     sensitivity_a.resize(std::min(sensitivity_a.size(), kk * count * size_t(n)));

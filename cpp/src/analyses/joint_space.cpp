@@ -29,10 +29,12 @@ struct CoordinateTerm {
 };
 
 /// g of `joint` from the coordinate function its drivers hold (spatial:
-/// spatial::joint_angle / joint_slide; plane: phi_j - phi_i or the
-/// projected offset).
+/// spatial::joint_slide, or the angle as its turn counter reads it, within
+/// half a turn of where the run's `state` has it (null: of its initial
+/// angle; model/joint_turns.hpp); plane: phi_j - phi_i or the projected
+/// offset).
 CoordinateTerm coordinate_term(const Model& model, const std::string& joint, bool slide, const double* q,
-                               const double* v, const char* who) {
+                               const double* v, const char* who, const double* state = nullptr) {
   if (!model.finalized()) throw ModelError(std::string(who) + ": the model is not finalized");
   const build::JointOf c = build::joint_coordinate(model, joint, who);
   if (slide && !c.slides)
@@ -45,8 +47,10 @@ CoordinateTerm coordinate_term(const Model& model, const std::string& joint, boo
     const spatial::Loc cq = gather_q<Spatial>(q, g.where), cv = gather_v<14>(v, g.where);
     spatial::Want want;
     want.rate = &cv;
-    const spatial::ScalarTerm s = slide ? spatial::joint_slide(cq, c.s_i, c.s_j, c.a_i, want)
-                                        : spatial::joint_angle(cq, c.f_i, c.g_i, c.f_j, want);
+    const TurnCounter* counter = slide ? nullptr : model.turn_counter(joint);
+    const spatial::ScalarTerm s = slide      ? spatial::joint_slide(cq, c.s_i, c.s_j, c.a_i, want)
+                                  : counter ? counter->reading(cq, want, Instant{0.0, nullptr, state})
+                                            : spatial::joint_angle(cq, c.f_i, c.g_i, c.f_j, want);
     g.local = 14;
     g.value = s.value;
     g.gradient = s.gradient.transpose();
@@ -79,8 +83,8 @@ double local_dot(const CoordinateTerm& g, const VecX& row, const double* x) {
 }  // namespace
 
 JointMotion joint_motion(const Model& model, const std::string& joint, bool slide, const double* q, const double* v,
-                         const double* a) {
-  const CoordinateTerm g = coordinate_term(model, joint, slide, q, v, "joint_motion");
+                         const double* a, const double* state) {
+  const CoordinateTerm g = coordinate_term(model, joint, slide, q, v, "joint_motion", state);
   JointMotion m;
   m.value = g.value;
   m.rate = local_dot(g, g.gradient, v);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "lagmb/model/coordinates.hpp"
+#include "lagmb/model/joint_turns.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/analyses/diagnosis.hpp"
@@ -193,6 +194,10 @@ class KinematicSolver {
   /// iterations) while it contracts well; it is refreshed at the current q
   /// when the contraction slows (ratio > 0.25), the guard trips or |Phi|
   /// stalls above rounding level.
+  /// The analysis's run state (the joints' turns, model/joint_turns.hpp),
+  /// which the elements read as in a dynamic run.
+  double* run_state() { return d_.run->state.data(); }
+
   bool positions(VecX& q, double t, int max_iter, double max_first) {
     bool fresh = false;  // factorized at an iterate of this solve
     double previous = INFINITY;
@@ -425,6 +430,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
   Trajectory tr;
   tr.n = n;
   tr.m = m;
+  tr.state_size = model.run_state_size();
   tr.stats.analysis = name_of(inverse_dynamics ? Analysis::kInverseDynamics : Analysis::kKinematic);
   tr.stats.formulation = "kinematic";
   tr.stats.method_choice = "none: a kinematic analysis integrates no equations of motion";
@@ -460,6 +466,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
     tr.a.insert(tr.a.end(), a.data(), a.data() + n);
     const VecX& l = inverse_dynamics ? lam : lam_nan;
     tr.lam.insert(tr.lam.end(), l.data(), l.data() + m);
+    tr.run_state.insert(tr.run_state.end(), solver.run_state(), solver.run_state() + model.run_state_size());
   };
   auto is_output = [&](double t) { return k < t_out.size() && t_out[k] == t; };
 
@@ -482,6 +489,14 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
     throw SimulationError(msg.str(), t, std::move(tr));
   };
 
+  // the joints' turns, counted at every sub-step as a dynamic run counts them
+  auto count = [&](double dt) {
+    if (const TurnCounter* c = count_turns(model, q.data(), v.data(), dt, solver.run_state()))
+      fail("joint '" + c->joint + "' turned by half a turn or more in one sub-step after t = " + std::to_string(t) +
+               ": the elements that act on its angle read it within half a turn of the last sub-step's.",
+           false);
+  };
+
   // a sub-step turns no body by more than 0.25 rad (predicted): the Newton
   // start then stays near the branch it came from, and angles stay continuous
   const std::vector<std::pair<int, double>> angles = turning_coordinates(model);
@@ -501,6 +516,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
     if (!solver.positions(q, t0, 10, INFINITY)) fail("Newton on Phi(q, t0) = 0 did not converge.");
     ++tr.stats.kinematic_solves;
     solver.rates(q, t0, inverse_dynamics && is_output(t0), v, a, lam);
+    count(0.0);
     if (is_output(t0)) {
       record(t0);
       if (!violated.empty()) fail(violated);
@@ -553,6 +569,7 @@ Trajectory kinematic_analysis(const Model& model, double t0, const std::vector<d
         v.swap(v_try);
         a.swap(a_try);
         if (out) lam.swap(lam_try);
+        count(dt);
         t = t_next;
         h = std::min(2.0 * h, target - t);  // grow back after a halving
         if (last) t = target;

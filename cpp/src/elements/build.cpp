@@ -106,6 +106,25 @@ double initial_joint_value(const Model& m, const JointCoordinate& c) {
   return joint_reading(c, 0.0)(at, {}).value;
 }
 
+void count_turns(Model& m, const std::string& joint) {
+  const JointOf c = joint_coordinate(m, joint, "'" + joint + "'");
+  if (!c.turns) return;
+  TurnCounter counter;
+  counter.joint = joint;
+  counter.body_i = c.body_i, counter.body_j = c.body_j;
+  counter.reading = joint_reading(c, initial_joint_value(m, c));
+  counter.reading.slide = false;  // (a cylindrical joint's angle)
+  m.add_turn_counter(std::move(counter));
+}
+
+spatial::JointReading continuous_reading(Model& m, const std::string& joint, const JointCoordinate& c) {
+  if (c.slides && !c.turns) return joint_reading(c, 0.0);
+  TurnCounter* counter = m.turn_counter(joint);
+  if (!counter) throw ModelError("'" + joint + "' turns but has no counter of its turns (a joint kind that does not count them)");
+  counter->read = true;
+  return counter->reading;
+}
+
 StopLimits stop_limits(const Args& a, const std::string& label) {
   const std::optional<double> lower = a.optional_real("lower"), upper = a.optional_real("upper");
   if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");

@@ -73,6 +73,13 @@ spatial::JointReading joint_reading(const JointCoordinate& c, double center);
 /// The joint's coordinate (its angle in (-pi, pi], or its slide) in the
 /// model's initial configuration.
 double initial_joint_value(const Model& m, const JointCoordinate& c);
+/// Gives the spatial joint `joint`, just added, the counter of its turns in
+/// a run if it turns (model/joint_turns.hpp); its builder calls this.
+void count_turns(Model& m, const std::string& joint);
+/// How an element that acts on joint `joint` (coordinate c) in the run's
+/// equations reads it: a turning joint's angle continuous through its
+/// turns (the counter's reading, which this marks read), a slide as it is.
+spatial::JointReading continuous_reading(Model& m, const std::string& joint, const JointCoordinate& c);
 
 // --- spatial kinds -----------------------------------------------------------
 

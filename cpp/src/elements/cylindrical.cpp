@@ -14,6 +14,7 @@ void build_cylindrical(Model& m, const std::string& name, const Args& a) {
   j.a_j = m.local_direction(j.body_j, axis);
   j.f_j = m.local_direction(j.body_j, m.body_direction(j.body_i, j.f_i));
   m.add_constraint(std::move(j));
+  build::count_turns(m, name);
 }
 
 }  // namespace

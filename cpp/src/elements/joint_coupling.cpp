@@ -27,9 +27,9 @@ void build_joint_coupling(Model& m, const std::string& name, const Args& a) {
   if (!std::isfinite(e.multiplier) || e.multiplier == 0.0)
     throw ModelError(label + ": multiplier must be finite and nonzero, got " + to_text(e.multiplier));
   if (!std::isfinite(e.offset)) throw ModelError(label + ": offset must be finite, got " + to_text(e.offset));
-  // each angle is read within pi of its value in the initial configuration
-  e.a = build::joint_reading(l, build::initial_joint_value(m, l));
-  e.b = build::joint_reading(b, build::initial_joint_value(m, b));
+  // each angle continuous through its joint's turns
+  e.a = build::continuous_reading(m, leader, l);
+  e.b = build::continuous_reading(m, follower, b);
   m.add_constraint(std::move(e));
 }
 
@@ -41,8 +41,8 @@ KindInfo joint_coupling_kind() {
        "Couples two joints: the coordinate s of `joint` (a revolute's angle or a translational's slide) follows "
        "the `leader`'s, s = multiplier s_leader + offset (a URDF <mimic>, an MJCF <joint> equality; a gear or "
        "a belt between two joints' axes). One equation over the four bodies of the two joints; its reaction "
-       "is the torque (force) it applies along joint's coordinate on joint's second body. Angles are read "
-       "within pi of their initial values, so each joint must stay within half a turn of where it starts.",
+       "is the torque (force) it applies along joint's coordinate on joint's second body. Angles count "
+       "whole turns: the joints may turn any number of times.",
        {param::joint("the joint that follows (a revolute or translational joint)"),
         param::joint("leader", "the joint it follows"),
         param::real("multiplier", 1.0, "1", "m in s = m s_leader + offset (rad/rad, m/m, rad/m or m/rad)"),

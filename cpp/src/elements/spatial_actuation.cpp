@@ -59,9 +59,7 @@ void build_spatial_rotational_spring_damper(Model& m, const std::string& name, c
   const build::JointOf c = build::joint_coordinate(m, a.text("joint"), label);
   if (!c.turns) throw ModelError(label + ": '" + a.text("joint") + "' does not turn (a translational joint)");
   auto e = build::joining<SpatialRotationalSpringDamper>(m, name, c.body_i, c.body_j);
-  e.f_i = c.f_i;
-  e.g_i = c.g_i;
-  e.f_j = c.f_j;
+  e.joint = build::continuous_reading(m, a.text("joint"), c);
   e.stiffness = a.real("stiffness");
   e.damping = a.real("damping");
   build::require_nonnegative(e.stiffness, label, "stiffness");
@@ -144,8 +142,8 @@ KindInfo spatial_rotational_spring_damper_kind() {
   return build::in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
                    "rotational_spring_damper", Role::kForce,
                    "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (its `angle` in "
-                   "the initial configuration, in (-pi, pi]): torque -k (theta - theta0) - c theta' + tau(t) "
-                   "about the axis on body_j.",
+                   "the initial configuration, counting whole turns: it winds through any number): torque -k "
+                   "(theta - theta0) - c theta' + tau(t) about the axis on body_j.",
                    {param::joint("the revolute or cylindrical joint"),
                     param::real("stiffness", 0.0, "N m/rad", "torsion stiffness k"),
                     param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),

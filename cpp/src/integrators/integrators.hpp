@@ -133,7 +133,9 @@ class StepLoop {
   /// `stepper` starts at time t; the stop times are the breakpoints after t,
   /// then plan.t_end if `stop_at_end` (simulate), else none (a Simulator:
   /// the steps may pass the time asked for, outputs are interpolated).
-  StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end = true);
+  /// After each step the loop counts the turns of `model`'s spatial joints
+  /// (model/joint_turns.hpp) in the run's state (plan.run).
+  StepLoop(Stepper& stepper, const Model& model, const IntegrationPlan& plan, double t, bool stop_at_end = true);
   /// Steps until the time reached is at least `target`; calls record(q, v)
   /// for each t_out[k] up to the time reached, k counting on. At most
   /// options->max_steps steps between two outputs (IntegratorFailure beyond).
@@ -158,7 +160,12 @@ class StepLoop {
   /// After a step to t: an event's action, or the restart at a breakpoint
   /// (at_stop). True if the stepper was restarted.
   bool act(double t, bool at_stop);
+  /// After a step of length h to t: the joints' turns (count_turns);
+  /// IntegratorFailure if the step turned a joint whose angle the equations
+  /// read by half a turn or more.
+  void count_joint_turns(double t, double h);
   Stepper& stepper_;
+  const Model& model_;
   const IntegrationPlan& plan_;
   double t_;
   bool stop_at_end_;

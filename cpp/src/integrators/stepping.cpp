@@ -7,12 +7,13 @@
 #include "integrators/integrators.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/interrupt.hpp"
+#include "lagmb/model/joint_turns.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {
 
-StepLoop::StepLoop(Stepper& stepper, const IntegrationPlan& plan, double t, bool stop_at_end)
-    : stepper_(stepper), plan_(plan), t_(t), stop_at_end_(stop_at_end) {
+StepLoop::StepLoop(Stepper& stepper, const Model& model, const IntegrationPlan& plan, double t, bool stop_at_end)
+    : stepper_(stepper), model_(model), plan_(plan), t_(t), stop_at_end_(stop_at_end) {
   restarted(t);
 }
 
@@ -85,6 +86,21 @@ bool StepLoop::act(double t, bool at_stop) {
   return false;
 }
 
+void StepLoop::count_joint_turns(double t, double h) {
+  if (model_.turn_counters().empty()) return;
+  const double *q = nullptr, *v = nullptr;
+  stepper_.interpolate(t, q, v);
+  if (const TurnCounter* c = count_turns(model_, q, v, h, plan_.run->run->state.data())) {
+    std::ostringstream msg;
+    msg << "joint '" << c->joint << "' turned by half a turn or more in one step (from t = " << t - h << " to " << t
+        << "): the elements that act on its angle read it within half a turn of the last step's; the run stops "
+           "here. Give a smaller max_step.";
+    IntegratorFailure f(msg.str(), t);
+    f.diagnose = false;
+    throw f;
+  }
+}
+
 void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {
   auto clock = std::chrono::steady_clock::now();
   long steps = 0;
@@ -98,6 +114,7 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
     // (after the last output the stop is the breakpoint's or the end's again)
     if (to_outputs) stepper_.set_stop(k < t_out.size() ? std::min(stop_time(), t_out[k]) : stop_time());
     bool at_stop = false;
+    const double t_before = t_;
     const double t = t_ = stepper_.step(at_stop);
     for (; k < t_out.size() && t_out[k] <= t; ++k) {
       const double *q = nullptr, *v = nullptr;
@@ -105,6 +122,7 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
       record(q, v);
       steps = 0;
     }
+    count_joint_turns(t, t - t_before);
     // max_steps bounds the steps between outputs (as SUNDIALS' mxstep):
     // a run that cannot end stops, an accurate long one does not
     if (plan_.options->max_steps > 0 && ++steps >= plan_.options->max_steps && t < target) {

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -160,6 +161,24 @@ void Model::set_gravity(Vec3 g) {
   forces_.push_back(std::make_unique<Gravity>(g));
 }
 
+void Model::add_turn_counter(TurnCounter counter) {
+  require_open("count the turns of '" + counter.joint + "'");
+  if (turn_counter(counter.joint)) return;
+  reserve_run_state(counter);
+  counter.reading.turns = counter.run_state;
+  turn_counters_.push_back(std::move(counter));
+}
+
+const TurnCounter* Model::turn_counter(const std::string& joint) const {
+  for (const TurnCounter& c : turn_counters_)
+    if (c.joint == joint) return &c;
+  return nullptr;
+}
+
+TurnCounter* Model::turn_counter(const std::string& joint) {
+  return const_cast<TurnCounter*>(std::as_const(*this).turn_counter(joint));
+}
+
 void Model::finalize() {
   if (finalized_) return;
   // coordinates: bodies in order, 3 (or 2 for particles) each
@@ -205,6 +224,7 @@ void Model::finalize() {
   force_v_pattern_ = fv.build();
   for (auto& g : constraints_) g->bind(jacobian_pattern_, hessian_pattern_);
   for (auto& e : events_) e->place(*this);
+  for (auto& c : turn_counters_) c.where = local_coordinates(c.body_i, c.body_j);
   for (auto& f : forces_) f->bind(force_q_pattern_, force_v_pattern_);
   for (auto& f : frictions_) f->bind(force_q_pattern_, force_v_pattern_, jacobian_pattern_);
 

@@ -17,11 +17,14 @@ void require(const Model& model, const OutputView& out, bool q, bool v, bool lam
                      (lam ? "lam " : "") + "at every output");
 }
 
-/// A Data whose run values hold the inputs of output s (or the initial ones).
-void set_inputs(Data& d, const OutputView& out, int s) {
-  if (!out.inputs) return;
-  const int p = int(d.run->inputs.size());
-  for (int j = 0; j < p; ++j) d.run->inputs[j] = out.inputs[size_t(s) * p + j];
+/// A Data whose run values hold the inputs and the element state of output
+/// s (or the initial ones).
+void set_run_values(Data& d, const OutputView& out, int s) {
+  const int p = int(d.run->inputs.size()), z = int(d.run->state.size());
+  if (out.inputs)
+    for (int j = 0; j < p; ++j) d.run->inputs[j] = out.inputs[size_t(s) * p + j];
+  if (out.state)
+    for (int j = 0; j < z; ++j) d.run->state[j] = out.state[size_t(s) * z + j];
 }
 
 const ElementRef& constraint_element(const Model& model, const std::string& element, const char* what) {
@@ -50,6 +53,8 @@ OutputView OutputView::of(const Trajectory& tr) {
   // a and lam may be solved for fewer outputs than recorded (a failed run)
   o.lam = tr.lam.size() >= size_t(o.k) * size_t(tr.m) ? tr.lam.data() : nullptr;
   o.inputs = tr.p > 0 && tr.inputs.size() == size_t(o.k) * size_t(tr.p) ? tr.inputs.data() : nullptr;
+  o.state = tr.state_size > 0 && tr.run_state.size() == size_t(o.k) * size_t(tr.state_size) ? tr.run_state.data()
+                                                                                             : nullptr;
   return o;
 }
 
@@ -61,7 +66,7 @@ OutputRows reactions(const Model& model, const std::string& element, const Outpu
   Data d(model);
   OutputRows R(out.k, g.dimension() == 2 ? 3 : 6);
   for (int s = 0; s < out.k; ++s) {
-    set_inputs(d, out, s);
+    set_run_values(d, out, s);
     R.row(s) = g.reaction(r.index, out.q + size_t(s) * n, d.at(out.t[s]), out.lam + size_t(s) * m, joint_axes)
                    .transpose();
   }
@@ -102,7 +107,7 @@ VecX energy(const Model& model, const OutputView& out) {
   Data d(model);
   VecX E(out.k);
   for (int s = 0; s < out.k; ++s) {
-    set_inputs(d, out, s);
+    set_run_values(d, out, s);
     const double *q = out.q + size_t(s) * n, *v = out.v + size_t(s) * n;
     E[s] = kinetic_energy(model, q, v) + potential_energy(model, q, d.at(out.t[s]));
   }
@@ -115,7 +120,7 @@ VecX constraint_residual(const Model& model, const OutputView& out) {
   Data d(model);  // every row, the ones a run dropped as redundant included
   VecX r(out.k);
   for (int s = 0; s < out.k; ++s) {
-    set_inputs(d, out, s);
+    set_run_values(d, out, s);
     assemble_constraints(model, d, out.q + size_t(s) * n, out.t[s]);
     r[s] = d.Phi.size() ? d.Phi.lpNorm<Eigen::Infinity>() : 0.0;
   }
@@ -128,7 +133,7 @@ VecX velocity_residual(const Model& model, const OutputView& out) {
   Data d(model);
   VecX r(out.k);
   for (int s = 0; s < out.k; ++s) {
-    set_inputs(d, out, s);
+    set_run_values(d, out, s);
     const double *q = out.q + size_t(s) * n, *v = out.v + size_t(s) * n;
     assemble_jacobian(model, d, q, out.t[s]);
     assemble_phi_t(model, d, q, out.t[s]);

@@ -18,6 +18,8 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
     tr.lam.resize(size_t(i + 1) * m);
     double *a = tr.a.data() + size_t(i) * n, *lam = tr.lam.data() + size_t(i) * m;
     const double *q = tr.q.data() + size_t(i) * n, *v = tr.v.data() + size_t(i) * n;
+    if (tr.state_size > 0 && tr.run_state.size() >= size_t(i + 1) * tr.state_size)  // what the elements read there
+      d.run->state = Eigen::Map<const VecX>(tr.run_state.data() + size_t(i) * tr.state_size, tr.state_size);
     std::string why;
     try {
       solve_accelerations(model, d, kkt, q, v, tr.t[i], a, lam);
@@ -40,7 +42,7 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
 }
 
 void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
-                   double t, const double* q, const double* v, const VecX& inputs, bool solve) {
+                   double t, const double* q, const double* v, const Data::RunValues& values, bool solve) {
   auto stop = [&](const std::string& why) {
     IntegratorFailure f(why, t);
     f.diagnose = false;  // the message is complete
@@ -52,7 +54,8 @@ void record_output(const Model& model, Data& d, AugmentedSystem& kkt, Redundancy
   tr.t.push_back(t);
   tr.q.insert(tr.q.end(), q, q + n);
   tr.v.insert(tr.v.end(), v, v + n);
-  tr.inputs.insert(tr.inputs.end(), inputs.data(), inputs.data() + inputs.size());
+  tr.inputs.insert(tr.inputs.end(), values.inputs.data(), values.inputs.data() + values.inputs.size());
+  tr.run_state.insert(tr.run_state.end(), values.state.data(), values.state.data() + values.state.size());
   if (solve)
     if (const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1); !why.empty()) {
       tr.truncate(solved_outputs(tr));

@@ -57,6 +57,7 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
   outputs.n = model.n_coordinates();
   outputs.m = model.n_constraints();
   outputs.p = int(model.inputs().size());
+  outputs.state_size = model.run_state_size();
   outputs.dropped_rows = start.dropped_rows;
   outputs.run_model = with_parameters;
   name_method(outputs.stats, method);
@@ -69,7 +70,7 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
 }
 
 void Run::record(double t, const double* q, const double* v, bool solve) {
-  record_output(model, data, kkt, *watch, outputs, t, q, v, data.run->inputs, solve);
+  record_output(model, data, kkt, *watch, outputs, t, q, v, *data.run, solve);
   if (!sensitivities) return;
   std::vector<VecX> s, sp;
   stepper_->sensitivities(t, s, sp);
@@ -81,6 +82,7 @@ void Run::record(double t, const double* q, const double* v, bool solve) {
 }
 
 void Run::start_stepper(double t, const ConsistentState& from) {
+  count_turns(model, from.q.data(), from.v.data(), 0.0, data.run->state.data());  // (the rates where the run starts)
   if (stepper_) {  // its counts are kept; the new one starts at order 1
     Stats s;
     stepper_->fill_stats(s);
@@ -92,7 +94,7 @@ void Run::start_stepper(double t, const ConsistentState& from) {
   stepper_.reset();
   plan.t0 = t;
   stepper_ = make_stepper(*current_, model, from, plan);
-  loop_ = std::make_unique<StepLoop>(*stepper_, plan, t, stop_at_end_);
+  loop_ = std::make_unique<StepLoop>(*stepper_, model, plan, t, stop_at_end_);
 }
 
 void Run::restart_stepper(double t, const ConsistentState& from) {

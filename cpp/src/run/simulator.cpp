@@ -37,6 +37,8 @@ Simulator::Simulator(const Model& given, const SimulationOptions& options, doubl
   solved_ = true;
   Trajectory& record = run_->outputs;
   record.inputs.assign(inputs_.data(), inputs_.data() + inputs_.size());
+  const VecX& state = run_->data.run->state;
+  record.run_state.assign(state.data(), state.data() + state.size());
   record.t.push_back(t_);
   record.q.insert(record.q.end(), q_.data(), q_.data() + n);
   record.v.insert(record.v.end(), v_.data(), v_.data() + n);

@@ -10,9 +10,11 @@
 namespace lagmb {
 
 /// A joint's scalar coordinate (JointCoordinate: a revolute's angle in rad,
-/// in (-pi, pi] in space and phi_j - phi_i in the plane, a translational's
-/// slide in m; in space the joint's `angle` or `slide` in the initial
-/// configuration, 0 by default) with its rate and acceleration.
+/// phi_j - phi_i in the plane, in space read within half a turn of the
+/// angle a run's state holds or, without one, of the joint's initial angle
+/// (model/joint_turns.hpp); a translational's slide in m; in space the
+/// joint's `angle` or `slide` in the initial configuration, 0 by default)
+/// with its rate and acceleration.
 struct JointMotion {
   double value = 0.0, rate = 0.0, acceleration = 0.0;
 };
@@ -23,9 +25,12 @@ struct JointMotion {
 ///   value = g(c),  rate = g_c c',  acceleration = g_c c'' + (g_c)' c'.
 /// `slide` picks a cylindrical joint's slide (else its angle); a revolute has
 /// only its angle, a translational only its slide. a may be null (then the
-/// acceleration is 0). ModelError naming the joint if it has no such coordinate.
+/// acceleration is 0). `state`: the run's element state at that instant
+/// (Data::RunValues::state, a Trajectory's run_state row), whose turns the
+/// angle counts; null: the angle within half a turn of its initial one.
+/// ModelError naming the joint if it has no such coordinate.
 JointMotion joint_motion(const Model& model, const std::string& joint, bool slide, const double* q, const double* v,
-                         const double* a);
+                         const double* a, const double* state = nullptr);
 
 /// One joint coordinate whose effort inverse_dynamics solves for.
 struct JointEffort {

@@ -13,8 +13,8 @@ namespace lagmb {
 
 /// Joint b's coordinate follows joint a's:
 ///   Phi = s_b - (m s_a + s0) = 0,
-/// s a revolute's angle (read within pi of its initial value) or a
-/// translational's slide (spatial::JointReading), m the multiplier, s0 the
+/// s a revolute's angle (continuous through the joint's turns in a run) or
+/// a translational's slide (spatial::JointReading), m the multiplier, s0 the
 /// offset. Its local coordinates are joint a's 14 then joint b's 14
 /// (SpatialJointPair; a body both joints share appears in each half and
 /// its group adds the columns), so
@@ -27,6 +27,7 @@ struct JointCoupling {
   static constexpr int rows = 1;
   static constexpr bool time_dependent = false;
   static constexpr const char* kind = "joint_coupling";
+  static constexpr bool reads_inputs = true;  // the Instant: the run's turns of the joints
   using Loc = LocalVec<28>;
   using Row = Eigen::Matrix<double, 1, 1>;
   using Grad = Eigen::Matrix<double, 1, 28>;
@@ -39,22 +40,23 @@ struct JointCoupling {
 
   std::array<int, 4> bodies() const { return {leader[0], leader[1], body_i, body_j}; }
 
-  Row phi(const Loc& c, double) const {
-    return Row(b(c.tail<14>(), {}).value - multiplier * a(c.head<14>(), {}).value - offset);
+  Row phi(const Loc& c, const Instant& t) const {
+    return Row(b(c.tail<14>(), {}, t).value - multiplier * a(c.head<14>(), {}, t).value - offset);
   }
-  Grad jacobian(const Loc& c, double) const {
+  // (the derivatives do not depend on the turns)
+  Grad jacobian(const Loc& c, const Instant&) const {
     Grad J;
     J << -multiplier * a(c.head<14>(), {}).gradient, b(c.tail<14>(), {}).gradient;
     return J;
   }
-  void hessians(const Loc& c, double, LocalMat<28>* H) const {
+  void hessians(const Loc& c, const Instant&, LocalMat<28>* H) const {
     spatial::Want want;
     want.hessian = true;
     H[0].setZero();
     H[0].topLeftCorner<14, 14>() = -multiplier * a(c.head<14>(), want).hessian;
     H[0].bottomRightCorner<14, 14>() = b(c.tail<14>(), want).hessian;
   }
-  Grad rates(const Loc& c, const Loc& cd, double) const {
+  Grad rates(const Loc& c, const Loc& cd, const Instant&) const {
     const spatial::Loc cd_a = cd.head<14>(), cd_b = cd.tail<14>();
     spatial::Want want_a, want_b;
     want_a.rate = &cd_a;
@@ -64,7 +66,7 @@ struct JointCoupling {
     return V;
   }
   /// Joint b's triple (spatial_joint.hpp).
-  Mat3 axes(const Loc& c, double) const {
+  Mat3 axes(const Loc& c, const Instant&) const {
     const spatial::Loc cb = c.tail<14>();
     return spatial::joint_axes(cb, b.f_i, b.g_i, b.a_i);
   }

@@ -32,23 +32,38 @@ inline ScalarTerm joint_slide(const Loc& c, const Vec3& s_i, const Vec3& s_j, co
              want);
 }
 
-/// A joint's coordinate as stops and couplings read it: a revolute's angle
-/// (joint_angle) taken within pi of `center`, so that the reading does not
-/// wrap where the element acts, or a translational's slide (joint_slide).
-/// The shift by a whole number of turns is constant where the reading is
-/// smooth: the derivatives are joint_angle's.
+/// A joint's coordinate as springs, couplings and stops read it: a
+/// revolute's angle (joint_angle) taken within pi of a center, so that the
+/// reading does not wrap where the element acts, or a translational's slide
+/// (joint_slide). The center is `center` (the angle in the initial
+/// configuration; a stop's: the middle of its range) and, in a run, moves
+/// with the joint: `turns` >= 0 is the joint's slots in the run's state,
+/// whose first holds how far the run has moved it (count_turns,
+/// model/joint_turns.hpp: the angle at the last step), so an angle read in a
+/// run is continuous however many turns the joint makes. The shift by a
+/// whole number of turns is constant where the reading is smooth: the
+/// derivatives are joint_angle's.
 struct JointReading {
   bool slide = false;
   Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();  // the angle's (joint_coordinate.hpp)
   Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero(), a_i = Vec3::UnitZ();    // the slide's
   double center = 0.0;                                                  // rad
+  int turns = -1;  // the joint's slots in Instant::state (-1: the center stays where it is)
 
-  ScalarTerm operator()(const Loc& c, const Want& want) const {
+  /// The center at an instant of a run (outside a run, at.state null: `center`).
+  double center_at(const Instant& at) const { return turns >= 0 && at.state ? center + at.state[turns] : center; }
+  /// The coordinate with the angle read within pi of `around`.
+  ScalarTerm read(const Loc& c, const Want& want, double around) const {
     if (slide) return joint_slide(c, s_i, s_j, a_i, want);
     ScalarTerm s = joint_angle(c, f_i, g_i, f_j, want);
-    s.value = center + std::remainder(s.value - center, 2.0 * kPi);
+    s.value = around + std::remainder(s.value - around, 2.0 * kPi);
     return s;
   }
+  ScalarTerm operator()(const Loc& c, const Want& want, const Instant& at) const {
+    return read(c, want, center_at(at));
+  }
+  /// Within pi of the fixed center.
+  ScalarTerm operator()(const Loc& c, const Want& want) const { return read(c, want, center); }
 };
 
 }  // namespace spatial

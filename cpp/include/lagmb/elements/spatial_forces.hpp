@@ -7,6 +7,7 @@
 #include <array>
 #include <string>
 
+#include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/elements/spatial_terms.hpp"
 #include "lagmb/time_function.hpp"
 
@@ -20,7 +21,7 @@ struct SpatialForceBase {
 };
 
 /// A spring-damper-actuator on one scalar coordinate s(c) of the kind
-/// (`coordinate(c, want)`): F = -k (s - s0) - c s' + f(t) along s
+/// (`coordinate(c, want, t)`): F = -k (s - s0) - c s' + f(t) along s
 /// (spatial::add_spring_damper), potential k (s - s0)^2 / 2.
 template <class Kind>
 struct ScalarSpringDamper : SpatialForceBase {
@@ -31,7 +32,7 @@ struct ScalarSpringDamper : SpatialForceBase {
   double act(const Instant& t) const { return actuator ? actuator.at(t).f : 0.0; }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t) const {
     spatial::Loc Q = spatial::Loc::Zero();
-    spatial::add_spring_damper(self().coordinate(c, {}), cd, stiffness, damping, free_value, act(t), Q);
+    spatial::add_spring_damper(self().coordinate(c, {}, t), cd, stiffness, damping, free_value, act(t), Q);
     return Q;
   }
   void derivatives(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t, spatial::Mat14& dq,
@@ -39,11 +40,11 @@ struct ScalarSpringDamper : SpatialForceBase {
     spatial::Loc Q = spatial::Loc::Zero();
     dq.setZero();
     dv.setZero();
-    spatial::add_spring_damper(self().coordinate(c, {true}), cd, stiffness, damping, free_value, act(t), Q, &dq,
+    spatial::add_spring_damper(self().coordinate(c, {true}, t), cd, stiffness, damping, free_value, act(t), Q, &dq,
                                &dv);
   }
-  double potential(const spatial::Loc& c, const Instant&) const {
-    const double e = self().coordinate(c, {}).value - free_value;
+  double potential(const spatial::Loc& c, const Instant& t) const {
+    const double e = self().coordinate(c, {}, t).value - free_value;
     return 0.5 * stiffness * e * e;
   }
 
@@ -57,24 +58,22 @@ struct SpatialSpringDamper : ScalarSpringDamper<SpatialSpringDamper> {
   static constexpr const char* kind = "spatial_spring_damper";
   Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero();
 
-  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want, const Instant&) const {
     using namespace spatial;
     return length(minus(body_point(c, kBodyJ, s_j, want), body_point(c, kBodyI, s_i, want)));
   }
 };
 
 /// Rotational spring-damper-actuator on a revolute's (or cylindrical
-/// joint's) angle theta = atan2(f_j . g_i, f_j . f_i) in (-pi, pi]
-/// (spatial_drivers.hpp; s0: the free angle): the torque on body j about the
-/// axis is T = -k (theta - theta0) - c theta' + tau(t).
+/// joint's) angle theta, continuous through the joint's turns in a run
+/// (spatial::JointReading; s0: the free angle): the torque on body j about
+/// the axis is T = -k (theta - theta0) - c theta' + tau(t).
 struct SpatialRotationalSpringDamper : ScalarSpringDamper<SpatialRotationalSpringDamper> {
   static constexpr const char* kind = "spatial_rotational_spring_damper";
-  Vec3 f_i = Vec3::UnitX(), g_i = Vec3::UnitY(), f_j = Vec3::UnitX();
+  spatial::JointReading joint;
 
-  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want) const {
-    using namespace spatial;
-    const VectorTerm fj = body_vector(c, kBodyJ, f_j, want);
-    return angle(dot(fj, body_vector(c, kBodyI, g_i, want)), dot(fj, body_vector(c, kBodyI, f_i, want)), want);
+  spatial::ScalarTerm coordinate(const spatial::Loc& c, const spatial::Want& want, const Instant& t) const {
+    return joint(c, want, t);
   }
 };
 

@@ -84,14 +84,15 @@ struct Data {
     /// One per Model::inputs(), the initial values until a Simulator sets them.
     VecX inputs;
     /// Per-run state of the elements that keep one (e.g. the approach speed
-    /// of a contact in progress), at the offsets the Model assigned
-    /// (Model::run_state_size); zero at the start of a run, written by event
-    /// crossings, read by the force kernels.
+    /// of a contact in progress, the turns of a spatial joint's angle), at
+    /// the offsets the Model assigned (Model::run_state_size); zero at the
+    /// start of a run, written by event crossings and after each step
+    /// (count_turns), read by the kernels.
     VecX state;
   };
   std::shared_ptr<RunValues> run;
-  /// The instant t of this run, as the kernels take it (time and inputs).
-  Instant at(double t) const { return {t, run->inputs.data()}; }
+  /// The instant t of this run, as the kernels take it (time, inputs and state).
+  Instant at(double t) const { return {t, run->inputs.data(), run->state.data()}; }
 
  private:
   struct LeftOutRows {

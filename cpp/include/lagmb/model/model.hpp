@@ -17,6 +17,7 @@
 #include "lagmb/model/event_group.hpp"
 #include "lagmb/model/force_group.hpp"
 #include "lagmb/model/friction_group.hpp"
+#include "lagmb/model/joint_turns.hpp"
 #include "lagmb/model/registry.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/sparsity.hpp"
@@ -104,6 +105,14 @@ class Model {
         run_state_size_ += run_state_size_v<Kind>;
       }
   }
+  /// Counts the turns of a spatial joint's angle in a run (joint_turns.hpp;
+  /// the joint's builder adds it): reserves its run state.
+  void add_turn_counter(TurnCounter counter);
+  /// The counter of `joint` (null: none, the joint does not turn in space);
+  /// the mutable one marks it read by the element being built.
+  const TurnCounter* turn_counter(const std::string& joint) const;
+  TurnCounter* turn_counter(const std::string& joint);
+  const std::vector<TurnCounter>& turn_counters() const { return turn_counters_; }
   /// Records an element as given (add_element does): what the model is
   /// built from again with other parameter values (parameters.hpp).
   void record_given(const std::string& name, const Args& args) { given_.push_back({name, args}); }
@@ -307,6 +316,7 @@ class Model {
   std::vector<int> coord_owner_;
   double mass_scale_ = 1.0;
   int run_state_size_ = 0;
+  std::vector<TurnCounter> turn_counters_;
 };
 
 template <class Kind>

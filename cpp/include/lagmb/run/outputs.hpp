@@ -19,7 +19,9 @@ using OutputRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 /// The outputs of a run as arrays, one row per output time: a Trajectory's
 /// (OutputView::of) or arrays a binding holds (not copied). q, v, lam may be
 /// null where a function does not read them; inputs null: the inputs at
-/// their initial values (simulate's).
+/// their initial values (simulate's); state null: the elements' state at the
+/// start of a run (each spatial joint's angle within half a turn of its
+/// initial one).
 struct OutputView {
   int k = 0;  // outputs
   const double* t = nullptr;       // (k)
@@ -27,6 +29,7 @@ struct OutputView {
   const double* v = nullptr;       // (k, n)
   const double* lam = nullptr;     // (k, m)
   const double* inputs = nullptr;  // (k, p): Model::inputs() at each output
+  const double* state = nullptr;   // (k, Model::run_state_size()): the run's element state (null: the initial)
   static OutputView of(const Trajectory& tr);
 };
 
