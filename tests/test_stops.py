@@ -335,25 +335,39 @@ def test_a_spatial_stop_acts_as_the_planar_one(formulation):
     assert np.max(r.residual) <= 1e-9
 
 
-def test_a_spatial_stop_takes_a_revolute_or_translational_joint_and_limits_inside_pi():
+def test_a_spatial_stop_takes_a_revolute_or_translational_joint():
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
     rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
     m.add_cylindrical("cyl", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
     with pytest.raises(mb.ModelError, match="'cyl' turns and slides"):
         m.add_stop("stop", "cyl", lower=-1.0)
+
+
+def test_a_spatial_stop_holds_limits_turns_apart():
+    """The stop reads the joint's angle with its turns counted: a wheel
+    spinning at 10 rad/s about a vertical axis (no torque) between limits
+    -2 pi - 1 and 6 pi + 1 hits the upper one at t1 = (6 pi + 1) / 10 and,
+    with e = 0.5, the lower one (8 pi + 2) / 5 later (closed form, 1e-8 s),
+    the angle never beyond either (1e-8 rad)."""
+    lower, upper = -2 * math.pi - 1.0, 6 * math.pi + 1.0
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
-    rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0))
-    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
-    with pytest.raises(mb.ModelError, match=r"upper - lower = 7 rad; a joint angle in space is read within one "
-                                           "turn"):
-        m.add_stop("stop", "pin", lower=-3.5, upper=3.5)
+    wheel = m.add_body("wheel", 1.0, (0.5, 0.5, 1.0), angular_velocity=(0.0, 0.0, 10.0))
+    m.add_revolute("axle", m.ground, wheel, at=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0))
+    m.add_stop("stop", "axle", lower=lower, upper=upper, restitution=0.5)
+    t1 = upper / 10.0
+    t2 = t1 + (upper - lower) / 5.0
+    r = mb.simulate(m, t_end=t2 + 0.5, rtol=1e-10, atol=1e-12, n_out=301)
+    assert [(x["kind"], x["label"]) for x in r.events[:2]] == [("impact", "upper"), ("impact", "lower")]
+    assert abs(r.events[0]["t"] - t1) <= 1e-8 and abs(r.events[1]["t"] - t2) <= 1e-8
+    angle = r.joint("axle").angle
+    assert np.all(angle <= upper + 1e-8) and np.all(angle >= lower - 1e-8)
+    assert angle.max() > upper - 0.1 and angle.min() < lower + 0.1
 
 
 def test_a_spatial_stop_holds_a_limit_beyond_pi():
-    """A spatial angle is read within a turn of the middle of the stop's
-    range: the rod, hinged about -y and started level turning at 8 rad/s
-    (so the angle rises through pi), hits an upper limit at 3.6 rad, and the
-    angle never passes it (continued across pi: 3.6 in the stop's reading)."""
+    """A spatial angle is read with its turns: the rod, hinged about -y and
+    started level turning at 8 rad/s (so the angle rises through pi), hits an
+    upper limit at 3.6 rad, and the angle never passes it."""
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
     rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0),
                      velocity=(0.0, 0.0, 4.0), angular_velocity=(0.0, -8.0, 0.0))

@@ -534,8 +534,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     itself, or in a cycle), lower limit above the upper, a mass, length,
     inertia, joint value, mimic multiplier or offset, damping or friction
     beyond 1e150 (lagmb squares them; larger squares overflow), and (not
-    built yet) revolute limits a full turn or more apart and damping or
-    friction of a planar joint; and for arguments of the wrong kind.
+    built yet) damping or friction of a planar joint; and for arguments of
+    the wrong kind.
     """
     floating_base, limits, dynamics, mimic, strict = (
         _argument(_checks.flag, value, f"load_urdf: {name}") for name, value in
@@ -560,11 +560,6 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     value = _joint_values(reader, joints, positions, followers, limits)
     for joint in joints.values():
         owner = f"joint '{joint['name']}'"
-        if limits and joint["limit"] is not None and joint["type"] == "revolute" and \
-                not joint["limit"][1] - joint["limit"][0] < 2 * math.pi:
-            reader.fail(joint["elements"]["limit"], f"position limits {joint['limit']} span a full turn or more: "
-                        "a stop reads a joint angle within one turn, so it cannot hold them yet; load with "
-                        "limits=False to leave them out", owner)
         if dynamics and (joint["damping"] > 0 or joint["friction"] > 0) and joint["type"] == "planar":
             reader.fail(joint["elements"]["dynamics"], "damping and friction of a planar joint are not supported "
                         "(a revolute's, continuous's and prismatic's are): load with dynamics=False to leave "

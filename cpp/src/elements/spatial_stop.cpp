@@ -16,16 +16,8 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
     throw ModelError(label + ": '" + a.text("joint") + "' turns and slides (a cylindrical joint); a stop limits a "
                      "revolute's angle or a translational's slide");
   const StopLimits v = build::stop_limits(a, label);
-  // a spatial angle is read within a turn: the limits must lie within one
-  if (c.turns && v.has_lower && v.has_upper && !(v.upper - v.lower < 2.0 * kPi))
-    throw ModelError(label + ": upper - lower = " + to_text(v.upper - v.lower) +
-                     " rad; a joint angle in space is read within one turn, so the limits must be less than "
-                     "2 pi apart");
   SpatialJointStop s = build::joining<SpatialJointStop>(m, name, c.body_i, c.body_j);
-  // read the angle within pi of the middle of the range (of a quarter turn inside a lone limit)
-  s.joint = build::joint_reading(c, v.has_lower && v.has_upper ? 0.5 * (v.lower + v.upper)
-                                    : v.has_lower              ? v.lower + 0.5 * kPi
-                                                               : v.upper - 0.5 * kPi);
+  s.joint = build::continuous_reading(m, a.text("joint"), c);  // (limits any distance apart)
   static_cast<StopLimits&>(s) = v;
   m.add_constraint(std::move(s));
 }
@@ -35,8 +27,8 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
 KindInfo spatial_stop_kind() {
   return build::in_space(
       {"spatial_stop", "add_stop", "stops", "", Role::kStop,
-       "Limits a revolute's angle (limits less than 2 pi apart) or a translational's slide to lower <= s <= "
-       "upper (their "
+       "Limits a revolute's angle (its turns counted: limits any distance apart) or a translational's slide "
+       "to lower <= s <= upper (their "
        "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is "
        "an impact: s' reverses with Newton's restitution e and the integrator restarts. A joint that comes to rest "
        "on the limit is captured: the limit holds as a joint equation whose multiplier is the stop's force "
