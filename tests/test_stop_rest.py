@@ -255,3 +255,72 @@ def test_stops_that_depend_on_each_other_close_one_row():
         assert np.max(np.abs(r.joint(joint).slide[resting] + 0.1)) <= 1e-10
     held = r.effort("stop1") + r.effort("stop2")
     assert np.max(np.abs(held[resting] - 0.7 * G)) <= 1e-9 * 0.7 * G
+
+
+def test_a_simulator_releases_at_an_input_jump_and_restores_a_held_stop():
+    """A rod resting on its stop at -pi/4 in a Simulator: a lifting torque
+    input of 5 N m (above the static 3.47 N m) releases it at the instant the
+    input jumps (not a step later); a state saved while the stop held it,
+    restored, holds it again at once: the stop's torque the static one (1e-9),
+    no new capture logged."""
+    beta = math.pi / 4
+    static = G * 0.5 * math.cos(beta)
+    m = builders.pendulum(g=G, angle=-beta)
+    m.add_stop("stop", "pin", lower=-beta)
+    m.add_torque("lift", "rod", torque=mb.Input(0.0, name="lift"))
+    sim = mb.Simulator(m, rtol=1e-10, atol=1e-12)
+    sim.advance(0.5)
+    held = sim.state()
+    sim.set_input("lift", 5.0)
+    sim.advance(0.8)
+    r = sim.result()
+    assert [(x["kind"], x["t"]) for x in r.events] == [("capture", 0.0), ("release", 0.5)]
+    assert r.joint("pin").angle[-1] > -beta + 1e-3
+    sim.set_state(held)
+    sim.advance(1.0)
+    r = sim.result()
+    assert [x["kind"] for x in r.events] == ["capture"]
+    after = r.t >= 0.5
+    assert np.max(np.abs(r.effort("stop")[after] - static)) <= 1e-9 * static
+    assert np.max(np.abs(r.joint("pin").angle[after] + beta)) <= 1e-10
+
+
+def test_linearized_about_a_rest_on_a_stop_the_held_joint_is_fixed():
+    """A double pendulum at rest with its upper rod on a stop at -pi/4 and
+    the lower rod hanging: linearized with the stop held, the upper joint is
+    fixed and the motion is the lower rod's about the elbow, omega^2 =
+    (m g L/2) / (m L^2/3) = 3 g / (2 L) (1e-9 relative); with the stop open
+    (not held) the model has its two degrees of freedom. A stop not at a
+    limit cannot be held (ModelError naming its gaps)."""
+    beta = math.pi / 4
+    c, s = math.cos(beta), math.sin(beta)
+    m = mb.Model(gravity=(0.0, -G))
+    upper = m.add_body("upper", mass=1.0, inertia=1.0 / 12.0, position=(0.5 * c, -0.5 * s), angle=-beta)
+    lower = m.add_body("lower", mass=1.0, inertia=1.0 / 12.0, position=(c, -s - 0.5), angle=-math.pi / 2)
+    m.add_revolute("shoulder", m.ground, upper, at=(0.0, 0.0))
+    m.add_revolute("elbow", upper, lower, at=(c, -s))
+    stop = m.add_stop("stop", "shoulder", lower=-beta)
+    q = np.array([0.5 * c, -0.5 * s, -beta, c, -s - 0.5, -math.pi / 2])
+    held = mb.linearize(m, at={"q": q, "v": np.zeros(6), "held": [stop]})
+    assert held.A.shape == (2, 2)
+    # eigenvalues +-i omega: their product is omega^2
+    assert abs(np.prod(np.linalg.eigvals(held.A)).real - 1.5 * G) <= 1e-9 * 1.5 * G
+    free = mb.linearize(m, at={"q": q, "v": np.zeros(6)})
+    assert free.A.shape == (4, 4)
+    m2 = mb.Model(gravity=(0.0, -G))
+    rod = m2.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
+    m2.add_revolute("pin", m2.ground, rod, at=(0.0, 0.0))
+    m2.add_stop("stop", "pin", lower=-beta)
+    with pytest.raises(mb.ModelError, match="stop 'stop' is at neither limit.*lower 0.785"):
+        mb.linearize(m2, at={"q": np.array([0.5, 0.0, 0.0]), "v": np.zeros(3), "held": ["stop"]})
+
+
+def test_an_open_stop_leaves_the_modes_and_the_linearization_alone():
+    """A stop the equilibrium does not reach (lower limit -2 rad, the rod
+    hanging at -pi/2) changes no linearization: the rod's one mode, omega^2 =
+    3 g / (2 L) (1e-9), and a 2-state linear system about a moving state."""
+    m = builders.pendulum(g=G, angle=-0.3)
+    m.add_stop("stop", "pin", lower=-2.0, upper=2.0)
+    assert abs(mb.modes(m).omega[0] ** 2 - 1.5 * G) <= 1e-9 * 1.5 * G
+    r = mb.simulate(m, t_end=0.1)
+    assert mb.linearize(m, at=(r.q[-1], r.v[-1], r.t[-1])).A.shape == (2, 2)

@@ -71,12 +71,12 @@ void bind_statics(py::module_& m) {
   m.def(
       "tangent_at",
       [](const Model& model, const VecX& q, const VecX& v, double t, const VecX& u,
-         const std::optional<std::vector<int>>& dropped_rows) {
+         const std::optional<std::vector<int>>& dropped_rows, const std::vector<std::string>& held) {
         PythonCall call;
         StateTangent r;
         {
           py::gil_scoped_release release;
-          r = tangent_at(model, q, v, t, u, dropped_rows);
+          r = tangent_at(model, q, v, t, u, dropped_rows, held);
         }
         py::dict out;
         out["dropped_rows"] = r.dropped_rows;
@@ -97,6 +97,7 @@ void bind_statics(py::module_& m) {
         return out;
       },
       py::arg("model"), py::arg("q"), py::arg("v"), py::arg("t"), py::arg("inputs"), py::arg("dropped_rows") = py::none(),
+      py::arg("held") = std::vector<std::string>(),
       "The linearization's terms at a state (linearization.hpp, StateTangent): a, lam, Q, gamma, Phi, "
       "velocity_residual, Q_u, Phi_u dense; M, Phi_q, K, C, G_q, G_v as (rows, cols, values, shape).");
 

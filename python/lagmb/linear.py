@@ -34,6 +34,7 @@ import numpy as np
 from . import _core, _output_names, registry
 from ._checks import array, positive, real, show
 from .errors import ModelError
+from .handles import name_of
 from .statics import Equilibrium, equilibrium
 
 
@@ -370,7 +371,8 @@ class LinearSystem:
       coordinates, ``dq = basis z``, ``dv = basis w + velocity_basis z``
       (x = (z, w)).
     - q, v, a, lam, t and input_values: the operating point; y0: the outputs
-      there; dropped_rows: the rows of Phi left out as redundant there;
+      there; dropped_rows: the rows of Phi left out there (redundant, and
+      the stops' rows not held);
       equilibrium: the :class:`Equilibrium` it is, if linearized about one.
     - eigenvalues: of A, ordered by magnitude.
 
@@ -496,7 +498,7 @@ def _elements_of_rows(core, rows):
 
 
 def _operating_point(model, core, at, input_values, who):
-    """(q, v, t, u, dropped_rows or None, the Equilibrium or None)."""
+    """(q, v, t, u, dropped_rows or None, the Equilibrium or None, the stops held)."""
     n = core.n_coordinates
     infos = core.inputs
     u = np.array([i["initial"] for i in infos], dtype=float)
@@ -529,12 +531,17 @@ def _operating_point(model, core, at, input_values, who):
     if isinstance(at, Equilibrium):
         if at.model is not model:
             raise ModelError(f"{who}: at is an equilibrium of another model")
-        return at.q, np.zeros(n), at.t, u, list(at.dropped_rows), at
+        return at.q, np.zeros(n), at.t, u, list(at.dropped_rows), at, []
+    held = []
     if isinstance(at, dict):
-        unknown = set(at) - {"q", "v", "t", "inputs"}
+        unknown = set(at) - {"q", "v", "t", "inputs", "held"}
         if unknown or "q" not in at:
-            raise ModelError(f"{who}: at as a dict takes q (and v, t, inputs), got keys {sorted(at)}")
+            raise ModelError(f"{who}: at as a dict takes q (and v, t, inputs, held), got keys {sorted(at)}")
         q, v, t = at["q"], at.get("v"), at.get("t", 0.0)
+        given = at.get("held", [])
+        if isinstance(given, str) or not hasattr(given, "__iter__"):
+            raise ModelError(f"{who}: at['held'] must be a list of stops, got {show(given)}")
+        held = [name_of(model, stop, ("stop",), "stop", f"{who}: at['held']") for stop in given]
     elif isinstance(at, (tuple, list)) and len(at) in (2, 3):
         q, v, t = at[0], at[1], at[2] if len(at) == 3 else 0.0
     else:
@@ -545,7 +552,7 @@ def _operating_point(model, core, at, input_values, who):
     if q.shape != (n,) or v.shape != (n,):
         raise ModelError(f"{who}: q and v must have the model's {n} coordinates, got {q.size} and {v.size}")
     t = real(t, f"{who}: t")
-    return q, v, t, u, None, None
+    return q, v, t, u, None, None, held
 
 
 class _Outputs:
@@ -691,8 +698,10 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
 
     ``at``: None (the default) for ``mb.equilibrium(model,
     allow_unstable=True)``, an :class:`Equilibrium`, or a consistent state
-    (q, v) or (q, v, t), or a dict with q, v, t and inputs (e.g. a Result's
-    point ``(r.q[i], r.v[i], r.t[i])``). ``input_values``: {input name:
+    (q, v) or (q, v, t), or a dict with q, v, t, inputs and held (e.g. a
+    Result's point ``(r.q[i], r.v[i], r.t[i])``). ``held``: the stops that
+    hold their joints on a limit at that state (captured, as ``r.events``
+    says), each the joint row it is then; the other stops are open. ``input_values``: {input name:
     value} at the operating point (default the inputs' initial values).
 
     ``inputs``: the names of the ``mb.Input`` elements that form u (None:
@@ -731,8 +740,8 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     if friction:
         raise ModelError(f"{who}: joint friction ({', '.join(repr(f) for f in friction)}) switches with the sign "
                          "of the joint's rate and has no linearization; remove it to linearize")
-    q, v, t, u, dropped, eq = _operating_point(model, core, at, input_values, who)
-    tangent = _core.tangent_at(core, q, v, t, u, dropped)
+    q, v, t, u, dropped, eq, held = _operating_point(model, core, at, input_values, who)
+    tangent = _core.tangent_at(core, q, v, t, u, dropped, held)
     n, m = len(q), core.n_constraints
     scale = 1.0 + np.abs(q).max(initial=0.0)
     phi = np.abs(np.asarray(tangent["Phi"])).max(initial=0.0)

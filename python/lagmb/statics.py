@@ -37,8 +37,9 @@ class Equilibrium:
     - stiffness_eigenvalues: its eigenvalues, ascending (N/m, N m/rad
       mixed; empty when nothing can move or unchecked), and softest_mode
       (n,) the motion of the smallest.
-    - dropped_rows: the rows of Phi left out as redundant there (lam is 0
-      in them), ascending.
+    - dropped_rows: the rows of Phi left out there (lam is 0 in them),
+      ascending: those redundant there, and the rows of stops (which the
+      search does not hold).
     - iterations: Newton iterations; force_residual (max
       ``|Q - Phi_q^T lam|``, N or N m) and constraint_residual (max ``|Phi|``).
     """

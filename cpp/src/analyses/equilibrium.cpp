@@ -160,7 +160,7 @@ std::vector<std::pair<std::string, double>> largest(const Model& model, const Ve
 void stability(const Model& model, const Data& d, double t, Equilibrium& e) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   e.stability_checked = true;
-  const RestTangent rest = tangent_at_rest(model, e.q, e.lam, t, d.redundant_rows());
+  const RestTangent rest = tangent_at_rest(model, e.q, e.lam, t, d.dropped_rows());
   const Eigen::MatrixXd K = 0.5 * (rest.K + rest.K.transpose());
   Eigen::MatrixXd Z;
   if (m == 0) {
@@ -295,7 +295,7 @@ Equilibrium find_equilibrium(const Model& model, const EquilibriumOptions& o) {
     throw EquilibriumError("equilibrium: the forces at the position found are not finite: " +
                            non_finite_source(model, solver.data(), q.data(), rest.data(), o.t));
   }
-  e.dropped_rows = solver.data().redundant_rows();
+  e.dropped_rows = solver.data().dropped_rows();  // (redundant rows and the stops' open rows)
   if (o.stability) stability(model, solver.data(), o.t, e);
   // the search holds no stop: an equilibrium beyond a limit is not one the
   // mechanism can reach

@@ -73,8 +73,38 @@ RestTangent tangent_at_rest(const Model& model, const VecX& q, const VecX& lam, 
   return r;
 }
 
+/// The rows of the stops `held` that are at a limit at (q, t): the gap row within 1e-8 (1 + |q|) of 0.
+std::vector<int> held_rows(const Model& model, const std::vector<std::string>& held, const VecX& q, double t) {
+  std::vector<int> rows;
+  if (held.empty()) return rows;
+  Data gaps(model);
+  gaps.close_rows(model, model.unilateral_rows());
+  assemble_constraints(model, gaps, q.data(), t);
+  const double tol = 1e-8 * (1.0 + q.lpNorm<Eigen::Infinity>());
+  for (const std::string& name : held) {
+    const ElementRef& ref = model.find(name);
+    const ConstraintGroupBase* g =
+        ref.type == ElementRef::kConstraint ? model.constraint_groups()[ref.group].get() : nullptr;
+    if (!g || !g->unilateral()) throw ModelError("tangent_at: held: '" + name + "' is " + model.describe(name) + ", not a stop");
+    const int k = ref.index, row0 = g->placement(k).row0;
+    int at = -1;
+    std::string gaps_text;
+    for (int r = 0; r < g->rows(k); ++r) {
+      if (!g->unilateral_row(k, r).exists) continue;
+      gaps_text += std::string(gaps_text.empty() ? "" : ", ") + g->unilateral_row(k, r).label + " " +
+                   to_text(gaps.Phi[row0 + r]);
+      if (std::abs(gaps.Phi[row0 + r]) <= tol) at = row0 + r;
+    }
+    if (at < 0)
+      throw ModelError("tangent_at: held: stop '" + name + "' is at neither limit in this state (its gaps: " +
+                       gaps_text + "); a held stop holds its joint where it rests on a limit");
+    rows.push_back(at);
+  }
+  return rows;
+}
+
 StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double t, const VecX& u,
-                        const std::optional<std::vector<int>>& dropped_rows) {
+                        const std::optional<std::vector<int>>& dropped_rows, const std::vector<std::string>& held) {
   const int n = model.n_coordinates(), m = model.n_constraints(), p = int(model.inputs().size());
   if (q.size() != n || v.size() != n || u.size() != p)
     throw ModelError("tangent_at: q and v have " + std::to_string(q.size()) + " and " + std::to_string(v.size()) +
@@ -84,6 +114,7 @@ StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double
     throw ModelError("tangent_at: the state (q, v, t) and the inputs must be finite");
   Data d(model);
   d.run->inputs = u;
+  d.close_rows(model, held_rows(model, held, q, t));
   StateTangent r;
   if (dropped_rows) {
     check_dropped_rows("tangent_at", *dropped_rows, m);
@@ -93,6 +124,7 @@ StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double
     r.dropped_rows = find_redundancy(model, d, scratch, q, t).rows;
   }
   d.drop_rows(model, r.dropped_rows);
+  r.dropped_rows = d.dropped_rows();  // (and the stops' rows, open here)
   r.a.resize(n);
   r.lam.resize(m);
   AugmentedSystem kkt(model);

@@ -142,8 +142,15 @@ double Simulator::input(const std::string& name) const {
   return inputs_[input_slot(name)];
 }
 
+ConsistentState Simulator::consistent_start() {
+  ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
+  // a stop held under the old input values may let go (or a joint at its limit be pressed on) under the new
+  if (run_->events && run_->events->settle(t_, start.q, start.v)) start = run_->events->consistent(t_, start.q, start.v);
+  return start;
+}
+
 void Simulator::new_stepper() {
-  const ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
+  const ConsistentState start = consistent_start();
   run_->start_stepper(t_, start);
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
   solved_ = true;
@@ -153,9 +160,7 @@ void Simulator::new_stepper() {
 
 void Simulator::restart_for_inputs() {
   // a jump in a force, or in a driver's value (positions assembled anew)
-  ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
-  // a stop held by the old value may let go (or one at its limit be pressed on) at the new one
-  if (run_->events && run_->events->settle(t_, start.q, start.v)) start = run_->events->consistent(t_, start.q, start.v);
+  const ConsistentState start = consistent_start();
   run_->restart_stepper(t_, start);
   ++run_->input_changes;
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
@@ -252,6 +257,7 @@ SimulatorState Simulator::state() {
   s.v = v_;
   s.inputs = inputs_;
   s.run_state = run_->data.run->state;
+  s.closed_rows = run_->data.closed_rows();
   s.events = run_->events ? long(run_->events->records.size()) : 0;
   s.model_id = model().id();
   fresh_ = true;  // the run goes on from here as a restored copy would
@@ -271,6 +277,7 @@ void Simulator::set_state(const SimulatorState& s) {
   v_ = s.v;
   inputs_ = s.inputs;
   run_->data.run->state = s.run_state;
+  run_->data.close_rows(model(), s.closed_rows);  // (every Data of the run shares the set)
   if (run_->events && long(run_->events->records.size()) > s.events) run_->events->records.resize(size_t(s.events));
   // the outputs of this branch: those up to t, then t itself
   int keep = 0;

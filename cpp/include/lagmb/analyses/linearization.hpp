@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "lagmb/model/model.hpp"
@@ -46,7 +47,7 @@ RestTangent tangent_at_rest(const Model& model, const VecX& q, const VecX& lam, 
 /// system at (q, v, t). Sparse, in the model's coordinates; the rows of Phi
 /// left out as redundant are zero in Phi_q, G_q, G_v and Phi_u.
 struct StateTangent {
-  std::vector<int> dropped_rows;  // the rows of Phi left out (ascending)
+  std::vector<int> dropped_rows;  // the rows of Phi left out (ascending): redundant, and the stops' (open)
   VecX a, lam;          // (n), (m): the accelerations and multipliers at the state
   VecX Q, gamma, Phi, velocity_residual;  // at the state: Q, gamma, Phi, Phi_q v + Phi_t
   SpMat M, Phi_q;       // (n x n), (m x n)
@@ -63,8 +64,13 @@ struct StateTangent {
 /// small step (1e-6 max(1, |u|)). ModelError for sizes that do not match the
 /// model, dropped rows out of range, or an augmented system that is
 /// singular at the state. Without dropped_rows, the rows redundant at
-/// (q, t) are found as a run finds them (redundancy.hpp).
+/// (q, t) are found as a run finds them (redundancy.hpp). The stops `held`
+/// (by name) hold their joints on the limit they are at (within 1e-8 (1 +
+/// |q|)) as the joint rows they are while captured (docs/design.md 5.1);
+/// the other stops' rows are open. ModelError for a name that is no stop or
+/// a stop at neither limit.
 StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double t, const VecX& u,
-                        const std::optional<std::vector<int>>& dropped_rows);
+                        const std::optional<std::vector<int>>& dropped_rows,
+                        const std::vector<std::string>& held = {});
 
 }  // namespace lagmb

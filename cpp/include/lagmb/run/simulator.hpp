@@ -22,7 +22,8 @@ struct SimulatorState {
   double t = 0.0;
   VecX q, v;
   VecX inputs;     // one per Model::inputs()
-  VecX run_state;  // Data::run->state (a contact's impact speed)
+  VecX run_state;  // Data::run->state (a contact's impact speed, the joints' turns)
+  std::vector<int> closed_rows;  // the stops held on their limits (Data::closed_rows)
   long events = 0;  // event records up to t
   std::uint64_t model_id = 0;  // Model::id() of the model it belongs to
 };
@@ -117,6 +118,8 @@ class Simulator {
   const VecX& solved_a();
   Trajectory result_now() const;
   Stats stats_now() const;
+  /// The state at t_ made consistent, with the stops settled (released or captured) under the inputs now.
+  ConsistentState consistent_start();
   void new_stepper();
   void restart_for_inputs();
   void check_usable(const char* what) const;
