@@ -229,3 +229,21 @@ def test_a_parameter_without_a_sensitivity_is_named_with_the_reason():
     with pytest.raises(mb.ModelError, match=r"'b\.at\.y' = 0 has no sensitivity: which equations of 'b' are "
                                             r"redundant at the start differs"):
         mb.simulate(twice, 0.1, sensitivities=["b.at.y"])
+
+
+def test_a_stop_never_reached_leaves_the_sensitivities_and_one_reached_ends_the_run_there():
+    """A stop is open rows until an event: with a stop the pendulum never
+    reaches (lower limit -3.5 rad: it swings between 0 and -pi), the sensitivities are those of the model
+    without it (equal to differences of whole runs, 1e-6); with one it
+    reaches at -pi/4, the run stops at that impact with SimulationError (its
+    sensitivities would jump there) and keeps the outputs before it."""
+    model = compound_pendulum()
+    model.add_stop("stop", "pin", lower=-3.5)
+    r = mb.simulate(model, 1.0, n_out=11, rtol=1e-10, atol=1e-12, sensitivities=["rod.mass"])
+    assert r.events == []
+    assert_close(r.sensitivity("rod.mass").q, finite_difference(model, "rod.mass", 1.0, lambda x: x.q, n_out=11))
+    reached = compound_pendulum()
+    reached.add_stop("stop", "pin", lower=-math.pi / 4)
+    with pytest.raises(mb.SimulationError, match="sensitivities cannot follow the motion through an event") as info:
+        mb.simulate(reached, 1.0, n_out=11, rtol=1e-10, atol=1e-12, sensitivities=["rod.mass"])
+    assert info.value.result is not None and info.value.result.t[-1] < info.value.t

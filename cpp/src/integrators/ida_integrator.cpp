@@ -290,8 +290,17 @@ class IdaStepper final : public Stepper {
   const double* velocities() const override { return dae_->v(N_VGetArrayPointer(s.y)); }
   void reset(double t, const ConsistentState& state) override {
     // a jump of the state (an event, a new input) would make the
-    // sensitivities jump too: the runs with sensitivities have neither
-    if (s.Ns) throw std::logic_error("lagmb: a run with sensitivities cannot jump to a new state");
+    // sensitivities jump too: a run with sensitivities ends there (its
+    // outputs so far kept); the runs with sensitivities take no new inputs
+    if (s.Ns) {
+      IntegratorFailure f("the forward sensitivities cannot follow the motion through an event at t = " +
+                              to_text(t) + " (an impact, or a stop holding or letting go of its joint: the "
+                              "equations or the state jump there, and their derivatives with them); the outputs "
+                              "before it are kept in the partial result",
+                          t);
+      f.diagnose = false;
+      throw f;
+    }
     dae_->initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
     // a new first step, and weights for it (as at the start): the index-2
     // and index-3 weights scale with 1/h, and the last step before the

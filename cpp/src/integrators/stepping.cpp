@@ -49,7 +49,11 @@ bool StepLoop::act(double t, bool at_stop) {
       try {
         acted = plan_.events->handle(t, q_event_, v_event_, fired_);
         if (acted) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
-      } catch (const SimulationError& e) {  // keep the outputs so far
+      } catch (const IntegratorFailure& e) {  // keep the outputs so far (and what the failure says of itself)
+        IntegratorFailure f(std::string("at an event: ") + e.what(), t);
+        f.diagnose = e.diagnose;
+        throw f;
+      } catch (const SimulationError& e) {
         throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
       } catch (const UserFunctionError& e) {
         throw IntegratorFailure(e.what(), t);

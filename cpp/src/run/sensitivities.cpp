@@ -52,10 +52,17 @@ void Run::start_sensitivities(const std::vector<std::string>& names) {
   if (current_->formulation != Formulation::kGgl)
     throw ModelError(who + "they are integrated by IDAS with the GGL form (method 'ggl'), not with " +
                      current_->name);
-  if (model.has_events())
-    throw ModelError(who + "the model has '" + model.event_element_name() +
-                     "' (a stop or contact): at its events the motion jumps, and so would the sensitivities; "
+  // a stop is a pair of rows left out while open: the equations are those
+  // without it until an event (an impact, a capture, a release), where the
+  // run stops (IdaStepper::reset); a contact's force switches at its onset
+  if (!model.event_groups().empty())
+    throw ModelError(who + "the model has '" + model.event_groups().front()->name(0) +
+                     "' (a contact): at its events the motion jumps, and so would the sensitivities; "
                      "remove it to differentiate the run");
+  if (!data.closed_rows().empty())
+    throw ModelError(who + "stop '" + model.constraint_name_of_row(data.closed_rows().front()) +
+                     "' holds its joint on a limit at the start: the sensitivities of a run that starts on a "
+                     "stop are not taken yet (start the joint off the limit)");
   if (!model.friction_groups().empty())
     throw ModelError(who + "the model has joint friction ('" + model.friction_groups().front()->name(0) +
                      "'), whose derivatives through the joint loads sensitivities do not take yet");

@@ -263,7 +263,7 @@ Trajectory simulate_run(const Model& given, const std::shared_ptr<const Model>& 
     std::ostringstream msg;
     msg << e.what();
     if (e.q.size() && e.diagnose) msg << diagnose_failure(model, e.q, e.t, run.start.dropped_rows);
-    if (run.sensitivities)
+    if (run.sensitivities && e.diagnose)  // (not at an event, which says why itself)
       msg << " The run integrates sensitivities: their F_p is a difference of the residual over 1e-4 of each "
              "parameter, good to about 1e-12 of the residual's scale, so an atol much below that in them "
              "cannot be met (try atol >= 1e-12).";
