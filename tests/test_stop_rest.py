@@ -324,3 +324,15 @@ def test_an_open_stop_leaves_the_modes_and_the_linearization_alone():
     assert abs(mb.modes(m).omega[0] ** 2 - 1.5 * G) <= 1e-9 * 1.5 * G
     r = mb.simulate(m, t_end=0.1)
     assert mb.linearize(m, at=(r.q[-1], r.v[-1], r.t[-1])).A.shape == (2, 2)
+
+
+def test_lagmb_info_counts_a_stop_s_rows_apart_from_the_equations(tmp_path, capsys):
+    """A pendulum with a stop: 2 constraint equations (the pin's) and the
+    stop's 2 rows named apart; 1 degree of freedom."""
+    scene = tmp_path / "stopped.toml"
+    scene.write_text(builders.pendulum_scene() + '\n[[stops]]\nname = "stop"\njoint = "pin"\nlower = -1.0\n')
+    status, out, err = builders.lagmb_main(capsys, "info", scene)
+    assert status == 0, err
+    lines = out.splitlines()
+    assert "constraint equations: 2 (and 2 rows of stops, held only while a joint rests on a limit)" in lines
+    assert "degrees of freedom: 1" in lines

@@ -202,6 +202,8 @@ void bind_model(py::module_& m) {
       .def_property_readonly("finalized", &Model::finalized)
       .def_property_readonly("n_coordinates", &Model::n_coordinates)
       .def_property_readonly("n_constraints", &Model::n_constraints)
+      .def_property_readonly("unilateral_rows", &Model::unilateral_rows,
+                             "The rows of Phi that are stops' gaps (open unless a run holds the joint on a limit)")
       .def_property_readonly("dimension", &Model::dimension)
       .def_property_readonly("run_state_size", &Model::run_state_size,
                              "Doubles of per-run element state (a Result's run_state columns): the turns of the "

@@ -89,7 +89,9 @@ def handle(args):
     try:
         core = model.compiled()
         say(f"coordinates: {core.n_coordinates}")
-        say(f"constraint equations: {core.n_constraints}")
+        stop_rows = len(core.unilateral_rows)
+        say(f"constraint equations: {core.n_constraints - stop_rows}" + (
+            f" (and {stop_rows} rows of stops, held only while a joint rests on a limit)" if stop_rows else ""))
         inputs = core.inputs
         say(f"inputs: {len(inputs)}" + (" (" + ", ".join(
             f"{i['name']} {i['initial']:g}" + (f" {i['unit']}" if i["unit"] else "") for i in inputs) + ")"
