@@ -50,7 +50,9 @@ def limit_excursion(result, stops):
     worst = 0.0
     for stop in stops:
         reading = result.joint(stop["joint"])
-        s = reading.angle if reading.angle is not None else reading.slide
+        s = getattr(reading, "angle", None)  # (a prismatic joint's path has a slide only)
+        if s is None:
+            s = getattr(reading, "slide", None)
         if s is None:
             continue
         worst = max(worst, float((stop["lower"] - s).max()), float((s - stop["upper"]).max()))
@@ -132,7 +134,8 @@ def main(argv=None):
         print(f"{name:60s} load {row['load'][:40]:40s} run {str(row['run'])[:70]}", flush=True)
     loaded = sum(r["load"] == "ok" for r in rows.values())
     ran = sum(r["run"] == "ok" for r in rows.values())
-    held = sum(r["run"] == "ok" and r.get("limit_excursion", 1.0) <= 1e-8 for r in rows.values())
+    held = sum(r["run"] == "ok" and isinstance(r.get("limit_excursion"), float) and r["limit_excursion"] <= 1e-8
+               for r in rows.values())
     summary = {"files": len(rows), "loaded": loaded, "ran": ran, "ran_with_limits_held_to_1e-8": held,
                "t_end": args.t_end}
     print(f"{len(rows)} files: {loaded} load, {ran} run {args.t_end:g} s, {held} of those with every "

@@ -36,9 +36,14 @@ double smallest_ratio(const Eigen::VectorXd& s, size_t rows) {
 std::string diagnose_failure(const Model& model, const VecX& q, double t, const std::vector<int>& dropped_rows) {
   const int m = model.n_constraints();
   if (m == 0 || m > 1000 || q.size() != model.n_coordinates() || !q.allFinite()) return "";
+  // the joints' equations kept (a stop's rows, open in a Data of its own, are zero rows here)
+  const std::vector<int>& unilateral = model.unilateral_rows();
   std::vector<int> rows;
   for (int r = 0; r < m; ++r)
-    if (!std::binary_search(dropped_rows.begin(), dropped_rows.end(), r)) rows.push_back(r);
+    if (!std::binary_search(dropped_rows.begin(), dropped_rows.end(), r) &&
+        !std::binary_search(unilateral.begin(), unilateral.end(), r))
+      rows.push_back(r);
+  if (rows.empty()) return "";
   const auto svd = jacobian_svd(model, rows, q, t);
   const auto& s = svd.singularValues();
   std::ostringstream out;
