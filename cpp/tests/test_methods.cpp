@@ -90,7 +90,7 @@ TEST_CASE(what_each_method_supports_is_as_documented) {
   CHECK(having(&Method::fixed_step) == "ali3p");
   CHECK(having(&Method::baumgarte) == "index1 projection-adams");
   CHECK(having(&Method::drifts) == "index1 projection-adams");
-  CHECK(having(&Method::events) == "ggl index3 index1 projection-bdf projection-adams projection-erk");
+  CHECK(having(&Method::events) == "ggl index3 index1 projection-bdf projection-adams projection-erk ali3p");
   CHECK(having(&Method::contact) == "ggl index3 index1 projection-bdf projection-adams");
   CHECK(having(&Method::friction) == "ggl index3 index1 projection-bdf projection-adams projection-erk");
 }
