@@ -1027,3 +1027,74 @@ def test_a_file_where_nothing_moves_suggests_a_floating_base(tmp_path):
         load_text(tmp_path, text)
     r = mb.simulate(load_text(tmp_path, text, floating_base=True), 0.5, n_out=2, rtol=1e-10, atol=1e-12)
     assert r.body("frame").position[-1] == pytest.approx([0.0, 0.0, -9.81 * 0.5 ** 2 / 2], abs=1e-10)
+
+
+# --- robots with their own limits (issue 41) --------------------------------------------------------------
+
+def pinocchio_state(model, pm, r, k):
+    """At output k of a run: Pinocchio's (q, v, a) from lagmb's joint readings
+    (r.joint: angle or slide, rate, acceleration; every joint of these files
+    is one coordinate), and Pinocchio's joint index of each lagmb joint."""
+    js = mb.JointSpace(model)
+    q, v, a = np.zeros(pm.nq), np.zeros(pm.nv), np.zeros(pm.nv)
+    index = {}
+    for jid in range(1, pm.njoints):
+        name = lagmb_name(js, pm.names[jid])
+        path, i = r.joint(name), pm.joints[jid].idx_v
+        q[i] = path.angle[k] if hasattr(path, "angle") else path.slide[k]
+        v[i], a[i] = path.rate[k], path.acceleration[k]
+        index[name] = i
+    return q, v, a, index
+
+
+@pytest.mark.parametrize("formulation", ["auto", "ggl"])
+def test_the_panda_rests_on_its_limits_with_the_torques_of_inverse_dynamics(formulation):
+    """The Panda as the file has it (limits, damping, the fingers' mimic),
+    lowered by gravity from its zero configuration (joint 4 from the middle
+    of its limits, which exclude 0) for 5 s with default options: the run
+    ends, and every joint stays within its limits to 1e-8 rad (m) at every
+    output. At the end, the equation of motion in joint space, read by
+    Pinocchio's RNEA at the run's own (q, v, a):
+
+        rnea(q, v, a) = tau_stop + tau_damping + tau_mimic,
+
+    tau_stop = r.effort(stop) (0 on a joint off its limits), tau_damping =
+    -c s' (the URDF's <dynamics damping>), tau_mimic the coupling's reaction
+    (-lam on the follower, +multiplier lam on its leader: docs/modelling.md).
+    Each captured stop's torque equals rnea minus the other two to 1e-8 of
+    itself (1e-8 of the largest joint torque under GGL, whose accelerations
+    hold to its Newton tolerance); every other joint's to 1e-8 of the
+    largest."""
+    relpath = "panda_description/urdf/panda.urdf"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mb.UrdfWarning)
+        model = mb.load_urdf(os.path.join(ROBOTS, relpath))
+    elements = model.elements()
+    stops = {kw["joint"]: kw for kind, kw in elements if kind == "add_stop"}
+    damping = {kw["joint"]: kw["viscous"] for kind, kw in elements if kind == "add_joint_friction"}
+    mimics = [kw for kind, kw in elements if kind == "add_joint_coupling"]
+    assert len(stops) == 9 and len(mimics) == 1
+
+    r = mb.simulate(model, 5.0, formulation=formulation)
+    assert r.t[-1] == 5.0
+    assert r.stats["captures"] > 0
+    for joint, stop in stops.items():
+        path = r.joint(joint)
+        s = path.angle if hasattr(path, "angle") else path.slide
+        assert stop["lower"] - 1e-8 <= s.min() and s.max() <= stop["upper"] + 1e-8, joint
+
+    pm = pinocchio_model(relpath)
+    q, v, a, index = pinocchio_state(model, pm, r, -1)
+    rnea = pin.rnea(pm, pm.createData(), q, v, a)
+    others = {joint: -damping.get(joint, 0.0) * v[i] for joint, i in index.items()}
+    for mimic in mimics:
+        lam = r.multipliers(mimic["name"])[-1, 0]
+        others[mimic["joint"]] -= lam
+        others[mimic["leader"]] += mimic["multiplier"] * lam
+    largest = np.abs(rnea).max()
+    captured = [joint for joint in stops if r.effort(stops[joint]["name"])[-1] != 0.0]
+    assert "panda_joint2" in captured  # (the shoulder, holding the arm: some 35 N m)
+    for joint, i in index.items():
+        stop_torque = r.effort(stops[joint]["name"])[-1]
+        scale = abs(stop_torque) if joint in captured and formulation != "ggl" else largest
+        assert abs(stop_torque - (rnea[i] - others[joint])) <= 1e-8 * scale, joint
