@@ -333,17 +333,31 @@ def test_scene_heavy_top_nutates_between_its_release_tilt_and_the_closed_form_tu
 
 
 def test_panda(outputs):
-    """examples/panda.py: the Panda from example-robot-data falls for 2 s
-    with 0.5 N m s/rad at each arm joint: 9 bodies and 9 joints (the hand
-    merged into link 7), and the energy it loses equals the dampers' work
-    (the integral of c w^2, trapezoidal on 2,001 outputs) to 1e-6 relative."""
+    """examples/panda.py: the Panda from example-robot-data, with its URDF
+    limits, falls for 2 s with 0.5 N m s/rad at each arm joint: 9 bodies and
+    9 joints (the hand merged into link 7). Its shoulder (joint 2) swings
+    onto its upper limit and is captured there (restitution 0: one impact,
+    one capture, no release); no joint goes beyond a limit by more than
+    1e-8 rad (m). The shoulder's stop torque equals the torque inverse
+    dynamics needs for the run's own joint motion to 1e-8 relative. Energy:
+    the arm loses the dampers' work plus what the impact took (> 0), and
+    after the impact, where the captured stop does no work, what it loses
+    equals the dampers' work to 1e-7 relative."""
     import test_urdf  # (skips without Pinocchio and example-robot-data)
 
     assert test_urdf.ROBOTS
     _, v = outputs("panda")
     assert v["bodies"] == 9 and v["joints"] == 9
-    assert v["energy lost"] > 10.0
-    assert abs(v["energy lost"] - v["damper work"]) <= 1e-6 * v["energy lost"]
+    assert (v["impacts"], v["captures"], v["releases"]) == (1, 1, 0)
+    assert 0.4 < v["shoulder captured on its limit at t"] < 0.6
+    assert v["largest excursion beyond a limit"] <= 1e-8
+    torque = v["shoulder stop torque at 2 s"]
+    assert torque < -10.0  # (the upper limit pushes down the joint's coordinate)
+    assert abs(torque - v["inverse dynamics shoulder torque"]) <= 1e-8 * abs(torque)
+    assert v["energy lost"] > 10.0 and v["impact losses"] > 1.0
+    assert abs(v["energy lost"] - v["damper work"] - v["impact losses"]) <= 1e-8
+    after = v["energy lost after the last impact"]
+    assert abs(after - v["damper work after the last impact"]) <= 1e-7 * after
 
 
 def test_mjcf_four_bar(outputs):
