@@ -25,7 +25,7 @@ EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 G = 9.81
 
 SCRIPTS = ["seed_pendulum", "double_pendulum", "slider_crank", "four_bar", "quick_return",
-           "gear_train", "spring_damper", "bouncing_ball", "rolling_disk", "cam_follower", "panda",
+           "gear_train", "spring_damper", "bouncing_ball", "door_stop", "rolling_disk", "cam_follower", "panda",
            "mjcf_four_bar"]
 
 _LINE = re.compile(r"^\s*(?P<label>[^=]+?)\s*=\s*(?P<value>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")
@@ -247,6 +247,38 @@ def test_bouncing_ball(outputs):
     assert abs(v["first impact speed"] - math.sqrt(2 * G * h)) <= 1e-7
     assert abs(v["effective restitution"] - 0.8) <= 0.02 * 0.8
     assert v["contact events"] == 10
+
+
+def test_door_stop(outputs):
+    """A door (I = m w^2 / 3 = 8.1 kg m^2) let go at 1.2 rad, pulled shut by
+    a constant 20 N m onto a stop with e = 0.5: uniform angular acceleration
+    alpha = 20 / 8.1 between impacts, so the first impact at t1 = sqrt(2
+    theta0 / alpha) = 0.98590 s with speed alpha t1, each flight 2 e^k t1,
+    every impact on its closed-form time to 1e-9 s and arrival speed e^k
+    alpha t1 to 1e-9 rad/s; the stop captures the door at the
+    bounces' accumulation point T = t1 (1 + e) / (1 - e) within its
+    capture_time (1e-6 s: the remaining bounces' total), after some 20
+    impacts (not one at every output). At rest on the stop the door stays
+    at 0 (never below it by more than 1e-10 rad), its stop torque is the
+    closer's 20 N m to 1e-9 relative, and the impacts took all of the
+    closer's work, 20 x 1.2 = 24 J, to 1e-8 relative (what was left at the
+    capture is below the capture_time's bounces)."""
+    _, v = outputs("door_stop")
+    inertia = 30.0 * 0.9 ** 2 / 3.0
+    alpha = 20.0 / inertia
+    t1 = math.sqrt(2.0 * 1.2 / alpha)
+    rest = t1 * 1.5 / 0.5
+    assert abs(v["first impact time"] - t1) <= 1e-9
+    assert abs(v["first impact speed"] - alpha * t1) <= 1e-9
+    assert abs(v["impact 2: t"] - t1 * (1.0 + 2.0 * 0.5)) <= 1e-9
+    assert v["largest impact time error"] <= 1e-9 and v["largest impact speed error"] <= 1e-9
+    assert abs(v["rest time closed form"] - rest) <= 1e-9
+    assert 0.0 <= rest - v["capture time"] <= 1e-6
+    assert 10 <= v["impacts"] <= 40
+    assert v["lowest angle"] >= -1e-10 and abs(v["angle at 4 s"]) <= 1e-10
+    assert abs(v["stop torque at 4 s"] - 20.0) <= 1e-9 * 20.0
+    assert v["kinetic energy at 4 s"] <= 1e-12
+    assert abs(v["energy the impacts took"] - 24.0) <= 1e-8 * 24.0
 
 
 def test_rolling_disk(outputs):
