@@ -10,7 +10,8 @@ its own (a time limit, so a hang is a row, not a stuck survey):
   exception's class and first line and the time it reached;
 - the largest excursion of a joint beyond its limit over the outputs
   (rad or m; 0 when every limit held), from each stop's joint reading;
-- wall time, steps and the events the run logged (impacts and others).
+- wall time, steps, the events the run logged (impacts, captures,
+  releases) and the counts of captures and releases.
 
 Prints a table and the counts; writes bench/results/robot_survey.json and
 robot_survey.md. Not a timing benchmark: the times only show where a run
@@ -50,9 +51,7 @@ def limit_excursion(result, stops):
     worst = 0.0
     for stop in stops:
         reading = result.joint(stop["joint"])
-        s = reading.angle if reading.angle is not None else reading.slide
-        if s is None:
-            continue
+        s = reading.angle if hasattr(reading, "angle") else reading.slide
         worst = max(worst, float((stop["lower"] - s).max()), float((s - stop["upper"]).max()))
     return worst
 
@@ -89,6 +88,8 @@ def survey_one(path, t_end, out):
     if result is not None:
         row["steps"] = int(result.stats.get("steps", 0))
         row["events"] = len(result.events)
+        row["captures"] = int(result.stats.get("captures", 0))
+        row["releases"] = int(result.stats.get("releases", 0))
         try:
             row["limit_excursion"] = limit_excursion(result, stops)
         except Exception as e:  # noqa: BLE001
@@ -132,7 +133,8 @@ def main(argv=None):
         print(f"{name:60s} load {row['load'][:40]:40s} run {str(row['run'])[:70]}", flush=True)
     loaded = sum(r["load"] == "ok" for r in rows.values())
     ran = sum(r["run"] == "ok" for r in rows.values())
-    held = sum(r["run"] == "ok" and r.get("limit_excursion", 1.0) <= 1e-8 for r in rows.values())
+    held = sum(r["run"] == "ok" and isinstance(r.get("limit_excursion"), float) and r["limit_excursion"] <= 1e-8
+               for r in rows.values())
     summary = {"files": len(rows), "loaded": loaded, "ran": ran, "ran_with_limits_held_to_1e-8": held,
                "t_end": args.t_end}
     print(f"{len(rows)} files: {loaded} load, {ran} run {args.t_end:g} s, {held} of those with every "
@@ -143,14 +145,14 @@ def main(argv=None):
     with open(args.out + ".md", "w") as f:
         f.write(f"# example-robot-data with mb.load_urdf's defaults, {args.t_end:g} s under gravity\n\n")
         f.write(f"{summary['files']} files: {loaded} load, {ran} run, {held} with every limit held to 1e-8 "
-                "(bench/robot_survey.py)\n\n| robot | load | run | excursion | steps | events | wall s |\n"
-                "|---|---|---|---|---|---|---|\n")
+                "(bench/robot_survey.py)\n\n| robot | load | run | excursion | steps | events | captures | releases | wall s |\n"
+                "|---|---|---|---|---|---|---|---|---|\n")
         for name, r in rows.items():
             exc = r.get("limit_excursion")
             exc = f"{exc:.1e}" if isinstance(exc, float) else (exc or "")
             wall = f"{r['wall_time']:.2f}" if "wall_time" in r else ""
             f.write(f"| {name} | {cell(r['load'])} | {cell(r.get('run'))} | {exc} | {r.get('steps', '')} | "
-                    f"{r.get('events', '')} | {wall} |\n")
+                    f"{r.get('events', '')} | {r.get('captures', '')} | {r.get('releases', '')} | {wall} |\n")
 
 
 if __name__ == "__main__":
