@@ -43,13 +43,11 @@ def build():
 
 
 def plot(result, path):
-    """The door's angle, the stop's torque and the energy (lagmb.plotting; needs matplotlib)."""
-    try:
-        from lagmb.plotting import plot_result
-        plot_result(result, path, what=("coordinates", "efforts", "energy"))
-    except ImportError as e:
-        print(f"no plot: {e}")
-        return
+    """The door's angle, the stop's torque and the kinetic energy, one under
+    the other (lagmb.plotting.plot_result, which needs matplotlib)."""
+    from lagmb.plotting import plot_result
+
+    plot_result(result, path, what=("coordinates", "efforts", "energy"))
     print(f"plot written to {path}")
 
 
