@@ -41,6 +41,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
+from robot_survey import limit_excursion  # noqa: E402 (bench/ on the path first)
+
 ARMS = {
     "panda": "panda_description/urdf/panda.urdf",
     "kinova": "kinova_description/robots/kinova.urdf",
@@ -65,22 +67,6 @@ def coordinate(result, joint):
 
 def stops_of(model):
     return [kw for kind, kw in model.elements() if kind == "add_stop"]
-
-
-def limit_excursion(model, result):
-    """The largest distance (rad or m) a joint went beyond a limit over the
-    outputs. An angle is taken within pi of the middle of its limits, as
-    the stop reads it (r.joint reads a spatial angle within pi of 0 at the
-    start, so a pose given beyond pi, as the Kinova's joint 3 at 3.96 rad,
-    reads a turn lower there)."""
-    worst = 0.0
-    for stop in stops_of(model):
-        path = result.joint(stop["joint"])
-        s = path.slide if not hasattr(path, "angle") else \
-            np.remainder(path.angle - 0.5 * (stop["lower"] + stop["upper"]) + np.pi, 2 * np.pi) - np.pi + \
-            0.5 * (stop["lower"] + stop["upper"])
-        worst = max(worst, float(np.max(stop["lower"] - s)), float(np.max(s - stop["upper"])))
-    return worst
 
 
 def with_dampers(model):

@@ -46,12 +46,25 @@ def cell(text, width=160):
     return text if len(text) <= width else text[:width - 1] + "…"
 
 
-def limit_excursion(result, stops):
-    """The largest distance (rad or m) any stop's joint went beyond its limit."""
+def limit_excursion(model, result):
+    """The largest distance (rad or m) any stop's joint went beyond its limit
+    over the outputs. An angle is r.joint's, continuous from output to
+    output, put by whole turns onto the joint's initial angle in the model
+    (r.joint starts within pi of 0, so a joint built at 3.96 rad would read
+    a turn lower)."""
+    import numpy as np
+
+    initial = {kw["name"]: kw.get("angle", 0.0) for kind, kw in model.elements()}
     worst = 0.0
-    for stop in stops:
+    for kind, stop in model.elements():
+        if kind != "add_stop":
+            continue
         reading = result.joint(stop["joint"])
-        s = reading.angle if hasattr(reading, "angle") else reading.slide
+        if hasattr(reading, "angle"):
+            turns = np.round((initial[stop["joint"]] - reading.angle[0]) / (2 * np.pi))
+            s = reading.angle + 2 * np.pi * turns
+        else:
+            s = reading.slide
         worst = max(worst, float((stop["lower"] - s).max()), float((s - stop["upper"]).max()))
     return worst
 
@@ -91,7 +104,7 @@ def survey_one(path, t_end, out):
         row["captures"] = int(result.stats.get("captures", 0))
         row["releases"] = int(result.stats.get("releases", 0))
         try:
-            row["limit_excursion"] = limit_excursion(result, stops)
+            row["limit_excursion"] = limit_excursion(model, result)
         except Exception as e:  # noqa: BLE001
             row["limit_excursion"] = first_line(e)
     out.put(row)
