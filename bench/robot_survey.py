@@ -10,7 +10,8 @@ its own (a time limit, so a hang is a row, not a stuck survey):
   exception's class and first line and the time it reached;
 - the largest excursion of a joint beyond its limit over the outputs
   (rad or m; 0 when every limit held), from each stop's joint reading;
-- wall time, steps and the events the run logged (impacts and others).
+- wall time, steps, the events the run logged (impacts, captures,
+  releases) and the counts of captures and releases.
 
 Prints a table and the counts; writes bench/results/robot_survey.json and
 robot_survey.md. Not a timing benchmark: the times only show where a run
@@ -45,16 +46,25 @@ def cell(text, width=160):
     return text if len(text) <= width else text[:width - 1] + "…"
 
 
-def limit_excursion(result, stops):
-    """The largest distance (rad or m) any stop's joint went beyond its limit."""
+def limit_excursion(model, result):
+    """The largest distance (rad or m) any stop's joint went beyond its limit
+    over the outputs. An angle is r.joint's, continuous from output to
+    output, put by whole turns onto the joint's initial angle in the model
+    (r.joint starts within pi of 0, so a joint built at 3.96 rad would read
+    a turn lower)."""
+    import numpy as np
+
+    initial = {kw["name"]: kw.get("angle", 0.0) for kind, kw in model.elements()}
     worst = 0.0
-    for stop in stops:
-        reading = result.joint(stop["joint"])
-        s = getattr(reading, "angle", None)  # (a prismatic joint's path has a slide only)
-        if s is None:
-            s = getattr(reading, "slide", None)
-        if s is None:
+    for kind, stop in model.elements():
+        if kind != "add_stop":
             continue
+        reading = result.joint(stop["joint"])
+        if hasattr(reading, "angle"):
+            turns = np.round((initial[stop["joint"]] - reading.angle[0]) / (2 * np.pi))
+            s = reading.angle + 2 * np.pi * turns
+        else:
+            s = reading.slide
         worst = max(worst, float((stop["lower"] - s).max()), float((s - stop["upper"]).max()))
     return worst
 
@@ -91,8 +101,10 @@ def survey_one(path, t_end, out):
     if result is not None:
         row["steps"] = int(result.stats.get("steps", 0))
         row["events"] = len(result.events)
+        row["captures"] = int(result.stats.get("captures", 0))
+        row["releases"] = int(result.stats.get("releases", 0))
         try:
-            row["limit_excursion"] = limit_excursion(result, stops)
+            row["limit_excursion"] = limit_excursion(model, result)
         except Exception as e:  # noqa: BLE001
             row["limit_excursion"] = first_line(e)
     out.put(row)
@@ -146,14 +158,14 @@ def main(argv=None):
     with open(args.out + ".md", "w") as f:
         f.write(f"# example-robot-data with mb.load_urdf's defaults, {args.t_end:g} s under gravity\n\n")
         f.write(f"{summary['files']} files: {loaded} load, {ran} run, {held} with every limit held to 1e-8 "
-                "(bench/robot_survey.py)\n\n| robot | load | run | excursion | steps | events | wall s |\n"
-                "|---|---|---|---|---|---|---|\n")
+                "(bench/robot_survey.py)\n\n| robot | load | run | excursion | steps | events | captures | releases | wall s |\n"
+                "|---|---|---|---|---|---|---|---|---|\n")
         for name, r in rows.items():
             exc = r.get("limit_excursion")
             exc = f"{exc:.1e}" if isinstance(exc, float) else (exc or "")
             wall = f"{r['wall_time']:.2f}" if "wall_time" in r else ""
             f.write(f"| {name} | {cell(r['load'])} | {cell(r.get('run'))} | {exc} | {r.get('steps', '')} | "
-                    f"{r.get('events', '')} | {wall} |\n")
+                    f"{r.get('events', '')} | {r.get('captures', '')} | {r.get('releases', '')} | {wall} |\n")
 
 
 if __name__ == "__main__":

@@ -59,8 +59,8 @@ follower, Andrews' squeezer, N-four-bar, cart-pole (with an input, for
 
 #: the gallery's order: the simplest first, then by what they show
 ORDER = ("seed_pendulum", "double_pendulum", "spring_damper", "four_bar", "slider_crank", "quick_return",
-         "gear_train", "bouncing_ball", "rolling_disk", "cam_follower", "andrews", "n_four_bar", "cart_pole",
-         "panda", "mjcf_four_bar")
+         "gear_train", "bouncing_ball", "door_stop", "rolling_disk", "cam_follower", "andrews", "n_four_bar",
+         "cart_pole", "panda", "mjcf_four_bar")
 
 
 class ExampleOrder:

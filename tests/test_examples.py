@@ -25,7 +25,7 @@ EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 G = 9.81
 
 SCRIPTS = ["seed_pendulum", "double_pendulum", "slider_crank", "four_bar", "quick_return",
-           "gear_train", "spring_damper", "bouncing_ball", "rolling_disk", "cam_follower", "panda",
+           "gear_train", "spring_damper", "bouncing_ball", "door_stop", "rolling_disk", "cam_follower", "panda",
            "mjcf_four_bar"]
 
 _LINE = re.compile(r"^\s*(?P<label>[^=]+?)\s*=\s*(?P<value>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")
@@ -249,6 +249,38 @@ def test_bouncing_ball(outputs):
     assert v["contact events"] == 10
 
 
+def test_door_stop(outputs):
+    """A door (I = m w^2 / 3 = 8.1 kg m^2) let go at 1.2 rad, pulled shut by
+    a constant 20 N m onto a stop with e = 0.5: uniform angular acceleration
+    alpha = 20 / 8.1 between impacts, so the first impact at t1 = sqrt(2
+    theta0 / alpha) = 0.98590 s with speed alpha t1, each flight 2 e^k t1,
+    every impact on its closed-form time to 1e-9 s and arrival speed e^k
+    alpha t1 to 1e-9 rad/s; the stop captures the door at the
+    bounces' accumulation point T = t1 (1 + e) / (1 - e) within its
+    capture_time (1e-6 s: the remaining bounces' total), after some 20
+    impacts (not one at every output). At rest on the stop the door stays
+    at 0 (never below it by more than 1e-10 rad), its stop torque is the
+    closer's 20 N m to 1e-9 relative, and the impacts took all of the
+    closer's work, 20 x 1.2 = 24 J, to 1e-8 relative (what was left at the
+    capture is below the capture_time's bounces)."""
+    _, v = outputs("door_stop")
+    inertia = 30.0 * 0.9 ** 2 / 3.0
+    alpha = 20.0 / inertia
+    t1 = math.sqrt(2.0 * 1.2 / alpha)
+    rest = t1 * 1.5 / 0.5
+    assert abs(v["first impact time"] - t1) <= 1e-9
+    assert abs(v["first impact speed"] - alpha * t1) <= 1e-9
+    assert abs(v["impact 2: t"] - t1 * (1.0 + 2.0 * 0.5)) <= 1e-9
+    assert v["largest impact time error"] <= 1e-9 and v["largest impact speed error"] <= 1e-9
+    assert abs(v["rest time closed form"] - rest) <= 1e-9
+    assert 0.0 <= rest - v["capture time"] <= 1e-6
+    assert 10 <= v["impacts"] <= 40
+    assert v["lowest angle"] >= -1e-10 and abs(v["angle at 4 s"]) <= 1e-10
+    assert abs(v["stop torque at 4 s"] - 20.0) <= 1e-9 * 20.0
+    assert v["kinetic energy at 4 s"] <= 1e-12
+    assert abs(v["energy the impacts took"] - 24.0) <= 1e-8 * 24.0
+
+
 def test_rolling_disk(outputs):
     """Centre acceleration (2/3) g sin 20 deg to 3 d0 / R = 1.05e-4 relative
     (compliant rolling radius R - d0, d0 = (m g cos a / k)^(2/3) recomputed
@@ -333,17 +365,31 @@ def test_scene_heavy_top_nutates_between_its_release_tilt_and_the_closed_form_tu
 
 
 def test_panda(outputs):
-    """examples/panda.py: the Panda from example-robot-data falls for 2 s
-    with 0.5 N m s/rad at each arm joint: 9 bodies and 9 joints (the hand
-    merged into link 7), and the energy it loses equals the dampers' work
-    (the integral of c w^2, trapezoidal on 2,001 outputs) to 1e-6 relative."""
+    """examples/panda.py: the Panda from example-robot-data, with its URDF
+    limits, falls for 2 s with 0.5 N m s/rad at each arm joint: 9 bodies and
+    9 joints (the hand merged into link 7). Its shoulder (joint 2) swings
+    onto its upper limit and is captured there (restitution 0: an impact
+    and a capture); no joint goes beyond a limit by more than
+    1e-8 rad (m). The shoulder's stop torque equals the torque inverse
+    dynamics needs for the run's own joint motion to 1e-8 relative. Energy:
+    the arm loses the dampers' work plus what the impact took (> 0), and
+    after the impact, where the captured stop does no work, what it loses
+    equals the dampers' work to 1e-7 relative."""
     import test_urdf  # (skips without Pinocchio and example-robot-data)
 
     assert test_urdf.ROBOTS
     _, v = outputs("panda")
     assert v["bodies"] == 9 and v["joints"] == 9
-    assert v["energy lost"] > 10.0
-    assert abs(v["energy lost"] - v["damper work"]) <= 1e-6 * v["energy lost"]
+    assert v["impacts"] >= 1 and v["captures"] >= 1  # (today one of each: the shoulder's, and no release)
+    assert 0.4 < v["shoulder captured on its limit at t"] < 0.6
+    assert v["largest excursion beyond a limit"] <= 1e-8
+    torque = v["shoulder stop torque at 2 s"]
+    assert torque < -10.0  # (the upper limit pushes down the joint's coordinate)
+    assert abs(torque - v["inverse dynamics shoulder torque"]) <= 1e-8 * abs(torque)
+    assert v["energy lost"] > 10.0 and v["impact losses"] > 1.0
+    assert abs(v["energy lost"] - v["damper work"] - v["impact losses"]) <= 1e-8
+    after = v["energy lost after the last impact"]
+    assert abs(after - v["damper work after the last impact"]) <= 1e-7 * after
 
 
 def test_mjcf_four_bar(outputs):

@@ -180,3 +180,11 @@ def test_counting_turns_adds_no_event_functions():
     r = mb.simulate(coupled_wheels(3), t_end=0.5)
     assert r.stats["root_evals"] == 0 and r.stats["events"] == 0 and r.events == []
     assert r._run_state.shape == (len(r.t), 4)  # two doubles per turning joint
+
+
+def test_a_joint_given_an_angle_past_pi_reads_it_in_a_run():
+    # a revolute given angle=3.96 in its initial configuration (a robot
+    # built at a joint value past pi): the run's angle starts at 3.96, not at
+    # 3.96 - 2 pi, and counts on from there (free spin at SPIN: 3.96 + SPIN t)
+    r = mb.simulate(wheel(3, stiffness=0.0, start=3.96), t_end=0.1, n_out=3, **TIGHT)
+    assert r.joint("axle").angle == pytest.approx(3.96 + SPIN * r.t, abs=1e-8)

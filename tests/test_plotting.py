@@ -182,6 +182,24 @@ def test_plot_result_shows_driver_efforts(mpl, tmp_path):
     assert "1 driver" in fig._suptitle.get_text()
 
 
+def test_plot_result_shows_a_stops_torque(mpl, tmp_path):
+    """A bar on a hinge, pushed by 2 N m onto a stop at 0 (restitution 0):
+    the efforts subplot draws the stop's torque along the hinge, in N m,
+    r.effort's values: 0 while open, the pushing 2 N m once captured."""
+    m = mb.Model()
+    bar = m.add_body("bar", mass=1.0, inertia=1.0 / 12.0, position=(0.5 * math.cos(0.3), 0.5 * math.sin(0.3)),
+                     angle=0.3)
+    hinge = m.add_revolute("hinge", m.ground, bar, at=(0.0, 0.0))
+    m.add_torque("push", bar, -2.0)
+    m.add_stop("stop", hinge, lower=0.0)
+    r = mb.simulate(m, t_end=1.0, n_out=101)
+    fig = plotting.plot_result(r, tmp_path / "stop.png", what=("efforts",))
+    (effort,) = fig.axes
+    assert effort.get_ylabel() == "effort (N m)"
+    np.testing.assert_allclose(effort.lines[0].get_ydata(), r.effort("stop"))
+    assert effort.lines[0].get_ydata()[0] == 0.0 and effort.lines[0].get_ydata()[-1] == pytest.approx(2.0)
+
+
 # --- what the pictures know of the model ----------------------------------
 
 

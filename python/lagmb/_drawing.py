@@ -133,8 +133,8 @@ class Scene:
         kw = next((k for c, k in self.elements if k.get("name") == name), {})
         if kind == "drive_body":
             return "N m" if kw.get("coordinate") == "angle" else "N"
-        if kind == "drive_joint":
-            joint = self.kinds.get(self.kind_of.get(kw.get("joint")))
+        if "joint" in kw:  # a joint's driver or stop: along its coordinate
+            joint = self.kinds.get(self.kind_of.get(kw["joint"]))
             return "N" if joint is not None and "slide" in joint.coordinates else "N m"  # (a cylindrical's driver slides)
         return "N or N m"
 

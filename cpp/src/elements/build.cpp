@@ -96,23 +96,23 @@ spatial::JointReading joint_reading(const JointCoordinate& c, double center) {
   return r;
 }
 
-double initial_joint_value(const Model& m, const JointCoordinate& c) {
+double initial_joint_value(const Model& m, const JointCoordinate& c, double around) {
   spatial::Loc at;
   for (int side = 0; side < 2; ++side) {
     const int b = side ? c.body_j : c.body_i;
     at.segment<3>(7 * side) = b == kGround ? Vec3::Zero() : Vec3(m.bodies()[b].r0);
     at.segment<4>(7 * side + 3) = b == kGround ? Vec4(1.0, 0.0, 0.0, 0.0) : Vec4(m.bodies()[b].p0);
   }
-  return joint_reading(c, 0.0)(at, {}).value;
+  return joint_reading(c, around)(at, {}).value;
 }
 
-void count_turns(Model& m, const std::string& joint) {
+void count_turns(Model& m, const std::string& joint, double angle) {
   const JointOf c = joint_coordinate(m, joint, "'" + joint + "'");
   if (!c.turns) return;
   TurnCounter counter;
   counter.joint = joint;
   counter.body_i = c.body_i, counter.body_j = c.body_j;
-  counter.reading = joint_reading(c, initial_joint_value(m, c));
+  counter.reading = joint_reading(c, initial_joint_value(m, c, angle));
   counter.reading.slide = false;  // (a cylindrical joint's angle)
   m.add_turn_counter(std::move(counter));
 }

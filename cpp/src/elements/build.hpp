@@ -70,12 +70,14 @@ JointOf joint_coordinate(const Model& m, const std::string& joint, const std::st
 /// How a spatial element reads that coordinate (spatial_drivers.hpp), an
 /// angle within pi of `center` (rad).
 spatial::JointReading joint_reading(const JointCoordinate& c, double center);
-/// The joint's coordinate (its angle in (-pi, pi], or its slide) in the
-/// model's initial configuration.
-double initial_joint_value(const Model& m, const JointCoordinate& c);
+/// The joint's coordinate (its angle within pi of `around`, or its slide)
+/// in the model's initial configuration.
+double initial_joint_value(const Model& m, const JointCoordinate& c, double around = 0.0);
 /// Gives the spatial joint `joint`, just added, the counter of its turns in
-/// a run if it turns (model/joint_turns.hpp); its builder calls this.
-void count_turns(Model& m, const std::string& joint);
+/// a run if it turns (model/joint_turns.hpp); its builder calls this with
+/// the angle it was given in the initial configuration (`angle`: a joint
+/// built at 3.96 rad reads 3.96, not 3.96 - 2 pi).
+void count_turns(Model& m, const std::string& joint, double angle = 0.0);
 /// How an element that acts on joint `joint` (coordinate c) in the run's
 /// equations reads it: a turning joint's angle continuous through its
 /// turns (the counter's reading, which this marks read), a slide as it is.

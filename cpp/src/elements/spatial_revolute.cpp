@@ -19,7 +19,7 @@ void build_revolute(Model& m, const std::string& name, const Args& a) {
   const Vec3 f = m.body_direction(j.body_i, j.f_i), g = m.body_direction(j.body_i, j.g_i);
   j.f_j = m.local_direction(j.body_j, std::cos(angle) * f + std::sin(angle) * g);
   m.add_constraint(std::move(j));
-  build::count_turns(m, name);
+  build::count_turns(m, name, angle);
 }
 
 }  // namespace

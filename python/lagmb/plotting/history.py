@@ -21,7 +21,8 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     ``what`` picks among "coordinates" (centre-of-mass x, y (z) in m, and the
     angles in rad, on two subplots; in space the angle each body has turned
     from its initial orientation), "reactions" (magnitude of each joint's
-    reaction force, N), "efforts" (the drivers' forces or torques),
+    reaction force, N), "efforts" (the drivers' forces or torques, and
+    the stops' along their joints: 0 while a joint is off its limits),
     "energy" (change E - E(0) in J, with E(0) given) and "residual"
     (max ``|Phi|`` on a log scale). Subplots with nothing to show are left out.
     Up to 6 bodies and 8 joints or drivers are drawn; the legend says when
@@ -53,14 +54,15 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
         if reactions:
             panels.append(lambda ax: _lines(ax, t, reactions, len(scene.joints), "joints",
                                             "reaction |F| (N)"))
-    if "efforts" in what and scene.drivers:
-        efforts = _series(scene.drivers, lambda n: _effort(result, n))
+    exerting = scene.drivers + scene.by_role["stop"]
+    if "efforts" in what and exerting:
+        efforts = _series(exerting, lambda n: _effort(result, n))
         if efforts:
             units = {scene.effort_unit(n) for n in efforts}
             unit = units.pop() if len(units) == 1 else None
             labelled = {n if unit else f"{n} ({scene.effort_unit(n)})": y
                         for n, y in efforts.items()}
-            panels.append(lambda ax: _lines(ax, t, labelled, len(scene.drivers), "drivers",
+            panels.append(lambda ax: _lines(ax, t, labelled, len(exerting), "drivers and stops",
                                             f"effort ({unit or 'N, N m'})"))
     if "energy" in what:
         energy = _quiet(lambda: np.asarray(result.energy, dtype=float))
