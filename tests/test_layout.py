@@ -264,3 +264,25 @@ def test_each_subcommand_of_the_command_line_stands_alone():
         if not {"add_parser", "handle"} <= names:
             found.append(f"{path.name} lacks add_parser or handle")
     assert found == []
+
+
+def test_the_fuzzers_helpers_point_down():
+    """The fuzzers' helpers (tests/fuzz_*.py) stand below the tests: none
+    imports a test module or conftest, and the mechanism fuzzer, whose
+    worker runs every fuzzer's cases (fuzz_stops' checks import fuzz_stops
+    by name in the worker), imports none of the other fuzzers."""
+    import ast
+
+    tests = ROOT / "tests"
+    wrong = []
+    for path in sorted(tests.glob("fuzz_*.py")):
+        names = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                names |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+                names.add(node.module.split(".")[0])
+        wrong += [f"{path.name} imports {n}" for n in sorted(names) if n.startswith("test_") or n == "conftest"]
+        if path.name == "fuzz_mechanisms.py":
+            wrong += [f"{path.name} imports {n}" for n in sorted(names) if n.startswith("fuzz_")]
+    assert sorted(tests.glob("fuzz_*.py")) and wrong == []
