@@ -373,8 +373,31 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
   // the state at a root is interpolated: put the positions back on Phi = 0
   // (least change; the closed stops' rows included) and the velocities on
-  // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it
-  return make_consistent(model_, d_, kkt_, q, v, t);
+  // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it.
+  // An open stop found beyond its limit (a crossing the steps passed, acted
+  // on late) is put back on the limit first: its row held for the positions
+  // only, so that the rebound's velocity stays and no joint sinks through
+  VecX on_limits = q;
+  if (!contacts_.empty()) {
+    const Instant at = rows_.at(t);
+    for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q.data(), at, rows_.Phi.data());
+    std::vector<int> held = d_.closed_rows();
+    const size_t closed = held.size();
+    for (const Contact& c : contacts_)
+      if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0) held.push_back(c.row);
+    if (held.size() > closed) {
+      const std::vector<int> before(held.begin(), held.begin() + long(closed));
+      d_.close_rows(model_, held);
+      try {
+        on_limits = solve_positions(model_, d_, kkt_, q, t);
+      } catch (...) {
+        d_.close_rows(model_, before);
+        throw;
+      }
+      d_.close_rows(model_, before);
+    }
+  }
+  return make_consistent(model_, d_, kkt_, on_limits, v, t);
 }
 
 }  // namespace lagmb
