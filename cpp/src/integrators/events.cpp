@@ -169,7 +169,8 @@ void EventRunner::contact_rows(double t, const VecX& q, const VecX& v, const std
 void EventRunner::driven_through(int contact, double t) const {
   throw plain_failure("stop '" + model_.constraint_name_of_row(contacts_[contact].row) + "' is reached at t = " +
                           fmt(t) + " along a motion the joints and drivers prescribe: no impact or stop force can "
-                          "change it (a driver pushing through the limit); the run stops here.",
+                          "change it (a driver pushing through the limit, or joints at a singular position that "
+                          "leaves no motion along it, such as a gimbal lock of three revolutes); the run stops here.",
                       t);
 }
 
