@@ -246,8 +246,6 @@ def test_a_short_release_is_not_stepped_over(amplitude):
     assert releases and abs(releases[0] - t_release) <= 1e-6
 
 
-@pytest.mark.xfail(strict=True, reason="the core: a driver's input jump re-assembles the positions without the "
-                   "open stops: the elbow is put 0.6 rad through its limit, and no event follows")
 def test_a_drivers_jump_keeps_the_other_joints_within_their_limits():
     """A level two-rod arm: the shoulder driven by an input, the elbow with
     an upper stop at 0 where it starts (gravity folds it down, away from

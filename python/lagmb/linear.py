@@ -701,8 +701,9 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     (q, v) or (q, v, t), or a dict with q, v, t, inputs and held (e.g. a
     Result's point ``(r.q[i], r.v[i], r.t[i])``). ``held``: the stops that
     hold their joints on a limit at that state (captured, as ``r.events``
-    says), each the joint row it is then; the other stops are open. ``input_values``: {input name:
-    value} at the operating point (default the inputs' initial values).
+    says), each the joint row it is then; the other stops are open.
+    ``input_values``: {input name: value} at the operating point (default
+    the inputs' initial values).
 
     ``inputs``: the names of the ``mb.Input`` elements that form u (None:
     all of the model's, in the order added; the others are held). Q is

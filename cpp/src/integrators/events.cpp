@@ -90,7 +90,7 @@ bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, 
 bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
   values(t, q.data(), v.data(), g_.data());
   std::vector<int> fired(g_.size(), 0);
-  bool any = false;
+  bool any = false, beyond = false;
   const double tol = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
   const double force_tol = 1e-8 * (1.0 + lam_.lpNorm<Eigen::Infinity>());
   const size_t base = roots_.size();
@@ -115,6 +115,8 @@ bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
       throw ModelError(kind + " '" + name + "': the initial configuration is beyond its " + label + " limit (by " +
                        fmt(-g_[i]) + ")");
     }
+    // (a jump of the equations, a driver's new value, can put a joint beyond a limit: consistent() puts it back)
+    if (contact && !closed && g_[i] < -tol) beyond = true;
     fired[i] = 1;
     any = true;
   }
@@ -122,7 +124,7 @@ bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
   const VecX v0 = v;
   const std::vector<int> closed0 = d_.closed_rows();
   handle(t, q, v, fired);
-  return v != v0 || d_.closed_rows() != closed0;
+  return v != v0 || d_.closed_rows() != closed0 || beyond;
 }
 
 bool EventRunner::missed(double t, const double* q, const double* v, std::vector<int>& fired) {
@@ -294,7 +296,6 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   const double v_scale = 1e-9 * (1.0 + v.lpNorm<Eigen::Infinity>());
   std::vector<int> hit, resting;
   std::vector<VecX> C_hit;
-  VecX s_before(int(arriving.size()));
   for (size_t j = 0; j < arriving.size(); ++j) {
     const double s = C[j].dot(v);  // g'
     if (s < -v_scale) {

@@ -35,7 +35,8 @@ class EventRunner {
   /// The same where the equations jump (a new input value, a breakpoint of a
   /// time function): closed stops whose force would pull are released,
   /// joints at a limit get their impact or capture. Returns true if the
-  /// state or the active set changed (then restart from consistent()).
+  /// state or the active set changed, or a joint is beyond a limit (then
+  /// restart from consistent(), which puts it back on the limit).
   bool settle(double t, const VecX& q, VecX& v, bool at_start = false);
   /// After a step that found no root: event functions of direction -1 that
   /// are below zero with the motion still going further (a crossing the
