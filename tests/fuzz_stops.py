@@ -64,29 +64,25 @@ FORCE_TOL = 1e-6  # N (N m) per N (N m) of the mechanism's force scale: how far 
 GRAZE_DEPTH = 1e-4  # rad (or m): how deep a missed grazing crossing is at most, to be told from a sinking joint
 MAX_EVENTS = 400  # events a run may log unless some restitution is >= HIGH_RESTITUTION
 HIGH_RESTITUTION = 0.8
-FORMULATIONS = [("ggl", {}), ("index1", {}), ("index3", {}), ("projection", {}),
-                ("projection", {"integrator": "erk"}), ("projection", {"integrator": "adams"}), ("auto", {})]
+FORMULATIONS = [("ggl", {}), ("index1", {}), ("projection", {"integrator": "erk"}), ("auto", {}),
+                ("projection", {"integrator": "adams"}), ("index3", {}), ("projection", {})]
 
 #: What the fuzzer found the core breaking (issue 41), each shrunk to an
 #: xfail(strict=True) test of tests/test_fuzz_stops.py: {feature: that test}.
 #: stop_cases(known_bugs=False) draws none of these features, so that the
 #: default suite checks what holds; known_bugs=True draws them all.
 KNOWN_BUGS = {
-    "formulation index3, projection or auto (auto runs projection-erk)":
-        "test_a_pressed_bounce_series_is_captured",
+    # (projection-erk, what auto runs, still passes limits by up to 1e-2 rad
+    # and gains energy in about 1 of 20 draws: its crossings after a restart)
+    "formulation index3, projection or auto": "test_a_pressed_bounce_series_is_captured",
     "a torque that turns back and forth (Harmonic)": "test_a_short_release_is_not_stepped_over",
     "a driver's input jump": "test_a_drivers_jump_keeps_the_other_joints_within_their_limits",
 }
 #: Laws the core breaks in mechanisms of any kind (not a feature to leave out):
 #: stop_problems names them apart; {law: the xfail test of it}.
 KNOWN_LAWS = {
-    "a grazing crossing missed": "test_a_grazing_swing_strikes_its_stop",
-    "impacts piled at one instant": "test_adjacent_stops_settle_without_a_pile_of_impacts",
     "too many events": "test_a_stop_pressed_by_a_swinging_chain_settles",
 }
-# Not drawn either: a lone limit on a spatial revolute, whose angle is read
-# within a turn of the limit (docs/modelling.md; one continuous angle is issue
-# 41's part 3).
 
 
 # ---------------------------------------------------------------------------
@@ -418,14 +414,11 @@ def _cross(a, b):
 def _limits(b, s0, coordinate, second):
     """(lower, upper) about the start s0: a range around it, a lone limit, or
     the start on a limit (gravity may press on it, or the motion carry into it).
-    A joint's second stop does not start on a limit (the first may); a
-    spatial revolute gets no lone limit (see KNOWN_BUGS) unless b.known_bugs."""
+    A joint's second stop does not start on a limit (the first may)."""
     d = b.draw
     scale = 1.0 if coordinate == "angle" else 0.5 * b.length
     spread = lambda: _r(scale * d(st.integers(1, 30)) / 20.0)  # noqa: E731
     shapes = ["both", "lower", "upper", "at lower", "at upper", "both at lower", "both at upper"]
-    if b.dim == 3 and coordinate == "angle" and not b.known_bugs:
-        shapes = [x for x in shapes if x.startswith("both")]
     if second:
         shapes = [x for x in shapes if "at" not in x]
     shape = b.pick(shapes)

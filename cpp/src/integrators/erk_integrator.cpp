@@ -82,10 +82,25 @@ struct ErkStepper final : ErkParts, OdeStepper {
   } start_, end_;
   VecX out_;
   long extra_rhs_ = 0;  // accelerations at step ends for outputs
+  double first_h_ = 0.0;  // the first step (0: ARKODE's estimate), kept for every segment as ReInit kept it
 
   ErkStepper(const Model& model, const ConsistentState& start, const IntegrationPlan& plan_)
       : ErkParts(model, start, plan_), OdeStepper(s.y, user_), plan(plan_), out_(2 * n) {
-    s.mem = ERKStepCreate(ode_rhs, plan.t0, s.y, s.ctx);
+    first_h_ = first_step();
+    create(plan.t0);
+    mark(plan.t0);
+  }
+  /// A new ERKStep memory from s.y at t with the run's settings. A restart
+  /// builds a new one rather than calling ERKStepReInit: ARKODE (6.4 to
+  /// 7.5, unlike CVODE and IDA) keeps its "a root was returned" flag across
+  /// ReInit, so after the first step of the new segment it evaluates the
+  /// root functions again at the segment's start on that step's
+  /// interpolant, and a stop that rebounded there (its gap 0 to rounding)
+  /// can read just beyond its limit: a crossing back within that step is
+  /// then not a sign change and is missed.
+  void create(double t) {
+    if (s.mem) ERKStepFree(&s.mem);
+    s.mem = ERKStepCreate(ode_rhs, t, s.y, s.ctx);
     if (!s.mem) throw std::runtime_error("lagmb: ERKStepCreate failed");
     s.ctx.attach_erkstep(s.mem);
     check(ERKStepSVtolerances(s.mem, plan.options->rtol, s.abstol), "ERKStepSVtolerances", s.ctx);
@@ -93,7 +108,7 @@ struct ErkStepper final : ErkParts, OdeStepper {
     check(ERKStepSetOrder(s.mem, plan.max_order), "ERKStepSetOrder", s.ctx);
     if (plan.options->max_step > 0) check(ERKStepSetMaxStep(s.mem, plan.options->max_step), "ERKStepSetMaxStep", s.ctx);
     check(ERKStepSetMinStep(s.mem, minimum_step(plan)), "ERKStepSetMinStep", s.ctx);
-    if (const double h0 = first_step(); h0 > 0.0) check(ERKStepSetInitStep(s.mem, h0), "ERKStepSetInitStep", s.ctx);
+    if (first_h_ > 0.0) check(ERKStepSetInitStep(s.mem, first_h_), "ERKStepSetInitStep", s.ctx);
     if (ode_.n_constraints() > 0)
       check(ERKStepSetPostprocessStepFn(s.mem, erk_project), "ERKStepSetPostprocessStepFn", s.ctx);
     if (plan.events && plan.events->size() > 0) {  // only models with event elements
@@ -101,7 +116,6 @@ struct ErkStepper final : ErkParts, OdeStepper {
       check(ERKStepRootInit(s.mem, plan.events->size(), ode_roots), "ERKStepRootInit", s.ctx);
       check(ERKStepSetRootDirection(s.mem, plan.events->directions()), "ERKStepSetRootDirection", s.ctx);
     }
-    mark(plan.t0);
   }
   /// The first step, as Hairer, Norsett and Wanner choose it for explicit
   /// Runge-Kutta methods of order p (Solving ODEs I, sec. II.4): with the
@@ -188,7 +202,7 @@ struct ErkStepper final : ErkParts, OdeStepper {
     Stats counts = before;
     arkode_counts(counts);
     before = counts;
-    check(ERKStepReInit(s.mem, ode_rhs, t, s.y), "ERKStepReInit", s.ctx);
+    create(t);
     mark(t);
     start_ = end_;
   }

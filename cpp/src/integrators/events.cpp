@@ -69,18 +69,22 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   // step still shows as a sign change; otherwise just past the limit (a
   // restart never puts a root function at exactly 0: SUNDIALS would warn)
   const double at_limit = 1e-10;
+  // (at rest on it, g' = 0 to rounding, it is inside too: a plastic impact
+  // the active set leaves open moves away, or comes back as a crossing)
   bool rates = false;
   for (const Contact& c : contacts_)
     if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= at_limit) rates = true;
+  double at_rest = 0.0;
   if (rates) {
     for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->jacobian(q, at, rows_.Phi_q.valuePtr());
     rows_.phi_t.setZero();  // (scratch: Phi_q v of the gaps)
     add_jacobian_times(rows_, v, rows_.phi_t.data());
+    at_rest = 1e-9 * (1.0 + Eigen::Map<const VecX>(v, model_.n_coordinates()).lpNorm<Eigen::Infinity>());
   }
   for (const Contact& c : contacts_) {
     double x = !c.info.exists ? 1.0 : is_closed(c.row) ? -lam_[c.row] : rows_.Phi[c.row];
     if (rates && !is_closed(c.row) && c.info.exists && std::abs(x) <= at_limit)
-      x = rows_.phi_t[c.row] > 0.0 ? at_limit : std::min(x, -1e-300);
+      x = rows_.phi_t[c.row] >= -at_rest ? at_limit : std::min(x, -1e-300);
     g[offset++] = x != 0.0 ? x : -1e-300;
   }
 }
@@ -141,6 +145,83 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
     }
   }
   return any;
+}
+
+double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired) {
+  if (contacts_.empty() || !(t1 > t0)) return NAN;
+  const double *q = nullptr, *v = nullptr;
+  const int n = model_.n_coordinates();
+  auto gap = [&](double t, int row, double* rate) {
+    at(t, q, v);
+    gaps(t, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
+    if (rate) *rate = rows_.phi_t[row];
+    return rows_.Phi[row];
+  };
+  // the gaps and rates at both ends
+  at(t0, q, v);
+  gaps(t0, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
+  const VecX g0 = rows_.Phi, r0 = rows_.phi_t;
+  at(t1, q, v);
+  gaps(t1, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
+  const VecX g1 = rows_.Phi, r1 = rows_.phi_t;
+  const double h = t1 - t0, t_tol = 1e-14 * (std::abs(t1) + h);
+  constexpr int kSamples = 16;
+  double earliest = NAN;
+  std::vector<int> rows;
+  for (size_t c = 0; c < contacts_.size(); ++c) {
+    const int row = contacts_[c].row;
+    if (!contacts_[c].info.exists || is_closed(row)) continue;
+    // (a row starts on its limit after a restart: its gap 0 to rounding)
+    if (!(g0[row] > -1e-10 && g1[row] > 0.0)) continue;
+    // the cubic Hermite through (g, g') at the ends: a turn far from the limit is passed over
+    double cubic_min = INFINITY;
+    for (int i = 1; i < 4 * kSamples; ++i) {
+      const double s = i / (4.0 * kSamples), s2 = s * s, s3 = s2 * s;
+      cubic_min = std::min(cubic_min, (2 * s3 - 3 * s2 + 1) * g0[row] + (s3 - 2 * s2 + s) * h * r0[row] +
+                                          (-2 * s3 + 3 * s2) * g1[row] + (s3 - s2) * h * r1[row]);
+    }
+    if (cubic_min > 0.5 * std::min(std::max(g0[row], 0.0), g1[row])) continue;
+    // the gap on the interpolant: samples, then the first one beyond, or the
+    // lowest one's turn (g' = 0 by bisection) if that is beyond
+    // (a row on its limit must have left it first, beyond the root
+    // functions' rounding: one that goes straight on beyond is no grazing)
+    double lo = t0, hi = NAN, lowest = INFINITY, t_lowest = t0, highest = g0[row];
+    for (int i = 1; i < kSamples && std::isnan(hi); ++i) {
+      const double ti = t0 + h * i / kSamples, gi = gap(ti, row, nullptr);
+      if (gi < 0.0) hi = ti;
+      else if (gi < lowest) lowest = gi, t_lowest = ti;
+      if (gi >= 0.0) lo = ti, highest = std::max(highest, gi);
+    }
+    if (!(highest > 1e-10)) continue;
+    if (std::isnan(hi)) {
+      double a = std::max(t0, t_lowest - h / kSamples), b = std::min(t1, t_lowest + h / kSamples), ra = 0, rb = 0;
+      gap(a, row, &ra), gap(b, row, &rb);
+      if (!(ra < 0.0 && rb > 0.0)) continue;
+      while (b - a > t_tol) {
+        const double mid = 0.5 * (a + b);
+        double rate = 0.0;
+        gap(mid, row, &rate);
+        (rate < 0.0 ? a : b) = mid;
+      }
+      if (!(gap(b, row, nullptr) < 0.0)) continue;
+      lo = std::max(t0, t_lowest - h / kSamples), hi = b;
+    }
+    // the crossing: g = 0 between lo (inside) and hi (beyond)
+    while (hi - lo > t_tol) {
+      const double mid = 0.5 * (lo + hi);
+      (gap(mid, row, nullptr) > 0.0 ? lo : hi) = mid;
+    }
+    if (std::isnan(earliest) || hi < earliest - t_tol) {
+      earliest = hi;
+      rows.assign(1, int(c));
+    } else if (hi <= earliest + t_tol) {
+      rows.push_back(int(c));
+    }
+  }
+  if (std::isnan(earliest)) return NAN;
+  fired.assign(g_.size(), 0);
+  for (int c : rows) fired[roots_.size() + size_t(c)] = 1;
+  return earliest;
 }
 
 void EventRunner::count_event(double t, const std::string& element, const char* kind) {
@@ -308,11 +389,37 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   const std::vector<int> closed_before = d_.closed_rows();
   std::vector<int> captured;
   if (!hit.empty()) {
-    const int k = int(hit.size());
     const VecX v_before = v;
-    VecX e(k), s0(k);
-    for (int j = 0; j < k; ++j) e[j] = contacts_[hit[j]].info.restitution, s0[j] = C_hit[j].dot(v);
+    VecX e(int(hit.size()));
+    for (size_t j = 0; j < hit.size(); ++j) e[int(j)] = contacts_[hit[j]].info.restitution;
     impulse(t, q, v, hit, C_hit, e);
+    // an impact passes its impulse through the joints: another stop at its
+    // limit and at rest (an adjacent joint, a coupled finger) that it drives
+    // into its limit takes part in it (plastic: its pre-impact speed is 0),
+    // so that no joint leaves an impact moving beyond a limit
+    for (bool added = true; added;) {
+      added = false;
+      std::vector<int> at_limit;
+      gaps(t, q, v);
+      const double near = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
+      for (size_t c = 0; c < contacts_.size(); ++c)
+        if (contacts_[c].info.exists && !is_closed(contacts_[c].row) && rows_.Phi[contacts_[c].row] <= near &&
+            rows_.phi_t[contacts_[c].row] < -v_scale && std::find(hit.begin(), hit.end(), int(c)) == hit.end())
+          at_limit.push_back(int(c));
+      if (at_limit.empty()) break;
+      std::vector<VecX> C_more;
+      VecX unused;
+      contact_rows(t, q, v, at_limit, C_more, unused);
+      for (size_t j = 0; j < at_limit.size(); ++j) hit.push_back(at_limit[j]), C_hit.push_back(C_more[j]);
+      e.conservativeResize(int(hit.size()));
+      e.tail(int(at_limit.size())).setZero();
+      v = v_before;
+      impulse(t, q, v, hit, C_hit, e);
+      added = true;
+    }
+    const int k = int(hit.size());
+    VecX s0(k);
+    for (int j = 0; j < k; ++j) s0[j] = C_hit[j].dot(v_before);
     impacts += k;
     // a rebound ends on the limit (captured) when e = 0, when it is slower
     // than rest_speed, or when the motion presses on the limit (g'' < 0 with
@@ -372,6 +479,16 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   return restart || closed != closed_before;
 }
 
+void EventRunner::gaps(double t, const VecX& q, const VecX& v) {
+  const Instant at = rows_.at(t);
+  for (int gi : unilateral_groups_) {
+    model_.constraint_groups()[gi]->phi(q.data(), at, rows_.Phi.data());
+    model_.constraint_groups()[gi]->jacobian(q.data(), at, rows_.Phi_q.valuePtr());
+  }
+  rows_.phi_t.setZero();  // (scratch: Phi_q v of the gaps)
+  add_jacobian_times(rows_, v.data(), rows_.phi_t.data());
+}
+
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
   // the state at a root is interpolated: put the positions back on Phi = 0
   // (least change; the closed stops' rows included) and the velocities on
@@ -379,27 +496,43 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
   // An open stop found beyond its limit (a crossing the steps passed, acted
   // on late) is put back on the limit first: its row held for the positions
   // only, so that the rebound's velocity stays and no joint sinks through
-  VecX on_limits = q;
-  if (!contacts_.empty()) {
-    const Instant at = rows_.at(t);
-    for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q.data(), at, rows_.Phi.data());
-    std::vector<int> held = d_.closed_rows();
-    const size_t closed = held.size();
-    for (const Contact& c : contacts_)
-      if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0) held.push_back(c.row);
-    if (held.size() > closed) {
-      const std::vector<int> before(held.begin(), held.begin() + long(closed));
+  if (contacts_.empty()) return make_consistent(model_, d_, kkt_, q, v, t);
+  std::vector<int> held = d_.closed_rows();
+  const std::vector<int> closed = held;
+  auto project = [&]() {
+    VecX on_limits = q;
+    if (held.size() > closed.size()) {
       d_.close_rows(model_, held);
       try {
         on_limits = solve_positions(model_, d_, kkt_, q, t);
       } catch (...) {
-        d_.close_rows(model_, before);
+        d_.close_rows(model_, closed);
         throw;
       }
-      d_.close_rows(model_, before);
+      d_.close_rows(model_, closed);
     }
-  }
-  return make_consistent(model_, d_, kkt_, on_limits, v, t);
+    return make_consistent(model_, d_, kkt_, on_limits, v, t);
+  };
+  gaps(t, q, v);
+  for (const Contact& c : contacts_)
+    if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0) held.push_back(c.row);
+  std::sort(held.begin(), held.end());
+  ConsistentState state = project();
+  // A stop leaving its limit (a rebound, a release) is there to within the
+  // interpolant's error: the projection onto the joints can put it just
+  // beyond, where its gap reads as crossed already and its next crossing in
+  // the first step shows no sign change (missed, acted on late with a
+  // larger speed). Such a row is held on its limit too.
+  gaps(t, state.q, state.v);
+  const double at_limit = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
+  const size_t before = held.size();
+  for (const Contact& c : contacts_)
+    if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0 && rows_.Phi[c.row] > -at_limit &&
+        rows_.phi_t[c.row] >= 0.0 && !std::binary_search(held.begin(), held.begin() + long(before), c.row))
+      held.push_back(c.row);
+  if (held.size() == before) return state;
+  std::sort(held.begin(), held.end());
+  return project();
 }
 
 }  // namespace lagmb

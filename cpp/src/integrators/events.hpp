@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "lagmb/analyses/consistent_state.hpp"
@@ -42,6 +43,18 @@ class EventRunner {
   /// are below zero with the motion still going further (a crossing the
   /// integrator missed) are flagged in `fired`. Returns true if any.
   bool missed(double t, const double* q, const double* v, std::vector<int>& fired);
+  /// The state of the last step at a time inside it (the stepper's interpolant).
+  using Interpolant = std::function<void(double t, const double*& q, const double*& v)>;
+  /// After a step from t0 to t1 that found no root: an open stop whose gap
+  /// is positive at both ends but whose joint turned around within the step
+  /// (g' < 0 at t0, > 0 at t1) may have crossed its limit and come back
+  /// inside between two evaluations of the root functions (a grazing
+  /// crossing: the signs at the steps' ends do not show it). Where the
+  /// cubic through the ends' gaps and rates dips near 0, the gap's minimum
+  /// is found on the interpolant (bisection on g'), and if it is below 0,
+  /// the first crossing before it (bisection on g). Returns that time (the
+  /// earliest over the rows, its rows flagged in `fired`), or NaN if none.
+  double grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired);
   /// Applies the actions of the flagged crossings at (t, q, v); v gets the
   /// velocity jump of impacts, the run's Data its new active set. Returns
   /// true if the integrator must restart.
@@ -62,6 +75,8 @@ class EventRunner {
     UnilateralRow info;
   };
   bool is_closed(int row) const;
+  /// rows_.Phi and rows_.phi_t (= Phi_q v) of the unilateral rows at (t, q, v).
+  void gaps(double t, const VecX& q, const VecX& v);
   /// Counts an event at t; IntegratorFailure after 1000 at one instant (Zeno).
   void count_event(double t, const std::string& element, const char* kind);
   /// Rows of the contacts `which` (indices into contacts_) of Phi_q at q, and

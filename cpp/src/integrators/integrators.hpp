@@ -108,6 +108,8 @@ class Stepper {
   /// Whether the last step stopped at a root of the event functions; then
   /// fired[i] != 0 for the event functions that crossed.
   virtual bool root_found(std::vector<int>& fired) { (void)fired; return false; }
+  /// Whether the last step stopped at a root (without taking it, as root_found does).
+  virtual bool stopped_at_root() const { return false; }
   /// Velocities of the last accepted step (or of the root).
   virtual const double* velocities() const { return nullptr; }
   /// Restarts at order 1 from a new consistent state at time t (after a
@@ -164,6 +166,13 @@ class StepLoop {
   /// IntegratorFailure if the step turned a joint whose angle the equations
   /// read by half a turn or more.
   void count_joint_turns(double t, double h);
+  /// After a step from t0 to t1 without a root: the time a stop's limit was
+  /// crossed and left inside it (EventRunner::grazed), or infinity.
+  double grazed(double t0, double t1);
+  /// The crossing grazed() found at t, h after the step's start (flagged in
+  /// fired_): the impact there and the stepper restarted from it (the rest
+  /// of the step dropped). False if nothing happened there (the step stands).
+  bool act_at_graze(double t, double h);
   Stepper& stepper_;
   const Model& model_;
   const IntegrationPlan& plan_;

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -90,6 +91,39 @@ bool StepLoop::act(double t, bool at_stop) {
   return false;
 }
 
+double StepLoop::grazed(double t0, double t1) {
+  if (!plan_.events || stepper_.stopped_at_root() || !(t1 > t0)) return INFINITY;
+  const double t = plan_.events->grazed(
+      t0, t1, [&](double at, const double*& q, const double*& v) { stepper_.interpolate(at, q, v); }, fired_);
+  return std::isnan(t) ? INFINITY : t;
+}
+
+bool StepLoop::act_at_graze(double t, double h) {
+  count_joint_turns(t, h);
+  const double *q = nullptr, *v = nullptr;
+  stepper_.interpolate(t, q, v);
+  const int n = int(plan_.atol.size());
+  q_event_ = Eigen::Map<const VecX>(q, n);
+  v_event_ = Eigen::Map<const VecX>(v, n);
+  try {
+    if (!plan_.events->handle(t, q_event_, v_event_, fired_)) return false;
+    stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
+  } catch (const IntegratorFailure& e) {
+    IntegratorFailure f(std::string("at an event: ") + e.what(), t);
+    f.diagnose = e.diagnose;
+    throw f;
+  } catch (const SimulationError& e) {
+    throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
+  } catch (const UserFunctionError& e) {
+    throw IntegratorFailure(e.what(), t);
+  }
+  t_ = t;
+  ++restarts_;
+  pending_ = false;
+  stepper_.set_stop(stop_time());
+  return true;
+}
+
 void StepLoop::count_joint_turns(double t, double h) {
   if (model_.turn_counters().empty()) return;
   const double *q = nullptr, *v = nullptr;
@@ -119,7 +153,21 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
     if (to_outputs) stepper_.set_stop(k < t_out.size() ? std::min(stop_time(), t_out[k]) : stop_time());
     bool at_stop = false;
     const double t_before = t_;
-    const double t = t_ = stepper_.step(at_stop);
+    double t = t_ = stepper_.step(at_stop);
+    // a stop's limit crossed and left within the step: the step ends there
+    // (a Simulator's step past its target keeps its interpolant for the
+    // times before: a crossing found beyond the target is not acted on)
+    double t_grazed = grazed(t_before, t);
+    if (!stop_at_end_ && t_grazed > target) t_grazed = INFINITY;
+    if (t_grazed < t) {  // the outputs before it, then the impact there (if one happens)
+      for (; k < t_out.size() && t_out[k] <= t_grazed; ++k) {
+        const double *q = nullptr, *v = nullptr;
+        stepper_.interpolate(t_out[k], q, v);
+        record(q, v);
+        steps = 0;
+      }
+      if (act_at_graze(t_grazed, t_grazed - t_before)) continue;
+    }
     for (; k < t_out.size() && t_out[k] <= t; ++k) {
       const double *q = nullptr, *v = nullptr;
       stepper_.interpolate(t_out[k], q, v);
