@@ -74,8 +74,12 @@ class UrdfError(ModelError):
 
 
 class UrdfWarning(UserWarning):
-    """load_urdf gave an element another name than the file's (a name
-    lagmb's one namespace already holds): the message lists each change."""
+    """load_urdf read an element otherwise than the file writes it, and
+    the message names the file, the line and the element: another name (one
+    lagmb's one namespace already holds), an <origin> in a <link> ignored,
+    an inertia no rigid body has, a mesh not found, a mimic of a joint the
+    file does not have, a joint held because no mass moves with it.
+    load_urdf(strict=True) refuses the last four instead."""
 
 
 class _Element:
@@ -135,7 +139,9 @@ _XML_BLANKS = re.compile(r"[ \t\r\n]+")
 class _Reader:
     """Reads one URDF file into links, joints and the tree they make."""
 
-    def __init__(self, path, package_dirs):
+    def __init__(self, path, package_dirs, strict=False):
+        self.strict = strict
+        self.missing_meshes = []  # (link, line, file name) of each mesh not found (strict=False)
         if not isinstance(path, (str, bytes, os.PathLike)):
             raise UrdfError(f"load_urdf: path must be a file name (a str or os.PathLike), got {_checks.show(path)}")
         self.path = os.fsdecode(path)
@@ -241,7 +247,9 @@ class _Reader:
             link.update(mass=mass, com=p, inertia=R @ I @ R.T, inertial_element=inertial)
         for kind in ("visual", "collision"):
             for shape in element.all(kind):
-                link["shapes"].append(self.shape(shape, kind, owner))
+                read = self.shape(shape, kind, owner)
+                if read is not None:
+                    link["shapes"].append(read)
         return link
 
     def shape(self, element, kind, owner):
@@ -262,8 +270,11 @@ class _Reader:
             filename = g.attrib.get("filename")
             if not filename:
                 self.fail(g, "<mesh> needs a filename", owner)
-            values = dict(filename=self.resolve(filename, g, owner),
-                          scale=self.numbers(g, "scale", 3, owner, (1.0, 1.0, 1.0)))
+            scale = self.numbers(g, "scale", 3, owner, (1.0, 1.0, 1.0))
+            found = self.resolve(filename, g, owner)
+            if found is None:  # (strict=False: the shape is left out, listed in one warning)
+                return None
+            values = dict(filename=found, scale=scale)
         return dict(kind=kind, geometry=g.tag, R=R, p=p, element=g, **values)
 
     def resolve(self, filename, element, owner):
@@ -295,9 +306,26 @@ class _Reader:
         for candidate in candidates:
             if os.path.isfile(candidate):
                 return os.path.normpath(candidate)
-        self.fail(element, f"mesh '{filename}' not found (looked in "
-                           f"{', '.join(candidates) if candidates else 'no package directory'}; "
-                           "give package_dirs=[...] holding the package)", owner)
+        looked = f"looked in {', '.join(candidates) if candidates else 'no package directory'}"
+        if self.strict:
+            self.fail(element, f"mesh '{filename}' not found ({looked}; give package_dirs=[...] holding the "
+                               "package, or load with strict=False to leave the shape out)", owner)
+        self.missing_meshes.append((owner, element.line, filename, looked))
+        return None
+
+    def warn_missing_meshes(self):
+        """One UrdfWarning naming each mesh not found (strict=False): the
+        link, the line and the file; the shapes are left out, and the
+        dynamics, which the links' <inertial> give, are the same."""
+        if not self.missing_meshes:
+            return
+        count = len(self.missing_meshes)
+        listed = "; ".join(f"{owner}, line {line}: '{filename}'" for owner, line, filename, _ in self.missing_meshes)
+        warnings.warn(UrdfWarning(
+            f"{self.path}: {count} mesh{'es' if count > 1 else ''} not found, {'their' if count > 1 else 'its'} "
+            f"<visual>/<collision> shape{'s' if count > 1 else ''} left out (the links' <inertial> give the "
+            f"dynamics, so the motion is the same): {listed} (the first {self.missing_meshes[0][3]}; give "
+            "package_dirs=[...] holding the package; strict=True refuses a missing mesh)"), stacklevel=3)
 
     def joint(self, element):
         name = element.attrib.get("name")
@@ -504,18 +532,36 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     ``mimic=True``: a ``<mimic joint multiplier offset>`` couples the joint
     to the one it mimics (``NAME_mimic``, a joint coupling; the follower
     starts where its leader's position puts it); ``mimic=False`` reads it
-    as a joint of its own (as Pinocchio builds it by default).
+    as a joint of its own (as Pinocchio builds it by default). A mimic of a
+    joint the file does not have is left out: the joint is a free joint of
+    its own, and a UrdfWarning names it, its line and the missing leader.
     ``package_dirs``: directories holding the packages that ``package://``
-    mesh names point into. Every mesh a link names must exist.
+    mesh names point into. A mesh found nowhere is left out (the dynamics
+    come from ``<inertial>``) with a UrdfWarning naming its link, line and
+    file.
     ``strict=False``: a body whose principal moments of inertia break the
     triangle inequality (no rigid body has them, but files hold them and
     Pinocchio runs them) is built with them and a UrdfWarning names its link
-    and moments; ``strict=True`` refuses it. An ``<origin>`` in a ``<link>``
-    is ignored with a UrdfWarning naming its line (as urdfdom ignores it).
+    and moments; an inertia tensor with a negative principal moment (no
+    body has it, and lagmb cannot build it) is built with the nearest
+    moments a rigid body has (each >= 0 and at most the sum of the other
+    two, the same axes), and a UrdfWarning names its link, line and both
+    sets of moments. An ``<origin>`` in a ``<link>`` is ignored with a
+    UrdfWarning naming its line (as urdfdom ignores it).
     A link without mass or with a zero principal moment is a body with
     those numbers: it runs where its joints hold it (a massless link
-    between two revolutes with intersecting axes), and simulate names it
-    where they leave it free to move.
+    between two revolutes with intersecting axes). A joint whose motion no
+    mass or inertia follows, in the configuration the model is built in (a
+    massless finger at the end of a chain; of a motion of several joints
+    that moves no mass, such as a point mass turning about the line to its
+    centre on a ball of revolutes, the joint with the largest rate in it),
+    is held at its initial value as a fixed joint (its limit and damping
+    left out, a leader's mimics held with it), and one UrdfWarning names
+    each such joint, its line and why: the joint-space mass matrix of the
+    joints left free is regular (docs/modelling.md says how they are found).
+    ``strict=True`` refuses each of these instead: a triangle inequality
+    broken, a negative moment, a missing mesh, a mimic of an unknown joint,
+    a joint no mass moves with.
     ``floating_base``, ``limits``, ``dynamics``, ``mimic`` and ``strict``
     are True or False (not strings or numbers).
 
@@ -530,8 +576,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     anything lagmb does not read: an unknown tag or joint type, a link that
     is the child of two joints or of itself, a loop of joints, a file with
     no moving body (all links fixed to the root, which is the ground unless
-    ``floating_base``), a missing mesh, a mimic of an unknown joint (or of
-    itself, or in a cycle), lower limit above the upper, a mass, length,
+    ``floating_base``), a mimic of itself or in a cycle, lower limit above
+    the upper, a mass, length,
     inertia, joint value, mimic multiplier or offset, damping or friction
     beyond 1e150 (lagmb squares them; larger squares overflow), and (not
     built yet) damping or friction of a planar joint; and for arguments of
@@ -544,8 +590,9 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     gravity = _argument(_checks.vec3, gravity, "load_urdf: gravity")
     if positions is not None and not isinstance(positions, collections.abc.Mapping):
         raise UrdfError(f"load_urdf: positions must be a dict {{joint: angle or slide}}, got {_checks.show(positions)}")
-    reader = _Reader(path, package_dirs)
+    reader = _Reader(path, package_dirs, strict)
     links, joints, root, _ = reader.read()
+    reader.warn_missing_meshes()
     if limits:  # a joint locked by equal limits is fixed at their value
         for joint in joints.values():
             if joint["locked"] is not None:
@@ -566,32 +613,16 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
                         "them out", owner)
 
     # world poses of the links in the configuration of `positions`, and their groups
-    pose = {root: (np.eye(3), np.zeros(3))}
-    group_of = {root: root}
-    order, stack = [], [root]
-    while stack:
-        link = stack.pop()
-        order.append(link)
-        for joint in reversed(children.get(link, [])):
-            R_parent, p_parent = pose[link]
-            R_joint, p_joint = R_parent @ joint["R"], p_parent + R_parent @ joint["p"]  # the joint's frame
-            x = value.get(joint["name"], 0.0)
-            moves_as = joint.get("moves_as", joint["type"])
-            if moves_as in ("revolute", "continuous"):
-                R_joint = R_joint @ _rotations.turn(joint["axis"], x)
-            elif moves_as == "prismatic":
-                p_joint = p_joint + R_joint @ (x * joint["axis"])
-            if np.abs(p_joint).max() > LARGEST:  # (origins within LARGEST each, but many in a chain)
-                reader.fail(joint["element"], f"puts link '{joint['child']}' {np.abs(p_joint).max():g} m from the "
-                            f"root: beyond what a model can hold (at most {LARGEST:g} m: lagmb squares lengths, and "
-                            "larger squares overflow)", f"joint '{joint['name']}'")
-            pose[joint["child"]] = (R_joint, p_joint)
-            group_of[joint["child"]] = group_of[link] if joint["type"] == "fixed" else joint["child"]
-            stack.append(joint["child"])
+    pose, group_of, order = _poses(reader, joints, root, children, value)
+    ground = root if not floating_base else None
+    _check_inertias(reader, links, [link for link in order if group_of[link] != ground], strict)
+    held = _held_joints(reader, links, joints, order, pose, followers, floating_base)
+    if held:
+        _hold(reader, joints, followers, held, value, strict)
+        pose, group_of, order = _poses(reader, joints, root, children, value)
     groups = {}
     for link in order:
         groups.setdefault(group_of[link], []).append(link)
-    ground = root if not floating_base else None
     if list(groups) == [ground] and not any(j.get("moves_as") for j in joints.values()):  # (locked: by choice)
         joined = f" and the links fixed to it ({', '.join(repr(m) for m in groups[root][1:])})" \
             if len(groups[root]) > 1 else ""
@@ -622,12 +653,6 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         if first == ground:
             continue
         R0, p0 = pose[first]
-        for m in members:  # (the links of the ground are not read beyond their names and frames)
-            moments = np.linalg.eigvalsh(links[m]["inertia"])
-            # (round-off in the file: 1e-9 of the largest moment, and 1e-15 kg m^2)
-            if moments.min() < -1e-9 * abs(moments).max() - 1e-15:
-                reader.fail(links[m]["inertia_element"], "the inertia tensor is not positive semi-definite "
-                            f"(principal moments {moments.tolist()} kg m^2)", f"link '{m}'")
         mass = sum(links[m]["mass"] for m in members)
         owner = f"link '{first}'" + (f" (with {', '.join(repr(m) for m in members[1:])})" if len(members) > 1 else "")
         centres = {m: pose[m][1] + pose[m][0] @ links[m]["com"] for m in members}
@@ -717,6 +742,254 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     return model
 
 
+def _poses(reader, joints, root, children, value):
+    """The world pose (R, p) of each link in the configuration `value`, the
+    first link of the group of links fixed together that each belongs to,
+    and the links in the order of a walk from the root (parents first)."""
+    pose = {root: (np.eye(3), np.zeros(3))}
+    group_of = {root: root}
+    order, stack = [], [root]
+    while stack:
+        link = stack.pop()
+        order.append(link)
+        for joint in reversed(children.get(link, [])):
+            R_parent, p_parent = pose[link]
+            R_joint, p_joint = R_parent @ joint["R"], p_parent + R_parent @ joint["p"]  # the joint's frame
+            x = value.get(joint["name"], 0.0)
+            moves_as = joint.get("moves_as", joint["type"])
+            if moves_as in ("revolute", "continuous"):
+                R_joint = R_joint @ _rotations.turn(joint["axis"], x)
+            elif moves_as == "prismatic":
+                p_joint = p_joint + R_joint @ (x * joint["axis"])
+            if np.abs(p_joint).max() > LARGEST:  # (origins within LARGEST each, but many in a chain)
+                reader.fail(joint["element"], f"puts link '{joint['child']}' {np.abs(p_joint).max():g} m from the "
+                            f"root: beyond what a model can hold (at most {LARGEST:g} m: lagmb squares lengths, and "
+                            "larger squares overflow)", f"joint '{joint['name']}'")
+            pose[joint["child"]] = (R_joint, p_joint)
+            group_of[joint["child"]] = group_of[link] if joint["type"] == "fixed" else joint["child"]
+            stack.append(joint["child"])
+    return pose, group_of, order
+
+
+def _check_inertias(reader, links, names, strict):
+    """Each of these links' inertia tensor positive semi-definite (to
+    round-off: 1e-9 of the largest moment, and 1e-15 kg m^2). One that is
+    not (no body has it; Romeo's hips in romeo_laas_small.urdf) is refused
+    with strict; else it is built with the nearest principal moments a
+    rigid body can have (about the same axes), and one UrdfWarning names
+    each link, its line and its moments as written and as built."""
+    repaired = []
+    for name in names:
+        link = links[name]
+        moments, axes = np.linalg.eigh(link["inertia"])
+        if moments.min() >= -1e-9 * abs(moments).max() - 1e-15:
+            continue
+        written = f"principal moments {moments.tolist()} kg m^2"
+        if strict:
+            reader.fail(link["inertia_element"], f"the inertia tensor is not positive semi-definite ({written}; "
+                        "strict=False builds it with the nearest moments a rigid body can have)", f"link '{name}'")
+        built = _nearest_rigid_moments(moments)
+        link["inertia"] = axes @ np.diag(built) @ axes.T
+        repaired.append(f"link '{name}', line {link['inertia_element'].line}: {written}, built with "
+                        f"{built.tolist()}")
+    if repaired:
+        warnings.warn(UrdfWarning(
+            f"{reader.path}: {len(repaired)} inertia tensor{'s are' if len(repaired) > 1 else ' is'} not positive "
+            "semi-definite (no body has such a tensor), each built with the nearest principal moments a rigid body "
+            "can have (each >= 0 and at most the sum of the other two; the same axes; strict=True refuses "
+            f"them): {'; '.join(repaired)}"), stacklevel=3)
+
+
+def _nearest_rigid_moments(moments):
+    """The principal moments nearest to `moments` (Euclidean) that a rigid
+    body has: each >= 0 and at most the sum of the other two. The set is a
+    cone cut by six planes through 0, so the nearest point is the projection
+    onto the planes of one set of them (its active constraints): each of
+    the 64 sets tried, the nearest feasible point kept."""
+    rows = np.vstack([np.eye(3), np.ones((3, 3)) - 2 * np.eye(3)])  # (l_i >= 0; l_j + l_k - l_i >= 0)
+    best, distance = np.zeros(3), np.linalg.norm(moments)
+    for mask in range(1, 64):
+        A = rows[[k for k in range(6) if mask >> k & 1]]
+        point = moments - A.T @ np.linalg.lstsq(A @ A.T, A @ moments, rcond=None)[0]
+        if np.all(rows @ point >= -1e-12 * np.abs(moments).max()) and np.linalg.norm(point - moments) < distance:
+            best, distance = point, np.linalg.norm(point - moments)
+    return np.maximum(best, 0.0)
+
+
+#: A joint coordinate moves no mass or inertia where its diagonal entry of
+#: the joint-space mass matrix is at most this fraction of the largest
+#: diagonal entry; a combination of coordinates does where the mass matrix
+#: scaled to a unit diagonal has an eigenvalue at most this fraction of its
+#: largest (the core's test of the augmented matrix at the start is 1e-12
+#: of the largest eigenvalue too).
+MOTIONLESS = 1e-12
+
+
+def _held_joints(reader, links, joints, order, pose, followers, floating_base):
+    """The joints whose motion no mass or inertia follows, in the
+    configuration the model is built in: [(joint, partners)], partners None
+    for a joint whose coordinate alone moves no mass or inertia (a massless
+    finger), else [(joint, rate)] of a motion of several joints that moves
+    none (icub's point-mass head, turning about the line from the neck to
+    its centre of mass) in which this joint takes part (rates scaled to at
+    most 1). Only revolute, continuous and prismatic joints that mimic none
+    are held; a mimic's follower is held with its leader.
+
+    The joint-space mass matrix M (Sum over links of m J_c^T J_c +
+    J_w^T I J_w, with each independent coordinate's twist at its joint) is
+    read first on its diagonal: a coordinate that moves no mass is held;
+    then the rest, scaled to a unit diagonal, by its eigenvalues: for each
+    (numerically) zero one a joint of its null space is held, the one with
+    the largest rate in what is left of it (a QR with column pivoting of
+    the null space in joint rates), so that the joints that stay free have a
+    regular mass matrix."""
+    columns = {}  # independent coordinate -> its column
+    holdable = []  # the joint of each column that may be held (None: a planar, floating or base coordinate)
+    twists = {}  # joint -> [(column, twist (angular, velocity of the point at the world origin))]
+
+    def column(key, joint):
+        if key not in columns:
+            columns[key] = len(holdable)
+            holdable.append(joint)
+        return columns[key]
+
+    def free_twists(key, origin):
+        out = []
+        for k, e in enumerate(np.eye(3)):
+            out.append((column((key, k), None), np.concatenate([np.zeros(3), e])))
+            out.append((column((key, 3 + k), None), np.concatenate([e, np.cross(origin, e)])))
+        return out
+
+    for joint in joints.values():
+        kind = joint["type"]
+        if kind == "fixed":
+            continue
+        R_parent, p_parent = pose[joint["parent"]]
+        at = p_parent + R_parent @ joint["p"]
+        axis = R_parent @ joint["R"] @ joint["axis"]
+        if kind in MOVING:
+            leader, factor = joint["name"], 1.0
+            while leader in followers:
+                factor *= followers[leader]["multiplier"]
+                leader = followers[leader]["joint"]
+            twist = np.concatenate([axis, np.cross(at, axis)]) if kind in ("revolute", "continuous") else \
+                np.concatenate([np.zeros(3), axis])
+            twists[joint["name"]] = [(column(leader, leader), factor * twist)]
+        elif kind == "planar":
+            u = np.linalg.svd(axis[None, :])[2][1:]  # (two directions in the plane)
+            twists[joint["name"]] = [(column((joint["name"], k), None), np.concatenate([np.zeros(3), u[k]]))
+                                     for k in (0, 1)] + \
+                [(column((joint["name"], 2), None), np.concatenate([axis, np.cross(at, axis)]))]
+        else:  # floating
+            twists[joint["name"]] = free_twists(joint["name"], pose[joint["child"]][1])
+    root = order[0]
+    base = free_twists(("base",), pose[root][1]) if floating_base else []
+    n = len(holdable)
+    if not any(h is not None for h in holdable):
+        return []
+    parent_joint = {joint["child"]: joint for joint in joints.values()}
+    M = np.zeros((n, n))
+    jacobian = {}
+    with np.errstate(all="ignore"):  # (values beyond what a model holds: refused when the bodies are built)
+        for link in order:
+            if link == root:
+                J = np.zeros((6, n))
+                for c, twist in base:
+                    J[:, c] += twist
+            else:
+                joint = parent_joint[link]
+                J = jacobian[joint["parent"]].copy()
+                for c, twist in twists.get(joint["name"], ()):
+                    J[:, c] += twist
+            jacobian[link] = J
+            data = links[link]
+            if data["mass"] == 0 and not data["inertia"].any():
+                continue
+            R, p = pose[link]
+            centre = p + R @ data["com"]
+            Jw = J[:3]
+            Jc = J[3:] + np.cross(Jw.T, centre).T  # (v_c = v_o + w x c)
+            M += data["mass"] * Jc.T @ Jc + Jw.T @ (R @ data["inertia"] @ R.T) @ Jw
+    if not np.all(np.isfinite(M)):
+        return []
+    M = 0.5 * (M + M.T)
+    diagonal = np.diag(M).copy()
+    largest = diagonal.max()
+    zero = diagonal <= MOTIONLESS * largest
+    held = [(holdable[c], None) for c in range(n) if zero[c] and holdable[c] is not None]
+    rest = np.flatnonzero(~zero)
+    if rest.size == 0:
+        return held
+    scale = 1.0 / np.sqrt(diagonal[rest])
+    values, vectors = np.linalg.eigh(M[np.ix_(rest, rest)] * np.outer(scale, scale))
+    null = vectors[:, values <= MOTIONLESS * values.max()]
+    if null.shape[1] == 0:
+        return held
+    rates = np.linalg.qr(null * scale[:, None])[0]  # (the null space in joint rates, orthonormal)
+    left = rates.copy()
+    can = np.array([holdable[c] is not None for c in rest])
+    for _ in range(null.shape[1]):  # pivoted: the joint with the largest rate in what is left of the null space
+        norms = np.where(can, np.linalg.norm(left, axis=1), 0.0)
+        k = int(np.argmax(norms))
+        if norms[k] <= 1e-6:  # (what is left moves no joint that can be held: simulate names it)
+            break
+        direction = left[k] / norms[k]
+        v = left @ direction  # the motion of what is left where this joint's rate is largest
+        left = left - np.outer(v, direction)
+        can[k] = False
+        v = v / np.abs(v).max()
+        partners = [(holdable[rest[i]] if holdable[rest[i]] is not None else "a planar or floating joint",
+                     float(v[i])) for i in np.argsort(-np.abs(v)) if abs(v[i]) > 1e-6]
+        held.append((holdable[rest[k]], partners))
+    return held
+
+
+def _hold(reader, joints, followers, held, value, strict):
+    """Each joint of `held` (and the followers of its mimics) fixed at its
+    value, with one UrdfWarning naming each joint, its line and why; with
+    strict a UrdfError naming the first."""
+    def why(name, partners):
+        if partners is None:
+            return "no mass or inertia moves with it"
+        others = [(other, rate) for other, rate in partners if other != name]
+        shown = ", ".join(f"'{other}' {rate:.3g}" for other, rate in others)
+        rate = dict(partners)[name]
+        return (f"turned at {rate:.3g} with {shown} (rad/s, m/s for a prismatic), it moves no mass or inertia"
+                if others else "no mass or inertia moves with it")
+
+    if strict:
+        name, partners = held[0]
+        more = f" ({len(held)} joints in all: {', '.join(repr(h) for h, _ in held)})" if len(held) > 1 else ""
+        reader.fail(joints[name]["element"], f"{why(name, partners)}, so the forces do not determine its motion"
+                    f"{more}; strict=True refuses this: give the links it moves mass and inertia, or load with "
+                    "strict=False to hold it at its initial position", f"joint '{name}'")
+    leaders = {name for name, _ in held}
+    shown = []
+    for name, partners in held:
+        mimics = [f for f in followers if _leader(followers, f) == name]
+        also = f", with its mimic{'s' if len(mimics) > 1 else ''} {', '.join(repr(f) for f in mimics)}" if mimics else ""
+        shown.append(f"joint '{name}' (line {joints[name]['element'].line}{also}): {why(name, partners)}")
+    for name in list(joints):
+        if name in leaders or (name in followers and _leader(followers, name) in leaders):
+            joint = joints[name]
+            joint.update(moves_as=joint["type"], type="fixed", locked=value[name], held=True)
+            followers.pop(name, None)
+    count = len(held)
+    warnings.warn(UrdfWarning(
+        f"{reader.path}: {count} joint{'s are' if count > 1 else ' is'} held at {'their' if count > 1 else 'its'} "
+        f"initial position{'s' if count > 1 else ''} (as a fixed joint, {'their' if count > 1 else 'its'} limits "
+        f"and damping left out), because the forces would not determine {'their' if count > 1 else 'its'} "
+        "motion: " + "; ".join(shown) + ". Give the links they move mass and inertia to let them move "
+        "(strict=True refuses such a file)"), stacklevel=3)
+
+
+def _leader(followers, name):
+    """The joint a chain of mimics from `name` ends at."""
+    while name in followers:
+        name = followers[name]["joint"]
+    return name
+
+
 def _positions(reader, joints, positions):
     """{URDF joint: finite value} of the argument `positions`, each naming
     a joint with one coordinate."""
@@ -739,11 +1012,13 @@ def _positions(reader, joints, positions):
 
 def _followers(reader, joints):
     """{joint: its <mimic>} for the joints that mimic another: both must
-    have a coordinate (revolute, continuous, prismatic). A fixed joint's
+    have a coordinate (revolute, continuous, prismatic). A mimic of a joint
+    the file does not have is left out with one UrdfWarning naming each
+    (the joint moves freely), or with strict refused. A fixed joint's
     <mimic> couples nothing (it has no coordinate) and is passed over
     (Talos's gripper has such elements); a joint locked by its limits
     cannot mimic nor be mimicked."""
-    out = {}
+    out, unknown = {}, []
     for joint in joints.values():
         m = joint["mimic"]
         owner = f"joint '{joint['name']}'"
@@ -757,7 +1032,11 @@ def _followers(reader, joints):
                         "prismatic joints have one coordinate)", owner)
         leader = joints.get(m["joint"])
         if leader is None:
-            reader.fail(m["element"], f"mimics '{m['joint']}', which is not a joint of the file", owner)
+            if reader.strict:
+                reader.fail(m["element"], f"mimics '{m['joint']}', which is not a joint of the file (load with "
+                            "strict=False to read it as a joint of its own)", owner)
+            unknown.append(f"{owner}, line {m['element'].line}: mimics '{m['joint']}'")
+            continue
         if leader.get("moves_as"):
             reader.fail(m["element"], f"mimics '{m['joint']}', which is locked at {leader['locked']!r} by its equal "
                         "limits (load with limits=False or mimic=False)", owner)
@@ -780,6 +1059,11 @@ def _followers(reader, joints):
             on_path.add(at)
             at = out[at]["joint"]
         done.update(path)
+    if unknown:
+        warnings.warn(UrdfWarning(
+            f"{reader.path}: {len(unknown)} mimic{'s' if len(unknown) > 1 else ''} of a joint the file does not "
+            f"have, each joint read as a joint of its own that moves freely (not coupled; strict=True refuses "
+            f"such a mimic): {'; '.join(unknown)}"), stacklevel=3)
     return out
 
 
