@@ -1335,9 +1335,6 @@ NOT_FALLING = {
     # reaches -pi/2 (its limit) where the Z and Y axes line up (a gimbal
     # lock): no motion is left along the Y joint's stop there
     "human_description/robots/human.urdf": "stop 'middle_cervical_Y_limit' is reached at t = 0.48.* gimbal lock",
-    # a joint passes a limit: Romeo's wrists and the G1's fingers (not investigated yet)
-    "romeo_description/urdf/romeo_small.urdf": "limits not held: .*'LWristRoll_limit'",
-    "g1_description/urdf/g1_29dof_with_hand_rev_1_0.urdf": "limits not held",
 }
 
 
@@ -1362,8 +1359,8 @@ def test_each_robot_falls_5_s_onto_its_limits_and_they_hold(relpath):
     stays within its limits to 1e-8 rad (m) at every output, or the file is
     in NOT_FALLING and fails with its reason. So the count is the run's: a
     file of the list that starts to pass fails here until it leaves the
-    list. Today 69 files: 63 fall 5 s with every limit held (issue 41's
-    target: 66; the list says why not the other 6)."""
+    list. Today 69 files: 65 fall 5 s with every limit held (issue 41's
+    target: 66; the list says why not the other 4)."""
     if relpath in NOT_FALLING:
         with pytest.raises((mb.UrdfError, mb.ModelError, mb.SimulationError, AssertionError),
                            match=NOT_FALLING[relpath].replace("(", r"\(").replace(")", r"\)")):
@@ -1373,7 +1370,7 @@ def test_each_robot_falls_5_s_onto_its_limits_and_they_hold(relpath):
 
 
 def test_the_list_of_robots_that_do_not_fall_onto_their_limits_is_of_files_that_exist():
-    """NOT_FALLING names files of example-robot-data; 69 - 6 = 63 fall 5 s
+    """NOT_FALLING names files of example-robot-data; 69 - 4 = 65 fall 5 s
     with their limits held (the slow test above checks each)."""
     assert set(NOT_FALLING) <= set(URDFS)
-    assert (len(URDFS), len(URDFS) - len(NOT_FALLING)) == (69, 63)
+    assert (len(URDFS), len(URDFS) - len(NOT_FALLING)) == (69, 65)
