@@ -57,8 +57,10 @@ RTOL, ATOL = 1e-8, 1e-10  # every run's tolerances
 POSITION_TOL = 1e-8  # rad, or m per m of the mechanism's length: how far beyond a limit a joint may be
 # J per J of the mechanism's energy scale: the integration error a conservative
 # run shows (measured on the fuzzed mechanisms without their stops: index3's
-# velocities are only index-2 accurate, up to 6e-5 there; the others 1e-8)
-ENERGY_TOL = {"index3": 2e-4}
+# velocities are only index-2 accurate, up to 6e-5 there; index 1 drifts off
+# its position constraints, 1.3e-6 in 3 s on a pendulum hanging from a block
+# on a rail; projection with Adams 1.4e-6 on a free pendulum; the others 1e-8)
+ENERGY_TOL = {"index3": 2e-4, "index1": 5e-6, "projection": 5e-6}
 ENERGY_TOL_DEFAULT = 1e-6
 FORCE_TOL = 1e-6  # N (N m) per N (N m) of the mechanism's force scale: how far a closed stop's force may pull
 GRAZE_DEPTH = 1e-4  # rad (or m): how deep a missed grazing crossing is at most, to be told from a sinking joint
@@ -72,9 +74,6 @@ FORMULATIONS = [("ggl", {}), ("index1", {}), ("projection", {"integrator": "erk"
 #: stop_cases(known_bugs=False) draws none of these features, so that the
 #: default suite checks what holds; known_bugs=True draws them all.
 KNOWN_BUGS = {
-    # (projection-erk, what auto runs, still passes limits by up to 1e-2 rad
-    # and gains energy in about 1 of 20 draws: its crossings after a restart)
-    "formulation index3, projection or auto": "test_a_pressed_bounce_series_is_captured",
     "a torque that turns back and forth (Harmonic)": "test_a_short_release_is_not_stepped_over",
     "a driver's input jump": "test_a_drivers_jump_keeps_the_other_joints_within_their_limits",
 }
@@ -174,6 +173,7 @@ def stop_problems(r, meta):
         x = np.asarray(getattr(r.joint(joint), s["coordinate"]))
         effort = np.asarray(r.effort(name))
         closed = np.zeros(len(t), bool)
+        switching = np.zeros(len(t), bool)
         for label, limit, sign in (("lower", s["lower"], 1.0), ("upper", s["upper"], -1.0)):
             if limit is None:
                 continue
@@ -188,6 +188,10 @@ def stop_problems(r, meta):
                 if start == t0:
                     on |= (t == t0) & (end > t0)
                 closed |= on
+                # (an output at the instant a row switches may show either side:
+                # captured and released at t0, the first output has the held
+                # row's force, 0 to rounding)
+                switching |= (t == start) | (t == end)
                 if not np.any(on):
                     continue
                 pull = np.min(sign * effort[on])
@@ -201,7 +205,7 @@ def stop_problems(r, meta):
                     bad.append(f"a closed stop off its limit: joint {joint!r} at {float(x[k])!r}, {gap[k]:.3g} from "
                                f"stop {name!r}'s {label} limit {limit!r} at t = {t[k]:.6g}, closed from {start:.6g} "
                                f"to {end:.6g}")
-        open_ = ~closed & ~near_event
+        open_ = ~closed & ~near_event & ~switching
         if np.any(effort[open_] != 0.0):
             k = int(np.flatnonzero(open_ & (effort != 0.0))[0])
             bad.append(f"an open stop's effort is not 0: stop {name!r} has effort {effort[k]:.6g} at t = {t[k]:.6g}")
@@ -546,7 +550,7 @@ if st is not None:
         (_planar if dim == 2 else _spatial)(b)
         stopped = _stops(b)
         _extras(b, stopped)
-        formulation, options = draw(st.sampled_from(FORMULATIONS if known_bugs else FORMULATIONS[:2]))
+        formulation, options = draw(st.sampled_from(FORMULATIONS))
         run, run_kind = _run(b, formulation, options)
         meta = _meta(b)
         return {"ops": case_ops("\n".join(b.lines), run, run_kind, meta), "meta": meta}

@@ -153,14 +153,10 @@ def _known(reason):
     return pytest.mark.xfail(strict=True, reason=reason)
 
 
-CHATTER = "the core: a pressed bounce series is not captured; impacts pile up and the block sinks through its stop"
-
-
 @pytest.mark.parametrize("formulation, options", [
     ("ggl", {}), ("index1", {}),
     ("projection", {"integrator": "erk"}), ("auto", {}),
-    pytest.param("index3", {}, marks=_known(CHATTER)),
-    pytest.param("projection", {}, marks=_known(CHATTER)),
+    ("index3", {}), ("projection", {}),
 ])
 def test_a_pressed_bounce_series_is_captured(formulation, options):
     """The block falls h = 0.3 m onto its stop (e = 0.3): it hits at

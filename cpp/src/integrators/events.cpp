@@ -66,11 +66,12 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   if (!d_.closed_rows().empty()) solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
   // an open gap within rounding of 0 (a restart after a rebound) reads by
   // its rate: leaving, it is inside, so that a flight shorter than the next
-  // step still shows as a sign change; otherwise just past the limit (a
-  // restart never puts a root function at exactly 0: SUNDIALS would warn)
+  // step still shows as a sign change (at rest on it, g' = 0 to rounding, it
+  // is inside too: a plastic impact the active set leaves open moves away,
+  // or comes back as a crossing); approaching, it reads as it is, so that
+  // the crossing is located at g = 0 (exactly 0: just past it, as SUNDIALS
+  // warns of a root function at 0 where it starts)
   const double at_limit = 1e-10;
-  // (at rest on it, g' = 0 to rounding, it is inside too: a plastic impact
-  // the active set leaves open moves away, or comes back as a crossing)
   bool rates = false;
   for (const Contact& c : contacts_)
     if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= at_limit) rates = true;
@@ -84,7 +85,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   for (const Contact& c : contacts_) {
     double x = !c.info.exists ? 1.0 : is_closed(c.row) ? -lam_[c.row] : rows_.Phi[c.row];
     if (rates && !is_closed(c.row) && c.info.exists && std::abs(x) <= at_limit)
-      x = rows_.phi_t[c.row] >= -at_rest ? at_limit : std::min(x, -1e-300);
+      x = rows_.phi_t[c.row] >= -at_rest ? at_limit : x;
     g[offset++] = x != 0.0 ? x : -1e-300;
   }
 }
@@ -144,6 +145,7 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
       any = true;
     }
   }
+  late_ = any;
   return any;
 }
 
@@ -258,7 +260,7 @@ void EventRunner::driven_through(int contact, double t) const {
 }
 
 void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<int>& which,
-                          const std::vector<VecX>& C, const VecX& e) {
+                          const std::vector<VecX>& C, VecX& e) {
   // M-orthogonal jump keeping the joints and the closed stops: v+ = v- + X p with
   // [M Phi_q^T; Phi_q 0] [X; Y] = [C^T; 0] and C v+ = -E C v-
   const int n = model_.n_coordinates(), m = model_.n_constraints(), k = int(which.size());
@@ -277,7 +279,16 @@ void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<in
     // free body's C M^-1 C^T it is 0 where drivers prescribe that motion
     if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) driven_through(which[i], t);
   }
-  v += X * A.fullPivLu().solve(b);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+  lu.setThreshold(1e-9);
+  if (lu.rank() < k && e.any()) {
+    // dependent rows (a loop's stops, one motion striking both): their
+    // rebounds -e g'- cannot all hold; the impact is plastic, g'+ = 0 for
+    // each, which they can (no energy from an inconsistent target)
+    e.setZero();
+    for (int i = 0; i < k; ++i) b[i] = -C[i].dot(v);
+  }
+  v += X * lu.solve(b);
 }
 
 std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
@@ -354,6 +365,11 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
   bool restart = false;
+  on_limit_.clear();
+  const bool late = late_;
+  late_ = false;
+  const std::vector<int> rebounded = rebounded_;  // (of the last event that acted)
+  std::vector<int> rebounding;
   for (size_t i = 0; i < roots_.size(); ++i) {
     if (!fired[i]) continue;
     auto& group = *model_.event_groups()[roots_[i].group];
@@ -371,6 +387,8 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     if (fired[roots_.size() + c] && contacts_[c].info.exists)
       (is_closed(contacts_[c].row) ? leaving : arriving).push_back(int(c));
   if (arriving.empty() && leaving.empty()) return restart;
+  for (int c : arriving) on_limit_.push_back(contacts_[c].row);
+  for (int c : leaving) on_limit_.push_back(contacts_[c].row);
   std::vector<VecX> C;
   VecX curvature;
   contact_rows(t, q, v, arriving, C, curvature);
@@ -394,9 +412,9 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     for (size_t j = 0; j < hit.size(); ++j) e[int(j)] = contacts_[hit[j]].info.restitution;
     impulse(t, q, v, hit, C_hit, e);
     // an impact passes its impulse through the joints: another stop at its
-    // limit and at rest (an adjacent joint, a coupled finger) that it drives
-    // into its limit takes part in it (plastic: its pre-impact speed is 0),
-    // so that no joint leaves an impact moving beyond a limit
+    // limit (an adjacent joint, a coupled finger) that it drives into its
+    // limit takes part in it, so that no joint leaves an impact moving
+    // beyond a limit; the impact is then plastic
     for (bool added = true; added;) {
       added = false;
       std::vector<int> at_limit;
@@ -410,9 +428,14 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       std::vector<VecX> C_more;
       VecX unused;
       contact_rows(t, q, v, at_limit, C_more, unused);
-      for (size_t j = 0; j < at_limit.size(); ++j) hit.push_back(at_limit[j]), C_hit.push_back(C_more[j]);
-      e.conservativeResize(int(hit.size()));
-      e.tail(int(at_limit.size())).setZero();
+      for (size_t j = 0; j < at_limit.size(); ++j) {
+        hit.push_back(at_limit[j]), C_hit.push_back(C_more[j]);
+        on_limit_.push_back(contacts_[at_limit[j]].row);
+      }
+      // (plastic for all: Newton's law at several contacts coupled through
+      // the joints can give energy; the M-orthogonal jump onto g' = 0 for
+      // each cannot)
+      e.setZero(int(hit.size()));
       v = v_before;
       impulse(t, q, v, hit, C_hit, e);
       added = true;
@@ -436,7 +459,14 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       const double g_dd = C_hit[j].dot(qdd_) - curvature_after[j];
       const bool slow = info.rest_speed > 0.0 && s1 < info.rest_speed;
       const bool short_series = g_dd < 0.0 && 2.0 * s1 < info.capture_time * (1.0 - e[j]) * -g_dd;
-      if (e[j] == 0.0 || slow || short_series) {
+      // a rebound from the event this segment started at whose return the
+      // integrator found only at a step's end (its first step, at order 1,
+      // longer than the flight): the steps cannot resolve the series that
+      // is left, and each late return would strike faster than the last
+      // rebound, a chatter that never ends; it ends here
+      const bool unresolved =
+          late && std::find(rebounded.begin(), rebounded.end(), contacts_[hit[j]].row) != rebounded.end();
+      if (e[j] == 0.0 || slow || short_series || unresolved) {
         captured.push_back(hit[j]);
         if (e[j] != 0.0) redo = true;
         e[j] = 0.0;
@@ -446,6 +476,9 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       v = v_before;
       impulse(t, q, v, hit, C_hit, e);
     }
+    for (int j = 0; j < k; ++j)
+      if (e[j] > 0.0) rebounding.push_back(contacts_[hit[j]].row);
+    rebounded_ = rebounding;
     for (int j = 0; j < k; ++j) {
       const std::string name = model_.constraint_name_of_row(contacts_[hit[j]].row);
       count_event(t, name, "stop");
@@ -476,6 +509,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     records.push_back({t, name, now ? "capture" : "release", contacts_[c].info.label, 0.0, 0.0});
     ++(now ? captures : releases);
   }
+  if (hit.empty() && closed != closed_before) rebounded_.clear();
   return restart || closed != closed_before;
 }
 
@@ -513,9 +547,15 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
     }
     return make_consistent(model_, d_, kkt_, on_limits, v, t);
   };
+  // (so is a stop whose crossing this event acted on: it is at its limit by
+  // definition, while the interpolant it was found on, not on Phi = 0, can
+  // put it 1e-6 off there)
   gaps(t, q, v);
   for (const Contact& c : contacts_)
-    if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0) held.push_back(c.row);
+    if (c.info.exists && !is_closed(c.row) &&
+        (rows_.Phi[c.row] < 0.0 || std::find(on_limit_.begin(), on_limit_.end(), c.row) != on_limit_.end()))
+      held.push_back(c.row);
+  on_limit_.clear();
   std::sort(held.begin(), held.end());
   ConsistentState state = project();
   // A stop leaving its limit (a rebound, a release) is there to within the

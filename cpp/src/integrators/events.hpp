@@ -85,9 +85,10 @@ class EventRunner {
                     std::vector<VecX>& C, VecX& curvature);
   /// The impulse at an impact of the contacts `which` (approaching),
   /// restitution e each: v += X p with C v+ = -e C v-, the closed rows and
-  /// joints held (the M-orthogonal jump).
+  /// joints held (the M-orthogonal jump). Rows that depend on each other
+  /// get e = 0 (a plastic impact: their rebounds could not all hold).
   void impulse(double t, const VecX& q, VecX& v, const std::vector<int>& which, const std::vector<VecX>& C,
-               const VecX& e);
+               VecX& e);
   /// The active set at rest contact: of the contacts `which` (all at g = 0,
   /// g' = 0), those whose force f >= 0 holds them while the others'
   /// accelerations g'' >= 0 (an LCP at acceleration level, solved by
@@ -107,6 +108,9 @@ class EventRunner {
   std::vector<int> dir_;
   std::vector<double> g_;
   VecX qdd_, lam_;
+  std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
+  bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
+  std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
   double t_last_ = -INFINITY;
   int burst_ = 0;
 };
