@@ -559,9 +559,19 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     left out, a leader's mimics held with it), and one UrdfWarning names
     each such joint, its line and why: the joint-space mass matrix of the
     joints left free is regular (docs/modelling.md says how they are found).
+    Of three revolutes in a chain whose outer axes line up at an angle of
+    the middle joint (a gimbal lock) within its limits or within 1e-5 rad
+    beyond one (files write pi/2 to 5 or 6 digits; any angle with
+    ``limits=False`` or a continuous middle joint), where the outer joints
+    turning opposite ways then moves no mass or inertia (massless links
+    between them: human.urdf's neck, shoulders and hips; point masses on the
+    axes: iCub's right hip), the middle joint is held at its initial value
+    in the same way, with one UrdfWarning naming it, its line, the lock's
+    angle and the outer joints: a run that reached the lock would stop
+    there, the forces not determining the motion.
     ``strict=True`` refuses each of these instead: a triangle inequality
     broken, a negative moment, a missing mesh, a mimic of an unknown joint,
-    a joint no mass moves with.
+    a joint no mass moves with, a chain that reaches a gimbal lock.
     ``floating_base``, ``limits``, ``dynamics``, ``mimic`` and ``strict``
     are True or False (not strings or numbers).
 
@@ -616,6 +626,10 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     pose, group_of, order = _poses(reader, joints, root, children, value)
     ground = root if not floating_base else None
     _check_inertias(reader, links, [link for link in order if group_of[link] != ground], strict)
+    locks = _gimbal_locks(reader, links, joints, root, children, value, limits, followers, floating_base)
+    if locks:
+        _hold(reader, joints, followers, locks, value, strict)
+        pose, group_of, order = _poses(reader, joints, root, children, value)
     held = _held_joints(reader, links, joints, order, pose, followers, floating_base)
     if held:
         _hold(reader, joints, followers, held, value, strict)
@@ -824,25 +838,20 @@ def _nearest_rigid_moments(moments):
 #: of the largest eigenvalue too).
 MOTIONLESS = 1e-12
 
+#: A gimbal lock of three revolutes at most this far (rad) beyond the middle
+#: joint's limit counts as within it: files write pi/2 to 5 or 6 digits
+#: (human.urdf's 1.5708, 3.7e-6 beyond; 1.570795, 1.3e-6 short), and with
+#: the middle joint on such a limit the outer joints' turning opposite ways
+#: has about angle^2 / 2 (5e-11 here) of the inertia of turning one of them.
+LOCK_REACHED = 1e-5
 
-def _held_joints(reader, links, joints, order, pose, followers, floating_base):
-    """The joints whose motion no mass or inertia follows, in the
-    configuration the model is built in: [(joint, partners)], partners None
-    for a joint whose coordinate alone moves no mass or inertia (a massless
-    finger), else [(joint, rate)] of a motion of several joints that moves
-    none (icub's point-mass head, turning about the line from the neck to
-    its centre of mass) in which this joint takes part (rates scaled to at
-    most 1). Only revolute, continuous and prismatic joints that mimic none
-    are held; a mimic's follower is held with its leader.
 
-    The joint-space mass matrix M (Sum over links of m J_c^T J_c +
-    J_w^T I J_w, with each independent coordinate's twist at its joint) is
-    read first on its diagonal: a coordinate that moves no mass is held;
-    then the rest, scaled to a unit diagonal, by its eigenvalues: for each
-    (numerically) zero one a joint of its null space is held, the one with
-    the largest rate in what is left of it (a QR with column pivoting of
-    the null space in joint rates), so that the joints that stay free have a
-    regular mass matrix."""
+def _mass_matrix(links, joints, order, pose, followers, floating_base):
+    """The joint-space mass matrix M (Sum over links of m J_c^T J_c +
+    J_w^T I J_w, with each independent coordinate's twist at its joint) in
+    the configuration of `pose`, and the joint of each of its columns (None:
+    a planar, floating or base coordinate); (None, columns) where no column
+    is a joint that can be held or M is not finite."""
     columns = {}  # independent coordinate -> its column
     holdable = []  # the joint of each column that may be held (None: a planar, floating or base coordinate)
     twists = {}  # joint -> [(column, twist (angular, velocity of the point at the world origin))]
@@ -886,7 +895,7 @@ def _held_joints(reader, links, joints, order, pose, followers, floating_base):
     base = free_twists(("base",), pose[root][1]) if floating_base else []
     n = len(holdable)
     if not any(h is not None for h in holdable):
-        return []
+        return None, holdable
     parent_joint = {joint["child"]: joint for joint in joints.values()}
     M = np.zeros((n, n))
     jacobian = {}
@@ -911,8 +920,47 @@ def _held_joints(reader, links, joints, order, pose, followers, floating_base):
             Jc = J[3:] + np.cross(Jw.T, centre).T  # (v_c = v_o + w x c)
             M += data["mass"] * Jc.T @ Jc + Jw.T @ (R @ data["inertia"] @ R.T) @ Jw
     if not np.all(np.isfinite(M)):
+        return None, holdable
+    return 0.5 * (M + M.T), holdable
+
+
+def _zero_modes(M):
+    """How many motions of the coordinates move no mass or inertia: the
+    coordinates whose diagonal entry of M is at most MOTIONLESS of the
+    largest, and the eigenvalues of the rest, scaled to a unit diagonal, at
+    most MOTIONLESS of the largest."""
+    diagonal = np.diag(M)
+    zero = diagonal <= MOTIONLESS * diagonal.max()
+    rest = np.flatnonzero(~zero)
+    if rest.size == 0:
+        return int(zero.sum())
+    scale = 1.0 / np.sqrt(diagonal[rest])
+    values = np.linalg.eigvalsh(M[np.ix_(rest, rest)] * np.outer(scale, scale))
+    return int(zero.sum()) + int(np.sum(values <= MOTIONLESS * values.max()))
+
+
+def _held_joints(reader, links, joints, order, pose, followers, floating_base):
+    """The joints whose motion no mass or inertia follows, in the
+    configuration the model is built in: [(joint, partners)], partners None
+    for a joint whose coordinate alone moves no mass or inertia (a massless
+    finger), else [(joint, rate)] of a motion of several joints that moves
+    none (icub's point-mass head, turning about the line from the neck to
+    its centre of mass) in which this joint takes part (rates scaled to at
+    most 1). Only revolute, continuous and prismatic joints that mimic none
+    are held; a mimic's follower is held with its leader.
+
+    The joint-space mass matrix M (Sum over links of m J_c^T J_c +
+    J_w^T I J_w, with each independent coordinate's twist at its joint) is
+    read first on its diagonal: a coordinate that moves no mass is held;
+    then the rest, scaled to a unit diagonal, by its eigenvalues: for each
+    (numerically) zero one a joint of its null space is held, the one with
+    the largest rate in what is left of it (a QR with column pivoting of
+    the null space in joint rates), so that the joints that stay free have a
+    regular mass matrix."""
+    M, holdable = _mass_matrix(links, joints, order, pose, followers, floating_base)
+    if M is None:
         return []
-    M = 0.5 * (M + M.T)
+    n = len(holdable)
     diagonal = np.diag(M).copy()
     largest = diagonal.max()
     zero = diagonal <= MOTIONLESS * largest
@@ -944,11 +992,102 @@ def _held_joints(reader, links, joints, order, pose, followers, floating_base):
     return held
 
 
+def _gimbal_locks(reader, links, joints, root, children, value, limits, followers, floating_base):
+    """The middle joints of chains of three revolutes that lock within
+    their limits: [(middle, reason)]. A revolute (or continuous) joint J2
+    whose parent link's group hangs from a revolute J1 and whose child's
+    group carries a revolute J3 is the middle of such a chain where, at
+    some angle of J2 (the lock), J3's axis lies on J1's line, and the
+    joint-space mass matrix with J2 at the allowed angle nearest the lock
+    (within its limits with `limits`, else the lock itself; the other
+    joints where the model is built) has more motions that move no mass
+    (_zero_modes) than where the model is built: J1 and J3 turning opposite
+    ways moves nothing through massless links (human.urdf's neck, Z-X-Y
+    with X limited to +-1.5708, 3.7e-6 rad past the lock at -pi/2). J2 is
+    held at its initial angle (there J1's and J3's axes are apart), so that
+    the chain never reaches the lock. Joints that mimic others are not J2."""
+    turning = ("revolute", "continuous")
+    pose, group_of, order = _poses(reader, joints, root, children, value)
+    M, _ = _mass_matrix(links, joints, order, pose, followers, floating_base)
+    if M is None:
+        return []
+    built = _zero_modes(M)
+    hanging = {joint["child"]: joint for joint in joints.values()}
+    found = []
+    for j2 in joints.values():
+        if j2["type"] not in turning or j2["name"] in followers:
+            continue
+        j1 = hanging.get(group_of[j2["parent"]])
+        if j1 is None or j1["type"] not in turning:
+            continue
+        # J1's line and J3's in J2's frame at angle 0 (J3's turned by J2's angle theta about a2)
+        R1, p1 = pose[j1["child"]]
+        R_parent, p_parent = pose[j2["parent"]]
+        R2, p2 = R_parent @ j2["R"], p_parent + R_parent @ j2["p"]
+        a2 = j2["axis"] / np.linalg.norm(j2["axis"])
+        b = R2.T @ (R1 @ j1["axis"])
+        b = b / np.linalg.norm(b)
+        c = R2.T @ (p1 - p2)
+        R_child, p_child = pose[j2["child"]]  # (J2's frame turned by its initial angle)
+        for j3 in joints.values():
+            if j3["type"] not in turning or group_of[j3["parent"]] != j2["child"]:
+                continue
+            R3, p3 = pose[j3["parent"]]
+            u = R_child.T @ (R3 @ j3["R"] @ j3["axis"])
+            u = u / np.linalg.norm(u)
+            q3 = R_child.T @ (p3 + R3 @ j3["p"] - p_child)
+            # b . turn(a2, theta) u = C + A cos(theta) + B sin(theta): +-1 where the axes line up
+            C = (b @ a2) * (a2 @ u)
+            A, B = b @ u - C, b @ np.cross(a2, u)
+            r = np.hypot(A, B)
+            if r < 1e-9:  # (the angle between the axes does not change with J2)
+                continue
+            for lock in (np.arctan2(B, A), np.arctan2(B, A) + np.pi):
+                if abs(C + r * np.cos(lock - np.arctan2(B, A))) < 1.0 - 1e-9:
+                    continue
+                R = _rotations.turn(a2, lock)
+                if np.linalg.norm(np.cross(R @ q3 - c, b)) > 1e-9 * (1.0 + np.linalg.norm(c) + np.linalg.norm(q3)):
+                    continue  # (parallel axes apart: turning opposite ways moves the links beyond)
+                if limits and j2["limit"] is not None:
+                    lower, upper = j2["limit"]
+                    turns = np.round((np.clip(lock, lower, upper) - lock) / (2 * np.pi))
+                    near = min((lock + 2 * np.pi * k for k in (turns - 1, turns, turns + 1)),
+                               key=lambda x: abs(np.clip(x, lower, upper) - x))
+                    beyond = abs(float(np.clip(near, lower, upper)) - near)
+                    if beyond > LOCK_REACHED:
+                        continue
+                else:
+                    near, beyond = lock + 2 * np.pi * np.round((value[j2["name"]] - lock) / (2 * np.pi)), 0.0
+                at = dict(value, **{j2["name"]: float(near)})
+                for _ in followers:  # (J2's mimics with it)
+                    for follower, m in followers.items():
+                        at[follower] = m["multiplier"] * at[m["joint"]] + m["offset"]
+                pose_at, _, order_at = _poses(reader, joints, root, children, at)
+                M, _ = _mass_matrix(links, joints, order_at, pose_at, followers, floating_base)
+                if M is None or _zero_modes(M) <= built:
+                    continue
+                if not (limits and j2["limit"] is not None):
+                    where = "(no limits)"
+                elif beyond == 0.0:
+                    where = f"within its limits [{j2['limit'][0]:.10g}, {j2['limit'][1]:.10g}]"
+                else:
+                    where = f"{beyond:.2g} rad beyond its limit {float(np.clip(near, *j2['limit'])):.10g}"
+                found.append((j2["name"], f"at {near:.6g} rad, {where}, the axes of '{j1['name']}' and "
+                              f"'{j3['name']}' line up (a gimbal lock) and their turning opposite ways moves no "
+                              "mass or inertia"))
+                break
+            if found and found[-1][0] == j2["name"]:
+                break
+    return found
+
+
 def _hold(reader, joints, followers, held, value, strict):
     """Each joint of `held` (and the followers of its mimics) fixed at its
     value, with one UrdfWarning naming each joint, its line and why; with
     strict a UrdfError naming the first."""
     def why(name, partners):
+        if isinstance(partners, str):  # (a gimbal lock's)
+            return partners
         if partners is None:
             return "no mass or inertia moves with it"
         others = [(other, rate) for other, rate in partners if other != name]
