@@ -260,7 +260,7 @@ void EventRunner::driven_through(int contact, double t) const {
 }
 
 void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<int>& which,
-                          const std::vector<VecX>& C, VecX& e) {
+                          const std::vector<VecX>& C, VecX& e, std::vector<char>& held) {
   // M-orthogonal jump keeping the joints and the closed stops: v+ = v- + X p with
   // [M Phi_q^T; Phi_q 0] [X; Y] = [C^T; 0] and C v+ = -E C v-
   const int n = model_.n_coordinates(), m = model_.n_constraints(), k = int(which.size());
@@ -272,13 +272,23 @@ void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<in
     kkt_.solve(C[j], zero_m, x, y);
     X.col(j) = x;
   }
+  held.assign(size_t(k), 0);
+  const double drift = 1e-6 * (1.0 + v.lpNorm<Eigen::Infinity>());
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
     b[i] = -(1.0 + e[i]) * C[i].dot(v);
     // A(i, i) is the mobility along the limit the joints leave; next to the
-    // free body's C M^-1 C^T it is 0 where drivers prescribe that motion
-    if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) driven_through(which[i], t);
+    // free body's C M^-1 C^T it is 0 where drivers prescribe that motion,
+    // or where the closed rows hold it (a mimic finger whose leader rests on
+    // its stop, approaching only by the velocity constraints' drift): such
+    // a row takes no impulse
+    if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {
+      if (!(std::abs(C[i].dot(v)) <= drift)) driven_through(which[i], t);
+      held[size_t(i)] = 1;
+    }
   }
+  for (int i = 0; i < k; ++i)
+    if (held[size_t(i)]) A.row(i).setZero(), A.col(i).setZero(), A(i, i) = 1.0, b[i] = 0.0;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
   lu.setThreshold(1e-9);
   if (lu.rank() < k && e.any()) {
@@ -286,7 +296,7 @@ void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<in
     // rebounds -e g'- cannot all hold; the impact is plastic, g'+ = 0 for
     // each, which they can (no energy from an inconsistent target)
     e.setZero();
-    for (int i = 0; i < k; ++i) b[i] = -C[i].dot(v);
+    for (int i = 0; i < k; ++i) b[i] = held[size_t(i)] ? 0.0 : -C[i].dot(v);
   }
   v += X * lu.solve(b);
 }
@@ -311,12 +321,16 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
     kkt_.solve(C[j], zero_m, x, y);
     X.col(j) = x;
   }
+  // (tolerances in acceleration units)
+  const double tol = 1e-9 * (1.0 + b.lpNorm<Eigen::Infinity>());
   std::vector<char> in(k, 0), may_close(k, 1), is_leaving(k, 0);
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
     is_leaving[i] = std::find(leaving.begin(), leaving.end(), which[i]) != leaving.end();
-    if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {  // a motion drivers prescribe
-      if (b[i] < 0.0) driven_through(which[i], t);
+    // a motion the drivers prescribe, or the closed rows hold (a mimic
+    // finger whose leader rests on its own stop: its g'' is 0 to rounding)
+    if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {
+      if (b[i] < -tol) driven_through(which[i], t);
       may_close[i] = 0;
     }
   }
@@ -326,7 +340,6 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
   // closes the first that is needed only: the others' gaps follow it (their
   // g'' = 0), so the closed rows never become dependent. Tolerances in
   // acceleration units; a released row opens at a force within rounding of 0
-  const double tol = 1e-9 * (1.0 + b.lpNorm<Eigen::Infinity>());
   VecX f = VecX::Zero(k), w = b;
   for (int iteration = 0;; ++iteration) {
     if (iteration > 50 + 4 * k * k)
@@ -406,11 +419,12 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   }
   const std::vector<int> closed_before = d_.closed_rows();
   std::vector<int> captured;
+  std::vector<char> held;  // (of the hit rows: the closed rows hold them)
+  const VecX v_before = v;
+  VecX e(int(hit.size()));
   if (!hit.empty()) {
-    const VecX v_before = v;
-    VecX e(int(hit.size()));
     for (size_t j = 0; j < hit.size(); ++j) e[int(j)] = contacts_[hit[j]].info.restitution;
-    impulse(t, q, v, hit, C_hit, e);
+    impulse(t, q, v, hit, C_hit, e, held);
     // an impact passes its impulse through the joints: another stop at its
     // limit (an adjacent joint, a coupled finger) that it drives into its
     // limit takes part in it, so that no joint leaves an impact moving
@@ -437,9 +451,18 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       // each cannot)
       e.setZero(int(hit.size()));
       v = v_before;
-      impulse(t, q, v, hit, C_hit, e);
+      impulse(t, q, v, hit, C_hit, e, held);
       added = true;
     }
+    // a row the closed rows hold took no impulse: it has no impact
+    for (size_t j = hit.size(); j-- > 0;)
+      if (held[j]) {
+        hit.erase(hit.begin() + long(j)), C_hit.erase(C_hit.begin() + long(j));
+        e.segment(long(j), e.size() - long(j) - 1) = e.tail(e.size() - long(j) - 1).eval();
+        e.conservativeResize(e.size() - 1);
+      }
+  }
+  if (!hit.empty()) {
     const int k = int(hit.size());
     VecX s0(k);
     for (int j = 0; j < k; ++j) s0[j] = C_hit[j].dot(v_before);
@@ -474,7 +497,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     }
     if (redo) {  // the captured ones plastic: no rebound
       v = v_before;
-      impulse(t, q, v, hit, C_hit, e);
+      impulse(t, q, v, hit, C_hit, e, held);
     }
     for (int j = 0; j < k; ++j)
       if (e[j] > 0.0) rebounding.push_back(contacts_[hit[j]].row);

@@ -87,8 +87,10 @@ class EventRunner {
   /// restitution e each: v += X p with C v+ = -e C v-, the closed rows and
   /// joints held (the M-orthogonal jump). Rows that depend on each other
   /// get e = 0 (a plastic impact: their rebounds could not all hold).
+  /// held[j] = 1 for a row the closed rows hold (no mobility, approaching
+  /// by drift only): it takes no impulse.
   void impulse(double t, const VecX& q, VecX& v, const std::vector<int>& which, const std::vector<VecX>& C,
-               VecX& e);
+               VecX& e, std::vector<char>& held);
   /// The active set at rest contact: of the contacts `which` (all at g = 0,
   /// g' = 0), those whose force f >= 0 holds them while the others'
   /// accelerations g'' >= 0 (an LCP at acceleration level, solved by
