@@ -166,6 +166,9 @@ class StepLoop {
   /// IntegratorFailure if the step turned a joint whose angle the equations
   /// read by half a turn or more.
   void count_joint_turns(double t, double h);
+  /// The actions of the crossings flagged in fired_ at (t, q, v) and the
+  /// stepper restarted from the state they leave; false if nothing acted.
+  bool act_on_crossings(double t, const double* q, const double* v);
   /// After a step from t0 to t1 without a root: the time a stop's limit was
   /// crossed and left inside it (EventRunner::grazed), or infinity.
   double grazed(double t0, double t1);

@@ -43,24 +43,7 @@ bool StepLoop::act(double t, bool at_stop) {
     // state they leave, at order 1
     const bool root = stepper_.root_found(fired_);
     if (root || plan_.events->missed(t, stepper_.positions(), stepper_.velocities(), fired_)) {
-      const int n = int(plan_.atol.size());
-      q_event_ = Eigen::Map<const VecX>(stepper_.positions(), n);
-      v_event_ = Eigen::Map<const VecX>(stepper_.velocities(), n);
-      bool acted = false;
-      try {
-        acted = plan_.events->handle(t, q_event_, v_event_, fired_);
-        if (acted) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
-      } catch (const IntegratorFailure& e) {  // keep the outputs so far (and what the failure says of itself)
-        IntegratorFailure f(std::string("at an event: ") + e.what(), t);
-        f.diagnose = e.diagnose;
-        throw f;
-      } catch (const SimulationError& e) {
-        throw IntegratorFailure(std::string("at an event: ") + e.what(), t);
-      } catch (const UserFunctionError& e) {
-        throw IntegratorFailure(e.what(), t);
-      }
-      if (acted) {
-        ++restarts_;
+      if (act_on_crossings(t, stepper_.positions(), stepper_.velocities())) {
         if (at_breakpoint(t, at_stop)) ++next_break_;  // the event fell on a breakpoint: pass it
         stepper_.set_stop(stop_time());
         return true;
@@ -98,17 +81,14 @@ double StepLoop::grazed(double t0, double t1) {
   return std::isnan(t) ? INFINITY : t;
 }
 
-bool StepLoop::act_at_graze(double t, double h) {
-  count_joint_turns(t, h);
-  const double *q = nullptr, *v = nullptr;
-  stepper_.interpolate(t, q, v);
+bool StepLoop::act_on_crossings(double t, const double* q, const double* v) {
   const int n = int(plan_.atol.size());
   q_event_ = Eigen::Map<const VecX>(q, n);
   v_event_ = Eigen::Map<const VecX>(v, n);
   try {
     if (!plan_.events->handle(t, q_event_, v_event_, fired_)) return false;
     stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
-  } catch (const IntegratorFailure& e) {
+  } catch (const IntegratorFailure& e) {  // keep the outputs so far (and what the failure says of itself)
     IntegratorFailure f(std::string("at an event: ") + e.what(), t);
     f.diagnose = e.diagnose;
     throw f;
@@ -117,8 +97,16 @@ bool StepLoop::act_at_graze(double t, double h) {
   } catch (const UserFunctionError& e) {
     throw IntegratorFailure(e.what(), t);
   }
-  t_ = t;
   ++restarts_;
+  return true;
+}
+
+bool StepLoop::act_at_graze(double t, double h) {
+  count_joint_turns(t, h);
+  const double *q = nullptr, *v = nullptr;
+  stepper_.interpolate(t, q, v);
+  if (!act_on_crossings(t, q, v)) return false;
+  t_ = t;
   pending_ = false;
   stepper_.set_stop(stop_time());
   return true;
