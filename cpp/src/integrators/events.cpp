@@ -93,6 +93,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
 bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, v, true); }
 
 bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
+  step_end_t_ = NAN;  // (a new start, or the equations jump here)
   values(t, q.data(), v.data(), g_.data());
   std::vector<int> fired(g_.size(), 0);
   bool any = false, beyond = false;
@@ -159,13 +160,19 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
     if (rate) *rate = rows_.phi_t[row];
     return rows_.Phi[row];
   };
-  // the gaps and rates at both ends
-  at(t0, q, v);
-  gaps(t0, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
-  const VecX g0 = rows_.Phi, r0 = rows_.phi_t;
+  // the gaps and rates at both ends (the start's are the last step's end's,
+  // unless an event acted since: an interpolant's start can cost the
+  // explicit stepper two right-hand sides)
+  if (!(step_end_t_ == t0)) {
+    at(t0, q, v);
+    gaps(t0, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
+    step_end_g_ = rows_.Phi, step_end_r_ = rows_.phi_t;
+  }
+  const VecX g0 = step_end_g_, r0 = step_end_r_;
   at(t1, q, v);
   gaps(t1, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
   const VecX g1 = rows_.Phi, r1 = rows_.phi_t;
+  step_end_t_ = t1, step_end_g_ = g1, step_end_r_ = r1;
   const double h = t1 - t0, t_tol = 1e-14 * (std::abs(t1) + h);
   constexpr int kSamples = 16;
   double earliest = NAN;
@@ -378,6 +385,7 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
   bool restart = false;
+  step_end_t_ = NAN;  // (the state may jump here)
   on_limit_.clear();
   const bool late = late_;
   late_ = false;
@@ -547,6 +555,7 @@ void EventRunner::gaps(double t, const VecX& q, const VecX& v) {
 }
 
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
+  step_end_t_ = NAN;
   // the state at a root is interpolated: put the positions back on Phi = 0
   // (least change; the closed stops' rows included) and the velocities on
   // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it.

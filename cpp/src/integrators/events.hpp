@@ -110,6 +110,8 @@ class EventRunner {
   std::vector<int> dir_;
   std::vector<double> g_;
   VecX qdd_, lam_;
+  double step_end_t_ = NAN;        // grazed(): the last step's end, whose gaps and rates
+  VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since)
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
   bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
   std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
