@@ -74,7 +74,6 @@ FORMULATIONS = [("ggl", {}), ("index1", {}), ("projection", {"integrator": "erk"
 #: stop_cases(known_bugs=False) draws none of these features, so that the
 #: default suite checks what holds; known_bugs=True draws them all.
 KNOWN_BUGS = {
-    "a torque that turns back and forth (Harmonic)": "test_a_short_release_is_not_stepped_over",
     "a driver's input jump": "test_a_drivers_jump_keeps_the_other_joints_within_their_limits",
 }
 #: Laws the core breaks in mechanisms of any kind (not a feature to leave out):
@@ -492,7 +491,7 @@ def _extras(b, stopped):
     if d(st.integers(0, 2)) == 2:  # a torque (or a force along a rail's body) from a time function or an input
         body = b.pick(b.bodies)
         size = b.pick([1.0, 5.0, 20.0])
-        f = b.pick(["constant", "ramp", "input"] + (["harmonic"] if b.known_bugs else []))
+        f = b.pick(["constant", "ramp", "input", "harmonic"])
         value = {"constant": repr(size), "harmonic": f"mb.Harmonic({size!r}, 4.0)",
                  "ramp": f"mb.SmoothStep(0.2, 0.6, 0.0, {size!r})", "input": "mb.Input(0.0, name='u')"}[f]
         if f == "input":

@@ -93,7 +93,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
 bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, v, true); }
 
 bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
-  step_end_t_ = NAN;  // (a new start, or the equations jump here)
+  step_end_t_ = force_t_[0] = force_t_[1] = NAN;  // (a new start, or the equations jump here)
   values(t, q.data(), v.data(), g_.data());
   std::vector<int> fired(g_.size(), 0);
   bool any = false, beyond = false;
@@ -226,6 +226,58 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
     } else if (hi <= earliest + t_tol) {
       rows.push_back(int(c));
     }
+  }
+  // a closed row's force dipping below 0 and back within the step (a
+  // release shorter than the steps at rest): candidates from the parabola
+  // through the forces at the last two steps' ends and this one's, then
+  // the force on the interpolant (16 samples, each an acceleration solve),
+  // and the first crossing by bisection
+  if (!d_.closed_rows().empty()) {
+    auto force = [&](double t, VecX& f) {
+      at(t, q, v);
+      solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
+      f = -lam_;
+    };
+    VecX f1;
+    force(t1, f1);
+    const bool history = force_t_[1] == t0 && force_t_[0] < t0;
+    for (size_t c = 0; history && c < contacts_.size(); ++c) {
+      const int row = contacts_[c].row;
+      if (!contacts_[c].info.exists || !is_closed(row)) continue;
+      const double fa = force_f_[0][row], fb = force_f_[1][row], fc = f1[row];
+      if (!(fb > 0.0 && fc > 0.0)) continue;
+      // the parabola through (ta, fa), (t0, fb), (t1, fc), its least value on [t0, t1]
+      const double ta = force_t_[0], h1 = t0 - ta, h2 = t1 - t0;
+      const double d1 = (fb - fa) / h1, d2 = (fc - fb) / h2, curv = (d2 - d1) / (h1 + h2);
+      double least = std::min(fb, fc);
+      if (curv > 0.0) {
+        const double slope_t0 = d2 - curv * h2;  // f' at t0
+        const double s = -slope_t0 / (2.0 * curv);
+        if (s > 0.0 && s < h2) least = std::min(least, fb + slope_t0 * s + curv * s * s);
+      }
+      if (least > 0.5 * std::min(fb, fc)) continue;
+      double lo = t0, hi = NAN;
+      VecX f;
+      for (int i = 1; i < kSamples && std::isnan(hi); ++i) {
+        const double ti = t0 + h * i / kSamples;
+        force(ti, f);
+        (f[row] < 0.0 ? hi : lo) = ti;
+      }
+      if (std::isnan(hi)) continue;
+      while (hi - lo > t_tol) {
+        const double mid = 0.5 * (lo + hi);
+        force(mid, f);
+        (f[row] > 0.0 ? lo : hi) = mid;
+      }
+      if (std::isnan(earliest) || hi < earliest - t_tol) {
+        earliest = hi;
+        rows.assign(1, int(c));
+      } else if (hi <= earliest + t_tol) {
+        rows.push_back(int(c));
+      }
+    }
+    force_t_[0] = force_t_[1], force_f_[0] = force_f_[1];
+    force_t_[1] = t1, force_f_[1] = f1;
   }
   if (std::isnan(earliest)) return NAN;
   fired.assign(g_.size(), 0);
@@ -385,7 +437,7 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
   bool restart = false;
-  step_end_t_ = NAN;  // (the state may jump here)
+  step_end_t_ = force_t_[0] = force_t_[1] = NAN;  // (the state may jump here)
   on_limit_.clear();
   const bool late = late_;
   late_ = false;
@@ -555,7 +607,7 @@ void EventRunner::gaps(double t, const VecX& q, const VecX& v) {
 }
 
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
-  step_end_t_ = NAN;
+  step_end_t_ = force_t_[0] = force_t_[1] = NAN;
   // the state at a root is interpolated: put the positions back on Phi = 0
   // (least change; the closed stops' rows included) and the velocities on
   // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it.

@@ -112,6 +112,8 @@ class EventRunner {
   VecX qdd_, lam_;
   double step_end_t_ = NAN;        // grazed(): the last step's end, whose gaps and rates
   VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since)
+  double force_t_[2] = {NAN, NAN};  // grazed(): the closed rows' forces at the last two steps' ends
+  VecX force_f_[2];
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
   bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
   std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
