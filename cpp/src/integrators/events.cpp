@@ -49,6 +49,8 @@ EventRunner::EventRunner(const Model& model, const Data& run)
   lam_.resize(model.n_constraints());
 }
 
+bool EventRunner::left(int row) const { return std::find(left_.begin(), left_.end(), row) != left_.end(); }
+
 bool EventRunner::is_closed(int row) const {
   return std::binary_search(d_.closed_rows().begin(), d_.closed_rows().end(), row);
 }
@@ -85,7 +87,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   for (const Contact& c : contacts_) {
     double x = !c.info.exists ? 1.0 : is_closed(c.row) ? -lam_[c.row] : rows_.Phi[c.row];
     if (rates && !is_closed(c.row) && c.info.exists && std::abs(x) <= at_limit)
-      x = rows_.phi_t[c.row] >= -at_rest ? at_limit : x;
+      x = rows_.phi_t[c.row] >= -at_rest || (t == restart_t_ && left(c.row)) ? at_limit : x;
     g[offset++] = x != 0.0 ? x : -1e-300;
   }
 }
@@ -587,6 +589,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     const bool was = std::binary_search(closed_before.begin(), closed_before.end(), row);
     const bool now = std::binary_search(closed.begin(), closed.end(), row);
     if (was == now) continue;
+    if (!now) on_limit_.push_back(row);  // (released: on its limit, see consistent())
     const std::string name = model_.constraint_name_of_row(row);
     count_event(t, name, "stop");
     records.push_back({t, name, now ? "capture" : "release", contacts_[c].info.label, 0.0, 0.0});
@@ -639,6 +642,14 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
     if (c.info.exists && !is_closed(c.row) &&
         (rows_.Phi[c.row] < 0.0 || std::find(on_limit_.begin(), on_limit_.end(), c.row) != on_limit_.end()))
       held.push_back(c.row);
+  // (a row the event left open on its limit, released or rebounding, reads
+  // as inside at the restart whatever its rate's rounding: a release at a
+  // force the interpolant put 0 a little early starts moving back in, and
+  // that is a crossing to find, not one already passed)
+  restart_t_ = t;
+  left_.clear();
+  for (int row : on_limit_)
+    if (!is_closed(row)) left_.push_back(row);
   on_limit_.clear();
   std::sort(held.begin(), held.end());
   ConsistentState state = project();

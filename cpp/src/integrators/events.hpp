@@ -75,6 +75,8 @@ class EventRunner {
     UnilateralRow info;
   };
   bool is_closed(int row) const;
+  /// Whether the last restart left `row` open on its limit (released or rebounding).
+  bool left(int row) const;
   /// rows_.Phi and rows_.phi_t (= Phi_q v) of the unilateral rows at (t, q, v).
   void gaps(double t, const VecX& q, const VecX& v);
   /// Counts an event at t; IntegratorFailure after 1000 at one instant (Zeno).
@@ -114,6 +116,8 @@ class EventRunner {
   VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since)
   double force_t_[2] = {NAN, NAN};  // grazed(): the closed rows' forces at the last two steps' ends
   VecX force_f_[2];
+  double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows
+  std::vector<int> left_;   // it left open on their limits
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
   bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
   std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
