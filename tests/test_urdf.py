@@ -756,7 +756,6 @@ def test_a_point_mass_on_a_ball_of_joints_holds_the_joint_that_spins_it(tmp_path
         mb.load_urdf(path, limits=False, strict=True)
 
 
-
 #: A neck as human.urdf's: three revolutes z, x, y through one point and two
 #: massless links, carrying a head (5 kg, centre 0.1 m up and aside). At
 #: x = +-pi/2 the y axis lies on the z axis (a gimbal lock); x's limits are

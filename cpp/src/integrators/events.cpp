@@ -170,11 +170,11 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
     gaps(t0, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
     step_end_g_ = rows_.Phi, step_end_r_ = rows_.phi_t;
   }
-  const VecX g0 = step_end_g_, r0 = step_end_r_;
   at(t1, q, v);
   gaps(t1, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
-  const VecX g1 = rows_.Phi, r1 = rows_.phi_t;
-  step_end_t_ = t1, step_end_g_ = g1, step_end_r_ = r1;
+  step_start_g_.swap(step_end_g_), step_start_r_.swap(step_end_r_);  // (buffers kept from step to step)
+  step_end_g_ = rows_.Phi, step_end_r_ = rows_.phi_t, step_end_t_ = t1;
+  const VecX &g0 = step_start_g_, &r0 = step_start_r_, &g1 = step_end_g_, &r1 = step_end_r_;
   const double h = t1 - t0, t_tol = 1e-14 * (std::abs(t1) + h);
   constexpr int kSamples = 16;
   double earliest = NAN;
@@ -240,7 +240,7 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
       solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
       f = -lam_;
     };
-    VecX f1;
+    VecX& f1 = force_f_[2];
     force(t1, f1);
     const bool history = force_t_[1] == t0 && force_t_[0] < t0;
     for (size_t c = 0; history && c < contacts_.size(); ++c) {
@@ -259,7 +259,7 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
       }
       if (least > 0.5 * std::min(fb, fc)) continue;
       double lo = t0, hi = NAN;
-      VecX f;
+      VecX& f = force_f_[3];
       for (int i = 1; i < kSamples && std::isnan(hi); ++i) {
         const double ti = t0 + h * i / kSamples;
         force(ti, f);
@@ -278,8 +278,8 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
         rows.push_back(int(c));
       }
     }
-    force_t_[0] = force_t_[1], force_f_[0] = force_f_[1];
-    force_t_[1] = t1, force_f_[1] = f1;
+    force_t_[0] = force_t_[1], force_t_[1] = t1;
+    force_f_[0].swap(force_f_[1]), force_f_[1].swap(force_f_[2]);
   }
   if (std::isnan(earliest)) return NAN;
   fired.assign(g_.size(), 0);

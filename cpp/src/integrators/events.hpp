@@ -113,9 +113,10 @@ class EventRunner {
   std::vector<double> g_;
   VecX qdd_, lam_;
   double step_end_t_ = NAN;        // grazed(): the last step's end, whose gaps and rates
-  VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since)
+  VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since);
+  VecX step_start_g_, step_start_r_;  // the step's start's (buffers)
   double force_t_[2] = {NAN, NAN};  // grazed(): the closed rows' forces at the last two steps' ends
-  VecX force_f_[2];
+  VecX force_f_[4];                 // (and buffers: this step's end, a sample)
   double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows
   std::vector<int> left_;   // it left open on their limits
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
