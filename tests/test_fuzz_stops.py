@@ -223,7 +223,7 @@ def test_a_short_release_is_not_stepped_over(amplitude):
     <= 0 along the upper gap). Found by the fuzzer (a harmonic torque): the
     0.11 s release fell inside one step at rest, where the force is read at
     the steps' ends only; a closed row's force is now looked at inside a
-    step where the last three steps' ends put a parabola near 0."""
+    step where a parabola through its ends and middle comes near 0."""
     a = math.pi - 0.1
     m = mb.Model(gravity=(0.0, -G))
     rod = m.add_body("rod", mass=2.0, inertia=2.0 / 12.0, position=(0.5 * math.cos(a), 0.5 * math.sin(a)), angle=a)
@@ -236,6 +236,36 @@ def test_a_short_release_is_not_stepped_over(amplitude):
     assert np.max(r.effort("stop")) <= 1e-6 * pressed
     releases = [x["t"] for x in r.events if x["kind"] == "release"]
     assert releases and abs(releases[0] - t_release) <= 1e-6
+
+
+@pytest.mark.parametrize("formulation, options", [
+    ("ggl", {}), ("index1", {}), ("index3", {}), ("projection", {}),
+    ("projection", {"integrator": "erk"}), ("projection", {"integrator": "adams"}),
+])
+def test_a_release_after_a_long_rest_is_found(formulation, options):
+    """A spatial pendulum (m = 0.5 kg, its centre a = 0.177 m out along x
+    and down along z) on a revolute about y rests on its upper stop at
+    0.05 rad, gravity pressing it on with m g a (cos 0.05 - sin 0.05) =
+    0.823 N m; a torque sin(4 t) about y lifts it off at
+    t = (pi + asin(0.823)) / 4 = 1.027 s (1e-8 s). Found by the fuzzer: at
+    rest nothing bounds the step, one step spanned 0.83 s to 1.5 s and
+    the 0.3 s in which the stop would have pulled went unseen (the force
+    was read at the steps' ends; the stop held it on its limit until the
+    end, pulling 0.17 N m)."""
+    a = 0.176777
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    bob = m.add_body("bob", mass=0.5, inertia=(0.0104167,) * 3, position=(a, 0.0, -a))
+    m.add_revolute("pin", m.ground, bob, at=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+    m.add_stop("stop", "pin", lower=-0.05, upper=0.05, restitution=0.0)
+    m.add_torque("shake", bob, (0.0, mb.Harmonic(1.0, 4.0), 0.0))
+    r = mb.simulate(m, t_end=1.5, n_out=151, rtol=1e-8, atol=1e-10, formulation=formulation, **options)
+    pressed = 0.5 * G * a * (math.cos(0.05) - math.sin(0.05))
+    t_release = (math.pi + math.asin(pressed)) / 4.0
+    assert [x["kind"] for x in r.events][:3] == ["impact", "capture", "release"]
+    assert abs(r.events[2]["t"] - t_release) <= 1e-8
+    closed = (r.t > r.events[1]["t"]) & (r.t < t_release)
+    assert np.max(r.effort("stop")[closed]) <= 1e-6 * pressed  # it pushes (along -angle at an upper stop)
+    assert np.max(r.joint("pin").angle) <= 0.05 + 1e-8
 
 
 def test_a_drivers_jump_keeps_the_other_joints_within_their_limits():

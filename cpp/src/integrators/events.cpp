@@ -65,7 +65,10 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   if (contacts_.empty()) return;
   const Instant at = rows_.at(t);
   for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q, at, rows_.Phi.data());
-  if (!d_.closed_rows().empty()) solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
+  if (!d_.closed_rows().empty()) {
+    solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
+    values_t_ = t, values_f_ = -lam_;  // (a step's end's: grazed() reads them)
+  }
   // an open gap within rounding of 0 (a restart after a rebound) reads by
   // its rate: leaving, it is inside, so that a flight shorter than the next
   // step still shows as a sign change (at rest on it, g' = 0 to rounding, it
@@ -95,7 +98,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
 bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, v, true); }
 
 bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
-  step_end_t_ = force_t_[0] = force_t_[1] = NAN;  // (a new start, or the equations jump here)
+  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (a new start, or the equations jump here)
   values(t, q.data(), v.data(), g_.data());
   std::vector<int> fired(g_.size(), 0);
   bool any = false, beyond = false;
@@ -153,6 +156,7 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
 }
 
 double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired) {
+  step_bound_ = INFINITY;
   if (contacts_.empty() || !(t1 > t0)) return NAN;
   const double *q = nullptr, *v = nullptr;
   const int n = model_.n_coordinates();
@@ -230,36 +234,52 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
     }
   }
   // a closed row's force dipping below 0 and back within the step (a
-  // release shorter than the steps at rest): candidates from the parabola
-  // through the forces at the last two steps' ends and this one's, then
-  // the force on the interpolant (16 samples, each an acceleration solve),
-  // and the first crossing by bisection
+  // release shorter than the steps at rest: with the joints at rest the
+  // state does not bound the step, a load's time function alone moves the
+  // force): the force at the step's ends and middle (one acceleration solve;
+  // the end's is the root functions' own), candidates where the parabola
+  // through them or the cubic through them and the last step's start, less
+  // their difference (the parabola's error), dips below half the least of
+  // them, then the force on the interpolant (16 samples) and the first
+  // crossing by bisection; the next step is bounded so that the parabola's
+  // error estimate stays within a quarter of the margin (step_bound())
   if (!d_.closed_rows().empty()) {
     auto force = [&](double t, VecX& f) {
       at(t, q, v);
       solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
       f = -lam_;
     };
-    VecX& f1 = force_f_[2];
-    force(t1, f1);
-    const bool history = force_t_[1] == t0 && force_t_[0] < t0;
-    for (size_t c = 0; history && c < contacts_.size(); ++c) {
+    VecX &f0 = force_f_[1], &f1 = force_f_[2], &fm = force_f_[3];
+    if (!(force_t_[1] == t0)) force(t0, f0), force_t_[0] = NAN;
+    if (values_t_ == t1) f1 = values_f_;
+    else force(t1, f1);
+    const double tm = t0 + 0.5 * h, ta = force_t_[0];
+    force(tm, fm);
+    const bool history = ta < t0;
+    const double floor = 1e-6 * (1.0 + f1.lpNorm<Eigen::Infinity>());
+    for (size_t c = 0; c < contacts_.size(); ++c) {
       const int row = contacts_[c].row;
       if (!contacts_[c].info.exists || !is_closed(row)) continue;
-      const double fa = force_f_[0][row], fb = force_f_[1][row], fc = f1[row];
-      if (!(fb > 0.0 && fc > 0.0)) continue;
-      // the parabola through (ta, fa), (t0, fb), (t1, fc), its least value on [t0, t1]
-      const double ta = force_t_[0], h1 = t0 - ta, h2 = t1 - t0;
-      const double d1 = (fb - fa) / h1, d2 = (fc - fb) / h2, curv = (d2 - d1) / (h1 + h2);
-      double least = std::min(fb, fc);
-      if (curv > 0.0) {
-        const double slope_t0 = d2 - curv * h2;  // f' at t0
-        const double s = -slope_t0 / (2.0 * curv);
-        if (s > 0.0 && s < h2) least = std::min(least, fb + slope_t0 * s + curv * s * s);
+      const double fb = f0[row], fc = f1[row], fmid = fm[row];
+      if (!(fb > 0.0 && fc > 0.0)) continue;  // (a crossing at an end is the root functions')
+      bool dips = !(fmid > 0.0);
+      const double margin = 0.5 * std::min({fb, fmid, fc});
+      // Newton's divided differences over (t0, tm, t1) and, with history, ta
+      const double d01 = (fmid - fb) / (tm - t0), d12 = (fc - fmid) / (t1 - tm), d012 = (d12 - d01) / (t1 - t0);
+      const double d3 = history ? (d012 - ((fb - force_f_[0][row]) / (t0 - ta) - d01) / (ta - tm)) / (t1 - ta) : 0.0;
+      // the next step: the parabola's error over a step h, at most
+      // |d3| h^3 max|x (x - 1/2) (x - 1)| (x in [0, 1]), within a quarter of the margin
+      if (d3 != 0.0)
+        step_bound_ = std::min(step_bound_, t1 + std::cbrt(0.25 * std::max(margin, floor) / (0.0481 * std::abs(d3))));
+      for (int i = 1; i < 4 * kSamples && !dips; ++i) {
+        const double s = t0 + h * i / (4.0 * kSamples);
+        const double quadratic = fb + (s - t0) * (d01 + (s - tm) * d012);
+        const double cubic = quadratic + d3 * (s - t0) * (s - tm) * (s - t1);
+        dips = std::min(quadratic, cubic) - std::abs(cubic - quadratic) < margin;
       }
-      if (least > 0.5 * std::min(fb, fc)) continue;
+      if (!dips) continue;
       double lo = t0, hi = NAN;
-      VecX& f = force_f_[3];
+      VecX& f = force_f_[4];
       for (int i = 1; i < kSamples && std::isnan(hi); ++i) {
         const double ti = t0 + h * i / kSamples;
         force(ti, f);
@@ -278,7 +298,7 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
         rows.push_back(int(c));
       }
     }
-    force_t_[0] = force_t_[1], force_t_[1] = t1;
+    force_t_[0] = t0, force_t_[1] = t1;
     force_f_[0].swap(force_f_[1]), force_f_[1].swap(force_f_[2]);
   }
   if (std::isnan(earliest)) return NAN;
@@ -439,7 +459,7 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
   bool restart = false;
-  step_end_t_ = force_t_[0] = force_t_[1] = NAN;  // (the state may jump here)
+  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (the state may jump here)
   on_limit_.clear();
   const bool late = late_;
   late_ = false;
@@ -610,7 +630,7 @@ void EventRunner::gaps(double t, const VecX& q, const VecX& v) {
 }
 
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
-  step_end_t_ = force_t_[0] = force_t_[1] = NAN;
+  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;
   // the state at a root is interpolated: put the positions back on Phi = 0
   // (least change; the closed stops' rows included) and the velocities on
   // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it.

@@ -55,6 +55,11 @@ class EventRunner {
   /// the first crossing before it (bisection on g). Returns that time (the
   /// earliest over the rows, its rows flagged in `fired`), or NaN if none.
   double grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired);
+  /// The time the next step should not pass (INFINITY: none), set by
+  /// grazed(): where a closed row's force changes fast for its margin from
+  /// 0 (a load's time function moving it while the joints rest), the step
+  /// that would let a parabola through its ends and middle miss a release.
+  double step_bound() const { return step_bound_; }
   /// Applies the actions of the flagged crossings at (t, q, v); v gets the
   /// velocity jump of impacts, the run's Data its new active set. Returns
   /// true if the integrator must restart.
@@ -115,8 +120,11 @@ class EventRunner {
   double step_end_t_ = NAN;        // grazed(): the last step's end, whose gaps and rates
   VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since);
   VecX step_start_g_, step_start_r_;  // the step's start's (buffers)
-  double force_t_[2] = {NAN, NAN};  // grazed(): the closed rows' forces at the last two steps' ends
-  VecX force_f_[4];                 // (and buffers: this step's end, a sample)
+  double force_t_[2] = {NAN, NAN};  // grazed(): the closed rows' forces at the last step's start and end
+  VecX force_f_[5];                 // (and buffers: this step's end, its middle, a sample)
+  double step_bound_ = INFINITY;    // grazed(): see step_bound()
+  double values_t_ = NAN;           // values(): the time of its last solve of the closed rows' forces,
+  VecX values_f_;                   // and those forces
   double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows
   std::vector<int> left_;   // it left open on their limits
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()

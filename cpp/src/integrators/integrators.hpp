@@ -184,6 +184,7 @@ class StepLoop {
   size_t next_break_ = 0;
   long restarts_ = 0;
   bool pending_ = false, pending_at_stop_ = false;  // act() deferred to the next run
+  bool bounded_ = false;  // the stop last set was the events' step bound (EventRunner::step_bound)
   std::vector<int> fired_;
   VecX q_event_, v_event_;
 };

@@ -137,8 +137,14 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
   const bool to_outputs = stepper_.steps_to_outputs();
   while (t_ < target) {
     poll_interrupt();
-    // (after the last output the stop is the breakpoint's or the end's again)
-    if (to_outputs) stepper_.set_stop(k < t_out.size() ? std::min(stop_time(), t_out[k]) : stop_time());
+    // (after the last output the stop is the breakpoint's or the end's again;
+    // a closed stop's force changing fast bounds the step: step_bound())
+    const double bound = plan_.events ? plan_.events->step_bound() : INFINITY;
+    if (to_outputs || bound < INFINITY || bounded_) {
+      const double stop = std::min(to_outputs && k < t_out.size() ? std::min(stop_time(), t_out[k]) : stop_time(), bound);
+      stepper_.set_stop(stop);
+      bounded_ = bound < INFINITY;
+    }
     bool at_stop = false;
     const double t_before = t_;
     double t = t_ = stepper_.step(at_stop);
