@@ -268,6 +268,38 @@ def test_a_release_after_a_long_rest_is_found(formulation, options):
     assert np.max(r.joint("pin").angle) <= 0.05 + 1e-8
 
 
+@pytest.mark.parametrize("formulation, options", [
+    ("ggl", {}), ("projection", {}), ("projection", {"integrator": "adams"}), ("projection", {"integrator": "erk"}),
+])
+def test_a_release_just_after_a_simulators_target_is_found(formulation, options):
+    """A level rod (m = 1, L = 1) on its lower stop at 0, gravity pressing
+    it on with 4.905 N m; a torque 5 sin(4 t) lifts it off at
+    t = asin(4.905 / 5) / 4 = 0.344 s (1e-8 s), for 0.1 s. A Simulator
+    advanced to 0.3 s, then 0.6 s: the same events and outputs as one run
+    to 0.6 s. Found by the fuzzer: the release was found inside the step
+    that passed 0.3 s, beyond the target, and dropped (the next advance
+    went on from the step's end): the stop pulled 0.09 N m until the end."""
+    def model():
+        m = mb.Model(gravity=(0.0, -G))
+        rod = m.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
+        m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+        m.add_stop("stop", "pin", lower=0.0, restitution=0.0)
+        m.add_torque("shake", rod, mb.Harmonic(5.0, 4.0))
+        return m
+
+    sim = mb.Simulator(model(), rtol=1e-8, atol=1e-10, formulation=formulation, output_interval=0.01, **options)
+    sim.advance(0.3)
+    sim.advance(0.6)
+    r = sim.result()
+    whole = mb.simulate(model(), t_end=0.6, n_out=61, rtol=1e-8, atol=1e-10, formulation=formulation, **options)
+    assert [x["kind"] for x in r.events] == [x["kind"] for x in whole.events]
+    releases = [x["t"] for x in r.events if x["kind"] == "release"]
+    assert len(releases) == 1 and abs(releases[0] - math.asin(G * 0.5 / 5.0) / 4.0) <= 1e-8
+    assert np.min(r.effort("stop")) >= -1e-6 * G * 0.5  # it pushes (along +angle at a lower stop)
+    assert np.allclose(r.t, whole.t, rtol=0.0, atol=1e-12)
+    assert np.max(np.abs(r.joint("pin").angle - whole.joint("pin").angle)) <= 1e-6
+
+
 def test_a_drivers_jump_keeps_the_other_joints_within_their_limits():
     """A level two-rod arm: the shoulder driven by an input, the elbow with
     an upper stop at 0 where it starts (gravity folds it down, away from

@@ -151,6 +151,10 @@ class StepLoop {
   void restarted(double t);
   /// Time the stepper reached (its last step's end).
   double t() const { return t_; }
+  /// Up to which time the last step's interpolant holds: its end, or the
+  /// crossing grazed() found in it beyond a Simulator's target (acted on
+  /// when the next run passes it).
+  double valid_until() const { return std::min(t_, graze_pending_); }
   /// Restarts at breakpoints and after events' actions so far.
   long restarts() const { return restarts_; }
 
@@ -184,6 +188,7 @@ class StepLoop {
   size_t next_break_ = 0;
   long restarts_ = 0;
   bool pending_ = false, pending_at_stop_ = false;  // act() deferred to the next run
+  double graze_pending_ = INFINITY, graze_step_start_ = NAN;  // a crossing grazed() found beyond the target, and its step's start
   bool bounded_ = false;  // the stop last set was the events' step bound (EventRunner::step_bound)
   std::vector<int> fired_;
   VecX q_event_, v_event_;

@@ -21,6 +21,7 @@ StepLoop::StepLoop(Stepper& stepper, const Model& model, const IntegrationPlan& 
 void StepLoop::restarted(double t) {
   t_ = t;
   pending_ = false;
+  graze_pending_ = INFINITY;
   const auto& b = plan_.breakpoints;
   next_break_ = size_t(std::upper_bound(b.begin(), b.end(), t) - b.begin());
   stepper_.set_stop(stop_time());
@@ -130,7 +131,19 @@ void StepLoop::count_joint_turns(double t, double h) {
 void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {
   auto clock = std::chrono::steady_clock::now();
   long steps = 0;
-  if (pending_ && t_ < target) {  // (while target is inside the last step, it holds the outputs)
+  // a crossing found in the last step beyond the last run's target: the
+  // outputs before it are recorded (Run::step_to), the impact is now
+  if (graze_pending_ <= target) {
+    const double t_grazed = graze_pending_;
+    graze_pending_ = INFINITY;
+    for (; k < t_out.size() && t_out[k] <= t_grazed; ++k) {
+      const double *q = nullptr, *v = nullptr;
+      stepper_.interpolate(t_out[k], q, v);
+      record(q, v);
+    }
+    act_at_graze(t_grazed, t_grazed - graze_step_start_);
+  }
+  if (pending_ && t_ < target && graze_pending_ == INFINITY) {  // (while target is inside the last step, it holds the outputs)
     pending_ = false;
     act(t_, pending_at_stop_);
   }
@@ -152,7 +165,10 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
     // (a Simulator's step past its target keeps its interpolant for the
     // times before: a crossing found beyond the target is not acted on)
     double t_grazed = grazed(t_before, t);
-    if (!stop_at_end_ && t_grazed > target) t_grazed = INFINITY;
+    if (!stop_at_end_ && t_grazed > target && t_grazed < t) {  // (held for the next run)
+      graze_pending_ = t_grazed, graze_step_start_ = t_before;
+      t_grazed = INFINITY;
+    }
     if (t_grazed < t) {  // the outputs before it, then the impact there (if one happens)
       for (; k < t_out.size() && t_out[k] <= t_grazed; ++k) {
         const double *q = nullptr, *v = nullptr;

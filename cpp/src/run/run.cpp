@@ -108,7 +108,7 @@ void Run::step_to(double target, const std::vector<double>& t_out, size_t& k, co
   for (;;) {
     try {
       // outputs inside the step taken last, before it steps on
-      for (; k < t_out.size() && t_out[k] <= loop_->t(); ++k) {
+      for (; k < t_out.size() && t_out[k] <= loop_->valid_until(); ++k) {
         const double *q = nullptr, *v = nullptr;
         stepper_->interpolate(t_out[k], q, v);
         record(q, v);
