@@ -51,6 +51,10 @@ EventRunner::EventRunner(const Model& model, const Data& run)
 
 bool EventRunner::left(int row) const { return std::find(left_.begin(), left_.end(), row) != left_.end(); }
 
+bool EventRunner::rebounding(int row) const {
+  return std::find(rebounded_.begin(), rebounded_.end(), row) != rebounded_.end();
+}
+
 bool EventRunner::is_closed(int row) const {
   return std::binary_search(d_.closed_rows().begin(), d_.closed_rows().end(), row);
 }
@@ -75,7 +79,14 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   // is inside too: a plastic impact the active set leaves open moves away,
   // or comes back as a crossing); approaching, it reads as it is, so that
   // the crossing is located at g = 0 (exactly 0: just past it, as SUNDIALS
-  // warns of a root function at 0 where it starts)
+  // warns of a root function at 0 where it starts). A row the last restart
+  // left open on its limit reads as inside at the restart whatever its
+  // rate, and one it left at rest (released, or arrived at rest and open)
+  // until a step ends with it off the limit: it leaves slower than the
+  // velocities' error (index 3's, from positions over a first step of
+  // 1e-9 s: 1e-8), and coming back it crosses at g = -1e-10 (a chatter of
+  // impacts at that noise otherwise). (A rebound returns at g = 0: at
+  // -1e-10 it would gain sqrt(2 g 1e-10) at each of a series of bounces.)
   const double at_limit = 1e-10;
   bool rates = false;
   for (const Contact& c : contacts_)
@@ -90,7 +101,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   for (const Contact& c : contacts_) {
     double x = !c.info.exists ? 1.0 : is_closed(c.row) ? -lam_[c.row] : rows_.Phi[c.row];
     if (rates && !is_closed(c.row) && c.info.exists && std::abs(x) <= at_limit)
-      x = rows_.phi_t[c.row] >= -at_rest || (t == restart_t_ && left(c.row)) ? at_limit : x;
+      x = rows_.phi_t[c.row] >= -at_rest || (left(c.row) && (t == restart_t_ || !rebounding(c.row))) ? at_limit : x;
     g[offset++] = x != 0.0 ? x : -1e-300;
   }
 }
@@ -178,6 +189,8 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
   gaps(t1, Eigen::Map<const VecX>(q, n), Eigen::Map<const VecX>(v, n));
   step_start_g_.swap(step_end_g_), step_start_r_.swap(step_end_r_);  // (buffers kept from step to step)
   step_end_g_ = rows_.Phi, step_end_r_ = rows_.phi_t, step_end_t_ = t1;
+  left_.erase(std::remove_if(left_.begin(), left_.end(), [&](int row) { return step_end_g_[row] > 1e-10; }),
+              left_.end());
   const VecX &g0 = step_start_g_, &r0 = step_start_r_, &g1 = step_end_g_, &r1 = step_end_r_;
   const double h = t1 - t0, t_tol = 1e-14 * (std::abs(t1) + h);
   constexpr int kSamples = 16;
@@ -461,6 +474,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   bool restart = false;
   step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (the state may jump here)
   on_limit_.clear();
+  released_.clear();
   const bool late = late_;
   late_ = false;
   const std::vector<int> rebounded = rebounded_;  // (of the last event that acted)
@@ -609,7 +623,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     const bool was = std::binary_search(closed_before.begin(), closed_before.end(), row);
     const bool now = std::binary_search(closed.begin(), closed.end(), row);
     if (was == now) continue;
-    if (!now) on_limit_.push_back(row);  // (released: on its limit, see consistent())
+    if (!now) on_limit_.push_back(row), released_.push_back(row);  // (on its limit, at rest: see consistent())
     const std::string name = model_.constraint_name_of_row(row);
     count_event(t, name, "stop");
     records.push_back({t, name, now ? "capture" : "release", contacts_[c].info.label, 0.0, 0.0});
@@ -640,19 +654,31 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
   if (contacts_.empty()) return make_consistent(model_, d_, kkt_, q, v, t);
   std::vector<int> held = d_.closed_rows();
   const std::vector<int> closed = held;
+  // (a stop released here leaves its limit at rest, g' = 0: the velocities
+  // are projected with its row held too, then the accelerations solved
+  // without it; a formulation whose velocities keep only Phi = 0 (index 3)
+  // has it approaching by its error, a new impact at once, and a chatter)
+  std::vector<int> at_rest = closed;
+  at_rest.insert(at_rest.end(), released_.begin(), released_.end());
+  std::sort(at_rest.begin(), at_rest.end());
+  auto with_rows = [&](const std::vector<int>& rows, auto&& solve) {
+    d_.close_rows(model_, rows);
+    try {
+      auto out = solve();
+      d_.close_rows(model_, closed);
+      return out;
+    } catch (...) {
+      d_.close_rows(model_, closed);
+      throw;
+    }
+  };
   auto project = [&]() {
     VecX on_limits = q;
-    if (held.size() > closed.size()) {
-      d_.close_rows(model_, held);
-      try {
-        on_limits = solve_positions(model_, d_, kkt_, q, t);
-      } catch (...) {
-        d_.close_rows(model_, closed);
-        throw;
-      }
-      d_.close_rows(model_, closed);
-    }
-    return make_consistent(model_, d_, kkt_, on_limits, v, t);
+    if (held.size() > closed.size())
+      on_limits = with_rows(held, [&] { return solve_positions(model_, d_, kkt_, q, t); });
+    if (released_.empty()) return make_consistent(model_, d_, kkt_, on_limits, v, t);
+    const ConsistentState resting = with_rows(at_rest, [&] { return make_consistent(model_, d_, kkt_, on_limits, v, t); });
+    return make_consistent(model_, d_, kkt_, resting.q, resting.v, t);
   };
   // (so is a stop whose crossing this event acted on: it is at its limit by
   // definition, while the interpolant it was found on, not on Phi = 0, can
@@ -663,9 +689,9 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
         (rows_.Phi[c.row] < 0.0 || std::find(on_limit_.begin(), on_limit_.end(), c.row) != on_limit_.end()))
       held.push_back(c.row);
   // (a row the event left open on its limit, released or rebounding, reads
-  // as inside at the restart whatever its rate's rounding: a release at a
-  // force the interpolant put 0 a little early starts moving back in, and
-  // that is a crossing to find, not one already passed)
+  // as inside until a step leaves it off the limit, whatever its rate's
+  // rounding: a release at a force the interpolant put 0 a little early
+  // starts moving back in, and that is a crossing to find, not one passed)
   restart_t_ = t;
   left_.clear();
   for (int row : on_limit_)
@@ -673,21 +699,30 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
   on_limit_.clear();
   std::sort(held.begin(), held.end());
   ConsistentState state = project();
-  // A stop leaving its limit (a rebound, a release) is there to within the
-  // interpolant's error: the projection onto the joints can put it just
-  // beyond, where its gap reads as crossed already and its next crossing in
-  // the first step shows no sign change (missed, acted on late with a
-  // larger speed). Such a row is held on its limit too.
-  gaps(t, state.q, state.v);
+  // The projection moves the other joints too: it can put a stop beyond its
+  // limit (a joint held on its limit, or a driver's new value, pushing a
+  // coupled one through its own: 0.65 rad beyond in a chain), which is held
+  // on its limit too, and the positions projected again, until none is
+  // (an active set on the positions). A stop leaving its limit (a rebound,
+  // a release) is there to within the interpolant's error: the projection
+  // onto the joints can put it just beyond, where its gap reads as crossed
+  // already and its next crossing in the first step shows no sign change
+  // (missed, acted on late with a larger speed): it is held too. (One just
+  // beyond and approaching is left: its crossing is found as missed.)
   const double at_limit = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
-  const size_t before = held.size();
-  for (const Contact& c : contacts_)
-    if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0 && rows_.Phi[c.row] > -at_limit &&
-        rows_.phi_t[c.row] >= 0.0 && !std::binary_search(held.begin(), held.begin() + long(before), c.row))
-      held.push_back(c.row);
-  if (held.size() == before) return state;
-  std::sort(held.begin(), held.end());
-  return project();
+  for (size_t pass = 0; pass < contacts_.size(); ++pass) {
+    gaps(t, state.q, state.v);
+    const size_t before = held.size();
+    for (const Contact& c : contacts_)
+      if (c.info.exists && !is_closed(c.row) && rows_.Phi[c.row] < 0.0 &&
+          (rows_.Phi[c.row] <= -at_limit || rows_.phi_t[c.row] >= 0.0) &&
+          !std::binary_search(held.begin(), held.begin() + long(before), c.row))
+        held.push_back(c.row);
+    if (held.size() == before) break;
+    std::sort(held.begin(), held.end());
+    state = project();
+  }
+  return state;
 }
 
 }  // namespace lagmb

@@ -80,8 +80,11 @@ class EventRunner {
     UnilateralRow info;
   };
   bool is_closed(int row) const;
-  /// Whether the last restart left `row` open on its limit (released or rebounding).
+  /// Whether the last restart left `row` open on its limit (released or
+  /// rebounding) and no step's end has found it off the limit since.
   bool left(int row) const;
+  /// Whether `row` rebounded (e > 0) at the last impact.
+  bool rebounding(int row) const;
   /// rows_.Phi and rows_.phi_t (= Phi_q v) of the unilateral rows at (t, q, v).
   void gaps(double t, const VecX& q, const VecX& v);
   /// Counts an event at t; IntegratorFailure after 1000 at one instant (Zeno).
@@ -125,10 +128,11 @@ class EventRunner {
   double step_bound_ = INFINITY;    // grazed(): see step_bound()
   double values_t_ = NAN;           // values(): the time of its last solve of the closed rows' forces,
   VecX values_f_;                   // and those forces
-  double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows
-  std::vector<int> left_;   // it left open on their limits
+  double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows it left open on their
+  std::vector<int> left_;   // limits (until a step's end finds them off)
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
   bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
+  std::vector<int> released_;  // rows the last handle() released: consistent() starts them at rest
   std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
   double t_last_ = -INFINITY;
   int burst_ = 0;
