@@ -564,9 +564,10 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     for (int j = 0; j < k; ++j) s0[j] = C_hit[j].dot(v_before);
     impacts += k;
     // a rebound ends on the limit (captured) when e = 0, when it is slower
-    // than rest_speed, or when the motion presses on the limit (g'' < 0 with
-    // the row open) and the remaining bounces, flights of 2 s1 / |g''|
-    // shrinking by e each, add up to less than capture_time
+    // than rest_speed (or than what reads as at rest: 1e-9 (1 + |v|)), or
+    // when the motion presses on the limit (g'' < 0 with the row open) and
+    // the remaining bounces, flights of 2 s1 / |g''| shrinking by e each,
+    // add up to less than capture_time
     solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd_.data(), lam_.data());
     std::vector<VecX> C_after;
     VecX curvature_after;  // gamma_r at the rebound velocity
@@ -576,7 +577,10 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       const UnilateralRow& info = contacts_[hit[j]].info;
       const double s1 = C_hit[j].dot(v);
       const double g_dd = C_hit[j].dot(qdd_) - curvature_after[j];
-      const bool slow = info.rest_speed > 0.0 && s1 < info.rest_speed;
+      // (a rebound slower than the speed that reads as at rest: an impact
+      // at that speed is a joint pressed on its limit from rest, found where
+      // its approach passed that speed; a rebound would return at once)
+      const bool slow = s1 < v_scale || (info.rest_speed > 0.0 && s1 < info.rest_speed);
       const bool short_series = g_dd < 0.0 && 2.0 * s1 < info.capture_time * (1.0 - e[j]) * -g_dd;
       // a rebound from the event this segment started at whose return the
       // integrator found only at a step's end (its first step, at order 1,
