@@ -80,9 +80,7 @@ KNOWN_BUGS = {
 }
 #: Laws the core breaks in mechanisms of any kind (not a feature to leave out):
 #: stop_problems names them apart; {law: the xfail test of it}.
-KNOWN_LAWS = {
-    "too many events": "test_a_stop_pressed_by_a_swinging_chain_settles",
-}
+KNOWN_LAWS = {}
 
 
 # ---------------------------------------------------------------------------

@@ -477,7 +477,8 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   released_.clear();
   const bool late = late_;
   late_ = false;
-  const std::vector<int> rebounded = rebounded_;  // (of the last event that acted)
+  const std::vector<int> rebounded = rebounded_;  // (of the last event that acted, and their speeds)
+  const std::vector<double> rebound_speed = rebound_speed_;
   std::vector<int> rebounding;
   for (size_t i = 0; i < roots_.size(); ++i) {
     if (!fired[i]) continue;
@@ -587,8 +588,12 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       // longer than the flight): the steps cannot resolve the series that
       // is left, and each late return would strike faster than the last
       // rebound, a chatter that never ends; it ends here
+      // (or one that returns more than twice as fast as it left: the flight,
+      // its height s1^2 / 2|g''| below the positions' error (1e-12 rad), was
+      // not resolved; each return would strike faster than the last rebound)
+      const auto was = std::find(rebounded.begin(), rebounded.end(), contacts_[hit[j]].row);
       const bool unresolved =
-          late && std::find(rebounded.begin(), rebounded.end(), contacts_[hit[j]].row) != rebounded.end();
+          was != rebounded.end() && (late || -s0[j] > 2.0 * rebound_speed[size_t(was - rebounded.begin())]);
       if (e[j] == 0.0 || slow || short_series || unresolved) {
         captured.push_back(hit[j]);
         if (e[j] != 0.0) redo = true;
@@ -599,8 +604,9 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       v = v_before;
       impulse(t, q, v, hit, C_hit, e, held);
     }
+    rebound_speed_.clear();
     for (int j = 0; j < k; ++j)
-      if (e[j] > 0.0) rebounding.push_back(contacts_[hit[j]].row);
+      if (e[j] > 0.0) rebounding.push_back(contacts_[hit[j]].row), rebound_speed_.push_back(C_hit[j].dot(v));
     rebounded_ = rebounding;
     for (int j = 0; j < k; ++j) {
       const std::string name = model_.constraint_name_of_row(contacts_[hit[j]].row);
@@ -633,7 +639,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     records.push_back({t, name, now ? "capture" : "release", contacts_[c].info.label, 0.0, 0.0});
     ++(now ? captures : releases);
   }
-  if (hit.empty() && closed != closed_before) rebounded_.clear();
+  if (hit.empty() && closed != closed_before) rebounded_.clear(), rebound_speed_.clear();
   return restart || closed != closed_before;
 }
 

@@ -131,6 +131,7 @@ class EventRunner {
   double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows it left open on their
   std::vector<int> left_;   // limits (until a step's end finds them off)
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
+  std::vector<double> rebound_speed_;  // and their speeds g' (> 0) after it
   bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
   std::vector<int> released_;  // rows the last handle() released: consistent() starts them at rest
   std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
