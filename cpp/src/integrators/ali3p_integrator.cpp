@@ -101,7 +101,6 @@ class Ali3pStepper final : public Stepper {
     at_root_ = false;
     return true;
   }
-  bool stopped_at_root() const override { return at_root_; }
   const double* velocities() const override { return form_.v.data(); }
 
   void interpolate(double t, const double*& q, const double*& v) override {

@@ -287,7 +287,6 @@ class IdaStepper final : public Stepper {
     check(IDAGetRootInfo(s.mem, fired.data()), "IDAGetRootInfo", s.ctx);
     return true;
   }
-  bool stopped_at_root() const override { return at_root_; }
   const double* velocities() const override { return dae_->v(N_VGetArrayPointer(s.y)); }
   void reset(double t, const ConsistentState& state) override {
     // a jump of the state (an event, a new input) would make the

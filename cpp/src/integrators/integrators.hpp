@@ -108,8 +108,6 @@ class Stepper {
   /// Whether the last step stopped at a root of the event functions; then
   /// fired[i] != 0 for the event functions that crossed.
   virtual bool root_found(std::vector<int>& fired) { (void)fired; return false; }
-  /// Whether the last step stopped at a root (without taking it, as root_found does).
-  virtual bool stopped_at_root() const { return false; }
   /// Velocities of the last accepted step (or of the root).
   virtual const double* velocities() const { return nullptr; }
   /// Restarts at order 1 from a new consistent state at time t (after a

@@ -120,7 +120,6 @@ class OdeStepper : public Stepper {
     root_info(fired.data());
     return true;
   }
-  bool stopped_at_root() const override { return at_root; }
   const double* positions() const override { return N_VGetArrayPointer(y_); }
   const double* velocities() const override { return N_VGetArrayPointer(y_) + n; }
   void reset(double t, const ConsistentState& state) override {

@@ -76,7 +76,9 @@ bool StepLoop::act(double t, bool at_stop) {
 }
 
 double StepLoop::grazed(double t0, double t1) {
-  if (!plan_.events || stepper_.stopped_at_root() || !(t1 > t0)) return INFINITY;
+  // (a step that stopped at a root is looked at up to it: a long step can
+  // graze one limit before it reaches another)
+  if (!plan_.events || !(t1 > t0)) return INFINITY;
   const double t = plan_.events->grazed(
       t0, t1, [&](double at, const double*& q, const double*& v) { stepper_.interpolate(at, q, v); }, fired_);
   return std::isnan(t) ? INFINITY : t;
