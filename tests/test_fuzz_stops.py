@@ -269,6 +269,30 @@ def test_a_release_after_a_long_rest_is_found(formulation, options):
 
 
 @pytest.mark.parametrize("formulation, options", [
+    ("projection", {"integrator": "adams"}), ("projection", {}), ("ggl", {}), ("projection", {"integrator": "erk"}),
+    ("index3", {}),
+])
+def test_a_release_soon_after_a_capture_is_found(formulation, options):
+    """A level rod (m = 1, L = 1) falls 0.05 rad onto its lower stop and is
+    captured at 0.088 s; gravity presses it on with m g (L/2) cos(0.05) =
+    4.899 N m, and a torque 5 sin(4 t) lifts it off at
+    t = asin(4.899 / 5) / 4 = 0.342 s (1e-8 s). Found by the fuzzer: at rest
+    CVODE's second step after the capture reached the end of the run
+    (0.16 s to 3 s, 40 times the first, before the force's history bounded
+    it), and the release waited for the next one at 1.9 s; while a closed
+    stop's force moves, a step is now at most 4 times the last."""
+    m = mb.Model(gravity=(0.0, -G))
+    rod = m.add_body("rod", mass=1.0, inertia=0.0833333, position=(0.5, 0.0))  # (as drawn: its steps)
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    m.add_stop("stop", "pin", lower=-0.05)
+    m.add_torque("shake", rod, mb.Harmonic(5.0, 4.0))
+    r = mb.simulate(m, t_end=3.0, n_out=151, rtol=1e-8, atol=1e-10, formulation=formulation, **options)
+    t_release = math.asin(G * 0.5 * math.cos(0.05) / 5.0) / 4.0
+    assert [x["kind"] for x in r.events][:3] == ["impact", "capture", "release"]
+    assert abs(r.events[2]["t"] - t_release) <= 1e-8
+
+
+@pytest.mark.parametrize("formulation, options", [
     ("ggl", {}), ("projection", {}), ("projection", {"integrator": "adams"}), ("projection", {"integrator": "erk"}),
 ])
 def test_a_release_just_after_a_simulators_target_is_found(formulation, options):

@@ -281,9 +281,13 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
       const double d01 = (fmid - fb) / (tm - t0), d12 = (fc - fmid) / (t1 - tm), d012 = (d12 - d01) / (t1 - t0);
       const double d3 = history ? (d012 - ((fb - force_f_[0][row]) / (t0 - ta) - d01) / (ta - tm)) / (t1 - ta) : 0.0;
       // the next step: the parabola's error over a step h, at most
-      // |d3| h^3 max|x (x - 1/2) (x - 1)| (x in [0, 1]), within a quarter of the margin
+      // |d3| h^3 max|x (x - 1/2) (x - 1)| (x in [0, 1]), within a quarter of
+      // the margin; and while the force moves, at most 4 times this step
+      // (without history there is no d3: CVODE's second step at rest can be
+      // 40 times its first)
       if (d3 != 0.0)
         step_bound_ = std::min(step_bound_, t1 + std::cbrt(0.25 * std::max(margin, floor) / (0.0481 * std::abs(d3))));
+      if (std::abs(fc - fb) + std::abs(fmid - fb) > floor) step_bound_ = std::min(step_bound_, t1 + 4.0 * h);
       for (int i = 1; i < 4 * kSamples && !dips; ++i) {
         const double s = t0 + h * i / (4.0 * kSamples);
         const double quadratic = fb + (s - t0) * (d01 + (s - tm) * d012);
