@@ -736,6 +736,15 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
     std::sort(held.begin(), held.end());
     state = project();
   }
+  // (so is every open row the restart finds resting on its limit, acted on
+  // or not: a stop duplicating a closed one that is released, a coupled one
+  // resting open, would strike at its velocity's rounding)
+  gaps(t, state.q, state.v);
+  const double still = 1e-9 * (1.0 + state.v.lpNorm<Eigen::Infinity>());
+  for (const Contact& c : contacts_)
+    if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= 1e-10 &&
+        std::abs(rows_.phi_t[c.row]) <= still && !left(c.row))
+      left_.push_back(c.row);
   return state;
 }
 
