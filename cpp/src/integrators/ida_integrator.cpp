@@ -302,14 +302,6 @@ class IdaStepper final : public Stepper {
       throw f;
     }
     dae_->initial(state, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp));
-    // a new first step, and weights for it (as at the start): the index-2
-    // and index-3 weights scale with 1/h, and the last step before the
-    // event says nothing about the step the new state needs. The rule's
-    // 1e-3 of the whole run, not of the time left: events on every step
-    // would otherwise creep toward t_end in ever smaller steps
-    cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae_->size());
-    cb.fresh = true;
-    check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
     restart(t);
   }
   void interpolate(double t, const double*& q, const double*& v) override {
@@ -321,6 +313,16 @@ class IdaStepper final : public Stepper {
   const double* positions() const override { return dae_->q(N_VGetArrayPointer(s.y)); }
   void restart(double t) override {
     fill_stats(before_);
+    // a new first step, and weights for it (as at the start): the index-2
+    // and index-3 weights scale with 1/h, and the last step before the
+    // restart says nothing about the first step after it (IDA takes the
+    // one set here; the weights of the last step's h would make index 3's
+    // Newton test 1e4 times too strict or too loose). The rule's 1e-3 of
+    // the whole run, not of the time left: events on every step would
+    // otherwise creep toward t_end in ever smaller steps
+    cb.h_default = initial_step(plan, N_VGetArrayPointer(s.y), N_VGetArrayPointer(s.yp), cb, dae_->size());
+    cb.fresh = true;
+    check(IDASetInitStep(s.mem, cb.h_default), "IDASetInitStep", s.ctx);
     if (s.Ns) {  // the sensitivities go on from where they are (the state is continuous here)
       for (int i = 0; i < s.Ns; ++i) {
         check(IDAGetSensDky1(s.mem, t, 0, i, s.yS[i]), "IDAGetSensDky1", s.ctx);
