@@ -22,8 +22,12 @@ IntegratorFailure plain_failure(const std::string& message, double t) {
 
 }  // namespace
 
-EventRunner::EventRunner(const Model& model, const Data& run)
-    : model_(model), d_(model, &run), rows_(model, &run, Data::Rows::kEvery), kkt_(model) {
+EventRunner::EventRunner(const Model& model, const Data& run, double position_tol)
+    : model_(model),
+      d_(model, &run),
+      rows_(model, &run, Data::Rows::kEvery),
+      kkt_(model),
+      position_tol_(position_tol) {
   const auto& groups = model.event_groups();
   for (int gi = 0; gi < int(groups.size()); ++gi) {
     for (int k = 0; k < groups[gi]->size(); ++k)
@@ -483,6 +487,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
   late_ = false;
   const std::vector<int> rebounded = rebounded_;  // (of the last event that acted, and their speeds)
   const std::vector<double> rebound_speed = rebound_speed_;
+  const double rebound_t = rebound_t_;
   std::vector<int> rebounding;
   for (size_t i = 0; i < roots_.size(); ++i) {
     if (!fired[i]) continue;
@@ -592,12 +597,18 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
       // longer than the flight): the steps cannot resolve the series that
       // is left, and each late return would strike faster than the last
       // rebound, a chatter that never ends; it ends here
-      // (or one that returns more than twice as fast as it left: the flight,
-      // its height s1^2 / 2|g''| below the positions' error (1e-12 rad), was
-      // not resolved; each return would strike faster than the last rebound)
+      // (or one that returns faster than it left, by a fifth, from a flight
+      // lower than the positions are accurate, s1^2 / 2|g''| with g'' its
+      // mean over the flight: the steps did not resolve it, and each return
+      // would strike as fast as the impact before, 1/e times the rebound)
       const auto was = std::find(rebounded.begin(), rebounded.end(), contacts_[hit[j]].row);
-      const bool unresolved =
-          was != rebounded.end() && (late || -s0[j] > 2.0 * rebound_speed[size_t(was - rebounded.begin())]);
+      bool unresolved = false;
+      if (was != rebounded.end()) {
+        const double s1 = rebound_speed[size_t(was - rebounded.begin())], flight = t - rebound_t;
+        const double mean_g_dd = flight > 0.0 ? (s0[j] - s1) / flight : 0.0;
+        const bool low = mean_g_dd < 0.0 && s1 * s1 < 2.0 * -mean_g_dd * position_tol_;
+        unresolved = late || (-s0[j] > 1.2 * s1 && low);
+      }
       if (e[j] == 0.0 || slow || short_series || unresolved) {
         captured.push_back(hit[j]);
         if (e[j] != 0.0) redo = true;
@@ -611,7 +622,7 @@ bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int
     rebound_speed_.clear();
     for (int j = 0; j < k; ++j)
       if (e[j] > 0.0) rebounding.push_back(contacts_[hit[j]].row), rebound_speed_.push_back(C_hit[j].dot(v));
-    rebounded_ = rebounding;
+    rebounded_ = rebounding, rebound_t_ = t;
     for (int j = 0; j < k; ++j) {
       const std::string name = model_.constraint_name_of_row(contacts_[hit[j]].row);
       count_event(t, name, "stop");

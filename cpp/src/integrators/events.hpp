@@ -19,8 +19,10 @@ namespace lagmb {
 class EventRunner {
  public:
   /// run: the run's Data (its left-out rows, which the active set changes,
-  /// and the run state that crossings write and the run's force kernels read).
-  EventRunner(const Model& model, const Data& run);
+  /// and the run state that crossings write and the run's force kernels
+  /// read); position_tol: how accurate the run's positions are (a bounce
+  /// lower than that cannot be followed).
+  EventRunner(const Model& model, const Data& run, double position_tol);
   /// Number of event functions (0: none).
   int size() const { return int(dir_.size()); }
   /// SUNDIALS root directions (-1: downward crossings only, 0: both).
@@ -131,7 +133,9 @@ class EventRunner {
   double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows it left open on their
   std::vector<int> left_;   // limits (until a step's end finds them off)
   std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
-  std::vector<double> rebound_speed_;  // and their speeds g' (> 0) after it
+  std::vector<double> rebound_speed_;  // and their speeds g' (> 0) after it, at
+  double rebound_t_ = NAN;             // this time
+  double position_tol_;
   bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
   std::vector<int> released_;  // rows the last handle() released: consistent() starts them at rest
   std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it

@@ -49,7 +49,7 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
       stop_at_end_(stop_at_end) {
   Redundancy redundancy;
   start = dynamic_start(model, options, data, kkt, redundancy);
-  events = start_events(model, data, options.t0, start);
+  events = start_events(model, data, options, options.t0, start);
   plan = run_plan(model, options, method, data);
   plan.events = events.get();
   // the rows left out as redundant are checked at every output

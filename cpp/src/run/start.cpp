@@ -2,6 +2,8 @@
 // static equilibrium), its integration plan and its event runner.
 #include "run/start.hpp"
 
+#include <algorithm>
+
 #include "lagmb/analyses/equilibrium.hpp"
 #include "lagmb/errors.hpp"
 
@@ -36,9 +38,15 @@ IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const M
   return plan;
 }
 
-std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start) {
+std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, const SimulationOptions& options, double t,
+                                          ConsistentState& start) {
   if (!model.has_events()) return nullptr;
-  auto events = std::make_unique<EventRunner>(model, run);
+  // (how accurate the positions are: the integrator's tolerances at the start's scale)
+  const double position_tol = options.rtol * (1.0 + start.q.lpNorm<Eigen::Infinity>()) +
+                              (options.atol_coordinates.empty() ? options.atol
+                                                                : *std::max_element(options.atol_coordinates.begin(),
+                                                                                    options.atol_coordinates.end()));
+  auto events = std::make_unique<EventRunner>(model, run, position_tol);
   // a joint that starts at a limit gets its impact (moving into it) or its capture (pressing on it) at t
   try {
     if (events->start(t, start.q, start.v)) start = events->consistent(t, start.q, start.v);

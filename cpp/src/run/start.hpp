@@ -24,7 +24,9 @@ IntegrationPlan run_plan(const Model& model, const SimulationOptions& o, const M
 
 /// The event runner of a model with event elements (null without): a joint
 /// that starts at a limit, moving into it, gets its impact at t (`start`
-/// changes); SimulationError if that fails.
-std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, double t, ConsistentState& start);
+/// changes); SimulationError if that fails. The options' tolerances say how
+/// accurate the run's positions are.
+std::unique_ptr<EventRunner> start_events(const Model& model, const Data& run, const SimulationOptions& options, double t,
+                                          ConsistentState& start);
 
 }  // namespace lagmb
