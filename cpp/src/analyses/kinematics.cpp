@@ -27,10 +27,9 @@ std::vector<int> massless_bodies(const Model& model) {
   std::vector<int> out;
   for (size_t i = 0; i < model.bodies().size(); ++i) {
     const Body& b = model.bodies()[i];
-    // a spatial body needs every principal moment > 0 (a rod without a moment about its axis
+    // (a spatial body needs every principal moment > 0: a rod without a moment about its axis
     // leaves that spin undetermined)
-    const bool no_inertia = b.spatial ? !(principal_moments(b.inertia_tensor).minCoeff() > 0) : !(b.inertia > 0);
-    if (!(b.mass > 0) || (!b.particle && no_inertia)) out.push_back(int(i));
+    if (!b.has_mass_and_inertia()) out.push_back(int(i));
   }
   return out;
 }

@@ -252,20 +252,15 @@ void Model::build_mass() {
   positive_mass_ = true;
   for (const Body& b : bodies_) {
     const int c = b.first_coord;
-    positive_mass_ = positive_mass_ && b.mass > 0.0;
+    positive_mass_ = positive_mass_ && b.has_mass_and_inertia();
     if (b.spatial) {
       mass_diag_.segment<3>(c).setConstant(b.mass);
       for (int r = 0; r < 4; ++r)
         for (int k = 0; k < 4; ++k) pattern.add(c + 3 + r, c + 3 + k);
-      positive_mass_ = positive_mass_ && Eigen::LLT<Mat3>(b.inertia_tensor).info() == Eigen::Success &&
-                       b.inertia_tensor.trace() > 0.0;
       continue;
     }
     mass_diag_[c] = mass_diag_[c + 1] = b.mass;
-    if (!b.particle) {
-      mass_diag_[c + 2] = b.inertia;
-      positive_mass_ = positive_mass_ && b.inertia > 0.0;
-    }
+    if (!b.particle) mass_diag_[c + 2] = b.inertia;
   }
   mass_pattern_ = pattern.build();
   mass_diagonal_slots_.resize(n_);
@@ -281,8 +276,7 @@ void Model::build_mass() {
     s.jbar = b.inertia_tensor.trace() / 3.0;
     // a body without inertia has no inverse: its block of M^-1 is 0 (M^-1 is then used for scales only;
     // the augmented system takes its LU)
-    const bool invertible = Eigen::LLT<Mat3>(b.inertia_tensor).info() == Eigen::Success && b.inertia_tensor.trace() > 0.0;
-    s.J_inverse = invertible ? Mat3(b.inertia_tensor.inverse()) : Mat3::Zero();
+    s.J_inverse = b.has_mass_and_inertia() ? Mat3(b.inertia_tensor.inverse()) : Mat3::Zero();
     spatial_masses_.push_back(s);
   }
 }

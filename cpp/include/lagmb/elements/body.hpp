@@ -34,6 +34,12 @@ struct Body {
   int n_coordinates() const { return spatial ? 7 : particle ? 2 : 3; }
   /// Index of the planar angle coordinate in q, or -1 (particle, spatial body).
   int angle_coord() const { return particle || spatial ? -1 : first_coord + 2; }
+  /// Whether its motion has mass and (unless a particle) inertia in every
+  /// direction: m > 0, and J > 0 in the plane or every principal moment of
+  /// J' > 1e-12 of the largest in space (a zero moment of a tensor turned to
+  /// other axes reads as +-1e-17, and its inverse would be 1e17). A body
+  /// without runs on the augmented system's LU, never on M^-1.
+  bool has_mass_and_inertia() const;
 };
 
 }  // namespace lagmb
