@@ -324,6 +324,37 @@ def test_a_release_just_after_a_simulators_target_is_found(formulation, options)
     assert np.max(np.abs(r.joint("pin").angle - whole.joint("pin").angle)) <= 1e-6
 
 
+@pytest.mark.parametrize("formulation, options", [
+    ("projection", {"integrator": "adams"}), ("projection", {}), ("ggl", {}),
+])
+def test_a_simulators_long_steps_at_rest_do_not_step_over_a_release(formulation, options):
+    """A rod on its lower stop at 0.589 rad, gravity pressing it on and a
+    torque 5 sin(4 t) lifting it off, released, landing at 0.92 s and
+    released again at 1.81 s: a Simulator advanced to 0.9, 1.5 and 2.1 s
+    logs the events of one run to 2.1 s. Found by the fuzzer: the
+    Simulator's steps pass its targets, and at rest one CVODE step ran
+    from 1.47 s to 3.12 s (4 times the one before, the force's cubic term
+    over the last steps looking small) over the release; a step now ends
+    at most where the parabola through the force, carried on, reaches 0."""
+    def model():
+        m = mb.Model(gravity=(0.0, -G))
+        a = 0.589049
+        rod = m.add_body("rod", mass=1.0, inertia=0.0833333, position=(0.5 * math.cos(a), 0.5 * math.sin(a)), angle=a)
+        m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+        m.add_stop("stop", "pin", lower=a)
+        m.add_torque("shake", rod, mb.Harmonic(5.0, 4.0))
+        return m
+
+    sim = mb.Simulator(model(), rtol=1e-8, atol=1e-10, formulation=formulation, output_interval=0.01, **options)
+    for t in (0.9, 1.5, 2.1):
+        sim.advance(t)
+    chunks = sim.result()
+    whole = mb.simulate(model(), t_end=2.1, n_out=211, rtol=1e-8, atol=1e-10, formulation=formulation, **options)
+    assert [x["kind"] for x in chunks.events] == [x["kind"] for x in whole.events]
+    assert [x["kind"] for x in whole.events][-1] == "release"
+    assert max(abs(x["t"] - y["t"]) for x, y in zip(chunks.events, whole.events)) <= 1e-8
+
+
 def test_a_drivers_jump_keeps_the_other_joints_within_their_limits():
     """A level two-rod arm: the shoulder driven by an input, the elbow with
     an upper stop at 0 where it starts (gravity folds it down, away from

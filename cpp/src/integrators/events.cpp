@@ -292,6 +292,16 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
       if (d3 != 0.0)
         step_bound_ = std::min(step_bound_, t1 + std::cbrt(0.25 * std::max(margin, floor) / (0.0481 * std::abs(d3))));
       if (std::abs(fc - fb) + std::abs(fmid - fb) > floor) step_bound_ = std::min(step_bound_, t1 + 4.0 * h);
+      // (and at most to where that parabola, carried on, reaches 0: a cubic
+      // term that looks small over the last steps can hide the turn of a
+      // harmonic load, one step of 1.65 s stepped over a release)
+      for (int i = 1; i <= 4 * kSamples; ++i) {
+        const double s = t1 + 4.0 * h * i / (4.0 * kSamples);
+        if (fb + (s - t0) * (d01 + (s - tm) * d012) <= 0.0) {
+          step_bound_ = std::min(step_bound_, s);
+          break;
+        }
+      }
       for (int i = 1; i < 4 * kSamples && !dips; ++i) {
         const double s = t0 + h * i / (4.0 * kSamples);
         const double quadratic = fb + (s - t0) * (d01 + (s - tm) * d012);
