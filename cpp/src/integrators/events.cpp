@@ -724,9 +724,10 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
         (rows_.Phi[c.row] < 0.0 || std::find(on_limit_.begin(), on_limit_.end(), c.row) != on_limit_.end()))
       held.push_back(c.row);
   // (a row the event left open on its limit, released or rebounding, reads
-  // as inside until a step leaves it off the limit, whatever its rate's
-  // rounding: a release at a force the interpolant put 0 a little early
-  // starts moving back in, and that is a crossing to find, not one passed)
+  // as inside at the restart whatever its rate's rounding, and a released
+  // one until a step ends with it off the limit: a release at a force the
+  // interpolant put 0 a little early starts moving back in, and that is a
+  // crossing to find, not one already passed; see values())
   restart_t_ = t;
   left_.clear();
   for (int row : on_limit_)

@@ -54,8 +54,11 @@ class EventRunner {
   /// crossing: the signs at the steps' ends do not show it). Where the
   /// cubic through the ends' gaps and rates dips near 0, the gap's minimum
   /// is found on the interpolant (bisection on g'), and if it is below 0,
-  /// the first crossing before it (bisection on g). Returns that time (the
-  /// earliest over the rows, its rows flagged in `fired`), or NaN if none.
+  /// the first crossing before it (bisection on g). A closed row's force is
+  /// looked at the same way (a release inside the step: the force at the
+  /// step's middle too, the interpolant sampled where a parabola through it
+  /// dips near 0), and sets step_bound(). Returns that time (the earliest
+  /// over the rows, its rows flagged in `fired`), or NaN if none.
   double grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired);
   /// The time the next step should not pass (INFINITY: none), set by
   /// grazed(): where a closed row's force changes fast for its margin from

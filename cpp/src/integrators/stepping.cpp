@@ -165,7 +165,8 @@ void StepLoop::run(double target, const std::vector<double>& t_out, size_t& k, c
     double t = t_ = stepper_.step(at_stop);
     // a stop's limit crossed and left within the step: the step ends there
     // (a Simulator's step past its target keeps its interpolant for the
-    // times before: a crossing found beyond the target is not acted on)
+    // times before: a crossing found beyond the target waits for the next
+    // run, which acts on it once its target passes it)
     double t_grazed = grazed(t_before, t);
     if (!stop_at_end_ && t_grazed > target && t_grazed < t) {  // (held for the next run)
       graze_pending_ = t_grazed, graze_step_start_ = t_before;
