@@ -13,17 +13,17 @@ void build_contact(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
   CircleLineContact c = build::joining<CircleLineContact>(m, name, a.body("circle_body"), a.body("line_body"));
   c.radius = a.real("radius");
-  c.stiffness = a.real("stiffness");
-  c.slip_velocity = a.real("slip_velocity");
+  c.law.stiffness = a.real("stiffness");
+  c.law.slip_velocity = a.real("slip_velocity");
   build::require_positive(c.radius, label, "radius");
-  build::require_positive(c.stiffness, label, "stiffness");
-  build::require_positive(c.slip_velocity, label, "slip_velocity");
-  c.restitution = a.real("restitution");
-  if (!(c.restitution > 0.0 && c.restitution <= 1.0))
+  build::require_positive(c.law.stiffness, label, "stiffness");
+  build::require_positive(c.law.slip_velocity, label, "slip_velocity");
+  c.law.restitution = a.real("restitution");
+  if (!(c.law.restitution > 0.0 && c.law.restitution <= 1.0))
     throw ModelError(label + ": restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
-                     to_text(c.restitution));
-  c.friction = a.real("friction");
-  build::require_nonnegative(c.friction, label, "friction");
+                     to_text(c.law.restitution));
+  c.law.friction = a.real("friction");
+  build::require_nonnegative(c.law.friction, label, "friction");
   build::require_on_particle(m, c.body_i, a.vec2("center"), label);
   c.s_c = m.local_point(c.body_i, a.vec2("center"));
   c.s_p = m.local_point(c.body_j, a.vec2("point"));

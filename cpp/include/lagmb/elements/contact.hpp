@@ -1,12 +1,12 @@
 // Planar contact between a circle (on body i) and a line (on body j or the
-// ground): a compliant normal force with Hunt-Crossley damping calibrated to
-// a restitution coefficient, and regularized Coulomb friction.
+// ground): the circle-line geometry of the contact law (contact_law.hpp).
 #pragma once
 
 #include <cmath>
 #include <string>
 
 #include "lagmb/dual.hpp"
+#include "lagmb/elements/contact_law.hpp"
 #include "lagmb/model/event_group.hpp"
 #include "lagmb/types.hpp"
 
@@ -19,17 +19,14 @@ namespace lagmb {
 /// (h' = n . (C' - P0') + omega_j (R90 n) . (C - P0)). The contact point is the
 /// centre's projection on the line, P = C - h n; v_t = u . (v_i(P) - v_j(P))
 /// is the slip velocity of the circle's material point there over the line's.
-/// For d > 0 (Flores, Machado, Silva, Martins 2011, Multibody Syst Dyn 25):
-///   F_n = k d^1.5 (1 + 8 (1 - e) / (5 e) d' / v_impact)   (clamped at >= 0)
-///   F_t = -mu F_n v_t / sqrt(v_t^2 + v_s^2)
-/// F = F_n n + F_t u acts on body i at P and -F on body j at P:
+/// The law (ContactLaw: F_n, F_t from d, d', v_t) gives F = F_n n + F_t u on
+/// body i at P and -F on body j at P:
 ///   Q_i = (F, (P - r_i) x F),  Q_j = (-F, -(P - r_j) x F).
 /// v_impact is the approach speed -g' recorded by the onset event in the
-/// run's state (at least kMinImpactSpeed; a contact present at the start, or
-/// a force asked for outside a run, uses kMinImpactSpeed).
-/// Potential (the elastic part): k d^2.5 / 2.5. Q_c and Q_cd are exact
-/// (forward-mode derivatives of this same code, Dual<12>); where the clamp is
-/// active they are those of F_n = 0.
+/// run's state (a contact present at the start, or a force asked for
+/// outside a run, uses ContactLaw::kMinImpactSpeed). Q_c and Q_cd are exact
+/// (forward-mode derivatives of this same code, Dual<12>); where F_n is
+/// clamped at 0 they are those of F_n = 0.
 /// Event function: the gap g = h - R, both directions: onset (g' < 0: records
 /// v_impact) and release restart the integrator (the force is not smooth there).
 struct CircleLineContact {
@@ -37,13 +34,12 @@ struct CircleLineContact {
   static constexpr int roots = 1;
   static constexpr bool bounds_motion = false;  // g < 0 is contact, not a violation
   static constexpr const char* kind = "contact";
-  static constexpr double kExponent = 1.5;
-  static constexpr double kMinImpactSpeed = 1e-3;  // m/s
 
   std::string name;
   int body_i = -1, body_j = -1;
   Vec2 s_c = Vec2::Zero(), s_p = Vec2::Zero(), u = Vec2::UnitX();  // local
-  double radius = 0.0, stiffness = 0.0, restitution = 1.0, friction = 0.0, slip_velocity = 1e-4;
+  double radius = 0.0;
+  ContactLaw law;
   static constexpr int run_state_size = 1;  // run[run_state]: v_impact of the contact in progress (m/s)
   int run_state = -1;
 
@@ -84,18 +80,11 @@ struct CircleLineContact {
 
   template <class T>
   void evaluate(const T* c, const T* cd, double impact_speed, T* Q) const {
-    using std::pow;
-    using std::sqrt;
     for (int a = 0; a < 6; ++a) Q[a] = T(0.0);
     const Geometry<T> G = geometry(c, cd);
-    const T d = T(radius) - G.h;
-    if (!(value_of(d) > 0.0)) return;
-    const double v_imp = std::max(impact_speed, kMinImpactSpeed);
-    const double chi = 8.0 * (1.0 - restitution) / (5.0 * restitution * v_imp);
-    T Fn = stiffness * pow(d, kExponent) * (T(1.0) - chi * G.hd);
-    if (!(value_of(Fn) > 0.0)) return;  // the damping would pull: no force
-    T Ft = T(0.0);
-    if (friction > 0.0) Ft = -friction * Fn * G.vt / sqrt(G.vt * G.vt + T(slip_velocity * slip_velocity));
+    const T Fn = law.normal_force(T(radius) - G.h, -G.hd, impact_speed);
+    if (!(value_of(Fn) > 0.0)) return;
+    const T Ft = law.friction_force(Fn, G.vt, G.vt * G.vt);
     const T Fx = Fn * G.nx + Ft * G.ux, Fy = Fn * G.ny + Ft * G.uy;
     Q[0] = Fx;
     Q[1] = Fy;
@@ -127,8 +116,7 @@ struct CircleLineContact {
   }
   double potential(const Local6& c, double) const {
     const Local6 zero = Local6::Zero();
-    const double d = radius - geometry(c.data(), zero.data()).h;
-    return d > 0.0 ? stiffness * std::pow(d, kExponent + 1.0) / (kExponent + 1.0) : 0.0;
+    return law.potential(radius - geometry(c.data(), zero.data()).h);
   }
 
   // event: the gap
