@@ -243,3 +243,49 @@ def test_accelerations_reported_during_a_contact_use_its_own_impact_speed():
     d = 0.1 - y
     force = np.maximum(1e6 * d**1.5 * (1.0 + 8 * 0.5 / (5 * 0.5 * v_impact) * (-vy)), 0.0)
     np.testing.assert_allclose(r.a[1:10, 1], force - 9.81, rtol=1e-6)
+
+
+def test_result_contact_reads_a_ball_coming_to_rest():
+    """Result.contact: a 1 kg ball (R = 0.1 m) dropped from 5 cm onto the
+    floor (k = 1e8 N/m^1.5, e = 0.5) is open and 5 cm above it at t0
+    (penetration -0.05 m, no force); it bounces to rest, where the contact
+    carries m g (1e-9 relative) at the Hertz penetration (m g / k)^(2/3)
+    (1e-9), at the point below the centre with the normal up, slipping at
+    nothing."""
+    m = ball(e=0.5, height=0.15)
+    r = mb.simulate(m, t_end=3.0, n_out=31, rtol=1e-10, atol=1e-12)
+    c = r.contact("floor")
+    assert isinstance(c, mb.ContactPath)
+    assert c.state[0] == "open" and c.normal_force[0] == 0.0 and abs(c.penetration[0] + 0.05) <= 1e-12
+    assert np.all(c.friction_force[0] == 0.0)
+    assert c.state[-1] == "slip"  # in contact (the regularized friction never sticks)
+    assert abs(c.normal_force[-1] - G) <= 1e-9 * G
+    assert abs(c.penetration[-1] - (G / 1e8) ** (2.0 / 3.0)) <= 1e-9 * (G / 1e8) ** (2.0 / 3.0)
+    centre = r.body("ball").position[-1]
+    assert np.allclose(c.point[-1], (centre[0], 0.0), rtol=0.0, atol=1e-12)
+    assert np.allclose(c.normal[-1], (0.0, 1.0), rtol=0.0, atol=1e-15)
+    assert c.slip_speed[-1] <= 1e-9
+
+
+def test_result_contact_friction_is_the_regularized_coulomb_law():
+    """A disk thrown along the floor without spin slides: at each output in
+    contact the friction force opposes the slip, |F_t| = mu F_n s /
+    sqrt(s^2 + v_s^2) (1e-12 relative), along the floor (its normal
+    component 0); a name that is no contact is a ModelError."""
+    m = mb.Model(gravity=(0.0, -G))
+    disk = m.add_body("disk", mass=1.0, inertia=0.005, position=(0.0, 0.0999), velocity=(2.0, 0.0))
+    m.add_contact("floor", disk, (0.0, 0.0999), 0.1, m.ground, (0.0, 0.0), (1.0, 0.0), stiffness=1e8,
+                  restitution=0.5, friction=0.3)
+    r = mb.simulate(m, t_end=0.2, n_out=21, rtol=1e-10, atol=1e-12)
+    c = r.contact("floor")
+    on = c.normal_force > 0.0
+    assert np.count_nonzero(on) >= 15
+    s = c.slip_speed[on]
+    expected = 0.3 * c.normal_force[on] * s / np.sqrt(s * s + 1e-8)
+    assert np.allclose(np.linalg.norm(c.friction_force[on], axis=1), expected, rtol=1e-12, atol=0.0)
+    assert np.all(c.friction_force[on][:, 0] < 0.0)  # against the slip (+x)
+    assert np.all(np.abs(np.sum(c.friction_force[on] * c.normal[on], axis=1)) <= 1e-12)
+    with pytest.raises(mb.ModelError, match="'disk' is a body, not a contact"):
+        r.contact("disk")
+    with pytest.raises(mb.ModelError, match=r"'floor' is a contact.*Result.contact\('floor'\)"):
+        r.reaction("floor")

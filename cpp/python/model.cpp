@@ -354,6 +354,19 @@ void bind_model(py::module_& m) {
           py::arg("joints"), py::arg("t"), py::arg("q"), py::arg("v"), py::arg("a"),
           "The efforts of the joints [(name, slide)] that make each state (t, q, v, a): (k, joints)")
       .def(
+          "contact",
+          [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
+             const RowMajor& v, const RowMajor& state) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}});
+            require_state(model, state, q.rows());
+            return contacts(model, name, view_of(t, &q, &v, nullptr, RowMajor(), state));
+          },
+          py::arg("name"), py::arg("t"), py::arg("q"), py::arg("v"), py::arg("state") = RowMajor(),
+          "The contact at each state: (normal force, friction force (dimension), point (dimension),\n"
+          "normal (dimension), penetration, slip speed, state (0 open, 1 slip, 2 stick))")
+      .def(
           "friction",
           [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,
              const RowMajor& lam) {

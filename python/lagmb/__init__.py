@@ -19,7 +19,7 @@ from .functions import (Constant, Harmonic, Input, Linear, Polynomial, SmoothSte
                         time_function_from_dict)
 from .handles import Body, Handle
 from .model import Model
-from .result import BodyPath, Result, Sensitivity
+from .result import BodyPath, ContactPath, Result, Sensitivity
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import methods, simulate, solve_accelerations
 from .simulator import Simulator
@@ -39,6 +39,7 @@ __all__ = [
     "AssemblyError",
     "Body",
     "BodyPath",
+    "ContactPath",
     "Constant",
     "Handle",
     "Harmonic",

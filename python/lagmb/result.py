@@ -153,6 +153,33 @@ class JointPath:
             self.slide_rate, self.slide_acceleration = _frozen(motion[True][:, 1]), _frozen(motion[True][:, 2])
 
 
+class ContactPath:
+    """What a contact did at each output (Result.contact): normal_force (k,)
+    in N (>= 0, on the contact's first body along the normal); friction_force
+    (k, 2) in the plane ((k, 3) in space), N, on the first body; point (k, 2)
+    the contact point, m; normal (k, 2) the outward normal of the second
+    body's surface there; penetration (k,) in m (negative: the gap while
+    open); slip_speed (k,) in m/s, the speed of the first body's material
+    point over the second's in the tangent plane; state (k,) "open", "slip"
+    or "stick" (the planar contact's regularized friction never sticks)."""
+
+    STATES = ("open", "slip", "stick")
+
+    def __init__(self, rows, dimension):
+        d = dimension
+        self.normal_force = rows[:, 0]
+        self.friction_force = rows[:, 1:1 + d]
+        self.point = rows[:, 1 + d:1 + 2 * d]
+        self.normal = rows[:, 1 + 2 * d:1 + 3 * d]
+        self.penetration = rows[:, 1 + 3 * d]
+        self.slip_speed = rows[:, 2 + 3 * d]
+        self.state = np.array(self.STATES, dtype=object)[rows[:, 3 + 3 * d].astype(int)]
+
+    def __repr__(self):
+        touching = int(np.count_nonzero(self.state != "open"))
+        return f"<lagmb.ContactPath: {len(self.normal_force)} outputs, in contact at {touching}>"
+
+
 class Result:
     """States at the output times of a run.
 
@@ -302,6 +329,10 @@ class Result:
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
         name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")
+        kind = registry.kind_of(self._core, name)
+        if kind is not None and kind.role == "contact":
+            raise ModelError(f"Result.reaction: '{name}' is a contact, not a joint or driver: its forces are "
+                             f"Result.contact('{name}')")
         return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint", self._inputs,
                                    self._run_state)
 
@@ -320,6 +351,15 @@ class Result:
         if not registry.is_driver(self._core, name):
             raise ModelError(f"'{name}' is not a driver or a stop")
         return -self.multipliers(name)[:, 0]
+
+    def contact(self, element):
+        """What the contact `element` did at each output (a ContactPath:
+        normal_force, friction_force, point, normal, penetration, slip_speed,
+        state), from the run's own states and the impact speed each onset
+        recorded (docs/modelling.md, "Contact")."""
+        name = self._name(element, ("contact",), "contact", "Result.contact")
+        rows = self._core.contact(name, self.t, self.q, self.v, self._run_state)
+        return ContactPath(self._finite(rows, f"contact '{name}'"), self.model.dimension)
 
     def friction(self, element):
         """(k,) the friction torque (N m) or force (N) of a joint friction on

@@ -11,6 +11,7 @@
 #include "lagmb/trajectory.hpp"
 #include "lagmb/types.hpp"
 
+#include "lagmb/model/contact_reading.hpp"
 #include "lagmb/model/coordinates.hpp"
 #include "lagmb/model/data.hpp"
 #include "lagmb/model/model.hpp"

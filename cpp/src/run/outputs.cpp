@@ -101,6 +101,32 @@ OutputRows friction(const Model& model, const std::string& element, const Output
   return F;
 }
 
+OutputRows contacts(const Model& model, const std::string& element, const OutputView& out) {
+  require(model, out, true, true, false);
+  const ElementRef& r = model.find(element);
+  ContactReading reading;
+  const ForceGroupBase* g = r.type == ElementRef::kForce ? model.force_groups()[r.group].get() : nullptr;
+  if (!g || !g->contact())
+    throw ModelError("'" + element + "' is " + model.describe(element) + ", not a contact");
+  const int n = model.n_coordinates(), dim = model.dimension();
+  Data d(model);
+  OutputRows R(out.k, 4 + 3 * dim);
+  for (int s = 0; s < out.k; ++s) {
+    set_run_values(d, out, s);
+    g->contact_reading(r.index, out.q + size_t(s) * n, out.v + size_t(s) * n, d.run->state.data(), reading);
+    R(s, 0) = reading.normal_force;
+    for (int a = 0; a < dim; ++a) {
+      R(s, 1 + a) = reading.friction_force[a];
+      R(s, 1 + dim + a) = reading.point[a];
+      R(s, 1 + 2 * dim + a) = reading.normal[a];
+    }
+    R(s, 1 + 3 * dim) = reading.penetration;
+    R(s, 2 + 3 * dim) = reading.slip_speed;
+    R(s, 3 + 3 * dim) = reading.state;
+  }
+  return R;
+}
+
 VecX energy(const Model& model, const OutputView& out) {
   require(model, out, true, true, false);
   const int n = model.n_coordinates();

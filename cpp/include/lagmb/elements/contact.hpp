@@ -114,6 +114,22 @@ struct CircleLineContact {
       Q_cd.row(b) = Q[b].d.tail<6>().transpose();
     }
   }
+  /// The contact at (c, cd), v_impact from the run's state (ContactReading;
+  /// the state is slip while in contact: the regularized friction never sticks).
+  ContactReading reading(const Local6& c, const Local6& cd, const double* run) const {
+    const Geometry<double> G = geometry(c.data(), cd.data());
+    ContactReading r;
+    r.penetration = radius - G.h;
+    r.normal = Vec3(G.nx, G.ny, 0.0);
+    r.point = Vec3(G.Px, G.Py, 0.0);
+    r.slip_speed = std::abs(G.vt);
+    r.normal_force = law.normal_force(r.penetration, -G.hd, run[run_state]);
+    if (!(r.normal_force > 0.0)) return r;
+    r.state = ContactReading::kSlip;
+    const double Ft = law.friction_force(r.normal_force, G.vt, G.vt * G.vt);
+    r.friction_force = Vec3(Ft * G.ux, Ft * G.uy, 0.0);
+    return r;
+  }
   double potential(const Local6& c, double) const {
     const Local6 zero = Local6::Zero();
     return law.potential(radius - geometry(c.data(), zero.data()).h);

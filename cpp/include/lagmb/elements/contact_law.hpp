@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "lagmb/dual.hpp"
+#include "lagmb/model/contact_reading.hpp"
 
 namespace lagmb {
 

@@ -3,9 +3,12 @@
 
 #include <array>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "lagmb/model/constraint_group.hpp"
+#include "lagmb/model/contact_reading.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/types.hpp"
 
@@ -38,6 +41,14 @@ class ForceGroupBase {
                                double* Q_q_values, double* Q_v_values) const = 0;
   /// Potential energy of the conservative part; 0 for dissipative kinds.
   virtual double potential(const double* q, const Instant& at) const = 0;
+  /// Whether the kind is a contact (it has `reading`, ContactReading).
+  virtual bool contact() const { return false; }
+  /// A contact's element k at (q, v) with the run's state `run` (false: not a contact).
+  virtual bool contact_reading(int k, const double* q, const double* v, const double* run,
+                               ContactReading& out) const {
+    (void)k, (void)q, (void)v, (void)run, (void)out;
+    return false;
+  }
 };
 
 /// Forces acting on (at most) two bodies, one container per kind. A kind is a
@@ -53,6 +64,16 @@ class ForceGroupBase {
 /// A kind with per-run state (see run_state_size in constraint_group.hpp)
 /// takes the run's state as a last argument of force and derivatives; a
 /// kind that reads_inputs (an actuator) takes the Instant for t.
+/// Whether a force kind is a contact: it has reading(c, cd, run) (ContactReading).
+template <class Kind, class Loc, class = void>
+struct has_reading : std::false_type {};
+template <class Kind, class Loc>
+struct has_reading<Kind, Loc,
+                   std::void_t<decltype(std::declval<const Kind&>().reading(std::declval<const Loc&>(),
+                                                                             std::declval<const Loc&>(),
+                                                                             std::declval<const double*>()))>>
+    : std::true_type {};
+
 template <class Kind>
 class ForceGroup final : public ForceGroupBase {
  public:
@@ -134,6 +155,18 @@ class ForceGroup final : public ForceGroupBase {
     double V = 0.0;
     for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather_q<S>(q, coord_[k]), t);
     return V;
+  }
+
+  bool contact() const override { return has_reading<Kind, Loc>::value; }
+  bool contact_reading(int k, const double* q, const double* v, const double* run,
+                       ContactReading& out) const override {
+    if constexpr (has_reading<Kind, Loc>::value) {
+      out = items[k].reading(gather_q<S>(q, coord_[k]), gather_v<L>(v, coord_[k]), run);
+      return true;
+    } else {
+      (void)k, (void)q, (void)v, (void)run, (void)out;
+      return false;
+    }
   }
 
  private:

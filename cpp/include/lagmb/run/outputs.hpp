@@ -53,6 +53,12 @@ VecX efforts(const Model& model, const std::string& element, const OutputView& o
 /// joint's second body and the joint's relative rate (rad/s or m/s).
 OutputRows friction(const Model& model, const std::string& element, const OutputView& out);
 
+/// (k, 4 + 3 dimension) the contact `element` (ContactReading) at each
+/// output: the normal force (N), the friction force (dimension columns, N),
+/// the contact point (m), the normal, the penetration (m; negative: the gap),
+/// the slip speed (m/s) and the state (0 open, 1 slip, 2 stick).
+OutputRows contacts(const Model& model, const std::string& element, const OutputView& out);
+
 /// (k) kinetic plus potential energy (J) of the conservative forces.
 VecX energy(const Model& model, const OutputView& out);
 
