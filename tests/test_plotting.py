@@ -416,6 +416,34 @@ def test_a_rod_pinned_at_one_end_is_drawn_to_both_ends(mpl):
     assert len(cam.outlines["cam"]) == 2
 
 
+def test_a_contact_is_drawn_as_its_circle_and_its_line(mpl):
+    """A ball on a sprung seesaw: the plank (pinned at its centre, nothing
+    else attached) is seen through its contact line, which turns with it,
+    and the ball through its contact circle (radius 0.1 m) round the
+    circle's centre; at each frame where the contact's reading says so."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    plank = m.add_body("plank", mass=2.0, inertia=2.0 * 4.0 / 12.0, position=(0.0, 0.0), angle=0.1)
+    m.add_revolute("pivot", m.ground, plank, at=(0.0, 0.0))
+    m.add_rotational_spring_damper("spring", m.ground, plank, stiffness=40.0, damping=1.0, free_angle=0.1)
+    ball = m.add_body("ball", mass=0.5, inertia=0.002, position=(0.6, 0.4))
+    m.add_contact("hit", ball, (0.6, 0.4), 0.1, plank, (0.0, 0.0), (math.cos(0.1), math.sin(0.1)), stiffness=1e6,
+                  restitution=0.6, friction=0.4)
+    r = mb.simulate(m, t_end=1.0, n_out=11)
+    drawing = planar_drawing._planar_drawing(_drawing.Scene(r), r, [], (320, 240), 100, 1.0)
+    (circle,), (line,) = drawing.artists["circles"], drawing.artists["lines"]
+    plank_angle = r.body("plank").angle
+    for k in (0, 5, 10):
+        drawing.update(k)
+        assert circle.get_radius() == 0.1
+        np.testing.assert_allclose(circle.get_center(), r.body("ball").position[k], atol=1e-12)
+        x, y = line.get_data()
+        direction = np.array([x[1] - x[0], y[1] - y[0]])
+        assert abs(math.atan2(direction[1], direction[0]) - plank_angle[k]) <= 1e-9
+        assert abs(math.atan2(y[0], x[0]) - math.atan2(y[1], x[1])) == pytest.approx(math.pi, abs=1e-9)  # through the pivot
+    c = r.contact("hit")
+    assert c.state[0] == "open" and c.state[-1] == "slip"
+
+
 def test_a_spatial_body_is_drawn_with_its_axes_turning_with_it(mpl):
     """The heavy top spinning at 100 rad/s, 201 outputs in 2 s: its frames at
     25 frames/s fall on every 4th output. At each frame the triad drawn at

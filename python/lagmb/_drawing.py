@@ -48,6 +48,7 @@ class Scene:
             for method, kw in self.elements if kinds[method].role != "body"}
         self.outlines = {b.name: [np.asarray(p, dtype=float) for p in core.outline(b.index)] for b in bodies}
         # mass and inertia about the centre of mass (body axes) as given to add_body
+        self.given_body = {kw["name"]: kw for method, kw in self.elements if kinds[method].role == "body"}
         self.mass = {kw["name"]: float(kw.get("mass") or 0.0) for method, kw in self.elements
                      if kinds[method].role == "body"}
         self.inertia = {kw["name"]: _inertia_tensor(kw.get("inertia"), self.dimension)
@@ -64,6 +65,19 @@ class Scene:
         if body == "ground":
             return np.broadcast_to(np.asarray(local, dtype=float), (len(result.t), self.dimension))[index]
         return result.point(body, local)[index]
+
+    def planar_local(self, body, point):
+        """A point given globally in the initial configuration (as add_*
+        elements take them), in the planar body's own axes."""
+        p = np.asarray(point, dtype=float)
+        if body == "ground":
+            return p
+        given = self.given_body[body]
+        r0 = np.asarray(given.get("position") or (0.0, 0.0), dtype=float)
+        a = float(given.get("angle") or 0.0)
+        c, s = math.cos(a), math.sin(a)
+        d = p - r0
+        return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
 
     def second_moment(self, body):
         """The body's second moment of mass about its centre, S = sum m x x^T

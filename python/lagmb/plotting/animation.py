@@ -43,8 +43,9 @@ def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size
     centre); a point mass from the point to its centre. A dot marks each
     centre of mass, white circles the revolute joints, triangles the joints
     to the ground, zig-zags the spring-dampers, dashed lines the slide axes
-    fixed to the ground. The axes are fixed to cover the whole motion, with
-    equal scales, in m.
+    fixed to the ground; a contact (add_contact) is drawn as its circle, in
+    its body's colour, and its line, grey, each moving with its body. The
+    axes are fixed to cover the whole motion, with equal scales, in m.
 
     A spatial model (dimension 3) is drawn in perspective by matplotlib's
     mplot3d, seen from ``view`` = (elevation, azimuth) in degrees: each

@@ -1,5 +1,6 @@
 """The drawing of a planar run's frames: bodies through their attachment
-points, joints, supports, springs, slide axes and traced paths."""
+points, joints, supports, springs, slide axes, contacts (the circle and
+its line) and traced paths."""
 
 import numpy as np
 
@@ -43,6 +44,18 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     trace_frames = [scene.path(b, p, result=shown) for b, p in trace]
     reached = np.searchsorted(np.asarray(result.t), t, side="right")  # outputs up to each frame
     pins, supports, guides, links, sliders = [], [], [], [], set()
+    # contacts: the circle (its centre's path, its radius) and the line (a
+    # point's path and its direction's, on the line's body)
+    circles, lines = [], []
+    for kind, kw in scene.elements:
+        if kind != "add_contact":
+            continue
+        centre = scene.planar_local(kw["circle_body"], kw["center"])
+        point = scene.planar_local(kw["line_body"], kw["point"])
+        ahead = scene.planar_local(kw["line_body"], np.asarray(kw["point"], float) + np.asarray(kw["direction"], float)
+                                   / max(np.hypot(*kw["direction"]), 1e-300))
+        circles.append((kw["circle_body"], scene.path(kw["circle_body"], centre, result=shown), float(kw["radius"])))
+        lines.append((scene.path(kw["line_body"], point, result=shown), scene.path(kw["line_body"], ahead, result=shown)))
     for kind, kw in scene.elements:
         if kind == "add_translational":
             sliders.add(kw.get("body_j"))
@@ -66,7 +79,8 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
         + [result.body(b).position for b in scene.bodies]
     clouds = everywhere + [c for paths in body_paths.values() for c in paths] + list(centres.values()) \
         + traces + pins + [p[None, :] for p in supports] \
-        + [q for _, p, q in links] + [p for _, p, q in links]
+        + [q for _, p, q in links] + [p for _, p, q in links] \
+        + [c + sign * R for _, c, R in circles for sign in (-1.0, 1.0)] + [p for p, _ in lines]
     pts = np.concatenate([np.asarray(c).reshape(-1, 2) for c in clouds]) if clouds \
         else np.zeros((1, 2))
     pts = pts[np.isfinite(pts).all(axis=1)]
@@ -107,6 +121,14 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
         ax.plot(*path_.T, color=c, lw=1, alpha=0.2, zorder=1)
 
     # moving things, updated per frame
+    from matplotlib.patches import Circle
+    line_art = [ax.plot([], [], color="0.3", lw=2.0, zorder=2)[0] for _ in lines]
+    circle_art = []
+    for b, c, R in circles:
+        colour = _colour(scene.bodies.index(b)) if b in scene.bodies else "0.3"
+        art = Circle((0.0, 0.0), R, fill=False, edgecolor=colour, lw=2.0, zorder=4)
+        ax.add_patch(art)
+        circle_art.append(art)
     trace_done = [ax.plot([], [], color=c, lw=1.3, zorder=1)[0] for c in trace_colours]
     link_art = [ax.plot([], [], color="0.35", lw=1.0 if kind == "add_spring_damper" else 1.8,
                         zorder=2)[0] for kind, _, _ in links]
@@ -151,12 +173,19 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
             xy = _zigzag(p[k], q[k], 0.4 * mark) if kind == "add_spring_damper" \
                 else np.array([p[k], q[k]])
             art.set_data(xy[:, 0], xy[:, 1])
+        for art, (_, c, _) in zip(circle_art, circles):
+            art.set_center(c[k])
+        for art, (p, ahead) in zip(line_art, lines):
+            u = ahead[k] - p[k]
+            u = u / max(np.hypot(*u), 1e-300)
+            xy = np.array([p[k] - 4 * span * u, p[k] + 4 * span * u])
+            art.set_data(xy[:, 0], xy[:, 1])
         for art, path_, at in zip(trace_done, traces, trace_frames):
             xy = np.concatenate([path_[:reached[k]], at[k][None, :]])
             art.set_data(xy[:, 0], xy[:, 1])
         stamp.set_text(stamp_format.format(t[k]))
 
     # in the order of their zorder: each frame draws them one by one, in this order
-    artists = {"traces": trace_done, "links": link_art, "bodies": body_art, "pins": pin_art,
-               "centres": centre_art, "stamp": stamp}
+    artists = {"traces": trace_done, "lines": line_art, "links": link_art, "bodies": body_art,
+               "circles": circle_art, "pins": pin_art, "centres": centre_art, "stamp": stamp}
     return _Drawing(fig, artists, update)
