@@ -368,3 +368,40 @@ def test_a_broken_stl_mesh_is_named_by_view(tmp_path):
     with pytest.raises(mb.ModelError, match=r"the mesh shape of body 'rod' \('.*cut\.stl'\) reaches past what the "
                                             r"page draws \(float32.*size \(1e\+39, 1\.0, 1\.0\)"):
         view(r, None)
+
+
+def test_a_planar_contact_is_drawn_as_a_disc_and_a_bar(chromium, tmp_path):
+    """A ball on a sprung seesaw whose plank nothing else outlines: the page
+    draws the contact's circle as a disc (radius 0.1 m) on the ball and its
+    line as a long bar on the plank (through the plank's pivot, along it),
+    and shows them in Chromium."""
+    import json
+    import re
+
+    m = mb.Model(gravity=(0.0, -9.81))
+    plank = m.add_body("plank", mass=2.0, inertia=2.0 * 4.0 / 12.0, position=(0.0, 0.0), angle=0.1)
+    m.add_revolute("pivot", m.ground, plank, at=(0.0, 0.0))
+    m.add_rotational_spring_damper("spring", m.ground, plank, stiffness=40.0, damping=1.0, free_angle=0.1)
+    ball = m.add_body("ball", mass=0.5, inertia=0.002, position=(0.6, 0.4))
+    m.add_contact("hit", ball, (0.6, 0.4), 0.1, plank, (0.0, 0.0), (math.cos(0.1), math.sin(0.1)),
+                  stiffness=1e6, restitution=0.6, friction=0.4)
+    r = mb.simulate(m, t_end=1.0, n_out=51)
+    path = tmp_path / "seesaw.html"
+    view(r, path)
+    data = json.loads(re.search(r'id="lagmb-data">(.*?)</script>', path.read_text(), re.S).group(1))
+    parts = {b["name"]: b["parts"] for b in data["bodies"]}
+    discs = [p for p in parts["ball"] if p["type"] == "cylinder"]
+    assert len(discs) == 1 and discs[0]["radius"] == 0.1 and discs[0]["position"][:2] == [0.0, 0.0]
+    bars = [p for p in parts["plank"] if p["type"] == "box" and p["size"][0] > 1.0]
+    assert len(bars) == 1 and abs(bars[0]["quaternion"][2]) <= 1e-12  # along the plank's own x axis
+    assert np.allclose(bars[0]["position"][:2], [0.0, 0.0], atol=1e-12)
+    page, _ = open_page(chromium, path)
+    state = page.evaluate("lagmbViewer.state()")
+    assert state["bodies"] == 2 and state["drawn"] > state["bodies"]
+    shot = tmp_path / "seesaw.png"
+    page.wait_for(f"lagmbViewer.state().renders > {state['renders'] + 2}")
+    page.screenshot(shot)
+    box = page.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
+                        "return [r.left, r.top, r.right, r.bottom]; })()")
+    assert drawn_pixels(shot, [int(x) for x in box]) > 2000
+    page.close()

@@ -507,6 +507,21 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
                     parts.append({"type": "sphere", "radius": 0.9 * width, "position": position, "colour": _JOINT})
         body_data.append({"name": body, "parts": parts})
     ground_parts = []
+    # a planar contact: its circle a disc on its body, its line a long bar on its own (or the ground)
+    parts_of = {entry["name"]: entry["parts"] for entry in body_data}
+    for method, kw in scene.elements if dimension == 2 else []:
+        if method != "add_contact":
+            continue
+        centre = scene.planar_local(kw["circle_body"], kw["center"])
+        colour = _PALETTE[bodies.index(kw["circle_body"]) % len(_PALETTE)] if kw["circle_body"] in bodies else _GROUND
+        disc = {"type": "cylinder", "radius": float(kw["radius"]), "length": 0.3 * width,
+                "position": [*centre, -0.3 * width], "colour": colour}
+        parts_of.get(kw["circle_body"], ground_parts).append(disc)
+        u = np.asarray(kw["direction"], dtype=float)
+        u = u / max(float(np.hypot(*u)), 1e-300)
+        a = scene.planar_local(kw["line_body"], np.asarray(kw["point"], float) - size * u)
+        b = scene.planar_local(kw["line_body"], np.asarray(kw["point"], float) + size * u)
+        parts_of.get(kw["line_body"], ground_parts).append(_bar(a, b, 0.5 * width, _GROUND, z=-0.5 * width))
     for name in scene.joints + scene.drivers:
         for b, local in scene.attachments(name):
             if b == "ground":
