@@ -432,7 +432,8 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     Names and titles are shown as text, whatever characters they hold.
 
     Planar models are drawn in their plane (x, y), bodies as bars between
-    their joints; spatial ones with their shapes (a URDF's meshes, STL) or
+    their joints, a contact as its circle (a disc on its body) and its line
+    (a long bar); spatial ones with their shapes (a URDF's meshes, STL) or
     else the box of their inertia and axes. ModelError for a Result without
     its model, an unknown output (the names listed), a bad argument (named
     with its value), a path that cannot be written, an STL file that
