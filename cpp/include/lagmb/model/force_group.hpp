@@ -51,6 +51,16 @@ class ForceGroupBase {
   }
 };
 
+/// Whether a force kind is a contact: it has reading(c, cd, run) (ContactReading).
+template <class Kind, class Loc, class = void>
+struct has_reading : std::false_type {};
+template <class Kind, class Loc>
+struct has_reading<Kind, Loc,
+                   std::void_t<decltype(std::declval<const Kind&>().reading(std::declval<const Loc&>(),
+                                                                             std::declval<const Loc&>(),
+                                                                             std::declval<const double*>()))>>
+    : std::true_type {};
+
 /// Forces acting on (at most) two bodies, one container per kind. A kind is a
 /// plain struct with, in the L local coordinates c and velocities cd of its
 /// bodies (as in constraint_group.hpp; space.hpp):
@@ -63,17 +73,8 @@ class ForceGroupBase {
 ///   double potential(c, t)                   0 for non-conservative kinds
 /// A kind with per-run state (see run_state_size in constraint_group.hpp)
 /// takes the run's state as a last argument of force and derivatives; a
-/// kind that reads_inputs (an actuator) takes the Instant for t.
-/// Whether a force kind is a contact: it has reading(c, cd, run) (ContactReading).
-template <class Kind, class Loc, class = void>
-struct has_reading : std::false_type {};
-template <class Kind, class Loc>
-struct has_reading<Kind, Loc,
-                   std::void_t<decltype(std::declval<const Kind&>().reading(std::declval<const Loc&>(),
-                                                                             std::declval<const Loc&>(),
-                                                                             std::declval<const double*>()))>>
-    : std::true_type {};
-
+/// kind that reads_inputs (an actuator) takes the Instant for t. A contact
+/// kind has ContactReading reading(c, cd, run) (its readers: Result.contact).
 template <class Kind>
 class ForceGroup final : public ForceGroupBase {
  public:
