@@ -65,6 +65,16 @@ def chromium():
     b.close()
 
 
+def pixels_in_view(page, shot, renders):
+    """After two more renders than `renders`, the page's screenshot (to the
+    path `shot`): its drawn pixels in the 3D view (drawn_pixels)."""
+    page.wait_for(f"lagmbViewer.state().renders > {renders + 2}")
+    page.screenshot(shot)
+    box = page.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
+                        "return [r.left, r.top, r.right, r.bottom]; })()")
+    return drawn_pixels(shot, [int(x) for x in box])
+
+
 def drawn_pixels(png, region):
     """Pixels in region (x0, y0, x1, y1) that are not the white background."""
     from PIL import Image
@@ -116,12 +126,8 @@ def test_a_run_plays_in_a_browser(chromium, tmp_path, case):
     page.click(box[0] + 0.5 * box[2], box[1] + 0.5 * box[3])
     clicked = page.evaluate("lagmbViewer.state()")
     assert clicked["time"] == pytest.approx(1.0, abs=0.011)
-    shot = tmp_path / f"{case}.png"
-    page.wait_for(f"lagmbViewer.state().renders > {clicked['renders'] + 2}")
-    page.screenshot(shot)
-    view_box = page.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
-                             "return [r.left, r.top, r.right, r.bottom]; })()")
-    assert drawn_pixels(shot, [int(x) for x in view_box]) > 2000  # the bodies and the grid, not a blank canvas
+    # the bodies and the grid, not a blank canvas
+    assert pixels_in_view(page, tmp_path / f"{case}.png", clicked["renders"]) > 2000
     page.close()
 
 
@@ -218,12 +224,7 @@ def test_an_imported_robot_plays_with_its_meshes(chromium, tmp_path):
     assert state["bodies"] == len(model.bodies) and state["drawn"] > state["bodies"]
     page.evaluate("lagmbViewer.setFrame(30)")
     assert page.evaluate("lagmbViewer.state().time") == pytest.approx(0.3)
-    shot = tmp_path / "panda.png"
-    page.wait_for(f"lagmbViewer.state().renders > {state['renders'] + 2}")
-    page.screenshot(shot)
-    box = page.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
-                        "return [r.left, r.top, r.right, r.bottom]; })()")
-    assert drawn_pixels(shot, [int(x) for x in box]) > 2000
+    assert pixels_in_view(page, tmp_path / "panda.png", state["renders"]) > 2000
     page.close()
 
 
@@ -398,10 +399,5 @@ def test_a_planar_contact_is_drawn_as_a_disc_and_a_bar(chromium, tmp_path):
     page, _ = open_page(chromium, path)
     state = page.evaluate("lagmbViewer.state()")
     assert state["bodies"] == 2 and state["drawn"] > state["bodies"]
-    shot = tmp_path / "seesaw.png"
-    page.wait_for(f"lagmbViewer.state().renders > {state['renders'] + 2}")
-    page.screenshot(shot)
-    box = page.evaluate("(() => { const r = document.getElementById('view').getBoundingClientRect(); "
-                        "return [r.left, r.top, r.right, r.bottom]; })()")
-    assert drawn_pixels(shot, [int(x) for x in box]) > 2000
+    assert pixels_in_view(page, tmp_path / "seesaw.png", state["renders"]) > 2000
     page.close()
