@@ -95,6 +95,11 @@ def every_spatial_kind():
     m.add_joint_coupling("gang", "elbow", leader="prism", multiplier=3.0, offset=0.01)
     m.add_joint_friction("drag", "prism", viscous=2.0, preload=0.5, slip_velocity=0.1)
     m.add_joint_friction("bearing", "hinge", viscous=0.2, preload=0.3, slip_velocity=0.5)
+    # a ball on body h pressed 0.1 m into a plane on body d, slipping (elastic: at the least impact
+    # speed a contact has outside a run its damping would cancel the force at these speeds)
+    ball = m.add_shape(b[7], "sphere", (0.2,), (2.8, 0.7, -0.15), role="collision")
+    table = m.add_shape(b[3], "plane", (), (2.8, 0.7, -0.25), quaternion((1, 0.5, 0), 0.2), role="collision")
+    m.add_contact("touch", ball, table, stiffness=1e4, restitution=1.0, friction=0.3, slip_velocity=0.5)
     return m
 
 

@@ -61,7 +61,7 @@ def test_bad_frames_and_shapes_are_refused_by_name():
         m.add_frame("elbow", "arm", (0.0, 0.0, 0.0))
     with pytest.raises(mb.ModelError, match="orientation is not a rotation matrix"):
         m.add_frame("skew", "rod", (0.0, 0.0, 0.0), orientation=np.diag([1.0, 1.0, -1.0]))
-    with pytest.raises(mb.ModelError, match="kind must be one of box, cylinder, sphere, mesh, got 'cone'"):
+    with pytest.raises(mb.ModelError, match="kind must be one of box, cylinder, sphere, capsule, plane, mesh, got 'cone'"):
         m.add_shape("rod", "cone", (1.0, 1.0))
     with pytest.raises(mb.ModelError, match="a sphere's size must be positive"):
         m.add_shape("rod", "sphere", (-0.1,))

@@ -167,6 +167,9 @@ def _add_everything_spatial(m):
         "add_stop": lambda: m.add_stop("stop", "translational", lower=-1.0, upper=1.0),
         "add_joint_coupling": lambda: m.add_joint_coupling("joint_coupling", "translational", leader="revolute"),
         "add_joint_friction": lambda: m.add_joint_friction("joint_friction", "revolute", viscous=0.1),
+        "add_contact": lambda: m.add_contact("contact", m.add_shape(a, "sphere", (0.1,), (1.0, 0.0, 0.0), role="collision"),
+                                             m.add_shape(g, "plane", (), role="collision"), stiffness=1e6,
+                                             restitution=0.5),
     }
 
 

@@ -298,6 +298,15 @@ def example_spatial_torque():
     return m, m.add_torque("twist", rod, (0.0, mb.Harmonic(1.0, 3.0), 0.0))
 
 
+def example_spatial_contact():
+    """A ball dropped onto the ground plane from just above it: it bounces."""
+    m = _spatial_model()
+    ball = m.add_body("ball", 0.5, (1e-3, 1e-3, 1e-3), position=(0.0, 0.0, 0.051))
+    floor = m.add_shape(m.ground, "plane", (), role="collision")
+    sphere = m.add_shape(ball, "sphere", (0.05,), (0.0, 0.0, 0.051), role="collision")
+    return m, m.add_contact("bounce", sphere, floor, stiffness=1e6, restitution=0.8, friction=0.3)
+
+
 EXAMPLES = {name[len("example_"):]: f for name, f in dict(globals()).items() if name.startswith("example_")}
 
 #: Where each kind's derivatives (Phi_q, its derivatives, gamma, Q_q, Q_v,

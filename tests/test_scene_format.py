@@ -28,7 +28,7 @@ WORDS = {
     schema.JOINT: "joint name", schema.FUNCTION: "time function", schema.FUNCTION_PAIR: "[fx, fy]",
     schema.NUMBERS: "array of numbers", schema.STRINGS: "array of strings",
     schema.VEC3: "[x, y, z]", schema.VECTOR: "[x, y] or [x, y, z]", schema.ORIENTATION: "orientation",
-    schema.INERTIA: "inertia", schema.FUNCTION_TRIPLE: "[fx, fy, fz]",
+    schema.INERTIA: "inertia", schema.FUNCTION_TRIPLE: "[fx, fy, fz]", schema.SHAPE: "shape",
 }
 
 

@@ -57,6 +57,17 @@ Value to_value(const KindInfo& kind, const std::string& key, py::handle x) {
       if (py::len(x) == 3 && !py::isinstance<py::sequence>(py::reinterpret_borrow<py::sequence>(x)[0]))
         return x.cast<Vec3>();
       return x.cast<Mat3>();
+    case ParamType::kShape: {  // (body index, kind, size (3), position (3), axes (3 x 3), vertices [(3)])
+      const auto t = x.cast<py::tuple>();
+      CollisionShape shape;
+      shape.body = t[0].cast<int>();
+      shape.kind = shape_kind(t[1].cast<std::string>());
+      shape.size = t[2].cast<Vec3>();
+      shape.position = t[3].cast<Vec3>();
+      shape.axes = t[4].cast<Mat3>();
+      for (py::handle v : t[5]) shape.vertices.push_back(v.cast<Vec3>());
+      return shape;
+    }
   }
   return std::monostate{};
 }
@@ -83,6 +94,13 @@ py::object value_to_python(const Value& v) {
   if (const auto* f = std::get_if<TimeFunctionPtr>(&v)) return py::cast(*f);
   if (const auto* fs = std::get_if<std::pair<TimeFunctionPtr, TimeFunctionPtr>>(&v))
     return py::make_tuple(py::cast(fs->first), py::cast(fs->second));
+  if (const auto* c = std::get_if<CollisionShape>(&v)) {
+    py::list vertices;
+    for (const Vec3& x : c->vertices) vertices.append(py::make_tuple(x.x(), x.y(), x.z()));
+    return py::make_tuple(c->body, shape_kind_name(c->kind), py::make_tuple(c->size.x(), c->size.y(), c->size.z()),
+                          py::make_tuple(c->position.x(), c->position.y(), c->position.z()),
+                          value_to_python(Value(c->axes)), vertices);
+  }
   if (const auto* f3 = std::get_if<std::array<TimeFunctionPtr, 3>>(&v))
     return py::make_tuple(py::cast((*f3)[0]), py::cast((*f3)[1]), py::cast((*f3)[2]));
   return default_to_python(v);

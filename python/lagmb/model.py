@@ -140,6 +140,8 @@ class Model:
         t = param.type
         if t == "body":
             return "ground" if value < 0 else bodies[value]
+        if t == "shape":
+            return _shape_given(value, bodies)
         if t in ("motion", "function"):
             return from_core(value, memo)
         if t in ("function_pair", "function_triple"):
@@ -399,13 +401,16 @@ class Model:
 
     def add_shape(self, body, kind, size, position=(0.0, 0.0, 0.0), orientation=None, *, mesh=None,
                   role="visual"):
-        """Geometry on a spatial body, kept with the model for pictures
-        (no part of the equations): ``kind`` "box" (size: edge lengths),
-        "cylinder" ((radius, length), its axis along its own z), "sphere"
-        ((radius,)) or "mesh" (size: the scale (3,), ``mesh``: the file);
-        centred at the global ``position`` with axes ``orientation``, in the
-        initial configuration; ``role`` "visual" or "collision". load_urdf
-        adds a link's <visual> and <collision> geometry. Returns the Shape."""
+        """Geometry on a spatial body or the ground: ``kind`` "box" (size:
+        edge lengths), "cylinder" ((radius, length), its axis along its own
+        z), "sphere" ((radius,)), "capsule" ((radius, length): a segment of
+        that length along its own z swept by a sphere), "plane" (size ():
+        the half-space below its own xy plane, outward normal along its own
+        z) or "mesh" (size: the scale (3,), ``mesh``: the file); centred at
+        the global ``position`` with axes ``orientation``, in the initial
+        configuration. ``role`` "visual" (pictures only) or "collision": a
+        shape a contact may pair (add_contact). load_urdf adds a link's
+        <visual> and <collision> geometry. Returns the Shape."""
         context = f"shape on '{body}'"
         if self.dimension != 3:
             raise ModelError(f"{context}: shapes are spatial only; this model has dimension {self.dimension}")
@@ -418,7 +423,10 @@ class Model:
         except (TypeError, ValueError):
             raise ModelError(f"{context}: a {kind}'s size is {_SHAPE_SIZES[kind]} numbers, got {size!r}") from None
         # (a mesh's scale may be negative: a mirrored mesh)
-        if not (np.all(np.isfinite(dims)) and np.all((dims != 0) if kind == "mesh" else (dims > 0))):
+        positive = dims > 0
+        if kind == "capsule":
+            positive[1:] = dims[1:] >= 0  # a capsule of length 0 is a sphere
+        if not (np.all(np.isfinite(dims)) and np.all((dims != 0) if kind == "mesh" else positive)):
             raise ModelError(f"{context}: a {kind}'s size must be {'nonzero' if kind == 'mesh' else 'positive'}, "
                              f"got {size!r}")
         if (kind == "mesh") != (mesh is not None):
@@ -621,8 +629,82 @@ class Shape(tuple):
     mesh = property(lambda self: self[5])
     role = property(lambda self: self[6])
 
+    def __eq__(self, other):
+        return isinstance(other, Shape) and self.to_dict() == other.to_dict()
 
-_SHAPE_SIZES = {"box": 3, "cylinder": 2, "sphere": 1, "mesh": 3}
+    def __ne__(self, other):
+        return not self == other
+
+    def __hash__(self):
+        return hash(repr(self.to_dict()))
+
+    def to_dict(self):
+        """The shape as a scene holds it (an inline table: body, kind, size,
+        position and rotation in the body's axes, mesh, role)."""
+        d = {"body": self.body, "kind": self.kind, "size": [float(x) for x in self.size],
+             "position": [float(x) for x in self.position],
+             "rotation": [[float(x) for x in row] for row in np.asarray(self.rotation)]}
+        if self.mesh is not None:
+            d["mesh"] = self.mesh
+        d["role"] = self.role
+        return d
+
+
+_SHAPE_SIZES = {"box": 3, "cylinder": 2, "sphere": 1, "capsule": 2, "plane": 0, "mesh": 3}
+
+
+def _shape_value(model, param, value, what, label):
+    """A collision shape for the core (registry type "shape"): (body index,
+    kind, size (3), position (3), axes (3 x 3), vertices) from a Shape of
+    role "collision" on a body of this model."""
+    if isinstance(value, dict):  # a scene's inline table (Shape.to_dict)
+        value = _shape_from_dict(model, value, label)
+    if not isinstance(value, Shape):
+        raise ModelError(f"{label} must be a Shape (Model.add_shape(..., role='collision')), got {show(value)}")
+    if value.role != "collision":
+        raise ModelError(f"{label}: a contact pairs collision shapes; this {value.kind} on '{value.body}' has "
+                         f"role {value.role!r} (add it with role='collision')")
+    if value.kind == "mesh":
+        raise ModelError(f"{label}: a mesh is not paired by a contact yet; give its body a box, sphere or "
+                         "capsule of role 'collision'")
+    index = model._body(value.body, param.name, what)[1]
+    size = tuple(float(x) for x in value.size) + (0.0,) * (3 - len(value.size))
+    return (index, value.kind, size, tuple(float(x) for x in value.position),
+            tuple(tuple(float(x) for x in row) for row in np.asarray(value.rotation)), [])
+
+
+_CHECKS["shape"] = _shape_value
+
+
+def _shape_from_dict(model, d, label):
+    """A Shape from what Shape.to_dict gives (a scene), checked; it joins the
+    model's shapes (what pictures draw) unless it is one of them."""
+    known = {"body", "kind", "size", "position", "rotation", "mesh", "role"}
+    if set(d) - known or not {"body", "kind", "size"} <= set(d):
+        raise ModelError(f"{label}: a shape is {{body, kind, size, position, rotation, role}}, got {show(d)}")
+    kind = d["kind"]
+    if kind not in _SHAPE_SIZES:
+        raise ModelError(f"{label}: kind must be one of {', '.join(_SHAPE_SIZES)}, got {kind!r}")
+    try:
+        size = np.asarray(d["size"], dtype=float).reshape(_SHAPE_SIZES[kind])
+        position = np.asarray(d.get("position", (0.0, 0.0, 0.0)), dtype=float).reshape(3)
+        rotation = np.asarray(d.get("rotation", np.eye(3)), dtype=float).reshape(3, 3)
+    except (TypeError, ValueError):
+        raise ModelError(f"{label}: a {kind}'s size, position and rotation are {_SHAPE_SIZES[kind]}, 3 and "
+                         f"3 x 3 numbers, got {show(d)}") from None
+    body = model._body(d["body"], "body", label)[0]
+    shape = Shape(body, kind, tuple(float(x) for x in size), position, rotation, d.get("mesh"),
+                  d.get("role", "collision"))
+    if shape not in model._shapes:
+        model._shapes.append(shape)
+    return shape
+
+
+def _shape_given(value, bodies):
+    """A core collision shape as the Shape that gave it."""
+    index, kind, size, position, axes, _ = value
+    return Shape("ground" if index < 0 else bodies[index], kind, tuple(size[:_SHAPE_SIZES[kind]]),
+                 np.asarray(position, dtype=float), np.asarray(axes, dtype=float), None, "collision")
 
 
 def _method(method):

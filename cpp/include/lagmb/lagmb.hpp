@@ -11,6 +11,9 @@
 #include "lagmb/trajectory.hpp"
 #include "lagmb/types.hpp"
 
+#include "lagmb/collision/pairs.hpp"
+#include "lagmb/collision/shape.hpp"
+
 #include "lagmb/model/contact_reading.hpp"
 #include "lagmb/model/coordinates.hpp"
 #include "lagmb/model/data.hpp"

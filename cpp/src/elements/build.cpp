@@ -125,6 +125,30 @@ spatial::JointReading continuous_reading(Model& m, const std::string& joint, con
   return counter->reading;
 }
 
+ContactLaw contact_law(const Args& a, const std::string& label) {
+  ContactLaw law;
+  law.stiffness = a.real("stiffness");
+  law.slip_velocity = a.real("slip_velocity");
+  require_positive(law.stiffness, label, "stiffness");
+  require_positive(law.slip_velocity, label, "slip_velocity");
+  law.restitution = a.real("restitution");
+  if (!(law.restitution > 0.0 && law.restitution <= 1.0))
+    throw ModelError(label + ": restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
+                     to_text(law.restitution));
+  law.friction = a.real("friction");
+  require_nonnegative(law.friction, label, "friction");
+  return law;
+}
+
+std::vector<Param> contact_law_params() {
+  return {
+      param::real("stiffness", "N/m^1.5", "contact stiffness k"),
+      param::real("restitution", "", "coefficient of restitution e in (0, 1]"),
+      param::real("friction", 0.0, "", "Coulomb coefficient mu"),
+      param::real("slip_velocity", 1e-4, "m/s", "v_s below which friction is smoothed"),
+  };
+}
+
 StopLimits stop_limits(const Args& a, const std::string& label) {
   const std::optional<double> lower = a.optional_real("lower"), upper = a.optional_real("upper");
   if (!lower && !upper) throw ModelError(label + ": give a lower or an upper limit (or both)");

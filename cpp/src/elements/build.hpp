@@ -7,6 +7,7 @@
 #include <array>
 #include <string>
 
+#include "lagmb/elements/contact_law.hpp"
 #include "lagmb/elements/stop.hpp"
 #include "lagmb/elements/joint_coordinate.hpp"
 #include "lagmb/elements/spatial_drivers.hpp"
@@ -82,6 +83,11 @@ void count_turns(Model& m, const std::string& joint, double angle = 0.0);
 /// equations reads it: a turning joint's angle continuous through its
 /// turns (the counter's reading, which this marks read), a slide as it is.
 spatial::JointReading continuous_reading(Model& m, const std::string& joint, const JointCoordinate& c);
+
+/// The contact law a contact is given (stiffness, restitution, friction,
+/// slip_velocity; contact_law.hpp), checked, and the parameters that give it.
+ContactLaw contact_law(const Args& a, const std::string& label);
+std::vector<Param> contact_law_params();
 
 // --- spatial kinds -----------------------------------------------------------
 

@@ -13,17 +13,8 @@ void build_contact(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
   CircleLineContact c = build::joining<CircleLineContact>(m, name, a.body("circle_body"), a.body("line_body"));
   c.radius = a.real("radius");
-  c.law.stiffness = a.real("stiffness");
-  c.law.slip_velocity = a.real("slip_velocity");
   build::require_positive(c.radius, label, "radius");
-  build::require_positive(c.law.stiffness, label, "stiffness");
-  build::require_positive(c.law.slip_velocity, label, "slip_velocity");
-  c.law.restitution = a.real("restitution");
-  if (!(c.law.restitution > 0.0 && c.law.restitution <= 1.0))
-    throw ModelError(label + ": restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
-                     to_text(c.law.restitution));
-  c.law.friction = a.real("friction");
-  build::require_nonnegative(c.law.friction, label, "friction");
+  c.law = build::contact_law(a, label);
   build::require_on_particle(m, c.body_i, a.vec2("center"), label);
   c.s_c = m.local_point(c.body_i, a.vec2("center"));
   c.s_p = m.local_point(c.body_j, a.vec2("point"));
@@ -36,7 +27,7 @@ void build_contact(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo contact_kind() {
-  return {"contact", "add_contact", "forces", "contact", Role::kContact,
+  KindInfo k = {"contact", "add_contact", "forces", "contact", Role::kContact,
           "Contact between a circle on circle_body and the line through `point` along `direction` on "
           "line_body; the circle belongs on the left of the direction. With penetration d > 0 the normal "
           "force is k d^1.5 (1 + 8 (1 - e) / (5 e) d' / v_impact) (Hunt-Crossley damping calibrated to "
@@ -50,12 +41,10 @@ KindInfo contact_kind() {
               param::body("line_body", "the body carrying the line (or the ground)"),
               param::point("point", {}, "a point of the line"),
               param::direction("direction", "direction of the line (the circle on its left)"),
-              param::real("stiffness", "N/m^1.5", "contact stiffness k"),
-              param::real("restitution", "", "coefficient of restitution e in (0, 1]"),
-              param::real("friction", 0.0, "", "Coulomb coefficient mu"),
-              param::real("slip_velocity", 1e-4, "m/s", "v_s below which friction is smoothed"),
           },
           build_contact};
+  for (Param& p : build::contact_law_params()) k.params.push_back(std::move(p));
+  return k;
 }
 
 }  // namespace lagmb

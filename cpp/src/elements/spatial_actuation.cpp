@@ -9,7 +9,7 @@ namespace {
 
 /// A revolute's driver holds its angle, a translational's or cylindrical's
 /// its slide.
-void build_joint_driver(Model& m, const std::string& name, const Args& a) {
+void build_spatial_joint_driver(Model& m, const std::string& name, const Args& a) {
   const build::JointOf c = build::joint_coordinate(m, a.text("joint"), build::label(a, name));
   if (c.slides) {
     auto d = build::joining<SpatialSlideDriver>(m, name, c.body_i, c.body_j);
@@ -28,7 +28,7 @@ void build_joint_driver(Model& m, const std::string& name, const Args& a) {
   }
 }
 
-void build_body_driver(Model& m, const std::string& name, const Args& a) {
+void build_spatial_body_driver(Model& m, const std::string& name, const Args& a) {
   auto d = build::joining<SpatialPositionDriver>(m, name, kGround, a.body("body"));
   const std::string& coordinate = a.text("coordinate");
   d.axis = coordinate == "x" ? 0 : coordinate == "y" ? 1 : 2;
@@ -36,7 +36,7 @@ void build_body_driver(Model& m, const std::string& name, const Args& a) {
   m.add_constraint(std::move(d));
 }
 
-void build_spring_damper(Model& m, const std::string& name, const Args& a) {
+void build_spatial_spring_damper(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
   auto e = build::joining<SpatialSpringDamper>(m, name, a.body("body_i"), a.body("body_j"));
   const Vec3 pi = a.vec3("point_i"), pj = a.vec3("point_j");
@@ -90,7 +90,7 @@ void build_bushing(Model& m, const std::string& name, const Args& a) {
   m.add_force_element(std::move(e));
 }
 
-void build_force(Model& m, const std::string& name, const Args& a) {
+void build_spatial_force(Model& m, const std::string& name, const Args& a) {
   auto e = build::joining<SpatialAppliedForce>(m, name, a.body("body"), kGround);
   if (a.given("point")) e.s = m.local_point(e.body_i, a.vec3("point"));
   e.components = build::drive_triple(m, a.function_triple("force"));
@@ -98,7 +98,7 @@ void build_force(Model& m, const std::string& name, const Args& a) {
   m.add_force_element(std::move(e));
 }
 
-void build_torque(Model& m, const std::string& name, const Args& a) {
+void build_spatial_torque(Model& m, const std::string& name, const Args& a) {
   auto e = build::joining<SpatialAppliedTorque>(m, name, a.body("body"), kGround);
   e.components = build::drive_triple(m, a.function_triple("torque"));
   e.local = a.flag("local");
@@ -113,7 +113,7 @@ KindInfo spatial_joint_driver_kind() {
                    "by default), or a translational's or cylindrical's slide along its axis, as f(t).",
                    {param::joint("the revolute, cylindrical or translational joint driven"),
                     param::motion("f", "rad or m", "the joint coordinate as a function of time", "function")},
-                   build_joint_driver});
+                   build_spatial_joint_driver});
 }
 
 KindInfo spatial_body_driver_kind() {
@@ -122,7 +122,7 @@ KindInfo spatial_body_driver_kind() {
                    {param::body("body", "the body driven"),
                     param::choice("coordinate", {"x", "y", "z"}, "the coordinate driven"),
                     param::motion("f", "m", "the coordinate as a function of time", "function")},
-                   build_body_driver});
+                   build_spatial_body_driver});
 }
 
 KindInfo spatial_spring_damper_kind() {
@@ -135,7 +135,7 @@ KindInfo spatial_spring_damper_kind() {
                     param::real("damping", 0.0, "N s/m", "damping coefficient c"),
                     param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
                     param::function("force", "N", "actuator force f(t), positive pushes the points apart")},
-                   build_spring_damper});
+                   build_spatial_spring_damper});
 }
 
 KindInfo spatial_rotational_spring_damper_kind() {
@@ -172,7 +172,7 @@ KindInfo spatial_force_kind() {
                    {param::body("body", "the body pushed"), param::function_triple("force", "N", "(fx, fy, fz)"),
                     param::optional_point3("point", {"body"}, "where it acts (default: the centre of mass)"),
                     param::flag("local", false, "components in the body's axes, turning with it")},
-                   build_force});
+                   build_spatial_force});
 }
 
 KindInfo spatial_torque_kind() {
@@ -180,7 +180,7 @@ KindInfo spatial_torque_kind() {
                    "A torque on a body, each component a number or a function of time.",
                    {param::body("body", "the body turned"), param::function_triple("torque", "N m", "(tx, ty, tz)"),
                     param::flag("local", false, "components in the body's axes, turning with it")},
-                   build_torque});
+                   build_spatial_torque});
 }
 
 }  // namespace lagmb

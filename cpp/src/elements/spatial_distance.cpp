@@ -8,7 +8,7 @@ namespace lagmb {
 
 namespace {
 
-void build_distance(Model& m, const std::string& name, const Args& a) {
+void build_spatial_distance(Model& m, const std::string& name, const Args& a) {
   const std::string label = build::label(a, name);
   SpatialDistanceJoint j = build::joining<SpatialDistanceJoint>(m, name, a.body("body_i"), a.body("body_j"));
   const Vec3 pi = a.vec3("point_i"), pj = a.vec3("point_j");
@@ -29,7 +29,7 @@ KindInfo spatial_distance_kind() {
                   {param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "the link's end on body_i"),
                    param::body("body_j", "the second body"), param::point3("point_j", {"body_j"}, "the link's end on body_j"),
                    param::optional_real("length", "m", "the link's length (default: the initial distance)")},
-                  build_distance});
+                  build_spatial_distance});
 }
 
 }  // namespace lagmb

@@ -10,7 +10,7 @@ namespace lagmb {
 
 namespace {
 
-void build_revolute(Model& m, const std::string& name, const Args& a) {
+void build_spatial_revolute(Model& m, const std::string& name, const Args& a) {
   const Vec3 axis = build::unit_direction(a, "axis", build::label(a, name));
   auto j = build::spatial_joint<SpatialRevoluteJoint>(m, name, a, axis);
   j.a_j = m.local_direction(j.body_j, axis);
@@ -33,7 +33,7 @@ KindInfo spatial_revolute_kind() {
                    param::real("angle", 0.0, "rad",
                                "the joint's angle in the initial configuration (what its drivers, stops and "
                                "springs read there)")},
-                  build_revolute});
+                  build_spatial_revolute});
   k.coordinate = "angle";
   return k;
 }

@@ -8,7 +8,7 @@ namespace lagmb {
 
 namespace {
 
-void build_translational(Model& m, const std::string& name, const Args& a) {
+void build_spatial_translational(Model& m, const std::string& name, const Args& a) {
   const Vec3 axis = build::unit_direction(a, "axis", build::label(a, name));
   auto j = build::spatial_joint<SpatialTranslationalJoint>(m, name, a, axis);
   // body j's joint point sits `slide` along the axis from body i's
@@ -30,7 +30,7 @@ KindInfo spatial_translational_kind() {
                    param::real("slide", 0.0, "m",
                                "the joint's slide in the initial configuration: body_j's joint point is that far "
                                "along the axis from body_i's (what its drivers, stops and springs read there)")},
-                  build_translational});
+                  build_spatial_translational});
   k.coordinate = "slide";
   return k;
 }

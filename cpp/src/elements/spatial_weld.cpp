@@ -10,7 +10,7 @@ namespace {
 
 /// Held at body j's centre of mass; the triples are the global axes of the
 /// initial configuration in each body's axes.
-void build_weld(Model& m, const std::string& name, const Args& a) {
+void build_spatial_weld(Model& m, const std::string& name, const Args& a) {
   SpatialWeldJoint j = build::joining<SpatialWeldJoint>(m, name, a.body("body_i"), a.body("body_j"));
   const Vec3 at = m.body_position(j.body_j);
   j.s_i = m.local_point(j.body_i, at);
@@ -33,7 +33,7 @@ KindInfo spatial_weld_kind() {
   return build::in_space({"spatial_weld", "add_weld", "joints", "weld", Role::kJoint,
                   "Fixes body_j to body_i in their initial relative pose (6 equations).",
                   {param::body("body_i", "the first body"), param::body("body_j", "the body fixed to it")},
-                  build_weld});
+                  build_spatial_weld});
 }
 
 }  // namespace lagmb

@@ -71,6 +71,7 @@ KindInfo spatial_torque_kind();
 KindInfo spatial_stop_kind();
 KindInfo joint_coupling_kind();
 KindInfo spatial_joint_friction_kind();
+KindInfo spatial_contact_kind();
 
 const std::vector<KindInfo>& element_kinds() {
   // the order of scene tables and docs; a new kind adds its line here and above
@@ -94,7 +95,7 @@ const std::vector<KindInfo>& element_kinds() {
       spatial_rotational_spring_damper_kind(), bushing_kind(),
       spatial_force_kind(), spatial_torque_kind(),
       spatial_stop_kind(),  joint_coupling_kind(),
-      spatial_joint_friction_kind(),
+      spatial_joint_friction_kind(), spatial_contact_kind(),
   };
   return kinds;
 }
@@ -127,6 +128,7 @@ const std::vector<ParamTypeInfo>& param_types() {
       {P::kInertia, "inertia", "(Ixx, Iyy, Izz) or 3 x 3 tensor", holds_one_of<Vec3, Mat3>},
       {P::kFunctionTriple, "function_triple", "(x, y, z) of numbers or time functions, or a callable t -> (x, y, z)",
        holds_one_of<std::array<TimeFunctionPtr, 3>>},
+      {P::kShape, "shape", "a collision shape (Model.add_shape)", holds_one_of<CollisionShape>},
   };
   return types;
 }
@@ -262,6 +264,8 @@ std::pair<TimeFunctionPtr, TimeFunctionPtr> Args::function_pair(const std::strin
 std::array<TimeFunctionPtr, 3> Args::function_triple(const std::string& key) const {
   return as<std::array<TimeFunctionPtr, 3>>(*this, key);
 }
+
+const CollisionShape& Args::shape(const std::string& key) const { return as<CollisionShape>(*this, key); }
 
 namespace {
 
@@ -475,6 +479,9 @@ Param orientation(const std::string& name, const std::string& doc) {
 }
 Param function_triple(const std::string& name, const std::string& unit, const std::string& doc) {
   return make(name, ParamType::kFunctionTriple, true, {}, unit, doc);
+}
+Param shape(const std::string& name, const std::string& doc) {
+  return make(name, ParamType::kShape, true, {}, "", doc);
 }
 Param inertia(const std::string& name, const std::string& doc) {
   return make(name, ParamType::kInertia, true, {}, "kg m^2", doc);

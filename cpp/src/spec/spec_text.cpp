@@ -4,7 +4,9 @@
 //   end
 // with the types r (a number), v2, v3, v4, m3 (2, 3, 4 or 9 numbers), b (0 or
 // 1), s (a quoted string), i (a body index), f, f2, f3 (1, 2 or 3 time
-// functions as TimeFunction::text writes them).
+// functions as TimeFunction::text writes them), c (a collision shape: its
+// body index, kind, size (3), position (3), axes (9, by columns), the number of
+// its vertices and their coordinates).
 #include <iomanip>
 #include <sstream>
 
@@ -65,6 +67,13 @@ void write_value(std::ostream& out, const Value& value, const std::string& eleme
         } else if constexpr (std::is_same_v<T, std::array<TimeFunctionPtr, 3>>) {
           out << "f3";
           for (const TimeFunctionPtr& f : x) write_function(out, f, element);
+        } else if constexpr (std::is_same_v<T, CollisionShape>) {
+          out << "c " << x.body << ' ' << shape_kind_name(x.kind);
+          write_numbers(out, x.size);
+          write_numbers(out, x.position);
+          write_numbers(out, x.axes);
+          out << ' ' << x.vertices.size();
+          for (const Vec3& v : x.vertices) write_numbers(out, v);
         }
       },
       value);
@@ -111,6 +120,19 @@ Value read_value(std::istream& in) {
     std::array<TimeFunctionPtr, 3> f;
     for (TimeFunctionPtr& g : f) g = time_function_from_text(in);
     return f;
+  }
+  if (type == "c") {
+    CollisionShape shape;
+    std::string kind;
+    if (!(in >> shape.body >> kind)) throw ModelError("a shape's body and kind are missing");
+    shape.kind = shape_kind(kind);
+    shape.size = read_numbers<Vec3>(in);
+    shape.position = read_numbers<Vec3>(in);
+    shape.axes = read_numbers<Mat3>(in);
+    long count = -1;
+    if (!(in >> count) || count < 0 || count > 1000000) throw ModelError("a shape's vertex count is missing");
+    for (long k = 0; k < count; ++k) shape.vertices.push_back(read_numbers<Vec3>(in));
+    return shape;
   }
   throw ModelError("unknown value type '" + type + "'");
 }

@@ -21,7 +21,7 @@ from ..errors import ModelError
 from ..model import Model
 from .lines import Lines
 from .schema import (BODY, BOOL, CHOICES, ELEMENT_TABLES, FUNCTION, FUNCTION_PAIR, FUNCTION_TRIPLE,
-                     INERTIA, INTEGER, JOINT, MAX_NESTING, MAX_OUTPUTS, MAX_SCENE_BYTES, MAX_STEPS,
+                     INERTIA, INTEGER, JOINT, SHAPE, MAX_NESTING, MAX_OUTPUTS, MAX_SCENE_BYTES, MAX_STEPS,
                      NUMBER, NUMBERS, ORIENTATION, OUTPUT_FILE_TYPES, SETTINGS, STRING, STRINGS,
                      TABLES, VEC2, VEC3, VECTOR, elements, methods)
 from .values import show, toml_type
@@ -191,6 +191,15 @@ def _time_function(where, key, value):
     return f
 
 
+def _shape(where, key, value):
+    """An inline table holding a collision shape (Shape.to_dict; the model
+    checks its values)."""
+    if not isinstance(value, dict):
+        raise where.error("must be a shape { body = ..., kind = ..., size = [...], position = [...], "
+                          f"rotation = [[...], [...], [...]] }}, got {toml_type(value)} ({show(value)})", key)
+    return dict(value)
+
+
 # kind of value (schema.py) -> its check: (where, key, value) -> the value to use
 _CHECKS = {
     NUMBER: _number,
@@ -205,6 +214,7 @@ _CHECKS = {
     FUNCTION: _time_function,
     FUNCTION_PAIR: _function_pair,
     FUNCTION_TRIPLE: _function_triple,
+    SHAPE: _shape,
     NUMBERS: lambda where, key, value: _list_of(where, key, value, _number, "numbers"),
     STRINGS: lambda where, key, value: _list_of(where, key, value, _string, "strings"),
 }

@@ -29,6 +29,7 @@ INERTIA = "inertia"  # [Ixx, Iyy, Izz] or [[...], [...], [...]] (an inertia tens
 FUNCTION_TRIPLE = "function_triple"  # [fx, fy, fz], three numbers or time functions
 FUNCTION = "function"  # a number or a time function { type = "linear", rate = ..., ... }
 FUNCTION_PAIR = "function_pair"  # [fx, fy], two numbers or time functions
+SHAPE = "shape"  # { body = ..., kind = ..., size = [...], position = [...], rotation = [[...]] } (body axes)
 NUMBERS = "numbers"  # an array of numbers
 STRINGS = "strings"  # an array of strings
 
@@ -48,7 +49,8 @@ class Element(NamedTuple):
 # the kind of value a scene key takes, by the type of its parameter
 _VALUE_OF = {"text": STRING, "real": NUMBER, "vec2": VEC2, "bool": BOOL, "body": BODY, "joint": JOINT,
              "choice": STRING, "motion": FUNCTION, "function": FUNCTION, "function_pair": FUNCTION_PAIR,
-             "vec3": VEC3, "orientation": ORIENTATION, "inertia": INERTIA, "function_triple": FUNCTION_TRIPLE}
+             "vec3": VEC3, "orientation": ORIENTATION, "inertia": INERTIA, "function_triple": FUNCTION_TRIPLE,
+             "shape": SHAPE}
 
 
 def _element(kind):

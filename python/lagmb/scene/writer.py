@@ -57,7 +57,7 @@ def _named(value, names):
 
     if isinstance(value, Input) and id(value) in names:
         return Input(value.initial, names[id(value)])
-    if isinstance(value, tuple):
+    if type(value) is tuple:  # (a Shape, a tuple too, holds no inputs)
         return tuple(_named(v, names) for v in value)
     return value
 

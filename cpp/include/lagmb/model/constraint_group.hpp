@@ -55,7 +55,9 @@ struct has_coordinate<Kind, std::void_t<decltype(std::declval<const Kind&>().coo
 
 /// Per-run state of an element kind (any group): a kind that keeps values
 /// during a run (a contact's impact speed) declares
-///   static constexpr int run_state_size;   doubles per element
+///   static constexpr int run_state_size;   doubles per element (or, where an
+///                                          element's count varies, > 0 and
+///   int run_state_count() const;           the element's count)
 ///   int run_state = -1;                    its offset, set by the Model
 /// and reads them at run + run_state from the run's Data::run->state. The
 /// Model itself is never written during a run.
@@ -66,6 +68,21 @@ struct run_state_size_of<Kind, std::void_t<decltype(Kind::run_state_size)>>
     : std::integral_constant<int, Kind::run_state_size> {};
 template <class Kind>
 inline constexpr int run_state_size_v = run_state_size_of<Kind>::value;
+/// The doubles of run state one element holds: its run_state_count() where
+/// the kind has one (a spatial contact: one per contact point), else the
+/// kind's run_state_size.
+template <class Kind, class = void>
+struct has_run_state_count : std::false_type {};
+template <class Kind>
+struct has_run_state_count<Kind, std::void_t<decltype(std::declval<const Kind&>().run_state_count())>>
+    : std::true_type {};
+template <class Kind>
+int run_state_count(const Kind& element) {
+  if constexpr (has_run_state_count<Kind>::value)
+    return element.run_state_count();
+  else
+    return run_state_size_v<Kind>;
+}
 
 /// A kind that follows a function of time or an input (a driver, an
 /// actuated force) declares

@@ -6,7 +6,10 @@
 // with, in the local coordinates c and velocities cd of its two bodies (as in
 // constraint_group.hpp; the plane's 6 or, for a kind with `using Space =
 // Spatial;`, space's 14):
-//   static constexpr int roots;                event functions per element
+//   static constexpr int roots;                event functions per element, or
+//   int root_count() const                     where they vary by element (then
+//   void root_values(c, cd, t, double* g)      gives them all at once, for
+//                                              kinds that compute them together)
 //   static constexpr const char* kind;
 //   std::string name; int body_i, body_j;
 //   double root(r, c, cd, t)                   g_r
@@ -66,6 +69,12 @@ class EventGroupBase {
   virtual EventAction crossing(int k, int r, const double* q, const double* v, double t, double* run) const = 0;
 };
 
+/// Whether an event kind's elements have roots of their own number (root_count()).
+template <class Kind, class = void>
+struct has_root_count : std::false_type {};
+template <class Kind>
+struct has_root_count<Kind, std::void_t<decltype(std::declval<const Kind&>().root_count())>> : std::true_type {};
+
 template <class Kind>
 class EventGroup final : public EventGroupBase {
  public:
@@ -76,14 +85,25 @@ class EventGroup final : public EventGroupBase {
   const std::string& name(int k) const override { return items[k].name; }
   const char* kind() const override { return Kind::kind; }
   bool bounds_motion() const override { return Kind::bounds_motion; }
-  int roots(int) const override { return Kind::roots; }
+  int roots(int k) const override {
+    if constexpr (has_root_count<Kind>::value)
+      return items[k].root_count();
+    else
+      return Kind::roots;
+  }
   void place(const Model& model) override;
   const LocalCoords& coordinates(int k) const override { return coord_[k]; }
   void values(const double* q, const double* v, double t, double* g) const override {
     for (size_t k = 0; k < items.size(); ++k) {
       const auto c = gather_q<S>(q, coord_[k]);
       const auto cd = gather_v<S::local>(v, coord_[k]);
-      for (int r = 0; r < Kind::roots; ++r) g[k * Kind::roots + r] = items[k].root(r, c, cd, t);
+      if constexpr (has_root_count<Kind>::value) {
+        items[k].root_values(c, cd, t, g);
+        g += items[k].root_count();
+      } else {
+        for (int r = 0; r < Kind::roots; ++r) g[r] = items[k].root(r, c, cd, t);
+        g += Kind::roots;
+      }
     }
   }
   int direction(int k, int r) const override { return items[k].direction(r); }

@@ -102,7 +102,7 @@ class Model {
     if constexpr (run_state_size_v<Kind> > 0)
       if (element.run_state < 0) {
         element.run_state = run_state_size_;
-        run_state_size_ += run_state_size_v<Kind>;
+        run_state_size_ += run_state_count(element);
       }
   }
   /// Counts the turns of a spatial joint's angle in a run (joint_turns.hpp;

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "lagmb/collision/shape.hpp"
 #include "lagmb/time_function.hpp"
 #include "lagmb/types.hpp"
 
@@ -37,6 +38,7 @@ enum class ParamType {
   kOrientation,   // a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix
   kInertia,       // principal moments (Ixx, Iyy, Izz) or a 3 x 3 inertia tensor
   kFunctionTriple,  // (fx(t), fy(t), fz(t))
+  kShape,         // a collision shape on a body (collision/shape.hpp)
 };
 
 /// The body index of a kBody value (kGround for the ground).
@@ -47,7 +49,7 @@ struct BodyIndex {
 /// A parameter's value; std::monostate: absent (Python's None).
 using Value = std::variant<std::monostate, double, Vec2, bool, std::string, BodyIndex, TimeFunctionPtr,
                            std::pair<TimeFunctionPtr, TimeFunctionPtr>, Vec3, Vec4, Mat3,
-                           std::array<TimeFunctionPtr, 3>>;
+                           std::array<TimeFunctionPtr, 3>, CollisionShape>;
 
 /// One type of parameter, as the table of types (param_types()) lists it:
 /// its name where Python, scenes and docs name it, what a user gives, and
@@ -143,6 +145,7 @@ class Args {
   TimeFunctionPtr function(const std::string& key) const;  // null if None
   std::pair<TimeFunctionPtr, TimeFunctionPtr> function_pair(const std::string& key) const;
   std::array<TimeFunctionPtr, 3> function_triple(const std::string& key) const;
+  const CollisionShape& shape(const std::string& key) const;
 
   const KindInfo& kind() const { return *kind_; }
   const std::map<std::string, Value>& values() const { return values_; }
@@ -197,6 +200,8 @@ Param vec3(const std::string& name, Vec3 fallback, const std::string& unit, cons
 Param orientation(const std::string& name, const std::string& doc);
 Param inertia(const std::string& name, const std::string& doc);
 Param function_triple(const std::string& name, const std::string& unit, const std::string& doc);
+/// A collision shape (collision/shape.hpp) on a body of the model or the ground.
+Param shape(const std::string& name, const std::string& doc);
 }  // namespace param
 
 }  // namespace lagmb

@@ -39,6 +39,7 @@ struct Given {
   Given(std::string key, bool x) : key(std::move(key)), value(x) {}
   Given(std::string key, const char* text) : key(std::move(key)), value(std::string(text)) {}
   Given(std::string key, std::string text) : key(std::move(key)), value(std::move(text)) {}
+  Given(std::string key, CollisionShape shape) : key(std::move(key)), value(std::move(shape)) {}
   Given(std::string key, TimeFunctionPtr f) : key(std::move(key)), value(std::move(f)) {}
   Given(std::string key, TimeFunctionPtr fx, TimeFunctionPtr fy)
       : key(std::move(key)), value(std::make_pair(std::move(fx), std::move(fy))) {}

@@ -1,0 +1,243 @@
+// Contact between two collision shapes in space: a geometry of the
+// collision table (collision/pairs.hpp) gives the contact points, the
+// contact law (contact_law.hpp) their forces.
+#pragma once
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "lagmb/collision/pairs.hpp"
+#include "lagmb/elements/contact_law.hpp"
+#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/model/event_group.hpp"
+
+namespace lagmb {
+
+/// Shape a on body i, shape b on body j (or the ground), paired by the
+/// table's geometry into K contact points k, each with its gap g_k (< 0:
+/// penetration d_k = -g_k), rate g_k', point P_k and normal n_k (out of b
+/// towards a). At each point the law gives F_n,k = F_n(d_k, d_k', v_impact,k)
+/// and, with the slip velocity v_t = (I - n n^T)(v_i(P) - v_j(P)) of body i's
+/// material point over body j's,
+///   F_k = F_n,k n_k - mu F_n,k v_t / sqrt(|v_t|^2 + v_s^2)
+/// on body i at P_k and -F_k on body j. With F = sum F_k and the torques
+/// tau_i = sum (P_k - r_i) x F_k, tau_j = sum (P_k - r_j) x F_k:
+///   Q_ri = F,  Q_pi = 2 E(p_i)^T tau_i,  Q_rj = -F,  Q_pj = -2 E(p_j)^T tau_j
+/// (a torque n acts on p through 2 E(p)^T n, spatial.hpp). Q_c and Q_cd
+/// are exact: the same code over Dual<28> (c, cd). Broad phase: while the
+/// bounding spheres (a plane's half-space) are apart, Q = 0 and every event
+/// function reads their gap, a lower bound of each point's. Each point is an
+/// event function (its gap): onset (recording v_impact,k in the run's
+/// state) and release restart the integrator.
+struct SpatialContact {
+  using Space = Spatial;
+  static constexpr bool state_dependent = true;
+  static constexpr bool bounds_motion = false;  // g < 0 is contact, not a violation
+  static constexpr const char* kind = "spatial_contact";
+  // run[run_state + k]: v_impact (m/s) of point k's contact in progress
+  static constexpr int run_state_size = 1;
+  int run_state_count() const { return points; }
+  int run_state = -1;
+
+  std::string name;
+  int body_i = -1, body_j = -1;
+  CollisionShape shape_a, shape_b;  // on body i, body j
+  const collision::Pair* pair = nullptr;
+  int points = 0;
+  bool swapped = false;  // given as (b, a): readings are for the shape given first
+  ContactLaw law;
+
+  using Loc = spatial::Loc;
+
+  template <class T>
+  static void motions(const T* c, const T* cd, collision::Motion<T>& A, collision::Motion<T>& B) {
+    A.r = {c[0], c[1], c[2]};
+    A.rd = {cd[0], cd[1], cd[2]};
+    B.r = {c[7], c[8], c[9]};
+    B.rd = {cd[7], cd[8], cd[9]};
+    for (int k = 0; k < 4; ++k) {
+      A.p[k] = c[3 + k];
+      A.pd[k] = cd[3 + k];
+      B.p[k] = c[10 + k];
+      B.pd[k] = cd[10 + k];
+    }
+  }
+
+  /// The bounding spheres' gap (a plane: the sphere's height over it), a
+  /// lower bound of every point's gap; > 0: the shapes are apart.
+  double bounding_gap(const Loc& c) const {
+    const Vec3 Xa = c.head<3>() + euler::rotate(c.segment<4>(3), shape_a.position);
+    if (shape_b.kind == CollisionShape::kPlane) {
+      const Vec4 pb = c.segment<4>(10);
+      const Vec3 n = euler::rotate(pb, shape_b.axes.col(2));
+      return n.dot(Xa - c.segment<3>(7) - euler::rotate(pb, shape_b.position)) - shape_a.bounding_radius();
+    }
+    const Vec3 Xb = c.segment<3>(7) + euler::rotate(c.segment<4>(10), shape_b.position);
+    return (Xa - Xb).norm() - shape_a.bounding_radius() - shape_b.bounding_radius();
+  }
+
+  /// The contact points at (c, cd).
+  std::vector<collision::ContactPoint<double>> contact_points(const Loc& c, const Loc& cd) const {
+    collision::Motion<double> A, B;
+    motions(c.data(), cd.data(), A, B);
+    std::vector<collision::ContactPoint<double>> out(points);
+    pair->at(shape_a, shape_b, A, B, out.data());
+    return out;
+  }
+
+  /// Q at (c, cd) from the contact points `pts` (evaluated with the same numbers).
+  template <class T>
+  void generalized_force(const T* c, const T* cd, const collision::ContactPoint<T>* pts, const double* run,
+                         T* Q) const {
+    using collision::V3;
+    collision::Motion<T> A, B;
+    motions(c, cd, A, B);
+    V3<T> F, tau_i, tau_j;
+    for (int k = 0; k < points; ++k) {
+      const collision::ContactPoint<T>& p = pts[k];
+      const T Fn = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
+      if (!(value_of(Fn) > 0.0)) continue;
+      V3<T> Fk = Fn * p.normal;
+      if (law.friction > 0.0) {
+        const V3<T> v = A.velocity_at(p.point) - B.velocity_at(p.point);
+        const V3<T> vt = v - dot(v, p.normal) * p.normal;
+        Fk = Fk + law.friction_force(Fn, T(1.0), dot(vt, vt)) * vt;
+      }
+      F = F + Fk;
+      tau_i = tau_i + cross(p.point - A.r, Fk);
+      tau_j = tau_j + cross(p.point - B.r, Fk);
+    }
+    // 2 E(p)^T tau = 2 (-e . tau, e0 tau - e x tau)
+    auto torque = [](const T* p, const V3<T>& n, T sign, T* out) {
+      const V3<T> e(p[1], p[2], p[3]);
+      const V3<T> w = p[0] * n - cross(e, n);
+      out[0] = T(-2.0) * sign * dot(e, n);
+      out[1] = T(2.0) * sign * w.x;
+      out[2] = T(2.0) * sign * w.y;
+      out[3] = T(2.0) * sign * w.z;
+    };
+    Q[0] = F.x, Q[1] = F.y, Q[2] = F.z;
+    torque(A.p, tau_i, T(1.0), Q + 3);
+    Q[7] = -F.x, Q[8] = -F.y, Q[9] = -F.z;
+    torque(B.p, tau_j, T(-1.0), Q + 10);
+  }
+
+  Loc force(const Loc& c, const Loc& cd, double, const double* run) const {
+    Loc Q = Loc::Zero();
+    if (bounding_gap(c) > 0.0) return Q;
+    const auto pts = contact_points(c, cd);
+    generalized_force(c.data(), cd.data(), pts.data(), run, Q.data());
+    return Q;
+  }
+
+  void derivatives(const Loc& c, const Loc& cd, double, const double* run, spatial::Mat14& Q_c,
+                   spatial::Mat14& Q_cd) const {
+    Q_c.setZero();
+    Q_cd.setZero();
+    if (bounding_gap(c) > 0.0) return;
+    const auto values = contact_points(c, cd);
+    if (std::none_of(values.begin(), values.end(), [](const auto& p) { return p.gap < 0.0; })) return;
+    using D = collision::ContactDual;
+    D x[14], xd[14], Q[14];
+    for (int a = 0; a < 14; ++a) {
+      x[a] = D(c[a]);
+      x[a].d[a] = 1.0;
+      xd[a] = D(cd[a]);
+      xd[a].d[14 + a] = 1.0;
+    }
+    collision::Motion<D> A, B;
+    motions(x, xd, A, B);
+    std::vector<collision::ContactPoint<D>> pts(points);
+    pair->derivative(shape_a, shape_b, A, B, pts.data());
+    generalized_force(x, xd, pts.data(), run, Q);
+    for (int b = 0; b < 14; ++b) {
+      Q_c.row(b) = Q[b].d.head<14>().transpose();
+      Q_cd.row(b) = Q[b].d.tail<14>().transpose();
+    }
+  }
+
+  double potential(const Loc& c, double) const {
+    if (bounding_gap(c) > 0.0) return 0.0;
+    double V = 0.0;
+    for (const auto& p : contact_points(c, Loc::Zero())) V += law.potential(-p.gap);
+    return V;
+  }
+
+  /// The resultant of the points at (c, cd) (ContactReading; state slip
+  /// while any point presses: the regularized friction never sticks): the
+  /// normal force along the mean normal of the pressing points, the rest
+  /// of the force as friction, the point their centre of pressure
+  /// (sum F_n,k P_k / sum F_n,k), the deepest penetration and the fastest
+  /// slip among them; while open, the nearest point's gap and position.
+  ContactReading reading(const Loc& c, const Loc& cd, const double* run) const {
+    const auto pts = contact_points(c, cd);
+    collision::Motion<double> A, B;
+    motions(c.data(), cd.data(), A, B);
+    ContactReading r;
+    int nearest = 0;
+    for (int k = 1; k < points; ++k)
+      if (pts[k].gap < pts[nearest].gap) nearest = k;
+    r.penetration = -pts[nearest].gap;
+    r.point = pts[nearest].point.value();
+    r.normal = pts[nearest].normal.value();
+    Vec3 F = Vec3::Zero(), normal = Vec3::Zero(), centre = Vec3::Zero();
+    double pressing = 0.0, slip = 0.0;
+    for (int k = 0; k < points; ++k) {
+      const auto& p = pts[k];
+      const double Fn = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
+      if (!(Fn > 0.0)) continue;
+      const Vec3 n = p.normal.value();
+      const Vec3 v = (A.velocity_at(p.point) - B.velocity_at(p.point)).value();
+      const Vec3 vt = v - v.dot(n) * n;
+      F += Fn * n + law.friction_force(Fn, 1.0, vt.squaredNorm()) * vt;
+      normal += Fn * n;
+      centre += Fn * p.point.value();
+      pressing += Fn;
+      slip = std::max(slip, vt.norm());
+    }
+    if (pressing > 0.0) {
+      r.normal = normal.normalized();
+      r.normal_force = F.dot(r.normal);
+      r.friction_force = F - r.normal_force * r.normal;
+      r.point = centre / pressing;
+      r.slip_speed = slip;
+      r.state = ContactReading::kSlip;
+    } else {
+      const Vec3 n = r.normal, v = (A.velocity_at(pts[nearest].point) - B.velocity_at(pts[nearest].point)).value();
+      r.slip_speed = (v - v.dot(n) * n).norm();
+    }
+    if (swapped) {  // for the shape given first: the force on it, the normal towards it
+      r.normal = -r.normal;
+      r.friction_force = -r.friction_force;
+    }
+    return r;
+  }
+
+  // events: each point's gap
+  int root_count() const { return points; }
+  void root_values(const Loc& c, const Loc& cd, double, double* g) const {
+    const double apart = bounding_gap(c);
+    if (apart > 0.0) {
+      std::fill(g, g + points, apart);
+      return;
+    }
+    const auto pts = contact_points(c, cd);
+    for (int k = 0; k < points; ++k) g[k] = pts[k].gap != 0.0 ? pts[k].gap : -1e-300;
+  }
+  int direction(int) const { return 0; }
+  EventAction crossing(int k, const Loc& c, const Loc& cd, double, double* run) const {
+    EventAction a;
+    a.type = EventAction::kRestart;
+    a.speed = contact_points(c, cd)[k].gap_rate;
+    if (a.speed < 0.0) {
+      run[run_state + k] = -a.speed;
+      a.label = "onset";
+    } else {
+      a.label = "release";
+    }
+    return a;
+  }
+};
+
+}  // namespace lagmb

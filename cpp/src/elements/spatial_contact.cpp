@@ -1,0 +1,59 @@
+// Contact between collision shapes in space: how users add one (registry.hpp).
+#include "lagmb/elements/spatial_contact.hpp"
+
+#include <utility>
+
+#include "elements/build.hpp"
+
+namespace lagmb {
+
+namespace {
+
+/// Finds the pair's geometry in the collision table (the shapes swapped
+/// where the table has them the other way round) and adds the element to
+/// the forces and the events, sharing one offset of run state.
+void build_spatial_contact(Model& m, const std::string& name, const Args& a) {
+  const std::string label = build::label(a, name);
+  CollisionShape sa = a.shape("shape_a"), sb = a.shape("shape_b");
+  sa.check(label + ": shape_a");
+  sb.check(label + ": shape_b");
+  bool swapped = false;
+  const collision::Pair* pair = collision::find_pair(sa.kind, sb.kind);
+  if (!pair && (pair = collision::find_pair(sb.kind, sa.kind))) {
+    std::swap(sa, sb);
+    swapped = true;
+  }
+  if (!pair)
+    throw ModelError(label + ": lagmb has no contact between a " + shape_kind_name(sa.kind) + " and a " +
+                     shape_kind_name(sb.kind) + " (the pairs: " + collision::known_pairs() + ")");
+  SpatialContact c = build::joining<SpatialContact>(m, name, sa.body, sb.body);
+  c.shape_a = std::move(sa);
+  c.shape_b = std::move(sb);
+  c.pair = pair;
+  c.swapped = swapped;
+  c.points = pair->points(c.shape_a, c.shape_b);
+  c.law = build::contact_law(a, label);
+  m.reserve_run_state(c);  // one offset for both entries of the same contact
+  m.add_event_element(c, false);
+  m.add_force_element(std::move(c));
+}
+
+}  // namespace
+
+KindInfo spatial_contact_kind() {
+  KindInfo k = build::in_space(
+      {"spatial_contact", "add_contact", "forces", "contact", Role::kContact,
+       "Contact between two collision shapes (Model.add_shape) on different bodies (or one on the ground): "
+       "the pair's geometry gives contact points (a sphere 1, a capsule's ends 2, a box's corners 8, a "
+       "convex hull's vertices), each with penetration d > 0 pressed by k d^1.5 (1 + 8 (1 - e) / (5 e) d' / "
+       "v_impact) along the normal (Hunt-Crossley damping calibrated to the restitution e, Flores et al. "
+       "2011; v_impact the approach speed at the point's onset) and Coulomb friction -mu F_n v_t / "
+       "sqrt(|v_t|^2 + v_s^2) against the slip velocity v_t in the tangent plane. Each point's onset and "
+       "release is an event (Result.events) where the integrator restarts.",
+       {param::shape("shape_a", "the first shape"), param::shape("shape_b", "the second shape")},
+       build_spatial_contact});
+  for (Param& p : build::contact_law_params()) k.params.push_back(std::move(p));
+  return k;
+}
+
+}  // namespace lagmb

@@ -1,0 +1,363 @@
+"""Contact between collision shapes in space (Model.add_contact with two
+Shapes): the collision table's pairs under the one contact law.
+
+References (closed forms, and SciPy for the law alone):
+- Hertz impact (no damping, F = k d^1.5): peak penetration
+  (5 m v^2 / (4 k))^(2/5); contact time 2 (d_max / v) int_0^1 (1 - x^2.5)^-1/2 dx
+  = 2 (5/4)^(2/5) (2/5) B(2/5, 1/2) (m/k)^(2/5) v^(-1/5) = 3.2181 ...;
+- with restitution e: the rebound ratio of the law alone (SciPy LSODA,
+  test_contact.law_rebound), the same law as the planar contact's;
+- a block pushed along a floor stops after v0^2 / (2 mu g);
+- a solid sphere (J = 2/5 m R^2) on an incline rolls on R - d0 (d0 its
+  static penetration) with a = g sin(alpha) / (1 + J / (m (R - d0)^2)),
+  creeping at a constant slip speed below v_s;
+- a sphere thrown flat without spin slips until t* = v0 / (mu g (1 + m (R -
+  d0)^2 / J)) (2 v0 / (7 mu g) on a rigid floor), then rolls at v* = v0 /
+  (1 + J / (m (R - d0)^2)) (5 v0 / 7);
+- Hertz statics: a body of weight W on n equal points sinks (W / (n k))^(2/3);
+- derivatives: central differences of Q.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.special import beta
+
+import lagmb as mb
+from test_contact import law_rebound
+
+G = 9.81
+
+
+def rotation_y(angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def ball_over_floor(v=1.0, gap=1e-3, R=0.1, k=1e7, e=1.0, mu=0.0, gravity=0.0, vx=0.0, mass=1.0, plane_first=False):
+    m = mb.Model(gravity=(0.0, 0.0, -gravity), dimension=3)
+    centre = (0.0, 0.0, R + gap)
+    m.add_body("ball", mass=mass, inertia=(0.4 * mass * R * R,) * 3, position=centre, velocity=(vx, 0.0, -v))
+    floor = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), role="collision")
+    ball = m.add_shape("ball", "sphere", (R,), centre, role="collision")
+    shapes = (floor, ball) if plane_first else (ball, floor)
+    m.add_contact("hit", *shapes, stiffness=k, restitution=e, friction=mu)
+    return m
+
+
+def hertz_time(m, k, v):
+    return 2.0 * 1.25**0.4 * 0.4 * beta(0.4, 0.5) * (m / k) ** 0.4 * v**-0.2
+
+
+def test_hertz_impact_peak_and_duration():
+    """A sphere hits a plane at 1 m/s without damping or gravity: its peak
+    penetration and its contact time are Hertz's to 1e-6, and it leaves at
+    the speed it came (1e-6: nothing gained)."""
+    mass, k, v = 1.0, 1e7, 1.0
+    r = mb.simulate(ball_over_floor(v, k=k), 0.01, rtol=1e-10, atol=1e-12, n_out=4001)
+    onset, release = r.events
+    assert (onset["label"], release["label"]) == ("onset", "release")
+    assert abs(onset["t"] - 1e-3 / v) <= 1e-12
+    assert abs((release["t"] - onset["t"]) / hertz_time(mass, k, v) - 1.0) <= 1e-6
+    peak = (5.0 * mass * v * v / (4.0 * k)) ** 0.4
+    assert abs(r.contact("hit").penetration.max() / peak - 1.0) <= 1e-6
+    assert abs(r.body("ball").velocity[-1, 2] - v) <= 1e-6 * v
+
+
+def test_shapes_given_either_way_round():
+    """The plane given first: the same motion; the reading is for the shape
+    given first (the plane): the force on it points down, its normal too."""
+    a = mb.simulate(ball_over_floor(mu=0.3, vx=0.5), 0.01, rtol=1e-9, atol=1e-11, n_out=101)
+    b = mb.simulate(ball_over_floor(mu=0.3, vx=0.5, plane_first=True), 0.01, rtol=1e-9, atol=1e-11, n_out=101)
+    assert np.array_equal(a.q, b.q)
+    ca, cb = a.contact("hit"), b.contact("hit")
+    assert np.array_equal(ca.normal_force, cb.normal_force)
+    assert np.array_equal(ca.normal, -cb.normal) and np.array_equal(ca.friction_force, -cb.friction_force)
+    pressing = ca.normal_force > 0
+    assert pressing.any() and np.all(ca.normal[pressing] == (0.0, 0.0, 1.0))
+
+
+def test_rebound_ratio_is_the_laws():
+    """With e = 0.8 the sphere leaves at the rebound ratio of the law alone
+    (the same law as the planar contact: 0.986 e) to 1e-6."""
+    e, k, v = 0.8, 1e7, 1.0
+    r = mb.simulate(ball_over_floor(v, k=k, e=e), 0.01, rtol=1e-10, atol=1e-12)
+    assert abs(r.body("ball").velocity[-1, 2] / v - law_rebound(e, k, v)) <= 1e-6
+
+
+def test_bouncing_ball_impact_times():
+    """Dropped from a 0.5 m gap: first onset at sqrt(2 h / g) (1e-9 s); the
+    second at the onset plus the contact plus the flight 2 v_out / g of its
+    rebound speed (1e-6 s)."""
+    h = 0.5
+    r = mb.simulate(ball_over_floor(v=0.0, gap=h, k=1e8, e=0.9, gravity=G), 1.2, rtol=1e-10, atol=1e-12)
+    onsets = [x for x in r.events if x["label"] == "onset"]
+    releases = [x for x in r.events if x["label"] == "release"]
+    assert abs(onsets[0]["t"] - math.sqrt(2 * h / G)) <= 1e-9
+    assert abs(onsets[1]["t"] - (releases[0]["t"] + 2 * releases[0]["speed_before"] / G)) <= 1e-6
+
+
+def sliding_block(v0=1.0, mu=0.3, a=0.2, k=1e8, mass=1.0, t_push=0.0):
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    d0 = (mass * G / (4 * k)) ** (2.0 / 3.0)  # on its four lower corners
+    centre = (0.0, 0.0, a / 2 - d0)
+    m.add_body("block", mass=mass, inertia=(mass * a * a / 6,) * 3, position=centre, velocity=(v0, 0.0, 0.0))
+    floor = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), role="collision")
+    block = m.add_shape("block", "box", (a, a, a), centre, role="collision")
+    m.add_contact("floor", block, floor, stiffness=k, restitution=0.5, friction=mu)
+    return m, d0
+
+
+def test_block_slides_to_rest_after_v0_squared_over_2_mu_g():
+    """A cube pushed along a floor at 1 m/s (mu 0.3) on its four lower
+    corners stops after v0^2 / (2 mu g) to 0.1 % (measured 1e-5), level
+    and at its Hertz height; the floor carries its weight."""
+    v0, mu = 1.0, 0.3
+    m, d0 = sliding_block(v0, mu)
+    r = mb.simulate(m, 0.5, rtol=1e-8, atol=1e-10, n_out=51)
+    x = r.body("block").position
+    assert abs(x[-1, 0] / (v0**2 / (2 * mu * G)) - 1.0) <= 1e-3
+    assert abs(x[-1, 1]) <= 1e-12 and abs(x[-1, 2] - (0.1 - d0)) <= 1e-9
+    c = r.contact("floor")
+    assert abs(c.normal_force[-1] - G) <= 1e-6 * G
+    assert np.all(c.state[1:] == "slip")
+
+
+def incline_ball(alpha, mu=0.5, R=0.1, mass=1.0, k=1e7, v0=0.0):
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    axes = rotation_y(-alpha)  # the plane's normal tilted towards -x: downhill is -x
+    d0 = (mass * G * math.cos(alpha) / k) ** (2.0 / 3.0)
+    centre = (R - d0) * axes[:, 2]
+    m.add_body("ball", mass=mass, inertia=(0.4 * mass * R * R,) * 3, position=tuple(centre),
+               velocity=tuple(v0 * axes[:, 0]))
+    slope = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), axes, role="collision")
+    ball = m.add_shape("ball", "sphere", (R,), tuple(centre), role="collision")
+    m.add_contact("slope", ball, slope, stiffness=k, restitution=0.5, friction=mu)
+    return m, axes, centre, d0
+
+
+def test_sphere_rolls_down_an_incline():
+    """A solid sphere on a 20 degree slope rolls with g sin(alpha) / (1 + 2
+    R^2 / (5 (R - d0)^2)) to 1e-7 (fitted over its second half second)."""
+    alpha, R = math.radians(20.0), 0.1
+    m, axes, centre, d0 = incline_ball(alpha, R=R)
+    r = mb.simulate(m, 1.0, rtol=1e-10, atol=1e-12, n_out=1001)
+    s = (r.body("ball").position - centre) @ axes[:, 0]
+    late = r.t > 0.5
+    fit = np.polyfit(r.t[late], s[late], 2)
+    a = -2.0 * fit[0]
+    assert abs(a / (G * math.sin(alpha) / (1 + 2 * R * R / (5 * (R - d0) ** 2))) - 1.0) <= 1e-7
+    assert r.contact("slope").slip_speed[-1] < 1e-4  # creeping below v_s
+
+
+def test_sphere_thrown_without_spin_rolls_from_t_star_at_five_sevenths():
+    """Thrown flat at 2 m/s without spin: it slips until t* = v0 / (mu g (1
+    + 5 (R - d0)^2 / (2 R^2))) and then rolls at v0 / (1 + 2 R^2 / (5 (R -
+    d0)^2)) (5 v0 / 7 on a rigid floor), each to 1e-4."""
+    v0, mu, R, k = 2.0, 0.2, 0.1, 1e8
+    m, axes, centre, d0 = incline_ball(0.0, mu=mu, R=R, k=k, v0=v0)
+    r = mb.simulate(m, 1.0, rtol=1e-10, atol=1e-12, n_out=2001)
+    t_star = v0 / (mu * G * (1 + 5 * (R - d0) ** 2 / (2 * R * R)))
+    v_star = v0 / (1 + 2 * R * R / (5 * (R - d0) ** 2))
+    slip = r.contact("slope").slip_speed
+    early = (r.t > 0.05) & (r.t < 0.9 * t_star)  # slipping fast: the friction is mu F_n to (v_s / v)^2
+    fit = np.polyfit(r.t[early], slip[early], 1)
+    assert abs(-fit[1] / fit[0] / t_star - 1.0) <= 1e-4
+    assert abs(r.body("ball").velocity[-1, 0] / v_star - 1.0) <= 1e-4
+    assert abs(v_star / (5 * v0 / 7) - 1.0) < 1e-3
+
+
+def test_box_dropped_flat_comes_to_rest_level():
+    """A box dropped flat from 1 cm onto a plane (e = 0.5, mu = 0.5): at rest
+    after 1 s, level (tilt below 1e-9 rad), without drift (1e-12 m), at its
+    Hertz height (1e-9 m)."""
+    a, mass, k = (0.3, 0.2, 0.1), 2.0, 1e8
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    centre = (0.0, 0.0, a[2] / 2 + 0.01)
+    m.add_body("box", mass=mass, inertia=(0.01, 0.02, 0.025), position=centre)
+    floor = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), role="collision")
+    box = m.add_shape("box", "box", a, centre, role="collision")
+    m.add_contact("floor", box, floor, stiffness=k, restitution=0.5, friction=0.5)
+    r = mb.simulate(m, 1.0, rtol=1e-9, atol=1e-11, n_out=11)
+    body = r.body("box")
+    tilt = np.arccos(np.clip(body.rotation[-1][2, 2], -1.0, 1.0))
+    assert tilt <= 1e-9
+    assert np.max(np.abs(body.position[:, :2])) <= 1e-12
+    assert abs(body.position[-1, 2] - (a[2] / 2 - (mass * G / (4 * k)) ** (2 / 3))) <= 1e-9
+    assert np.linalg.norm(body.velocity[-1]) <= 1e-6
+    assert len([x for x in r.events if x["label"] == "onset"]) >= 4
+
+
+def spheres_and_friends(kind_b, size_b, centre_b=(0.0, 0.0, 0.0), centre_a=(0.15, 0.02, 0.1)):
+    """A sphere (radius 0.1) pressed into a shape on a second free body."""
+    m = mb.Model(gravity=(0.0, 0.0, 0.0), dimension=3)
+    m.add_body("a", mass=1.5, inertia=(0.01, 0.012, 0.014), position=centre_a)
+    m.add_body("b", mass=3.0, inertia=(0.03, 0.02, 0.025), position=centre_b,
+               orientation=tuple(np.array([0.95, 0.1, -0.2, 0.2]) / np.linalg.norm([0.95, 0.1, -0.2, 0.2])))
+    sa = m.add_shape("a", "sphere", (0.1,), centre_a, role="collision")
+    sb = m.add_shape("b", kind_b, size_b, centre_b, np.eye(3), role="collision")
+    m.add_contact("touch", sa, sb, stiffness=1e6, restitution=0.95, friction=0.4, slip_velocity=0.05)
+    return m
+
+
+@pytest.mark.parametrize("kind, size, centre_a", [
+    ("sphere", (0.12,), (0.15, 0.02, 0.1)),
+    ("capsule", (0.05, 0.3), (0.1, 0.05, 0.1)),
+    ("box", (0.2, 0.3, 0.25), (0.12, 0.05, 0.1)),
+    ("plane", (), (0.02, 0.03, 0.08)),
+])
+def test_contact_derivatives_match_finite_differences(kind, size, centre_a):
+    """Q_q and Q_v of a sphere pressed into each kind of shape on a second
+    moving body (both turning, slipping near the smoothing speed; slow
+    enough that the damping, at the least impact speed a contact outside a
+    run has, does not cancel the force), against central differences of Q
+    (h = 1e-6), to 1e-6 of the largest entry."""
+    core = spheres_and_friends(kind, size, centre_a=centre_a).compiled()
+    q, _ = core.initial_state()
+    rng = np.random.default_rng(7)
+    v = 0.01 * rng.standard_normal(q.size)
+    Q, Qq, Qv = core.forces(q, v, 0.0)
+    assert np.max(np.abs(Q)) > 10.0  # the contact is active
+    h = 1e-6
+    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
+        fd = np.zeros_like(Jac)
+        for j in range(q.size):
+            dx = np.zeros(q.size)
+            dx[j] = h
+            if wrt == "q":
+                fd[:, j] = (core.forces(q + dx, v, 0.0)[0] - core.forces(q - dx, v, 0.0)[0]) / (2 * h)
+            else:
+                fd[:, j] = (core.forces(q, v + dx, 0.0)[0] - core.forces(q, v - dx, 0.0)[0]) / (2 * h)
+        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+
+
+def test_box_corners_derivatives_match_finite_differences():
+    """A tilted box pressed into a plane on a moving body: Q_q and Q_v
+    against central differences (1e-6 of the largest entry)."""
+    m = mb.Model(gravity=(0.0, 0.0, 0.0), dimension=3)
+    m.add_body("box", mass=1.0, inertia=(0.01, 0.01, 0.01), position=(0.0, 0.0, 0.09),
+               orientation=tuple(np.array([0.98, 0.1, 0.15, 0.05]) / np.linalg.norm([0.98, 0.1, 0.15, 0.05])))
+    m.add_body("table", mass=5.0, inertia=(0.1, 0.1, 0.1), position=(0.0, 0.0, -0.05))
+    box = m.add_shape("box", "box", (0.2, 0.2, 0.2), (0.0, 0.0, 0.09), role="collision")
+    top = m.add_shape("table", "plane", (), (0.0, 0.0, 0.0), rotation_y(0.1), role="collision")
+    m.add_contact("rest", box, top, stiffness=1e6, restitution=0.95, friction=0.3, slip_velocity=0.05)
+    core = m.compiled()
+    q, _ = core.initial_state()
+    v = 0.01 * np.random.default_rng(2).standard_normal(q.size)
+    Q, Qq, Qv = core.forces(q, v, 0.0)
+    assert np.max(np.abs(Q)) > 10.0
+    h = 1e-6
+    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
+        fd = np.zeros_like(Jac)
+        for j in range(q.size):
+            dx = np.zeros(q.size)
+            dx[j] = h
+            args = ((q + dx, v), (q - dx, v)) if wrt == "q" else ((q, v + dx), (q, v - dx))
+            fd[:, j] = (core.forces(*args[0], 0.0)[0] - core.forces(*args[1], 0.0)[0]) / (2 * h)
+        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+
+
+def test_apart_shapes_add_nothing():
+    """Shapes 1 m apart: Q is gravity alone, its derivatives zero, no
+    potential energy (exactly)."""
+    m = ball_over_floor(gap=1.0, gravity=G)
+    core = m.compiled()
+    q, v = core.initial_state()
+    Q, Qq, Qv = core.forces(q, v, 0.0)
+    assert np.array_equal(Q[:3], [0.0, 0.0, -G]) and not np.any(Q[3:])
+    assert not np.any(Qq.toarray() if hasattr(Qq, "toarray") else Qq)
+    assert not np.any(Qv.toarray() if hasattr(Qv, "toarray") else Qv)
+
+
+def test_equal_spheres_exchange_their_velocities():
+    """Two equal spheres meet head on (e = 1, no friction): they exchange
+    their velocities to 1e-6, momentum kept to 1e-12."""
+    m = mb.Model(gravity=(0.0, 0.0, 0.0), dimension=3)
+    for name, x, v in (("left", -0.15, 1.0), ("right", 0.15, -0.5)):
+        m.add_body(name, mass=2.0, inertia=(0.008,) * 3, position=(x, 0.0, 0.0), velocity=(v, 0.0, 0.0))
+    a = m.add_shape("left", "sphere", (0.1,), (-0.15, 0.0, 0.0), role="collision")
+    b = m.add_shape("right", "sphere", (0.1,), (0.15, 0.0, 0.0), role="collision")
+    m.add_contact("meet", a, b, stiffness=1e7, restitution=1.0)
+    r = mb.simulate(m, 0.2, rtol=1e-10, atol=1e-12, n_out=3)
+    left, right = r.body("left").velocity[-1], r.body("right").velocity[-1]
+    assert abs(left[0] + 0.5) <= 1e-6 and abs(right[0] - 1.0) <= 1e-6
+    assert abs(2.0 * (left[0] + right[0]) - 1.0) <= 1e-12
+
+
+@pytest.mark.parametrize("kind, size, offset", [("capsule", (0.05, 0.4), 0.05), ("box", (0.4, 0.4, 0.1), 0.05)])
+def test_sphere_rests_on_a_capsule_and_a_box_at_the_hertz_height(kind, size, offset):
+    """A sphere dropped onto a capsule lying on the ground (its side) and
+    onto a box's top face comes to rest at the Hertz static height (1e-9 m)."""
+    R, mass, k = 0.05, 0.5, 1e7
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    axes = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])  # the capsule's z along x
+    top = offset + R + 0.002
+    centre = (0.03, 0.0 if kind == "capsule" else 0.01, top)  # (on the capsule's crest: off it, it slides off)
+    m.add_body("ball", mass=mass, inertia=(0.4 * mass * R * R,) * 3, position=centre)
+    ball = m.add_shape("ball", "sphere", (R,), centre, role="collision")
+    below = m.add_shape("ground", kind, size, (0.0, 0.0, 0.0), axes if kind == "capsule" else None, role="collision")
+    m.add_contact("rest", ball, below, stiffness=k, restitution=0.3, friction=0.0)
+    r = mb.simulate(m, 1.5, rtol=1e-9, atol=1e-11, n_out=3)
+    z = r.body("ball").position[-1, 2]
+    assert abs(z - (offset + R - (mass * G / k) ** (2 / 3))) <= 1e-9
+
+
+def test_bad_contacts_are_rejected():
+    """A pair the table does not have names both kinds and lists the pairs;
+    a visual shape, a shape of a planar model's kind, bad law values and
+    two shapes on one body are ModelErrors naming the contact."""
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    m.add_body("b", mass=1.0, inertia=(0.01,) * 3, position=(0.0, 0.0, 1.0))
+    m.add_body("c", mass=1.0, inertia=(0.01,) * 3, position=(0.0, 0.0, 2.0))
+    box = m.add_shape("b", "box", (0.1, 0.1, 0.1), (0.0, 0.0, 1.0), role="collision")
+    box2 = m.add_shape("c", "box", (0.1, 0.1, 0.1), (0.0, 0.0, 2.0), role="collision")
+    ball = m.add_shape("c", "sphere", (0.1,), (0.0, 0.0, 2.0), role="collision")
+    ball_b = m.add_shape("b", "sphere", (0.1,), (0.0, 0.0, 1.0), role="collision")
+    seen = m.add_shape("b", "sphere", (0.1,), (0.0, 0.0, 1.0))
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    with pytest.raises(mb.ModelError, match="'boxes'.*no contact between a box and a box.*sphere-plane"):
+        m.add_contact("boxes", box, box2, stiffness=1e6, restitution=0.5)
+    with pytest.raises(mb.ModelError, match="role 'visual'"):
+        m.add_contact("seen", seen, floor, stiffness=1e6, restitution=0.5)
+    with pytest.raises(mb.ModelError, match="'same'.*"):
+        m.add_contact("same", box, ball_b, stiffness=1e6, restitution=0.5)
+    for key, value, message in (("stiffness", -1.0, "stiffness"), ("restitution", 0.0, "restitution"),
+                                ("friction", -0.1, "friction"), ("slip_velocity", 0.0, "slip_velocity")):
+        law = dict(stiffness=1e6, restitution=0.5)
+        law[key] = value
+        with pytest.raises(mb.ModelError, match=f"'bad'.*{message}"):
+            m.add_contact("bad", ball, floor, **law)
+    with pytest.raises(mb.ModelError, match="must be a Shape"):
+        m.add_contact("none", "b", floor, stiffness=1e6, restitution=0.5)
+    for kind, size in (("plane", (1.0,)), ("capsule", (0.1, -1.0)), ("sphere", (0.0,))):
+        with pytest.raises(mb.ModelError, match=f"a {kind}'s size"):
+            m.add_shape("b", kind, size, role="collision")
+
+
+def test_contact_round_trips_through_text_and_scene(tmp_path):
+    """The model as text (what an FMU carries) and as a scene file gives the
+    same run, to the bit."""
+    m = ball_over_floor(mu=0.3, vx=0.5, gravity=G)
+    r = mb.simulate(m, 0.02, rtol=1e-8, atol=1e-10, n_out=5)
+    again = mb.Model.from_text(m.to_text())
+    assert np.array_equal(mb.simulate(again, 0.02, rtol=1e-8, atol=1e-10, n_out=5).q, r.q)
+    path = tmp_path / "ball.toml"
+    mb.save_scene(m, path)
+    scene = mb.load_scene(path)
+    assert np.array_equal(mb.simulate(scene.model, 0.02, rtol=1e-8, atol=1e-10, n_out=5).q, r.q)
+    assert sorted(s.kind for s in scene.model.shapes) == ["plane", "sphere"]  # drawn too
+
+
+def test_no_energy_gained_in_elastic_bounces():
+    """A frictionless elastic ball bouncing for 2 s: its energy at each
+    output outside contact stays within 1e-7 of the start, never above it
+    by more than that."""
+    m = ball_over_floor(v=0.0, gap=0.3, k=1e7, e=1.0, gravity=G)
+    r = mb.simulate(m, 2.0, rtol=1e-10, atol=1e-12, n_out=2001)
+    E0 = G * (0.1 + 0.3)
+    z, v = r.body("ball").position[:, 2], r.body("ball").velocity
+    E = G * z + 0.5 * np.sum(v * v, axis=1)
+    free = r.contact("hit").penetration < 0  # (in contact the law's potential holds the rest)
+    assert np.max(E[free] - E0) <= 1e-7 * E0
+    assert len([x for x in r.events if x["label"] == "onset"]) >= 4
