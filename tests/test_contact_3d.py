@@ -112,16 +112,102 @@ def sliding_block(v0=1.0, mu=0.3, a=0.2, k=1e8, mass=1.0, t_push=0.0):
 def test_block_slides_to_rest_after_v0_squared_over_2_mu_g():
     """A cube pushed along a floor at 1 m/s (mu 0.3) on its four lower
     corners stops after v0^2 / (2 mu g) to 0.1 % (measured 1e-5), level
-    and at its Hertz height; the floor carries its weight."""
+    and at its Hertz height, and sticks there (one "stick" event, at v0 /
+    (mu g) to 1e-4 s); the floor carries its weight and holds no friction."""
     v0, mu = 1.0, 0.3
     m, d0 = sliding_block(v0, mu)
     r = mb.simulate(m, 0.5, rtol=1e-8, atol=1e-10, n_out=51)
     x = r.body("block").position
     assert abs(x[-1, 0] / (v0**2 / (2 * mu * G)) - 1.0) <= 1e-3
     assert abs(x[-1, 1]) <= 1e-12 and abs(x[-1, 2] - (0.1 - d0)) <= 1e-9
+    (stick,) = r.events
+    assert (stick["kind"], stick["label"]) == ("friction", "stick") and abs(stick["t"] - v0 / (mu * G)) <= 1e-4
     c = r.contact("floor")
-    assert abs(c.normal_force[-1] - G) <= 1e-6 * G
-    assert np.all(c.state[1:] == "slip")
+    assert abs(c.normal_force[-1] - G) <= 1e-6 * G and np.linalg.norm(c.friction_force[-1]) <= 1e-6
+    stuck = r.t > stick["t"]
+    assert np.all(c.state[stuck] == "stick") and np.all(c.state[1:][~stuck[1:]] == "slip")
+
+
+def block_on_slope(alpha, mu=0.5, static_friction=None, a=0.2, mass=1.0, k=1e8):
+    """A cube resting on a slope of angle alpha (on its four lower corners
+    at their Hertz depth), downhill along -x."""
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    axes = rotation_y(-alpha)
+    d0 = (mass * G * math.cos(alpha) / (4 * k)) ** (2.0 / 3.0)
+    centre = (a / 2 - d0) * axes[:, 2]
+    m.add_body("block", mass=mass, inertia=(mass * a * a / 6,) * 3, position=tuple(centre), orientation=axes)
+    slope = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), axes, role="collision")
+    block = m.add_shape("block", "box", (a, a, a), tuple(centre), axes, role="collision")
+    m.add_contact("slope", block, slope, stiffness=k, restitution=0.5, friction=mu, static_friction=static_friction)
+    return m, axes, centre
+
+
+def test_block_on_an_incline_below_its_friction_angle_sticks():
+    """A cube on a 20 degree slope (mu 0.5, tan 20 deg = 0.36) sticks from
+    the start: after settling (0.5 s) it moves less than 1e-9 m in 9.5 s
+    (measured 0), the friction its rows hold is m g sin(alpha) up the slope
+    (1e-6 relative), and every output reads "stick"."""
+    alpha = math.radians(20.0)
+    m, axes, centre = block_on_slope(alpha)
+    r = mb.simulate(m, 10.0, rtol=1e-8, atol=1e-10, n_out=101)
+    settled = r.body("block").position[r.t >= 0.5]
+    assert np.max(np.linalg.norm(settled - settled[0], axis=1)) < 1e-9
+    assert [(x["t"], x["label"]) for x in r.events] == [(0.0, "stick")]
+    c = r.contact("slope")
+    assert np.all(c.state == "stick")
+    assert np.allclose(c.friction_force[-1], G * math.sin(alpha) * axes[:, 0], rtol=0, atol=1e-6 * G)
+    assert abs(c.normal_force[-1] - G * math.cos(alpha)) <= 1e-6 * G
+
+
+def test_block_on_an_incline_above_its_friction_angle_slides():
+    """On a 30 degree slope (mu 0.5 < tan 30 deg) the cube lets go at once
+    and slides with g (sin(alpha) - mu cos(alpha)) to 1e-6 (fitted over its
+    second half second; the regularized friction at 0.3 m/s and v_s = 1e-4
+    m/s is mu F_n to 1e-7)."""
+    alpha, mu = math.radians(30.0), 0.5
+    m, axes, centre = block_on_slope(alpha, mu)
+    r = mb.simulate(m, 1.0, rtol=1e-9, atol=1e-11, n_out=201)
+    s = (r.body("block").position - centre) @ axes[:, 0]
+    late = r.t > 0.5
+    a = -2.0 * np.polyfit(r.t[late], s[late], 2)[0]
+    assert abs(a / (G * (math.sin(alpha) - mu * math.cos(alpha))) - 1.0) <= 1e-6
+    assert [x["label"] for x in r.events[:2]] == ["stick", "slip"] and r.events[1]["t"] < 1e-3
+    assert r.contact("slope").state[-1] == "slip"
+
+
+def test_a_force_ramp_breaks_a_stuck_block_loose_at_mu_s_times_its_weight():
+    """A cube stuck on a floor (mu_s 0.5, mu 0.3) pushed at its base by F =
+    c t: it lets go at t = mu_s m g / c (to 1e-8 s; measured 7e-12 s) and
+    then slides with (c t - mu m g) / m, its speed within v_s of that (the
+    regularized friction starts from 0 and reaches mu F_n past v_s: the
+    block gains 6e-5 m/s meanwhile)."""
+    mu, mu_s, c, a, k = 0.3, 0.5, 1.0, 0.2, 1e8
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    d0 = (G / (4 * k)) ** (2.0 / 3.0)
+    block = m.add_body("block", mass=1.0, inertia=(a * a / 6,) * 3, position=(0.0, 0.0, a / 2 - d0))
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    box = m.add_shape(block, "box", (a, a, a), (0.0, 0.0, a / 2 - d0), role="collision")
+    m.add_contact("floor", box, floor, stiffness=k, restitution=0.5, friction=mu, static_friction=mu_s)
+    m.add_force("push", block, (mb.Linear(c), 0.0, 0.0), point=(0.0, 0.0, 0.0))
+    r = mb.simulate(m, 6.0, rtol=1e-10, atol=1e-12, n_out=61)
+    stick, slip = r.events
+    assert (stick["t"], stick["label"], slip["label"]) == (0.0, "stick", "slip")
+    t_slip = mu_s * G / c
+    assert abs(slip["t"] - t_slip) <= 1e-8
+    # after it: x'' = c t - mu g from rest at t_slip
+    T = 6.0 - t_slip
+    v = r.body("block").velocity[-1, 0]
+    assert abs(v - (c * (6.0**2 - t_slip**2) / 2 - mu * G * T)) <= 1e-4  # v_s
+
+
+def test_a_sphere_never_sticks_it_rolls():
+    """A round shape's contact points are not material points: its contact
+    has no stick rows and no friction events (rolling is the regularized
+    law's, exact up to its creep)."""
+    m, axes, centre, d0 = incline_ball(math.radians(20.0))
+    r = mb.simulate(m, 0.2, rtol=1e-8, atol=1e-10, n_out=3)
+    assert r.events == [] and set(r.contact("slope").state) == {"slip"}
+    assert m.compiled().n_constraints == 1  # the sphere's Euler parameters only
 
 
 def incline_ball(alpha, mu=0.5, R=0.1, mass=1.0, k=1e7, v0=0.0):

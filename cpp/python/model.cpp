@@ -374,16 +374,22 @@ void bind_model(py::module_& m) {
       .def(
           "contact",
           [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
-             const RowMajor& v, const RowMajor& state) {
+             const RowMajor& v, const RowMajor& state, const RowMajor& lam) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, v, model.n_coordinates(), "v");
             require_outputs(t, {{&q, "q"}, {&v, "v"}});
             require_state(model, state, q.rows());
-            return contacts(model, name, view_of(t, &q, &v, nullptr, RowMajor(), state));
+            if (lam.size()) {
+              require_rows(model, lam, model.n_constraints(), "lam");
+              require_outputs(t, {{&lam, "lam"}});
+            }
+            return contacts(model, name, view_of(t, &q, &v, lam.size() ? &lam : nullptr, RowMajor(), state));
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("v"), py::arg("state") = RowMajor(),
+          py::arg("lam") = RowMajor(),
           "The contact at each state: (normal force, friction force (dimension), point (dimension),\n"
-          "normal (dimension), penetration, slip speed, state (0 open, 1 slip, 2 stick))")
+          "normal (dimension), penetration, slip speed, state (0 open, 1 slip, 2 stick)); a contact\n"
+          "that sticks needs the multipliers lam (the friction its rows hold)")
       .def(
           "friction",
           [](const Model& model, const std::string& name, const RowMajor& q, const RowMajor& v,

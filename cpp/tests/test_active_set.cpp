@@ -27,7 +27,7 @@ TEST_CASE(a_stop_adds_two_unilateral_rows_left_out_until_closed) {
   run.drop_rows(*model, {0});  // a redundant row beside the open gap: both left out, the closed row kept
   CHECK(scratch.dropped_rows() == std::vector<int>({0, 3}));
   CHECK(scratch.closed_rows() == std::vector<int>({2}));
-  CHECK_THROWS(std::logic_error, run.close_rows(*model, {1}), "only a unilateral row");  // a joint's row is no gap
+  CHECK_THROWS(std::logic_error, run.close_rows(*model, {1}), "only a unilateral or stick row");  // a joint's row is no gap
 }
 
 // Closed, the lower gap reads s - lower with the gradient ds/dq; open, 0 = 0.

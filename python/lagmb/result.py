@@ -358,7 +358,7 @@ class Result:
         state), from the run's own states and the impact speed each onset
         recorded (docs/modelling.md, "Contact")."""
         name = self._name(element, ("contact",), "contact", "Result.contact")
-        rows = self._core.contact(name, self.t, self.q, self.v, self._run_state)
+        rows = self._core.contact(name, self.t, self.q, self.v, self._run_state, self._lam)
         return ContactPath(self._finite(rows, f"contact '{name}'"), self.model.dimension)
 
     def friction(self, element):

@@ -37,7 +37,7 @@ std::string diagnose_failure(const Model& model, const VecX& q, double t, const 
   const int m = model.n_constraints();
   if (m == 0 || m > 1000 || q.size() != model.n_coordinates() || !q.allFinite()) return "";
   // the joints' equations kept (a stop's rows, open in a Data of its own, are zero rows here)
-  const std::vector<int>& unilateral = model.unilateral_rows();
+  const std::vector<int>& unilateral = model.switched_rows();  // (and stuck contacts')
   std::vector<int> rows;
   for (int r = 0; r < m; ++r)
     if (!std::binary_search(dropped_rows.begin(), dropped_rows.end(), r) &&

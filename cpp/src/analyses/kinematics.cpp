@@ -87,7 +87,7 @@ int degrees_of_freedom(const Model& model, double t) {
   }
   // the generic rank near the assembled position (a singular start counts as its neighbours)
   // (a stop's rows, unilateral, are no equations of the motion)
-  const int equations = m - int(model.unilateral_rows().size());
+  const int equations = m - int(model.switched_rows().size());
   return n - (equations - int(find_redundancy(model, d, kkt, q, t).rows.size()));
 }
 

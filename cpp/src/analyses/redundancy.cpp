@@ -47,7 +47,7 @@ ConstraintRank constraint_rank(const Model& model, const VecX& q, double t, doub
                           t, {});
   ConstraintRank r;
   // a stop's rows (unilateral, open) are not equations of the motion
-  const std::vector<int>& unilateral = model.unilateral_rows();
+  const std::vector<int>& unilateral = model.switched_rows();  // (and stuck contacts')
   r.equations = model.n_constraints() - int(unilateral.size());
   r.coordinates = model.n_coordinates();
   if (r.equations == 0) return r;

@@ -62,19 +62,19 @@ void Data::drop_rows(const Model& model, std::vector<int> rows) {
 
 void Data::close_rows(const Model& model, std::vector<int> rows) {
   rows = sorted_rows(model, std::move(rows));
-  const auto& unilateral = model.unilateral_rows();
+  const auto& switched = model.switched_rows();
   for (int r : rows)
-    if (!std::binary_search(unilateral.begin(), unilateral.end(), r))
-      throw std::logic_error("lagmb: only a unilateral row can be closed");
+    if (!std::binary_search(switched.begin(), switched.end(), r))
+      throw std::logic_error("lagmb: only a unilateral or stick row can be closed");
   left_out_->closed = std::move(rows);
   leave_out(model);
 }
 
 void Data::leave_out(const Model& model) {
   LeftOutRows& l = *left_out_;
-  std::vector<int> open;
-  std::set_difference(model.unilateral_rows().begin(), model.unilateral_rows().end(), l.closed.begin(),
-                      l.closed.end(), std::back_inserter(open));
+  std::vector<int> open;  // (of the rows a run opens and closes: stops and stuck contacts)
+  std::set_difference(model.switched_rows().begin(), model.switched_rows().end(), l.closed.begin(), l.closed.end(),
+                      std::back_inserter(open));
   l.rows.clear();
   std::set_union(l.redundant.begin(), l.redundant.end(), open.begin(), open.end(), std::back_inserter(l.rows));
   l.slots.clear();
@@ -99,7 +99,8 @@ void drop_rows(const Data& d, SpMat& A) {
 /// limits): its rows read 0 = 0, so it is not evaluated (an open stop costs
 /// its gap functions only, which the event runner evaluates).
 bool all_open(const Model& model, const Data& d, int group) {
-  if (!model.constraint_groups()[group]->unilateral()) return false;
+  const auto& g = *model.constraint_groups()[group];
+  if (!g.unilateral() && !g.sticks()) return false;
   for (int r : d.closed_rows())
     if (model.group_of_row(r) == group) return false;
   return true;

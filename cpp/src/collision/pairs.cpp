@@ -80,6 +80,7 @@ ContactPoint<T> ball_point(const V3<T>& X, const V3<T>& Xd, double rho, const V3
 // --- the geometries: a the moving shape, b the surface --------------------
 
 struct SpherePlane {
+  static constexpr bool anchored = false;
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -90,6 +91,7 @@ struct SpherePlane {
 
 /// A capsule's two end spheres (the segment's ends, radius R).
 struct CapsulePlane {
+  static constexpr bool anchored = false;
   static int points(const CollisionShape&, const CollisionShape&) { return 2; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -103,6 +105,7 @@ struct CapsulePlane {
 
 /// A box's eight corners.
 struct BoxPlane {
+  static constexpr bool anchored = true;
   static int points(const CollisionShape&, const CollisionShape&) { return 8; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -117,6 +120,7 @@ struct BoxPlane {
 
 /// The vertices of a convex hull.
 struct ConvexPlane {
+  static constexpr bool anchored = true;
   static int points(const CollisionShape& a, const CollisionShape&) { return int(a.vertices.size()); }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -127,6 +131,7 @@ struct ConvexPlane {
 };
 
 struct SphereSphere {
+  static constexpr bool anchored = false;
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -143,6 +148,7 @@ struct SphereSphere {
 /// the sphere's centre (its parameter clamped to the segment) as a sphere
 /// of the capsule's radius.
 struct SphereCapsule {
+  static constexpr bool anchored = false;
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -166,6 +172,7 @@ struct SphereCapsule {
 /// (the centre clamped to the box in the box's axes); a centre inside the
 /// box is pushed out through the nearest face.
 struct SphereBox {
+  static constexpr bool anchored = false;
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
@@ -199,7 +206,7 @@ struct SphereBox {
 
 template <class Geometry>
 Pair line(CollisionShape::Kind a, CollisionShape::Kind b) {
-  return {a, b, &Geometry::points, &Geometry::template collide<double>, &Geometry::template collide<ContactDual>};
+  return {a, b, Geometry::anchored, &Geometry::points, &Geometry::template collide<double>, &Geometry::template collide<ContactDual>};
 }
 
 const std::vector<Pair>& table() {

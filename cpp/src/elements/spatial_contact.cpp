@@ -1,6 +1,7 @@
 // Contact between collision shapes in space: how users add one (registry.hpp).
 #include "lagmb/elements/spatial_contact.hpp"
 
+#include <cmath>
 #include <utility>
 
 #include "elements/build.hpp"
@@ -33,8 +34,16 @@ void build_spatial_contact(Model& m, const std::string& name, const Args& a) {
   c.swapped = swapped;
   c.points = pair->points(c.shape_a, c.shape_b);
   c.law = build::contact_law(a, label);
-  m.reserve_run_state(c);  // one offset for both entries of the same contact
+  c.law.static_friction = a.optional_real("static_friction").value_or(c.law.friction);
+  if (!(c.law.static_friction >= c.law.friction) || !std::isfinite(c.law.static_friction))
+    throw ModelError(label + ": static_friction must be finite and at least friction (" + to_text(c.law.friction) +
+                     "), got " + to_text(c.law.static_friction));
+  // a pair of vertices against a surface holds in place where it sticks; a
+  // round shape rolls over its points (its friction regularized only)
+  c.sticks = pair->anchored && c.law.static_friction > 0.0;
+  m.reserve_run_state(c);  // one offset for every entry of the same contact
   m.add_event_element(c, false);
+  if (c.sticks) m.add_constraint(c, false);
   m.add_force_element(std::move(c));
 }
 
@@ -49,10 +58,15 @@ KindInfo spatial_contact_kind() {
        "v_impact) along the normal (Hunt-Crossley damping calibrated to the restitution e, Flores et al. "
        "2011; v_impact the approach speed at the point's onset) and Coulomb friction -mu F_n v_t / "
        "sqrt(|v_t|^2 + v_s^2) against the slip velocity v_t in the tangent plane. Each point's onset and "
-       "release is an event (Result.events) where the integrator restarts.",
+       "release is an event (Result.events) where the integrator restarts. Vertices against a plane (a box's "
+       "corners, a hull's) stick: where every pressing point slips slower than v_s and the friction needed is "
+       "within static_friction times F_n, three constraint rows hold the contact in place (its events 'stick' "
+       "and 'slip').",
        {param::shape("shape_a", "the first shape"), param::shape("shape_b", "the second shape")},
        build_spatial_contact});
   for (Param& p : build::contact_law_params()) k.params.push_back(std::move(p));
+  k.params.push_back(param::optional_real("static_friction", "",
+                                          "mu_s, what a stuck contact holds (default: friction; at least friction)"));
   return k;
 }
 

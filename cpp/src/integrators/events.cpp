@@ -48,6 +48,12 @@ EventRunner::EventRunner(const Model& model, const Data& run, double position_to
   std::sort(contacts_.begin(), contacts_.end(), [](const Contact& a, const Contact& b) { return a.row < b.row; });
   // a gap crossing to negative (an impact), a force crossing to negative (a release)
   dir_.insert(dir_.end(), contacts_.size(), -1);
+  // a contact's stick state: both ways (stick_root)
+  sticks_base_ = dir_.size();
+  for (int gi = 0; gi < int(constraints.size()); ++gi)
+    if (constraints[gi]->sticks())
+      for (int k = 0; k < constraints[gi]->size(); ++k) sticks_.push_back({gi, k, constraints[gi]->placement(k).row0});
+  dir_.insert(dir_.end(), sticks_.size(), 0);
   g_.resize(dir_.size());
   qdd_.resize(model.n_coordinates());
   lam_.resize(model.n_constraints());
@@ -70,27 +76,19 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
     group->values(q, v, t, g + offset);
     for (int k = 0; k < group->size(); ++k) offset += group->roots(k);
   }
-  if (contacts_.empty()) return;
-  const Instant at = rows_.at(t);
-  for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q, at, rows_.Phi.data());
+  if (contacts_.empty() && sticks_.empty()) return;
   if (!d_.closed_rows().empty()) {
     solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
     values_t_ = t, values_f_ = -lam_;  // (a step's end's: grazed() reads them)
   }
-  // an open gap within rounding of 0 (a restart after a rebound) reads by
-  // its rate: leaving, it is inside, so that a flight shorter than the next
-  // step still shows as a sign change (at rest on it, g' = 0 to rounding, it
-  // is inside too: a plastic impact the active set leaves open moves away,
-  // or comes back as a crossing); approaching, it reads as it is, so that
-  // the crossing is located at g = 0 (exactly 0: just past it, as SUNDIALS
-  // warns of a root function at 0 where it starts). A row the last restart
-  // left open on its limit reads as inside at the restart whatever its
-  // rate, and one it left at rest (released, or arrived at rest and open)
-  // until a step ends with it off the limit: it leaves slower than the
-  // velocities' error (index 3's, from positions over a first step of
-  // 1e-9 s: 1e-8), and coming back it crosses at g = -1e-10 (a chatter of
-  // impacts at that noise otherwise). (A rebound returns at g = 0: at
-  // -1e-10 it would gain sqrt(2 g 1e-10) at each of a series of bounces.)
+  for (size_t j = 0; j < sticks_.size(); ++j) {
+    const double x = model_.constraint_groups()[sticks_[j].group]->stick_root(sticks_[j].element, q, v, d_.at(t),
+                                                                           lam_.data());
+    g[sticks_base_ + j] = x != 0.0 ? x : -1e-300;
+  }
+  if (contacts_.empty()) return;
+  const Instant at = rows_.at(t);
+  for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q, at, rows_.Phi.data());
   const double at_limit = 1e-10;
   bool rates = false;
   for (const Contact& c : contacts_)
@@ -146,10 +144,10 @@ bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
     fired[i] = 1;
     any = true;
   }
-  if (!any) return false;
   const VecX v0 = v;
   const std::vector<int> closed0 = d_.closed_rows();
-  handle(t, q, v, fired);
+  if (any) handle_stops(t, q, v, fired);
+  if (!sticks_.empty()) handle_sticks(t, q, v, fired);
   return v != v0 || d_.closed_rows() != closed0 || beyond;
 }
 
@@ -160,9 +158,19 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
   const size_t base = roots_.size();
   const double force_tol = 1e-8 * (1.0 + lam_.lpNorm<Eigen::Infinity>());
   for (size_t i = 0; i < g_.size(); ++i) {
-    const bool pulling = i >= base && is_closed(contacts_[i - base].row);
+    const bool pulling = i >= base && i < sticks_base_ && is_closed(contacts_[i - base].row);
     if (dir_[i] < 0 && g_[i] < (pulling ? -force_tol : -1e-10)) {
       fired[i] = 1;  // the action decides: leaving velocities do nothing
+      any = true;
+    }
+  }
+  // (a contact's stick state whose function the step's end finds past 0:
+  // stuck and released, armed and slow, disarmed and fast; handle_sticks decides)
+  for (size_t j = 0; j < sticks_.size(); ++j) {
+    const int state = model_.constraint_groups()[sticks_[j].group]->stick_state(sticks_[j].element, d_.run->state.data());
+    const double x = g_[sticks_base_ + j];
+    if ((state == 1 && x < -force_tol) || (state == 0 && x < 0.0) || (state == -1 && x > 0.0)) {
+      fired[sticks_base_ + j] = 1;
       any = true;
     }
   }
@@ -489,6 +497,78 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 }
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
+  const bool restart = handle_stops(t, q, v, fired);
+  if (sticks_.empty()) return restart;
+  return handle_sticks(t, q, v, fired) || restart;
+}
+
+bool EventRunner::handle_sticks(double t, const VecX& q, const VecX& v, const std::vector<int>& fired) {
+  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;
+  double* run = d_.run->state.data();
+  const Instant at = d_.at(t);
+  if (!d_.closed_rows().empty()) solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd_.data(), lam_.data());
+  const double force_tol = 1e-8 * (1.0 + lam_.lpNorm<Eigen::Infinity>());
+  bool changed = false;
+  std::vector<int> release;
+  for (size_t j = 0; j < sticks_.size(); ++j) {
+    const Stick& s = sticks_[j];
+    const ConstraintGroupBase& g = *model_.constraint_groups()[s.group];
+    const int state = g.stick_state(s.element, run);
+    const double x = g.stick_root(s.element, q.data(), v.data(), at, lam_.data());
+    if (state == 1) {  // stuck: released where the friction it holds passes its limit (or nothing presses)
+      if (x < -force_tol || fired[sticks_base_ + j]) release.push_back(int(j));
+    } else if (state == -1) {  // disarmed: armed once it slips faster than 2 v_s
+      if (x > 0.0) g.stick_set(s.element, run, 0);
+    }
+  }
+  if (!release.empty()) {
+    std::vector<int> closed = d_.closed_rows();
+    for (int j : release) {
+      const Stick& s = sticks_[size_t(j)];
+      const ConstraintGroupBase& g = *model_.constraint_groups()[s.group];
+      for (int r = 0; r < g.rows(s.element); ++r) closed.erase(std::remove(closed.begin(), closed.end(), s.row0 + r), closed.end());
+      g.stick_set(s.element, run, -1);
+      const std::string name = g.name(s.element);
+      count_event(t, name, "contact");
+      records.push_back({t, name, "friction", "slip", 0.0, 0.0});
+    }
+    d_.close_rows(model_, closed);
+    changed = true;
+  }
+  // the armed contacts slipping slower than v_s stick, one at a time (each
+  // with the ones stuck before it), where the friction then needed holds
+  for (size_t j = 0; j < sticks_.size(); ++j) {
+    const Stick& s = sticks_[j];
+    const ConstraintGroupBase& g = *model_.constraint_groups()[s.group];
+    if (g.stick_state(s.element, run) != 0) continue;
+    if (!(g.stick_root(s.element, q.data(), v.data(), at, lam_.data()) < 0.0)) continue;
+    const std::vector<int> before = d_.closed_rows();
+    if (!g.stick_hold(s.element, q.data(), v.data(), run)) continue;
+    std::vector<int> closed = before;
+    for (int r = 0; r < g.rows(s.element); ++r) closed.push_back(s.row0 + r);
+    std::sort(closed.begin(), closed.end());
+    d_.close_rows(model_, closed);
+    bool holds = false;
+    try {
+      const ConsistentState held = make_consistent(model_, d_, kkt_, q, v, t);
+      holds = g.stick_root(s.element, held.q.data(), held.v.data(), at, held.lam.data()) >= 0.0;
+    } catch (const SimulationError&) {
+      holds = false;  // (rows that would depend on the ones holding the body already: it slips)
+    }
+    if (!holds) {
+      d_.close_rows(model_, before);
+      g.stick_set(s.element, run, -1);
+      continue;
+    }
+    const std::string name = g.name(s.element);
+    count_event(t, name, "contact");
+    records.push_back({t, name, "friction", "stick", 0.0, 0.0});
+    changed = true;
+  }
+  return changed;
+}
+
+bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
   bool restart = false;
   step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (the state may jump here)
   on_limit_.clear();

@@ -84,6 +84,21 @@ class EventRunner {
     int row;
     UnilateralRow info;
   };
+  /// A contact that can stick (constraint_group.hpp, is_stick): its
+  /// group, element and first row.
+  struct Stick {
+    int group, element, row0;
+  };
+  /// The stops' and event elements' part of handle().
+  bool handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
+  /// The contacts' stick states at (t, q, v) after the other events acted
+  /// (fired: this call's crossings): a stuck contact whose friction margin
+  /// is negative, or that nothing presses, is released (its rows opened,
+  /// disarmed); an armed one whose pressing points all slip slower than
+  /// v_s is anchored and its rows closed, if the friction it then needs
+  /// is within its limit (else disarmed); a disarmed one crossing up to 2 v_s
+  /// is armed. Returns true if a row opened or closed.
+  bool handle_sticks(double t, const VecX& q, const VecX& v, const std::vector<int>& fired);
   bool is_closed(int row) const;
   /// Whether the last restart left `row` open on its limit (released or
   /// rebounding) and no step's end has found it off the limit since.
@@ -122,6 +137,8 @@ class EventRunner {
   std::vector<Root> roots_;      // of the event elements
   std::vector<Contact> contacts_;  // the unilateral rows, ascending
   std::vector<int> unilateral_groups_;
+  std::vector<Stick> sticks_;     // the contacts that can stick; their event functions follow the stops'
+  size_t sticks_base_ = 0;        // the first of those
   std::vector<int> dir_;
   std::vector<double> g_;
   VecX qdd_, lam_;

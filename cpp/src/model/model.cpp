@@ -2,6 +2,7 @@
 
 
 #include <algorithm>
+#include <iterator>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -196,6 +197,7 @@ void Model::finalize() {
   m_ = 0;
   row_owner_.clear();
   unilateral_rows_.clear();
+  stick_rows_.clear();
   for (size_t e = 0; e < constraint_order_.size(); ++e) {
     auto [g, k] = constraint_order_[e];
     ConstraintGroupBase& group = *constraints_[g];
@@ -204,9 +206,14 @@ void Model::finalize() {
     p.coord = local_coordinates(group.bodies(k));
     if (group.unilateral())
       for (int r = 0; r < group.rows(k); ++r) unilateral_rows_.push_back(m_ + r);
+    if (group.sticks())
+      for (int r = 0; r < group.rows(k); ++r) stick_rows_.push_back(m_ + r);
     m_ += group.rows(k);
     row_owner_.insert(row_owner_.end(), group.rows(k), int(e));
   }
+  switched_rows_.clear();
+  std::set_union(unilateral_rows_.begin(), unilateral_rows_.end(), stick_rows_.begin(), stick_rows_.end(),
+                 std::back_inserter(switched_rows_));
 
   SparsityPattern jac(m_, n_), hess(n_, n_), fq(n_, n_), fv(n_, n_);
   for (auto& g : constraints_) g->declare(jac, hess);

@@ -108,12 +108,22 @@ OutputRows contacts(const Model& model, const std::string& element, const Output
   const ForceGroupBase* g = r.type == ElementRef::kForce ? model.force_groups()[r.group].get() : nullptr;
   if (!g || !g->contact())
     throw ModelError("'" + element + "' is " + model.describe(element) + ", not a contact");
-  const int n = model.n_coordinates(), dim = model.dimension();
+  const int n = model.n_coordinates(), m = model.n_constraints(), dim = model.dimension();
+  // where it sticks, its rows (an element of a stick group of the same name) hold the friction
+  const ConstraintGroupBase* stick = nullptr;
+  int stick_index = -1;
+  for (const auto& c : model.constraint_groups())
+    if (c->sticks())
+      for (int k = 0; k < c->size(); ++k)
+        if (c->name(k) == element) stick = c.get(), stick_index = k;
+  if (stick) require(model, out, true, true, true);
   Data d(model);
   OutputRows R(out.k, 4 + 3 * dim);
   for (int s = 0; s < out.k; ++s) {
     set_run_values(d, out, s);
-    g->contact_reading(r.index, out.q + size_t(s) * n, out.v + size_t(s) * n, d.run->state.data(), reading);
+    const double* q = out.q + size_t(s) * n;
+    g->contact_reading(r.index, q, out.v + size_t(s) * n, d.run->state.data(), reading);
+    if (stick) stick->stick_reading(stick_index, q, d.run->state.data(), out.lam + size_t(s) * m, reading);
     R(s, 0) = reading.normal_force;
     for (int a = 0; a < dim; ++a) {
       R(s, 1 + a) = reading.friction_force[a];

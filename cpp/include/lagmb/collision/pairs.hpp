@@ -82,6 +82,10 @@ using ContactDual = Dual<28>;
 /// geometry that gives them, for both number types.
 struct Pair {
   CollisionShape::Kind a, b;
+  /// Whether each contact point is a material point of shape a (a vertex:
+  /// box corners, hull vertices), so that a stuck contact is held in place
+  /// by rows on positions; a round shape rolls over its points instead.
+  bool anchored;
   int (*points)(const CollisionShape& a, const CollisionShape& b);
   void (*at)(const CollisionShape& a, const CollisionShape& b, const Motion<double>& A, const Motion<double>& B,
              ContactPoint<double>* out);

@@ -31,6 +31,7 @@ struct ContactLaw {
   double stiffness = 0.0;      // k, N/m^1.5
   double restitution = 1.0;    // e in (0, 1]
   double friction = 0.0;       // mu
+  double static_friction = 0.0;  // mu_s: what a stuck contact holds (spatial_contact.hpp; >= mu)
   double slip_velocity = 1e-4;  // v_s, m/s
 
   /// F_n at penetration d and rate d' (0 out of contact, or where the damping would pull).

@@ -30,15 +30,40 @@ namespace lagmb {
 /// function reads their gap, a lower bound of each point's. Each point is an
 /// event function (its gap): onset (recording v_impact,k in the run's
 /// state) and release restart the integrator.
+///
+/// Stick (a pair whose points are material points of shape a, `anchored`,
+/// with friction): the contact is also three constraint rows, open (left
+/// out, as a stop's) until the event runner closes them. Closing records an
+/// anchor in the run's state: the point P of the contact (its nearest
+/// pressing point) as s_a in body i's axes and s_b in body j's, and the
+/// surface's first tangent t1 as u_a in body i's axes; then, with t1, t2,
+/// n = the plane's axes on body j and D = X_i(s_a) - X_j(s_b),
+///   Phi = (t1 . D, t2 . D, t2 . A_i u_a)
+/// hold the anchor in the tangent plane and the turn about n (t2 . A_i u_a
+/// = sin of the turn). Its multipliers are the friction the contact holds:
+/// the force -(lam_1 t1 + lam_2 t2) on body i at the anchor and the torque
+/// -lam_3 about n. It is released where mu_s F_n - sqrt(lam_1^2 + lam_2^2 +
+/// (lam_3 / rho)^2) turns negative (F_n the law's total normal force, rho
+/// the pressing points' F_n-weighted mean distance from the anchor: the
+/// torque the points' friction holds without a force, an elliptic limit
+/// between the two), and closed where every pressing point slips slower
+/// than v_s (stick_root) and the held friction is within that limit.
 struct SpatialContact {
   using Space = Spatial;
   static constexpr bool state_dependent = true;
   static constexpr bool bounds_motion = false;  // g < 0 is contact, not a violation
+  static constexpr bool reads_inputs = true;     // (the stick rows read their anchor in the run's state)
+  static constexpr bool time_dependent = false;
+  static constexpr bool stick_rows = true;
+  static constexpr int rows = 3;
   static constexpr const char* kind = "spatial_contact";
-  // run[run_state + k]: v_impact (m/s) of point k's contact in progress
+  // run[run_state + k]: v_impact (m/s) of point k's contact in progress;
+  // where the contact sticks, then its stick state (kArmed, kStuck,
+  // kDisarmed) and the anchor (s_a, s_b, u_a: 9 numbers)
   static constexpr int run_state_size = 1;
-  int run_state_count() const { return points; }
+  int run_state_count() const { return points + (sticks ? 10 : 0); }
   int run_state = -1;
+  enum StickState { kArmed = 0, kStuck = 1, kDisarmed = -1 };
 
   std::string name;
   int body_i = -1, body_j = -1;
@@ -46,6 +71,7 @@ struct SpatialContact {
   const collision::Pair* pair = nullptr;
   int points = 0;
   bool swapped = false;  // given as (b, a): readings are for the shape given first
+  bool sticks = false;   // anchored pair with friction: has stick rows
   ContactLaw law;
 
   using Loc = spatial::Loc;
@@ -123,7 +149,7 @@ struct SpatialContact {
     torque(B.p, tau_j, T(-1.0), Q + 10);
   }
 
-  Loc force(const Loc& c, const Loc& cd, double, const double* run) const {
+  Loc force(const Loc& c, const Loc& cd, const Instant&, const double* run) const {
     Loc Q = Loc::Zero();
     if (bounding_gap(c) > 0.0) return Q;
     const auto pts = contact_points(c, cd);
@@ -131,7 +157,7 @@ struct SpatialContact {
     return Q;
   }
 
-  void derivatives(const Loc& c, const Loc& cd, double, const double* run, spatial::Mat14& Q_c,
+  void derivatives(const Loc& c, const Loc& cd, const Instant&, const double* run, spatial::Mat14& Q_c,
                    spatial::Mat14& Q_cd) const {
     Q_c.setZero();
     Q_cd.setZero();
@@ -157,7 +183,7 @@ struct SpatialContact {
     }
   }
 
-  double potential(const Loc& c, double) const {
+  double potential(const Loc& c, const Instant&) const {
     if (bounding_gap(c) > 0.0) return 0.0;
     double V = 0.0;
     for (const auto& p : contact_points(c, Loc::Zero())) V += law.potential(-p.gap);
@@ -238,6 +264,136 @@ struct SpatialContact {
     }
     return a;
   }
+  // --- stick: three rows (see above) -------------------------------------
+
+  int stick_state(const double* run) const { return int(run[run_state + points]); }
+  const double* anchor(const Instant& at) const {
+    static const double none[9] = {0, 0, 0, 0, 0, 0, 1, 0, 0};  // (outside a run: rows of an anchor at the centres)
+    return at.state ? at.state + run_state + points + 1 : none;
+  }
+  spatial::Terms<3> stick_terms(const Loc& c, const spatial::Want& want, const Instant& at) const {
+    using namespace spatial;
+    const double* x = anchor(at);
+    const Vec3 s_a(x[0], x[1], x[2]), s_b(x[3], x[4], x[5]), u_a(x[6], x[7], x[8]);
+    const VectorTerm D = minus(body_point(c, kBodyI, s_a, want), body_point(c, kBodyJ, s_b, want));
+    const VectorTerm t1 = body_vector(c, kBodyJ, shape_b.axes.col(0), want);
+    const VectorTerm t2 = body_vector(c, kBodyJ, shape_b.axes.col(1), want);
+    return {dot(t1, D, want), dot(t2, D, want), dot(t2, body_vector(c, kBodyI, u_a, want), want)};
+  }
+  Eigen::Matrix<double, 3, 1> phi(const Loc& c, const Instant& at) const {
+    spatial::Want want;
+    want.gradient = false;
+    return spatial::values<3>(stick_terms(c, want, at));
+  }
+  Eigen::Matrix<double, 3, 1> gamma(const Loc& c, const Loc& cd, const Instant& at) const {
+    spatial::Want want;
+    want.gradient = false;
+    want.path = &cd;
+    return -spatial::convectives<3>(stick_terms(c, want, at));
+  }
+  Eigen::Matrix<double, 3, 14> jacobian(const Loc& c, const Instant& at) const {
+    return spatial::gradients<3>(stick_terms(c, {}, at));
+  }
+  void hessians(const Loc& c, const Instant& at, spatial::Mat14* H) const {
+    spatial::hessians<3>(stick_terms(c, {true}, at), H);
+  }
+  Eigen::Matrix<double, 3, 14> rates(const Loc& c, const Loc& cd, const Instant& at) const {
+    spatial::Want want;
+    want.rate = &cd;
+    return spatial::gradient_rates<3>(stick_terms(c, want, at));
+  }
+  /// The rows' axes: the surface's (t1, t2, n) on body j.
+  Mat3 axes(const Loc& c, const Instant&) const {
+    Mat3 E;
+    for (int k = 0; k < 3; ++k) E.col(k) = euler::rotate(c.segment<4>(10), shape_b.axes.col(k));
+    return E;
+  }
+
+  /// The pressing points at (c, cd): their total normal force, the
+  /// largest slip speed among them, their centre of pressure C = sum F_n,k
+  /// P_k / F_n and F_n-weighted mean distance rho from it, and the deepest.
+  struct Pressing {
+    double normal_force = 0.0, slip = 0.0, radius = 0.0;
+    Vec3 centre = Vec3::Zero();
+    int deepest = -1;
+  };
+  Pressing pressing(const Loc& c, const Loc& cd, const double* run) const {
+    Pressing out;
+    if (bounding_gap(c) > 0.0) return out;
+    const auto pts = contact_points(c, cd);
+    collision::Motion<double> A, B;
+    motions(c.data(), cd.data(), A, B);
+    std::vector<double> Fn(points, 0.0);
+    for (int k = 0; k < points; ++k) {
+      const auto& p = pts[k];
+      Fn[k] = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
+      if (!(Fn[k] > 0.0)) continue;
+      const Vec3 n = p.normal.value(), v = (A.velocity_at(p.point) - B.velocity_at(p.point)).value();
+      out.normal_force += Fn[k];
+      out.centre += Fn[k] * p.point.value();
+      out.slip = std::max(out.slip, (v - v.dot(n) * n).norm());
+      if (out.deepest < 0 || p.gap < pts[out.deepest].gap) out.deepest = k;
+    }
+    if (!(out.normal_force > 0.0)) return out;
+    out.centre /= out.normal_force;
+    for (int k = 0; k < points; ++k)
+      if (Fn[k] > 0.0) out.radius += Fn[k] * (pts[k].point.value() - out.centre).norm() / out.normal_force;
+    return out;
+  }
+  /// The event runner's function of the stick state: stuck, the friction
+  /// margin mu_s F_n - sqrt(|F_r|^2 + (tau_C / rho)^2) with F_r = -(lam_1
+  /// t1 + lam_2 t2) the force the rows hold at the anchor and tau_C their
+  /// torque about n at the centre of pressure C (rho: the points' mean
+  /// distance from C, at least 1e-3 of shape a's bounding radius: a single
+  /// point holds next to no spin); -1 when nothing presses; armed, the
+  /// largest slip of the pressing points less v_s (1 while none presses),
+  /// stuck where it turns negative; disarmed (released, or found unable
+  /// to hold), that slip less 2 v_s, armed again where it turns positive.
+  double stick_root(const Loc& c, const Loc& cd, const Instant& at, const double* lam) const {
+    const double* run = at.state;
+    const int state = stick_state(run);
+    const Pressing now = pressing(c, cd, run);
+    if (state == kStuck) {
+      if (now.deepest < 0) return -1.0;
+      const double* x = anchor(at);
+      const Vec4 pi = c.segment<4>(3), pj = c.segment<4>(10);
+      const Vec3 X = c.head<3>() + euler::rotate(pi, Vec3(x[0], x[1], x[2]));
+      const Vec3 t1 = euler::rotate(pj, shape_b.axes.col(0)), t2 = euler::rotate(pj, shape_b.axes.col(1));
+      const Vec3 n = t1.cross(t2), u = euler::rotate(pi, Vec3(x[6], x[7], x[8]));
+      const Vec3 F = -(lam[0] * t1 + lam[1] * t2);
+      const double torque = -lam[2] * t2.dot(n.cross(u)) + n.dot((X - now.centre).cross(F));
+      const double rho = std::max(now.radius, 1e-3 * shape_a.bounding_radius());
+      return law.static_friction * now.normal_force - std::sqrt(F.squaredNorm() + (torque / rho) * (torque / rho));
+    }
+    if (now.deepest < 0) return 1.0;
+    return now.slip - (state == kDisarmed ? 2.0 : 1.0) * law.slip_velocity;
+  }
+  /// Anchors the contact at its centre of pressure and marks it stuck
+  /// (false: no point presses).
+  bool stick_hold(const Loc& c, const Loc& cd, double* run) const {
+    const Pressing now = pressing(c, cd, run);
+    if (now.deepest < 0) return false;
+    const Vec4 pi = c.segment<4>(3), pj = c.segment<4>(10);
+    const Vec3 t1 = euler::rotate(pj, shape_b.axes.col(0));
+    double* x = run + run_state + points;
+    x[0] = kStuck;
+    // (A(p)^T undoes A(p) for unit p: the anchor and the tangent in each body's axes)
+    Eigen::Map<Vec3>(x + 1) = euler::A(pi).transpose() * (now.centre - c.head<3>());
+    Eigen::Map<Vec3>(x + 4) = euler::A(pj).transpose() * (now.centre - c.segment<3>(7));
+    Eigen::Map<Vec3>(x + 7) = euler::A(pi).transpose() * t1;
+    return true;
+  }
+  void stick_set(double* run, StickState state) const { run[run_state + points] = state; }
+  /// A stuck contact's reading (reading()) with the friction its rows hold
+  /// (lam: the rows' multipliers): -(lam_1 t1 + lam_2 t2) on body i, state stick.
+  void stick_reading(const Loc& c, const double* run, const double* lam, ContactReading& r) const {
+    if (stick_state(run) != kStuck || r.state == ContactReading::kOpen) return;
+    const Vec4 pj = c.segment<4>(10);
+    const Vec3 held = -(lam[0] * euler::rotate(pj, shape_b.axes.col(0)) + lam[1] * euler::rotate(pj, shape_b.axes.col(1)));
+    r.friction_force += swapped ? Vec3(-held) : held;
+    r.state = ContactReading::kStick;
+  }
 };
+
 
 }  // namespace lagmb

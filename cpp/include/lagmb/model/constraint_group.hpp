@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "lagmb/elements/joint_coordinate.hpp"
+#include "lagmb/model/contact_reading.hpp"
 #include "lagmb/space.hpp"
 #include "lagmb/sparsity.hpp"
 #include "lagmb/time_function.hpp"
@@ -143,6 +144,15 @@ struct UnilateralRow {
   double capture_time = 0.0;  // rebounds whose remaining bounces take less than this are captured (s)
   const char* label = "";     // "lower", "upper"
 };
+/// A kind whose rows hold a stuck contact (elements/spatial_contact.hpp)
+/// declares `static constexpr bool stick_rows = true;` and stick_root,
+/// stick_hold, stick_set, stick_state and stick_reading: its rows are open
+/// (left out) until the event runner closes them.
+template <class Kind, class = void>
+struct is_stick : std::false_type {};
+template <class Kind>
+struct is_stick<Kind, std::void_t<decltype(Kind::stick_rows)>> : std::bool_constant<Kind::stick_rows> {};
+
 template <class Kind, class = void>
 struct is_unilateral : std::false_type {};
 template <class Kind>
@@ -191,6 +201,26 @@ class ConstraintGroupBase {
   /// Whether the kind's rows are unilateral (gaps), and what row r of element k does at contact.
   virtual bool unilateral() const = 0;
   virtual UnilateralRow unilateral_row(int k, int r) const = 0;
+  /// Whether the kind's rows hold stuck contacts (is_stick), and, for
+  /// element k at (q, v) with the run's values `at` (its state) and the
+  /// global multipliers lam: the event runner's function of its stick state
+  /// (stick_root), anchoring it (stick_hold: false if nothing presses), its
+  /// state (0 armed, 1 stuck, -1 disarmed) and setting it, and the friction
+  /// its rows hold added to a reading of it.
+  virtual bool sticks() const { return false; }
+  virtual double stick_root(int k, const double* q, const double* v, const Instant& at, const double* lam) const {
+    (void)k, (void)q, (void)v, (void)at, (void)lam;
+    return 1.0;
+  }
+  virtual bool stick_hold(int k, const double* q, const double* v, double* run) const {
+    (void)k, (void)q, (void)v, (void)run;
+    return false;
+  }
+  virtual int stick_state(int k, const double* run) const { (void)k, (void)run; return 0; }
+  virtual void stick_set(int k, double* run, int state) const { (void)k, (void)run, (void)state; }
+  virtual void stick_reading(int k, const double* q, const double* run, const double* lam, ContactReading& r) const {
+    (void)k, (void)q, (void)run, (void)lam, (void)r;
+  }
 };
 
 template <class Kind>
@@ -235,6 +265,38 @@ class ConstraintGroup final : public ConstraintGroupBase {
   }
   ElementPlacement& placement(int k) override { return place_[k]; }
   const ElementPlacement& placement(int k) const override { return place_[k]; }
+
+  bool sticks() const override { return is_stick<Kind>::value; }
+  double stick_root(int k, const double* q, const double* v, const Instant& at, const double* lam) const override {
+    if constexpr (is_stick<Kind>::value)
+      return items[k].stick_root(at_q(k, q), at_v(k, v), at, lam + place_[k].row0);
+    else
+      return ConstraintGroupBase::stick_root(k, q, v, at, lam);
+  }
+  bool stick_hold(int k, const double* q, const double* v, double* run) const override {
+    if constexpr (is_stick<Kind>::value)
+      return items[k].stick_hold(at_q(k, q), at_v(k, v), run);
+    else
+      return ConstraintGroupBase::stick_hold(k, q, v, run);
+  }
+  int stick_state(int k, const double* run) const override {
+    if constexpr (is_stick<Kind>::value)
+      return items[k].stick_state(run);
+    else
+      return ConstraintGroupBase::stick_state(k, run);
+  }
+  void stick_set(int k, double* run, int state) const override {
+    if constexpr (is_stick<Kind>::value)
+      items[k].stick_set(run, typename Kind::StickState(state));
+    else
+      ConstraintGroupBase::stick_set(k, run, state);
+  }
+  void stick_reading(int k, const double* q, const double* run, const double* lam, ContactReading& r) const override {
+    if constexpr (is_stick<Kind>::value)
+      items[k].stick_reading(at_q(k, q), run, lam + place_[k].row0, r);
+    else
+      ConstraintGroupBase::stick_reading(k, q, run, lam, r);
+  }
 
   void add(Kind item) {
     items.push_back(std::move(item));

@@ -216,6 +216,12 @@ class Model {
   /// The rows of unilateral kinds (stops; constraint_group.hpp), ascending:
   /// open (left out) unless a run's active set closes them.
   const std::vector<int>& unilateral_rows() const { return unilateral_rows_; }
+  /// The rows that hold stuck contacts (constraint_group.hpp, is_stick),
+  /// ascending: open (left out) unless the run's event runner closes them.
+  const std::vector<int>& stick_rows() const { return stick_rows_; }
+  /// Both, ascending: the rows a run opens and closes, which are not
+  /// equations of the motion while open.
+  const std::vector<int>& switched_rows() const { return switched_rows_; }
   /// Whether a run has event functions: event elements or unilateral rows.
   bool has_events() const { return !events_.empty() || !unilateral_rows_.empty(); }
   /// An element with event functions, for messages ("" if none).
@@ -313,6 +319,8 @@ class Model {
   SpMat jacobian_pattern_, hessian_pattern_, force_q_pattern_, force_v_pattern_;
   std::vector<int> row_owner_;  // row -> index into constraint_order_
   std::vector<int> unilateral_rows_;
+  std::vector<int> stick_rows_;
+  std::vector<int> switched_rows_;
   std::vector<int> coord_owner_;
   double mass_scale_ = 1.0;
   int run_state_size_ = 0;
