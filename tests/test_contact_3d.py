@@ -19,6 +19,7 @@ References (closed forms, and SciPy for the law alone):
 """
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -447,3 +448,135 @@ def test_no_energy_gained_in_elastic_bounces():
     free = r.contact("hit").penetration < 0  # (in contact the law's potential holds the rest)
     assert np.max(E[free] - E0) <= 1e-7 * E0
     assert len([x for x in r.events if x["label"] == "onset"]) >= 4
+
+
+def test_a_cylinder_rolls_on_its_side_and_stands_on_its_end():
+    """A solid cylinder lying across a 15 degree slope rolls on its two
+    rims' deepest points with g sin(alpha) / (1 + J / (m (R - d0)^2)), J =
+    m R^2 / 2 (1e-7); standing on its end it rests level on four points of
+    its rim at their Hertz depth (1e-9 m)."""
+    alpha, R, L, mass, k = math.radians(15.0), 0.1, 0.2, 2.0, 1e8
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    axes = rotation_y(-alpha)
+    d0 = (mass * G * math.cos(alpha) / (2 * k)) ** (2.0 / 3.0)
+    centre = (R - d0) * axes[:, 2]
+    across = np.column_stack([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])  # its axis along -y
+    J = 0.5 * mass * R * R
+    m.add_body("roll", mass=mass, inertia=(mass * (3 * R * R + L * L) / 12, J, mass * (3 * R * R + L * L) / 12),
+               position=tuple(centre))
+    slope = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), axes, role="collision")
+    roll = m.add_shape("roll", "cylinder", (R, L), tuple(centre), across, role="collision")
+    m.add_contact("slope", roll, slope, stiffness=k, restitution=0.5, friction=0.5)
+    r = mb.simulate(m, 1.0, rtol=1e-10, atol=1e-12, n_out=1001)
+    s = (r.body("roll").position - centre) @ axes[:, 0]
+    late = r.t > 0.5
+    a = -2.0 * np.polyfit(r.t[late], s[late], 2)[0]
+    assert abs(a / (G * math.sin(alpha) / (1 + J / (mass * (R - d0) ** 2))) - 1.0) <= 1e-7
+
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    top = (0.0, 0.0, L / 2 + 0.005)
+    m.add_body("can", mass=mass, inertia=(0.01, 0.01, 0.01), position=top)
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    can = m.add_shape("can", "cylinder", (R, L), top, role="collision")
+    m.add_contact("floor", can, floor, stiffness=k, restitution=0.5, friction=0.5)
+    r = mb.simulate(m, 1.0, rtol=1e-9, atol=1e-11, n_out=3)
+    body = r.body("can")
+    assert abs(body.position[-1, 2] - (L / 2 - (mass * G / (4 * k)) ** (2 / 3))) <= 1e-9
+    assert np.arccos(min(1.0, body.rotation[-1][2, 2])) <= 1e-9
+
+
+def write_stl(path, triangles):
+    """A binary STL file of the triangles (n, 3, 3)."""
+    triangles = np.asarray(triangles, dtype="<f4")
+    with open(path, "wb") as f:
+        f.write(b"lagmb test".ljust(80, b" ") + len(triangles).to_bytes(4, "little"))
+        for tri in triangles:
+            f.write(np.zeros(3, "<f4").tobytes() + tri.tobytes() + b"\0\0")
+
+
+def test_a_mesh_touches_by_its_convex_hull():
+    """A cube given as an STL mesh (12 triangles, and one more inside it,
+    whose vertices no hull has) scaled by (0.2, 0.2, 0.2): dropped flat it
+    touches, rests and sticks as the box does (the same events; the same
+    height to 1e-12 m)."""
+    import os
+    import tempfile
+
+    c = np.array([[x, y, z] for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)])
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
+             (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    triangles = [c[list(f)] for f in faces] + [np.array([[0.1, 0.1, 0.1], [0.2, 0.1, 0.1], [0.1, 0.2, 0.1]])]
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "cube.stl")
+        write_stl(path, triangles)
+        runs = []
+        for kind, size, mesh in (("mesh", (0.2, 0.2, 0.2), path), ("box", (0.2, 0.2, 0.2), None)):
+            m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+            centre = (0.0, 0.0, 0.11)
+            m.add_body("cube", mass=1.0, inertia=(0.0067,) * 3, position=centre)
+            floor = m.add_shape("ground", "plane", (), role="collision")
+            cube = m.add_shape("cube", kind, size, centre, mesh=mesh, role="collision")
+            m.add_contact("floor", cube, floor, stiffness=1e8, restitution=0.5, friction=0.5)
+            assert dict(m.elements())["add_contact"]["shape_a"] == cube  # (the mesh, as given)
+            runs.append(mb.simulate(m, 0.5, rtol=1e-9, atol=1e-11, n_out=3))
+        mesh_run, box_run = runs
+        assert abs(mesh_run.body("cube").position[-1, 2] - box_run.body("cube").position[-1, 2]) <= 1e-12
+        assert [x["label"] for x in mesh_run.events] == [x["label"] for x in box_run.events]
+        assert mesh_run.contact("floor").state[-1] == "stick"
+
+
+def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
+    """Unitree Go1 (example-robot-data) on a floating base, its limits on,
+    dropped from 0.35 m above the ground (load_urdf(ground=...)): after 3 s
+    every speed is below 1e-3, the ground carries its weight (the normal
+    forces sum to m g within 1e-3), and at rest no shape is deeper than the
+    whole weight would press one point, (W / k)^(2/3)."""
+    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mb.UrdfWarning)  # (its inertias, as test_urdf reads them)
+        m = mb.load_urdf(os.path.join(test_urdf.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
+                         ground=-0.35)
+    contacts = [kw["name"] for method, kw in m.elements() if method == "add_contact"]
+    assert len(contacts) == len([s for s in m.shapes if s.role == "collision"]) - 1  # (all but the floor)
+    assert "FR_foot_ground" in contacts
+    r = mb.simulate(m, 3.0, rtol=1e-6, atol=1e-8, n_out=31)
+    assert np.abs(r.v[-1]).max() < 1e-3
+    weight = sum(kw["mass"] for method, kw in m.elements() if method == "add_body") * G
+    readings = [r.contact(name) for name in contacts]
+    assert abs(sum(c.normal_force[-1] for c in readings) / weight - 1.0) <= 1e-3
+    assert max(c.penetration[-1] for c in readings) <= (weight / mb.urdf.GROUND_CONTACT["stiffness"]) ** (2 / 3)
+
+
+BLOCK_URDF = """<robot name="blocks">
+  <link name="base">
+    <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+    <collision><origin xyz="0 0 0.15"/><geometry><sphere radius="0.05"/></geometry></collision>
+    <visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+def test_load_urdf_ground_pairs_every_collision_shape_with_a_floor(tmp_path):
+    """ground=z: a plane through (0, 0, z) and one contact per collision
+    shape of a moving body (LINK_ground, LINK_ground_2), with
+    GROUND_CONTACT's values as `contact` updates them; bad arguments are
+    UrdfErrors naming them. The block dropped on it sticks where it lands."""
+    path = tmp_path / "blocks.urdf"
+    path.write_text(BLOCK_URDF)
+    m = mb.load_urdf(path, floating_base=True, ground=-0.1001, contact={"friction": 0.6})
+    contacts = {kw["name"]: kw for method, kw in m.elements() if method == "add_contact"}
+    assert sorted(contacts) == ["base_ground", "base_ground_2"]
+    assert contacts["base_ground"]["friction"] == 0.6
+    assert contacts["base_ground"]["stiffness"] == mb.urdf.GROUND_CONTACT["stiffness"]
+    floor = contacts["base_ground"]["shape_b"]
+    assert (floor.kind, tuple(floor.position)) == ("plane", (0.0, 0.0, -0.1001))
+    r = mb.simulate(m, 0.3, n_out=3)
+    assert r.contact("base_ground").state[-1] == "stick"
+    with pytest.raises(mb.UrdfError, match="load_urdf: contact has no keyword 'stiff'"):
+        mb.load_urdf(path, floating_base=True, ground=0.0, contact={"stiff": 1.0})
+    with pytest.raises(mb.UrdfError, match="load_urdf: ground"):
+        mb.load_urdf(path, floating_base=True, ground="floor")

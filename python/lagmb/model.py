@@ -57,6 +57,7 @@ class Model:
         # frames and shapes: named places and geometry on bodies, for results
         # and pictures; no part of the equations (add_frame, add_shape)
         self._frames, self._shapes, self._annotations = {}, [], []
+        self._hulls = {}  # mesh Shape -> the vertices of its hull a contact uses
         self._joint_aliases = {}  # {a body's or frame's name: the joint it also names} (add_joint_alias)
 
     def copy(self):
@@ -72,6 +73,7 @@ class Model:
         other.gravity = self.gravity
         other.dimension = self.dimension
         other._frames, other._shapes = dict(self._frames), list(self._shapes)
+        other._hulls = dict(self._hulls)
         other._annotations = list(self._annotations)
         other._joint_aliases = dict(self._joint_aliases)
         return other
@@ -141,6 +143,10 @@ class Model:
         if t == "body":
             return "ground" if value < 0 else bodies[value]
         if t == "shape":
+            if value[1] == "convex":  # the mesh whose hull it is
+                return next(s for s, hull in self._hulls.items() if hull == value[5] and
+                            tuple(s.position) == tuple(value[3]) and s.body == (bodies[value[0]] if value[0] >= 0
+                                                                                 else "ground"))
             return _shape_given(value, bodies)
         if t in ("motion", "function"):
             return from_core(value, memo)
@@ -664,13 +670,33 @@ def _shape_value(model, param, value, what, label):
     if value.role != "collision":
         raise ModelError(f"{label}: a contact pairs collision shapes; this {value.kind} on '{value.body}' has "
                          f"role {value.role!r} (add it with role='collision')")
-    if value.kind == "mesh":
-        raise ModelError(f"{label}: a mesh is not paired by a contact yet; give its body a box, sphere or "
-                         "capsule of role 'collision'")
     index = model._body(value.body, param.name, what)[1]
+    axes = tuple(tuple(float(x) for x in row) for row in np.asarray(value.rotation))
+    position = tuple(float(x) for x in value.position)
+    if value.kind == "mesh":  # its convex hull's vertices (scaled, in its own axes)
+        if value not in model._hulls:
+            model._hulls[value] = _hull_vertices(value, label)
+        return (index, "convex", (0.0, 0.0, 0.0), position, axes, model._hulls[value])
     size = tuple(float(x) for x in value.size) + (0.0,) * (3 - len(value.size))
-    return (index, value.kind, size, tuple(float(x) for x in value.position),
-            tuple(tuple(float(x) for x in row) for row in np.asarray(value.rotation)), [])
+    return (index, value.kind, size, position, axes, [])
+
+
+def _hull_vertices(shape, label, directions=162):
+    """Vertices of a mesh's convex hull that a contact uses: for each of
+    `directions` directions spread over the sphere, the vertex farthest
+    along it (each a vertex of the hull; the hull's other vertices, each
+    extreme only in a narrow cone of directions, are left out), scaled."""
+    from ._meshes import read_stl
+
+    if not str(shape.mesh).lower().endswith(".stl"):
+        raise ModelError(f"{label}: lagmb reads STL meshes only; {shape.mesh!r} cannot be a collision shape")
+    points = read_stl(shape.mesh).reshape(-1, 3) * np.asarray(shape.size, dtype=float)
+    points = np.unique(points, axis=0)
+    k = np.arange(directions) + 0.5
+    polar, azimuth = np.arccos(1.0 - 2.0 * k / directions), np.pi * (1.0 + 5.0**0.5) * k  # (a Fibonacci lattice)
+    d = np.stack([np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar)], axis=1)
+    chosen = np.unique(np.argmax(points @ d.T, axis=0))
+    return [tuple(float(x) for x in points[i]) for i in chosen]
 
 
 _CHECKS["shape"] = _shape_value

@@ -130,6 +130,52 @@ struct ConvexPlane {
   }
 };
 
+/// A cylinder's two rims, four points each: the rim's point deepest
+/// below the plane, X + R m (m the unit vector in the rim's plane most
+/// against n: -(n - (n . w) w) normalized, w the axis; the cylinder's own x
+/// axis where the axis is along n), and the rim's points at 90, 180 and 270
+/// degrees from it. Lying on its side it touches at the two deepest points
+/// (it rolls exactly); standing on an end it rests on the four points of
+/// that rim. The points move along the rims: not material points.
+struct CylinderPlane {
+  static constexpr bool anchored = false;
+  static int points(const CollisionShape&, const CollisionShape&) { return 8; }
+  template <class T>
+  static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
+                      ContactPoint<T>* out) {
+    using std::sqrt;
+    const PlaneFrame<T> pl(b, B);
+    const V3<T> w = A.rotate(a.axes.col(2)), wd = A.rotate_rate(a.axes.col(2));
+    V3<T> m = pl.n - dot(pl.n, w) * w;
+    T norm = sqrt(dot(m, m));
+    if (!(value_of(norm) > 1e-12)) {  // (standing on an end: the rim's points start at its own x axis)
+      m = -A.rotate(a.axes.col(0));
+      norm = T(1.0);
+    }
+    m = T(-1.0) / norm * m;      // towards the plane, in the rim's plane
+    const V3<T> e = cross(w, m);  // the rim's plane's second direction
+    const V3<T> omega = A.angular_velocity();
+    for (int rim = 0; rim < 2; ++rim) {
+      const Vec3 centre = a.position + (rim ? 0.5 : -0.5) * a.size[1] * a.axes.col(2);
+      const V3<T> X = A.point(centre), Xd = A.point_velocity(centre);
+      for (int k = 0; k < 4; ++k) {
+        // the point X + R u on the rim, u = m, e, -m, -e; its gap's rate
+        // as the rim point moving with the body (its sliding along the
+        // rim is across n where it is deepest, and counted as the body's
+        // motion elsewhere: u' = omega x u)
+        const V3<T> u = k == 0 ? m : k == 1 ? e : k == 2 ? -m : -e;
+        const V3<T> Y = X + T(a.size[0]) * u, Yd = Xd + T(a.size[0]) * cross(omega, u), D = Y - pl.P0;
+        ContactPoint<T>& c = out[4 * rim + k];
+        c.gap = dot(pl.n, D);
+        c.gap_rate = dot(pl.nd, D) + dot(pl.n, Yd - pl.P0d);
+        c.point = Y - c.gap * pl.n;
+        c.normal = pl.n;
+      }
+    }
+    (void)wd;
+  }
+};
+
 struct SphereSphere {
   static constexpr bool anchored = false;
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
@@ -215,7 +261,7 @@ const std::vector<Pair>& table() {
       line<SpherePlane>(S::kSphere, S::kPlane),     line<CapsulePlane>(S::kCapsule, S::kPlane),
       line<BoxPlane>(S::kBox, S::kPlane),           line<ConvexPlane>(S::kConvex, S::kPlane),
       line<SphereSphere>(S::kSphere, S::kSphere),   line<SphereCapsule>(S::kSphere, S::kCapsule),
-      line<SphereBox>(S::kSphere, S::kBox),
+      line<SphereBox>(S::kSphere, S::kBox),         line<CylinderPlane>(S::kCylinder, S::kPlane),
   };
   return pairs;
 }
