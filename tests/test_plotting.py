@@ -688,3 +688,49 @@ def test_picture_names_a_bad_argument_and_draws_a_mesh_of_no_triangles(mpl, tmp_
                             ({"view": (20.0,)}, r"view \(elevation, azimuth in degrees\) must be a pair")):
         with pytest.raises(mb.ModelError, match="plotting.picture: " + message):
             plotting.picture(r, tmp_path / "bad.png", **kwargs)
+
+
+def _shapes_on_a_floor():
+    """A box, a sphere, a capsule and a cylinder dropped onto a plane."""
+    m = mb.Model(gravity=(0.0, 0.0, -9.81), dimension=3)
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    for i, (kind, size) in enumerate([("box", (0.2, 0.15, 0.1)), ("sphere", (0.08,)), ("capsule", (0.05, 0.2)),
+                                      ("cylinder", (0.07, 0.15))]):
+        centre = (0.3 * i - 0.45, 0.0, 0.2)
+        m.add_body(f"b{i}", mass=1.0, inertia=(0.01, 0.012, 0.014), position=centre)
+        shape = m.add_shape(f"b{i}", kind, size, centre, role="collision")
+        m.add_contact(f"c{i}", shape, floor, stiffness=1e7, restitution=0.5, friction=0.5)
+    return m
+
+
+def test_a_picture_draws_a_plane_as_a_floor_under_the_shapes(mpl, tmp_path):
+    """plotting.picture of shapes resting on a plane: all five drawn (the
+    plane as a square floor spanning the bodies, drawn first, the axes'
+    limits set by the bodies alone), the shapes' colours visible over it."""
+    from PIL import Image
+
+    r = mb.simulate(_shapes_on_a_floor(), 0.5, n_out=3)
+    path = tmp_path / "floor.png"
+    assert plotting.picture(r, path) == 5
+    im = np.asarray(Image.open(path).convert("RGB"), dtype=int)
+    grey = (np.ptp(im, axis=2) < 6) & (im[:, :, 0] > 150) & (im[:, :, 0] < 235)
+    floor = np.sum(grey[300:450, 100:560])  # (the floor's grey, below the title, above the axis labels)
+    blue = np.sum((im[:, :, 2] > 120) & (im[:, :, 0] < 80))  # (the box, body 0's colour)
+    assert floor > 20000 and blue > 300
+
+
+def test_an_animation_draws_a_plane_as_a_floor_under_the_bodies(mpl):
+    """A spatial animation of bodies on a plane: one floor (a square in the
+    plane z = 0 spanning 0.9 of the view) drawn under everything."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    r = mb.simulate(_shapes_on_a_floor(), 0.5, n_out=11)
+    scene = _drawing.Scene(r)
+    drawing = spatial_drawing._spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
+    ax = drawing.fig.axes[0]
+    (floor,) = [c for c in ax.collections if isinstance(c, Poly3DCollection)]
+    assert floor.get_zorder() == 0 and not ax.computed_zorder
+    (square,) = drawing.floors
+    assert np.allclose(square[:, 2], 0.0)
+    view_width = ax.get_xlim()[1] - ax.get_xlim()[0]
+    assert abs(np.ptp(square[:, 0]) - 0.9 * view_width) <= 1e-9 * view_width

@@ -6,6 +6,7 @@ where asked; a screenshot shows the bodies (pixels that differ from the
 white background where the view is). Skipped with the reason where no
 Chromium is installed (scripts/setup.sh installs chromium-headless-shell)."""
 
+import base64
 import math
 import time
 from pathlib import Path
@@ -400,4 +401,32 @@ def test_a_planar_contact_is_drawn_as_a_disc_and_a_bar(chromium, tmp_path):
     state = page.evaluate("lagmbViewer.state()")
     assert state["bodies"] == 2 and state["drawn"] > state["bodies"]
     assert pixels_in_view(page, tmp_path / "seesaw.png", state["renders"]) > 2000
+    page.close()
+
+
+def test_spatial_shapes_and_a_floor_are_drawn(chromium, tmp_path):
+    """Shapes resting on a plane: the page draws each body's shape as a
+    mesh (a capsule's side and two ends, a box's six faces), the plane as a
+    floor on the ground (a square of twice the scene's size, under its
+    middle), and Chromium shows them."""
+    import json
+    import re
+
+    import test_plotting
+
+    r = mb.simulate(test_plotting._shapes_on_a_floor(), 0.5, n_out=11)
+    path = tmp_path / "floor.html"
+    view(r, path)
+    data = json.loads(re.search(r'id="lagmb-data">(.*?)</script>', path.read_text(), re.S).group(1))
+    for body in data["bodies"]:
+        assert [p["type"] for p in body["parts"]] == ["mesh"]
+    (floor,) = [p for p in data["ground_parts"] if p["type"] == "mesh"]
+    corners = np.frombuffer(base64.b64decode(floor["vertices"]), "<f4").reshape(-1, 3)
+    assert np.all(corners[:, 2] == 0.0)  # on the plane z = 0
+    assert np.allclose(np.ptp(corners[:, :2], axis=0), 2 * data["size"], rtol=1e-6)
+    assert np.allclose(corners[:, :2].mean(axis=0), data["camera"]["target"][:2], atol=1e-6)  # under the middle
+    page, _ = open_page(chromium, path)
+    state = page.evaluate("lagmbViewer.state()")
+    assert state["bodies"] == 4 and state["drawn"] == 4
+    assert pixels_in_view(page, tmp_path / "floor.png", state["renders"]) > 20000
     page.close()

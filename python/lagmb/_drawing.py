@@ -254,15 +254,35 @@ def _sphere_faces(radius, segments=12):
             for i in range(2 * segments) for j in range(segments)]
 
 
-def shape_faces(shape):
+def _capsule_faces(radius, length):
+    faces = _cylinder_faces(radius, length)[:-2]  # (its side; the ends are spheres)
+    for z in (-0.5 * length, 0.5 * length):
+        faces += [f + np.array([0.0, 0.0, z]) for f in _sphere_faces(radius)]
+    return faces
+
+
+def _plane_faces(half, centre):
+    """A square patch of a plane (a half-space's boundary: its own xy), of
+    half-width `half` about `centre` (x, y in its own axes)."""
+    x, y = float(centre[0]), float(centre[1])
+    return [np.array([[x - half, y - half, 0.0], [x + half, y - half, 0.0], [x + half, y + half, 0.0],
+                      [x - half, y + half, 0.0]])]
+
+
+def shape_faces(shape, half=1.0, centre=(0.0, 0.0)):
     """The faces of one shape in its own axes, or None (a mesh lagmb does
-    not read: only STL files are drawn)."""
+    not read: only STL files are drawn). A plane, which has no end, is the
+    square of half-width `half` about `centre` (x, y in its own axes)."""
     if shape.kind == "box":
         return _box_faces(shape.size)
     if shape.kind == "cylinder":
         return _cylinder_faces(*shape.size)
     if shape.kind == "sphere":
         return _sphere_faces(shape.size[0])
+    if shape.kind == "capsule":
+        return _capsule_faces(*shape.size)
+    if shape.kind == "plane":
+        return _plane_faces(half, centre)
     if not shape.mesh.lower().endswith(".stl") or not os.path.isfile(shape.mesh):
         return None
     return list(read_stl(shape.mesh) * np.asarray(shape.size))

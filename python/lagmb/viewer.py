@@ -36,6 +36,7 @@ _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.
             (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.50, 0.50, 0.50), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81)]
 _JOINT = (0.2, 0.2, 0.2)
 _GROUND = (0.55, 0.55, 0.58)
+_FLOOR = (0.80, 0.80, 0.78)  # a plane shape: a floor
 
 
 @lru_cache(maxsize=1)
@@ -529,6 +530,17 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
                 position = [*local, 0.0] if dimension == 2 else list(local)
                 ground_parts.append({"type": "box", "size": [2.5 * width] * 3, "position": position,
                                      "colour": _GROUND})
+    # the ground's shapes (a plane: a floor, the square of the scene's size under it)
+    ground_shapes = [sh for sh in shapes if sh.body == "ground"]
+    seen = any(sh.role == "visual" for sh in ground_shapes)  # (the visual ones, else the collision ones; planes always)
+    for shape in ground_shapes:
+        if shape.role == ("collision" if seen else "visual") and shape.kind != "plane":
+            continue
+        R = np.asarray(shape.rotation, dtype=float)
+        under = R.T @ (np.asarray(center, dtype=float) - np.asarray(shape.position, dtype=float))
+        faces = shape_faces(shape, half=size, centre=under[:2])
+        if faces:
+            ground_parts.append(_mesh(faces, shape, _FLOOR if shape.kind == "plane" else _GROUND))
 
     # poses: (frames, bodies, 7) = position and quaternion (x, y, z, w)
     poses = np.zeros((len(frames), len(bodies), 7), dtype=float)

@@ -35,10 +35,22 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
     light = np.array([0.4, -0.5, 0.8]) / np.linalg.norm([0.4, -0.5, 0.8])
     drawn, skipped, points = 0, 0, []
     bodies = list(scene.bodies)
-    for shape in model.shapes:
-        if shape.role != role:
-            continue
-        faces = shape_faces(shape)
+    for b in bodies:  # (where the bodies are: a plane's floor spans them)
+        points.append(np.asarray(result.body(b).position[k])[None, :])
+    shapes = [sh for sh in model.shapes if sh.role == role]
+    planes = [sh for sh in shapes if sh.kind == "plane"]
+    if planes:  # drawn floor first, then the shapes by their height (up: against gravity)
+        ax.computed_zorder = False
+        g = np.asarray(getattr(model, "gravity", None) or (0.0, 0.0, -1.0), dtype=float)
+        up = -g / np.linalg.norm(g) if np.linalg.norm(g) > 0 else np.array([0.0, 0.0, 1.0])
+    for shape in [sh for sh in shapes if sh.kind != "plane"] + planes:  # (the planes after: they span the rest)
+        if shape.kind == "plane":
+            pts = np.concatenate(points) if points else np.zeros((1, 3))
+            middle = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+            under = np.asarray(shape.rotation).T @ (middle - np.asarray(shape.position))  # (a plane is on the ground)
+            faces = shape_faces(shape, half=0.6 * max(float(np.max(np.ptp(pts, axis=0))), 0.1), centre=under[:2])
+        else:
+            faces = shape_faces(shape)
         if faces is None:
             skipped += 1
             continue
@@ -52,16 +64,21 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
         world = [r + f @ R.T for f in faces]
         normals = [np.cross(f[1] - f[0], f[2] - f[0]) for f in world]
         shade = np.array([abs(n @ light) / (np.linalg.norm(n) or 1.0) for n in normals])
-        base = np.array(_rgb(_colour(bodies.index(shape.body)) if shape.body in bodies else "0.6"))
+        base = np.array(_rgb(_colour(bodies.index(shape.body)) if shape.body in bodies else
+                             "0.85" if shape.kind == "plane" else "0.6"))
         colours = [(*(base * (0.45 + 0.55 * s)), 1.0) for s in shade]
         # one collection per polygon size: matplotlib pads ragged polygons (a
         # cylinder's caps beside its side quads) with unset values that its
         # autoscaling read as limits (seen once: an infinite z limit)
         for count in sorted({len(f) for f in world}):
             picked = [i for i, f in enumerate(world) if len(f) == count]
-            ax.add_collection3d(Poly3DCollection([world[i] for i in picked],
-                                                 facecolors=[colours[i] for i in picked], edgecolors="none"))
-        if world:  # an STL of no triangles draws nothing
+            polygons = Poly3DCollection([world[i] for i in picked], facecolors=[colours[i] for i in picked],
+                                        edgecolors="none")
+            if planes:  # (mplot3d orders whole collections by depth: a floor would cover what stands on it)
+                polygons.set_zorder(0.0 if shape.kind == "plane" else
+                                    1.0 + float(np.mean([world[i] for i in picked], axis=(0, 1)) @ up))
+            ax.add_collection3d(polygons)
+        if world and shape.kind != "plane":  # (an STL of no triangles draws nothing; a floor sets no limits)
             points += [np.concatenate(world)]
         drawn += 1
     for i, b in enumerate(bodies):  # the skeleton: centre of mass to joint points

@@ -1,5 +1,6 @@
 """The drawing of a spatial run's frames in perspective (mplot3d): bodies as
-lines to their attachment points, their inertia boxes and turning axes."""
+lines to their attachment points, their inertia boxes and turning axes,
+over the floor a plane shape on the ground makes."""
 
 import numpy as np
 
@@ -79,6 +80,20 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     if hasattr(ax, "set_box_aspect"):
         ax.set_box_aspect((1, 1, 1))
     ax.set_title(f"lagmb: {scene.summary()}{_speed_words(speed)}", fontsize=10)
+    floors = [sh for sh in getattr(result.model, "shapes", []) if sh.body == "ground" and sh.kind == "plane"]
+    if floors:  # a plane on the ground: a floor under everything (drawn first, whatever its depth)
+        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+        from .._drawing import shape_faces
+
+        ax.computed_zorder = False
+        floor_faces = []
+        for floor in floors:
+            R, r = np.asarray(floor.rotation, dtype=float), np.asarray(floor.position, dtype=float)
+            faces = [r + f @ R.T for f in shape_faces(floor, half=0.9 * half, centre=(R.T @ (centre - r))[:2])]
+            floor_faces += faces
+            ax.add_collection3d(Poly3DCollection(faces, facecolors=[(0.82, 0.82, 0.80, 0.6)], edgecolors="0.6",
+                                                 zorder=0))
     if supports:
         s = np.array(supports, dtype=float)
         ax.plot(s[:, 0], s[:, 1], s[:, 2], "^", ms=9, color="0.75", mec="0.2")
@@ -138,4 +153,5 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
                "triad": triad_art, "centres": centre_art, "joints": joint_art, "stamp": stamp}
     drawing = _Drawing(fig, artists, update)
     drawing.triad_lengths = triad  # {body: (3,) m}
+    drawing.floors = floor_faces if floors else []  # [(4, 3)] the floors' squares (m)
     return drawing
