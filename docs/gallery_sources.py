@@ -46,7 +46,7 @@ Every script in ``examples/`` run when these pages were built, with its
 printed output and the figures it drew. Each page shows the script's code as
 it is; run it yourself with ``python examples/NAME.py`` (``--help`` lists its
 options) after ``make demo``. The figures come from the script's own
-``--plot PATH`` option (``--picture PATH`` for the Panda) where it has one;
+``--plot PATH`` option (``--picture PATH`` for the Panda, the incline and Go1) where it has one;
 the bouncing ball, rolling disk, cam follower, Andrews' squeezer and
 N-four-bar print numbers only.
 
@@ -59,8 +59,8 @@ follower, Andrews' squeezer, N-four-bar, cart-pole (with an input, for
 
 #: the gallery's order: the simplest first, then by what they show
 ORDER = ("seed_pendulum", "double_pendulum", "spring_damper", "four_bar", "slider_crank", "quick_return",
-         "gear_train", "bouncing_ball", "door_stop", "rolling_disk", "cam_follower", "andrews", "n_four_bar",
-         "cart_pole", "panda", "mjcf_four_bar")
+         "gear_train", "bouncing_ball", "door_stop", "rolling_disk", "cam_follower", "incline", "andrews",
+         "n_four_bar", "cart_pole", "panda", "go1_drop", "mjcf_four_bar")
 
 
 class ExampleOrder:

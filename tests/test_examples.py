@@ -26,7 +26,7 @@ G = 9.81
 
 SCRIPTS = ["seed_pendulum", "double_pendulum", "slider_crank", "four_bar", "quick_return",
            "gear_train", "spring_damper", "bouncing_ball", "door_stop", "rolling_disk", "cam_follower", "panda",
-           "mjcf_four_bar"]
+           "mjcf_four_bar", "incline", "go1_drop"]
 
 _LINE = re.compile(r"^\s*(?P<label>[^=]+?)\s*=\s*(?P<value>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)")
 
@@ -296,6 +296,42 @@ def test_rolling_disk(outputs):
     assert abs(v["acceleration"] - compliant) <= 1e-8 * compliant
     assert v["max slip speed"] < 1e-4
     assert v["contact events"] == 0
+
+
+def test_incline(outputs):
+    """Three bodies on a 20 degree incline (k = 1e8): the sphere rolls with
+    g sin a / (1 + 2 R^2 / (5 (R - d0)^2)), d0 = (m g cos a / k)^(2/3)
+    recomputed here, to 1e-7 (5/7 g sin a to 3 d0 / R); the cube with mu
+    0.5 > tan a sticks (moves less than 1e-9 m after settling, holds m g
+    sin a to 1e-8 N, reads "stick"); the cube with mu 0.2 slides at g (sin
+    a - mu cos a) to 1e-7."""
+    _, v = outputs("incline")
+    a, R = math.radians(20.0), 0.1
+    d0 = (G * math.cos(a) / 1e8) ** (2.0 / 3.0)
+    compliant = G * math.sin(a) / (1 + 2 * R * R / (5 * (R - d0) ** 2))
+    assert abs(v["sphere acceleration"] - compliant) <= 1e-7 * compliant
+    assert abs(v["sphere acceleration"] - 5 / 7 * G * math.sin(a)) <= 3 * d0 / R * G * math.sin(a)
+    assert v["stuck cube moved after 0.1 s"] < 1e-9
+    assert abs(v["stuck cube friction"] - G * math.sin(a)) <= 1e-8
+    out, _ = outputs("incline")
+    assert "stuck cube state at 1 s = stick" in out
+    slide = G * (math.sin(a) - 0.2 * math.cos(a))
+    assert abs(v["slider acceleration"] - slide) <= 1e-7 * slide
+
+
+def test_go1_drop(outputs):
+    """Unitree Go1 dropped 0.35 m onto the floor (load_urdf(ground=...)):
+    13 bodies, 38 contacts (every collision shape of a moving body); at
+    3 s every speed is below 1e-3, the floor carries the weight (normal
+    forces / m g to 1e-6) and no shape is deeper than (m g / k)^(2/3)."""
+    import test_urdf  # (skips without Pinocchio and example-robot-data)
+
+    assert test_urdf.ROBOTS
+    _, v = outputs("go1_drop")
+    assert v["bodies"] == 13 and v["contacts"] == 38
+    assert v["largest speed at 3 s"] < 1e-3
+    assert abs(v["normal forces / weight"] - 1.0) <= 1e-6
+    assert v["deepest at rest"] <= v["whole weight on one point"]
 
 
 def test_cam_follower(outputs):
