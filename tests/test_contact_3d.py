@@ -580,3 +580,43 @@ def test_load_urdf_ground_pairs_every_collision_shape_with_a_floor(tmp_path):
         mb.load_urdf(path, floating_base=True, ground=0.0, contact={"stiff": 1.0})
     with pytest.raises(mb.UrdfError, match="load_urdf: ground"):
         mb.load_urdf(path, floating_base=True, ground="floor")
+
+
+def test_capsules_touch_at_their_segments_nearest_points():
+    """Two capsules crossed at right angles, one resting across the other
+    on the ground: it rests at the Hertz height (radii and (m g / k)^(2/3),
+    1e-9 m) above the lower segment; Q_q and Q_v of two moving capsules
+    pressed together (skewed) match central differences (1e-6)."""
+    R, L, mass, k = 0.05, 0.4, 1.0, 1e7
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    along_x = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])  # its z along x
+    along_y = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # its z along y
+    top = (0.0, 0.0, 2 * R + 0.003)  # (balanced over the crossing: off it, it tips off)
+    m.add_body("upper", mass=mass, inertia=(0.01, 0.01, 0.002), position=top)
+    upper = m.add_shape("upper", "capsule", (R, L), top, along_y, role="collision")
+    lower = m.add_shape("ground", "capsule", (R, L), (0.0, 0.0, 0.0), along_x, role="collision")
+    m.add_contact("cross", upper, lower, stiffness=k, restitution=0.3)
+    r = mb.simulate(m, 1.0, rtol=1e-9, atol=1e-11, n_out=3)
+    assert abs(r.body("upper").position[-1, 2] - (2 * R - (mass * G / k) ** (2 / 3))) <= 1e-9
+
+    m = mb.Model(gravity=(0.0, 0.0, 0.0), dimension=3)
+    m.add_body("a", mass=1.0, inertia=(0.01, 0.012, 0.014), position=(0.05, 0.02, 0.09))
+    m.add_body("b", mass=2.0, inertia=(0.02, 0.01, 0.015), position=(0.0, 0.0, 0.0))
+    skew = np.array([[0.8, 0.0, 0.6], [0.0, 1.0, 0.0], [-0.6, 0.0, 0.8]])
+    a = m.add_shape("a", "capsule", (R, L), (0.05, 0.02, 0.09), along_y, role="collision")
+    b = m.add_shape("b", "capsule", (R, L), (0.0, 0.0, 0.0), skew, role="collision")
+    m.add_contact("press", a, b, stiffness=1e6, restitution=0.95, friction=0.3, slip_velocity=0.05)
+    core = m.compiled()
+    q, _ = core.initial_state()
+    v = 0.01 * np.random.default_rng(5).standard_normal(q.size)
+    Q, Qq, Qv = core.forces(q, v, 0.0)
+    assert np.max(np.abs(Q)) > 1.0
+    h = 1e-6
+    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
+        fd = np.zeros_like(Jac)
+        for j in range(q.size):
+            dx = np.zeros(q.size)
+            dx[j] = h
+            args = ((q + dx, v), (q - dx, v)) if wrt == "q" else ((q, v + dx), (q, v - dx))
+            fd[:, j] = (core.forces(*args[0], 0.0)[0] - core.forces(*args[1], 0.0)[0]) / (2 * h)
+        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt

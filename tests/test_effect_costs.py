@@ -174,3 +174,44 @@ def test_an_element_using_a_disabled_one_is_told_so(tmp_path):
     path.write_text(text)
     with pytest.raises(mb.ModelError, match=r"joint 'extra' is disabled .*enabled = false.*disable"):
         mb.load_scene(path)
+
+
+def spatial_chain(shapes=False, far_contact=False):
+    """A 6-link spatial pendulum chain (revolutes about y) under gravity;
+    with shapes, a collision box on every link and a ground plane that no
+    contact pairs; with far_contact, a sphere on the last link paired with a
+    plane 100 m below."""
+    m = mb.Model(gravity=(0.0, 0.0, -9.81), dimension=3)
+    prev = m.ground
+    for k in range(6):
+        rod = m.add_body(f"rod{k}", mass=1.0, inertia=(1e-3, 1 / 12, 1 / 12), position=(k + 0.5, 0.0, 0.0))
+        m.add_revolute(f"pin{k}", prev, rod, at=(float(k), 0.0, 0.0), axis=(0.0, 1.0, 0.0))
+        if shapes:
+            m.add_shape(rod, "box", (1.0, 0.1, 0.1), (k + 0.5, 0.0, 0.0), role="collision")
+        prev = rod
+    if shapes:
+        m.add_shape(m.ground, "plane", (), (0.0, 0.0, -10.0), role="collision")
+    if far_contact:
+        ball = m.add_shape(prev, "sphere", (0.1,), (5.5, 0.0, 0.0), role="collision")
+        floor = m.add_shape(m.ground, "plane", (), (0.0, 0.0, -100.0), role="collision")
+        m.add_contact("far", ball, floor, stiffness=1e6, restitution=0.5, friction=0.5)
+    return m
+
+
+def test_shapes_no_contact_pairs_cost_nothing_and_far_contacts_cost_their_gaps():
+    """Collision shapes that no contact pairs are pictures: the chain with a
+    box on every link and a ground plane takes the same steps and evaluates
+    the same elements, bit for bit. A contact whose shapes stay 100 m apart
+    adds its event functions (one gap read from the bounding spheres) and
+    its force evaluations, zero: under one method (GGL: "auto" takes it for
+    a model with contacts), the same steps and the same motion."""
+    keys = ["steps", "residual_evals", "jacobian_evals", "lu_factorizations", "newton_iterations",
+            "element_evaluations"]
+    plain = mb.simulate(spatial_chain(), 0.5, rtol=1e-7, atol=1e-9, n_out=3)
+    shaped = mb.simulate(spatial_chain(shapes=True), 0.5, rtol=1e-7, atol=1e-9, n_out=3)
+    assert {k: plain.stats[k] for k in keys} == {k: shaped.stats[k] for k in keys}
+    assert np.array_equal(plain.q, shaped.q)
+    plain = mb.simulate(spatial_chain(), 0.5, rtol=1e-7, atol=1e-9, n_out=3, method="ggl")
+    far = mb.simulate(spatial_chain(far_contact=True), 0.5, rtol=1e-7, atol=1e-9, n_out=3, method="ggl")
+    assert far.stats["steps"] == plain.stats["steps"] and far.stats["events"] == 0
+    assert np.array_equal(plain.q, far.q) and far.stats["root_evals"] > 0

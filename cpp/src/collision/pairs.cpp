@@ -214,6 +214,44 @@ struct SphereCapsule {
   }
 };
 
+/// Two capsules: the nearest points X (on a's segment) and Y (on b's),
+/// each segment's parameter clamped to it (Ericson, "Real-Time Collision
+/// Detection", 5.1.9), as spheres of the radii about them. Parallel
+/// segments (a line of contact) take a's parameter 0 or the end that
+/// overlaps: one point of the line.
+struct CapsuleCapsule {
+  static constexpr bool anchored = false;
+  static int points(const CollisionShape&, const CollisionShape&) { return 1; }
+  template <class T>
+  static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
+                      ContactPoint<T>* out) {
+    const Vec3 ha = 0.5 * a.size[1] * a.axes.col(2), hb = 0.5 * b.size[1] * b.axes.col(2);
+    const V3<T> P0 = A.point(a.position - ha), P1 = A.point(a.position + ha);
+    const V3<T> Q0 = B.point(b.position - hb), Q1 = B.point(b.position + hb);
+    const V3<T> d1 = P1 - P0, d2 = Q1 - Q0, r = P0 - Q0;
+    const T aa = dot(d1, d1), ee = dot(d2, d2), f = dot(d2, r), c = dot(d1, r), bb = dot(d1, d2);
+    const T denom = aa * ee - bb * bb;
+    auto clamp01 = [](T x) { return value_of(x) < 0.0 ? T(0.0) : value_of(x) > 1.0 ? T(1.0) : x; };
+    T s = value_of(denom) > 1e-12 * value_of(aa) * value_of(ee) ? clamp01((bb * f - c * ee) / denom) : T(0.0);
+    T t = (bb * s + f) / ee;
+    if (value_of(t) < 0.0) {
+      t = T(0.0);
+      s = clamp01(-c / aa);
+    } else if (value_of(t) > 1.0) {
+      t = T(1.0);
+      s = clamp01((bb - c) / aa);
+    }
+    const V3<T> X = P0 + s * d1, Y = Q0 + t * d2;
+    const V3<T> Xd = A.point_velocity(a.position - ha) + s * (A.point_velocity(a.position + ha) -
+                                                             A.point_velocity(a.position - ha));
+    const V3<T> Yd = B.point_velocity(b.position - hb) + t * (B.point_velocity(b.position + hb) -
+                                                             B.point_velocity(b.position - hb));
+    ContactPoint<T> contact = ball_point(X, Xd, a.size[0] + b.size[0], Y, Yd);
+    contact.point = contact.point + T(b.size[0]) * contact.normal;
+    out[0] = contact;
+  }
+};
+
 /// A sphere against a box: the box's point nearest the sphere's centre
 /// (the centre clamped to the box in the box's axes); a centre inside the
 /// box is pushed out through the nearest face.
@@ -262,6 +300,7 @@ const std::vector<Pair>& table() {
       line<BoxPlane>(S::kBox, S::kPlane),           line<ConvexPlane>(S::kConvex, S::kPlane),
       line<SphereSphere>(S::kSphere, S::kSphere),   line<SphereCapsule>(S::kSphere, S::kCapsule),
       line<SphereBox>(S::kSphere, S::kBox),         line<CylinderPlane>(S::kCylinder, S::kPlane),
+      line<CapsuleCapsule>(S::kCapsule, S::kCapsule),
   };
   return pairs;
 }
