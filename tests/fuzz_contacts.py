@@ -408,37 +408,20 @@ def contact_problems(r, meta):
 
         # events: onsets and releases kept, stick and slip alternate, the state agrees
         mine = [e for e in events if e["element"] == c["name"]]
-        g0 = gaps[0][0]
-        count = int(np.sum(g0 < 0.0))
-        n_points = len(g0)
-        for e in mine:
-            if e["kind"] == "restart":
-                count += 1 if e["label"] == "onset" else -1 if e["label"] == "release" else 0
-                if not 0 <= count <= n_points:
-                    bad.append(f"event bookkeeping: contact {c['name']!r} has {count} points pressing after its "
-                               f"{e['label']} at t = {e['t']!r} (of {n_points}; {int(np.sum(g0 < 0.0))} at t0)")
-                    break
-        else:
-            g_end = gaps[-1][0]
-            ambiguous = np.any(np.abs(g_end) < 1e-9 + drift) or any(abs(e["t"] - t[-1]) < 1e-6 for e in mine)
-            if not ambiguous and count != int(np.sum(g_end < 0.0)):
-                bad.append(f"event bookkeeping: contact {c['name']!r}'s onsets and releases leave {count} points "
-                           f"pressing at the end, the geometry shows {int(np.sum(g_end < 0.0))} (of {n_points}; "
-                           f"{len([e for e in mine if e['label'] == 'onset'])} onsets, "
-                           f"{len([e for e in mine if e['label'] == 'release'])} releases)")
+        bad += _onsets_and_releases(c, mine, [g for g, _ in gaps], t, drift)
         friction = [e for e in mine if e["kind"] == "friction"]
         intervals, start = [], None
         for e in friction:
             if e["label"] == "stick":
                 if start is not None:
-                    bad.append(f"event bookkeeping: contact {c['name']!r} sticks at t = {e['t']!r}, stuck since "
-                               f"{start!r}")
+                    bad.append(f"stick and slip out of turn: contact {c['name']!r} sticks at t = {e['t']!r}, "
+                               f"stuck since {start!r}")
                     break
                 start = e["t"]
             elif e["label"] == "slip":
                 if start is None:
-                    bad.append(f"event bookkeeping: contact {c['name']!r} lets go at t = {e['t']!r} without "
-                               f"sticking")
+                    bad.append(f"stick and slip out of turn: contact {c['name']!r} lets go at t = {e['t']!r} "
+                               f"without sticking")
                     break
                 intervals.append((start, e["t"]))
                 start = None
@@ -457,6 +440,43 @@ def contact_problems(r, meta):
                 bad.append(f"state disagrees with events: contact {c['name']!r} reads {state[k]!r} at t = {t[k]:.6g}, "
                            f"its stick/slip events say {'stuck' if inside[k] else 'not stuck'}")
     return bad
+
+
+def _onsets_and_releases(c, mine, gaps, t, drift):
+    """Contact c's onsets less its releases: a count of pressing points that
+    starts at the geometry's (a point whose gap is 0 to rounding may be
+    either), stays within 0..its points and ends at the geometry's."""
+    import numpy as np
+
+    def possible(g):  # (fewest, most) points pressing
+        sure = int(np.sum(g < -(1e-12 + drift)))
+        return sure, sure + int(np.sum(np.abs(g) <= 1e-12 + drift))
+
+    n = len(gaps[0])
+    lo, hi = possible(gaps[0])  # the initial counts the events are consistent with
+    start = (lo, hi)
+    s = 0
+    for e in mine:
+        if e["kind"] != "restart":
+            continue
+        s += 1 if e["label"] == "onset" else -1
+        lo, hi = max(lo, -s), min(hi, n - s)
+        if lo > hi:
+            onsets = sum(1 for x in mine if x["kind"] == "restart" and x["label"] == "onset" and x["t"] <= e["t"])
+            return [f"onsets and releases miscounted: contact {c['name']!r} would have "
+                    f"{start[0] + s if s < 0 else start[1] + s} of its {n} points pressing after its {e['label']} "
+                    f"at t = {e['t']!r} ({start[0]}..{start[1]} at t0, {onsets} onsets and "
+                    f"{onsets - s} releases since)"]
+    if any(abs(e["t"] - t[-1]) <= 1e-9 for e in mine):
+        return []
+    end_lo, end_hi = possible(gaps[-1])
+    lo, hi = max(lo, end_lo - s), min(hi, end_hi - s)
+    if lo > hi:
+        onsets = sum(1 for x in mine if x["kind"] == "restart" and x["label"] == "onset")
+        return [f"onsets and releases miscounted: contact {c['name']!r}'s {onsets} onsets and {onsets - s} "
+                f"releases leave {start[0] + s}..{start[1] + s} of its {n} points pressing at the end "
+                f"(from {start[0]}..{start[1]} at t0), the geometry shows {end_lo}..{end_hi}"]
+    return []
 
 
 LAWS_BROKEN = "laws broken: "

@@ -489,3 +489,54 @@ def test_values_too_large_for_a_model_are_refused_at_load(tmp_path, change, word
         with pytest.raises(mb.MjcfError) as error:
             mb.load_mjcf(path, contacts="ignore")
     assert words in str(error.value) and "beyond what a model can hold" in str(error.value)
+
+
+DROP_TEXT = """<mujoco>
+  <option gravity="0 0 -9.81"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="5 5 0.1" friction="0.6"/>
+    <body name="ball" pos="0 0 0.3">
+      <freejoint/>
+      <geom name="ball" type="sphere" size="0.1" mass="1" friction="0.4"/>
+    </body>
+    <body name="crate" pos="0.5 0 0.2" euler="0 0 30">
+      <freejoint/>
+      <geom name="crate" type="box" size="0.1 0.15 0.1" mass="2"/>
+    </body>
+    <body name="stick" pos="-0.5 0 0.2" euler="0 90 0">
+      <freejoint/>
+      <geom name="stick" type="capsule" size="0.05 0.2" mass="1"/>
+      <body name="tip" pos="0 0 0.3">
+        <joint name="hinge" type="hinge" axis="0 1 0"/>
+        <geom name="tip" type="sphere" size="0.04" mass="0.2"/>
+      </body>
+    </body>
+  </worldbody>
+  <contact><exclude body1="ball" body2="crate"/></contact>
+</mujoco>"""
+
+
+def test_contacts_simulate_pairs_the_geoms_mujoco_would(tmp_path):
+    """contacts="simulate": a shape per colliding geom at its pose and a
+    contact (GEOM1_GEOM2) for each pair MuJoCo tests: the floor with each
+    body's geom; the ball with the stick and the tip, not with the crate
+    (an <exclude>); the stick not with its child the tip (filterparent);
+    the crate and the stick (box-capsule, which lagmb has no contact for)
+    left out with a warning naming them. Friction is the larger of the
+    geoms', `contact` sets the rest; the run rests each body on the floor at
+    its Hertz height, as a model built by hand does."""
+    path = tmp_path / "drop.xml"
+    path.write_text(DROP_TEXT)
+    with pytest.warns(mb.MjcfWarning, match="leaves out geoms 'crate' and 'stick' \\(box-capsule\\)"):
+        m = mb.load_mjcf(path, contacts="simulate", contact={"stiffness": 1e6, "restitution": 0.3})
+    contacts = {kw["name"]: kw for method, kw in m.elements() if method == "add_contact"}
+    assert sorted(contacts) == ["ball_stick", "ball_tip", "crate_tip", "floor_ball", "floor_crate", "floor_stick",
+                                "floor_tip"]
+    assert contacts["floor_ball"]["friction"] == 0.6 and contacts["ball_stick"]["friction"] == 1.0
+    assert contacts["floor_ball"]["stiffness"] == 1e6 and contacts["floor_ball"]["restitution"] == 0.3
+    assert [s.kind for s in m.shapes] == ["plane", "sphere", "box", "capsule", "sphere"]
+    r = mb.simulate(m, 1.5, rtol=1e-9, atol=1e-11, n_out=3)
+    assert abs(r.body("ball").position[-1, 2] - (0.1 - (9.81 / 1e6) ** (2 / 3))) <= 1e-9
+    assert abs(r.body("crate").position[-1, 2] - (0.1 - (2 * 9.81 / 4e6) ** (2 / 3))) <= 1e-9
+    with pytest.raises(mb.MjcfError, match="contact .* goes with contacts='simulate'"):
+        mb.load_mjcf(path, contact={"stiffness": 1e6})

@@ -42,7 +42,7 @@ def _mujoco():
     return mujoco
 
 
-def load_mjcf(path, *, contacts="warn"):
+def load_mjcf(path, *, contacts="warn", contact=None):
     """A spatial :class:`lagmb.Model` of the MuJoCo model in an MJCF file.
 
     Bodies: each MuJoCo body with its mass, centre of mass and inertia (a
@@ -67,7 +67,20 @@ def load_mjcf(path, *, contacts="warn"):
     joint damping (``damper``), equality constraints (``equality`` or
     ``constraint``).
 
-    Contacts between geoms are not simulated: ``contacts="warn"`` names the
+    Contacts between geoms: ``contacts="simulate"`` makes each colliding
+    geom (MuJoCo's ``contype``/``conaffinity``, or one of a ``<pair>``) a
+    collision shape (plane, sphere, capsule, cylinder, box at its pose in
+    the reference configuration) and adds a contact (``GEOM1_GEOM2``) for
+    each pair MuJoCo would test: geoms on different bodies whose contype
+    and conaffinity bits meet, not a body and its parent unless the parent
+    is the world (MuJoCo's filterparent), not an ``<exclude>``d pair; and
+    every ``<pair>``. The law is lagmb's Hertz contact (MuJoCo's solref and
+    solimp have no counterpart): ``mb.urdf.GROUND_CONTACT``'s stiffness and
+    restitution, the larger of the two geoms' sliding friction, as
+    ``contact`` (a dict of add_contact's keywords) updates them. Pairs of
+    shapes lagmb has no contact for (box-box, ...) and geoms of other types
+    (ellipsoid, mesh, height field) are left out, named in an MjcfWarning.
+    Otherwise contacts are not simulated: ``contacts="warn"`` names the
     colliding geoms in an MjcfWarning, ``"ignore"`` says nothing, ``"error"``
     raises. MjcfError (a ModelError) for what lagmb does not read yet:
     tendons, actuators, flexes, plugins, a body with more than one joint,
@@ -84,8 +97,12 @@ def load_mjcf(path, *, contacts="warn"):
     path = os.fsdecode(path)
     if "\0" in path:  # (MuJoCo would read the file named by the part before it)
         raise MjcfError(f"load_mjcf: path {_checks.show(path)} holds a NUL character")
-    if not (isinstance(contacts, str) and contacts in ("warn", "ignore", "error")):
-        raise MjcfError(f"load_mjcf: contacts must be 'warn', 'ignore' or 'error', got {_checks.show(contacts)}")
+    if not (isinstance(contacts, str) and contacts in ("warn", "ignore", "error", "simulate")):
+        raise MjcfError(f"load_mjcf: contacts must be 'warn', 'ignore', 'error' or 'simulate', got "
+                        f"{_checks.show(contacts)}")
+    if contact is not None and (contacts != "simulate" or not isinstance(contact, dict)):
+        raise MjcfError("load_mjcf: contact (a dict of add_contact's keywords) goes with contacts='simulate', got "
+                        f"{_checks.show(contact)}")
     mujoco = _mujoco()
     try:
         m = mujoco.MjModel.from_xml_path(path)
@@ -124,7 +141,8 @@ def load_mjcf(path, *, contacts="warn"):
             refuse(f"body '{name(obj.mjOBJ_BODY, b, 'body')}': gravity compensation (gravcomp) is not supported")
     colliding = [g for g in range(m.ngeom) if m.geom_contype[g] or m.geom_conaffinity[g]]
     colliding += sorted({int(g) for p in range(m.npair) for g in (m.pair_geom1[p], m.pair_geom2[p])} - set(colliding))
-    if colliding and not disabled(off.mjDSBL_CONTACT, off.mjDSBL_CONSTRAINT) and contacts != "ignore":
+    if colliding and not disabled(off.mjDSBL_CONTACT, off.mjDSBL_CONSTRAINT) and contacts not in ("ignore",
+                                                                                                  "simulate"):
         listed = ", ".join(repr(name(obj.mjOBJ_GEOM, g, "geom")) for g in colliding[:5])
         text = (f"{path}: contacts between geoms are not simulated by lagmb ({len(colliding)} geoms collide in "
                 f"MuJoCo: {listed}{', ...' if len(colliding) > 5 else ''}); pass contacts='ignore' to say nothing")
@@ -260,8 +278,70 @@ def load_mjcf(path, *, contacts="warn"):
             add(what, model.add_spherical, label["equality", e], i, k, at=tuple(anchor))
         else:
             add(what, model.add_weld, label["equality", e], i, k)
+    if contacts == "simulate" and colliding and not disabled(off.mjDSBL_CONTACT, off.mjDSBL_CONSTRAINT):
+        _contacts(model, m, d, path, colliding, group, names, space, contact or {}, disabled(off.mjDSBL_FILTERPARENT))
     space.warn(path, MjcfWarning)
     return model
+
+
+def _contacts(model, m, d, path, colliding, group, names, space, given, no_filter):
+    """The collision shapes of the colliding geoms and a contact for each
+    pair MuJoCo tests (load_mjcf, contacts="simulate")."""
+    import mujoco
+
+    from .urdf import GROUND_CONTACT
+
+    obj, geom = mujoco.mjtObj, mujoco.mjtGeom
+
+    def gname(g):
+        return mujoco.mj_id2name(m, obj.mjOBJ_GEOM, g) or f"geom{g}"
+
+    kinds = {int(geom.mjGEOM_PLANE): "plane", int(geom.mjGEOM_SPHERE): "sphere", int(geom.mjGEOM_CAPSULE): "capsule",
+             int(geom.mjGEOM_CYLINDER): "cylinder", int(geom.mjGEOM_BOX): "box"}
+    shapes, left_out = {}, []
+    for g in colliding:
+        kind = kinds.get(int(m.geom_type[g]))
+        if kind is None:
+            left_out.append(f"geom '{gname(g)}' (its type is not a collision shape lagmb has)")
+            continue
+        size = m.geom_size[g]
+        size = {"plane": (), "sphere": (size[0],), "capsule": (size[0], 2 * size[1]),
+                "cylinder": (size[0], 2 * size[1]), "box": tuple(2 * size)}[kind]
+        shapes[g] = model.add_shape(names[group[int(m.geom_bodyid[g])]], kind, tuple(float(x) for x in size),
+                                    position=tuple(d.geom_xpos[g]), orientation=d.geom_xmat[g].reshape(3, 3),
+                                    role="collision")
+    excluded = {int(x) for x in m.exclude_signature[:m.nexclude]} if m.nexclude else set()
+    pairs = [(int(m.pair_geom1[p]), int(m.pair_geom2[p])) for p in range(m.npair)]
+    listed = set(pairs)
+    for a, b in ((a, b) for i, a in enumerate(colliding) for b in colliding[i + 1:]):
+        ba, bb = int(m.geom_bodyid[a]), int(m.geom_bodyid[b])
+        ga, gb = group[ba], group[bb]
+        if ga == gb or (a, b) in listed or (b, a) in listed:
+            continue
+        if not (m.geom_contype[a] & m.geom_conaffinity[b] or m.geom_contype[b] & m.geom_conaffinity[a]):
+            continue
+        parents = {group[int(m.body_parentid[ba])], group[int(m.body_parentid[bb])]}
+        if not no_filter and (ga in parents or gb in parents) and 0 not in (ga, gb):
+            continue
+        if (min(ba, bb) << 16) + max(ba, bb) in excluded:  # (MuJoCo's signature of a body pair)
+            continue
+        pairs.append((a, b))
+    law = dict(GROUND_CONTACT)
+    for a, b in pairs:
+        if a not in shapes or b not in shapes:
+            continue
+        values = dict(law, friction=float(max(m.geom_friction[a][0], m.geom_friction[b][0])))
+        values.update(given)
+        name = space.claim(f"{gname(a)}_{gname(b)}", "contact", f"the contact of geoms '{gname(a)}' and "
+                           f"'{gname(b)}'", made=True)
+        try:
+            model.add_contact(name, shapes[a], shapes[b], **values)
+        except ModelError as e:
+            if "no contact between" not in str(e):
+                raise MjcfError(f"{path}: geoms '{gname(a)}' and '{gname(b)}': {e}") from None
+            left_out.append(f"geoms '{gname(a)}' and '{gname(b)}' ({shapes[a].kind}-{shapes[b].kind})")
+    if left_out:
+        warnings.warn(MjcfWarning(f"{path}: contacts='simulate' leaves out " + "; ".join(left_out)), stacklevel=3)
 
 
 def _couple_joints(model, m, e, what, label, joint_value, refuse, add):
