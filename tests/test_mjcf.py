@@ -370,8 +370,8 @@ def test_an_explicit_contact_pair_is_named(tmp_path):
         assert mb.load_mjcf(path).bodies
 
 
-def test_contacts_takes_warn_ignore_or_error():
-    with pytest.raises(mb.ModelError, match="contacts must be 'warn', 'ignore' or 'error'"):
+def test_contacts_takes_warn_ignore_error_or_simulate():
+    with pytest.raises(mb.ModelError, match="contacts must be 'warn', 'ignore', 'error' or 'simulate'"):
         mb.load_mjcf(CHAIN, contacts="yes")
 
 
@@ -458,8 +458,8 @@ def test_lagmbs_damping_name_taken_by_a_joint_gets_a_number(tmp_path):
     (5, "warn", "load_mjcf: path must be a file name (a str or os.PathLike), got 5"),
     (None, "warn", "load_mjcf: path must be a file name (a str or os.PathLike), got None"),
     (CHAIN + "\0.xml", "warn", "holds a NUL character"),
-    (CHAIN, np.array(["warn", "error"]), "load_mjcf: contacts must be 'warn', 'ignore' or 'error', got array("),
-    (CHAIN, None, "load_mjcf: contacts must be 'warn', 'ignore' or 'error', got None"),
+    (CHAIN, np.array(["warn", "error"]), "load_mjcf: contacts must be 'warn', 'ignore', 'error' or 'simulate', got array("),
+    (CHAIN, None, "load_mjcf: contacts must be 'warn', 'ignore', 'error' or 'simulate', got None"),
 ])
 def test_bad_arguments_are_named(path, contacts, words):
     """A path that is no file name (before: TypeError), one holding a NUL
