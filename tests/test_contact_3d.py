@@ -620,3 +620,24 @@ def test_capsules_touch_at_their_segments_nearest_points():
             args = ((q + dx, v), (q - dx, v)) if wrt == "q" else ((q, v + dx), (q, v - dx))
             fd[:, j] = (core.forces(*args[0], 0.0)[0] - core.forces(*args[1], 0.0)[0]) / (2 * h)
         assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+
+
+@pytest.mark.parametrize("mu", [1.5, 3.0])
+def test_a_rod_sliding_on_its_end_past_painleves_friction_jams_and_goes_on(mu):
+    """Painlevé's rod: a thin bar leaning at 30 degrees whose lower end
+    slides at 2 m/s with mu above 4/3. With a rigid normal its contact has
+    no consistent solution; with the compliant one here the end jams (its
+    contact sticks: a tangential impact) and the run goes on; the energy
+    never rises (1e-6 J)."""
+    th, L, w = math.radians(30.0), 1.0, 0.02
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    R = rotation_y(-th)  # its x axis rising at 30 degrees
+    centre = (0.5 * L * math.cos(th), 0.0, 0.5 * L * math.sin(th) + 0.5 * w * math.cos(th) - 1e-6)
+    m.add_body("rod", mass=1.0, inertia=(1e-4, L * L / 12, L * L / 12), position=centre, orientation=R,
+               velocity=(-2.0, 0.0, 0.0))
+    rod = m.add_shape("rod", "box", (L, w, w), centre, R, role="collision")
+    m.add_contact("end", rod, floor, stiffness=1e8, restitution=0.5, friction=mu)
+    r = mb.simulate(m, 0.5, rtol=1e-8, atol=1e-10, n_out=501)
+    assert "stick" in [x["label"] for x in r.events if x["kind"] == "friction"]
+    assert np.max(np.diff(r.energy)) <= 1e-6
