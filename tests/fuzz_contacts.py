@@ -82,8 +82,8 @@ METHODS = ["ggl", "index3", "index1", "projection-bdf", "projection-adams", "aut
 #: error a run shows in its energy (index 3's velocities are only index-2
 #: accurate; index 1 and Adams let the Euler parameters' norms and the stick
 #: rows drift, their residual's work is added apart)
-ENERGY_TOL = {"index3": 2e-4, "index1": 1e-5, "projection-adams": 1e-5}
-ENERGY_TOL_DEFAULT = 1e-5
+ENERGY_TOL = {"index3": 1e-4}
+ENERGY_TOL_DEFAULT = 1e-6
 GEOMETRY_TOL = 1e-7  # m per m of the shape's size (+ the drift): readings against the geometry
 STICK_SLIP = 0.5  # of v_s: the fastest a stuck contact's points may slip
 LIMIT_TOL = 1e-6  # relative: friction beyond mu F_n (or mu_s F_n while stuck)
@@ -408,7 +408,7 @@ def contact_problems(r, meta):
 
         # events: onsets and releases kept, stick and slip alternate, the state agrees
         mine = [e for e in events if e["element"] == c["name"]]
-        bad += _onsets_and_releases(c, mine, [g for g, _ in gaps], t, drift)
+        bad += _onsets_and_releases(c, mine, [g for g, _ in gaps], t, drift, a["kind"])
         friction = [e for e in mine if e["kind"] == "friction"]
         intervals, start = [], None
         for e in friction:
@@ -442,7 +442,7 @@ def contact_problems(r, meta):
     return bad
 
 
-DUPLICATE_DT = 1e-8  # s: the same crossing logged again this soon (a point's second onset or release)
+DUPLICATE_DT = 1e-6  # s: the same crossing logged again this soon (a point's second onset or release)
 
 
 def _count_problem(c, crossings, gaps, t, drift, may_skip=()):
@@ -479,16 +479,25 @@ def _count_problem(c, crossings, gaps, t, drift, may_skip=()):
     return None
 
 
-def _onsets_and_releases(c, mine, gaps, t, drift):
+def _onsets_and_releases(c, mine, gaps, t, drift, kind):
     """Contact c's onsets less its releases count its pressing points
     (_count_problem). A count kept only if some crossings logged within
     DUPLICATE_DT after another of the same label (at another time: points
     crossing together are logged at one time) are taken as that one logged
-    again breaks a law of its own."""
+    again breaks a law of its own; so does a cylinder's that logs an onset
+    and a release at one instant (its rim points at 90 and 270 degrees from
+    the deepest have one gap: they cross together, the same way)."""
     crossings = [e for e in mine if e["kind"] == "restart"]
     problem = _count_problem(c, crossings, gaps, t, drift)
     if problem is None:
         return []
+    if kind == "cylinder" and c["other"] is None:
+        for e in crossings:
+            other = [x for x in crossings if x["t"] == e["t"] and x["label"] != e["label"]]
+            if other:
+                return [f"rim points crossing together logged apart: contact {c['name']!r} logs an {e['label']} "
+                        f"(gap rate {e['speed_before']:.6g} m/s) and an {other[0]['label']} (gap rate "
+                        f"{other[0]['speed_before']:.6g} m/s) at t = {e['t']!r} ({problem})"]
     again = {i for i, e in enumerate(crossings)
              if any(x["label"] == e["label"] and 0.0 < e["t"] - x["t"] <= DUPLICATE_DT for x in crossings[:i])}
     if again and _count_problem(c, crossings, gaps, t, drift, again) is None:
@@ -656,7 +665,7 @@ def _add_contact(b, name, shape, other, plane_first=False):
                        "can_stick": other is None and s["kind"] == "box"})
 
 
-def _body(b, name, kind, size, place, R, velocity, angular_velocity, src_R):
+def _body(b, name, kind, size, place, R, velocity, angular_velocity, src_R, exact=False):
     """A body with one shape, of axes R @ its turn in the body, centred at
     place(those axes) (global); the body's centre of mass is off the shape's
     centre sometimes. -> the shape's index."""
@@ -673,8 +682,10 @@ def _body(b, name, kind, size, place, R, velocity, angular_velocity, src_R):
     if d(st.integers(0, 4)) == 0:
         turn_src, turn = b.orientation(aligned_ok=True)
     axes = R @ turn
-    centre = _v(*place(axes))
-    position = _v(*(np.asarray(centre) - R @ np.asarray(offset)))
+    # (exact: the coordinates to the last bit, so that a shape placed touching touches to rounding)
+    rounded = (lambda *x: tuple(float(v) for v in x)) if exact else _v
+    centre = rounded(*place(axes))
+    position = rounded(*(np.asarray(centre) - R @ np.asarray(offset)))
     args = f"mass={mass!r}, inertia={inertia!r}, position={position!r}"
     if src_R:
         args += f", orientation={src_R}"
@@ -706,15 +717,16 @@ def _lift(b, kind, mass, k_guess=1e7):
     """How far above the plane a shape starts: resting (pressed in about its
     static depth), touching, a little or well above."""
     d = b.draw
-    how = b.pick(["resting", "touching", "gap", "gap", "high"])
+    how = b.pick(["resting", "touching", "touching", "gap", "gap", "high"])
     if how == "resting":
         depth = (mass * G / k_guess) ** (2.0 / 3.0)
-        return -_r(depth * b.pick([0.1, 0.5, 1.0, 2.0])), True
-    if how == "touching":
-        return 0.0, b.draw(st.booleans())
+        return -_r(depth * b.pick([0.1, 0.5, 1.0, 2.0])), True, False
+    if how == "touching":  # to rounding (exact), or a hair above or in
+        lift = b.pick([0.0, 0.0, 1e-12, -1e-12, 1e-9])
+        return lift, b.draw(st.booleans()), True
     if how == "gap":
-        return b.pick([1e-4, 1e-3, 0.01, 0.05]), False
-    return b.pick([0.1, 0.3, 0.5]), False
+        return b.pick([1e-4, 1e-3, 0.01, 0.05]), False, False
+    return b.pick([0.1, 0.3, 0.5]), False, False
 
 
 def _initial_energy(b, plane):
@@ -805,13 +817,13 @@ if st is not None:
                 kind, size = _shape_kind(b)
             src_R, R = b.orientation()
             mass_guess = 1.0
-            lift, rest = _lift(b, kind, mass_guess, k_guess)
+            lift, rest, exact = _lift(b, kind, mass_guess, k_guess)
             at_s = 1.5 * i - 1.5 + 0.1 * draw(st.integers(-2, 2))
             at_u = 0.1 * draw(st.integers(-3, 3))
             # the shape's axes: the body's turned by the shape's turn in it (drawn in _body; placed afterwards)
             v, w = _velocities(b, rest=rest and draw(st.booleans()))
             s = _body(b, name, kind, size, lambda axes: _place(b, kind, size, axes, plane, at_s, at_u, lift), R, v, w,
-                      src_R)
+                      src_R, exact=exact)
             _add_contact(b, f"floor{i}", s, None, plane_first=draw(st.integers(0, 4)) == 0)
             if draw(st.integers(0, 6)) == 0:  # a second shape on the body: a sphere at one end, its own contact
                 _second_shape(b, name, plane)

@@ -430,3 +430,34 @@ def test_spatial_shapes_and_a_floor_are_drawn(chromium, tmp_path):
     assert state["bodies"] == 4 and state["drawn"] == 4
     assert pixels_in_view(page, tmp_path / "floor.png", state["renders"]) > 20000
     page.close()
+
+
+def test_contact_forces_are_drawn_as_arrows(chromium, tmp_path):
+    """view(..., forces=True): one arrow per contact at its point along the
+    force on its first shape (r.contact: normal and friction), the largest
+    over the run a tenth of the scene long, the scale written under the
+    title; Chromium shows the arrows of the contacts pressing at a frame."""
+    import json
+    import re
+
+    import test_plotting
+
+    r = mb.simulate(test_plotting._shapes_on_a_floor(), 0.5, n_out=11)
+    path = tmp_path / "forces.html"
+    view(r, path, forces=True)
+    data = json.loads(re.search(r'id="lagmb-data">(.*?)</script>', path.read_text(), re.S).group(1))
+    assert len(data["arrows"]) == 4
+    vectors = [np.frombuffer(base64.b64decode(a["vectors"]), "<f4").reshape(-1, 3) for a in data["arrows"]]
+    longest = max(np.linalg.norm(v, axis=1).max() for v in vectors)
+    assert abs(longest - 0.1 * data["size"]) <= 1e-6 * data["size"]
+    c = r.contact("c0")
+    force = c.normal_force[-1] * c.normal[-1] + c.friction_force[-1]
+    assert np.allclose(vectors[0][-1] / np.linalg.norm(vectors[0][-1]), force / np.linalg.norm(force), atol=1e-6)
+    assert any(line.startswith("contact forces: ") for line in data["lines"])
+    page, _ = open_page(chromium, path)
+    page.evaluate(f"lagmbViewer.setFrame({len(r.t) - 1})")
+    pressing = sum(r.contact(f"c{i}").normal_force[-1] > 0 for i in range(4))
+    page.wait_for(f"lagmbViewer.state().arrows == {pressing}")
+    page.close()
+    with pytest.raises(mb.ModelError, match="lagmb.view: forces"):
+        view(r, tmp_path / "x.html", forces="yes")

@@ -413,7 +413,7 @@ window.lagmbSweep = { cases: () => entries.length, selected: () => selected, cho
 
 
 def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_frames=5000, loop=False,
-         lines=None):
+         lines=None, forces=False):
     """Writes the run as one self-contained HTML page (see the module's
     docstring) and returns a :class:`View`; ``path=None`` keeps it in memory
     (a notebook shows it inline).
@@ -430,6 +430,9 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     evenly (the page holds 7 float32 numbers per body per frame). ``loop``:
     playing starts again at the end (:func:`view_mode`); ``lines``: the
     text under the title (default: the bodies, the method and its counts).
+    ``forces=True``: each contact's force on its first shape (normal and
+    friction, r.contact) as an arrow at its point, the largest over the
+    run a tenth of the scene long (the scale under the title).
     Names and titles are shown as text, whatever characters they hold.
 
     Planar models are drawn in their plane (x, y), bodies as bars between
@@ -454,6 +457,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     path = None if path is None else _path(path, "lagmb.view: path")
     max_frames = _checks.integer(max_frames, "lagmb.view: max_frames", 1, _checks.INT_MAX)
     loop = _checks.flag(loop, "lagmb.view: loop")
+    forces = _checks.flag(forces, "lagmb.view: forces")
     if title is not None:
         _checks.text(title, "lagmb.view: title")
     if outputs is not None:
@@ -568,6 +572,20 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         if dimension == 2:
             p = np.column_stack([p, np.zeros(len(p))])
         traces.append({"points": _b64(p), "colour": list(_PALETTE[(j + 3) % len(_PALETTE)])})
+    arrows = []
+    contacts = [kw["name"] for method, kw in scene.elements if method == "add_contact"] if forces else []
+    if contacts:  # each contact's force on its first shape, at its point
+        readings = [result.contact(name) for name in contacts]
+        vectors = [np.column_stack([c.normal_force]) * np.asarray(c.normal) + np.asarray(c.friction_force)
+                   for c in readings]
+        largest = max(float(np.max(np.linalg.norm(v, axis=1))) for v in vectors)
+        scale = 0.1 * size / largest if largest > 0.0 else 0.0
+        for j, (c, v) in enumerate(zip(readings, vectors)):
+            pad = (lambda x: np.column_stack([x, np.zeros(len(x))])) if dimension == 2 else (lambda x: x)
+            point, vector = pad(np.asarray(c.point, dtype=float)[frames]), pad(scale * v[frames])
+            _drawable(point, f"the point of contact {contacts[j]!r}", t)
+            arrows.append({"points": _b64(point), "vectors": _b64(vector), "colour": [0.85, 0.1, 0.1]})
+        force_line = f"contact forces: {largest:.4g} N drawn {0.1 * size:.3g} m long"
     if outputs is None:
         outputs = ["energy"] + [f"{d}.effort" for d in scene.drivers][:3]
     plots = []
@@ -600,12 +618,15 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
                                      count(len(scene.joints), "joint"), count(len(scene.drivers), "driver")])),
              f"method {stats.get('method', stats.get('formulation', '?'))}: {stats_line(stats)}",
              f"t = {t[0]:g} .. {t[-1]:g} s, {len(frames)} frames"]
+    if contacts:
+        lines = list(lines) + [force_line]
     data = {
         "title": title or "lagmb", "lines": lines, "dimension": dimension, "size": size, "up": up,
         "grid": {"size": float(2.0 * size), "divisions": 20, "center": [float(x) for x in grid_center],
                  "normal": [float(x) for x in grid_normal]},
         "camera": {"target": [float(x) for x in center], "position": [float(x) for x in camera]},
-        "bodies": body_data, "ground_parts": ground_parts, "traces": traces, "plots": plots, "times": _b64(t),
+        "bodies": body_data, "ground_parts": ground_parts, "traces": traces, "arrows": arrows, "plots": plots,
+        "times": _b64(t),
         "loop": bool(loop),
     }
     template = (importlib.resources.files("lagmb") / "viewer.html").read_text(encoding="utf-8")
