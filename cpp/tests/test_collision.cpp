@@ -1,8 +1,9 @@
 // The collision table (lagmb/collision/pairs.hpp): every pair's geometry
-// gives the same contact points over doubles and Dual numbers, its gaps'
-// derivatives (the Dual part) are the central differences of its double
-// gaps, and each gap's rate g' is that derivative along the velocities
-// (d g / dt = g_c . cd), for bodies turning and moving in general ways.
+// gives the same contact points over doubles and Dual numbers (over both
+// bodies' coordinates, and over the first's alone), its gaps' derivatives
+// (the Dual part) are the central differences of its double gaps, and each
+// gap's rate g' is that derivative along the velocities (d g / dt = g_c .
+// cd), for bodies turning and moving in general ways.
 #include <cmath>
 #include <vector>
 
@@ -84,6 +85,21 @@ void check_pair(const CollisionShape& a, const CollisionShape& b, const Loc& c, 
   motions(x, xd, A, B);
   std::vector<ContactPoint<ContactDual>> duals(values.size());
   pair->derivative(a, b, A, B, duals.data());
+  // over body a's coordinates alone (the ground under it: OneBodyDual), the same first derivatives
+  lagmb::collision::OneBodyDual y[14], yd[14];
+  for (int k = 0; k < 14; ++k) {
+    y[k] = lagmb::collision::OneBodyDual(c[k]);
+    yd[k] = lagmb::collision::OneBodyDual(cd[k]);
+    if (k < 7) y[k].d[k] = 1.0, yd[k].d[7 + k] = 1.0;
+  }
+  Motion<lagmb::collision::OneBodyDual> A1, B1;
+  motions(y, yd, A1, B1);
+  std::vector<ContactPoint<lagmb::collision::OneBodyDual>> ones(values.size());
+  pair->one_body(a, b, A1, B1, ones.data());
+  for (size_t k = 0; k < values.size(); ++k) {
+    CHECK((ones[k].gap.d.head<7>() - duals[k].gap.d.head<7>()).norm() <= 1e-13);
+    CHECK((ones[k].gap_rate.d.tail<7>() - duals[k].gap_rate.d.segment<7>(14)).norm() <= 1e-13);
+  }
   const double h = 1e-6;
   for (size_t k = 0; k < values.size(); ++k) {
     CHECK_NEAR(duals[k].gap.v, values[k].gap, 1e-14);

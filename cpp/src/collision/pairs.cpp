@@ -290,7 +290,8 @@ struct SphereBox {
 
 template <class Geometry>
 Pair line(CollisionShape::Kind a, CollisionShape::Kind b) {
-  return {a, b, Geometry::anchored, &Geometry::points, &Geometry::template collide<double>, &Geometry::template collide<ContactDual>};
+  return {a, b, Geometry::anchored, &Geometry::points, &Geometry::template collide<double>,
+          &Geometry::template collide<ContactDual>, &Geometry::template collide<OneBodyDual>};
 }
 
 const std::vector<Pair>& table() {

@@ -74,8 +74,10 @@ struct ContactPoint {
 };
 
 /// The numbers the table is written for: values, and Dual over an element's
-/// 14 coordinates and 14 velocities (elements/spatial_contact.hpp).
+/// 14 coordinates and 14 velocities (elements/spatial_contact.hpp), or over
+/// its first body's 7 and 7 where the second is the ground (half the work).
 using ContactDual = Dual<28>;
+using OneBodyDual = Dual<14>;
 
 /// One line of the table: shapes of kinds (a, b), how many contact points
 /// they have (fixed for the pair: each is an event function) and the
@@ -91,6 +93,8 @@ struct Pair {
              ContactPoint<double>* out);
   void (*derivative)(const CollisionShape& a, const CollisionShape& b, const Motion<ContactDual>& A,
                      const Motion<ContactDual>& B, ContactPoint<ContactDual>* out);
+  void (*one_body)(const CollisionShape& a, const CollisionShape& b, const Motion<OneBodyDual>& A,
+                   const Motion<OneBodyDual>& B, ContactPoint<OneBodyDual>* out);
 };
 
 /// The table's line for shapes of kinds (a, b), or null: the pairs are

@@ -25,7 +25,8 @@ namespace lagmb {
 /// tau_i = sum (P_k - r_i) x F_k, tau_j = sum (P_k - r_j) x F_k:
 ///   Q_ri = F,  Q_pi = 2 E(p_i)^T tau_i,  Q_rj = -F,  Q_pj = -2 E(p_j)^T tau_j
 /// (a torque n acts on p through 2 E(p)^T n, spatial.hpp). Q_c and Q_cd
-/// are exact: the same code over Dual<28> (c, cd). Broad phase: while the
+/// are exact: the same code over Dual<28> (c, cd; Dual<14> over body i's
+/// where body j is the ground). Broad phase: while the
 /// bounding spheres (a plane's half-space) are apart, Q = 0 and every event
 /// function reads their gap, a lower bound of each point's. Each point is an
 /// event function (its gap): onset (recording v_impact,k in the run's
@@ -164,6 +165,25 @@ struct SpatialContact {
     if (bounding_gap(c) > 0.0) return;
     const auto values = contact_points(c, cd);
     if (std::none_of(values.begin(), values.end(), [](const auto& p) { return p.gap < 0.0; })) return;
+    if (body_j < 0) {  // (the ground: derivatives in body i's 7 + 7 only)
+      using D = collision::OneBodyDual;
+      D x[14], xd[14], Q[14];
+      for (int a = 0; a < 14; ++a) {
+        x[a] = D(c[a]);
+        xd[a] = D(cd[a]);
+        if (a < 7) x[a].d[a] = 1.0, xd[a].d[7 + a] = 1.0;
+      }
+      collision::Motion<D> A, B;
+      motions(x, xd, A, B);
+      std::vector<collision::ContactPoint<D>> pts(points);
+      pair->one_body(shape_a, shape_b, A, B, pts.data());
+      generalized_force(x, xd, pts.data(), run, Q);
+      for (int b = 0; b < 14; ++b) {
+        Q_c.block<1, 7>(b, 0) = Q[b].d.head<7>().transpose();
+        Q_cd.block<1, 7>(b, 0) = Q[b].d.tail<7>().transpose();
+      }
+      return;
+    }
     using D = collision::ContactDual;
     D x[14], xd[14], Q[14];
     for (int a = 0; a < 14; ++a) {
