@@ -92,14 +92,15 @@ struct SpherePlane {
 /// A capsule's two end spheres (the segment's ends, radius R).
 struct CapsulePlane {
   static constexpr bool anchored = false;
-  static int points(const CollisionShape&, const CollisionShape&) { return 2; }
+  // (of length 0, a sphere: one point)
+  static int points(const CollisionShape& a, const CollisionShape&) { return a.size[1] > 0.0 ? 2 : 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
                       ContactPoint<T>* out) {
     const PlaneFrame<T> pl(b, B);
     const Vec3 half = 0.5 * a.size[1] * a.axes.col(2);
     out[0] = ball_plane<T>(a.position - half, a.size[0], A, pl);
-    out[1] = ball_plane<T>(a.position + half, a.size[0], A, pl);
+    if (a.size[1] > 0.0) out[1] = ball_plane<T>(a.position + half, a.size[0], A, pl);
   }
 };
 
@@ -203,7 +204,8 @@ struct SphereCapsule {
     const V3<T> E0 = B.point(b.position - half), E1 = B.point(b.position + half);
     const V3<T> E0d = B.point_velocity(b.position - half), E1d = B.point_velocity(b.position + half);
     const V3<T> X = A.point(a.position), seg = E1 - E0;
-    T s = dot(X - E0, seg) / dot(seg, seg);
+    const T length2 = dot(seg, seg);  // (0: a capsule of length 0, a sphere)
+    T s = value_of(length2) > 0.0 ? dot(X - E0, seg) / length2 : T(0.0);
     if (value_of(s) < 0.0) s = T(0.0);
     if (value_of(s) > 1.0) s = T(1.0);
     // Y moves as b's material point plus s' along the segment, across the normal
@@ -232,14 +234,16 @@ struct CapsuleCapsule {
     const T aa = dot(d1, d1), ee = dot(d2, d2), f = dot(d2, r), c = dot(d1, r), bb = dot(d1, d2);
     const T denom = aa * ee - bb * bb;
     auto clamp01 = [](T x) { return value_of(x) < 0.0 ? T(0.0) : value_of(x) > 1.0 ? T(1.0) : x; };
-    T s = value_of(denom) > 1e-12 * value_of(aa) * value_of(ee) ? clamp01((bb * f - c * ee) / denom) : T(0.0);
-    T t = (bb * s + f) / ee;
+    T s = value_of(denom) > 1e-12 * value_of(aa) * value_of(ee) && value_of(denom) > 0.0
+              ? clamp01((bb * f - c * ee) / denom) : T(0.0);
+    // (a capsule of length 0 is a sphere: its segment's parameter 0)
+    T t = value_of(ee) > 0.0 ? (bb * s + f) / ee : T(0.0);
     if (value_of(t) < 0.0) {
       t = T(0.0);
-      s = clamp01(-c / aa);
+      s = value_of(aa) > 0.0 ? clamp01(-c / aa) : T(0.0);
     } else if (value_of(t) > 1.0) {
       t = T(1.0);
-      s = clamp01((bb - c) / aa);
+      s = value_of(aa) > 0.0 ? clamp01((bb - c) / aa) : T(0.0);
     }
     const V3<T> X = P0 + s * d1, Y = Q0 + t * d2;
     const V3<T> Xd = A.point_velocity(a.position - ha) + s * (A.point_velocity(a.position + ha) -

@@ -268,8 +268,15 @@ struct SpatialContact {
       std::fill(g, g + points, apart);
       return;
     }
+    // a gap within 1e-9 m of 0 reads by its rate: approaching, inside
+    // (-1e-9: an onset just found, the restart's state back on the open
+    // side by the projection's rounding, is not found again), leaving or at
+    // rest, outside (+1e-9: a release likewise; a corner touching down at
+    // rest is not an onset until it presses)
+    constexpr double at_surface = 1e-9;
     const auto pts = contact_points(c, cd);
-    for (int k = 0; k < points; ++k) g[k] = pts[k].gap != 0.0 ? pts[k].gap : -1e-300;
+    for (int k = 0; k < points; ++k)
+      g[k] = std::abs(pts[k].gap) > at_surface ? pts[k].gap : pts[k].gap_rate < 0.0 ? -at_surface : at_surface;
   }
   int direction(int) const { return 0; }
   EventAction crossing(int k, const Loc& c, const Loc& cd, double, double* run) const {
