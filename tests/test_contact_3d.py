@@ -526,6 +526,10 @@ def test_a_mesh_touches_by_its_convex_hull():
         assert abs(mesh_run.body("cube").position[-1, 2] - box_run.body("cube").position[-1, 2]) <= 1e-12
         assert [x["label"] for x in mesh_run.events] == [x["label"] for x in box_run.events]
         assert mesh_run.contact("floor").state[-1] == "stick"
+        # as text (an FMU's): the hull's vertices go with it, the mesh file does not
+        again = mb.Model.from_text(mesh_run.model.to_text())
+        assert np.array_equal(mb.simulate(again, 0.5, rtol=1e-9, atol=1e-11, n_out=3).q, mesh_run.q)
+        assert dict(again.elements())["add_contact"]["shape_a"][1] == "convex"
 
 
 def test_a_quadruped_dropped_on_the_ground_comes_to_rest():

@@ -143,10 +143,11 @@ class Model:
         if t == "body":
             return "ground" if value < 0 else bodies[value]
         if t == "shape":
-            if value[1] == "convex":  # the mesh whose hull it is
-                return next(s for s, hull in self._hulls.items() if hull == value[5] and
-                            tuple(s.position) == tuple(value[3]) and s.body == (bodies[value[0]] if value[0] >= 0
-                                                                                 else "ground"))
+            if value[1] == "convex":  # the mesh whose hull it is (a model read from text has no meshes:
+                # its hull's vertices as the core holds them)
+                body = bodies[value[0]] if value[0] >= 0 else "ground"
+                return next((s for s, hull in self._hulls.items() if hull == value[5] and
+                             tuple(s.position) == tuple(value[3]) and s.body == body), value)
             return _shape_given(value, bodies)
         if t in ("motion", "function"):
             return from_core(value, memo)
