@@ -73,8 +73,8 @@ raises mb.SimulationError / mb.ModelError with a message ("a refusal without
 a message"; "refused as Zeno": a compliant contact's touches last a time,
 its events cannot accumulate), never another exception, a crash or a hang
 (the worker's timeout is each op's wall-time budget; "a hang under index3"
-apart); the mechanism fuzzer's result check (finite arrays, output times in
-order, constraints held).
+and "a hang with a cylinder" apart); the mechanism fuzzer's result check
+(finite arrays, output times in order, constraints held).
 
 What the core breaks today is shrunk to xfail tests of
 tests/test_fuzz_contacts.py: KNOWN_BUGS names the features that break the
@@ -126,6 +126,8 @@ KNOWN_LAWS = {
     "onsets and releases miscounted": "test_corners_crossing_together_are_each_logged",
     "pressed without an onset": "test_a_ball_dropped_on_a_fixed_ball_does_not_pass_through",
     "a hang under index3": "test_index3_rolls_a_wheel_sliding_sideways_in_as_few_steps_as_ggl",
+    # (a cylinder drawn lying may fall flat, onto an end: KNOWN_BUGS' feature reached in the run)
+    "a hang with a cylinder": "test_a_cylinder_standing_on_an_end_runs",
 }
 
 ROT_SOURCE = '''def rot(axis, angle):
