@@ -276,6 +276,19 @@ def test_box_dropped_flat_comes_to_rest_level():
     assert len([x for x in r.events if x["label"] == "onset"]) >= 4
 
 
+def assert_derivatives_are_differences(core, q, v, Qq, Qv, h=1e-6):
+    """Q_q and Q_v against central differences of Q (step h), to 1e-6 of the
+    largest entry."""
+    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
+        fd = np.zeros_like(Jac)
+        for j in range(q.size):
+            dx = np.zeros(q.size)
+            dx[j] = h
+            args = ((q + dx, v), (q - dx, v)) if wrt == "q" else ((q, v + dx), (q, v - dx))
+            fd[:, j] = (core.forces(*args[0], 0.0)[0] - core.forces(*args[1], 0.0)[0]) / (2 * h)
+        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+
+
 def spheres_and_friends(kind_b, size_b, centre_b=(0.0, 0.0, 0.0), centre_a=(0.15, 0.02, 0.1)):
     """A sphere (radius 0.1) pressed into a shape on a second free body."""
     m = mb.Model(gravity=(0.0, 0.0, 0.0), dimension=3)
@@ -306,17 +319,7 @@ def test_contact_derivatives_match_finite_differences(kind, size, centre_a):
     v = 0.01 * rng.standard_normal(q.size)
     Q, Qq, Qv = core.forces(q, v, 0.0)
     assert np.max(np.abs(Q)) > 10.0  # the contact is active
-    h = 1e-6
-    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
-        fd = np.zeros_like(Jac)
-        for j in range(q.size):
-            dx = np.zeros(q.size)
-            dx[j] = h
-            if wrt == "q":
-                fd[:, j] = (core.forces(q + dx, v, 0.0)[0] - core.forces(q - dx, v, 0.0)[0]) / (2 * h)
-            else:
-                fd[:, j] = (core.forces(q, v + dx, 0.0)[0] - core.forces(q, v - dx, 0.0)[0]) / (2 * h)
-        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+    assert_derivatives_are_differences(core, q, v, Qq, Qv)
 
 
 @pytest.mark.parametrize("under", ["table", "ground"])
@@ -337,15 +340,7 @@ def test_box_corners_derivatives_match_finite_differences(under):
     v = 0.01 * np.random.default_rng(2).standard_normal(q.size)
     Q, Qq, Qv = core.forces(q, v, 0.0)
     assert np.max(np.abs(Q)) > 10.0
-    h = 1e-6
-    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
-        fd = np.zeros_like(Jac)
-        for j in range(q.size):
-            dx = np.zeros(q.size)
-            dx[j] = h
-            args = ((q + dx, v), (q - dx, v)) if wrt == "q" else ((q, v + dx), (q, v - dx))
-            fd[:, j] = (core.forces(*args[0], 0.0)[0] - core.forces(*args[1], 0.0)[0]) / (2 * h)
-        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+    assert_derivatives_are_differences(core, q, v, Qq, Qv)
 
 
 def test_apart_shapes_add_nothing():
@@ -618,15 +613,7 @@ def test_capsules_touch_at_their_segments_nearest_points():
     v = 0.01 * np.random.default_rng(5).standard_normal(q.size)
     Q, Qq, Qv = core.forces(q, v, 0.0)
     assert np.max(np.abs(Q)) > 1.0
-    h = 1e-6
-    for Jac, wrt in ((Qq, "q"), (Qv, "v")):
-        fd = np.zeros_like(Jac)
-        for j in range(q.size):
-            dx = np.zeros(q.size)
-            dx[j] = h
-            args = ((q + dx, v), (q - dx, v)) if wrt == "q" else ((q, v + dx), (q, v - dx))
-            fd[:, j] = (core.forces(*args[0], 0.0)[0] - core.forces(*args[1], 0.0)[0]) / (2 * h)
-        assert np.max(np.abs(Jac - fd)) <= 1e-6 * np.max(np.abs(fd)), wrt
+    assert_derivatives_are_differences(core, q, v, Qq, Qv)
 
 
 @pytest.mark.parametrize("mu", [1.5, 3.0])
