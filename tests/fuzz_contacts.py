@@ -53,7 +53,9 @@ name), for a run that succeeds:
   the plane's;
 - forces: "a contact pulls" (normal force < 0), "an open contact pushes",
   "friction beyond its limit" (slipping: within mu F_n); "a stuck contact
-  slips" (state "stick": its points slip at most STICK_SLIP v_s), "a stuck
+  slips" (state "stick": its points slip at most STICK_SLIP v_s more than
+  the body's rocking about the anchor moves them, |omega| times the deepest
+  point's depth), "a stuck
   contact beyond its limit" (its friction force within mu_s F_n: the ellipse
   limit includes the torsion, the force alone must be within it); "a round
   shape sticks" (only a box against a plane has stick rows);
@@ -104,7 +106,7 @@ METHODS = ["ggl", "index3", "index1", "projection-bdf", "projection-adams", "aut
 ENERGY_TOL = {"index3": 5e-4}
 ENERGY_TOL_DEFAULT = 1e-6
 GEOMETRY_TOL = 1e-7  # m per m of the shape's size (+ the drift): readings against the geometry
-STICK_SLIP = 0.5  # of v_s: the fastest a stuck contact's points may slip
+STICK_SLIP = 0.5  # of v_s: the fastest a stuck contact's points may slip (beyond its rocking)
 LIMIT_TOL = 1e-6  # relative: friction beyond mu F_n (or mu_s F_n while stuck)
 
 #: What the fuzzer found the core breaking, each shrunk to an xfail(strict=True)
@@ -118,13 +120,9 @@ KNOWN_BUGS = {
 #: Laws the core breaks in scenes of any kind: contact_problems names them
 #: apart; {law: the xfail test of it}.
 KNOWN_LAWS = {
+    "a stuck contact slips": "test_a_stuck_box_leaning_on_a_ball_does_not_slip",
     "a crossing logged twice": "test_a_crossing_is_logged_once",
     "refused as Zeno": "test_a_ball_placed_on_the_floor_is_not_refused_as_zeno",
-    "a stuck contact slips": "test_a_stuck_bar_rocking_on_its_edge_does_not_slip",
-    "a stuck contact beyond its limit": "test_a_stuck_contact_holds_at_most_mu_s_times_its_normal_force",
-    "a cylinder's crossings mislabelled": "test_a_cylinders_rim_points_crossing_together_are_logged_alike",
-    "onsets and releases miscounted": "test_corners_crossing_together_are_each_logged",
-    "pressed without an onset": "test_a_ball_dropped_on_a_fixed_ball_does_not_pass_through",
     "a hang under index3": "test_index3_rolls_a_wheel_sliding_sideways_in_as_few_steps_as_ggl",
     # (a cylinder drawn lying may fall flat, onto an end: KNOWN_BUGS' feature reached in the run)
     "a hang with a cylinder": "test_a_cylinder_standing_on_an_end_runs",
@@ -347,7 +345,11 @@ def contact_problems(r, meta):
         shape = meta["shapes"][c["shape"]]
         if shape["kind"] == "capsule" and shape["size"][1] == 0.0:
             continue  # (a capsule of length 0 against a plane: its two points coincide, or are one; not counted)
-        found, through = _onsets_and_releases(c, mine, [g for g, _ in gaps[c["name"]]], t, drift, shape["kind"])
+        # (events are found at the steps' ends: a point leaving its plane by
+        # less than the run's position error, 10 rtol times the shape's size,
+        # and back within one step may go unseen)
+        unresolved = drift + 10.0 * meta["rtol"] * max(shape["size"])
+        found, through = _onsets_and_releases(c, mine, [g for g, _ in gaps[c["name"]]], t, unresolved, shape["kind"])
         bad += found
         if through:
             unseen |= np.array([bool(np.any(g < 0.0)) for g, _ in gaps[c["name"]]])
@@ -456,7 +458,11 @@ def contact_problems(r, meta):
                            f"{' against ' + meta['shapes'][c['other']]['kind'] if c['other'] is not None else ''}) "
                            + (f"reads 'stick' at t = {t[k]:.6g}" if k is not None else "logs friction events"))
         if np.any(stuck):
-            fast = np.where(stuck, x.slip_speed, 0.0)
+            # (a body rocking about its anchor moves its pressing vertices,
+            # deeper or shallower than the anchor by at most the deepest's
+            # depth, at omega times that: the rows hold one point and the turn)
+            omega = np.linalg.norm(np.asarray(r.body(a["body"]).angular_velocity), axis=1)
+            fast = np.where(stuck, x.slip_speed - omega * np.abs(x.penetration), 0.0)
             if np.max(fast) > STICK_SLIP * c["slip_velocity"] + drift:
                 k = int(np.argmax(fast))
                 bad.append(f"a stuck contact slips: contact {c['name']!r} reads 'stick' at t = {t[k]:.6g} slipping at "

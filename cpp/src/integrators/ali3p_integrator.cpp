@@ -215,7 +215,7 @@ class Ali3pStepper final : public Stepper {
     if (!(earliest < INFINITY)) return false;
     fired_.assign(count, 0);
     for (int i = 0; i < count; ++i)
-      if (root[i] <= earliest + 10.0 * t_tol) fired_[i] = 1;
+      if (root[i] <= earliest + 10.0 * t_tol) fired_[i] = -1;  // (falling, as SUNDIALS' root info)
     root_time_ = earliest;
     at_root_ = true;
     g_valid_ = false;  // (the state after the event is new)

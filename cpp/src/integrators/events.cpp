@@ -30,11 +30,14 @@ EventRunner::EventRunner(const Model& model, const Data& run, double position_to
       position_tol_(position_tol) {
   const auto& groups = model.event_groups();
   for (int gi = 0; gi < int(groups.size()); ++gi) {
-    for (int k = 0; k < groups[gi]->size(); ++k)
+    for (int k = 0; k < groups[gi]->size(); ++k) {
+      if (groups[gi]->sweeps() && groups[gi]->roots(k) > 0)
+        sweeps_.push_back({gi, k, int(roots_.size()), groups[gi]->roots(k)});
       for (int r = 0; r < groups[gi]->roots(k); ++r) {
         roots_.push_back({gi, k, r});
         dir_.push_back(groups[gi]->direction(k, r));
       }
+    }
   }
   rows_.close_rows(model, model.unilateral_rows());
   const auto& constraints = model.constraint_groups();
@@ -52,7 +55,17 @@ EventRunner::EventRunner(const Model& model, const Data& run, double position_to
   sticks_base_ = dir_.size();
   for (int gi = 0; gi < int(constraints.size()); ++gi)
     if (constraints[gi]->sticks())
-      for (int k = 0; k < constraints[gi]->size(); ++k) sticks_.push_back({gi, k, constraints[gi]->placement(k).row0});
+      for (int k = 0; k < constraints[gi]->size(); ++k) {
+        // (its points' event functions: the event element of the same name)
+        Stick s{gi, k, constraints[gi]->placement(k).row0, 0, 0};
+        for (size_t i = 0; i < roots_.size(); ++i) {
+          const EventGroupBase& group = *groups[roots_[i].group];
+          if (group.name(roots_[i].element) != constraints[gi]->name(k)) continue;
+          if (s.roots == 0) s.root0 = int(i);
+          ++s.roots;
+        }
+        sticks_.push_back(s);
+      }
   dir_.insert(dir_.end(), sticks_.size(), 0);
   g_.resize(dir_.size());
   qdd_.resize(model.n_coordinates());
@@ -111,7 +124,7 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
 bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, v, true); }
 
 bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
-  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (a new start, or the equations jump here)
+  step_end_t_ = sweep_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (a new start, or the equations jump here)
   values(t, q.data(), v.data(), g_.data());
   std::vector<int> fired(g_.size(), 0);
   bool any = false, beyond = false;
@@ -141,7 +154,7 @@ bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
     }
     // (a jump of the equations, a driver's new value, can put a joint beyond a limit: consistent() puts it back)
     if (contact && !closed && g_[i] < -tol) beyond = true;
-    fired[i] = 1;
+    fired[i] = -1;
     any = true;
   }
   const VecX v0 = v;
@@ -160,7 +173,7 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
   for (size_t i = 0; i < g_.size(); ++i) {
     const bool pulling = i >= base && i < sticks_base_ && is_closed(contacts_[i - base].row);
     if (dir_[i] < 0 && g_[i] < (pulling ? -force_tol : -1e-10)) {
-      fired[i] = 1;  // the action decides: leaving velocities do nothing
+      fired[i] = -1;  // (fell below 0) the action decides: leaving velocities do nothing
       any = true;
     }
   }
@@ -180,7 +193,70 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
 
 double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired) {
   step_bound_ = INFINITY;
-  if (contacts_.empty() || !(t1 > t0)) return NAN;
+  if (!(t1 > t0)) return NAN;
+  std::vector<int> roots, rows;
+  const double passed = passed_through(t0, t1, at, roots);
+  const double grazing = contacts_.empty() ? NAN : grazed_stops(t0, t1, at, rows);
+  const double t_tol = 1e-14 * (std::abs(t1) + (t1 - t0));
+  if (std::isnan(passed) && std::isnan(grazing)) return NAN;
+  fired.assign(g_.size(), 0);
+  // the earlier of the two (both, within rounding of each other)
+  if (!(grazing < passed - t_tol))
+    for (int i : roots) fired[size_t(i)] = -1;
+  if (!(passed < grazing - t_tol))
+    for (int c : rows) fired[roots_.size() + size_t(c)] = -1;
+  return std::isnan(passed) ? grazing : std::isnan(grazing) ? passed : std::min(passed, grazing);
+}
+
+double EventRunner::passed_through(double t0, double t1, const Interpolant& at, std::vector<int>& fired_roots) {
+  if (sweeps_.empty()) return NAN;
+  const double *q = nullptr, *v = nullptr;
+  const int n = model_.n_coordinates();
+  if (!(sweep_t_ == t0)) {
+    at(t0, q, v);
+    sweep_q_ = Eigen::Map<const VecX>(q, n);
+  }
+  const VecX q0 = sweep_q_;
+  at(t1, q, v);
+  sweep_q_ = Eigen::Map<const VecX>(q, n), sweep_t_ = t1;
+  const VecX& q1 = sweep_q_;
+  const double h = t1 - t0, t_tol = 1e-14 * (std::abs(t1) + h);
+  constexpr int kSamples = 16;
+  std::vector<double> g;
+  // the least of element s's event functions at t (the interpolant's state)
+  auto least = [&](const Sweep& s, double t) {
+    at(t, q, v);
+    g.resize(size_t(s.count));
+    model_.event_groups()[s.group]->element_values(s.element, q, v, t, g.data());
+    return *std::min_element(g.begin(), g.end());
+  };
+  double earliest = NAN;
+  for (const Sweep& s : sweeps_) {
+    const EventGroupBase& group = *model_.event_groups()[s.group];
+    if (!group.may_pass(s.element, q0.data(), q1.data(), -INFINITY)) continue;  // (the bounding spheres stay apart)
+    const double gap = std::min(least(s, t0), least(s, t1));
+    if (!(gap > 0.0) || !group.may_pass(s.element, q0.data(), q1.data(), gap)) continue;
+    double lo = t0, hi = NAN;
+    for (int i = 1; i < kSamples && std::isnan(hi); ++i) {
+      const double ti = t0 + h * i / kSamples;
+      (least(s, ti) < 0.0 ? hi : lo) = ti;
+    }
+    if (std::isnan(hi)) continue;
+    while (hi - lo > t_tol) {
+      const double mid = 0.5 * (lo + hi);
+      (least(s, mid) < 0.0 ? hi : lo) = mid;
+    }
+    if (!std::isnan(earliest) && hi > earliest + t_tol) continue;
+    if (std::isnan(earliest) || hi < earliest - t_tol) fired_roots.clear();
+    earliest = std::isnan(earliest) ? hi : std::min(earliest, hi);
+    least(s, hi);
+    for (int r = 0; r < s.count; ++r)
+      if (g[size_t(r)] < 0.0) fired_roots.push_back(s.root0 + r);
+  }
+  return earliest;
+}
+
+double EventRunner::grazed_stops(double t0, double t1, const Interpolant& at, std::vector<int>& rows) {
   const double *q = nullptr, *v = nullptr;
   const int n = model_.n_coordinates();
   auto gap = [&](double t, int row, double* rate) {
@@ -207,7 +283,6 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
   const double h = t1 - t0, t_tol = 1e-14 * (std::abs(t1) + h);
   constexpr int kSamples = 16;
   double earliest = NAN;
-  std::vector<int> rows;
   for (size_t c = 0; c < contacts_.size(); ++c) {
     const int row = contacts_[c].row;
     if (!contacts_[c].info.exists || is_closed(row)) continue;
@@ -340,9 +415,6 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
     force_t_[0] = t0, force_t_[1] = t1;
     force_f_[0].swap(force_f_[1]), force_f_[1].swap(force_f_[2]);
   }
-  if (std::isnan(earliest)) return NAN;
-  fired.assign(g_.size(), 0);
-  for (int c : rows) fired[roots_.size() + size_t(c)] = 1;
   return earliest;
 }
 
@@ -497,13 +569,14 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 }
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
+  handled_ = fired;
   const bool restart = handle_stops(t, q, v, fired);
   if (sticks_.empty()) return restart;
   return handle_sticks(t, q, v, fired) || restart;
 }
 
 bool EventRunner::handle_sticks(double t, const VecX& q, const VecX& v, const std::vector<int>& fired) {
-  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;
+  step_end_t_ = sweep_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;
   double* run = d_.run->state.data();
   const Instant at = d_.at(t);
   if (!d_.closed_rows().empty()) solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd_.data(), lam_.data());
@@ -516,7 +589,14 @@ bool EventRunner::handle_sticks(double t, const VecX& q, const VecX& v, const st
     const int state = g.stick_state(s.element, run);
     const double x = g.stick_root(s.element, q.data(), v.data(), at, lam_.data());
     if (state == 1) {  // stuck: released where the friction it holds passes its limit (or nothing presses)
-      if (x < -force_tol || fired[sticks_base_ + j]) release.push_back(int(j));
+      if (x < -force_tol || fired[sticks_base_ + j]) {
+        release.push_back(int(j));
+      } else if (std::any_of(fired.begin() + s.root0, fired.begin() + s.root0 + s.roots, [](int f) { return f != 0; })) {
+        // a point pressing or letting go: held again at the vertices pressing now (rocking
+        // from one edge onto another, the old edge's anchor would drag the new one)
+        g.stick_hold(s.element, q.data(), v.data(), run);
+        changed = true;
+      }
     } else if (state == -1) {  // disarmed: armed once it slips faster than 2 v_s
       if (x > 0.0) g.stick_set(s.element, run, 0);
     }
@@ -570,7 +650,7 @@ bool EventRunner::handle_sticks(double t, const VecX& q, const VecX& v, const st
 
 bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
   bool restart = false;
-  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (the state may jump here)
+  step_end_t_ = sweep_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (the state may jump here)
   on_limit_.clear();
   released_.clear();
   const bool late = late_;
@@ -582,7 +662,9 @@ bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vect
   for (size_t i = 0; i < roots_.size(); ++i) {
     if (!fired[i]) continue;
     auto& group = *model_.event_groups()[roots_[i].group];
-    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data());
+    // (fired[i]: the way it crossed, -1 or +1, as SUNDIALS' root info)
+    const EventAction a =
+        group.crossing(roots_[i].element, roots_[i].index, q.data(), v.data(), t, d_.run->state.data(), fired[i]);
     if (a.type == EventAction::kNone) continue;
     count_event(t, group.name(roots_[i].element), group.kind());
     restart = true;
@@ -759,7 +841,30 @@ void EventRunner::gaps(double t, const VecX& q, const VecX& v) {
 }
 
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
-  step_end_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;
+  ConsistentState state = restart_state(t, q, v);
+  if (roots_.empty()) return state;
+  // an event element's function that the restart's projection moved across
+  // 0 (two corners crossing together, one found: the other put past its
+  // crossing by rounding) crosses here: the steps from the restart would not see it
+  const size_t n = roots_.size();
+  std::vector<double> before(g_.size()), after(g_.size());
+  values(t, q.data(), v.data(), before.data());
+  values(t, state.q.data(), state.v.data(), after.data());
+  for (size_t i = 0; i < n; ++i) {
+    if ((before[i] > 0.0) == (after[i] > 0.0) || (i < handled_.size() && handled_[i])) continue;
+    if (dir_[i] < 0 && !(after[i] < 0.0)) continue;  // (a function counting downward crossings only)
+    auto& group = *model_.event_groups()[roots_[i].group];
+    const EventAction a = group.crossing(roots_[i].element, roots_[i].index, state.q.data(), state.v.data(), t,
+                                         d_.run->state.data(), after[i] > 0.0 ? 1 : -1);
+    if (a.type == EventAction::kNone) continue;
+    count_event(t, group.name(roots_[i].element), group.kind());
+    records.push_back({t, group.name(roots_[i].element), "restart", a.label, a.speed, a.speed});
+  }
+  return state;
+}
+
+ConsistentState EventRunner::restart_state(double t, const VecX& q, const VecX& v) {
+  step_end_t_ = sweep_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;
   // the state at a root is interpolated: put the positions back on Phi = 0
   // (least change; the closed stops' rows included) and the velocities on
   // Phi_q v + Phi_t = 0 before the index-2 and index-3 forms restart from it.

@@ -59,6 +59,11 @@ class EventRunner {
   /// step's middle too, the interpolant sampled where a parabola through it
   /// dips near 0), and sets step_bound(). Returns that time (the earliest
   /// over the rows, its rows flagged in `fired`), or NaN if none.
+  /// After a step that found no root, too: an event element whose functions
+  /// are all positive at both ends but whose shapes may have passed through
+  /// each other within the step (EventGroupBase::may_pass: a fast ball
+  /// across a small one) is looked at on the interpolant (16 samples, then
+  /// the first crossing by bisection); the earlier of the two times.
   double grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired);
   /// The time the next step should not pass (INFINITY: none), set by
   /// grazed(): where a closed row's force changes fast for its margin from
@@ -69,7 +74,10 @@ class EventRunner {
   /// velocity jump of impacts, the run's Data its new active set. Returns
   /// true if the integrator must restart.
   bool handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
-  /// q, v with accelerations and multipliers, on the rows now closed: the state to restart from.
+  /// q, v with accelerations and multipliers, on the rows now closed: the
+  /// state to restart from. An event element's function that this moves
+  /// across 0 (not one handle() just acted on) is a crossing here: its
+  /// action is taken and recorded.
   ConsistentState consistent(double t, const VecX& q, const VecX& v);
 
   std::vector<EventRecord> records;
@@ -79,22 +87,33 @@ class EventRunner {
   struct Root {
     int group, element, index;
   };
+  /// An event element that looks inside steps (may_pass): its group,
+  /// element, first event function and their number.
+  struct Sweep {
+    int group, element, root0, count;
+  };
+  /// grazed()'s part for the stops (rows: indices into contacts_) and for
+  /// the event elements passed through (roots: their event functions).
+  double grazed_stops(double t0, double t1, const Interpolant& at, std::vector<int>& rows);
+  double passed_through(double t0, double t1, const Interpolant& at, std::vector<int>& roots);
   /// A unilateral row and what its element says it does.
   struct Contact {
     int row;
     UnilateralRow info;
   };
   /// A contact that can stick (constraint_group.hpp, is_stick): its
-  /// group, element and first row.
+  /// group, element and first row, and its points' event functions (the
+  /// first, and their number).
   struct Stick {
-    int group, element, row0;
+    int group, element, row0, root0, roots;
   };
   /// The stops' and event elements' part of handle().
   bool handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
   /// The contacts' stick states at (t, q, v) after the other events acted
   /// (fired: this call's crossings): a stuck contact whose friction margin
   /// is negative, or that nothing presses, is released (its rows opened,
-  /// disarmed); an armed one whose pressing points all slip slower than
+  /// disarmed), one whose points press or let go is anchored again at the
+  /// vertices pressing now; an armed one whose pressing points all slip slower than
   /// v_s is anchored and its rows closed, if the friction it then needs
   /// is within its limit (else disarmed); a disarmed one crossing up to 2 v_s
   /// is armed. Returns true if a row opened or closed.
@@ -134,7 +153,13 @@ class EventRunner {
   Data d_;      // of the run: its left-out rows
   Data rows_;   // every row, unilateral ones closed: the gaps and their gradients
   AugmentedSystem kkt_;
+  /// consistent()'s projection, without the crossings it causes.
+  ConsistentState restart_state(double t, const VecX& q, const VecX& v);
   std::vector<Root> roots_;      // of the event elements
+  std::vector<int> handled_;     // the crossings the last handle() acted on
+  std::vector<Sweep> sweeps_;    // of those that may be passed through
+  double sweep_t_ = NAN;         // passed_through(): the last step's end and its positions
+  VecX sweep_q_;
   std::vector<Contact> contacts_;  // the unilateral rows, ascending
   std::vector<int> unilateral_groups_;
   std::vector<Stick> sticks_;     // the contacts that can stick; their event functions follow the stops'

@@ -141,12 +141,13 @@ struct CircleLineContact {
     return g != 0.0 ? g : -1e-300;
   }
   int direction(int) const { return 0; }
-  EventAction crossing(int, const Local6& c, const Local6& cd, double, double* run) const {
+  EventAction crossing(int, const Local6& c, const Local6& cd, double, double* run, int direction) const {
     EventAction a;
     a.type = EventAction::kRestart;
     a.speed = geometry(c.data(), cd.data()).hd;
-    if (a.speed < 0.0) {
-      run[run_state] = -a.speed;
+    // (labelled by the way the gap crossed where that is known: touching at rest, its rate is rounding)
+    if (direction < 0 || (direction == 0 && a.speed < 0.0)) {
+      run[run_state] = std::max(0.0, -a.speed);
       a.label = "onset";
     } else {
       a.label = "release";

@@ -18,11 +18,13 @@ namespace lagmb {
 /// table's geometry into K contact points k, each with its gap g_k (< 0:
 /// penetration d_k = -g_k), rate g_k', point P_k and normal n_k (out of b
 /// towards a). At each point the law gives F_n,k = F_n(d_k, d_k', v_impact,k)
-/// and, with the slip velocity v_t = (I - n n^T)(v_i(P) - v_j(P)) of body i's
-/// material point over body j's,
+/// and, with the slip velocity v_t = (I - n n^T)(v_i(X) - v_j(X)) of body i's
+/// material point over body j's at X (P, or an anchored pair's vertex
+/// X = P + g n: acting_point),
 ///   F_k = F_n,k n_k - mu F_n,k v_t / sqrt(|v_t|^2 + v_s^2)
-/// on body i at P_k and -F_k on body j. With F = sum F_k and the torques
-/// tau_i = sum (P_k - r_i) x F_k, tau_j = sum (P_k - r_j) x F_k:
+/// (the friction term left out while stuck: the rows below hold it all)
+/// on body i at X_k and -F_k on body j. With F = sum F_k and the torques
+/// tau_i = sum (X_k - r_i) x F_k, tau_j = sum (X_k - r_j) x F_k:
 ///   Q_ri = F,  Q_pi = 2 E(p_i)^T tau_i,  Q_rj = -F,  Q_pj = -2 E(p_j)^T tau_j
 /// (a torque n acts on p through 2 E(p)^T n, spatial.hpp). Q_c and Q_cd
 /// are exact: the same code over Dual<28> (c, cd; Dual<14> over body i's
@@ -35,13 +37,19 @@ namespace lagmb {
 /// Stick (a pair whose points are material points of shape a, `anchored`,
 /// with friction): the contact is also three constraint rows, open (left
 /// out, as a stop's) until the event runner closes them. Closing records an
-/// anchor in the run's state: the point P of the contact (its nearest
-/// pressing point) as s_a in body i's axes and s_b in body j's, and the
-/// surface's first tangent t1 as u_a in body i's axes; then, with t1, t2,
-/// n = the plane's axes on body j and D = X_i(s_a) - X_j(s_b),
-///   Phi = (t1 . D, t2 . D, t2 . A_i u_a)
-/// hold the anchor in the tangent plane and the turn about n (t2 . A_i u_a
-/// = sin of the turn). Its multipliers are the friction the contact holds:
+/// anchor in the run's state: the pressing vertices' F_n-weighted centre
+/// (stick_hold) as s_a in body i's axes and s_b in body j's, and the
+/// surface's tangents t1, t2 as u_1, u_2 in body i's axes; then, with t1,
+/// t2, n = the plane's axes on body j and D = X_i(s_a) - X_j(s_b),
+///   Phi = (t1 . D, t2 . D, (t2 . A_i u_1 - t1 . A_i u_2) / 2)
+/// hold the anchor in the tangent plane and the turn about n: the third
+/// is sum_k (n x e_k) . S e_k / 2 over (e_k) = (t1, t2, n), S the turn
+/// of body i over body j since the stick, i.e. n . (S - S^T)^v / 2 = 2 s0
+/// (s . n) for S's Euler parameters (s0, s): 0 where S is a swing about
+/// an axis in the plane (a body rocking on its anchor), whatever the axis,
+/// which t2 . A_i u_1 alone is not (it turned the body about n by the
+/// misalignment of u_1 with the rocking axis times the rocking). Its
+/// gradient at the stick is the turn about n. Its multipliers are the friction the contact holds:
 /// the force -(lam_1 t1 + lam_2 t2) on body i at the anchor and the torque
 /// -lam_3 about n. It is released where mu_s F_n - sqrt(lam_1^2 + lam_2^2 +
 /// (lam_3 / rho)^2) turns negative (F_n the law's total normal force, rho
@@ -60,9 +68,9 @@ struct SpatialContact {
   static constexpr const char* kind = "spatial_contact";
   // run[run_state + k]: v_impact (m/s) of point k's contact in progress;
   // where the contact sticks, then its stick state (kArmed, kStuck,
-  // kDisarmed) and the anchor (s_a, s_b, u_a: 9 numbers)
+  // kDisarmed) and the anchor (s_a, s_b, u_1, u_2: 12 numbers)
   static constexpr int run_state_size = 1;
-  int run_state_count() const { return points + (sticks ? 10 : 0); }
+  int run_state_count() const { return points + (sticks ? 13 : 0); }
   int run_state = -1;
   enum StickState { kArmed = 0, kStuck = 1, kDisarmed = -1 };
 
@@ -104,6 +112,32 @@ struct SpatialContact {
     return (Xa - Xb).norm() - shape_a.bounding_radius() - shape_b.bounding_radius();
   }
 
+  /// Whether a step from c0 to c1 whose gaps are open at both ends, the
+  /// least of them `gap`, may have passed through the other shape and out
+  /// (a fast ball across a small one: the signs at the ends do not show
+  /// it): where the bounding spheres' centres, on the straight line between
+  /// their ends' relative positions D(s) = (1 - s) D0 + s D1, come within
+  /// the sum of the radii R_a + R_b, and a point of shape a may have moved
+  /// further over shape b than `gap`: |D1 - D0| + theta_a R_a + theta_b
+  /// (max |D| + R_a), theta the turn of each body over the step. A plane's
+  /// half-space cannot be passed through.
+  bool may_pass(const Loc& c0, const Loc& c1, double gap) const {
+    if (shape_b.kind == CollisionShape::kPlane) return false;
+    auto centres = [&](const Loc& c) {
+      return Vec3(c.head<3>() + euler::rotate(c.segment<4>(3), shape_a.position) - c.segment<3>(7) -
+                  euler::rotate(c.segment<4>(10), shape_b.position));
+    };
+    // the turn between two Euler parameter vectors: 2 acos |p0 . p1|
+    auto turn = [](const Vec4& p0, const Vec4& p1) { return 2.0 * std::acos(std::min(1.0, std::abs(p0.dot(p1)))); };
+    const Vec3 D0 = centres(c0), D1 = centres(c1), step = D1 - D0;
+    const double Ra = shape_a.bounding_radius(), Rb = shape_b.bounding_radius();
+    const double s = step.squaredNorm() > 0.0 ? std::clamp(-D0.dot(step) / step.squaredNorm(), 0.0, 1.0) : 0.0;
+    if (!((D0 + s * step).norm() < Ra + Rb)) return false;
+    const double moved = step.norm() + turn(c0.segment<4>(3), c1.segment<4>(3)) * Ra +
+                         turn(c0.segment<4>(10), c1.segment<4>(10)) * (std::max(D0.norm(), D1.norm()) + Ra);
+    return moved > gap;
+  }
+
   /// The contact points at (c, cd).
   std::vector<collision::ContactPoint<double>> contact_points(const Loc& c, const Loc& cd) const {
     collision::Motion<double> A, B;
@@ -111,6 +145,14 @@ struct SpatialContact {
     std::vector<collision::ContactPoint<double>> out(points);
     pair->at(shape_a, shape_b, A, B, out.data());
     return out;
+  }
+
+  /// Where point p's force acts and its slip is measured: an anchored
+  /// pair's vertex itself, X = P + g n (a body rocking on a corner does not
+  /// slip there), else P on the surface (a rolling sphere's point).
+  template <class T>
+  collision::V3<T> acting_point(const collision::ContactPoint<T>& p) const {
+    return pair->anchored ? p.point + p.gap * p.normal : p.point;
   }
 
   /// Q at (c, cd) from the contact points `pts` (evaluated with the same numbers).
@@ -121,19 +163,20 @@ struct SpatialContact {
     collision::Motion<T> A, B;
     motions(c, cd, A, B);
     V3<T> F, tau_i, tau_j;
+    const bool slides = law.friction > 0.0 && !stuck(run);  // (stuck, the rows hold all the friction)
     for (int k = 0; k < points; ++k) {
       const collision::ContactPoint<T>& p = pts[k];
       const T Fn = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
       if (!(value_of(Fn) > 0.0)) continue;
       V3<T> Fk = Fn * p.normal;
-      if (law.friction > 0.0) {
-        const V3<T> v = A.velocity_at(p.point) - B.velocity_at(p.point);
+      if (slides) {
+        const V3<T> v = A.velocity_at(acting_point(p)) - B.velocity_at(acting_point(p));
         const V3<T> vt = v - dot(v, p.normal) * p.normal;
         Fk = Fk + law.friction_force(Fn, T(1.0), dot(vt, vt)) * vt;
       }
       F = F + Fk;
-      tau_i = tau_i + cross(p.point - A.r, Fk);
-      tau_j = tau_j + cross(p.point - B.r, Fk);
+      tau_i = tau_i + cross(acting_point(p) - A.r, Fk);
+      tau_j = tau_j + cross(acting_point(p) - B.r, Fk);
     }
     // 2 E(p)^T tau = 2 (-e . tau, e0 tau - e x tau)
     auto torque = [](const T* p, const V3<T>& n, T sign, T* out) {
@@ -234,9 +277,10 @@ struct SpatialContact {
       const double Fn = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
       if (!(Fn > 0.0)) continue;
       const Vec3 n = p.normal.value();
-      const Vec3 v = (A.velocity_at(p.point) - B.velocity_at(p.point)).value();
+      const Vec3 v = (A.velocity_at(acting_point(p)) - B.velocity_at(acting_point(p))).value();
       const Vec3 vt = v - v.dot(n) * n;
-      F += Fn * n + law.friction_force(Fn, 1.0, vt.squaredNorm()) * vt;
+      F += Fn * n;
+      if (!stuck(run)) F += law.friction_force(Fn, 1.0, vt.squaredNorm()) * vt;
       normal += Fn * n;
       centre += Fn * p.point.value();
       pressing += Fn;
@@ -250,7 +294,8 @@ struct SpatialContact {
       r.slip_speed = slip;
       r.state = ContactReading::kSlip;
     } else {
-      const Vec3 n = r.normal, v = (A.velocity_at(pts[nearest].point) - B.velocity_at(pts[nearest].point)).value();
+      const auto X = acting_point(pts[nearest]);
+      const Vec3 n = r.normal, v = (A.velocity_at(X) - B.velocity_at(X)).value();
       r.slip_speed = (v - v.dot(n) * n).norm();
     }
     if (swapped) {  // for the shape given first: the force on it, the normal towards it
@@ -279,12 +324,14 @@ struct SpatialContact {
       g[k] = std::abs(pts[k].gap) > at_surface ? pts[k].gap : pts[k].gap_rate < 0.0 ? -at_surface : at_surface;
   }
   int direction(int) const { return 0; }
-  EventAction crossing(int k, const Loc& c, const Loc& cd, double, double* run) const {
+  EventAction crossing(int k, const Loc& c, const Loc& cd, double, double* run, int direction) const {
     EventAction a;
     a.type = EventAction::kRestart;
     a.speed = contact_points(c, cd)[k].gap_rate;
-    if (a.speed < 0.0) {
-      run[run_state + k] = -a.speed;
+    // (labelled by the way the function crossed where that is known: at a
+    // point touching at rest its rate is rounding, of either sign)
+    if (direction < 0 || (direction == 0 && a.speed < 0.0)) {
+      run[run_state + k] = std::max(0.0, -a.speed);
       a.label = "onset";
     } else {
       a.label = "release";
@@ -294,18 +341,21 @@ struct SpatialContact {
   // --- stick: three rows (see above) -------------------------------------
 
   int stick_state(const double* run) const { return int(run[run_state + points]); }
+  bool stuck(const double* run) const { return sticks && stick_state(run) == kStuck; }
   const double* anchor(const Instant& at) const {
-    static const double none[9] = {0, 0, 0, 0, 0, 0, 1, 0, 0};  // (outside a run: rows of an anchor at the centres)
+    static const double none[12] = {0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0};  // (outside a run: an anchor at the centres)
     return at.state ? at.state + run_state + points + 1 : none;
   }
   spatial::Terms<3> stick_terms(const Loc& c, const spatial::Want& want, const Instant& at) const {
     using namespace spatial;
     const double* x = anchor(at);
-    const Vec3 s_a(x[0], x[1], x[2]), s_b(x[3], x[4], x[5]), u_a(x[6], x[7], x[8]);
+    const Vec3 s_a(x[0], x[1], x[2]), s_b(x[3], x[4], x[5]), u_1(x[6], x[7], x[8]), u_2(x[9], x[10], x[11]);
     const VectorTerm D = minus(body_point(c, kBodyI, s_a, want), body_point(c, kBodyJ, s_b, want));
     const VectorTerm t1 = body_vector(c, kBodyJ, shape_b.axes.col(0), want);
     const VectorTerm t2 = body_vector(c, kBodyJ, shape_b.axes.col(1), want);
-    return {dot(t1, D, want), dot(t2, D, want), dot(t2, body_vector(c, kBodyI, u_a, want), want)};
+    return {dot(t1, D, want), dot(t2, D, want),
+            combine(0.5, dot(t2, body_vector(c, kBodyI, u_1, want), want), -0.5,
+                    dot(t1, body_vector(c, kBodyI, u_2, want), want), want)};
   }
   Eigen::Matrix<double, 3, 1> phi(const Loc& c, const Instant& at) const {
     spatial::Want want;
@@ -338,10 +388,12 @@ struct SpatialContact {
 
   /// The pressing points at (c, cd): their total normal force, the
   /// largest slip speed among them, their centre of pressure C = sum F_n,k
-  /// P_k / F_n and F_n-weighted mean distance rho from it, and the deepest.
+  /// P_k / F_n and F_n-weighted mean distance rho from it, the same mean
+  /// of the pressing material points X_k = P_k + g_k n_k (an anchored
+  /// pair's vertices), and the deepest.
   struct Pressing {
     double normal_force = 0.0, slip = 0.0, radius = 0.0;
-    Vec3 centre = Vec3::Zero();
+    Vec3 centre = Vec3::Zero(), material = Vec3::Zero();
     int deepest = -1;
   };
   Pressing pressing(const Loc& c, const Loc& cd, const double* run) const {
@@ -355,14 +407,16 @@ struct SpatialContact {
       const auto& p = pts[k];
       Fn[k] = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
       if (!(Fn[k] > 0.0)) continue;
-      const Vec3 n = p.normal.value(), v = (A.velocity_at(p.point) - B.velocity_at(p.point)).value();
+      const Vec3 n = p.normal.value(), v = (A.velocity_at(acting_point(p)) - B.velocity_at(acting_point(p))).value();
       out.normal_force += Fn[k];
       out.centre += Fn[k] * p.point.value();
+      out.material += Fn[k] * acting_point(p).value();
       out.slip = std::max(out.slip, (v - v.dot(n) * n).norm());
       if (out.deepest < 0 || p.gap < pts[out.deepest].gap) out.deepest = k;
     }
     if (!(out.normal_force > 0.0)) return out;
     out.centre /= out.normal_force;
+    out.material /= out.normal_force;
     for (int k = 0; k < points; ++k)
       if (Fn[k] > 0.0) out.radius += Fn[k] * (pts[k].point.value() - out.centre).norm() / out.normal_force;
     return out;
@@ -386,28 +440,33 @@ struct SpatialContact {
       const Vec4 pi = c.segment<4>(3), pj = c.segment<4>(10);
       const Vec3 X = c.head<3>() + euler::rotate(pi, Vec3(x[0], x[1], x[2]));
       const Vec3 t1 = euler::rotate(pj, shape_b.axes.col(0)), t2 = euler::rotate(pj, shape_b.axes.col(1));
-      const Vec3 n = t1.cross(t2), u = euler::rotate(pi, Vec3(x[6], x[7], x[8]));
+      const Vec3 n = t1.cross(t2), u1 = euler::rotate(pi, Vec3(x[6], x[7], x[8])),
+                 u2 = euler::rotate(pi, Vec3(x[9], x[10], x[11]));
       const Vec3 F = -(lam[0] * t1 + lam[1] * t2);
-      const double torque = -lam[2] * t2.dot(n.cross(u)) + n.dot((X - now.centre).cross(F));
+      // (the third row's torque about n: its gradient along a turn about n)
+      const double torque = -lam[2] * 0.5 * (t2.dot(n.cross(u1)) - t1.dot(n.cross(u2))) + n.dot((X - now.centre).cross(F));
       const double rho = std::max(now.radius, 1e-3 * shape_a.bounding_radius());
       return law.static_friction * now.normal_force - std::sqrt(F.squaredNorm() + (torque / rho) * (torque / rho));
     }
     if (now.deepest < 0) return 1.0;
     return now.slip - (state == kDisarmed ? 2.0 : 1.0) * law.slip_velocity;
   }
-  /// Anchors the contact at its centre of pressure and marks it stuck
-  /// (false: no point presses).
+  /// Anchors the contact at the pressing vertices' F_n-weighted centre
+  /// (below the centre of pressure by their mean depth: a body rocking
+  /// about its pressing edge keeps that edge's vertices, not the point
+  /// above them, in place) and marks it stuck (false: no point presses).
   bool stick_hold(const Loc& c, const Loc& cd, double* run) const {
     const Pressing now = pressing(c, cd, run);
     if (now.deepest < 0) return false;
     const Vec4 pi = c.segment<4>(3), pj = c.segment<4>(10);
-    const Vec3 t1 = euler::rotate(pj, shape_b.axes.col(0));
+    const Vec3 t1 = euler::rotate(pj, shape_b.axes.col(0)), t2 = euler::rotate(pj, shape_b.axes.col(1));
     double* x = run + run_state + points;
     x[0] = kStuck;
     // (A(p)^T undoes A(p) for unit p: the anchor and the tangent in each body's axes)
-    Eigen::Map<Vec3>(x + 1) = euler::A(pi).transpose() * (now.centre - c.head<3>());
-    Eigen::Map<Vec3>(x + 4) = euler::A(pj).transpose() * (now.centre - c.segment<3>(7));
+    Eigen::Map<Vec3>(x + 1) = euler::A(pi).transpose() * (now.material - c.head<3>());
+    Eigen::Map<Vec3>(x + 4) = euler::A(pj).transpose() * (now.material - c.segment<3>(7));
     Eigen::Map<Vec3>(x + 7) = euler::A(pi).transpose() * t1;
+    Eigen::Map<Vec3>(x + 10) = euler::A(pi).transpose() * t2;
     return true;
   }
   void stick_set(double* run, StickState state) const { run[run_state + points] = state; }

@@ -152,6 +152,18 @@ inline ScalarTerm dot(const VectorTerm& u, const VectorTerm& v, const Want& want
   return f;
 }
 
+/// ka a + kb b, term by term (the Hessian where want.hessian).
+inline ScalarTerm combine(double ka, const ScalarTerm& a, double kb, const ScalarTerm& b, const Want& want) {
+  ScalarTerm f;
+  f.value = ka * a.value + kb * b.value;
+  f.gradient = ka * a.gradient + kb * b.gradient;
+  f.gradient_rate = ka * a.gradient_rate + kb * b.gradient_rate;
+  f.velocity = ka * a.velocity + kb * b.velocity;
+  f.convective = ka * a.convective + kb * b.convective;
+  if (want.hessian) f.hessian = ka * a.hessian + kb * b.hessian;
+  return f;
+}
+
 /// Component k of u as a scalar term.
 inline ScalarTerm component(const VectorTerm& u, int k) {
   ScalarTerm f;
