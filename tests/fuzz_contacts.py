@@ -121,9 +121,6 @@ KNOWN_BUGS = {
 #: apart; {law: the xfail test of it}.
 KNOWN_LAWS = {
     "a stuck contact slips": "test_a_stuck_box_leaning_on_a_ball_does_not_slip",
-    "a crossing logged twice": "test_a_crossing_is_logged_once",
-    "refused as Zeno": "test_a_ball_placed_on_the_floor_is_not_refused_as_zeno",
-    "a hang under index3": "test_index3_rolls_a_wheel_sliding_sideways_in_as_few_steps_as_ggl",
     # (a cylinder drawn lying may fall flat, onto an end: KNOWN_BUGS' feature reached in the run)
     "a hang with a cylinder": "test_a_cylinder_standing_on_an_end_runs",
 }

@@ -89,6 +89,11 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
     group->values(q, v, t, g + offset);
     for (int k = 0; k < group->size(); ++k) offset += group->roots(k);
   }
+  // (a crossing acted on reads on its new side until a step's end finds it
+  // there, unless it goes back further than 10 times the restart put it
+  // from 0: consistent())
+  for (const Pin& p : pins_)
+    if ((g[p.root] > 0.0) != (p.side > 0) && std::abs(g[p.root]) <= p.within) g[p.root] = p.side * 1e-300;
   if (contacts_.empty() && sticks_.empty()) return;
   if (!d_.closed_rows().empty()) {
     solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
@@ -159,6 +164,7 @@ bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
   }
   const VecX v0 = v;
   const std::vector<int> closed0 = d_.closed_rows();
+  handled_ = fired;  // (what consistent() then pins)
   if (any) handle_stops(t, q, v, fired);
   if (!sticks_.empty()) handle_sticks(t, q, v, fired);
   return v != v0 || d_.closed_rows() != closed0 || beyond;
@@ -194,6 +200,16 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
 double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired) {
   step_bound_ = INFINITY;
   if (!(t1 > t0)) return NAN;
+  if (!pins_.empty()) {  // (a pinned function that a step's end finds on its new side is free again)
+    const double *q = nullptr, *v = nullptr;
+    at(t1, q, v);
+    std::vector<double> g(g_.size());
+    const std::vector<Pin> pins = pins_;
+    pins_.clear();
+    values(t1, q, v, g.data());
+    for (const Pin& p : pins)
+      if ((g[size_t(p.root)] > 0.0) != (p.side > 0)) pins_.push_back(p);
+  }
   std::vector<int> roots, rows;
   const double passed = passed_through(t0, t1, at, roots);
   const double grazing = contacts_.empty() ? NAN : grazed_stops(t0, t1, at, rows);
@@ -848,10 +864,19 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
   // crossing by rounding) crosses here: the steps from the restart would not see it
   const size_t n = roots_.size();
   std::vector<double> before(g_.size()), after(g_.size());
+  pins_.clear();  // (the last restart's: these values are the functions' own)
   values(t, q.data(), v.data(), before.data());
   values(t, state.q.data(), state.v.data(), after.data());
   for (size_t i = 0; i < n; ++i) {
-    if ((before[i] > 0.0) == (after[i] > 0.0) || (i < handled_.size() && handled_[i])) continue;
+    if (i < handled_.size() && handled_[i]) {
+      // crossed (handled_[i]: which way): pinned to its new side until a
+      // step's end finds it there (the restart's projection, or the first
+      // step's error, can put it back by rounding: found again, it would be
+      // logged twice, or again and again at a point touching at rest)
+      pins_.push_back({int(i), handled_[i] > 0 ? 1 : -1, 10.0 * std::abs(after[i])});
+      continue;
+    }
+    if ((before[i] > 0.0) == (after[i] > 0.0)) continue;
     if (dir_[i] < 0 && !(after[i] < 0.0)) continue;  // (a function counting downward crossings only)
     auto& group = *model_.event_groups()[roots_[i].group];
     const EventAction a = group.crossing(roots_[i].element, roots_[i].index, state.q.data(), state.v.data(), t,

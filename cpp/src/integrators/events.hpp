@@ -156,7 +156,15 @@ class EventRunner {
   /// consistent()'s projection, without the crossings it causes.
   ConsistentState restart_state(double t, const VecX& q, const VecX& v);
   std::vector<Root> roots_;      // of the event elements
-  std::vector<int> handled_;     // the crossings the last handle() acted on
+  std::vector<int> handled_;     // the crossings the last handle() acted on (-1, +1: which way)
+  /// An event function whose crossing the last restart acted on: it reads
+  /// as on `side` (where the crossing went) while it is on the other within
+  /// `within` of 0, until a step's end finds it on `side`.
+  struct Pin {
+    int root, side;
+    double within;
+  };
+  std::vector<Pin> pins_;
   std::vector<Sweep> sweeps_;    // of those that may be passed through
   double sweep_t_ = NAN;         // passed_through(): the last step's end and its positions
   VecX sweep_q_;
