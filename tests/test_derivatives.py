@@ -80,6 +80,8 @@ def every_spatial_kind():
                         free_length=1.0, force=mb.Harmonic(1.0, 2.0))
     m.add_rotational_spring_damper("torsion", "hinge", stiffness=7.0, damping=0.4, torque=mb.Linear(0.3))
     m.add_rotational_spring_damper("twist_cyl", "cyl", stiffness=2.0, damping=0.1, free_angle=0.2)
+    m.add_servo("servo", "hinge", target=mb.Harmonic(0.3, 2.0, 0.1), kp=40.0, kd=2.0, feedforward=mb.Linear(0.2))
+    m.add_servo("servo_held", "prism", target=1.0, kp=500.0, kd=5.0, limit=3.0)  # (saturated: +-3 N)
     m.add_bushing("mount", b[6], b[7], at=(2.6, 0.7, -0.1), stiffness=(100.0, 200.0, 300.0),
                   damping=(1.0, 2.0, 3.0), rotational_stiffness=(10.0, 20.0, 30.0),
                   rotational_damping=(0.1, 0.2, 0.3))

@@ -161,6 +161,7 @@ def _add_everything_spatial(m):
                                                          (1.0, 0.0, 0.0), stiffness=10.0),
         "add_rotational_spring_damper": lambda: m.add_rotational_spring_damper(
             "rotational_spring_damper", "revolute", stiffness=1.0),
+        "add_servo": lambda: m.add_servo("servo", "revolute", target=0.1, kp=1.0, kd=0.1),
         "add_bushing": lambda: m.add_bushing("bushing", b, c, at=(2.5, 0.0, 0.0), stiffness=(1.0, 1.0, 1.0)),
         "add_force": lambda: m.add_force("force", a, (0.0, 1.0, 0.0)),
         "add_torque": lambda: m.add_torque("torque", a, (1.0, 0.0, 0.0)),

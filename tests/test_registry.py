@@ -260,6 +260,11 @@ def example_spatial_rotational_spring_damper():
                                              torque=mb.Linear(0.5))
 
 
+def example_spatial_joint_servo():
+    m, _, hinge = _spatial_hinge()
+    return m, m.add_servo("servo", hinge, target=mb.Input(0.2, "aim"), kp=20.0, kd=1.0, limit=5.0)
+
+
 def example_spatial_stop():
     m, _, hinge = _spatial_hinge()
     return m, m.add_stop("limit", hinge, lower=-1.0, upper=1.0, restitution=0.5)

@@ -159,6 +159,7 @@ void bind_runs(py::module_& m) {
       .def("set_input", &Simulator::set_input, py::arg("name"), py::arg("value"), Release())
       .def("input", &Simulator::input, py::arg("name"), Release())
       .def_property_readonly("inputs", py::cpp_function(&Simulator::inputs, Release()))
+      .def_property_readonly("run_state", py::cpp_function(&Simulator::run_state, Release()))
       .def("state", &Simulator::state, Release())
       .def(
           "set_state",

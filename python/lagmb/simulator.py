@@ -3,11 +3,13 @@ saved and restored (docs/modelling.md, "Driving a run from outside")."""
 
 from types import SimpleNamespace
 
+import numpy as np
+
 from . import _core, registry
 from ._checks import parameters as _parameters, real as _real, show as _show
 from .errors import ModelError
 from .handles import name_of
-from .result import BodyPath, Result, element_name
+from .result import BodyPath, JointPath, Result, element_name
 from .model import checked as _model
 from .simulation import DEFAULTS as _D, _run_options, _translate
 
@@ -51,6 +53,7 @@ class Simulator:
         if interval < 0:
             raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
         self.model = model
+        self._joint_names = None
         self._snapshot = model._snapshot()  # the model it runs, whatever edits follow
         self._core_model = _parameters(self._snapshot, parameters, "Simulator")
         with _translate(model, self._core_model, self._snapshot):
@@ -98,6 +101,51 @@ class Simulator:
         now = SimpleNamespace(t=[self.t], q=self.q[None], v=self.v[None], a=self.a[None])
         return SimpleNamespace(**{key: value[0] for key, value in vars(BodyPath(now, first, count)).items()})
 
+    def joint(self, joint):
+        """A joint's coordinate now (handle or name), as :meth:`lagmb.Result.joint`
+        gives it at one instant: .angle (rad, counting whole turns) or .slide
+        (m), .rate and .acceleration."""
+        name = element_name(self.model, self._core_model, joint, ("joint",), "joint", "Simulator.joint")
+        path = JointPath(self._now(self.a), name)
+        return SimpleNamespace(**{key: float(value[0]) for key, value in vars(path).items()})
+
+    def joints(self, joints=None):
+        """The coordinates of several joints now, in one call: ``(values,
+        rates)``, two arrays in the order of ``joints`` (handles or names;
+        None: every revolute, translational and cylindrical joint in the
+        model's order, :attr:`joint_names`), each joint's angle (rad,
+        counting turns) or slide (m) and its rate, as :meth:`joint` reads
+        them (a cylindrical joint: its angle). No accelerations are solved."""
+        names = self.joint_names if joints is None else [
+            element_name(self.model, self._core_model, j, ("joint",), "joint", "Simulator.joints") for j in joints]
+        now = self._now(np.zeros_like(self.q))
+        values, rates = np.empty(len(names)), np.empty(len(names))
+        for k, name in enumerate(names):
+            declared = registry.kind_of(self._core_model, name)
+            coordinates = declared.coordinates if declared else ()
+            if not ("angle" in coordinates or "slide" in coordinates):
+                raise ModelError(f"Simulator.joints: '{name}' is a {self._core_model.element_kind(name)}, not a "
+                                 "revolute, translational or cylindrical joint")
+            motion = self._core_model.joint_motion(name, "angle" not in coordinates, now.q, now.v, now.a,
+                                                   now._run_state)
+            values[k], rates[k] = motion[0, 0], motion[0, 1]
+        return values, rates
+
+    @property
+    def joint_names(self):
+        """The model's revolute, translational and cylindrical joints (those
+        :meth:`joint` reads), in the order they were added."""
+        if self._joint_names is None:
+            self._joint_names = tuple(
+                name for kind, name, _ in self._snapshot._spec.elements()
+                if {"angle", "slide"} & set(registry.BY_NAME[kind].coordinates))
+        return self._joint_names
+
+    def _now(self, a):
+        """The state now as a one-output run (what Result's readers take)."""
+        return SimpleNamespace(_core=self._core_model, t=np.array([self.t]), q=self.q[None], v=self.v[None],
+                               a=np.asarray(a)[None], _run_state=np.asarray(self._sim.run_state)[None])
+
     def advance(self, t):
         """Integrate to time ``t`` (>= :attr:`t`). Raises SimulationError if
         the integrator fails: :meth:`result` keeps the outputs reached, and
@@ -112,6 +160,24 @@ class Simulator:
         value = _real(value, f"input {name!r}")
         with self._translated():
             self._sim.set_input(self._input_name(name), value)
+
+    def set_inputs(self, values):
+        """Set several inputs at once from :attr:`t` on: a dict {name or
+        handle: value}, or a sequence of values for every input in the order
+        of :attr:`inputs`. One restart of the integrator, as one
+        :meth:`set_input`."""
+        if isinstance(values, dict):
+            items = [(self._input_name(name), _real(value, f"input {name!r}")) for name, value in values.items()]
+        else:
+            names = [d["name"] for d in self._core_model.inputs]
+            values = np.asarray(values, dtype=float).ravel() if not isinstance(values, str) else None
+            if values is None or values.size != len(names):
+                raise ModelError(f"set_inputs takes a dict {{name: value}} or {len(names)} values in the order "
+                                 f"of Simulator.inputs ({', '.join(names)}), got {_show(values)}")
+            items = [(name, _real(float(value), f"input {name!r}")) for name, value in zip(names, values)]
+        with self._translated():
+            for name, value in items:
+                self._sim.set_input(name, value)
 
     def input(self, name):
         """The value of an input now."""

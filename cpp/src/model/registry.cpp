@@ -65,6 +65,7 @@ KindInfo spatial_joint_driver_kind();
 KindInfo spatial_body_driver_kind();
 KindInfo spatial_spring_damper_kind();
 KindInfo spatial_rotational_spring_damper_kind();
+KindInfo spatial_joint_servo_kind();
 KindInfo bushing_kind();
 KindInfo spatial_force_kind();
 KindInfo spatial_torque_kind();
@@ -92,7 +93,8 @@ const std::vector<KindInfo>& element_kinds() {
       planar_joint_kind(),  spatial_weld_kind(),
       spatial_distance_kind(), spatial_joint_driver_kind(),
       spatial_body_driver_kind(), spatial_spring_damper_kind(),
-      spatial_rotational_spring_damper_kind(), bushing_kind(),
+      spatial_rotational_spring_damper_kind(), spatial_joint_servo_kind(),
+      bushing_kind(),
       spatial_force_kind(), spatial_torque_kind(),
       spatial_stop_kind(),  joint_coupling_kind(),
       spatial_joint_friction_kind(), spatial_contact_kind(),

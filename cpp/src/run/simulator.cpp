@@ -80,6 +80,11 @@ VecX Simulator::inputs() const {
   return inputs_;
 }
 
+VecX Simulator::run_state() const {
+  Call call(*this, "run_state");
+  return run_->data.run->state;
+}
+
 std::string Simulator::failure() const {
   Call call(*this, "failure");
   return failure_;

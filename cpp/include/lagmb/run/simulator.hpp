@@ -86,6 +86,9 @@ class Simulator {
   void set_input(const std::string& name, double value);
   double input(const std::string& name) const;
   VecX inputs() const;
+  /// The run's element state now (joints' turn counts, contacts' impact
+  /// speeds: what Result's run_state holds at each output).
+  VecX run_state() const;
 
   /// The state to come back to. The integrator restarts here on the next
   /// advance, so that advancing from a restored copy repeats the run from
