@@ -110,3 +110,23 @@ def test_a_servo_needs_a_joint_with_a_coordinate():
     with pytest.raises(mb.ModelError, match="ball_joint"):
         m.add_servo("servo", ball, target=0.0, kp=1.0)
         mb.simulate(m, 0.1)
+
+
+def test_auto_rates_a_servo_by_what_its_joint_moves():
+    """A light hub (I = 1e-3 kg m^2) on a hinge with a heavy arm welded to
+    it (10 kg at 0.5 m: I = 2.5 + 0.1 kg m^2 about the hinge), a servo with kp
+    = I_total * (10 rad/s)^2: the automatic method rates the forces at 10
+    1/s (the joints' inverse mass: every body the hinge carries), not at
+    sqrt(kp / I_hub) = 510 1/s, and takes the explicit method."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, 0.0))
+    m.add_body("hub", mass=0.1, inertia=(1e-3, 1e-3, 1e-3), position=(0.0, 0.0, 0.0))
+    m.add_body("arm", mass=10.0, inertia=(0.1, 0.1, 0.1), position=(0.5, 0.0, 0.0))
+    hinge = m.add_revolute("hinge", "ground", "hub", at=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0))
+    m.add_weld("fix", "hub", "arm")
+    total = 1e-3 + 0.1 + 10.0 * 0.5 ** 2
+    m.add_servo("servo", hinge, target=0.3, kp=total * 100.0, kd=0.0)
+    r = mb.simulate(m, 1.0, n_out=3)
+    choice = r.stats["method_choice"]
+    rate = float(choice.split("fastest rate ")[1].split(" ")[0])
+    assert rate == pytest.approx(10.0, rel=1e-2), choice
+    assert r.stats["method"] == "projection-erk"

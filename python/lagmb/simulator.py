@@ -54,6 +54,7 @@ class Simulator:
             raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
         self.model = model
         self._joint_names = None
+        self._readings = {}  # joints(): {the joints asked for: [(name, slide?)]}
         self._snapshot = model._snapshot()  # the model it runs, whatever edits follow
         self._core_model = _parameters(self._snapshot, parameters, "Simulator")
         with _translate(model, self._core_model, self._snapshot):
@@ -116,18 +117,27 @@ class Simulator:
         model's order, :attr:`joint_names`), each joint's angle (rad,
         counting turns) or slide (m) and its rate, as :meth:`joint` reads
         them (a cylindrical joint: its angle). No accelerations are solved."""
-        names = self.joint_names if joints is None else [
-            element_name(self.model, self._core_model, j, ("joint",), "joint", "Simulator.joints") for j in joints]
-        now = self._now(np.zeros_like(self.q))
-        values, rates = np.empty(len(names)), np.empty(len(names))
-        for k, name in enumerate(names):
-            declared = registry.kind_of(self._core_model, name)
-            coordinates = declared.coordinates if declared else ()
-            if not ("angle" in coordinates or "slide" in coordinates):
-                raise ModelError(f"Simulator.joints: '{name}' is a {self._core_model.element_kind(name)}, not a "
-                                 "revolute, translational or cylindrical joint")
-            motion = self._core_model.joint_motion(name, "angle" not in coordinates, now.q, now.v, now.a,
-                                                   now._run_state)
+        key = None if joints is None else tuple(joints)
+        reading = self._readings.get(key)
+        if reading is None:  # (resolved once per list of joints: a controller asks every tick)
+            names = self.joint_names if joints is None else [
+                element_name(self.model, self._core_model, j, ("joint",), "joint", "Simulator.joints")
+                for j in joints]
+            reading = []
+            for name in names:
+                declared = registry.kind_of(self._core_model, name)
+                coordinates = declared.coordinates if declared else ()
+                if not ("angle" in coordinates or "slide" in coordinates):
+                    raise ModelError(f"Simulator.joints: '{name}' is a {self._core_model.element_kind(name)}, "
+                                     "not a revolute, translational or cylindrical joint")
+                reading.append((name, "angle" not in coordinates))
+            if all(isinstance(j, str) for j in key or ()):
+                self._readings[key] = reading
+        q, v, state = self.q[None], self.v[None], np.asarray(self._sim.run_state)[None]
+        a = np.zeros_like(q)
+        values, rates = np.empty(len(reading)), np.empty(len(reading))
+        for k, (name, slide) in enumerate(reading):
+            motion = self._core_model.joint_motion(name, slide, q, v, a, state)
             values[k], rates[k] = motion[0, 0], motion[0, 1]
         return values, rates
 
