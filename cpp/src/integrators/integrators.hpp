@@ -113,6 +113,10 @@ class Stepper {
   /// Restarts at order 1 from a new consistent state at time t (after a
   /// velocity jump or a change of the equations).
   virtual void reset(double t, const ConsistentState& s) { (void)s; restart(t); }
+  /// The same where only the equations jump (an input's new value) at the
+  /// state reached: a stepper that needs no history may choose its first
+  /// step there (ErkStepper); the others restart as reset() does.
+  virtual void resume(double t, const ConsistentState& s) { reset(t, s); }
   /// The forward sensitivities at time t inside the last step (plan.sensitivities):
   /// s[i] of y and sp[i] of y' for each parameter, in the formulation's layout.
   virtual void sensitivities(double t, std::vector<VecX>& s, std::vector<VecX>& sp) {

@@ -99,7 +99,7 @@ void Run::start_stepper(double t, const ConsistentState& from) {
 
 void Run::restart_stepper(double t, const ConsistentState& from) {
   plan.t0 = t;  // the first step's scale: the stretch in progress
-  stepper_->reset(t, from);
+  stepper_->resume(t, from);
   loop_->restarted(t);
   ++restarts_;
 }
