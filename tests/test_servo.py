@@ -89,8 +89,13 @@ def test_a_simulator_moves_the_target_and_reads_the_joints():
     r = sim.result()
     assert now.angle == pytest.approx(r.joint("hinge").angle[-1], abs=1e-12)
     assert now.rate == pytest.approx(r.joint("hinge").rate[-1], abs=1e-12)
-    with pytest.raises(mb.ModelError, match="set_inputs takes"):
-        sim.set_inputs([1.0, 2.0])
+    for bad in ([1.0, 2.0], ["x"], "7", [[1.0, "a"]]):
+        with pytest.raises(mb.ModelError, match="set_inputs takes"):
+            sim.set_inputs(bad)
+    with pytest.raises(mb.ModelError, match="input 'aim' must be finite"):
+        sim.set_inputs([float("nan")])
+    with pytest.raises(mb.ModelError, match="not a revolute"):
+        sim.joints(["servo"])
 
 
 @pytest.mark.parametrize("given, message", [

@@ -118,7 +118,8 @@ class Simulator:
         counting turns) or slide (m) and its rate, as :meth:`joint` reads
         them (a cylindrical joint: its angle). No accelerations are solved."""
         key = None if joints is None else tuple(joints)
-        reading = self._readings.get(key)
+        cached = key is None or all(isinstance(j, str) for j in key)
+        reading = self._readings.get(key) if cached else None
         if reading is None:  # (resolved once per list of joints: a controller asks every tick)
             names = self.joint_names if joints is None else [
                 element_name(self.model, self._core_model, j, ("joint",), "joint", "Simulator.joints")
@@ -131,7 +132,7 @@ class Simulator:
                     raise ModelError(f"Simulator.joints: '{name}' is a {self._core_model.element_kind(name)}, "
                                      "not a revolute, translational or cylindrical joint")
                 reading.append((name, "angle" not in coordinates))
-            if all(isinstance(j, str) for j in key or ()):
+            if cached:
                 self._readings[key] = reading
         q, v, state = self.q[None], self.v[None], np.asarray(self._sim.run_state)[None]
         a = np.zeros_like(q)
@@ -180,11 +181,14 @@ class Simulator:
             items = [(self._input_name(name), _real(value, f"input {name!r}")) for name, value in values.items()]
         else:
             names = [d["name"] for d in self._core_model.inputs]
-            values = np.asarray(values, dtype=float).ravel() if not isinstance(values, str) else None
-            if values is None or values.size != len(names):
-                raise ModelError(f"set_inputs takes a dict {{name: value}} or {len(names)} values in the order "
+            try:
+                array = None if isinstance(values, (str, bytes)) else np.asarray(values, dtype=float).ravel()
+            except (TypeError, ValueError):
+                array = None
+            if array is None or array.size != len(names):
+                raise ModelError(f"set_inputs takes a dict {{name: value}} or {len(names)} numbers in the order "
                                  f"of Simulator.inputs ({', '.join(names)}), got {_show(values)}")
-            items = [(name, _real(float(value), f"input {name!r}")) for name, value in zip(names, values)]
+            items = [(name, _real(float(value), f"input {name!r}")) for name, value in zip(names, array)]
         with self._translated():
             for name, value in items:
                 self._sim.set_input(name, value)
