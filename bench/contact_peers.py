@@ -118,10 +118,8 @@ import json
 import math
 import os
 import platform
-import site
 import statistics
 import sys
-import sysconfig
 import time
 import warnings
 import xml.etree.ElementTree as ET
@@ -132,6 +130,10 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 import numpy as np  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "peers"))
+from peer_lagmb import run_versions  # noqa: E402
+from robots import robots_dir  # noqa: E402  (example-robot-data's robots directory)
 G = 9.81
 T_END = 3.0
 T_CREEP = 2.0          # creep: displacement between T_CREEP and T_END
@@ -152,15 +154,6 @@ MJ_REF_DT = 2.5e-6
 MJ_REF_CHECK_DT = 5e-6
 MJ_VARIANT_REF_DT = 1e-5   # the variants' references, and the free-flight check
 GO1 = "go1_description/urdf/go1.urdf"
-
-
-def robots_dir():
-    """example-robot-data's robots directory (as bench/robots.py finds it)."""
-    for base in sorted({sysconfig.get_paths()["purelib"], *site.getsitepackages()}):
-        path = os.path.join(base, "cmeel.prefix", "share", "example-robot-data", "robots")
-        if os.path.isdir(path):
-            return path
-    sys.exit("example-robot-data is not installed (pip install 'lagmb[robots]')")
 
 
 def quat_to_R(q):
@@ -908,14 +901,7 @@ def main():
     import lagmb as mb
     import mujoco
 
-    versions = {"lagmb": mb.__version__, "mujoco": mujoco.__version__, "numpy": np.__version__}
-    try:
-        sys.path.insert(0, os.path.join(HERE, "peers"))
-        from peer_lagmb import build_id
-
-        versions["lagmb_build"] = build_id(mb)
-    except Exception:  # noqa: BLE001
-        pass
+    versions = run_versions(mb, mujoco=mujoco.__version__, numpy=np.__version__)
     t_start = time.perf_counter()
     log(f"contact peers: scenes {args.scenes}, {args.repeat} rounds; " + ", ".join(f"{k} {v}" for k, v in
                                                                                  versions.items()))

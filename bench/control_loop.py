@@ -89,6 +89,9 @@ if HERE not in sys.path:
 import mujoco_urdf as mjb  # noqa: E402
 from robots import ROBOTS, angle_error, robots_dir  # noqa: E402
 
+sys.path.insert(0, os.path.join(HERE, "peers"))
+from peer_lagmb import run_versions  # noqa: E402
+
 Q0 = {"panda_joint1": 0.0, "panda_joint2": -0.785, "panda_joint3": 0.0, "panda_joint4": -2.356,
       "panda_joint5": 0.0, "panda_joint6": 1.571, "panda_joint7": 0.785}
 OFFSET = np.array([0.3, -0.3, 0.3, 0.3, -0.3, 0.3, 0.3])
@@ -371,15 +374,8 @@ def main(argv=None):
     def log(msg=""):
         print(msg, flush=True)
 
-    versions = {"lagmb": mb.__version__, "mujoco": mujoco.__version__, "pinocchio": pin.__version__,
-                "scipy": scipy.__version__, "numpy": np.__version__}
-    try:
-        sys.path.insert(0, os.path.join(HERE, "peers"))
-        from peer_lagmb import build_id
-
-        versions["lagmb_build"] = build_id(mb)
-    except Exception:  # noqa: BLE001
-        pass
+    versions = run_versions(mb, mujoco=mujoco.__version__, pinocchio=pin.__version__, scipy=scipy.__version__,
+                            numpy=np.__version__)
     t_start = time.perf_counter()
     tmp = tempfile.mkdtemp(prefix="control_loop_")
     path, fixed = arm_urdf(tmp)

@@ -37,6 +37,12 @@ def available():
                   f"SUNDIALS {mb.SUNDIALS_VERSION}")
 
 
+def run_versions(mb, **others):
+    """{"lagmb": version, "lagmb_build": build_id, **others}: what a bench's
+    JSON records of the code that ran."""
+    return {"lagmb": mb.__version__, "lagmb_build": build_id(mb), **others}
+
+
 def build_id(mb):
     """Which build ran: md5 (12 digits) and time of the compiled core, so that
     results from a rebuilt lagmb can be told apart."""
