@@ -23,6 +23,7 @@
 #include "lagmb/spec/parameters.hpp"
 #include "lagmb/spec/spec.hpp"
 
+#include "lagmb/solvers/block_cholesky.hpp"
 #include "lagmb/solvers/sparse_lu.hpp"
 #include "lagmb/solvers/sundials.hpp"
 

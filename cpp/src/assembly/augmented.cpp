@@ -7,126 +7,140 @@
 
 namespace lagmb {
 
-AugmentedSystem::AugmentedSystem(const Model& model)
-    : n_(model.n_coordinates()),
-      m_(model.n_constraints()),
-      eps_(1e-9 / model.mass_scale()),
-      mass_scale_(model.mass_scale()),
-      diagonal_mass_(model.constant_mass()) {
+AugmentedPattern::AugmentedPattern(const Model& model) {
+  const int n = model.n_coordinates(), m = model.n_constraints();
   const SpMat& J = model.jacobian_pattern();
-  SparsityPattern p(n_ + m_, n_ + m_);
-  for (int i = 0; i < n_ + m_; ++i) p.add(i, i);
+  SparsityPattern p(n + m, n + m);
+  for (int i = 0; i < n + m; ++i) p.add(i, i);
   const SpMat& Mp = model.mass_pattern();
-  for (int c = 0; c < n_; ++c)
+  for (int c = 0; c < n; ++c)
     for (SpMat::InnerIterator it(Mp, c); it; ++it) p.add(int(it.row()), c);
   for (int c = 0; c < J.outerSize(); ++c)
     for (SpMat::InnerIterator it(J, c); it; ++it) {
-      p.add(n_ + int(it.row()), c);
-      p.add(c, n_ + int(it.row()));
+      p.add(n + int(it.row()), c);
+      p.add(c, n + int(it.row()));
     }
-  K_ = p.build();
-  mass_slots_ = embed_slots(model.mass_pattern(), K_, 0, 0);
-  for (int i = 0; i < m_; ++i) reg_slots_.push_back(slot(K_, n_ + i, n_ + i));
-  jac_slots_ = embed_slots(J, K_, n_, 0);
-  jact_slots_ = embed_slots(J, K_, 0, n_, true);
+  K = p.build();
+  mass_slots = embed_slots(model.mass_pattern(), K, 0, 0);
+  for (int i = 0; i < m; ++i) reg_slots.push_back(slot(K, n + i, n + i));
+  jac_slots = embed_slots(J, K, n, 0);
+  jact_slots = embed_slots(J, K, 0, n, true);
+  if (model.positive_mass() && m > 0) setup_schur(model);
+}
+
+void AugmentedPattern::setup_schur(const Model& model) {
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  const SpMat& J = model.jacobian_pattern();
+  const SpMat& Minv = model.mass_pattern();  // M^-1 has M's block pattern
+  // J M^-1 keeps J's pattern where each block of M^-1 joins columns with the
+  // same rows (a spatial body's Euler parameters: every element declares all
+  // four); otherwise the LU takes every solve
+  const int* outer = J.outerIndexPtr();
+  const int* row = J.innerIndexPtr();
+  for (int c = 0; c < n; ++c)
+    for (SpMat::InnerIterator it(Minv, c); it; ++it) {
+      const int a = int(it.row());
+      if (outer[a + 1] - outer[a] != outer[c + 1] - outer[c] ||
+          !std::equal(row + outer[a], row + outer[a + 1], row + outer[c]))
+        return;
+    }
+  range_space = true;
+  j_outer.assign(outer, outer + n + 1);
+  // S = J M^-1 J^T: entry (r_a, r_b) gathers J(r_a, c) J(r_b, c) / M_c over the columns c
+  auto each_pair = [&](auto&& f) {
+    for (int c = 0; c < n; ++c)
+      for (int a = outer[c]; a < outer[c + 1]; ++a)
+        for (int b = outer[c]; b <= a; ++b) f(c, a, b);
+  };
+  // S's blocks: each element's rows (at most 12 to a block); the columns'
+  // rows join theirs in S
+  std::vector<int> block_of_row(m), block_sizes;
+  for (int r = 0; r < m; ++r) {
+    const bool same = r > 0 && model.element_of_row(r) == model.element_of_row(r - 1) && block_sizes.back() < 12;
+    if (!same) block_sizes.push_back(0);
+    block_of_row[r] = int(block_sizes.size()) - 1;
+    ++block_sizes.back();
+  }
+  std::vector<std::pair<int, int>> edges;
+  each_pair([&](int, int a, int b) {
+    if (block_of_row[row[a]] != block_of_row[row[b]]) edges.emplace_back(block_of_row[row[a]], block_of_row[row[b]]);
+  });
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  S = BlockCholeskyPattern(block_sizes, edges);
+  // rows renumbered block by block in the elimination order
+  new_of_old.resize(m);
+  old_of_new.resize(m);
+  for (int r = 0; r < m; ++r) {
+    const int b = block_of_row[r], k = S.position_of(b);
+    int first = r;
+    while (first > 0 && block_of_row[first - 1] == b) --first;
+    new_of_old[r] = S.start(k) + (r - first);
+    old_of_new[new_of_old[r]] = r;
+  }
+  j_row.resize(J.nonZeros());
+  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row[k] = new_of_old[row[k]];
+  auto entry = [&](int a, int b) {
+    return std::pair{std::max(j_row[a], j_row[b]), std::min(j_row[a], j_row[b])};  // (lower triangle)
+  };
+  // runs of neighbouring columns with the same rows: M^-1's blocks lie
+  // within one (their columns share rows: checked above)
+  for (int c = 0; c < n;) {
+    const int rows = outer[c + 1] - outer[c];
+    int end = c + 1;
+    while (end < n && outer[end + 1] - outer[end] == rows &&
+           std::equal(row + outer[c], row + outer[c + 1], row + outer[end]))
+      ++end;
+    if (rows > 0) {
+      runs.push_back({outer[c], rows, end - c, int(run_slots.size())});
+      for (int b = 0; b < rows; ++b)
+        for (int a = b; a < rows; ++a) {
+          const auto [r, s] = entry(outer[c] + a, outer[c] + b);
+          run_slots.push_back(S.slot(r, s));
+        }
+      largest_run = std::max(largest_run, rows);
+    }
+    c = end;
+  }
+  for (int i = 0; i < m; ++i) s_diag.push_back(S.slot(i, i));
+}
+
+AugmentedSystem::AugmentedSystem(const Model& model)
+    : p_(&model.derived<AugmentedPattern>()),
+      n_(model.n_coordinates()),
+      m_(model.n_constraints()),
+      eps_(1e-9 / model.mass_scale()),
+      K_(p_->K),
+      mass_scale_(model.mass_scale()),
+      diagonal_mass_(model.constant_mass()) {
   rhs_.resize(n_ + m_);
   x_.resize(n_ + m_);
   r_.resize(n_ + m_);
   dx_.resize(n_ + m_);
-  positive_mass_ = model.positive_mass();
-  if (positive_mass_ && m_ > 0) setup_schur(model);
-}
-
-void AugmentedSystem::setup_schur(const Model& model) {
-  const SpMat& J = model.jacobian_pattern();
-  m_inv_ = model.mass_pattern();
-  w_n_.resize(n_);
-  // J M^-1 keeps J's pattern where each block of M^-1 joins columns with the
-  // same rows (a spatial body's Euler parameters: every element declares all
-  // four); otherwise the LU takes every solve
-  for (int c = 0; c < n_; ++c)
-    for (SpMat::InnerIterator it(m_inv_, c); it; ++it) {
-      const int a = int(it.row());
-      const int na = J.outerIndexPtr()[a + 1] - J.outerIndexPtr()[a], nc = J.outerIndexPtr()[c + 1] - J.outerIndexPtr()[c];
-      if (na != nc || !std::equal(J.innerIndexPtr() + J.outerIndexPtr()[a], J.innerIndexPtr() + J.outerIndexPtr()[a + 1],
-                                  J.innerIndexPtr() + J.outerIndexPtr()[c])) {
-        positive_mass_ = false;
-        return;
-      }
-    }
-  s_rhs_.resize(m_);
-  work_.resize(m_);
-  lam_.resize(m_);
-  lam_prev_.resize(m_);
-  j_values_.resize(J.nonZeros());
-  const int* outer = J.outerIndexPtr();
-  const int* row = J.innerIndexPtr();
-  j_outer_.assign(outer, outer + n_ + 1);
-  // S = J M^-1 J^T: entry (r_a, r_b) gathers J(r_a, c) J(r_b, c) / M_c over the columns c
-  auto each_pair = [&](auto&& f) {
-    for (int c = 0; c < n_; ++c)
-      for (int a = outer[c]; a < outer[c + 1]; ++a)
-        for (int b = outer[c]; b <= a; ++b) f(c, a, b);
-  };
-  // AMD on S's pattern in the constraints' own numbering...
-  SparsityPattern p(m_, m_);
-  for (int i = 0; i < m_; ++i) p.add(i, i);
-  each_pair([&](int, int a, int b) { p.add(std::max(row[a], row[b]), std::min(row[a], row[b])); });
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> new_to_old;
-  Eigen::AMDOrdering<int>()(p.build(), new_to_old);  // (Eigen's orderings give the inverse permutation)
-  old_of_new_.assign(new_to_old.indices().data(), new_to_old.indices().data() + m_);
-  new_of_old_.resize(m_);
-  for (int k = 0; k < m_; ++k) new_of_old_[old_of_new_[k]] = k;
-  // ...then S's upper triangle in that order
-  j_row_.resize(J.nonZeros());
-  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row_[k] = new_of_old_[row[k]];
-  auto entry = [&](int a, int b) {
-    return std::pair{std::min(j_row_[a], j_row_[b]), std::max(j_row_[a], j_row_[b])};
-  };
-  SparsityPattern u(m_, m_);
-  for (int i = 0; i < m_; ++i) u.add(i, i);  // eps
-  each_pair([&](int, int a, int b) {
-    const auto [r, c] = entry(a, b);
-    u.add(r, c);
-  });
-  S_ = u.build();
-  // runs of neighbouring columns with the same rows: M^-1's blocks lie
-  // within one (their columns share rows: checked above)
-  int largest = 0;
-  for (int c = 0; c < n_;) {
-    const int rows = outer[c + 1] - outer[c];
-    int end = c + 1;
-    while (end < n_ && outer[end + 1] - outer[end] == rows &&
-           std::equal(row + outer[c], row + outer[c + 1], row + outer[end]))
-      ++end;
-    if (rows > 0) {
-      runs_.push_back({outer[c], rows, end - c, int(run_slots_.size())});
-      for (int b = 0; b < rows; ++b)
-        for (int a = b; a < rows; ++a) {
-          const auto [r, s] = entry(outer[c] + a, outer[c] + b);
-          run_slots_.push_back(slot(S_, r, s));
-        }
-      largest = std::max(largest, rows);
-    }
-    c = end;
+  if (p_->range_space) {
+    m_inv_ = model.mass_pattern();
+    w_n_.resize(n_);
+    s_rhs_.resize(m_);
+    work_.resize(m_);
+    lam_.resize(m_);
+    lam_prev_.resize(m_);
+    j_values_.resize(model.jacobian_pattern().nonZeros());
+    j_scaled_.resize(j_values_.size());
+    run_product_.resize(p_->largest_run * (p_->largest_run + 1) / 2);
+    S_.resize(p_->S.values());
+    s_diagonal_.resize(m_);
+    ++symbolic_analyses_;
   }
-  run_product_.resize(largest * (largest + 1) / 2);
-  j_scaled_.resize(J.nonZeros());
-  for (int i = 0; i < m_; ++i) s_diag_.push_back(slot(S_, i, i));
-  chol_.analyzePattern(S_);
-  ++symbolic_analyses_;
 }
 
-long AugmentedSystem::factor_nonzeros() const {
-  return schur_ ? long(chol_.matrixL().nestedExpression().nonZeros()) : 0;
-}
+long AugmentedSystem::factor_nonzeros() const { return schur_ ? p_->S.factor_nonzeros() : 0; }
 
 void AugmentedSystem::fill_lu_matrix(const Data& d) {
   const double* J = d.Phi_q.valuePtr();
   double* K = K_.valuePtr();
-  for (size_t k = 0; k < mass_slots_.size(); ++k) K[mass_slots_[k]] = d.M.valuePtr()[k];
-  for (int i = 0; i < m_; ++i) K[reg_slots_[i]] = -eps_;
-  for (size_t k = 0; k < jac_slots_.size(); ++k) K[jac_slots_[k]] = K[jact_slots_[k]] = J[k];
+  for (size_t k = 0; k < p_->mass_slots.size(); ++k) K[p_->mass_slots[k]] = d.M.valuePtr()[k];
+  for (int i = 0; i < m_; ++i) K[p_->reg_slots[i]] = -eps_;
+  for (size_t k = 0; k < p_->jac_slots.size(); ++k) K[p_->jac_slots[k]] = K[p_->jact_slots[k]] = J[k];
 }
 
 bool AugmentedSystem::factorize(const Data& d) {
@@ -137,7 +151,7 @@ bool AugmentedSystem::factorize(const Data& d) {
   for (Eigen::Index k = 0; k < nnz; ++k)
     if (!std::isfinite(J[k])) return false;
   if (!diagonal_mass_ && !d.M.coeffs().allFinite()) return false;  // (a constant M is finite by construction)
-  if (positive_mass_ && m_ > 0) {
+  if (p_->range_space) {
     std::copy(J, J + nnz, j_values_.data());  // solve() uses the factorized Phi_q and M^-1
     m_inv_.coeffs() = d.M_inv.coeffs();
     if (factorize_schur(d)) return schur_ = factorized_ = true;
@@ -152,30 +166,30 @@ bool AugmentedSystem::factorize(const Data& d) {
   return factorized_;
 }
 
-bool AugmentedSystem::factorize_schur(const Data& d) {
+void AugmentedSystem::assemble_schur(const Data& d) {
   const double* J = j_values_.data();
-  double* S = S_.valuePtr();
+  double* S = S_.data();
   double* Jw = j_scaled_.data();  // J M^-1: column c = sum over a of J's column a times M^-1(a, c)
   const int* mo = m_inv_.outerIndexPtr();
   const int* mi = m_inv_.innerIndexPtr();
   const double* mv = m_inv_.valuePtr();
   for (int c = 0; c < n_; ++c) {
-    const int begin = j_outer_[c], count = j_outer_[c + 1] - begin;
+    const int begin = p_->j_outer[c], count = p_->j_outer[c + 1] - begin;
     if (diagonal_mass_) {
       for (int k = 0; k < count; ++k) Jw[begin + k] = J[begin + k] * mv[mo[c]];
       continue;
     }
     for (int k = 0; k < count; ++k) Jw[begin + k] = 0.0;
     for (int e = mo[c]; e < mo[c + 1]; ++e) {
-      const int a = j_outer_[mi[e]];  // (same rows as column c: setup_schur checked)
+      const int a = p_->j_outer[mi[e]];  // (same rows as column c: setup_schur checked)
       for (int k = 0; k < count; ++k) Jw[begin + k] += J[a + k] * mv[e];
     }
   }
   // S = sum over the runs g of J_g (J M^-1)_g^T: small dense products
   // (the lower triangle, column b = sum over the run's columns of J_g[b.., c] (J M^-1)_g[b, c]:
   // contiguous axpys)
-  S_.coeffs().setZero();
-  for (const ColumnRun& g : runs_) {
+  S_.setZero();
+  for (const AugmentedPattern::ColumnRun& g : p_->runs) {
     const int k = g.rows;
     double* P = run_product_.data();
     std::fill(P, P + k * (k + 1) / 2, 0.0);
@@ -189,42 +203,35 @@ bool AugmentedSystem::factorize_schur(const Data& d) {
         column += k - b;
       }
     }
-    const int* slot = run_slots_.data() + g.slot0;
+    const int* slot = p_->run_slots.data() + g.slot0;
     for (int e = 0; e < k * (k + 1) / 2; ++e) S[slot[e]] += P[e];
   }
   // a dropped (redundant) row has no entries; a unit diagonal keeps S definite, and its
   // right side is zero, so its multiplier stays 0
-  for (int r : d.dropped_rows()) S[s_diag_[new_of_old_[r]]] = 1.0 / mass_scale_;
-  // first S0 itself (eps = 0): exact, no refinement...
-  chol_.factorize(S_);
-  if (chol_.info() == Eigen::Success && pivots_above(1e-8)) {
+  for (int r : d.dropped_rows()) S[p_->s_diag[p_->new_of_old[r]]] = 1.0 / mass_scale_;
+}
+
+bool AugmentedSystem::factorize_schur(const Data& d) {
+  // first S0 itself (eps = 0): exact, no refinement, unless a pivot keeps no
+  // more than 1e-8 of its row's diagonal (the row is nearly a combination of
+  // the rows before it: L_kk^2 / S_kk is the part they do not explain)...
+  assemble_schur(d);
+  for (int k = 0; k < m_; ++k) s_diagonal_[k] = S_[p_->s_diag[k]];
+  if (p_->S.factorize(S_.data(), s_diagonal_.data(), 1e-8)) {
     regularized_ = false;
     return true;
   }
-  // ...unless a row is (nearly) a combination of others: then S0 + eps I and refinement
-  for (int i : s_diag_) S[i] += eps_;
-  chol_.factorize(S_);
+  // ...then S0 + eps I and refinement
+  assemble_schur(d);
+  for (int i : p_->s_diag) S_[i] += eps_;
   regularized_ = true;
-  return chol_.info() == Eigen::Success;
-}
-
-/// Whether every pivot of S's Cholesky factor keeps more than `ratio` of its
-/// row's diagonal: L_kk^2 / S_kk is the part of row k that the rows before
-/// it do not explain (1 for an independent row, 0 for a dependent one).
-bool AugmentedSystem::pivots_above(double ratio) const {
-  const SpMat& L = chol_.matrixL().nestedExpression();
-  const double* S = S_.valuePtr();
-  for (int k = 0; k < m_; ++k) {
-    const double l = L.valuePtr()[L.outerIndexPtr()[k]];  // the diagonal leads each column
-    if (!(l * l > ratio * S[s_diag_[k]])) return false;
-  }
-  return true;
+  return p_->S.factorize(S_.data(), s_diagonal_.data(), 0.0);
 }
 
 void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
   const double* J = j_values_.data();
   // s = J M^-1 b1 - b2, in S's order
-  for (int k = 0; k < m_; ++k) s_rhs_[k] = -b2[old_of_new_[k]];
+  for (int k = 0; k < m_; ++k) s_rhs_[k] = -b2[p_->old_of_new[k]];
   const int* mo = m_inv_.outerIndexPtr();
   const double* mv = m_inv_.valuePtr();
   if (diagonal_mass_)
@@ -233,9 +240,10 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
     w_n_.noalias() = m_inv_ * b1;
   for (int c = 0; c < n_; ++c) {
     const double w = w_n_[c];
-    for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) s_rhs_[j_row_[k]] += J[k] * w;
+    for (int k = p_->j_outer[c]; k < p_->j_outer[c + 1]; ++k) s_rhs_[p_->j_row[k]] += J[k] * w;
   }
-  lam_ = chol_.solve(s_rhs_);
+  lam_ = s_rhs_;
+  p_->S.solve(S_.data(), lam_.data());
   // with S0 + eps I, refine against eps = 0: the residual of lam_k is eps (lam_k - lam_{k-1}), lam_{-1} = 0
   const double tol = 1e-15 * (1.0 + std::max(b1.size() ? b1.lpNorm<Eigen::Infinity>() : 0.0,
                                              b2.lpNorm<Eigen::Infinity>()));
@@ -243,16 +251,17 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
   for (int it = 0; it < 3 && residual > tol; ++it) {
     work_ = s_rhs_ + eps_ * lam_;
     lam_prev_.swap(lam_);
-    lam_ = chol_.solve(work_);
+    lam_ = work_;
+    p_->S.solve(S_.data(), lam_.data());
     residual = eps_ * (lam_ - lam_prev_).lpNorm<Eigen::Infinity>();
   }
   // x2 in the constraints' numbering; x1 = M^-1 (b1 - J^T x2)
   x2.resize(m_);
-  for (int k = 0; k < m_; ++k) x2[old_of_new_[k]] = lam_[k];
+  for (int k = 0; k < m_; ++k) x2[p_->old_of_new[k]] = lam_[k];
   x1.resize(n_);
   for (int c = 0; c < n_; ++c) {
     double f = b1[c];
-    for (int k = j_outer_[c]; k < j_outer_[c + 1]; ++k) f -= J[k] * lam_[j_row_[k]];
+    for (int k = p_->j_outer[c]; k < p_->j_outer[c + 1]; ++k) f -= J[k] * lam_[p_->j_row[k]];
     w_n_[c] = f;
   }
   if (diagonal_mass_)

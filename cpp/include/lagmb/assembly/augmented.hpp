@@ -5,12 +5,12 @@
 // lagmb/analyses/consistent_state.hpp.
 #pragma once
 
-#include <Eigen/SparseCholesky>
 #include <array>
 #include <string>
 #include <vector>
 
 #include "lagmb/model/data.hpp"
+#include "lagmb/solvers/block_cholesky.hpp"
 #include "lagmb/solvers/sparse_lu.hpp"
 
 namespace lagmb {
@@ -26,12 +26,13 @@ namespace lagmb {
 /// positive definite), K is solved through its Schur complement (range-space method):
 ///   S = Phi_q M^-1 Phi_q^T + eps I   (symmetric positive definite for any Phi_q),
 ///   S lam = Phi_q M^-1 b1 - b2,   x1 = M^-1 (b1 - Phi_q^T lam),
-/// with a sparse Cholesky factorization of S. Its cost is linear in a
-/// chain's or tree's length; each entry of S is a sum over the columns of
-/// Phi_q (one per coordinate), listed once as pairs of Jacobian entries.
-/// The rows of S are renumbered once by approximate minimum degree (AMD),
-/// and S is assembled directly in that order, so a factorization copies and
-/// permutes nothing.
+/// with a Cholesky factorization of S in dense blocks, one per element's
+/// rows (solvers/block_cholesky.hpp): blocks eliminated in approximate
+/// minimum degree order of the blocks' graph, which for a chain or tree is
+/// leaves first and fills nothing, so the cost is linear in its length.
+/// Each entry of S is a sum over the columns of Phi_q (one per coordinate),
+/// listed once as pairs of Jacobian entries, and S is assembled directly in
+/// the factor's layout, so a factorization copies and permutes nothing.
 /// S is first factorized with eps = 0, which is exact when every pivot keeps
 /// more than 1e-8 of its row's diagonal (no row nearly a combination of the
 /// others). Otherwise (a singular position) S0 + eps I is factorized and
@@ -43,8 +44,41 @@ namespace lagmb {
 /// diagonal (their right sides are zero, so their multipliers stay 0).
 /// Otherwise (a massless body, for kinematics) K is factorized by sparse LU
 /// (COLAMD) and refined with K0's residual. Either way the pattern is fixed
-/// by the model, so the ordering and symbolic analysis run once per
-/// AugmentedSystem; factorize() is numeric only.
+/// by the model, so the orderings and the layouts are made once per model
+/// (AugmentedPattern, shared by its runs); factorize() is numeric only.
+
+/// What an AugmentedSystem needs of the model's patterns alone, made once
+/// per model (Model::derived) and shared by every run: K's pattern and
+/// where M, Phi_q and the regularization go in it; for the range-space path
+/// the AMD order of S's rows, S's upper-triangle pattern and where each
+/// column run's products go in it.
+struct AugmentedPattern {
+  explicit AugmentedPattern(const Model& model);
+
+  SpMat K;  // pattern of [M Phi_q^T; Phi_q -eps I] (values zero)
+  std::vector<int> mass_slots, jac_slots, jact_slots, reg_slots;
+  bool range_space = false;  // positive masses, constraints, and J M^-1 keeps J's pattern
+  // the range-space path
+  std::vector<int> j_outer;     // Phi_q's column starts (its pattern)
+  std::vector<int> j_row;       // each Phi_q entry's row of S (AMD order)
+  std::vector<int> old_of_new;  // S's row k is constraint row old_of_new[k]
+  std::vector<int> new_of_old;
+  BlockCholeskyPattern S;  // S's blocks (an element's rows), their order and L's layout
+  // Phi_q's columns in runs with the same rows (a body's position, its Euler
+  // parameters): each run adds the dense product J_g (J M^-1)_g^T, rows x
+  // rows, to S; its lower triangle goes to S's entries run_slots[slot0 ..)
+  struct ColumnRun {
+    int entry0, rows, width, slot0;
+  };
+  std::vector<ColumnRun> runs;
+  std::vector<int> run_slots;
+  int largest_run = 0;
+  std::vector<int> s_diag;  // S's diagonal (new numbering) in its values
+
+ private:
+  void setup_schur(const Model& model);
+};
+
 class AugmentedSystem {
  public:
   explicit AugmentedSystem(const Model& model);
@@ -63,20 +97,21 @@ class AugmentedSystem {
   /// Nonzeros of the Cholesky factor of S (0 before the first range-space
   /// factorization): linear in a chain's length.
   long factor_nonzeros() const;
-  /// How often S's pattern was analyzed (ordering, elimination tree): once.
+  /// How many analyses of S's pattern (ordering, fill) this system's
+  /// factorizations rest on: one (made once per model, whatever the number
+  /// of factorizations and runs).
   int symbolic_analyses() const { return symbolic_analyses_; }
 
  private:
-  void setup_schur(const Model& model);
   void fill_lu_matrix(const Data& d);
+  void assemble_schur(const Data& d);
   bool factorize_schur(const Data& d);
-  bool pivots_above(double ratio) const;
   void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
 
+  const AugmentedPattern* p_;  // the model's (Model::derived)
   int n_, m_;
   double eps_;
   SpMat K_;
-  std::vector<int> mass_slots_, jac_slots_, jact_slots_, reg_slots_;
   double mass_scale_;
   bool diagonal_mass_;  // M constant and diagonal (a planar model)
   SupernodalLU lu_;
@@ -85,27 +120,14 @@ class AugmentedSystem {
   VecX rhs_, x_, r_, dx_;
   int factorizations_ = 0;
   // the range-space path
-  bool positive_mass_ = false, schur_ = false, regularized_ = false;
-  std::vector<int> j_outer_;    // Phi_q's column starts (its pattern)
-  std::vector<int> j_row_;      // each Phi_q entry's row of S (AMD order)
-  std::vector<int> old_of_new_;  // S's row k is constraint row old_of_new_[k]
-  std::vector<int> new_of_old_;
-  VecX j_values_;               // Phi_q's values at the last factorization
-  SpMat m_inv_;                 // M^-1 at the last factorization (block diagonal)
-  SpMat S_;                     // upper triangle, AMD order
+  bool schur_ = false, regularized_ = false;
+  VecX j_values_;  // Phi_q's values at the last factorization
+  SpMat m_inv_;    // M^-1 at the last factorization (block diagonal)
+  VecX S_;         // S's lower triangle in p_->S's panels, then its factor L
+  VecX s_diagonal_;  // S's diagonal before the factorization (new numbering)
   VecX s_rhs_, work_, lam_, lam_prev_, w_n_;
-  // Phi_q's columns in runs with the same rows (a body's position, its Euler
-  // parameters): each run adds the dense product J_g (J M^-1)_g^T, rows x
-  // rows, to S; its lower triangle goes to S's entries slots_[slot0 ..)
-  struct ColumnRun {
-    int entry0, rows, width, slot0;
-  };
-  std::vector<ColumnRun> runs_;
-  std::vector<int> run_slots_;
   VecX run_product_;  // the lower triangle of the largest run's product, by columns
   VecX j_scaled_;  // J M^-1, per entry (a block of M^-1 mixes columns with the same rows)
-  std::vector<int> s_diag_;
-  Eigen::SimplicialLLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> chol_;
   int symbolic_analyses_ = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -170,6 +171,12 @@ class Model {
   /// A number no other model of this process has had: what a saved run
   /// state names as its model (an address may be reused once freed).
   std::uint64_t id() const { return id_; }
+  /// A structure a layer above derives from the frozen model alone (the
+  /// augmented system's Schur pattern and ordering): T(model) is made on
+  /// first use and shared by every run after it, from any thread. T must
+  /// read only what finalize() fixed (patterns, sizes), never parameters.
+  template <class T>
+  const T& derived() const;
 
   // --- after finalize() -------------------------------------------------
   int n_coordinates() const { return n_; }
@@ -250,6 +257,8 @@ class Model {
   std::string constraint_name_of_row(int row) const;
   /// Index of the constraint group (constraint_groups()) owning row `row` of Phi.
   int group_of_row(int row) const { return constraint_order_[row_owner_[row]].first; }
+  /// The element (its place in insertion order) a constraint row belongs to; an element's rows are consecutive.
+  int element_of_row(int row) const { return row_owner_[row]; }
   /// Body owning coordinate `coord` of q.
   const Body& body_of_coordinate(int coord) const;
   /// Positions in q of the local coordinates of a pair of bodies:
@@ -287,6 +296,8 @@ class Model {
 
   bool finalized_ = false;
   std::uint64_t id_ = next_model_id();
+  mutable std::mutex derived_mutex_;
+  mutable std::map<std::type_index, std::shared_ptr<const void>> derived_;
   static std::uint64_t next_model_id();
   int dimension_ = 2;
   std::vector<Body> bodies_;
@@ -326,6 +337,19 @@ class Model {
   int run_state_size_ = 0;
   std::vector<TurnCounter> turn_counters_;
 };
+
+template <class T>
+const T& Model::derived() const {
+  const std::type_index key(typeid(T));
+  {
+    std::lock_guard<std::mutex> lock(derived_mutex_);
+    if (auto it = derived_.find(key); it != derived_.end()) return *static_cast<const T*>(it->second.get());
+  }
+  // made outside the lock (T may derive others); the first one stored wins
+  auto made = std::make_shared<const T>(*this);
+  std::lock_guard<std::mutex> lock(derived_mutex_);
+  return *static_cast<const T*>(derived_.try_emplace(key, std::move(made)).first->second.get());
+}
 
 template <class Kind>
 void Model::add_constraint(Kind element, bool named) {
