@@ -26,8 +26,7 @@ ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, d
   kappa_.resize(nc_);
   dq_.resize(n_);
   zero_n_ = VecX::Zero(n_);
-  N_ = saddle_.build_square(diag_);
-  lu_.analyze(N_);
+  factored_q_.resize(n_);
   rhs_.resize(n_ + nc_);
   sol_.resize(n_ + nc_);
   Kb_.resize(n_);
@@ -42,8 +41,7 @@ ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, d
 /// is singular. With Baumgarte terms:
 ///   Phi_q qdd = gamma - 2 alpha (Phi_q v + Phi_t) - beta^2 Phi.
 bool ProjectionFormulation::accelerations(double t, const double* q, const double* v) {
-  assemble_jacobian(model_, d_, q, t);
-  if (!kkt_.factorize(d_)) return false;
+  if (!factorize_at(t, q)) return false;
   assemble_forces(model_, d_, q, v, t);
   assemble_gamma(model_, d_, q, v, t);
   if (alpha_ != 0.0) {
@@ -59,6 +57,20 @@ bool ProjectionFormulation::accelerations(double t, const double* q, const doubl
   kkt_.solve(d_.Q, d_.gamma, qdd_, lam_);
   if (!model_.friction_groups().empty()) solve_friction(model_, d_, kkt_, q, v, t, qdd_, lam_);
   return qdd_.allFinite();
+}
+
+bool ProjectionFormulation::factorize_at(double t, const double* q) {
+  if (factored_ && t == factored_t_ && std::equal(q, q + n_, factored_q_.data()) &&
+      d_.dropped_rows() == factored_dropped_)
+    return true;
+  assemble_jacobian(model_, d_, q, t);
+  factored_ = kkt_.factorize(d_);
+  if (factored_) {
+    factored_t_ = t;
+    std::copy(q, q + n_, factored_q_.data());
+    factored_dropped_ = d_.dropped_rows();
+  }
+  return factored_;
 }
 
 bool ProjectionFormulation::right_hand_side(double t, const double* y, double* f) {
@@ -89,11 +101,16 @@ bool ProjectionFormulation::linearize(double t, const double* y) {
 ///   [ Phi_q                       0       ] [ mu  ] = [ Phi_q b_v           ]
 ///   x_q = b_q + gamma x_v,    K = Q_q - (Phi_q^T lam)_q - (M(q) qdd)_q.
 bool ProjectionFormulation::setup(double gamma) {
+  if (N_.nonZeros() == 0) {  // (the first implicit step: an explicit method never needs it)
+    N_ = saddle_.build_square(diag_);
+    lu_.analyze(N_);
+  }
   const double* q = q_lin_.data();
   const double* v = v_lin_.data();
   double* x = N_.valuePtr();
   N_.coeffs().setZero();
   assemble_jacobian(model_, d_, q, t_lin_);  // (and M(q))
+  factored_ = false;  // (d_'s Phi_q and M are q_lin_'s now, kkt_ not refactorized)
   saddle_.add_mass(d_, x, 1.0);
   const std::vector<int>&G = saddle_.jacobian, &GT = saddle_.jacobian_t;
   for (size_t k = 0; k < G.size(); ++k) x[G[k]] = x[GT[k]] = d_.Phi_q.valuePtr()[k];
@@ -145,14 +162,12 @@ int ProjectionFormulation::project(double t, double* q, double* v, double* corr,
       if (!(e <= 1e-8 * size)) return 1;
       break;
     }
-    assemble_jacobian(model_, d_, q, t);
-    if (!kkt_.factorize(d_)) return 1;
+    if (!factorize_at(t, q)) return 1;
     d_.Phi = -d_.Phi;  // in place: no temporary
     kkt_.solve(zero_n_, d_.Phi, dq_, kappa_);
     Q += dq_;
   }
-  assemble_jacobian(model_, d_, q, t);
-  if (!kkt_.factorize(d_)) return 1;
+  if (!factorize_at(t, q)) return 1;
   assemble_phi_t(model_, d_, q, t);
   mass_times(d_, v, Mv_.data());
   d_.phi_t = -d_.phi_t;

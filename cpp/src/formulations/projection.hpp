@@ -46,6 +46,10 @@ class ProjectionFormulation {
 
  private:
   bool accelerations(double t, const double* q, const double* v);
+  /// Phi_q and M at (t, q) in d_, factorized in kkt_; nothing is redone
+  /// where the last factorization was at this (t, q) with the same rows left
+  /// out (the first stage of a step, at the state the projection ended at).
+  bool factorize_at(double t, const double* q);
 
   const Model& model_;
   Data d_;
@@ -55,6 +59,10 @@ class ProjectionFormulation {
   VecX qdd_, lam_, lam_lin_, q_lin_, v_lin_, qdd_lin_, kappa_, dq_, zero_n_, rhs_, sol_;
   VecX Kb_, q0_, v0_, vnew_, Mv_, w_;  // scratch, sized once: no allocation per solve or projection
   double t_lin_ = 0.0, gamma_setup_ = 0.0;
+  bool factored_ = false;  // kkt_ and d_'s Phi_q, M hold (factored_t_, factored_q_, factored_dropped_)
+  double factored_t_ = 0.0;
+  VecX factored_q_;
+  std::vector<int> factored_dropped_;
   SaddlePoint saddle_;
   SpMat N_;
   std::vector<int> diag_;
