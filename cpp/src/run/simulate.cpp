@@ -143,17 +143,19 @@ Analysis resolve_analysis(const Model& model, const SimulationOptions& o) {
     throw ModelError(std::string("simulate: analysis \"") + name_of(a) + "\" solves the constraints at the output times only and " +
                      "would miss the events of '" + model.event_element_name() +
                      "' (stops, contact): use analysis=\"dynamic\"");
-  const int dof = degrees_of_freedom(model, o.t0);
+  // fewer equations than coordinates: free to move whatever the rank (no QR needed)
+  const int equations = model.n_constraints() - int(model.switched_rows().size());
+  const bool free = model.n_coordinates() > equations || degrees_of_freedom(model, o.t0) > 0;
   if (a == Analysis::kAuto) {
-    if (dof > 0 || events) {
+    if (free || events) {
       require_determined();
       return Analysis::kDynamic;
     }
     return massless.empty() ? Analysis::kInverseDynamics : Analysis::kKinematic;
   }
-  if (dof > 0)
+  if (free)
     throw ModelError(std::string("simulate: analysis \"") + name_of(a) + "\" needs a mechanism whose motion is fully prescribed " +
-                     "(0 degrees of freedom), but this model has " + std::to_string(dof) +
+                     "(0 degrees of freedom), but this model has " + std::to_string(degrees_of_freedom(model, o.t0)) +
                      " degree(s) of freedom: drive them, or use analysis=\"dynamic\"");
   return a;  // massless bodies are fine for inverse dynamics too: they carry no inertia force
 }
