@@ -179,8 +179,8 @@ class Model:
         meanwhile (add_* from another thread) reaches neither. Handles of
         this model stand for its elements there (``_source``)."""
         with self._lock:
+            self.compiled()  # (kept here too: the next run of an unchanged model compiles nothing)
             snapshot = self.copy()
-            snapshot.compiled()
             snapshot._source, snapshot._edits = self, self._edits
         return snapshot
 
@@ -272,27 +272,26 @@ class Model:
         in space."""
         q0 = np.asarray(core.initial_state()[0], dtype=float)
         q1 = np.asarray(q_start, dtype=float)
-        places = []  # (name, first coordinate, position's size, has an orientation)
-        dimension = 3 if self.dimension == 3 else 2
-        for name, _ in self._spec.bodies:
-            first, count = core.body_coordinates(name)
-            places.append((name, first, dimension, count > dimension))  # (a particle has no orientation)
-        centres = [q0[f:f + d] for _, f, d, _ in places]
-        size = max([0.1] + [float(np.ptp(np.vstack(centres + [np.zeros_like(centres[0])])[:, k]))
-                            for k in range(centres[0].size)]) if centres else 0.1
-        moved = []
-        for name, f, d, turns in places:
-            shift = float(np.linalg.norm(q1[f:f + d] - q0[f:f + d]))
-            if not turns:
-                turn = 0.0
-            elif d == 2:
-                turn = abs(float(np.remainder(q1[f + 2] - q0[f + 2] + np.pi, 2 * np.pi) - np.pi))
+        names = [name for name, _ in self._spec.bodies]
+        if not names:
+            return
+        d = 3 if self.dimension == 3 else 2
+        places = np.array([core.body_coordinates(name) for name in names], dtype=int).reshape(-1, 2)
+        first, turns = places[:, 0], places[:, 1] > d  # (a particle has no orientation)
+        at = first[:, None] + np.arange(d)
+        size = max(0.1, float(np.max(np.ptp(np.vstack([q0[at], np.zeros((1, d))]), axis=0))))
+        shift = np.linalg.norm(q1[at] - q0[at], axis=1)
+        turn = np.zeros(len(names))
+        if turns.any():
+            f = first[turns]
+            if d == 2:
+                turn[turns] = np.abs(np.remainder(q1[f + 2] - q0[f + 2] + np.pi, 2 * np.pi) - np.pi)
             else:
-                p0, p1 = q0[f + 3:f + 7], q1[f + 3:f + 7]
-                c = abs(float(p0 @ p1)) / float(np.linalg.norm(p0) * np.linalg.norm(p1))
-                turn = 2.0 * float(np.arccos(min(1.0, c)))
-            if shift > 1e-3 * size or turn > 1e-3:
-                moved.append((max(shift / size, turn), f"'{name}' by {shift:.3g} m and {turn:.3g} rad"))
+                p0, p1 = q0[f[:, None] + np.arange(3, 7)], q1[f[:, None] + np.arange(3, 7)]
+                c = np.abs(np.sum(p0 * p1, axis=1)) / (np.linalg.norm(p0, axis=1) * np.linalg.norm(p1, axis=1))
+                turn[turns] = 2.0 * np.arccos(np.minimum(1.0, c))
+        moved = [(max(shift[k] / size, turn[k]), f"'{names[k]}' by {shift[k]:.3g} m and {turn[k]:.3g} rad")
+                 for k in np.flatnonzero((shift > 1e-3 * size) | (turn > 1e-3))]
         if not moved:
             return
         import warnings
