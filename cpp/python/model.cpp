@@ -354,6 +354,25 @@ void bind_model(py::module_& m) {
           "v, a); a spatial angle within half a turn of the one the run's state holds (rows of `state`: a "
           "Result's run_state), or without it of the joint's initial angle")
       .def(
+          "joint_motions",
+          [](const Model& model, const std::vector<std::pair<std::string, bool>>& joints, const Eigen::VectorXd& q,
+             const Eigen::VectorXd& v, const Eigen::VectorXd& state) {
+            if (q.size() != model.n_coordinates() || v.size() != model.n_coordinates())
+              throw ModelError("joint_motions: q and v must have " + std::to_string(model.n_coordinates()) + " entries");
+            if (state.size() != model.run_state_size())
+              throw ModelError("joint_motions: state must have " + std::to_string(model.run_state_size()) + " entries");
+            RowMajor out(joints.size(), 2);
+            for (size_t k = 0; k < joints.size(); ++k) {
+              const JointMotion m = joint_motion(model, joints[k].first, joints[k].second, q.data(), v.data(), nullptr,
+                                                 state.size() ? state.data() : nullptr);
+              out.row(Eigen::Index(k)) << m.value, m.rate;
+            }
+            return out;
+          },
+          py::arg("joints"), py::arg("q"), py::arg("v"), py::arg("state"),
+          "(value, rate) of several joints' angles (or slides: (name, slide) pairs) at one state, as joint_motion "
+          "reads each")
+      .def(
           "inverse_dynamics",
           [](const Model& model, const std::vector<std::pair<std::string, bool>>& joints, const Eigen::VectorXd& t,
              const RowMajor& q, const RowMajor& v, const RowMajor& a) {

@@ -157,6 +157,14 @@ void bind_runs(py::module_& m) {
           },
           py::arg("t"))
       .def("set_input", &Simulator::set_input, py::arg("name"), py::arg("value"), Release())
+      .def(
+          "set_inputs",
+          [](Simulator& s, const std::vector<std::string>& names, const std::vector<double>& values) {
+            if (names.size() != values.size()) throw ModelError("set_inputs: one value per name");
+            py::gil_scoped_release release;
+            for (size_t k = 0; k < names.size(); ++k) s.set_input(names[k], values[k]);
+          },
+          py::arg("names"), py::arg("values"), "set_input for each (name, value), in one call")
       .def("input", &Simulator::input, py::arg("name"), Release())
       .def_property_readonly("inputs", py::cpp_function(&Simulator::inputs, Release()))
       .def_property_readonly("run_state", py::cpp_function(&Simulator::run_state, Release()))

@@ -12,6 +12,7 @@ import numpy as np
 from .errors import ModelError
 
 INT_MAX = 2**31 - 1  # outputs, orders: C int in the core
+_FLOATS = (float, np.float64)
 
 
 def show(value):
@@ -28,6 +29,8 @@ def show(value):
 
 def real(value, name):
     """A finite number given as `name`, as a float."""
+    if type(value) in _FLOATS and math.isfinite(value):  # (the common case, without the ABC checks)
+        return float(value)
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ModelError(f"{name} must be a number, got {show(value)}")
     try:

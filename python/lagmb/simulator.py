@@ -134,13 +134,8 @@ class Simulator:
                 reading.append((name, "angle" not in coordinates))
             if cached:
                 self._readings[key] = reading
-        q, v, state = self.q[None], self.v[None], np.asarray(self._sim.run_state)[None]
-        a = np.zeros_like(q)
-        values, rates = np.empty(len(reading)), np.empty(len(reading))
-        for k, (name, slide) in enumerate(reading):
-            motion = self._core_model.joint_motion(name, slide, q, v, a, state)
-            values[k], rates[k] = motion[0, 0], motion[0, 1]
-        return values, rates
+        motion = self._core_model.joint_motions(reading, self.q, self.v, self._sim.run_state)
+        return motion[:, 0].copy(), motion[:, 1].copy()
 
     @property
     def joint_names(self):
@@ -190,8 +185,7 @@ class Simulator:
                                  f"of Simulator.inputs ({', '.join(names)}), got {_show(values)}")
             items = [(name, _real(float(value), f"input {name!r}")) for name, value in zip(names, array)]
         with self._translated():
-            for name, value in items:
-                self._sim.set_input(name, value)
+            self._sim.set_inputs([name for name, _ in items], [value for _, value in items])
 
     def input(self, name):
         """The value of an input now."""
