@@ -96,7 +96,8 @@ struct ErkStepper final : ErkParts, OdeStepper {
     mark(plan.t0);
   }
   /// A new ERKStep memory from s.y at t with the run's settings. A restart
-  /// builds a new one rather than calling ERKStepReInit: ARKODE (6.4 to
+  /// of a model with event functions builds a new one rather than calling
+  /// ERKStepReInit (one without them reinitializes): ARKODE (6.4 to
   /// 7.5, unlike CVODE and IDA) keeps its "a root was returned" flag across
   /// ReInit, so after the first step of the new segment it evaluates the
   /// root functions again at the segment's start on that step's
@@ -104,6 +105,13 @@ struct ErkStepper final : ErkParts, OdeStepper {
   /// can read just beyond its limit: a crossing back within that step is
   /// then not a sign change and is missed.
   void create(double t) {
+    const bool roots = plan.events && plan.events->size() > 0;
+    if (s.mem && !roots) {  // (no root functions, no flag to fear: ReInit keeps the settings and memory)
+      check(ERKStepReInit(s.mem, ode_rhs, t, s.y), "ERKStepReInit", s.ctx);
+      check(ERKStepSetOrder(s.mem, order_ > 0 ? order_ : plan.max_order), "ERKStepSetOrder", s.ctx);
+      check(ERKStepSetInitStep(s.mem, resume_h_ > 0.0 ? resume_h_ : first_h_), "ERKStepSetInitStep", s.ctx);
+      return;
+    }
     if (s.mem) ERKStepFree(&s.mem);
     s.mem = ERKStepCreate(ode_rhs, t, s.y, s.ctx);
     if (!s.mem) throw std::runtime_error("lagmb: ERKStepCreate failed");
@@ -205,16 +213,18 @@ struct ErkStepper final : ErkParts, OdeStepper {
     q = out_.data(), v = q + n;
   }
   /// An input's jump: the state goes on, and a one-step method needs no
-  /// history: the segment's first step is estimated at the state reached
-  /// (first_step(), two right-hand sides), not the run's first step, which
-  /// a mechanism started at rest makes small (the Panda at 1 kHz took two
-  /// steps per tick, its first 0.46 ms), nor the last step, which the tick
-  /// cut; the error test cuts a step the jump makes too long.
+  /// history: the segment's first step is 3.5 times the last one where the
+  /// stop, not the error, cut it (its error allowed 4 times longer), else estimated at
+  /// the state reached (first_step(), two right-hand sides), not the run's
+  /// first step, which a mechanism started at rest makes small (the Panda
+  /// at 1 kHz took two steps per tick, its first 0.46 ms); the error test
+  /// cuts a step the jump makes too long.
   void resume(double t, const ConsistentState& state) override {
-    sunrealtype h = 0.0;
+    sunrealtype h = 0.0, last = 0.0;
     double growth = 0.0;  // how much longer the error test would have let the last step be
     if (s.mem) {
       ERKStepGetCurrentStep(s.mem, &h);
+      ERKStepGetLastStep(s.mem, &last);
       N_Vector error = N_VClone(s.y), weight = N_VClone(s.y);
       if (ERKStepGetEstLocalErrors(s.mem, error) == ARK_SUCCESS && ERKStepGetErrWeights(s.mem, weight) == ARK_SUCCESS) {
         N_VProd(error, weight, error);  // (ARKODE's weighted RMS norm of the last step's error: 1 at the tolerance)
@@ -225,13 +235,15 @@ struct ErkStepper final : ErkParts, OdeStepper {
       N_VDestroy(weight);
     }
     load_state(s.y, state, n);
-    resume_h_ = std::max(first_step(), std::isfinite(h) ? double(h) : 0.0);
     // inputs changing at every stop, each segment's step allowed 4 times
     // longer than the stop let it be (a control loop: the ticks, not the
     // error, bound the steps): ARKODE's order-4 pair reaches the tolerance
     // there in fewer stages (the Panda at 1 kHz: 8 right-hand sides per
-    // tick, not 20; the error test still holds every step)
-    order_ = t - segment_start_ > 0.0 && growth >= 4.0 ? std::min(4, plan.max_order) : 0;
+    // tick, not 20; the error test still holds every step), and the last
+    // step is the first one's estimate (first_step() would cost two more)
+    const bool ticks_bound = t - segment_start_ > 0.0 && growth >= 4.0 && std::isfinite(last) && last > 0.0;
+    order_ = ticks_bound ? std::min(4, plan.max_order) : 0;
+    resume_h_ = ticks_bound ? 3.5 * double(last) : std::max(first_step(), std::isfinite(h) ? double(h) : 0.0);
     resuming_ = true;
     restart(t);
     resuming_ = false;
