@@ -111,12 +111,21 @@ void solve_accelerations(const Model& model, const VecX& q, const VecX& v, doubl
     throw ModelError("solve_accelerations: q, v and t must be finite");
   require_determined_motion(model, q, t, "solve_accelerations");
   Data d(model);
-  // one instant: the rows dependent here are left out (their multipliers 0)
-  d.drop_rows(model, constraint_rank(model, q, t).dependent_rows);
   AugmentedSystem kkt(model);
   qdd.resize(n);
   lam.resize(model.n_constraints());
-  solve_accelerations(model, d, kkt, q.data(), v.data(), t, qdd.data(), lam.data());
+  // one instant: the rows dependent here are left out (their multipliers 0); the
+  // rank test only where S's pivots do not already show every row independent
+  bool independent = false;
+  try {
+    solve_accelerations(model, d, kkt, q.data(), v.data(), t, qdd.data(), lam.data());
+    independent = model.n_constraints() == 0 || kkt.independent_rows();
+  } catch (const SimulationError&) {  // (singular with every row: the rank test decides)
+  }
+  if (!independent) {
+    if (model.n_constraints() > 0) d.drop_rows(model, constraint_rank(model, q, t).dependent_rows);
+    solve_accelerations(model, d, kkt, q.data(), v.data(), t, qdd.data(), lam.data());
+  }
   if (!qdd.allFinite() || !lam.allFinite())
     throw SimulationError("solve_accelerations: " + non_finite_source(model, d, q.data(), v.data(), t), t);
 }

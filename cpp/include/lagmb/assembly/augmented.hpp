@@ -94,6 +94,9 @@ class AugmentedSystem {
   double regularization() const { return eps_; }
   /// Whether the last factorization went through the Schur complement.
   bool range_space() const { return schur_; }
+  /// Whether it went through it with every pivot above 1e-8 of its row's
+  /// diagonal: no row (nearly) a combination of the others.
+  bool independent_rows() const { return schur_ && !regularized_; }
   /// Nonzeros of the Cholesky factor of S (0 before the first range-space
   /// factorization): linear in a chain's length.
   long factor_nonzeros() const;
