@@ -15,10 +15,6 @@ struct SpatialRevoluteJoint : SpatialJointBase, spatial::TermJoint<SpatialRevolu
   Vec3 a_j = Vec3::UnitZ(), f_j = Vec3::UnitX();  // the axis and f in body j's axes
   /// Its coordinate: the angle, f_j turned about a from f_i towards g_i.
   JointCoordinate coordinate() const { return joint_coordinate(true, false, f_j); }
-  /// The dot rows (3, 4) read the Euler parameters only (local 3-6, 10-13).
-  static constexpr bool depends(int row, int local) {
-    return row < 3 || (local >= 3 && local < 7) || local >= 10;
-  }
   spatial::Terms<5> terms(const spatial::Loc& c, const spatial::Want& want) const {
     using namespace spatial;
     const VectorTerm d = offset(c, want), aj = body_vector(c, kBodyJ, a_j, want);

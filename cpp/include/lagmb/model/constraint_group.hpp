@@ -129,24 +129,6 @@ struct has_rates<Kind, std::void_t<decltype(std::declval<const Kind&>().rates(
                            std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
                                std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
 
-/// A kind whose rows do not each depend on every local coordinate may say
-/// which do, `static constexpr bool depends(int row, int local)`: Phi_q's
-/// pattern leaves the others out (S = Phi_q M^-1 Phi_q^T then gathers
-/// fewer products: a revolute's dot rows read no position). Its Jacobian
-/// must be exactly 0 there, and `depends` alike for both bodies' places
-/// (a body an element reaches twice folds them).
-template <class Kind, class = void>
-struct has_row_pattern : std::false_type {};
-template <class Kind>
-struct has_row_pattern<Kind, std::void_t<decltype(Kind::depends(0, 0))>> : std::true_type {};
-template <class Kind>
-constexpr bool row_depends(int row, int local) {
-  if constexpr (has_row_pattern<Kind>::value)
-    return Kind::depends(row, local);
-  else
-    return true;
-}
-
 /// A unilateral kind (a joint stop: docs/design.md 5.1) declares
 ///   static constexpr bool unilateral = true;
 ///   UnilateralRow unilateral_row(int r) const;
@@ -325,8 +307,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
     for (const auto& p : place_)
       for (int a = 0; a < L; ++a) {
         if (p.coord[a] < 0) continue;
-        for (int r = 0; r < R; ++r)
-          if (row_depends<Kind>(r, a)) jac.add(p.row0 + r, p.coord[a]);
+        for (int r = 0; r < R; ++r) jac.add(p.row0 + r, p.coord[a]);
         for (int b = 0; b < L; ++b) hess.add(p.coord[b], p.coord[a]);
       }
   }
@@ -349,7 +330,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
             break;
           }
         for (int r = 0; r < R; ++r)
-          s.jac[a * R + r] = s.first[a] == a && row_depends<Kind>(r, a) ? slot(jac, p.row0 + r, p.coord[a]) : -1;
+          s.jac[a * R + r] = s.first[a] == a ? slot(jac, p.row0 + r, p.coord[a]) : -1;
         for (int b = 0; b < L; ++b) s.hess[a * L + b] = slot(hess, p.coord[b], p.coord[a]);
       }
     }
