@@ -38,7 +38,7 @@ tests/test_urdf.py), 1 s of free motion.
   mj_resetData, the start state written, mj_step(nstep = n) and the joint
   angles read; the model is built beforehand, as lagmb's and Pinocchio's.
 
-    python bench/robots.py [--robots ur5,panda,solo12,talos] [--repeats 3] [--out bench/results/robots.json]
+    python bench/robots.py [--robots ur5,panda,solo12,go1,talos] [--repeats 3] [--out bench/results/robots.json]
 """
 
 import argparse
@@ -57,6 +57,7 @@ ROBOTS = {
     "ur5": "ur_description/urdf/ur5_robot.urdf",
     "panda": "panda_description/urdf/panda.urdf",
     "solo12": "solo_description/robots/solo12.urdf",
+    "go1": "go1_description/urdf/go1.urdf",
     "talos": "talos_data/robots/talos_reduced.urdf",
 }
 TARGETS = (1e-6, 1e-8)
