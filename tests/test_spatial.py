@@ -594,6 +594,27 @@ def test_a_thousand_body_spatial_chain_costs_the_same_per_body():
     assert z == pytest.approx(-0.5 * G * 0.005**2, rel=1e-3)  # the free end falls freely at first
 
 
+def test_ggl_newton_factors_grow_linearly_on_a_revolute_chain():
+    """KLU's LU of GGL's Newton matrix on a chain of spatial revolutes (axes
+    alternating between y and z) keeps the same nonzeros per link from 20 to
+    80 links: the ordering holds the fill down. (Declaring the revolute's dot
+    rows without their zero position columns once made these factors fill
+    so that 128 links ran 60 times slower.)"""
+    def chain(n):
+        m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+        previous = m.ground
+        for k in range(n):
+            body = m.add_body(f"l{k}", 1.0, (1e-4, 1 / 12, 1 / 12), ((k + 0.5), 0.0, 0.0))
+            m.add_revolute(f"j{k}", previous, body, at=(float(k), 0.0, 0.0),
+                           axis=(0.0, 1.0, 0.0) if k % 2 == 0 else (0.0, 0.0, 1.0))
+            previous = body
+        return m
+
+    per_link = {n: mb.simulate(chain(n), 0.01, formulation="ggl", n_out=2).stats["lu_nonzeros"] / n for n in (20, 80)}
+    assert per_link[80] == pytest.approx(per_link[20], rel=0.05)
+    assert per_link[80] < 1500  # (1,300 seen: about 50 per unknown)
+
+
 def test_work_precision_of_a_spatial_mechanism():
     """The work-precision sweep runs on a spatial model: each method's error
     against the shared reference falls as the tolerance does."""

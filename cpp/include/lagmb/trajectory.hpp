@@ -55,6 +55,11 @@ struct Stats {
   /// (linear in a chain's length); 0 where the LU path ran.
   long symbolic_analyses = 0;
   long factor_nonzeros = 0;
+  /// Nonzeros of the Newton matrix's LU factors (KLU: L and U with their
+  /// diagonals) at its last factorization, in the implicit methods (GGL,
+  /// index 3 and 1, projection-bdf/adams); 0 in the others. Linear in a
+  /// chain's length where the ordering holds the fill down.
+  long lu_nonzeros = 0;
 
   /// f(name, field) for every field, in this order: the one list bindings
   /// and reports read (Python's r.stats is this dict) and add_counts sums.
@@ -81,6 +86,7 @@ struct Stats {
     f("input_changes", &Stats::input_changes);
     f("symbolic_analyses", &Stats::symbolic_analyses);
     f("factor_nonzeros", &Stats::factor_nonzeros);
+    f("lu_nonzeros", &Stats::lu_nonzeros);
     f("method", &Stats::method);  // last: where r.stats had it when Python added it
   }
 };

@@ -191,6 +191,7 @@ int ProjectionFormulation::project(double t, double* q, double* v, double* corr,
 
 void ProjectionFormulation::count(Stats& stats) const {
   stats.lu_factorizations = factorizations_;
+  stats.lu_nonzeros = lu_.factor_nonzeros();
   stats.augmented_factorizations = kkt_.factorizations();
   stats.symbolic_analyses = kkt_.symbolic_analyses();
   stats.factor_nonzeros = kkt_.factor_nonzeros();

@@ -365,6 +365,7 @@ class IdaStepper final : public Stepper {
     sun::real h = 0;
     IDAGetLastStep(s.mem, &h), stats.last_step = h;
     stats.lu_factorizations = s.lu.factorizations;
+    stats.lu_nonzeros = s.lu.lu.factor_nonzeros();
     stats.element_evaluations = dae_->element_evaluations();
   }
 

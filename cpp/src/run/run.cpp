@@ -20,7 +20,7 @@ namespace {
 void add_counts(Stats& total, const Stats& part) {
   Stats::for_each_member([&](const char* name, auto member) {
     if constexpr (std::is_same_v<std::decay_t<decltype(total.*member)>, long>) {
-      if (std::string_view(name) == "factor_nonzeros")
+      if (std::string_view(name) == "factor_nonzeros" || std::string_view(name) == "lu_nonzeros")
         total.*member = std::max(total.*member, part.*member);
       else
         total.*member += part.*member;

@@ -53,6 +53,9 @@ class KluLU {
     return numeric_ != nullptr && common_.status == KLU_OK;
   }
 
+  /// Nonzeros of L and U (with their diagonals) of the last factorization; 0 before one.
+  long factor_nonzeros() const { return numeric_ ? long(numeric_->lnz) + long(numeric_->unz) : 0; }
+
   /// b := A^-1 b (length n), after a successful factorize().
   void solve_in_place(double* b) { klu_solve(symbolic_, numeric_, n_, 1, b, &common_); }
 
