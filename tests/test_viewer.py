@@ -14,7 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import lagmb as mb
+pytest.importorskip("trimesh", reason="lagmb.view takes three.js from the trimesh wheel: the 'view' extra")
+
+import lagmb as mb  # noqa: E402
 from lagmb.viewer import view
 
 import browser

@@ -62,14 +62,17 @@ def handle(args):
     if args.n_out is not None and not 2 <= args.n_out <= MAX_OUTPUTS:
         raise Exit(USAGE, f"--n-out {args.n_out}: must be at least 2 and at most {MAX_OUTPUTS:,}")
     out = output_path(scene, args.output, "-o", "file", results_format_problem)
-    if args.plot or scene.output.get("plot"):
-        need_matplotlib("plotting")
     plot = output_path(scene, args.plot, "--plot", "plot", plot_format_problem)
-    if args.animate or scene.output.get("animate"):
-        need_matplotlib("animating")
     animate = output_path(scene, args.animate, "--animate", "animate", animation_format_problem)
     html_page = output_path(scene, args.html, "--html", "html",
                             lambda p: None if p.lower().endswith((".html", ".htm")) else "must end in .html")
+    view = viewpoint(scene, args.view)
+    motion = _animation_options(args, scene, animate)
+    # then what the outputs need installed (a mistyped option is named first, with or without it)
+    if plot:
+        need_matplotlib("plotting")
+    if animate:
+        need_matplotlib("animating")
     if html_page:
         try:
             from ..viewer import _three_js
@@ -77,8 +80,6 @@ def handle(args):
             _three_js()
         except ModelError as e:  # three.js comes with the 'view' extra
             raise Exit(USAGE, f"--html {html_page}: {e}") from None
-    view = viewpoint(scene, args.view)
-    motion = _animation_options(args, scene, animate)
 
     overrides = {}
     if args.t_end is not None:
