@@ -214,8 +214,8 @@ struct ErkStepper final : ErkParts, OdeStepper {
   }
   /// An input's jump: the state goes on, and a one-step method needs no
   /// history: the segment's first step is 3.5 times the last one where the
-  /// stop, not the error, cut it (its error allowed 4 times longer), else estimated at
-  /// the state reached (first_step(), two right-hand sides), not the run's
+  /// stop, not the error, cut it (its error allowed 4 times longer), else
+  /// estimated at the state reached (first_step(), two right-hand sides), not the run's
   /// first step, which a mechanism started at rest makes small (the Panda
   /// at 1 kHz took two steps per tick, its first 0.46 ms); the error test
   /// cuts a step the jump makes too long.
@@ -238,8 +238,8 @@ struct ErkStepper final : ErkParts, OdeStepper {
     // inputs changing at every stop, each segment's step allowed 4 times
     // longer than the stop let it be (a control loop: the ticks, not the
     // error, bound the steps): ARKODE's order-4 pair reaches the tolerance
-    // there in fewer stages (the Panda at 1 kHz: 8 right-hand sides per
-    // tick, not 20; the error test still holds every step), and the last
+    // there in fewer stages (the Panda at 1 kHz: 6.5 right-hand sides per
+    // tick, not 31; the error test still holds every step), and the last
     // step is the first one's estimate (first_step() would cost two more)
     const bool ticks_bound = t - segment_start_ > 0.0 && growth >= 4.0 && std::isfinite(last) && last > 0.0;
     order_ = ticks_bound ? std::min(4, plan.max_order) : 0;
