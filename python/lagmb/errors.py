@@ -6,6 +6,9 @@ from . import _core
 
 #: Bad input: a value or name that cannot make a model. A ValueError.
 ModelError = _core.ModelError
+ModelError.__doc__ = """Bad input: a value, a name or an option that cannot make a model or a
+run. The message names the element, the key and the value as given. A
+ValueError (raised by the C++ core as lagmb::ModelError)."""
 
 
 class RedundantConstraintWarning(UserWarning):
@@ -57,6 +60,9 @@ class AssemblyError(SimulationError):
 #: No static equilibrium, or an unstable one not allowed (mb.equilibrium).
 #: A ModelError, so a ValueError.
 EquilibriumError = _core.EquilibriumError
+EquilibriumError.__doc__ = """No static equilibrium near the start, or an unstable one where a
+stable one was asked (mb.equilibrium): the message says which. A
+ModelError, so a ValueError."""
 
 
 class KinematicOnlyError(ModelError):

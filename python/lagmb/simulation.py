@@ -1,5 +1,7 @@
 """Running a model: simulate() and one-instant solves."""
 
+import contextvars
+
 import numpy as np
 
 from . import _core
@@ -16,6 +18,12 @@ DEFAULTS = _core.default_options()
 _D = DEFAULTS
 
 
+
+#: Where simulate's warnings go in this context: None (the warnings module)
+#: or a list that takes them (mb.sweep's cases: catch_warnings is not
+#: thread-safe, and threads run cases).
+WARNINGS_INTO = contextvars.ContextVar("lagmb_simulate_warnings_into", default=None)
+
 def _translate(model=None, core=None, snapshot=None):
     """errors.translated, the partial outputs of a failed run of `model`
     (compiled: `core`; as the run saw it: `snapshot`) as a Result."""
@@ -30,7 +38,7 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
              max_step=None, max_steps=_D["max_steps"], formulation=_D["formulation"], integrator=None,
              max_order=None, baumgarte=None, progress=None, analysis=_D["analysis"], start=_D["start"], step=None,
              parameters=None, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None,
-             sensitivities=None, _warnings=None):
+             sensitivities=None):
     """Integrate a model from its initial state and return a Result.
 
     The initial state is first made consistent (positions by least change,
@@ -196,11 +204,11 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     with _translate(model, core, snapshot):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
         raw = _core.simulate(core, options, progress, sensitivities)
-    # (_warnings: a list that takes lagmb's warnings instead, for a sweep's case in a thread)
-    snapshot._warn_redundant(raw.get("dropped_rows", []), into=_warnings)
+    into = WARNINGS_INTO.get()  # (a list that takes lagmb's warnings instead: a sweep's case in a thread)
+    snapshot._warn_redundant(raw.get("dropped_rows", []), into=into)
     if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
-        snapshot._warn_moved(core, raw["q"][0], into=_warnings)
-    return Result(model._run_model(snapshot, into=_warnings), core, raw, snapshot)
+        snapshot._warn_moved(core, raw["q"][0], into=into)
+    return Result(model._run_model(snapshot, into=into), core, raw, snapshot)
 
 
 def _names(value, who, what):

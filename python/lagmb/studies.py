@@ -33,7 +33,7 @@ from ._store import check_store  # noqa: F401 - public here: mb.sweep's and lagm
 from .errors import ModelError, SimulationError
 from .model import Model, checked as _checked_model
 from .progress import Progress
-from .simulation import simulate
+from .simulation import WARNINGS_INTO, simulate
 
 # the settings a case may vary beside the model's parameters (simulate's keywords)
 RUN_SETTINGS = ("t_end", "rtol", "atol", "method", "formulation", "integrator", "analysis", "start", "max_step",
@@ -438,11 +438,14 @@ def _run_case(model, case, settings, outputs, t_out):
     # lagmb's warnings are kept with the case (handed back, not warned: the
     # warnings module's catch_warnings is not thread-safe, and threads run cases)
     caught = []
+    token = WARNINGS_INTO.set(caught)
     try:
-        r = simulate(model, parameters=params or None, _warnings=caught, **run)
+        r = simulate(model, parameters=params or None, **run)
     except Exception as e:  # a case that fails is recorded, the sweep goes on
         record["status"] = f"{type(e).__name__}: {e}"
         r = None
+    finally:
+        WARNINGS_INTO.reset(token)
     record["warnings"] = "; ".join(f"{type(w).__name__}: {w}" for w in caught)
     if r is None:
         return record
