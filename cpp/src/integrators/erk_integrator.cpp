@@ -87,7 +87,11 @@ struct ErkStepper final : ErkParts, OdeStepper {
   int order_ = 0;            // of the segment's pair (0: plan.max_order; resume() may lower it)
   bool resuming_ = false;
   double segment_start_ = 0.0;  // the last restart's time
+  N_Vector error_ = nullptr, weight_ = nullptr;  // resume()'s scratch: the last step's error and weights
 
+  ~ErkStepper() override {
+    if (error_) N_VDestroy(error_), N_VDestroy(weight_);
+  }
   ErkStepper(const Model& model, const ConsistentState& start, const IntegrationPlan& plan_)
       : ErkParts(model, start, plan_), OdeStepper(s.y, user_), plan(plan_), out_(2 * n) {
     first_h_ = first_step();
@@ -225,14 +229,13 @@ struct ErkStepper final : ErkParts, OdeStepper {
     if (s.mem) {
       ERKStepGetCurrentStep(s.mem, &h);
       ERKStepGetLastStep(s.mem, &last);
-      N_Vector error = N_VClone(s.y), weight = N_VClone(s.y);
+      if (!error_) error_ = N_VClone(s.y), weight_ = N_VClone(s.y);  // (once: a control loop resumes every tick)
+      N_Vector error = error_, weight = weight_;
       if (ERKStepGetEstLocalErrors(s.mem, error) == ARK_SUCCESS && ERKStepGetErrWeights(s.mem, weight) == ARK_SUCCESS) {
         N_VProd(error, weight, error);  // (ARKODE's weighted RMS norm of the last step's error: 1 at the tolerance)
         const double dsm = std::sqrt(N_VDotProd(error, error) / double(N_VGetLength(error)));
         growth = dsm > 0.0 ? std::pow(dsm, -1.0 / ((order_ > 0 ? order_ : plan.max_order) + 1)) : INFINITY;
       }
-      N_VDestroy(error);
-      N_VDestroy(weight);
     }
     load_state(s.y, state, n);
     // inputs changing at every stop, each segment's step allowed 4 times
