@@ -24,6 +24,7 @@
 #include "lagmb/spec/spec.hpp"
 
 #include "lagmb/solvers/block_cholesky.hpp"
+#include "lagmb/solvers/sparse_qr.hpp"
 #include "lagmb/solvers/sparse_lu.hpp"
 #include "lagmb/solvers/sundials.hpp"
 

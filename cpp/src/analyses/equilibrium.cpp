@@ -12,7 +12,7 @@
 #include "lagmb/interrupt.hpp"
 #include "lagmb/analyses/linearization.hpp"
 #include "lagmb/analyses/redundancy.hpp"
-#include "solvers/sparse_qr.hpp"
+#include "lagmb/solvers/sparse_qr.hpp"
 #include "lagmb/analyses/consistent_state.hpp"
 #include "lagmb/analyses/diagnosis.hpp"
 #include "lagmb/errors.hpp"

@@ -12,7 +12,7 @@
 #include "lagmb/elements/spatial_drivers.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/model/data.hpp"
-#include "solvers/sparse_qr.hpp"
+#include "lagmb/solvers/sparse_qr.hpp"
 
 namespace lagmb {
 

@@ -13,7 +13,7 @@
 #include "lagmb/errors.hpp"
 #include "lagmb/interrupt.hpp"
 #include "lagmb/time_function.hpp"
-#include "solvers/sparse_qr.hpp"
+#include "lagmb/solvers/sparse_qr.hpp"
 
 namespace lagmb {
 
