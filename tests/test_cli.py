@@ -529,3 +529,20 @@ def test_a_urdf_file_is_a_scene_for_info_and_run(tmp_path):
         assert np.array_equal(d["q"], r.q)
     p = lagmb("info", tmp_path / "missing.urdf")
     assert p.returncode == 2 and "cannot read the file" in p.stderr
+
+
+def test_cmake_prefix_names_the_wheels_cpp_package_or_says_there_is_none():
+    """`lagmb --cmake-prefix`: the folder holding lib/cmake/lagmb of a wheel
+    built with its C++ package (make wheel); exit 2 with the way to get the
+    library where lagmb was built without it (make's build from a clone)."""
+    from lagmb.cli import cmake_prefix
+
+    out = lagmb("--cmake-prefix")
+    prefix = cmake_prefix()
+    if prefix is None:
+        assert out.returncode == 2 and out.stdout == ""
+        assert "has no C++ package" in out.stderr and "make wheel" in out.stderr
+    else:
+        assert out.returncode == 0 and out.stdout.strip() == prefix
+        assert os.path.isfile(os.path.join(prefix, "lib", "cmake", "lagmb", "lagmbConfig.cmake"))
+        assert os.path.isfile(os.path.join(prefix, "include", "lagmb", "lagmb.hpp"))

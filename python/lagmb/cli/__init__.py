@@ -12,6 +12,12 @@
                 [--workers N | --scheduler ADDRESS] [--t-end T] [--batch-size B]
     lagmb sweep --plot study.zarr [-o study.png]
     lagmb demo [--plot out.png] [--quiet]
+    lagmb --cmake-prefix
+
+--cmake-prefix prints the folder holding the C++ package of an installed
+wheel (headers, liblagmb.so, lib/cmake/lagmb): cmake -DCMAKE_PREFIX_PATH=...
+finds it with find_package(lagmb). It exits 2 where lagmb was built without
+it (make's build from a clone: there cmake --install installs the library).
 
 run, info, modes and sweep also take a robot's URDF file as SCENE, with
 --floating-base, --no-limits, --no-dynamics and --no-mimic (mb.load_urdf).
@@ -43,9 +49,34 @@ COMMANDS = {"run": run, "info": info, "accuracy": accuracy, "fmu": fmu, "modes":
             "demo": demo}
 
 
+def cmake_prefix():
+    """The folder to put on CMAKE_PREFIX_PATH for find_package(lagmb), or
+    None where this installation has no C++ package (built without
+    LAGMB_BUNDLED_DEPS)."""
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    config = os.path.join(package, "lib", "cmake", "lagmb", "lagmbConfig.cmake")
+    return package if os.path.isfile(config) else None
+
+
+class _CMakePrefix(argparse.Action):
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        prefix = cmake_prefix()
+        if prefix is None:
+            parser.exit(2, "lagmb: --cmake-prefix: this lagmb has no C++ package (it was built from a clone "
+                           "with make; there `cmake --install build/... --component cpp` installs the "
+                           "library, or build the wheel with make wheel)\n")
+        print(prefix)
+        parser.exit(0)
+
+
 def _parser():
     parser = argparse.ArgumentParser(prog="lagmb", description="Planar and spatial multibody dynamics")
     parser.add_argument("--version", action="version", version=f"lagmb {__version__}")
+    parser.add_argument("--cmake-prefix", action=_CMakePrefix,
+                        help="print the folder of the wheel's C++ package (for CMAKE_PREFIX_PATH) and exit")
     sub = parser.add_subparsers(dest="command", required=True)
     for command in COMMANDS.values():
         command.add_parser(sub)

