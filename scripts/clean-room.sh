@@ -9,9 +9,9 @@
 #    scripts/clean_room_checks.py (the seed pendulum under every method, a
 #    redundant joint, an equilibrium, what the process maps), `lagmb demo`
 #    and the test suite, which must end with 0 failed.
-# 3. Then a compiler, CMake and Eigen installed with apt (the C++ user's
-#    machine): examples/cpp built against the wheel's CMake package
-#    (`lagmb --cmake-prefix`) and run; an FMU made by `lagmb fmu`, checked by
+# 3. Then a compiler and CMake installed with apt and Eigen's headers with
+#    pip (cmeel-eigen; the C++ user's machine): examples/cpp built against
+#    the wheel's CMake package (`lagmb --cmake-prefix`) and run; an FMU made by `lagmb fmu`, checked by
 #    FMPy's validation, simulated, and tests/test_fmu.py.
 #
 # Needs root (debootstrap, chroot, mount) and the network for steps 1 and 3
@@ -42,12 +42,13 @@ case "$wheel" in *cp$(echo "$pyver" | tr -d .)-*) ;; *)
 
 # the wheels pip installs in the room (downloaded once, for the room's Python)
 mkdir -p "$WHEELS"
-if [ ! -e "$WHEELS/.complete-$pyver" ]; then
+requirements='numpy scipy pytest hypothesis fmpy>=0.3.32 cmeel-eigen'
+stamp="$WHEELS/.complete-$pyver-$(echo "$requirements" | md5sum | cut -c1-8)"
+if [ ! -e "$stamp" ]; then
   python3 -m pip download -q --disable-pip-version-check --only-binary=:all: --python-version "$pyver" \
     --platform manylinux_2_28_x86_64 --platform manylinux_2_17_x86_64 --platform manylinux2014_x86_64 \
-    --platform any -d "$WHEELS" numpy scipy pytest hypothesis "fmpy>=0.3.32" 2>"$ROOM.download.log" \
-    || { cat "$ROOM.download.log"; exit 1; }
-  touch "$WHEELS/.complete-$pyver"
+    --platform any -d "$WHEELS" $requirements 2>"$ROOM.download.log" || { cat "$ROOM.download.log"; exit 1; }
+  touch "$stamp"
 fi
 
 cleanup() {
@@ -81,15 +82,17 @@ unshare --net env -i /usr/sbin/chroot "$RUN" /bin/sh -eu -c '
 '
 echo "clean-room: phase 1 passed in $(($(date +%s) - start)) s"
 
-echo "clean-room: phase 2, a C++ user's machine (g++, cmake, libeigen3-dev from apt)"
+echo "clean-room: phase 2, a C++ user's machine (g++ and cmake from apt, Eigen from pip's cmeel-eigen)"
 cp /etc/resolv.conf "$RUN/etc/resolv.conf"
 env -i /usr/sbin/chroot "$RUN" /bin/sh -eu -c '
   export PATH=/usr/sbin:/usr/bin:/sbin:/bin DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq && apt-get install -y -qq --no-install-recommends g++ cmake make libeigen3-dev >/dev/null
+  apt-get update -qq && apt-get install -y -qq --no-install-recommends g++ cmake make >/dev/null
 '
 unshare --net env -i /usr/sbin/chroot "$RUN" /bin/sh -eu -c '
   cd /src
   export HOME=/root PATH=/venv/bin:/usr/bin:/bin LC_ALL=C.UTF-8
+  pip install -q --no-index --find-links /wheels --disable-pip-version-check cmeel-eigen
+  test ! -e /usr/include/eigen3
   prefix=$(lagmb --cmake-prefix)
   cmake -S examples/cpp -B /tmp/example -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build /tmp/example -j 2 >/dev/null

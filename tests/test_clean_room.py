@@ -5,8 +5,9 @@ it offline into a debootstrap root with Python and pip only and checks the
 seed pendulum under every method, a redundant joint, an equilibrium, `lagmb
 demo`, that every shared object the process maps is the wheel's, the
 interpreter's or the C/C++ runtime's, and the test suite with 0 failed; then,
-with a compiler installed there, examples/cpp built against the wheel's
-CMake package and an FMU validated by FMPy. Slow (about 5 minutes with the
+with a compiler installed there and Eigen from pip (cmeel-eigen),
+examples/cpp built against the wheel's CMake package and an FMU validated
+by FMPy. Slow (about 5 minutes with the
 root cached, 8 without), and needs root and the network:
 `pytest -m slow tests/test_clean_room.py` or `make clean-room`."""
 
