@@ -46,9 +46,10 @@ Every script in ``examples/`` run when these pages were built, with its
 printed output and the figures it drew. Each page shows the script's code as
 it is; run it yourself with ``python examples/NAME.py`` (``--help`` lists its
 options) after ``make demo``. The figures come from the script's own
-``--plot PATH`` option (``--picture PATH`` for the Panda, the incline and Go1) where it has one;
-the bouncing ball, rolling disk, cam follower, Andrews' squeezer and
-N-four-bar print numbers only.
+options: ``--plot PATH`` draws time histories, ``--picture PATH`` the
+mechanism at one moment with the paths its points travelled (the bouncing
+ball, rolling disk, cam follower, Andrews' squeezer, N-four-bar; the Panda,
+the incline and Go1 in space).
 
 The scenes in ``examples/*.toml`` are run with ``lagmb run SCENE`` (see
 :doc:`/tour`): seed pendulum, double pendulum, slider-crank, four-bar,

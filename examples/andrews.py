@@ -1,6 +1,6 @@
 """Andrews' squeezing mechanism: seven rigid bodies, one closed-loop DAE.
 
-    python examples/andrews.py [--rtol 1e-10] [--atol 1e-11] [--scene PATH]
+    python examples/andrews.py [--rtol 1e-10] [--atol 1e-11] [--scene PATH] [--picture PATH]
 
 The multibody test problem of Hairer & Wanner, "Solving Ordinary
 Differential Equations II", section VII.7, and problem "andrews" of the Test
@@ -266,11 +266,20 @@ def run(angles=INITIAL, rtol=1e-10, atol=1e-11, n_out=2):
     return r, andrews_angles(r)[-1], wall
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rtol", type=float, default=1e-10)
     parser.add_argument("--atol", type=float, default=1e-11)
     parser.add_argument("--scene", metavar="PATH", help="also write the model as a TOML scene")
+    parser.add_argument("--picture", metavar="PATH", help="draw the mechanism at t = 0.03 s with the paths of "
+                        "the crank's tip P and the joint E to PATH (.png)")
     args = parser.parse_args(argv)
 
     model = andrews_model()
@@ -287,6 +296,9 @@ def main(argv=None):
     print(f"max |Phi| = {r.residual.max():.3e} m")
     print(f"steps = {r.stats['steps']}")
     print(f"wall time = {wall:.3f} s")
+    if args.picture:
+        shown, _, _ = run(rtol=args.rtol, atol=args.atol, n_out=601)  # (outputs for the paths)
+        draw(shown, args.picture, trace=["P", "E3"], title="Andrews' squeezer at 0.03 s: the paths of P and E")
     if args.scene:
         mb.save_scene(model, args.scene, settings={"t_end": T_END, "rtol": args.rtol, "atol": args.atol,
                                              "n_out": 301})

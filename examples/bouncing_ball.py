@@ -1,6 +1,6 @@
 """A ball bouncing on the floor: compliant contact with restitution.
 
-    python examples/bouncing_ball.py
+    python examples/bouncing_ball.py [--picture bouncing_ball.png]
 
 A ball (radius 0.1 m, 1 kg) is dropped from rest with its centre 1 m above
 the floor line y = 0. The contact "floor" (circle-line, Hunt-Crossley with
@@ -14,6 +14,7 @@ Closed forms for the ideal impact: first touch after sqrt(2 h / g) with
 h = 0.9 m, at sqrt(2 g h) = 4.202 m/s; apex gaps h e^(2k).
 """
 
+import argparse
 import math
 
 import lagmb as mb
@@ -29,7 +30,17 @@ def build():
     return m
 
 
-def main():
+def draw(result, path, **kwargs):
+    """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH", help="draw the ball at the end with its centre's path to PATH (.png)")
+    args = parser.parse_args(argv)
     r = mb.simulate(build(), t_end=2.5, rtol=1e-8, atol=1e-10, n_out=501)
     onsets = [e for e in r.events if e["label"] == "onset"]
     releases = [e for e in r.events if e["label"] == "release"]
@@ -44,6 +55,8 @@ def main():
     print(f"effective restitution = {ratio:.8f}")
     print(f"contact events = {len(r.events)}")
     print(f"steps = {r.stats['steps']}")
+    if args.picture:
+        draw(r, args.picture, trace="ball", title="a ball bouncing on the floor: its centre's path")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """An eccentric cam lifting a flat-faced follower through a contact.
 
-    python examples/cam_follower.py
+    python examples/cam_follower.py [--picture cam_follower.png]
 
 The cam (a circle of radius 0.05 m whose centre is 0.02 m from the pivot)
 turns about the ground pin at the origin, driven at 2 pi rad/s. The
@@ -15,6 +15,7 @@ the cam centre's height plus R, y = e sin(omega t), so the lift is 2 e =
 m/s^2 stays below g: the follower never leaves the cam.
 """
 
+import argparse
 import math
 
 import numpy as np
@@ -37,7 +38,17 @@ def build():
     return m, d0
 
 
-def main():
+def draw(result, path, **kwargs):
+    """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH", help="draw cam and follower at the top of the lift to PATH (.png)")
+    args = parser.parse_args(argv)
     m, d0 = build()
     r = mb.simulate(m, t_end=1.0, rtol=1e-8, atol=1e-10, n_out=1001)
     y = r.body("follower").position[:, 1] - (0.1 - d0)
@@ -47,6 +58,9 @@ def main():
     print(f"max deviation from e sin(omega t) = {np.max(np.abs(y - ideal)):.3e} m")
     print(f"contact events = {len(r.events)}")
     print(f"steps = {r.stats['steps']}")
+    if args.picture:  # at a quarter turn the cam's centre is highest: the follower at the top
+        draw(r, args.picture, time=0.25, trace=[("cam", (ECC, 0.0))],
+             title="an eccentric cam lifting a follower: the cam centre's circle")
 
 
 if __name__ == "__main__":

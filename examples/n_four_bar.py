@@ -1,7 +1,7 @@
 """N-four-bar mechanism (IFToMM multibody benchmark, problem A02) run through
 its singular positions with the "ali3p" formulation.
 
-    python examples/n_four_bar.py [N] [t_end] [step]      (defaults 2, 10, 1e-4)
+    python examples/n_four_bar.py [N] [t_end] [step] [--picture PATH]     (defaults 2, 10, 1e-4)
 
 2N + 1 uniform rods of 1 m and 1 kg: N + 1 cranks on ground pivots at
 x = 0, 1, ..., N and N couplers on top, so every window is a parallelogram.
@@ -24,7 +24,7 @@ the Jacobian loses rank; its energy error is O((omega step)^2), no drift.
 """
 
 import math
-import sys
+import argparse
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -61,11 +61,22 @@ def reference_b0(n_windows, t):
     return np.column_stack([np.cos(sol.y[0]), np.sin(sol.y[0])])
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
-    n_windows = int(argv[0]) if len(argv) > 0 else 2
-    t_end = float(argv[1]) if len(argv) > 1 else 10.0
-    step = float(argv[2]) if len(argv) > 2 else 1e-4
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("n_windows", nargs="?", type=int, default=2, help="N, the number of windows (default 2)")
+    parser.add_argument("t_end", nargs="?", type=float, default=10.0, help="the run's end in s (default 10)")
+    parser.add_argument("step", nargs="?", type=float, default=1e-4, help="ali3p's fixed step in s (default 1e-4)")
+    parser.add_argument("--picture", metavar="PATH", help="draw the mechanism at 1.2 s, past the first singular "
+                        "position, with B0's path to PATH (.png)")
+    args = parser.parse_args(argv)
+    n_windows, t_end, step = args.n_windows, args.t_end, args.step
     model = build(n_windows)
     r = mb.simulate(model, t_end=t_end, n_out=1001, formulation="ali3p", step=step)
     b0 = r.point("crank0", (0.5, 0.0))
@@ -82,6 +93,9 @@ def main(argv=None):
     print(f"steps = {r.stats['steps']} (retried {r.stats['convergence_failures']}), "
           f"Newton iterations = {r.stats['newton_iterations']}, "
           f"factorizations = {r.stats['lu_factorizations']}")
+    if args.picture:
+        draw(r, args.picture, time=min(t_end, 1.2), trace=[("crank0", (0.5, 0.0))],
+             title=f"N-four-bar, N = {n_windows}: B0's path through the singular positions")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """A disk rolling down an incline on a compliant contact with friction.
 
-    python examples/rolling_disk.py
+    python examples/rolling_disk.py [--picture rolling_disk.png]
 
 A uniform disk (radius 0.2 m, 2 kg, J = m R^2 / 2) rests on a 20 degree
 incline (the line through the origin along (cos a, -sin a)), pressed in by
@@ -16,6 +16,7 @@ line) and creeps at a constant slip speed below v_s, so the acceleration is
 g sin a / (1 + J / (m (R - d0)^2)), within 3 d0 / R of the rigid value.
 """
 
+import argparse
 import math
 
 import numpy as np
@@ -37,7 +38,17 @@ def build():
     return m, d0
 
 
-def main():
+def draw(result, path, **kwargs):
+    """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH", help="draw the disk at 1 s with a rim point's path to PATH (.png)")
+    args = parser.parse_args(argv)
     m, d0 = build()
     r = mb.simulate(m, t_end=1.0, rtol=1e-8, atol=1e-10, n_out=201)
     u = np.array([math.cos(ALPHA), -math.sin(ALPHA)])
@@ -55,6 +66,9 @@ def main():
     print(f"max slip speed = {np.max(np.abs(v[late] + w[late] * (R - d0))):.6e} m/s")
     print(f"contact events = {len(r.events)}")
     print(f"steps = {r.stats['steps']}")
+    if args.picture:  # a point on the rim traces a cycloid as the disk rolls
+        draw(r, args.picture, trace=[("disk", (0.0, R))], title="a disk rolling down a 20 degree incline: "
+             "a rim point's cycloid")
 
 
 if __name__ == "__main__":

@@ -71,15 +71,19 @@ def test_api_reference_pages(site):
 
 @needs_sphinx
 def test_gallery_pages_show_the_examples(site):
-    """One page per examples/*.py, with what it printed; the seed pendulum's
-    page shows the figure its --plot wrote."""
+    """One page per examples/*.py, with what it printed and a figure it
+    drew (its mechanism or its time histories: no page, and so no
+    thumbnail, without one); the seed pendulum's page shows the figure its
+    --plot wrote."""
     _, html = site
     index = read(html, "gallery/index.html")
+    assert "no_image" not in index  # sphinx-gallery's placeholder thumbnail
     for script in sorted(os.listdir(EXAMPLES)):
         if script.endswith(".py"):
             stem = script[:-3]
             assert f"{stem}.html" in index, stem
-            read(html, f"gallery/{stem}.html")
+            figures = re.findall(r'<img [^>]*src="([^"]+\.png)"', read(html, f"gallery/{stem}.html"))
+            assert figures, f"the gallery page of {stem}.py shows no figure"
     page = read(html, "gallery/seed_pendulum.html")
     assert "period closed form = 1.9333348544" in page
     images = re.findall(r'<img [^>]*src="([^"]+\.png)"', page)

@@ -659,7 +659,7 @@ def test_an_ascii_stl_may_hold_several_solids_named_anything(tmp_path):
 def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):
     """plotting.picture: a box, a cylinder, a sphere and an STL mesh on a
     swinging rod are drawn (4), a COLLADA mesh is counted out; the PNG is
-    written; planar models are refused."""
+    written; a trace is refused (planar pictures only)."""
     _binary_stl(tmp_path / "tri.stl", [[[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0]]])
     m = mb.Model(dimension=3)
     rod = m.add_body("rod", 1.0, (1e-3, 1.0 / 12, 1.0 / 12), position=(0.5, 0.0, 0.0))
@@ -672,10 +672,44 @@ def test_picture_draws_the_shapes_at_their_bodies_poses(mpl, tmp_path):
     assert plotting.picture(r, tmp_path / "rod.png", time=0.2) == 4
     assert (tmp_path / "rod.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert plotting.picture(r, tmp_path / "none.png", role="visual") == 0
-    planar = mb.Model()
-    planar.add_body("b", 1.0, 0.1)
-    with pytest.raises(mb.ModelError, match="draws spatial models"):
-        plotting.picture(mb.simulate(planar, 0.1, n_out=2), tmp_path / "p.png")
+    with pytest.raises(mb.ModelError, match="plotting.picture: trace draws paths in planar pictures"):
+        plotting.picture(r, tmp_path / "t.png", trace="rod")
+
+
+def test_a_planar_picture_is_animates_frame_with_the_paths_travelled(mpl, tmp_path):
+    """plotting.picture of a planar run: animate's drawing at the output
+    nearest ``time`` (its stamp says which), one body drawn per body, the
+    traced path through the outputs up to then; a bad trace is named."""
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    r = mb.simulate(m, t_end=1.0, n_out=11)
+    path = tmp_path / "rod.png"
+    captured = {}
+    original = plotting.pictures._planar_drawing
+
+    def spy(scene, shown, trace, size, dpi, speed):
+        drawing = original(scene, shown, trace, size, dpi, speed)
+        captured["drawing"], captured["shown"] = drawing, shown
+        return drawing
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(plotting.pictures, "_planar_drawing", spy)
+    try:
+        assert plotting.picture(r, path, time=0.52, trace=[("rod", (0.5, 0.0))], title="a rod") == 1
+    finally:
+        mp.undo()
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    drawing = captured["drawing"]
+    assert captured["shown"].t.tolist() == [0.5]  # the output nearest 0.52
+    assert drawing.artists["stamp"].get_text().strip().startswith("t = 0.5")
+    assert drawing.fig.axes[0].get_title() == "a rod"
+    (tip,) = drawing.artists["traces"]
+    x, y = tip.get_data()
+    assert len(x) == 7  # outputs 0, 0.1, ..., 0.5 and the frame's own point
+    assert np.allclose(np.hypot(x, y), 1.0)  # the rod's tip stays 1 m from the pin
+    with pytest.raises(mb.ModelError, match="plotting.picture: trace 'tip': no body or element"):
+        plotting.picture(r, path, trace="tip")
 
 
 def test_picture_names_a_bad_argument_and_draws_a_mesh_of_no_triangles(mpl, tmp_path):

@@ -1,28 +1,44 @@
-"""A still picture of a spatial model with its shapes (picture): boxes,
-cylinders, spheres and STL meshes at the bodies' poses, shaded."""
+"""A still picture of a run at one output (picture): a spatial model with
+its shapes (boxes, cylinders, spheres and STL meshes at the bodies' poses,
+shaded), a planar one as animate draws its frames, with traced paths."""
 
 import numpy as np
 
 from .._checks import real, show, vec2
-from .._drawing import Scene, shape_faces
+from .._drawing import Scene, shape_faces, trace_points
 from ..errors import ModelError
-from ._figures import _colour, _figure, _save
+from ._figures import _colour, _figure, _matplotlib, _save
+from .frames import _resample
+from .planar import _planar_drawing
+
 
 def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), size=(640, 640), dpi=100,
-            title=None):
-    """A still picture of a spatial model at one output of a run: the
-    shapes of ``role`` ("visual" or "collision"; Model.add_shape, as
+            title=None, trace=None):
+    """A still picture of a model at one output of a run (``time``: the
+    output nearest it; default the last), written to ``path`` (PNG).
+
+    A planar model (dimension 2) is drawn as :func:`animate` draws a frame
+    (bodies through their attachment points, joints, springs, contacts'
+    circles and lines), with the paths of the ``trace`` points travelled
+    until then (a body, an element, a (body, local point) pair or
+    "body:x,y"; one or a list, as animate takes them); returns the number
+    of bodies drawn. ``role`` and ``view`` do not apply to it.
+
+    A spatial model (dimension 3): the shapes of ``role`` ("visual" or "collision"; Model.add_shape, as
     load_urdf keeps a robot's) at their bodies' poses, shaded by their
     facing to the light, each body in its colour, over the bodies' lines to
     their joints (as animate draws them). ``time``: the output nearest it
     (default the last). Meshes are drawn from STL files; a shape in
     another format (COLLADA .dae, OBJ) is left out and counted in the
-    caption. Returns the number of shapes drawn."""
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
+    caption. Returns the number of shapes drawn; ``trace`` is for planar
+    models only."""
     model = result.model
     if getattr(model, "dimension", 2) != 3:
-        raise ModelError("plotting.picture draws spatial models (dimension 3); this one is planar")
+        return _planar_picture(result, path, time, size, dpi, title, trace)
+    if trace is not None:
+        raise ModelError("plotting.picture: trace draws paths in planar pictures; this model is spatial")
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
     if role not in ("visual", "collision"):
         raise ModelError(f"plotting.picture: role must be 'visual' or 'collision', got {show(role)}")
     view = vec2(view, "plotting.picture: view (elevation, azimuth in degrees)")
@@ -101,6 +117,24 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
     ax.text2D(0.02, 0.02, caption, transform=ax.transAxes, fontsize=8)
     _save(fig, path)
     return drawn
+
+
+def _planar_picture(result, path, time, size, dpi, title, trace):
+    """picture() of a planar model: animate's drawing of one frame, at the
+    output nearest ``time``, the traced paths up to it."""
+    _matplotlib()
+    t = np.asarray(result.t)
+    if len(t) == 0:
+        raise ModelError("plotting.picture: the result has no outputs")
+    k = len(t) - 1 if time is None else int(np.argmin(np.abs(t - real(time, "plotting.picture: time"))))
+    scene = Scene(result)
+    traced = trace_points(result.model, trace, "plotting.picture: trace")
+    drawing = _planar_drawing(scene, _resample(result, t[k:k + 1]), traced, size, dpi, 1.0)
+    drawing.update(0)
+    if title:
+        drawing.fig.axes[0].set_title(title, fontsize=10)
+    _save(drawing.fig, path)
+    return len(scene.bodies)
 
 
 def _rgb(colour):
