@@ -51,10 +51,29 @@ myst_heading_anchors = 4
 # left from a name no longer listed would be a warning, so start empty
 shutil.rmtree(os.path.join(HERE, "generated"), ignore_errors=True)
 autosummary_generate = True
+# the pages' template: docs/_templates/entry.rst (api.rst's ":template: entry.rst")
+templates_path = ["_templates"]
 autosummary_imported_members = True
 autodoc_default_options = {"members": True}
 autodoc_member_order = "bysource"
 autodoc_typehints = "none"
+
+
+def _model_page_groups():
+    """The Model page's members in two groups, the building methods first
+    (add_* and drive_*: the elements of the registry in its order, then
+    frames, shapes and joint aliases), then what reads, copies and compiles
+    a model; (name, "method" or "property") each."""
+    members = [n for n in vars(lagmb.Model) if not n.startswith("_")]
+    kind = {n: "property" if isinstance(vars(lagmb.Model)[n], property) else "method" for n in members}
+    extra = ("add_frame", "add_shape", "add_joint_alias")
+    building = [n for n in members if n.startswith(("add_", "drive_")) and n not in extra] + list(extra)
+    rest = [n for n in members if n not in building]
+    return [(n, kind[n]) for n in building], [(n, kind[n]) for n in rest]
+
+
+_building, _reading = _model_page_groups()
+autosummary_context = {"model_building": _building, "model_reading": _reading}
 
 
 

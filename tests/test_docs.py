@@ -67,6 +67,21 @@ def test_api_reference_pages(site):
     model = read(html, "generated/lagmb.Model.html")
     assert 'id="lagmb.Model.add_revolute"' in model
     assert "In a spatial model" in model
+    # the Model page leads with its building methods, then what reads, copies and compiles it
+    assert model.index('id="lagmb.Model.add_body"') < model.index('id="lagmb.Model.add_contact"') \
+        < model.index("Reading, copying and compiling") < model.index('id="lagmb.Model.copy"')
+    assert "The solver could not go on" in read(html, "generated/lagmb.SimulationError.html")
+
+
+def test_every_error_and_warning_class_says_what_it_is():
+    """The API reference's errors and warnings: each public one has a
+    docstring (its summary on the page), its own, not its base's."""
+    classes = [getattr(mb, n) for n in dir(mb) if isinstance(getattr(mb, n), type)
+               and issubclass(getattr(mb, n), (Exception, Warning))]
+    assert len(classes) >= 10
+    for cls in classes:
+        doc = cls.__dict__.get("__doc__") or ""
+        assert doc.strip(), f"{cls.__name__} has no docstring"
 
 
 @needs_sphinx
