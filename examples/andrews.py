@@ -298,7 +298,8 @@ def main(argv=None):
     print(f"wall time = {wall:.3f} s")
     if args.picture:
         shown, _, _ = run(rtol=args.rtol, atol=args.atol, n_out=601)  # (outputs for the paths)
-        draw(shown, args.picture, trace=["P", "E3"], title="Andrews' squeezer at 0.03 s: the paths of P and E")
+        draw(shown, args.picture, trace=["P", "E3"],
+             title="Andrews' squeezer at 0.03 s: the paths of P and E")
     if args.scene:
         mb.save_scene(model, args.scene, settings={"t_end": T_END, "rtol": args.rtol, "atol": args.atol,
                                              "n_out": 301})

@@ -39,7 +39,8 @@ def draw(result, path, **kwargs):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--picture", metavar="PATH", help="draw the ball at the end with its centre's path to PATH (.png)")
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the ball at the end with its centre's path to PATH (.png)")
     args = parser.parse_args(argv)
     r = mb.simulate(build(), t_end=2.5, rtol=1e-8, atol=1e-10, n_out=501)
     onsets = [e for e in r.events if e["label"] == "onset"]

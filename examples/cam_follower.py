@@ -47,7 +47,8 @@ def draw(result, path, **kwargs):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--picture", metavar="PATH", help="draw cam and follower at the top of the lift to PATH (.png)")
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw cam and follower at the top of the lift to PATH (.png)")
     args = parser.parse_args(argv)
     m, d0 = build()
     r = mb.simulate(m, t_end=1.0, rtol=1e-8, atol=1e-10, n_out=1001)

@@ -70,11 +70,11 @@ def draw(result, path, **kwargs):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("n_windows", nargs="?", type=int, default=2, help="N, the number of windows (default 2)")
+    parser.add_argument("n_windows", nargs="?", type=int, default=2, help="N, the windows (default 2)")
     parser.add_argument("t_end", nargs="?", type=float, default=10.0, help="the run's end in s (default 10)")
-    parser.add_argument("step", nargs="?", type=float, default=1e-4, help="ali3p's fixed step in s (default 1e-4)")
-    parser.add_argument("--picture", metavar="PATH", help="draw the mechanism at 1.2 s, past the first singular "
-                        "position, with B0's path to PATH (.png)")
+    parser.add_argument("step", nargs="?", type=float, default=1e-4, help="ali3p's step in s (default 1e-4)")
+    parser.add_argument("--picture", metavar="PATH", help="draw the mechanism at 1.2 s, past the first "
+                        "singular position, with B0's path to PATH (.png)")
     args = parser.parse_args(argv)
     n_windows, t_end, step = args.n_windows, args.t_end, args.step
     model = build(n_windows)

@@ -24,14 +24,14 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
     "body:x,y"; one or a list, as animate takes them); returns the number
     of bodies drawn. ``role`` and ``view`` do not apply to it.
 
-    A spatial model (dimension 3): the shapes of ``role`` ("visual" or "collision"; Model.add_shape, as
-    load_urdf keeps a robot's) at their bodies' poses, shaded by their
-    facing to the light, each body in its colour, over the bodies' lines to
-    their joints (as animate draws them). ``time``: the output nearest it
-    (default the last). Meshes are drawn from STL files; a shape in
-    another format (COLLADA .dae, OBJ) is left out and counted in the
-    caption. Returns the number of shapes drawn; ``trace`` is for planar
-    models only."""
+    A spatial model (dimension 3): the shapes of ``role`` ("visual" or
+    "collision"; Model.add_shape, as load_urdf keeps a robot's) at their
+    bodies' poses, shaded by their facing to the light, each body in its
+    colour, over the bodies' lines to their joints (as animate draws them),
+    seen from ``view`` = (elevation, azimuth) in degrees. Meshes are drawn
+    from STL files; a shape in another format (COLLADA .dae, OBJ) is left
+    out and counted in the caption. Returns the number of shapes drawn;
+    ``trace`` is for planar models only."""
     model = result.model
     if getattr(model, "dimension", 2) != 3:
         return _planar_picture(result, path, time, size, dpi, title, trace)
