@@ -11,8 +11,9 @@
 #    and the test suite, which must end with 0 failed.
 # 3. Then a compiler and CMake installed with apt and Eigen's headers with
 #    pip (cmeel-eigen; the C++ user's machine): examples/cpp built against
-#    the wheel's CMake package (`lagmb --cmake-prefix`) and run; an FMU made by `lagmb fmu`, checked by
-#    FMPy's validation, simulated, and tests/test_fmu.py.
+#    the wheel's CMake package (`lagmb --cmake-prefix`) and run, and by a
+#    scikit-build-core project told nothing; an FMU made by `lagmb fmu`,
+#    checked by FMPy's validation, simulated, and tests/test_fmu.py.
 #
 # Needs root (debootstrap, chroot, mount) and the network for steps 1 and 3
 # and the first download of the wheelhouse. Usage: scripts/clean-room.sh DIST
@@ -42,7 +43,7 @@ case "$wheel" in *cp$(echo "$pyver" | tr -d .)-*) ;; *)
 
 # the wheels pip installs in the room (downloaded once, for the room's Python)
 mkdir -p "$WHEELS"
-requirements='numpy scipy pytest hypothesis fmpy>=0.3.32 cmeel-eigen'
+requirements='numpy scipy pytest hypothesis fmpy>=0.3.32 cmeel-eigen scikit-build-core'
 stamp="$WHEELS/.complete-$pyver-$(echo "$requirements" | md5sum | cut -c1-8)"
 if [ ! -e "$stamp" ]; then
   python3 -m pip download -q --disable-pip-version-check --only-binary=:all: --python-version "$pyver" \
@@ -99,6 +100,31 @@ unshare --net env -i /usr/sbin/chroot "$RUN" /bin/sh -eu -c '
   /tmp/example/pendulum | tail -n 3
   ldd /tmp/example/pendulum | grep liblagmb
   echo "ok      examples/cpp built against $prefix and run"
+  # a project built by scikit-build-core finds the package without being told where
+  pip install -q --no-index --find-links /wheels --disable-pip-version-check scikit-build-core
+  mkdir -p /tmp/downstream && cp examples/cpp/pendulum.cpp /tmp/downstream/
+  cat >/tmp/downstream/pyproject.toml <<\EOF
+[build-system]
+requires = ["scikit-build-core"]
+build-backend = "scikit_build_core.build"
+
+[project]
+name = "downstream"
+version = "0.1"
+EOF
+  cat >/tmp/downstream/CMakeLists.txt <<\EOF
+cmake_minimum_required(VERSION 3.18)
+project(downstream LANGUAGES CXX)
+set(CMAKE_CXX_STANDARD 17)
+find_package(lagmb CONFIG REQUIRED)
+add_executable(downstream_pendulum pendulum.cpp)
+target_link_libraries(downstream_pendulum PRIVATE lagmb::core)
+set_target_properties(downstream_pendulum PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
+install(TARGETS downstream_pendulum DESTINATION ${SKBUILD_SCRIPTS_DIR})
+EOF
+  pip install -q --no-index --no-build-isolation --disable-pip-version-check /tmp/downstream
+  downstream_pendulum | tail -n 1
+  echo "ok      a scikit-build-core project found lagmb (no CMAKE_PREFIX_PATH given) and its program runs"
   pip install -q --no-index --find-links /wheels --disable-pip-version-check fmpy
   lagmb fmu examples/cart_pole.toml -o /tmp/cart_pole.fmu --quiet
   python - <<EOF

@@ -6,8 +6,8 @@ seed pendulum under every method, a redundant joint, an equilibrium, `lagmb
 demo`, that every shared object the process maps is the wheel's, the
 interpreter's or the C/C++ runtime's, and the test suite with 0 failed; then,
 with a compiler installed there and Eigen from pip (cmeel-eigen),
-examples/cpp built against the wheel's CMake package and an FMU validated
-by FMPy. Slow (about 5 minutes with the
+examples/cpp built against the wheel's CMake package, a scikit-build-core
+project that finds it unaided, and an FMU validated by FMPy. Slow (about 5 minutes with the
 root cached, 8 without), and needs root and the network:
 `pytest -m slow tests/test_clean_room.py` or `make clean-room`."""
 
@@ -46,5 +46,6 @@ def test_the_wheel_runs_in_a_bare_debian_and_grafts_nothing():
     out = room.stdout + room.stderr
     assert room.returncode == 0 and "clean-room: passed" in out, out[-5000:]
     assert "from elsewhere: none" in out
+    assert "a scikit-build-core project found lagmb" in out and "FMPy validation clean" in out
     suite = [line for line in out.splitlines() if " passed" in line and " in " in line][0]
     assert " failed" not in suite and " error" not in suite
