@@ -388,3 +388,22 @@ def test_failure_on_a_long_chain_is_not_called_a_singular_position():
 def test_rtol_beyond_double_precision_is_rejected(rtol):
     with pytest.raises(mb.ModelError, match="rtol"):
         mb.simulate(pendulum(), t_end=1.0, rtol=rtol)
+
+
+def test_an_argument_of_the_other_dimension_says_where_it_belongs():
+    """A planar add_revolute given a spatial revolute's axis: a ModelError
+    that names the argument, says it is for spatial models and lists what
+    the planar kind takes (not a bare TypeError from the signature)."""
+    m = mb.Model()
+    b = m.add_body("b", 1.0, 0.1)
+    with pytest.raises(mb.ModelError, match=r"add_revolute: got an unexpected keyword argument 'axis'; 'axis' is "
+                       r"for spatial models \(Model\(dimension=3\)\), this model has dimension 2\. It takes name, "
+                       r"body_i, body_j, at, local_i, local_j"):
+        m.add_revolute("r", m.ground, b, at=(0.0, 0.0), axis=(0.0, 0.0, 1.0))
+    s = mb.Model(dimension=3)
+    c = s.add_body("c", 1.0, (0.1, 0.1, 0.1))
+    with pytest.raises(mb.ModelError, match="'local_i' is for planar models"):
+        s.add_revolute("r", s.ground, c, at=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), local_i=(0.0, 0.0))
+    with pytest.raises(mb.ModelError, match="add_body: missing a required argument: 'mass'. It takes name, mass"):
+        m.add_body("d", mas=1.0, inertia=0.1)
+    assert len(m.bodies) == 1  # nothing was added

@@ -733,6 +733,23 @@ def _shape_given(value, bodies):
                  np.asarray(position, dtype=float), np.asarray(axes, dtype=float), None, "collision")
 
 
+def _argument_error(method, dimension, signatures, error, kwargs):
+    """What a call of Model.<method> with arguments its signature does not
+    take says: Python's complaint, the arguments it takes, and, for a
+    keyword of the other dimension's kind (a planar revolute's axis), that
+    it belongs there."""
+    own = signatures[dimension].parameters
+    other = signatures.get(5 - dimension)
+    text = f"{method}: {error}"
+    foreign = [k for k in kwargs if k not in own]
+    if other is not None and foreign and all(k in other.parameters for k in foreign):
+        where = "spatial" if dimension == 2 else "planar"
+        text += (f"; {', '.join(map(repr, foreign))} {'is' if len(foreign) == 1 else 'are'} for {where} models "
+                 f"(Model(dimension={5 - dimension})), this model has dimension {dimension}")
+    taken = [n for n in own if n != "self"]
+    return text + f". It takes {', '.join(taken)}"
+
+
 def _method(method):
     """Model.<method>: the kind it adds is the one of the model's dimension
     (add_revolute: a planar or a spatial revolute); its signature and
@@ -746,7 +763,10 @@ def _method(method):
             where = "planar" if self.dimension == 3 else "spatial"
             raise ModelError(f"{method}: {kinds[5 - self.dimension].name.replace('_', ' ')} elements are "
                              f"{where} only; this model has dimension {self.dimension}")
-        values = signatures[self.dimension].bind(self, *args, **kwargs)
+        try:
+            values = signatures[self.dimension].bind(self, *args, **kwargs)
+        except TypeError as e:
+            raise ModelError(_argument_error(method, self.dimension, signatures, e, kwargs)) from None
         values.apply_defaults()
         values = dict(values.arguments)
         del values["self"]
