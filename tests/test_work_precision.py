@@ -9,6 +9,7 @@ rtol 1e-4 .. 1e-8.
 """
 
 import json
+import re
 import math
 from pathlib import Path
 
@@ -137,6 +138,31 @@ def test_cheapest(wp):
     assert wp.cheapest(1e-30) == {m: None for m in METHODS}
 
 
+def test_summary_names_the_references_and_the_cheapest_run_per_error(wp):
+    """summary(): the error's definition with its units; one line per
+    reference run naming the methods measured against it (every method
+    once); for each error asked for, the run of least CPU time among all
+    methods and tolerances that reaches it (checked against the rows), or
+    that none did; by default one line per decade of the errors reached."""
+    text = wp.summary([1e-4, 1e-30])
+    assert "largest |q - q_ref| over every coordinate and output time (m for positions" in text
+    named = [line for line in text.splitlines() if line.startswith("reference for ")]
+    methods = [m for line in named for m in line[len("reference for "):].split(":")[0].split(", ")]
+    assert sorted(methods) == sorted(wp.methods)
+    for line in named:
+        key = line.split(": ", 1)[1].split(" at rtol ")
+        assert key[0] in ("ggl", "projection-bdf")  # the two families' reference methods
+    ok = [r for r in wp.rows if r["status"] == "ok" and r["error"] <= 1e-4]
+    best = min(ok, key=lambda r: r["cpu_time"])
+    assert wp.cheapest_run(1e-4) is best
+    assert (f"error <= 1e-04: cheapest {best['method']} at rtol {best['rtol']:.0e} "
+            f"({best['cpu_time']:.2g} s CPU, error {best['error']:.1e})") in text
+    assert "error <= 1e-30: no run reached it" in text
+    decades = [line for line in wp.summary().splitlines() if line.startswith("error <= ")]
+    reached = [r["error"] for r in wp.rows if r["status"] == "ok"]
+    assert len(decades) == int(np.floor(np.log10(max(reached))) - np.ceil(np.log10(min(reached)))) + 1
+
+
 def test_table_lists_every_run(wp):
     """table() is a header, a rule and one line per row, each naming its
     method and rtol."""
@@ -205,3 +231,5 @@ def test_command_line_accuracy(tmp_path):
         assert set(row) == set(PROMISED)
         assert row["status"] == "ok"
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "reference for ggl, index3, index1" in proc.stdout
+    assert re.search(r"error <= 1e-0\d: cheapest [a-z0-9-]+ at rtol 1e-0[46] \(", proc.stdout)

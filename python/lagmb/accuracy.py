@@ -119,6 +119,45 @@ class WorkPrecision:
                 f"{r['drift_position']:>9.1e} {r['drift_velocity']:>10.1e} {r['energy_error']:>9.1e}")
         return "\n".join(lines)
 
+    def cheapest_run(self, error):
+        """The row of least CPU time among the successful runs with error <=
+        `error` (any method, any tolerance), or None if none reached it."""
+        rows = [r for r in self.rows if r["status"] == "ok" and r["error"] <= error]
+        return min(rows, key=lambda r: r["cpu_time"]) if rows else None
+
+    def summary(self, errors=None):
+        """What the table's numbers mean, in lines of text: the error's
+        definition and unit; which reference run each method was measured
+        against; and, for each error asked for (default: every decade from
+        the largest error down to the smallest reached), the cheapest run
+        that reaches it (method, tolerance, CPU time)."""
+        lines = ["error: the largest |q - q_ref| over every coordinate and output time (m for positions,",
+                 "  rad for angles, Euler parameters dimensionless); |dE|: max |E - E(t0)| (J)"]
+        served = {}
+        for r in self.rows:
+            if r["reference"]:
+                served.setdefault(r["reference"], []).append(r["method"])
+        for key, names in served.items():
+            names = ", ".join(dict.fromkeys(names))
+            if key == "given":
+                lines.append(f"reference: the Result given, for {names}")
+            else:
+                ref = self.reference_info[key]
+                lines.append(f"reference for {names}: {ref['method']} at rtol {ref['rtol']:.0e}, "
+                             f"atol {ref['atol']:.0e}")
+        reached = [r["error"] for r in self.rows if r["status"] == "ok" and r["error"] > 0]
+        if errors is None and reached:
+            top, bottom = np.floor(np.log10(max(reached))), np.ceil(np.log10(min(reached)))
+            errors = [10.0 ** k for k in np.arange(top, bottom - 1, -1)]
+        for e in errors or ():
+            best = self.cheapest_run(e)
+            if best is None:
+                lines.append(f"error <= {e:.0e}: no run reached it")
+            else:
+                lines.append(f"error <= {e:.0e}: cheapest {best['method']} at rtol {best['rtol']:.0e} "
+                             f"({best['cpu_time']:.2g} s CPU, error {best['error']:.1e})")
+        return "\n".join(lines)
+
     def cheapest(self, error):
         """For each method, the least CPU time of its runs with error <= `error`
         (None if no run reached it)."""

@@ -19,6 +19,8 @@ def add_parser(sub):
     acc.add_argument("--tolerances", nargs="+", type=number, metavar="RTOL",
                      help="relative tolerances (default: 1e-3 .. 1e-11)")
     acc.add_argument("--t-end", type=number, metavar="T", help="end time, instead of the scene's")
+    acc.add_argument("--error", nargs="+", type=number, metavar="E",
+                     help="name the cheapest run reaching each of these errors (default: every decade)")
     acc.add_argument("-o", "--output", metavar="JSON", help="write the table as JSON")
     acc.add_argument("--plot", metavar="PNG", help="draw error vs CPU time and drift vs time")
     acc.add_argument("-q", "--quiet", action="store_true", help="print nothing but errors")
@@ -55,8 +57,7 @@ def handle(args):
     except SimulationError as e:
         raise Exit(FAILED, str(e)) from None
     say(wp.table())
-    for ref in wp.reference_info.values():
-        say(f"reference run: {ref['method']} at rtol {ref['rtol']:.0e}, atol {ref['atol']:.0e}")
+    say(wp.summary(args.error))
     if args.output:
         wp.save(args.output)
         say(f"table written to {args.output}")
