@@ -1,11 +1,13 @@
 """`lagmb modes SCENE` and lagmb.plotting.animate_mode (issue 28, item 2).
 
 - The table of a uniform rod (L = 1.3 m) pinned at one end: one vibration
-  mode at sqrt(3 g / 2 L) / (2 pi) Hz, undamped, moving the rod's angle
-  most; a body hanging on a ball joint (spatial): a free spin about the
-  vertical (rigid-body, frequency 0) and two swings at
-  sqrt(m g l / (I + m l^2)) about the two horizontal axes, named in space's
-  coordinates (x, y, z, e0 .. e3). Frequencies are printed to 6 digits.
+  mode at sqrt(3 g / 2 L) / (2 pi) Hz, undamped, moving the pin's angle
+  most (a joint named where the model has joints); a body hanging on a
+  ball joint (spatial): a free spin about the vertical (rigid-body: no
+  frequency) and two swings at sqrt(m g l / (I + m l^2)) about the two
+  horizontal axes, named as the body's turns about the global axes; an
+  inverted pendulum's mode grows at a rate, printed as a growth rate, not a
+  frequency. Frequencies are printed to 6 digits.
 - Bad options exit 2 before the analysis, naming the option and the value
   (--mode and --view need --gif); a scene with no equilibrium exits 1.
 - animate_mode writes a GIF of `frames` frames (default cycles x 2 s at
@@ -73,8 +75,10 @@ def mpl():
 
 
 def rows(out):
-    """The table's rows: {mode number: the row's fields}."""
-    return {int(line.split()[0]): line.split() for line in out.splitlines() if line.split()[:1]
+    """The table's rows: {mode number: its fields}, the last ("moves most")
+    whole: the columns are mode, kind, frequency, omega, growth, damping
+    ratio, moves most."""
+    return {int(line.split()[0]): line.split(maxsplit=6) for line in out.splitlines() if line.split()[:1]
             and line.split()[0].isdigit()}
 
 
@@ -82,12 +86,14 @@ def test_the_table_of_a_pinned_rod_gives_the_compound_pendulum_frequency(capsys,
     code, out, err = lagmb(capsys, "modes", pendulum)
     assert code == 0, err
     assert out.splitlines()[0] == f"{pendulum}: 1 mode about the stable equilibrium at t = 0 s"
-    assert "frequency (Hz)" in out and "omega (rad/s)" in out and "damping ratio" in out and "moves most" in out
+    assert "frequency (Hz)" in out and "omega (rad/s)" in out and "growth (1/s)" in out and "damping ratio" in out \
+        and "moves most" in out
     table = rows(out)
     assert list(table) == [0]
     fields = table[0]
     omega_exact = math.sqrt(3 * G / (2 * L))
-    assert fields[1] == "vibration" and fields[-1] == "rod.angle" and float(fields[4]) == 0.0
+    assert fields[1] == "vibration" and fields[-1] == "joint 'pin' (angle)" and fields[4] == "-"
+    assert float(fields[5]) == 0.0
     assert float(fields[2]) == pytest.approx(omega_exact / (2 * math.pi), rel=1e-5)  # 6 digits printed
     assert float(fields[3]) == pytest.approx(omega_exact, rel=1e-5)
 
@@ -99,15 +105,28 @@ def test_a_body_on_a_ball_joint_spins_freely_and_swings_about_both_horizontal_ax
     assert code == 0, err
     table = rows(out)
     assert [table[i][1] for i in range(3)] == ["rigid-body", "vibration", "vibration"]
-    assert table[0][2] == table[0][3] == "0" and table[0][4] == "-"
+    assert table[0][2] == table[0][3] == table[0][4] == table[0][5] == "-"
     expected = sorted(math.sqrt(BALL_MASS * G * BALL_L / (I + BALL_MASS * BALL_L**2)) for I in BALL_INERTIA[:2])
     for i, omega in zip((1, 2), expected):
         assert float(table[i][2]) == pytest.approx(omega / (2 * math.pi), rel=1e-5)
         assert float(table[i][3]) == pytest.approx(omega, rel=1e-5)
-    # in space's coordinates: the spin about the vertical turns the Euler parameter e3
-    assert table[0][-1] == "bob.e3" and {table[1][-1], table[2][-1]} <= {f"bob.{c}" for c in
-                                                                         ("x", "y", "z", "e0", "e1", "e2", "e3")}
-    assert "rigid-body: a motion nothing resists" in out
+    # no revolute joint: the body's turn about the global axes (a spherical joint has no angle)
+    assert table[0][-1] == "bob turns about z" and {table[1][-1], table[2][-1]} == {"bob turns about x",
+                                                                                  "bob turns about y"}
+    assert "rigid-body: a motion nothing resists (no frequency, no growth)" in out
+
+
+def test_an_unstable_mode_is_a_growth_rate_not_a_frequency(capsys, tmp_path):
+    """A rod pinned at its lower end, standing up: one unstable mode growing
+    as exp(sqrt(3 g / 2 L) t), printed under growth (1/s) with no frequency."""
+    scene = tmp_path / "inverted.toml"
+    scene.write_text(pendulum_scene(L=L, m=MASS, g=G, angle=math.pi / 2))
+    code, out, err = lagmb(capsys, "modes", scene)
+    assert code == 0, err
+    fields = rows(out)[0]
+    assert fields[1] == "unstable" and fields[2] == fields[3] == fields[5] == "-"
+    assert float(fields[4]) == pytest.approx(math.sqrt(3 * G / (2 * L)), rel=1e-5)
+    assert "it grows as exp(growth t), it does not vibrate" in out
 
 
 def test_count_lists_the_lowest_and_at_time_is_the_equilibrium_s_time(capsys, tmp_path):

@@ -74,6 +74,44 @@ class Modes:
     def __len__(self):
         return len(self.omega)
 
+    def moves_most(self, i):
+        """What mode ``i`` moves most, in words a user reads: a joint where
+        the model has revolute, translational or cylindrical joints (the one
+        whose angle changes most along the mode, else whose slide does:
+        "joint 'elbow' (angle)"), else a body's direction ("top turns about
+        x", "block moves along y"; a spatial body's turn from its Euler
+        parameters, omega = 2 (w dv - dw v + v x dv), about the global
+        axes)."""
+        from . import registry
+
+        eq = self.equilibrium
+        core, q, shape = eq._core, np.asarray(eq.q, dtype=float), np.asarray(self.shapes[i], dtype=float)
+        joints = []
+        model = eq._snapshot  # (the model as it was solved)
+        for kind, name, _ in model._spec.elements():
+            coordinates = registry.BY_NAME[kind].coordinates if kind in registry.BY_NAME else ()
+            if {"angle", "slide"} & set(coordinates):
+                joints.append((name, "angle" not in coordinates))
+        if joints:
+            rates = np.abs(core.joint_motions(joints, q, shape, np.zeros(core.run_state_size))[:, 1])
+            angles = [k for k, (_, slide) in enumerate(joints) if not slide]
+            pool = angles if angles and rates[angles].max() > 1e-9 * rates.max() else range(len(joints))
+            k = max(pool, key=lambda j: rates[j])
+            if rates[k] > 0:
+                return f"joint '{joints[k][0]}' ({'slide' if joints[k][1] else 'angle'})"
+        names = model.coordinate_names()
+        k = int(np.abs(shape).argmax())
+        body, coordinate = names[k].rsplit(".", 1)
+        if coordinate == "angle":
+            return f"{body} turns"
+        if coordinate in ("e0", "e1", "e2", "e3"):
+            at = names.index(f"{body}.e0")
+            w, v = q[at], q[at + 1:at + 4]
+            dw, dv = shape[at], shape[at + 1:at + 4]
+            turn = 2.0 * (w * dv - dw * v + np.cross(v, dv))
+            return f"{body} turns about {'xyz'[int(np.abs(turn).argmax())]}"
+        return f"{body} moves along {coordinate}"
+
     def __repr__(self):
         rows = ", ".join(f"{f:.4g} Hz ({k})" for f, k in zip(self.frequencies, self.kinds))
         return f"<lagmb.Modes: {len(self)} modes{': ' + rows if rows else ''}>"

@@ -100,22 +100,25 @@ def _modes_table(scene, found, t, count=None):
     lines = [f"{scene.path}: {n} mode{'' if n == 1 else 's'} about the {state} equilibrium at t = {t:g} s"]
     if not n:
         return lines + ["  no modes: every degree of freedom is driven, nothing can move"]
-    names = scene.model.coordinate_names()
-    head = ("mode", "kind", "frequency (Hz)", "omega (rad/s)", "damping ratio", "moves most")
+    head = ("mode", "kind", "frequency (Hz)", "omega (rad/s)", "growth (1/s)", "damping ratio", "moves most")
     rows = []
     for i in range(n if count is None else min(count, n)):
-        zeta, rigid = found.damping_ratios[i], found.kinds[i] == "rigid-body"  # its omega: round-off about 0
-        rows.append((str(i), found.kinds[i], "0" if rigid else f"{found.frequencies[i]:.6g}",
-                     "0" if rigid else f"{found.omega[i]:.6g}", "-" if math.isnan(zeta) else f"{zeta:.4g}",
-                     names[int(abs(found.shapes[i]).argmax())]))
+        kind, zeta = found.kinds[i], found.damping_ratios[i]
+        # a vibration has a frequency; an unstable mode a growth rate (exp(rate t)), not a
+        # frequency; a rigid-body mode neither (its omega: round-off about 0)
+        vibrates, grows = kind == "vibration", kind == "unstable"
+        rows.append((str(i), kind, f"{found.frequencies[i]:.6g}" if vibrates else "-",
+                     f"{found.omega[i]:.6g}" if vibrates else "-", f"{found.omega[i]:.6g}" if grows else "-",
+                     "-" if math.isnan(zeta) or not vibrates else f"{zeta:.4g}", found.moves_most(i)))
     width = [max(len(r[k]) for r in rows + [head]) for k in range(len(head))]
-    right = (True, False, True, True, True, False)
+    right = (True, False, True, True, True, True, False)
     for r in [head] + rows:
         lines.append("  " + "  ".join(c.rjust(w) if ok else c.ljust(w) for c, w, ok in zip(r, width, right)).rstrip())
     if len(rows) < n:
         lines.append(f"  the {len(rows)} lowest of {n} modes (--count)")
     if "unstable" in found.kinds[:len(rows)]:
-        lines.append("  unstable: the equilibrium is unstable in this mode; omega is the rate exp(omega t) it grows at")
+        lines.append("  unstable: the equilibrium is unstable in this mode: it grows as exp(growth t), it does not "
+                     "vibrate")
     if "rigid-body" in found.kinds[:len(rows)]:
-        lines.append("  rigid-body: a motion nothing resists (frequency 0)")
+        lines.append("  rigid-body: a motion nothing resists (no frequency, no growth)")
     return lines
