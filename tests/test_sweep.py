@@ -55,6 +55,10 @@ def test_a_grid_gives_case_by_case_what_each_run_gives_alone():
     assert grid["peak"].dims == ("rod.mass", "crank.inertia", "slider.mass")
     assert grid["peak"].sel({"rod.mass": 2.5, "crank.inertia": 0.001, "slider.mass": 0.8}) == ds["peak"].values[5]
     assert ds.attrs["computed_cases"] == 8
+    # what the plots and tables label with: each varied parameter's unit, each built-in output's
+    assert ds["rod.mass"].attrs["units"] == "kg" and ds["crank.inertia"].attrs["units"] == "kg m^2"
+    assert ds["peak"].attrs["units"] == "N" and ds["torque"].attrs["units"] == "N m"  # the motor turns the crank
+    assert "units" not in ds["x_end"].attrs  # a function of the user's: no unit known
 
 
 def test_threads_processes_and_a_dask_cluster_give_the_in_process_numbers():

@@ -173,8 +173,10 @@ def test_plot_draws_one_subplot_per_output(capsys, tmp_path, monkeypatch):
     assert png.read_bytes()[:8] == PNG_MAGIC
     assert out.strip() == (f"{store}: 6 cases, 2 outputs (peak_reaction_B, peak_effort_motor) drawn in {png}")
     fig = figures[-1]
-    assert [ax.get_ylabel() for ax in fig.axes] == ["peak_reaction_B (N)", "peak_effort_motor"]
-    assert fig.axes[-1].get_xlabel() == "rod.mass"
+    # each axis with its unit, as the store recorded them (the motor drives an angle: N m)
+    assert [ax.get_ylabel() for ax in fig.axes] == ["peak_reaction_B (N)", "peak_effort_motor (N m)"]
+    assert fig.axes[-1].get_xlabel() == "rod.mass (kg)"
+    assert fig.axes[0].get_legend().get_title().get_text() == "rtol"  # (a tolerance has no unit)
     assert "3 failed cases left out" in fig._suptitle.get_text()
     # a line per value of the second parameter with ok cases: rtol 1e-16's all failed
     assert [line.get_label() for line in fig.axes[0].lines] == ["1e-06"]
@@ -183,6 +185,16 @@ def test_plot_draws_one_subplot_per_output(capsys, tmp_path, monkeypatch):
     code, out, err = lagmb(capsys, "sweep", "--plot", store)
     assert code == 0, err
     assert (tmp_path / "study.png").read_bytes()[:8] == PNG_MAGIC
+
+
+def test_a_fully_driven_scene_says_why_it_takes_no_steps(capsys):
+    """The slider-crank is driven in its one degree of freedom: each output
+    is a kinematic solve, and the table's "steps 0" comes with that reason."""
+    code, out, err = lagmb(capsys, "sweep", SCENE, "--vary", "rod.mass=1,2", "--t-end", T_END)
+    assert code == 0, err
+    head, rows = table(out)
+    assert head[-1] == "steps" and [row[-1] for row in rows] == ["0", "0"]
+    assert "steps 0: every degree of freedom is driven, so each output is solved from the drivers" in out
 
 
 def test_plot_sweep_draws_heat_maps_bands_and_designs(tmp_path):

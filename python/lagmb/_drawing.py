@@ -143,14 +143,23 @@ class Scene:
                          if names or role == "body")
 
     def effort_unit(self, name):
-        kind = self.kind_of.get(name)
-        kw = next((k for c, k in self.elements if k.get("name") == name), {})
-        if kind == "drive_body":
-            return "N m" if kw.get("coordinate") == "angle" else "N"
-        if "joint" in kw:  # a joint's driver or stop: along its coordinate
-            joint = self.kinds.get(self.kind_of.get(kw["joint"]))
-            return "N" if joint is not None and "slide" in joint.coordinates else "N m"  # (a cylindrical's driver slides)
-        return "N or N m"
+        return effort_unit(self.elements, self.kinds, name)
+
+
+def effort_unit(elements, kinds, name):
+    """The unit of a driver's, stop's or servo's effort (Result.effort):
+    "N m" along an angle, "N" along a slide or a body's x, y (z), from the
+    kind of what it drives (``elements``: Model.elements(); ``kinds``: the
+    registry's Model method -> Kind of the model's dimension); "N or N m"
+    where it cannot be told."""
+    kind_of = {kw["name"]: method for method, kw in elements}
+    kw = next((k for c, k in elements if k.get("name") == name), {})
+    if kind_of.get(name) == "drive_body":
+        return "N m" if kw.get("coordinate") == "angle" else "N"
+    if "joint" in kw:  # a joint's driver or stop: along its coordinate
+        joint = kinds.get(kind_of.get(str(kw["joint"])))
+        return "N" if joint is not None and "slide" in joint.coordinates else "N m"  # (a cylindrical's driver slides)
+    return "N or N m"
 
 
 def _inertia_tensor(inertia, dimension):

@@ -36,6 +36,9 @@ from .progress import Progress
 from .simulation import WARNINGS_INTO, simulate
 
 # the settings a case may vary beside the model's parameters (simulate's keywords)
+#: the units of the run settings a sweep may vary (the others are numbers without one, or names)
+_SETTING_UNITS = {"t_end": "s", "max_step": "s"}
+
 RUN_SETTINGS = ("t_end", "rtol", "atol", "method", "formulation", "integrator", "analysis", "start", "max_step",
                 "n_out", "max_steps")
 _CASE_BYTES = 2500  # memory a case takes: its dict, the checked copy, its record, its row (measured)
@@ -61,6 +64,12 @@ class Final:
             raise ModelError(f"final: no coordinate {output.base!r} (body {body!r} has {has})")
         return float((r.v if output.rate else r.q)[-1, names.index(output.base)])
 
+    def unit(self, model):
+        """m, rad (or 1 for an Euler parameter), per s for a rate."""
+        output = _output_names.parse(self.coordinate)
+        unit = {"x": "m", "y": "m", "z": "m", "angle": "rad"}.get(output.base.rpartition(".")[2], "")
+        return (f"{unit}/s" if unit else "1/s") if output.rate else unit
+
     def __repr__(self):
         return f"final({self.coordinate!r})"
 
@@ -78,18 +87,29 @@ class PeakReaction:
         force = R[:, :3] if R.shape[1] == 6 else R[:, :2]
         return float(np.linalg.norm(force, axis=1).max())
 
+    def unit(self, model):
+        return "N"
+
     def __repr__(self):
         return f"peak_reaction({self.element!r})"
 
 
 class PeakEffort:
-    """The largest magnitude of a driver's effort over the run (N or N m)."""
+    """The largest magnitude of a driver's effort over the run (N along a
+    slide or a body's x, y, z; N m along an angle)."""
 
     def __init__(self, driver):
         self.driver = str(driver)
 
     def __call__(self, r):
         return float(np.abs(r.effort(self.driver)).max())
+
+    def unit(self, model):
+        from . import registry
+        from ._drawing import effort_unit
+
+        kinds = registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD
+        return effort_unit(model.elements(), kinds, self.driver)
 
     def __repr__(self):
         return f"peak_effort({self.driver!r})"
@@ -102,6 +122,9 @@ class EnergyDrift:
     def __call__(self, r):
         E = r.energy
         return float(np.abs(E - E[0]).max())
+
+    def unit(self, model):
+        return "J"
 
     def __repr__(self):
         return "energy_drift()"
@@ -472,8 +495,10 @@ def _run_batch(text, first, cases, settings, outputs, t_out):
 # --- the Dataset ---------------------------------------------------------------------
 
 
-def _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, indices=None):
-    """The cases' records as an xarray.Dataset indexed by case."""
+def _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, indices=None, units=None):
+    """The cases' records as an xarray.Dataset indexed by case; each varied
+    parameter's and output's unit (``units``: {name: unit}) in its
+    ``attrs["units"]``."""
     import xarray as xr
 
     indices = list(range(len(cases))) if indices is None else list(indices)
@@ -512,6 +537,9 @@ def _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, indi
                 q[row] = h
         data["q"] = (("case", "time", "coordinate"), q)
     ds = xr.Dataset(data, coords=coords)
+    for name, unit in (units or {}).items():
+        if unit and name in ds.variables:
+            ds[name].attrs["units"] = unit
     ds.attrs["grid"] = _grid_text(grid)
     return ds
 
@@ -726,16 +754,21 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
         made_of = _made_of(text, cases, run_settings, outputs, t_out)
         held = Store(store, description(made_of, n, batch_size, outputs, _grid_text(grid)),
                      who)  # locked until the sweep ends
+    # the units the Dataset's variables carry (attrs["units"]): the varied parameters' and the
+    # built-in outputs' (a function of the user's has none)
+    units = {p["name"]: p["unit"] for p in model.parameter_info() if p["name"] in names}
+    units.update({name: unit for name, unit in _SETTING_UNITS.items() if name in names})
+    units.update({name: f.unit(model) for name, f in outputs.items() if hasattr(f, "unit")})
     try:
         return _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordinate_names, executor,
-                      batch_size, progress, who)
+                      batch_size, progress, who, units)
     finally:
         if held is not None:
             held.close()
 
 
 def _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordinate_names, executor, batch_size,
-           progress, who):
+           progress, who, units):
     """sweep's runs, its arguments checked (and its store, if any, locked)."""
     n = len(cases)
     done = set()
@@ -766,7 +799,8 @@ def _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordin
             records[i] = record
         b, first, last = batch
         if held is not None:
-            part = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, range(first, last))
+            part = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, range(first, last),
+                            units)
             writes.append(writer.submit(held.write, b, first, last, part))
             for i in range(first, last):  # in the store now: the final Dataset is read from there
                 del records[i]
@@ -839,7 +873,7 @@ def _sweep(held, text, cases, names, grid, run_settings, outputs, t_out, coordin
         ds = read(held.path, held.held, whole, damaged, who, "left out (written wrong just now: the sweep run "
                    "again computes them)", stacklevel=3)
     else:
-        ds = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names)
+        ds = _dataset(cases, records, names, outputs, grid, t_out, coordinate_names, units=units)
     ds.attrs["computed_cases"] = computed
     return ds
 

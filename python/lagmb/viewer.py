@@ -29,7 +29,8 @@ import numpy as np
 
 from . import _checks, _output_names, _rotations, registry
 from ._checks import show
-from ._drawing import Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line, trace_points
+from ._drawing import (Scene, effort_unit, mode_amplitude, outline_shape, posed, shape_faces, stats_line,
+                       trace_points)
 from .errors import ModelError
 
 _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
@@ -232,7 +233,8 @@ def _output_series(result, name):
                 k = components.index(c)
                 return np.asarray(result.reaction(element)[:, k], dtype=float), "N m" if c.startswith("torque") else "N"
         if not out.rate and what == "effort" and registry.is_driver(core, element):
-            return np.asarray(result.effort(element), dtype=float), "N or N m"
+            kinds = registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD
+            return np.asarray(result.effort(element), dtype=float), effort_unit(model.elements(), kinds, element)
         if what in _output_names.JOINT_COORDINATES and core.joint_coordinate(element) is not None:
             path = result.joint(element)
             values = path.rate if out.rate else getattr(path, what, None)

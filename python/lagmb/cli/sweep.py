@@ -162,6 +162,10 @@ def handle(args):
           + f"), {span}, {where}")
     for line in _table(ds, list(grid), list(outputs)):
         print(line)
+    if not outputs and (ds["steps"].values[ds["status"].values == "ok"] == 0).all() and \
+            (ds["status"].values == "ok").any():
+        print("  steps 0: every degree of freedom is driven, so each output is solved from the drivers "
+              "(kinematic analysis), with no integration steps")
     computed = int(ds.attrs.get("computed_cases", n))
     line = f"  computed {computed} of {_count(n, 'case')} in {elapsed:.2f} s"
     if store and computed < n:

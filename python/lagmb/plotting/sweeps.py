@@ -40,8 +40,9 @@ class _Varied:
     order and where each goes on an axis (numbers as they are, else in
     order: a text such as a method's name)."""
 
-    def __init__(self, name, values):
+    def __init__(self, name, values, unit=None):
         self.name = name
+        self.label = f"{name} ({unit})" if unit else name
         self.numeric = np.issubdtype(values.dtype, np.number)
         if self.numeric:
             self.values = values.astype(float)
@@ -64,7 +65,7 @@ class _Varied:
 
     def axis(self, ax, which="x"):
         """Label (and scale, or the texts' ticks) of the x or y axis."""
-        getattr(ax, f"set_{which}label")(self.name)
+        getattr(ax, f"set_{which}label")(self.label)
         if self.log:
             getattr(ax, f"set_{which}scale")("log")
         if not self.numeric:
@@ -81,7 +82,7 @@ def _sweep_parameters(ds):
     names += [c for c in ds.coords if c not in names and c != "case" and ds[c].dims == ("case",)]
     varied, fixed = [], {}
     for name in names:
-        p = _Varied(name, ds[name].values)
+        p = _Varied(name, ds[name].values, ds[name].attrs.get("units"))
         if len(p.distinct) > 1:
             varied.append(p)
         elif p.distinct:
@@ -89,8 +90,11 @@ def _sweep_parameters(ds):
     return varied, fixed
 
 
-def _sweep_label(name):
-    """An axis label for an output as lagmb sweep names them, with its unit."""
+def _sweep_label(name, unit=None):
+    """An axis label for an output, with its unit: the one the sweep
+    recorded (attrs["units"]), else from the name lagmb sweep gave it."""
+    if unit:
+        return f"{name} ({unit})"
     if name.startswith("peak_reaction_"):
         return f"{name} (N)"
     if name == "energy_drift":
@@ -166,13 +170,13 @@ def plot_sweep(ds, path=None, outputs=None, *, dpi=120):
         elif len(varied) == 1 or (len(varied) == 2 and grid and not heat):
             note = _sweep_lines(ax, varied, y, use, legend=k == 0)
         elif heat:
-            _sweep_heat(fig, ax, varied, y, use, name)
+            _sweep_heat(fig, ax, varied, y, use, name, ds[name].attrs.get("units"))
         elif grid:
             note = _sweep_band(ax, varied, y, use, legend=k == 0)
         else:
             note = _sweep_points(fig, ax, varied, y, use, name)
         if not heat:
-            ax.set_ylabel(_sweep_label(name))
+            ax.set_ylabel(_sweep_label(name, ds[name].attrs.get("units")))
             _sweep_flat(ax, y[use])
             ax.grid(alpha=0.3)
     if varied:
@@ -211,7 +215,7 @@ def _sweep_lines(ax, varied, y, use, legend):
         order = np.argsort(x[mask], kind="stable")
         ax.plot(x[mask][order], y[mask][order], "o-", ms=3.5, lw=1.5, color=_colour(i), label=second.text(v))
     if legend:
-        _legend(ax, title=second.name)
+        _legend(ax, title=second.label)
     return ""
 
 
@@ -242,14 +246,14 @@ def _sweep_points(fig, ax, varied, y, use, name):
     dots = ax.scatter(first.positions()[use], y[use], c=colours[use], s=14, cmap="viridis",
                       norm=LogNorm() if second.log else None)
     bar = fig.colorbar(dots, ax=ax, pad=0.01)
-    bar.set_label(second.name)
+    bar.set_label(second.label)
     if not second.numeric:
         bar.set_ticks(range(len(second.distinct)), labels=[str(v) for v in second.distinct])
     others = ", ".join(p.name for p in varied[2:])
     return f"also varied: {others}" if others else ""
 
 
-def _sweep_heat(fig, ax, varied, y, use, name):
+def _sweep_heat(fig, ax, varied, y, use, name, unit):
     """The grid of two parameters as a heat map of y."""
     first, second = varied
     xs, ys = first.positions(first.distinct), second.positions(second.distinct)
@@ -260,7 +264,7 @@ def _sweep_heat(fig, ax, varied, y, use, name):
         z[row[yv], col[xv]] = value
     mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(z), shading="nearest", cmap="viridis")
     bar = fig.colorbar(mesh, ax=ax, pad=0.01)
-    bar.set_label(_sweep_label(name))
+    bar.set_label(_sweep_label(name, unit))
     second.axis(ax, "y")
     ax.set_title(name, fontsize=9)
 
