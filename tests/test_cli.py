@@ -447,6 +447,33 @@ def test_progress_shows_after_the_delay_on_a_terminal_only():
     assert quiet.text == pipe.text == late.text == ""
 
 
+def test_the_progress_line_estimates_the_time_left_at_the_pace_so_far(monkeypatch):
+    """Without tqdm: the line says the time reached, the percentage, the time
+    elapsed and, from a tenth of the span on, about how long is left at the
+    pace so far (elapsed x (span - done) / done); not before."""
+    import builtins
+
+    from lagmb import progress
+
+    real_import = builtins.__import__
+    monkeypatch.setattr(builtins, "__import__", lambda name, *a, **k: (_ for _ in ()).throw(ImportError(name))
+                        if name == "tqdm" else real_import(name, *a, **k))
+    clock = [100.0]
+    monkeypatch.setattr(progress.time, "monotonic", lambda: clock[0])
+    tty = _Stream(True)
+    p = Progress(0.0, 10.0, delay=0.0, stream=tty)
+    clock[0] = 102.0
+    p(0.5)  # 5 %: too early to tell
+    assert "t = 0.5 of 10 s (  5%), 2.0 s elapsed " in tty.text and "left" not in tty.text
+    clock[0] = 104.0
+    p(2.0)  # 20 % in 4 s: 16 s to go
+    assert tty.text.endswith("t = 2 of 10 s ( 20%), 4.0 s elapsed, about 16 s left ")
+    clock[0] = 400.0
+    p(4.0)  # 40 % in 300 s: 450 s = 7.5 min to go
+    assert "about 8 min left" in tty.text
+    p.close()
+
+
 KINEMATIC_SCENE = pendulum_scene(m=0.0) + """
 [[drivers]]
 type = "joint"

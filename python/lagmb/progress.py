@@ -67,7 +67,9 @@ class Progress:
                 where = f"t = {self.t0 + done:.6g} of {self.t_end:.6g} s"
             else:
                 where = f"{self.t0 + done:.0f} of {self.t_end:.0f} {self.unit}"
-            self.stream.write(f"\r  {label}{where} ({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed ")
+            text = f"\r  {label}{where} ({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed{_left(elapsed, done, span)} "
+            self._width = max(getattr(self, "_width", 0), len(text))
+            self.stream.write(text.ljust(self._width))
             self.stream.flush()
 
     def close(self):
@@ -76,7 +78,7 @@ class Progress:
             self._bar.close()
             self._bar = None
         elif self._line:
-            self.stream.write("\r" + " " * 70 + "\r")
+            self.stream.write("\r" + " " * max(70, getattr(self, "_width", 0)) + "\r")
             self.stream.flush()
             self._line = False
 
@@ -86,3 +88,18 @@ class Progress:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+def _left(elapsed, done, span):
+    """", about 12 s left": the time still to go at the pace so far (a
+    run's steps may speed up or slow down: an estimate, said as one);
+    nothing before a tenth of the span is done (too early to tell)."""
+    if not done >= 0.1 * span or done >= span:
+        return ""
+    left = elapsed * (span - done) / done
+    if left < 90.0:
+        return f", about {left:.0f} s left"
+    if left < 5400.0:
+        return f", about {left / 60.0:.0f} min left"
+    return f", about {left / 3600.0:.1f} h left"
+
