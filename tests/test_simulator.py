@@ -524,3 +524,21 @@ def test_a_simulator_does_not_pickle_and_says_what_to_send_instead():
     r = pickle.loads(pickle.dumps(sim.result()))
     assert np.array_equal(r.q[-1], sim.q) and r.t[-1] == sim.t
     assert pickle.loads(pickle.dumps(sim.model)).parameters() == sim.model.parameters()
+
+
+def test_the_wall_time_is_the_time_spent_advancing():
+    """stats["wall_time"] (and a result's, which the viewer's header shows):
+    the seconds spent in advance, summed; it grows with each advance and is
+    not the 0 it was (nothing measured it)."""
+    import time
+
+    sim = mb.Simulator(pendulum())
+    assert sim.stats["wall_time"] == 0.0
+    start = time.perf_counter()
+    sim.advance(0.5)
+    spent = time.perf_counter() - start
+    first = sim.stats["wall_time"]
+    assert 0.0 < first <= spent
+    sim.advance(1.0)
+    assert sim.stats["wall_time"] > first
+    assert sim.result().stats["wall_time"] == sim.stats["wall_time"]

@@ -1486,3 +1486,17 @@ def test_the_list_of_robots_that_do_not_fall_onto_their_limits_is_of_files_that_
     with their limits held (the slow test above checks each)."""
     assert set(NOT_FALLING) <= set(URDFS)
     assert (len(URDFS), len(URDFS) - len(NOT_FALLING)) == (69, 66)
+
+
+def test_a_robot_is_named_as_its_file_names_it(tmp_path):
+    """load_urdf's model carries the <robot name=...> (what the viewer's
+    page and pictures are titled by); pickling keeps it."""
+    import pickle
+
+    from builders import ARM_URDF
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM_URDF)
+    model = mb.load_urdf(str(path))
+    assert model.name == "arm"
+    assert pickle.loads(pickle.dumps(model)).name == "arm"

@@ -463,3 +463,35 @@ def test_contact_forces_are_drawn_as_arrows(chromium, tmp_path):
     page.close()
     with pytest.raises(mb.ModelError, match="lagmb.view: forces"):
         view(r, tmp_path / "x.html", forces="yes")
+
+
+def _page_data(path):
+    """The JSON the page draws from (its title, plots and their units)."""
+    import json
+    import re
+
+    text = Path(path).read_text()
+    return json.loads(re.search(r'<script type="application/json" id="lagmb-data">(.*?)</script>', text, re.S)[1])
+
+
+def test_a_page_is_titled_by_its_model_and_an_effort_by_its_unit(tmp_path):
+    """The page's title: the model's name (a scene file's, a robot's,
+    Model(name=...)), else what the model is made of, never a bare "lagmb";
+    an effort's plot is labelled N m for a driven angle and N for a driven
+    slide (from what the driver drives), not "N or N m"."""
+    r = mb.load_scene(EXAMPLES / "slider_crank.toml").run(t_end=0.2, n_out=11)
+    view(r, tmp_path / "sc.html", outputs=["motor.effort"])
+    data = _page_data(tmp_path / "sc.html")
+    assert data["title"] == "slider_crank" and "<title>slider_crank</title>" in (tmp_path / "sc.html").read_text()
+    assert data["plots"][0]["unit"] == "N m"
+    unnamed = mb.simulate(pendulum(), 0.2, n_out=5)
+    view(unnamed, tmp_path / "p.html")
+    assert _page_data(tmp_path / "p.html")["title"] == "lagmb: 1 body, 1 joint"
+    m = mb.Model(gravity=(0.0, -9.81), name="lift")
+    block = m.add_body("block", 1.0, 0.1)
+    m.add_translational("guide", m.ground, block, at=(0.0, 0.0), axis=(0.0, 1.0))
+    m.drive_joint("jack", "guide", mb.Linear(0.1))
+    view(mb.simulate(m, 0.2, n_out=5), tmp_path / "lift.html", outputs=["jack.effort"])
+    data = _page_data(tmp_path / "lift.html")
+    assert data["title"] == "lift" and data["plots"][0]["unit"] == "N"
+    assert m.copy().name == "lift"

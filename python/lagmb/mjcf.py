@@ -177,7 +177,8 @@ def load_mjcf(path, *, contacts="warn", contact=None):
 
     joint_value = {}  # MuJoCo joint id -> (its name in the model, its value at qpos0): hinges and slides
     gravity = np.zeros(3) if disabled(off.mjDSBL_GRAVITY) else m.opt.gravity
-    model = Model(gravity=tuple(float(g) for g in gravity), dimension=3)
+    model = Model(gravity=tuple(float(g) for g in gravity), dimension=3,
+                  name=os.path.splitext(os.path.basename(str(path)))[0])
     for b in range(1, m.nbody):
         if group[b] != b:
             continue

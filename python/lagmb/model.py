@@ -28,7 +28,9 @@ class Model:
     unit quaternion kept so by one constraint equation per body. Points are
     global, in the initial configuration, unless the argument name says
     ``local``. Every body and element has a unique name. Gravity is absent
-    unless given: (gx, gy) in the plane, (gx, gy, gz) in space.
+    unless given: (gx, gy) in the plane, (gx, gy, gz) in space. ``name``:
+    what pictures and pages call the model (load_urdf: the robot's name,
+    load_scene: the file's, load_mjcf: the model's); None: unnamed.
 
     Every add_* and drive_* method returns the handle of what it added
     (mb.Handle; mb.Body for bodies and particles, ``ground`` for the
@@ -37,10 +39,13 @@ class Model:
     r.reaction(pin)``.
     """
 
-    def __init__(self, gravity=None, dimension=2):
+    def __init__(self, gravity=None, dimension=2, name=None):
         if isinstance(dimension, bool) or dimension not in (2, 3):
             raise ModelError(f"dimension must be 2 (planar) or 3 (spatial), got {show(dimension)}")
+        if name is not None and not isinstance(name, str):
+            raise ModelError(f"name must be a text or None, got {show(name)}")
         self.dimension = int(dimension)
+        self.name = name
         # the description, the one copy of the model (elements() reads it back);
         # compiled() gives the immutable core Model
         self._spec = _core.ModelSpec(self.dimension)
@@ -72,6 +77,7 @@ class Model:
         other.ground = Body("ground", other, -1)
         other.gravity = self.gravity
         other.dimension = self.dimension
+        other.name = self.name
         other._frames, other._shapes = dict(self._frames), list(self._shapes)
         other._hulls = dict(self._hulls)
         other._annotations = list(self._annotations)
@@ -85,7 +91,7 @@ class Model:
         and the elements, replayed on a new Model (time functions by their
         fields, a Python callable by pickle's rules: a module-level function
         travels, a lambda does not). Handles and results stay with this one."""
-        return _rebuilt, (self.gravity, self.dimension, self.elements(), tuple(self._annotations))
+        return _rebuilt, (self.gravity, self.dimension, self.elements(), tuple(self._annotations), self.name)
 
     # --- building --------------------------------------------------------
 
@@ -572,9 +578,9 @@ _CHECKS = {
 }
 
 
-def _rebuilt(gravity, dimension, elements, annotations=()):
+def _rebuilt(gravity, dimension, elements, annotations=(), name=None):
     """A Model from what Model.__reduce__ gives."""
-    model = Model(gravity=gravity, dimension=dimension)
+    model = Model(gravity=gravity, dimension=dimension, name=name)
     for method, kwargs in list(elements) + list(annotations):
         getattr(model, method)(**kwargs)
     return model

@@ -688,7 +688,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         except ModelError as e:
             reader.fail(element, str(e), owner)
 
-    model = Model(gravity=tuple(gravity), dimension=3)
+    model = Model(gravity=tuple(gravity), dimension=3, name=reader.root.attrib.get("name") or None)
     aliased = []  # (the file's name, the model's) of each joint named like a link
     for first, members in groups.items():
         if first == ground:

@@ -428,7 +428,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     ``trace``: points drawn as lines up to the current time, as
     :func:`lagmb.plotting.animate` takes them ((body, local point), a body,
     an element, "body:x,y", or a list). ``title``: the page's (default: the
-    bodies and the method). ``max_frames``: outputs beyond it are thinned
+    model's name, Model.name, else its bodies and elements counted). ``max_frames``: outputs beyond it are thinned
     evenly (the page holds 7 float32 numbers per body per frame). ``loop``:
     playing starts again at the end (:func:`view_mode`); ``lines``: the
     text under the title (default: the bodies, the method and its counts).
@@ -468,6 +468,8 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         lines = _texts(lines, "lagmb.view: lines")
     model = result.model
     scene = Scene(result)
+    if title is None:  # the model's name (a robot's, a scene file's), else what it is made of
+        title = model.name or f"lagmb: {scene.summary()}"
     dimension = scene.dimension
     k_all = len(result.t)
     frames = np.arange(k_all) if k_all <= max_frames else np.unique(np.linspace(0, k_all - 1, max_frames).round()
@@ -623,7 +625,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     if contacts:
         lines = list(lines) + [force_line]
     data = {
-        "title": title or "lagmb", "lines": lines, "dimension": dimension, "size": size, "up": up,
+        "title": title, "lines": lines, "dimension": dimension, "size": size, "up": up,
         "grid": {"size": float(2.0 * size), "divisions": 20, "center": [float(x) for x in grid_center],
                  "normal": [float(x) for x in grid_normal]},
         "camera": {"target": [float(x) for x in center], "position": [float(x) for x in camera]},
@@ -632,7 +634,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         "loop": bool(loop),
     }
     template = (importlib.resources.files("lagmb") / "viewer.html").read_text(encoding="utf-8")
-    page = _fill(template, {"TITLE": html.escape(title or "lagmb"), "THREE": _three_js(),
+    page = _fill(template, {"TITLE": html.escape(title), "THREE": _three_js(),
                             "DATA": _script_json(data), "POSES": _b64(poses)})
     if path is None:
         return View(page, None)

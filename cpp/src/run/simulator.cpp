@@ -1,5 +1,6 @@
 #include "lagmb/run/simulator.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -211,6 +212,12 @@ void Simulator::advance(double target) {
 
   run_->data.run->inputs = inputs_;  // what the run's kernels read from here on
   const int first_new = run_->outputs.size();
+  // the wall time of this advance into the stats' sum, however it ends
+  struct Timed {
+    double& sum;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    ~Timed() { sum += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+  } timed{wall_};
   size_t k = 0;
   auto record = [&](const double* q, const double* v) {
     run_->record(t_out[k], q, v, true);
@@ -319,6 +326,10 @@ Stats Simulator::stats() const {
   return stats_now();
 }
 
-Stats Simulator::stats_now() const { return run_->stats(); }
+Stats Simulator::stats_now() const {
+  Stats s = run_->stats();
+  s.wall_time = wall_;
+  return s;
+}
 
 }  // namespace lagmb

@@ -354,6 +354,8 @@ class Reader:
             self.add(model, table, i, entry)
         settings = self.read_settings(data.get("simulation", {}))
         output = self.read_output(data.get("output", {}))
+        if self.path and model.name is None:  # (what pictures and pages call it)
+            model.name = os.path.splitext(os.path.basename(str(self.path)))[0]
         return Scene(model, settings, output, self.path, self.elements, self.lines)
 
     def read_model(self, table):

@@ -99,7 +99,8 @@ class Simulator {
   void set_state(const SimulatorState& s);
 
   /// The outputs so far (a and lam solved at each), the events handled and
-  /// the solver counts summed over every restart (a copy).
+  /// the solver counts summed over every restart (a copy); wall_time: the
+  /// seconds spent in advance, summed.
   Trajectory result() const;
   Stats stats() const;
   /// Why the last advance failed ("" if it did not).
@@ -140,6 +141,7 @@ class Simulator {
   bool solved_ = false;  // a_, lam_ at t_
   VecX inputs_, inputs_integrated_;  // set, and what the integrator runs with
   bool fresh_ = true;  // a new stepper at the next advance
+  double wall_ = 0.0;  // s spent in advance, summed (the stats' wall_time)
   std::string failure_;
   mutable std::recursive_mutex busy_;
   mutable bool running_ = false;  // inside a call that runs model functions
