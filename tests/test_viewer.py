@@ -495,3 +495,25 @@ def test_a_page_is_titled_by_its_model_and_an_effort_by_its_unit(tmp_path):
     data = _page_data(tmp_path / "lift.html")
     assert data["title"] == "lift" and data["plots"][0]["unit"] == "N"
     assert m.copy().name == "lift"
+
+
+def test_a_conserved_energy_is_drawn_as_its_change_and_flat_to_round_off(chromium, tmp_path):
+    """The energy's plot: E - E(t0), with a note giving E(t0) and the drift;
+    a run that conserves energy to round-off (the explicit method on a
+    pendulum: |E - E(t0)| ~ 1e-14 J) spans at least 1e-9 of the largest
+    kinetic energy, so it is drawn flat, not as round-off steps across the
+    whole plot (the UR5's "14.69 ... 14.69" staircase)."""
+    r = mb.simulate(pendulum(), 1.0, n_out=101, method="projection-erk", rtol=1e-10, atol=1e-12)
+    path = tmp_path / "energy.html"
+    view(r, path, outputs=["energy"])
+    plot = _page_data(path)["plots"][0]
+    drift = float(np.max(np.abs(r.energy - r.energy[0])))
+    assert plot["name"] == "energy" and plot["label"] == "energy change E - E(t0)" and plot["unit"] == "J"
+    assert plot["note"].startswith(f"E(t0) = {r.energy[0]:.6g} J; drift max |E - E(t0)| = {drift:.2g} J")
+    kinetic = 0.5 * 1.0 / 3.0 * np.max(r.body("rod").angular_velocity ** 2)  # J_pin w^2 / 2, J_pin = m L^2 / 3
+    assert plot["scale"] == pytest.approx(kinetic, rel=1e-3)
+    page, _ = open_page(chromium, path)
+    lo, hi = page.evaluate("lagmbViewer.state().ranges")[0]
+    assert hi - lo == pytest.approx(1e-9 * plot["scale"], rel=1e-6) and drift < 1e-3 * (hi - lo)
+    assert "drift max |E - E(t0)|" in page.evaluate("document.querySelector('.plot .note').textContent")
+    page.close()

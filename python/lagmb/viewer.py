@@ -71,6 +71,25 @@ _SCRIPT_SAFE = {ord("<"): "\\u003c", ord(">"): "\\u003e", ord("&"): "\\u0026", 0
 _PLACEHOLDER = re.compile(r"%%([A-Z]+)%%")
 
 
+def _energy_plot(result, energy, frames):
+    """The energy's plot as its change from the start, E - E(t0): drawn
+    whole, a conserved energy's round-off and integration error would fill
+    the plot's height as steps around a constant. Its scale (what the
+    page's least span of a plot, 1e-9 of it, is measured against): the
+    energy the run exchanges, its largest kinetic energy (or |E| if
+    larger). The note says E(t0) and the drift (largest |E - E(t0)|, and as
+    a fraction of that scale)."""
+    e0 = float(energy[0])
+    change = np.asarray(energy, dtype=float) - e0
+    drift = float(np.max(np.abs(change)))
+    core = result._core
+    kinetic = max((core.kinetic_energy(result.q[k], result.v[k]) for k in frames), default=0.0)
+    scale = max(float(np.max(np.abs(energy))), float(kinetic))
+    share = f", {drift / scale:.1g} of the largest kinetic energy" if scale > 0.0 else ""
+    return {"label": "energy change E - E(t0)", "values": _b64(change[frames]), "scale": scale,
+            "note": f"E(t0) = {e0:.6g} J; drift max |E - E(t0)| = {drift:.2g} J{share}"}
+
+
 def _script_json(data):
     """data as JSON text that is safe inside a <script> element."""
     try:
@@ -489,15 +508,18 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         for body, local in scene.attachments(name):
             if body == "ground":
                 points.append(np.atleast_2d(local))
-    cloud = np.vstack([np.pad(np.asarray(p, dtype=float), ((0, 0), (0, 3 - np.shape(p)[1]))) for p in points])
-    reach = 0.0  # how far a body's drawing reaches from its centre
-    for body in bodies:
-        for p in scene.outlines.get(body, []):
-            reach = max(reach, float(np.linalg.norm(p)))
+    points = [np.pad(np.asarray(p, dtype=float), ((0, 0), (0, 3 - np.shape(p)[1]))) for p in points]
+    # each body's path widened by how far its own drawing reaches from its
+    # centre (not every body's by the farthest reach of any: one inflated
+    # inertia box made a robot small in a large frame)
+    for i, body in enumerate(bodies):
+        reach = max([float(np.linalg.norm(p)) for p in scene.outlines.get(body, [])], default=0.0)
         S = scene.second_moment(body) if dimension == 3 else None
         if S is not None:
             reach = max(reach, float(np.sqrt(3.0 * max(np.trace(S), 0.0) / scene.mass[body])))
-    cloud = np.vstack([cloud - reach, cloud + reach]) if reach > 0.0 else cloud
+        if reach > 0.0:
+            points[i] = np.vstack([points[i] - reach, points[i] + reach])
+    cloud = np.vstack(points)
     low, high = cloud.min(axis=0), cloud.max(axis=0)
     size = float(max(np.linalg.norm(high - low), 1e-3))
     width = 0.02 * size
@@ -596,7 +618,10 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     for name in outputs:
         values, unit = _output_series(result, name)
         _drawable(values[frames], f"output {name!r}", t)
-        plots.append({"name": name, "unit": unit, "values": _b64(values[frames])})
+        plot = {"name": name, "unit": unit, "values": _b64(values[frames])}
+        if name == "energy":  # what can be judged: the change from the start, and the drift in numbers
+            plot.update(_energy_plot(result, values, frames))
+        plots.append(plot)
 
     # the camera and the ground
     if dimension == 2:
