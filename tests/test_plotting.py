@@ -24,7 +24,7 @@ import pytest
 import lagmb as mb
 from lagmb import _drawing, _meshes, plotting
 from lagmb.plotting import frames as gif_frames, planar as planar_drawing, spatial as spatial_drawing
-from builders import gif_durations, hinged_rod_with_mesh
+from builders import gif_durations, hinged_rod_with_mesh, pendulum
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples")
@@ -768,3 +768,34 @@ def test_an_animation_draws_a_plane_as_a_floor_under_the_bodies(mpl):
     assert np.allclose(square[:, 2], 0.0)
     view_width = ax.get_xlim()[1] - ax.get_xlim()[0]
     assert abs(np.ptp(square[:, 0]) - 0.9 * view_width) <= 1e-9 * view_width
+
+
+def test_a_robot_s_histories_are_its_joints(mpl, tmp_path):
+    """plot_result of a spatial model with revolute joints (a URDF arm):
+    the joint angles (rad) and rates (rad/s) as r.joint reads them, not the
+    bodies' centres of mass and turns; the title names the robot. A planar
+    model keeps its bodies' coordinates. A series constant to round-off is
+    drawn flat in a span of 1e-9 of its size, not magnified."""
+    from builders import ARM_URDF
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM_URDF)
+    r = mb.simulate(mb.load_urdf(str(path)), 0.5, n_out=51)
+    fig = plotting.plot_result(r, what=("coordinates",))
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert labels == ["joint angle (rad)", "joint rate (rad/s)"]
+    for line in fig.axes[0].lines:
+        assert np.array_equal(line.get_ydata(), r.joint(line.get_label()).angle)
+    for line in fig.axes[1].lines:
+        assert np.array_equal(line.get_ydata(), r.joint(line.get_label()).rate)
+    assert fig._suptitle.get_text().startswith("lagmb: arm (")
+    planar = plotting.plot_result(mb.simulate(pendulum(), 0.2, n_out=11), what=("coordinates",))
+    assert planar.axes[0].get_ylabel().startswith("centre of mass")
+    import matplotlib.figure
+
+    from lagmb.plotting.history import _least_span
+
+    ax = matplotlib.figure.Figure().add_subplot()
+    ax.plot([0.0, 1.0], [3e-16, -2e-16])
+    _least_span(ax, [np.array([3e-16, -2e-16])])
+    assert ax.get_ylim() == pytest.approx((-1e-9, 1e-9), abs=1e-12)

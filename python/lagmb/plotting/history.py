@@ -20,7 +20,11 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
 
     ``what`` picks among "coordinates" (centre-of-mass x, y (z) in m, and the
     angles in rad, on two subplots; in space the angle each body has turned
-    from its initial orientation), "reactions" (magnitude of each joint's
+    from its initial orientation; a spatial model with revolute,
+    translational or cylindrical joints that say how every body moves (a
+    robot from a URDF file) shows its joints instead: their angles (rad),
+    slides (m) and rates, as ``r.joint(name)`` reads them, and a floating
+    base's centre of mass), "reactions" (magnitude of each joint's
     reaction force, N), "efforts" (the drivers' forces or torques, and
     the stops' along their joints: 0 while a joint is off its limits),
     "energy" (change E - E(0) in J, with E(0) given) and "residual"
@@ -44,7 +48,27 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     t = np.asarray(result.t)
 
     panels = []  # functions that draw one subplot each
-    if "coordinates" in what and scene.bodies:
+    moving = _joint_coordinates(scene) if scene.dimension == 3 else []
+    if "coordinates" in what and moving:  # a robot: its joints, as its user reads it
+        free = [b for b in scene.bodies if b not in {str(kw["body_j"]) for _, kw in scene.elements if "body_j" in kw}]
+        if free:  # a floating base: where it is
+            panels.append(lambda ax: _positions(ax, result, scene, free))
+        paths = {n: p for n, p in ((n, _quiet(lambda: result.joint(n))) for n, _ in moving) if p is not None}
+        angles = {n: paths[n].angle for n, slide in moving if not slide and n in paths}
+        slides = {n: paths[n].slide for n, slide in moving if slide and n in paths}
+        rates = {n + (" (m/s)" if slide else ""): paths[n].rate for n, slide in moving if n in paths}
+        if angles:
+            panels.append(lambda ax: _lines(ax, t, dict(list(angles.items())[:_MAX_LINES]), len(angles), "joints",
+                                            "joint angle (rad)"))
+        if slides:
+            panels.append(lambda ax: _lines(ax, t, dict(list(slides.items())[:_MAX_LINES]), len(slides), "joints",
+                                            "joint slide (m)"))
+        if rates:
+            rate_unit = "rad/s" if angles else "m/s"  # (a slide's in its name where both are)
+            rates = rates if angles else {n.removesuffix(" (m/s)"): y for n, y in rates.items()}
+            panels.append(lambda ax, label=f"joint rate ({rate_unit})": _lines(
+                ax, t, dict(list(rates.items())[:_MAX_LINES]), len(rates), "joints", label))
+    elif "coordinates" in what and scene.bodies:
         panels.append(lambda ax: _positions(ax, result, scene))
         if any(b not in scene.particles for b in scene.bodies):
             panels.append(lambda ax: _angles(ax, result, scene))
@@ -85,13 +109,33 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     axes[-1].set_xlabel("time t (s)")
     if len(t) > 1:
         axes[-1].set_xlim(t[0], t[-1])
-    title = scene.summary()
+    name = getattr(result.model, "name", None)
+    title = f"{name} ({scene.summary()})" if name else scene.summary()
     stats = stats_line(getattr(result, "stats", None))
     fig.suptitle(f"lagmb: {title}" + (f"\n{stats}, {len(t)} outputs" if stats else ""),
                  fontsize=11)
     if path is not None:
         _save(fig, path, dpi=dpi)
     return fig
+
+
+def _joint_coordinates(scene):
+    """[(name, slide?)] of the joints that have an angle or a slide
+    (revolute, translational, cylindrical: its angle), in the order added,
+    where they say how every body moves: each body is the second body of
+    one of them, or of no joint (a free base, drawn apart); else [] (a
+    body on a ball joint has no joint coordinate to show)."""
+    out, moved, held = [], set(), set()
+    for method, kw in scene.elements:
+        kind = scene.kinds.get(method)
+        if kind is None or kind.role != "joint" or "body_j" not in kw:
+            continue
+        coordinates = set(kind.coordinates)
+        held.add(str(kw["body_j"]))
+        if coordinates & {"angle", "slide"}:
+            out.append((kw["name"], "angle" not in coordinates))
+            moved.add(str(kw["body_j"]))
+    return out if out and held <= moved else []
 
 
 def _quiet(f):
@@ -124,10 +168,11 @@ def _shown(names, total, what):
     return f"first {len(names)} of {total} {what}" if total > len(names) else None
 
 
-def _positions(ax, result, scene):
+def _positions(ax, result, scene, bodies=None):
     from matplotlib.lines import Line2D
 
-    shown = scene.bodies[:_MAX_BODIES]
+    bodies = scene.bodies if bodies is None else bodies
+    shown = bodies[:_MAX_BODIES]
     handles = []
     styles = ("-", "--", ":")[:scene.dimension]
     for i, b in enumerate(shown):
@@ -138,7 +183,7 @@ def _positions(ax, result, scene):
     handles += [Line2D([], [], color="0.3", lw=1.4, ls=style, label="xyz"[axis])
                 for axis, style in enumerate(styles)]
     ax.set_ylabel("centre of mass\n" + ", ".join("xyz"[:scene.dimension]) + " (m)")
-    _legend(ax, _shown(shown, len(scene.bodies), "bodies"), handles)
+    _legend(ax, _shown(shown, len(bodies), "bodies"), handles)
 
 
 def _angles(ax, result, scene):
@@ -163,7 +208,23 @@ def _lines(ax, t, series, total, what, ylabel):
     for i, (name, y) in enumerate(series.items()):
         ax.plot(t, y, color=_colour(i), lw=1.4, label=name)
     ax.set_ylabel(ylabel)
+    _least_span(ax, list(series.values()))
     _legend(ax, _shown(list(series), total, what))
+
+
+def _least_span(ax, ys, fraction=1e-9):
+    """Values that stay within ``fraction`` of max(1, their size) of each
+    other (a finger joint that never moves, at 1e-16 m of round-off) are
+    drawn flat in a span of that size, not magnified to fill the plot."""
+    values = np.concatenate([np.asarray(y, dtype=float).ravel() for y in ys]) if ys else np.empty(0)
+    values = values[np.isfinite(values)]
+    if not len(values):
+        return
+    low, high = float(values.min()), float(values.max())
+    least = fraction * max(1.0, float(np.abs(values).max()))
+    if high - low < least:
+        middle = 0.5 * (low + high)
+        ax.set_ylim(middle - least, middle + least)
 
 
 def _energy(ax, t, energy):
