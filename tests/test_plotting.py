@@ -762,12 +762,34 @@ def test_an_animation_draws_a_plane_as_a_floor_under_the_bodies(mpl):
     scene = _drawing.Scene(r)
     drawing = spatial_drawing._spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
     ax = drawing.fig.axes[0]
-    (floor,) = [c for c in ax.collections if isinstance(c, Poly3DCollection)]
-    assert floor.get_zorder() == 0 and not ax.computed_zorder
+    floor, solids = [c for c in ax.collections if isinstance(c, Poly3DCollection)]
+    assert floor.get_zorder() == 0 and solids.get_zorder() > 0 and not ax.computed_zorder
     (square,) = drawing.floors
     assert np.allclose(square[:, 2], 0.0)
     view_width = ax.get_xlim()[1] - ax.get_xlim()[0]
     assert abs(np.ptp(square[:, 0]) - 0.9 * view_width) <= 1e-9 * view_width
+
+
+def test_an_animation_draws_bodies_with_shapes_as_their_shapes(mpl):
+    """Bodies that have shapes (a robot's meshes; here a box, a sphere, a
+    capsule and a cylinder) are drawn as those shapes, placed by each
+    frame's pose and shaded, in one collection; no inertia boxes or axes
+    for them (a URDF's inflated inertias drew as large slabs)."""
+    from lagmb.plotting.spatial import _body_shapes
+
+    r = mb.simulate(_shapes_on_a_floor(), 0.5, n_out=11)
+    scene = _drawing.Scene(r)
+    drawing = spatial_drawing._spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
+    solids = _body_shapes(r.model, scene.bodies)
+    assert set(solids) == {"b0", "b1", "b2", "b3"}
+    assert drawing.artists["boxes"] == [] and drawing.artists["triad"] == []
+    (collection,) = drawing.artists["solids"]
+    for k in (0, 10):
+        drawing.update(k)
+        placed = np.concatenate([r.body(b).position[k] + solids[b] @ r.body(b).rotation[k].T
+                                 for b in scene.bodies])
+        assert np.array_equal(drawing.now["triangles"], placed)
+        assert len(collection.get_facecolor()) == len(placed)
 
 
 def test_a_robot_s_histories_are_its_joints(mpl, tmp_path):

@@ -137,6 +137,12 @@ class Scene:
         signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
         return (signs * half) @ V.T
 
+    def heading(self):
+        """What a picture is titled: "panda (9 bodies, 10 joints, ...)", the
+        model's name (Model.name) with its summary, or the summary alone."""
+        name = getattr(self.result.model, "name", None)
+        return f"{name} ({self.summary()})" if name else self.summary()
+
     def summary(self):
         """"2 bodies, 1 joint, 1 stop": each role that has elements."""
         return ", ".join(counted(len(names), *ROLE_WORDS[role]) for role, names in self.by_role.items()

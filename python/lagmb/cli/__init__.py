@@ -4,7 +4,7 @@
                     [--fps F] [--speed S] [--frames N] [--trace POINT ...] [--view ELEV,AZIM]
                     [--t-end T] [--rtol R] [--n-out N] [--quiet]
     lagmb info SCENE [--parameters] | --methods | --kinds
-    lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T]
+    lagmb accuracy SCENE [--methods M ...] [--tolerances RTOL ...] [--t-end T] [--error E ...]
                    [-o table.json] [--plot out.png] [--quiet]
     lagmb fmu SCENE [-o model.fmu] [--name NAME] [--quiet]
     lagmb modes SCENE [--at-time T] [--count K] [--gif out.gif] [--mode I] [--view ELEV,AZIM]

@@ -48,11 +48,14 @@ def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size
     axes are fixed to cover the whole motion, with equal scales, in m.
 
     A spatial model (dimension 3) is drawn in perspective by matplotlib's
-    mplot3d, seen from ``view`` = (elevation, azimuth) in degrees: each
-    body as lines from its centre of mass to its attachment points, the
-    edges of its inertia box (the uniform box with its mass and inertia)
-    and its axes (x red, y green, z blue, reaching a fifth past the box),
-    which turn with it, so that spin and orientation show.
+    mplot3d, seen from ``view`` = (elevation, azimuth) in degrees. A body
+    with shapes (Model.add_shape; a URDF robot's meshes, STL: the collision
+    shapes where the model has them, else the visual) is drawn as those
+    shapes, shaded; any other body as lines from its centre of mass to its
+    attachment points, the edges of its inertia box (the uniform box with
+    its mass and inertia) and its axes (x red, y green, z blue, reaching a
+    fifth past the box), which turn with it, so that spin and orientation
+    show.
 
     ``trace``: points whose paths are drawn as they are travelled (faint
     ahead): a body (its centre of mass), an element (a joint: where it is),

@@ -109,8 +109,7 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     axes[-1].set_xlabel("time t (s)")
     if len(t) > 1:
         axes[-1].set_xlim(t[0], t[-1])
-    name = getattr(result.model, "name", None)
-    title = f"{name} ({scene.summary()})" if name else scene.summary()
+    title = scene.heading()
     stats = stats_line(getattr(result, "stats", None))
     fig.suptitle(f"lagmb: {title}" + (f"\n{stats}, {len(t)} outputs" if stats else ""),
                  fontsize=11)

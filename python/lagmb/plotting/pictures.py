@@ -113,7 +113,7 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
         ax.set_box_aspect((1, 1, 1))
     caption = f"t = {t[k]:.3g} s, {drawn} {role} shapes" + (f" ({skipped} meshes not STL, not drawn)"
                                                              if skipped else "")
-    ax.set_title(title or f"lagmb: {scene.summary()}", fontsize=10)
+    ax.set_title(title or f"lagmb: {scene.heading()}", fontsize=10)
     ax.text2D(0.02, 0.02, caption, transform=ax.transAxes, fontsize=8)
     _save(fig, path)
     return drawn

@@ -104,7 +104,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.grid(alpha=0.25)
-    ax.set_title(f"lagmb: {scene.summary()}{_speed_words(speed)}", fontsize=10)
+    ax.set_title(f"lagmb: {scene.heading()}{_speed_words(speed)}", fontsize=10)
 
     # fixed things: slide guides, supports, the paths ahead
     for at, axis in guides:

@@ -1,6 +1,7 @@
-"""The drawing of a spatial run's frames in perspective (mplot3d): bodies as
-lines to their attachment points, their inertia boxes and turning axes,
-over the floor a plane shape on the ground makes."""
+"""The drawing of a spatial run's frames in perspective (mplot3d): bodies
+with shapes (a robot's meshes) as those shapes, shaded; the others as lines
+to their attachment points, their inertia boxes and turning axes; over the
+floor a plane shape on the ground makes."""
 
 import numpy as np
 
@@ -9,6 +10,43 @@ from .frames import _Drawing, _speed_words, _time_format
 
 _TRIAD_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")  # body axes x, y, z: red, green, blue
 _POKE = 1.2  # a body's axes reach this far past its inertia box
+_LIGHT = np.array([0.4, -0.5, 0.8]) / np.linalg.norm([0.4, -0.5, 0.8])  # as picture() lights shapes
+
+
+def _body_shapes(model, bodies):
+    """{body: (k, 3, 3) triangles in its own axes} of the shapes drawn in
+    its place (the collision role where the model has drawable collision
+    shapes, else the visual: a URDF's meshes), and the ground's, not its
+    planes (a floor). Polygons of more than 3 corners are fanned into
+    triangles; meshes lagmb does not read (not STL) are left out."""
+    from .._drawing import shape_faces
+
+    shapes = [sh for sh in getattr(model, "shapes", []) if sh.kind != "plane"]
+    drawable = {role: [sh for sh in shapes if sh.role == role and shape_faces(sh) is not None]
+                for role in ("collision", "visual")}
+    chosen = drawable["collision"] or drawable["visual"]
+    out = {}
+    for sh in chosen:
+        if sh.body != "ground" and sh.body not in bodies:
+            continue
+        R, r = np.asarray(sh.rotation, dtype=float), np.asarray(sh.position, dtype=float)
+        triangles = []
+        for face in shape_faces(sh):
+            face = np.asarray(face, dtype=float)
+            triangles += [face[[0, i, i + 1]] for i in range(1, len(face) - 1)]
+        if triangles:
+            out.setdefault(sh.body, []).append(r + np.array(triangles) @ R.T)
+    return {b: np.concatenate(parts) for b, parts in out.items()}
+
+
+def _shaded(triangles, rgb):
+    """Face colours: the body's colour darkened by each triangle's facing away from the light."""
+    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    facing = np.abs(n @ _LIGHT) / np.maximum(np.linalg.norm(n, axis=1), 1e-300)
+    colours = np.empty((len(triangles), 4))
+    colours[:, :3] = np.asarray(rgb)[None, :] * (0.45 + 0.55 * facing)[:, None]
+    colours[:, 3] = 1.0
+    return colours
 
 
 def _box_edges(corners):
@@ -34,11 +72,13 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     result = scene.result
     t = np.asarray(shown.t)
     elevation, azimuth = (float(x) for x in view)
-    outlines = {b: scene.drawn_outline(b) + [p for tb, p in trace if tb == b] for b in scene.bodies}
+    solids = _body_shapes(result.model, scene.bodies)  # drawn as their shapes, not as lines and boxes
+    outlines = {b: ([] if b in solids else scene.drawn_outline(b)) + [p for tb, p in trace if tb == b]
+                for b in scene.bodies}
     centres = {b: shown.body(b).position for b in scene.bodies}
     spokes = {b: [scene.path(b, p, result=shown) for p in outlines[b]] for b in scene.bodies}
     rotations = {b: getattr(shown.body(b), "rotation", None) for b in scene.bodies}
-    corners = {b: scene.box(b) for b in scene.bodies if rotations[b] is not None}
+    corners = {b: scene.box(b) for b in scene.bodies if rotations[b] is not None and b not in solids}
     corners = {b: c for b, c in corners.items() if c is not None}
     boxes = {b: _box_edges(c) for b, c in corners.items()}
     traces = [scene.path(b, p) for b, p in trace]
@@ -60,6 +100,13 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     for b, c in corners.items():  # with the axes that poke out of the box
         everywhere.append((result.body(b).position[:, None, :]
                            + np.einsum("kij,nj->kni", result.body(b).rotation, _POKE * c)).reshape(-1, 3))
+    for b, triangles in solids.items():  # each body's shapes: its path widened by their reach
+        if b == "ground":
+            everywhere.append(triangles.reshape(-1, 3))
+            continue
+        reach = float(np.max(np.linalg.norm(triangles.reshape(-1, 3), axis=1)))
+        path_ = result.body(b).position
+        everywhere += [path_ - reach, path_ + reach]
     clouds = everywhere + list(centres.values()) + [s for paths in spokes.values() for s in paths] + traces \
         + joints + [p for link in links for p in link] + [np.asarray(p)[None, :] for p in supports]
     pts = np.concatenate([np.asarray(c).reshape(-1, 3) for c in clouds]) if clouds else np.zeros((1, 3))
@@ -67,7 +114,7 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(3)
     half = 0.55 * max(float(np.max(np.ptp(pts, axis=0))) if len(pts) else 0.0, 1e-3)
     # the body axes drawn: poking out of the box along them, at least a 25th of the scene
-    turning = [b for b in scene.bodies if rotations[b] is not None]
+    turning = [b for b in scene.bodies if rotations[b] is not None and b not in solids]
     triad = {b: np.maximum(0.08 * half, _POKE * np.abs(corners[b]).max(axis=0) if b in corners else 0.0)
              for b in turning}
 
@@ -79,7 +126,7 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
         getattr(ax, f"set_{label}label")(f"{label} (m)")
     if hasattr(ax, "set_box_aspect"):
         ax.set_box_aspect((1, 1, 1))
-    ax.set_title(f"lagmb: {scene.summary()}{_speed_words(speed)}", fontsize=10)
+    ax.set_title(f"lagmb: {scene.heading()}{_speed_words(speed)}", fontsize=10)
     floors = [sh for sh in getattr(result.model, "shapes", []) if sh.body == "ground" and sh.kind == "plane"]
     if floors:  # a plane on the ground: a floor under everything (drawn first, whatever its depth)
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
@@ -94,6 +141,20 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
             floor_faces += faces
             ax.add_collection3d(Poly3DCollection(faces, facecolors=[(0.82, 0.82, 0.80, 0.6)], edgecolors="0.6",
                                                  zorder=0))
+    solid_art = None
+    if solids:
+        from matplotlib.colors import to_rgb
+        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+        if "ground" in solids:  # the ground's shapes stay where they are
+            still = solids["ground"]
+            ax.add_collection3d(Poly3DCollection(list(still), facecolors=_shaded(still, to_rgb("0.6")),
+                                                 edgecolors="none"))
+        moving = [b for b in scene.bodies if b in solids]
+        tint = {b: to_rgb(_colour(scene.bodies.index(b))) for b in moving}
+        # one collection for all the bodies' triangles: mplot3d orders polygons by depth within one
+        solid_art = Poly3DCollection([np.zeros((3, 3))], edgecolors="none")
+        ax.add_collection3d(solid_art)
     if supports:
         s = np.array(supports, dtype=float)
         ax.plot(s[:, 0], s[:, 1], s[:, 2], "^", ms=9, color="0.75", mec="0.2")
@@ -126,10 +187,22 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
                       family="monospace")
     stamp_format = _time_format(t)
 
+    now = {}  # what the last update placed (for tests)
+
     def update(k):
+        if solid_art is not None:
+            placed = [centres[b][k] + solids[b] @ rotations[b][k].T for b in moving]
+            triangles = np.concatenate(placed)
+            now["triangles"] = triangles
+            solid_art.set_verts(list(triangles))
+            solid_art.set_facecolor(np.concatenate([_shaded(p, tint[b]) for p, b in zip(placed, moving)]))
+            if getattr(ax, "M", None) is not None:  # (mplot3d projects collections when the axes draw, not
+                solid_art.do_3d_projection()          # when blitted; before a first draw there is no projection)
         for b, art in zip(scene.bodies, body_art):
             c = centres[b][k]
             xyz = np.array([c] + [p for s in spokes[b] for p in (s[k], c)]) if spokes[b] else c[None, :]
+            if b in solids:  # (its shapes show it)
+                xyz = np.empty((0, 3))
             art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
             art.set_marker("" if spokes[b] else "o")
         for b, art in box_art.items():
@@ -149,9 +222,11 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
             art.set_data_3d(xyz[:, 0], xyz[:, 1], xyz[:, 2])
         stamp.set_text(stamp_format.format(t[k]))
 
-    artists = {"traces": trace_done, "links": link_art, "boxes": list(box_art.values()), "bodies": body_art,
+    artists = {"traces": trace_done, "links": link_art, "boxes": list(box_art.values()),
+               "solids": [solid_art] if solid_art is not None else [], "bodies": body_art,
                "triad": triad_art, "centres": centre_art, "joints": joint_art, "stamp": stamp}
     drawing = _Drawing(fig, artists, update)
     drawing.triad_lengths = triad  # {body: (3,) m}
+    drawing.now = now  # {"triangles": (k, 3, 3) m} the shapes as the last frame placed them
     drawing.floors = floor_faces if floors else []  # [(4, 3)] the floors' squares (m)
     return drawing
