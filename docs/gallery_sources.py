@@ -46,10 +46,9 @@ Every script in ``examples/`` run when these pages were built, with its
 printed output and the figures it drew. Each page shows the script's code as
 it is; run it yourself with ``python examples/NAME.py`` (``--help`` lists its
 options) after ``make demo``. The figures come from the script's own
-options: ``--plot PATH`` draws time histories, ``--picture PATH`` the
-mechanism at one moment with the paths its points travelled (the bouncing
-ball, rolling disk, cam follower, Andrews' squeezer, N-four-bar; the Panda,
-the incline and Go1 in space).
+options: ``--picture PATH`` draws the mechanism at one moment with the paths
+its points travelled (first: the page's thumbnail), ``--plot PATH`` its time
+histories.
 
 The scenes in ``examples/*.toml`` are run with ``lagmb run SCENE`` (see
 :doc:`/tour`): seed pendulum, double pendulum, slider-crank, four-bar,
@@ -138,8 +137,8 @@ def argv_for(source, stem):
     for option in FIGURE_OPTIONS:
         if re.search(rf"add_argument\(\s*\"--{option}\",\s*metavar=\"PATH\"", source):
             argv += [f"--{option}", _figure_file(stem, option)]
-    if not argv and re.search(r"\"--plot\" in sys\.argv", source):
-        argv = ["--plot"]
+    if re.search(r"\"--plot\" in sys\.argv|add_argument\(\s*\"--plot\",\s*action=\"store_true\"", source):
+        argv += ["--plot"]  # a pyplot figure the scraper collects
     return argv
 
 

@@ -16,8 +16,8 @@ controller does); each change restarts the integrator there.
     python examples/cart_pole.py [--plot]
 """
 
+import argparse
 import math
-import sys
 
 import numpy as np
 
@@ -63,7 +63,19 @@ def balance(model, t_end=10.0, gains=GAINS, control=True, **options):
     return sim
 
 
-def main():
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the cart and pole at 1 s with the pole's tip's path to PATH (.png)")
+    parser.add_argument("--plot", action="store_true", help="show the tilt against time (pyplot)")
+    args = parser.parse_args(argv)
     sim = balance(cart_pole(), rtol=1e-6)
     r = sim.result()
     theta = r.body("pole").angle - math.pi / 2
@@ -73,7 +85,9 @@ def main():
     print(f"controller samples = {sim.stats['input_changes']}, integrator steps = {sim.stats['steps']}")
     falling = balance(cart_pole(), t_end=3.0, control=False).result()
     print(f"largest tilt in 3 s without control = {np.max(np.abs(falling.body('pole').angle - math.pi / 2)):.3f} rad")
-    if "--plot" in sys.argv:
+    if args.picture:
+        draw(r, args.picture, time=1.0, trace=[("pole", (0.5, 0.0))])
+    if args.plot:
         import matplotlib.pyplot as plt
 
         plt.plot(r.t, theta)

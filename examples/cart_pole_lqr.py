@@ -21,6 +21,7 @@ lose the pole from 1.3 rad (the push they ask for grows without bound).
     python examples/cart_pole_lqr.py [--plot]
 """
 
+import argparse
 import math
 import sys
 from pathlib import Path
@@ -67,7 +68,19 @@ def balance_lqr(theta0=0.6, t_end=10.0, **options):
     return sim, K
 
 
-def main():
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the cart and pole at 1 s with the pole's tip's path to PATH (.png)")
+    parser.add_argument("--plot", action="store_true", help="show tilt and push against time (pyplot)")
+    args = parser.parse_args(argv)
     K, lin = lqr_gain(cart_pole(theta0=0.0))
     print("open loop eigenvalues:", np.round(lin.eigenvalues, 4))
     print("LQR gain K =", np.round(K, 3), "(N per m, rad, m/s, rad/s)")
@@ -83,7 +96,9 @@ def main():
     pd_tilt = pd.body("pole").angle - math.pi / 2
     print(f"PD from 0.6 rad: largest tilt after 8 s = {np.max(np.abs(pd_tilt[pd.t >= 8.0])):.2e} rad, "
           f"cart at 10 s = {pd_sim.body('cart').position[0]:.2e} m")
-    if "--plot" in sys.argv:
+    if args.picture:
+        draw(r, args.picture, time=1.0, trace=[("pole", (0.5, 0.0))])
+    if args.plot:
         import matplotlib.pyplot as plt
 
         fig, axes = plt.subplots(2, 1, sharex=True)

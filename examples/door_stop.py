@@ -1,6 +1,6 @@
 """A door swinging shut against its stop, bouncing and coming to rest on it.
 
-    python examples/door_stop.py [--plot door_stop.png]
+    python examples/door_stop.py [--picture door_stop-picture.png] [--plot door_stop.png]
 
 A door (a uniform leaf 0.9 m wide, 30 kg: I = m w^2 / 3 = 8.1 kg m^2 about
 its hinge), seen from above, is held open at 1.2 rad and let go. A
@@ -51,8 +51,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the door at 4 s with its edge's path to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
     r = mb.simulate(build(), t_end=4.0, n_out=2001, rtol=1e-10, atol=1e-12)
@@ -84,6 +93,8 @@ def main(argv=None):
     lost = sum(0.5 * INERTIA * (e["speed_before"] ** 2 - e["speed_after"] ** 2) for e in impacts)
     print(f"energy the impacts took = {lost:.10f} J")
     print(f"closer work = {CLOSER * OPEN:.10f} J")
+    if args.picture:
+        draw(r, args.picture, trace=[("door", (0.5 * WIDTH, 0.0))])
     if args.plot:
         plot(r, args.plot)
     return 0

@@ -1,6 +1,6 @@
 """Double pendulum: two uniform rods in a chain, released from horizontal.
 
-    python examples/double_pendulum.py [--plot double.png]
+    python examples/double_pendulum.py [--picture double-picture.png] [--plot double.png]
 
 Rods of 1 m and 1 kg (J = m L^2 / 12): "shoulder" pins the upper one to the
 ground at the origin, "elbow" pins the lower one to its end at (1, 0). The
@@ -46,8 +46,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the pendulum at 5 s with the lower rod's tip's path to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -66,6 +75,8 @@ def main(argv=None):
     print(f"energy drift = {np.ptp(r.energy):.3e} J (of m g L = {MASS * G * L:.2f} J)")
     print(f"max |Phi| = {r.residual.max():.3e} m")
     print(f"steps = {r.stats['steps']}")
+    if args.picture:
+        draw(r, args.picture, trace=[("lower", (0.5 * L, 0.0))])
     if args.plot:
         plot(r, args.plot)
 

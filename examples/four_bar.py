@@ -1,6 +1,6 @@
 """Four-bar linkage (crank-rocker) swinging freely under gravity.
 
-    python examples/four_bar.py [--plot four_bar.png]
+    python examples/four_bar.py [--picture four_bar-picture.png] [--plot four_bar.png]
 
 Ground pivots A = (0, 0) and D = (4, 0); crank AB = 1 m, coupler BC = 3.5 m,
 rocker DC = 3 m; uniform bars of 1 kg per metre. Grashof: shortest + longest
@@ -86,8 +86,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the linkage at 3 s with the coupler's midpoint path to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -109,6 +118,8 @@ def main(argv=None):
     print(f"energy drift = {np.ptp(r.energy):.3e} J")
     print(f"max |Phi| = {r.residual.max():.3e} m")
     print(f"steps = {r.stats['steps']}")
+    if args.picture:
+        draw(r, args.picture, trace=[("coupler", (0.0, 0.0))])
     if args.plot:
         plot(r, args.plot)
 

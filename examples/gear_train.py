@@ -1,6 +1,6 @@
 """A train of three spur gears: speed ratios, motor torque and tooth forces.
 
-    python examples/gear_train.py [--plot gear_train.png]
+    python examples/gear_train.py [--picture gear_train-picture.png] [--plot gear_train.png]
 
 Three external gears on ground pivots, in a horizontal plane (no gravity).
 add_gear(name, i, j, ratio) takes ratio = omega_j / omega_i (negative for
@@ -58,8 +58,16 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH", help="draw the gears at 2 s to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -76,6 +84,8 @@ def main(argv=None):
     print(f"tooth force mesh12 = {np.mean(np.abs(f12)):.10f} N (closed form 20)")
     print(f"tooth force mesh23 = {np.mean(np.abs(f23)):.10f} N (closed form 20)")
     print(f"spread over the run = {max(np.ptp(w3 / w1), np.ptp(r.effort('motor'))):.3e}")
+    if args.picture:
+        draw(r, args.picture)
     if args.plot:
         plot(r, args.plot)
 

@@ -57,7 +57,8 @@ def build():
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--picture", metavar="PATH", help="draw the three on the incline at 1 s to PATH (.png)")
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the three on the incline at 1 s to PATH (.png)")
     parser.add_argument("--gif", metavar="PATH", help="write an animation to PATH (.gif)")
     args = parser.parse_args(argv)
     m, d0 = build()

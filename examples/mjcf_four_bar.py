@@ -1,6 +1,6 @@
 """A four-bar linkage from a MuJoCo file, its loop closed by an equality.
 
-    python examples/mjcf_four_bar.py [--plot four_bar_mjcf.png]
+    python examples/mjcf_four_bar.py [--picture four_bar_mjcf-picture.png] [--plot four_bar_mjcf.png]
 
 examples/four_bar_mjcf.xml describes the crank and coupler as a chain of
 hinges and the rocker as a second chain; `<connect>` joins the coupler's tip
@@ -22,8 +22,16 @@ import lagmb as mb
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH", help="draw the linkage at 2 s to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
     try:
@@ -40,6 +48,8 @@ def main(argv=None):
     print(f"max loop residual = {np.max(r.residual):.3e} m")
     print(f"energy drift = {np.ptp(r.energy):.3e} J")
     print(f"redundant equations = {len(r.redundant_rows)}")
+    if args.picture:
+        draw(r, args.picture, view=(25.0, -60.0))
     if args.plot:
         from lagmb.plotting import plot_result
         plot_result(r, args.plot)

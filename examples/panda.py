@@ -107,7 +107,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plot", metavar="PATH", help="write the joint angles to PATH (.png, .pdf)")
     parser.add_argument("--gif", metavar="PATH", help="write an animation to PATH (.gif)")
-    parser.add_argument("--picture", metavar="PATH", help="draw the arm with its collision meshes at 2 s to PATH")
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the arm with its collision meshes at 2 s to PATH")
     args = parser.parse_args(argv)
     path = panda_urdf()
     if path is None:

@@ -1,6 +1,6 @@
 """Whitworth quick-return mechanism (as on a shaping machine).
 
-    python examples/quick_return.py [--plot quick_return.png]
+    python examples/quick_return.py [--picture quick_return-picture.png] [--plot quick_return.png]
 
     crank   O2-P, r = 0.1 m, turned at a constant 2 pi rad/s (one turn per
             second) about O2 = (0, 0) by the driver "motor"
@@ -85,8 +85,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the mechanism at 1.2 s with the ram's path to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -114,6 +123,8 @@ def main(argv=None):
     print(f"max motor torque = {np.abs(r.effort('motor')).max():.6f} N m")
     print(f"max slot force = {np.abs(r.reaction('slot', frame='joint')[:, 1]).max():.6f} N")
     print(f"max |Phi| = {r.residual.max():.3e} m")
+    if args.picture:
+        draw(r, args.picture, trace="ram")
     if args.plot:
         plot(r, args.plot)
 

@@ -1,6 +1,6 @@
 """The seed pendulum: a uniform rod pinned at one end, released from horizontal.
 
-    python examples/seed_pendulum.py [--plot pendulum.png]
+    python examples/seed_pendulum.py [--picture pendulum-picture.png] [--plot pendulum.png]
 
 A rod of length L = 1 m and mass m = 1 kg (J = m L^2 / 12) hangs from a pin at
 the origin; its centre of mass starts at (L/2, 0) at rest. Closed forms to
@@ -48,8 +48,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the rod at 0.5 s with its tip's path to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -71,6 +80,8 @@ def main(argv=None):
     print(f"energy drift = {np.ptp(r.energy):.3e} J")
     print(f"max |Phi| = {r.residual.max():.3e} m")
     print(f"steps = {r.stats['steps']}")
+    if args.picture:
+        draw(r, args.picture, time=0.5, trace=[("rod", (0.5, 0.0))])
     if args.plot:
         plot(r, args.plot)
 

@@ -1,6 +1,6 @@
 """Slider-crank driven at constant speed: kinematics and the motor torque.
 
-    python examples/slider_crank.py [--plot slider_crank.png]
+    python examples/slider_crank.py [--picture slider_crank-picture.png] [--plot slider_crank.png]
 
 Crank O-B (r = 0.1 m, 1 kg) turns at a constant 10 rad/s about the ground
 pivot O = (0, 0); the connecting rod B-C (l = 0.3 m, 2 kg) drives the slider C
@@ -57,8 +57,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the mechanism with the rod's midpoint path to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -85,6 +94,8 @@ def main(argv=None):
     print(f"max motor torque = {np.abs(tau).max():.6f} N m")
     print(f"motor work over one turn = {work:.3e} J")
     print(f"max |Phi| = {r.residual.max():.3e} m")
+    if args.picture:
+        draw(r, args.picture, trace=[("rod", (0.0, 0.0))])
     if args.plot:
         plot(r, args.plot)
 

@@ -1,6 +1,6 @@
 """A block on a vertical guide, hung from a spring-damper: damped oscillation.
 
-    python examples/spring_damper.py [--plot spring_damper.png]
+    python examples/spring_damper.py [--picture spring_damper-picture.png] [--plot spring_damper.png]
 
 A 1 kg block slides on a vertical translational joint ("guide"); a
 spring-damper ("spring": k = 100 N/m, c = 2 N s/m, free length 1 m) hangs it
@@ -45,8 +45,17 @@ def plot(result, path):
     print(f"plot written to {path}")
 
 
+def draw(result, path, **kwargs):
+    """The mechanism at one output with traced paths (lagmb.plotting.picture, needs matplotlib)."""
+    from lagmb.plotting import picture
+    picture(result, path, size=(640, 480), **kwargs)
+    print(f"picture written to {path}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--picture", metavar="PATH",
+                        help="draw the block on its spring at 0.5 s to PATH (.png)")
     parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
 
@@ -73,6 +82,8 @@ def main(argv=None):
     print(f"final position = {y[-1]:.10f} m (static {y_static:.10f})")
     print(f"energy lost = {r.energy[0] - r.energy[-1]:.10f} J")
     print(f"energy dissipated by the damper = {dissipated:.10f} J")
+    if args.picture:
+        draw(r, args.picture, time=0.5, trace="block")
     if args.plot:
         plot(r, args.plot)
 

@@ -138,3 +138,23 @@ def test_tour_python_blocks_run():
     assert len(blocks) >= 4
     for k, code in enumerate(blocks):
         exec(compile(code, f"docs/tour.md, block {k + 1}", "exec"), {})
+
+
+def test_every_example_draws_its_mechanism_first():
+    """Each examples/*.py takes --picture PATH (the mechanism at one moment,
+    lagmb.plotting.picture) and the gallery runs it with that first, so a
+    page's first figure and thumbnail show the mechanism, not a stack of
+    time histories (which follow, where a script has --plot)."""
+    import sys
+
+    sys.path.insert(0, os.path.join(os.path.dirname(EXAMPLES), "docs"))
+    try:
+        import gallery_sources
+    finally:
+        sys.path.pop(0)
+    for script in sorted(os.listdir(EXAMPLES)):
+        if script.endswith(".py"):
+            stem = script[:-3]
+            with open(os.path.join(EXAMPLES, script)) as f:
+                argv = gallery_sources.argv_for(f.read(), stem)
+            assert argv[:1] == ["--picture"], (stem, argv)
