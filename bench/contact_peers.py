@@ -376,7 +376,7 @@ class LagmbScene:
 
         self.mb, self.model, self.bodies = mb, model, bodies
         self.downhill = downhill
-        self.contacts = [kw["name"] for kind, kw in model.elements() if kind == "add_contact"]
+        self.contacts = [kw["name"] for kind, kw in model.elements if kind == "add_contact"]
         model.compiled()
 
     def run(self, rtol, atol, n_out=N_OUT, keep=False):
@@ -647,8 +647,8 @@ def setup_go1(log):
 
     path = os.path.join(robots_dir(), GO1)
     lm = lagmb_go1(path)
-    names = [kw["name"] for kind, kw in lm.elements() if kind == "add_body"]
-    masses = {kw["name"]: kw["mass"] for kind, kw in lm.elements() if kind == "add_body"}
+    names = [kw["name"] for kind, kw in lm.elements if kind == "add_body"]
+    masses = {kw["name"]: kw["mass"] for kind, kw in lm.elements if kind == "add_body"}
     mjm = mujoco_go1(path, MJ_OPTIONS[""])
     # the start: lagmb's joint values
     r0 = mb.simulate(lm, 1e-6, n_out=2)
@@ -665,7 +665,7 @@ def setup_go1(log):
     dp = float(np.max(np.linalg.norm(P0l - P0m, axis=1)))
     info = {"file": GO1, "bodies": names, "mass": sum(masses.values()),
             "start_joints": {j: float(r0.joint(j).angle[0]) for j in joints},
-            "lagmb_contacts": len([1 for kind, _ in lm.elements() if kind == "add_contact"]),
+            "lagmb_contacts": len([1 for kind, _ in lm.elements if kind == "add_contact"]),
             "mujoco_geoms": int(mjm.ngeom - 1),
             "check_model": {"mass": dmass, "com_at_start": dp, "ok": bool(dmass <= 1e-9 and dp <= 1e-9)}}
     log(f"  check: Go1's {len(names)} bodies, masses equal to {dmass:.1e} kg, centres of mass at the start to "

@@ -167,7 +167,7 @@ def lagmb_servo_model(arm):
     for n, target, kp, kd in zip(arm.names, arm.target, arm.kp, arm.kd):
         m.add_servo(f"{n}_servo", n, target=float(target), kp=float(kp), kd=float(kd))
     masses = {}
-    for kind, data in m.elements():
+    for kind, data in m.elements:
         if kind == "add_body":
             masses[data["name"]] = data["mass"]
             m.add_force(f"{data['name']}_gravity_compensation", data["name"],

@@ -66,7 +66,7 @@ def coordinate(result, joint):
 
 
 def stops_of(model):
-    return [kw for kind, kw in model.elements() if kind == "add_stop"]
+    return [kw for kind, kw in model.elements if kind == "add_stop"]
 
 
 def with_dampers(model):
@@ -86,7 +86,7 @@ def resting_pose(path):
 
     model = with_dampers(load(path))
     r = mb.simulate(model, SETTLE_TIME)
-    followers = {kw["joint"] for kind, kw in model.elements() if kind == "add_joint_coupling"}
+    followers = {kw["joint"] for kind, kw in model.elements if kind == "add_joint_coupling"}
     pose = {joint: float(coordinate(r, joint)[-1]) for joint in mb.JointSpace(model).joints if joint not in followers}
     held = sorted(stop["name"] for stop in stops_of(model) if r.effort(stop["name"])[-1] != 0.0)
     return pose, held

@@ -54,9 +54,9 @@ def limit_excursion(model, result):
     a turn lower)."""
     import numpy as np
 
-    initial = {kw["name"]: kw.get("angle", 0.0) for kind, kw in model.elements()}
+    initial = {kw["name"]: kw.get("angle", 0.0) for kind, kw in model.elements}
     worst = 0.0
-    for kind, stop in model.elements():
+    for kind, stop in model.elements:
         if kind != "add_stop":
             continue
         reading = result.joint(stop["joint"])
@@ -83,7 +83,7 @@ def survey_one(path, t_end, out):
         row["load"] = first_line(e, path)
         out.put(row)
         return
-    stops = [kw for kind, kw in model.elements() if kind == "add_stop"]
+    stops = [kw for kind, kw in model.elements if kind == "add_stop"]
     row["stops"] = len(stops)
     start = time.perf_counter()
     result = None

@@ -141,7 +141,7 @@ def settings(case, rtol=RTOL, atol=ATOL, **extra):
 
 def fd_q(model, case, name, rtol, atol):
     """Central difference of q over two whole runs."""
-    p = model.parameters()[name]
+    p = model.parameters[name]
     h = step_of(p)
     run = settings(case, rtol, atol)
     plus = mb.simulate(model, case["t_end"], parameters={name: p + h}, **run)
@@ -157,7 +157,7 @@ def relative(actual, expected):
 def measure(name, case, ks, repeats):
     model = case["make"]()
     model.compiled()
-    values = model.parameters()
+    values = model.parameters
     params = case["params"][:max(ks)]
     assert len(set(params)) == len(params) and all(p in values for p in params), params
     t_end = case["t_end"]

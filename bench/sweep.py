@@ -572,7 +572,7 @@ def main():
                        "outputs": {k: np.asarray(ref[k].values[i]) for k in OUTPUTS}} for i in range(n)}
         t0 = time.perf_counter()
         studies._dataset(checked, records, ["rod.mass"], OUTPUTS, [("rod.mass", list(grid["rod.mass"]))], None,
-                         model.coordinate_names())
+                         model.coordinate_names)
         dataset = (time.perf_counter() - t0) / n
         out["client_serial_per_case"] = dict(check_cases=check, build_dataset=dataset)
     finally:

@@ -52,11 +52,11 @@ def main(argv=None):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", mb.UrdfWarning)  # (inertias the file rounds: load_urdf's warning)
         model = mb.load_urdf(path, floating_base=True, ground=-0.35)
-    contacts = [kw["name"] for method, kw in model.elements() if method == "add_contact"]
+    contacts = [kw["name"] for method, kw in model.elements if method == "add_contact"]
     start = time.perf_counter()
     r = mb.simulate(model, 3.0, rtol=1e-6, atol=1e-8, n_out=301)
     wall = time.perf_counter() - start
-    weight = G * sum(kw["mass"] for method, kw in model.elements() if method == "add_body")
+    weight = G * sum(kw["mass"] for method, kw in model.elements if method == "add_body")
     readings = [r.contact(name) for name in contacts]
     print(f"bodies = {len(model.bodies)}")
     print(f"contacts = {len(contacts)}")

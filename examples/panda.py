@@ -56,7 +56,7 @@ def build(path):
 def limit_excursion(model, result):
     """The largest distance (rad or m) a joint went beyond one of its limits."""
     worst = 0.0
-    for kind, stop in model.elements():
+    for kind, stop in model.elements:
         if kind == "add_stop":
             path = result.joint(stop["joint"])
             s = path.angle if hasattr(path, "angle") else path.slide
@@ -90,7 +90,7 @@ def plot(result, path):
     fig, ax = plt.subplots(figsize=(7, 4), dpi=120)
     for joint in ARM:
         ax.plot(result.t, result.joint(joint).angle, label=joint.replace("panda_", ""))
-    upper = next(stop["upper"] for kind, stop in result.model.elements() if stop["name"] == SHOULDER_STOP)
+    upper = next(stop["upper"] for kind, stop in result.model.elements if stop["name"] == SHOULDER_STOP)
     ax.axhline(upper, color="0.4", ls=":", lw=1, label="joint2's upper limit")
     ax.set_xlabel("t (s)")
     ax.set_ylabel("joint angle (rad)")

@@ -1315,7 +1315,7 @@ def _result_problems(mb, np, r, m, allowed):
 
     arrays = {"t": get(lambda: r.t), "q": get(lambda: r.q), "v": get(lambda: r.v), "a": get(lambda: r.a),
               "lam": get(lambda: r.lam), "energy": get(lambda: r.energy), "residual": get(lambda: r.residual)}
-    for method, kw in m.elements():
+    for method, kw in m.elements:
         if method.startswith(("add_revolute", "add_translational", "add_weld", "add_distance",
                               "add_pin_in_slot", "add_gear", "add_rack_pinion", "drive_")):
             for frame in ("global", "joint"):
@@ -1406,7 +1406,7 @@ def _driver_problems(np, model, core, times, Q, input_of):
     bad = []
     if model.dimension != 3 or Q.ndim != 2 or len(times) == 0 or not np.all(np.isfinite(Q)):
         return bad
-    elements = {kw["name"]: (method, kw) for method, kw in model.elements()}
+    elements = {kw["name"]: (method, kw) for method, kw in model.elements}
     inputs = {d["element"]: d["name"] for d in core.inputs if d["parameter"] == "f"}
     q0 = np.asarray(core.initial_state()[0], dtype=float)
     tol = RESIDUAL_BOUND * (1.0 + float(np.max(np.abs(Q))))

@@ -148,7 +148,7 @@ def test_info_four_bar(four_bar):
 
 
 def test_info_lists_the_parameters_a_run_takes(four_bar):
-    """lagmb info --parameters: the names model.parameters() and the FMU use,
+    """lagmb info --parameters: the names model.parameters and the FMU use,
     each with its value, unit and meaning."""
     import lagmb as mb
     from lagmb.scene import load_scene
@@ -156,7 +156,7 @@ def test_info_lists_the_parameters_a_run_takes(four_bar):
     p = lagmb("info", four_bar, "--parameters")
     assert p.returncode == 0, p.stderr
     lines = p.stdout.splitlines()
-    expected = load_scene(four_bar).model.parameters()
+    expected = load_scene(four_bar).model.parameters
     assert f"parameters: {len(expected)}" in lines
     listed = {line.split()[0]: float(line.split()[1]) for line in lines if line.startswith("  ")}
     assert listed == pytest.approx(expected, rel=1e-9, abs=1e-12)  # (printed to 10 digits)

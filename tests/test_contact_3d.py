@@ -515,7 +515,7 @@ def test_a_mesh_touches_by_its_convex_hull():
             floor = m.add_shape("ground", "plane", (), role="collision")
             cube = m.add_shape("cube", kind, size, centre, mesh=mesh, role="collision")
             m.add_contact("floor", cube, floor, stiffness=1e8, restitution=0.5, friction=0.5)
-            assert dict(m.elements())["add_contact"]["shape_a"] == cube  # (the mesh, as given)
+            assert dict(m.elements)["add_contact"]["shape_a"] == cube  # (the mesh, as given)
             runs.append(mb.simulate(m, 0.5, rtol=1e-9, atol=1e-11, n_out=3))
         mesh_run, box_run = runs
         assert abs(mesh_run.body("cube").position[-1, 2] - box_run.body("cube").position[-1, 2]) <= 1e-12
@@ -524,7 +524,7 @@ def test_a_mesh_touches_by_its_convex_hull():
         # as text (an FMU's): the hull's vertices go with it, the mesh file does not
         again = mb.Model.from_text(mesh_run.model.to_text())
         assert np.array_equal(mb.simulate(again, 0.5, rtol=1e-9, atol=1e-11, n_out=3).q, mesh_run.q)
-        assert dict(again.elements())["add_contact"]["shape_a"][1] == "convex"
+        assert dict(again.elements)["add_contact"]["shape_a"][1] == "convex"
 
 
 def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
@@ -540,12 +540,12 @@ def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
         warnings.simplefilter("ignore", mb.UrdfWarning)  # (its inertias, as test_urdf reads them)
         m = mb.load_urdf(os.path.join(test_urdf.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
                          ground=-0.35)
-    contacts = [kw["name"] for method, kw in m.elements() if method == "add_contact"]
+    contacts = [kw["name"] for method, kw in m.elements if method == "add_contact"]
     assert len(contacts) == len([s for s in m.shapes if s.role == "collision"]) - 1  # (all but the floor)
     assert "FR_foot_ground" in contacts
     r = mb.simulate(m, 3.0, rtol=1e-6, atol=1e-8, n_out=31)
     assert np.abs(r.v[-1]).max() < 1e-3
-    weight = sum(kw["mass"] for method, kw in m.elements() if method == "add_body") * G
+    weight = sum(kw["mass"] for method, kw in m.elements if method == "add_body") * G
     readings = [r.contact(name) for name in contacts]
     assert abs(sum(c.normal_force[-1] for c in readings) / weight - 1.0) <= 1e-3
     assert max(c.penetration[-1] for c in readings) <= (weight / mb.urdf.GROUND_CONTACT["stiffness"]) ** (2 / 3)
@@ -570,7 +570,7 @@ def test_load_urdf_ground_pairs_every_collision_shape_with_a_floor(tmp_path):
     path = tmp_path / "blocks.urdf"
     path.write_text(BLOCK_URDF)
     m = mb.load_urdf(path, floating_base=True, ground=-0.1001, contact={"friction": 0.6})
-    contacts = {kw["name"]: kw for method, kw in m.elements() if method == "add_contact"}
+    contacts = {kw["name"]: kw for method, kw in m.elements if method == "add_contact"}
     assert sorted(contacts) == ["base_ground", "base_ground_2"]
     assert contacts["base_ground"]["friction"] == 0.6
     assert contacts["base_ground"]["stiffness"] == mb.urdf.GROUND_CONTACT["stiffness"]

@@ -155,7 +155,7 @@ def test_spatial_model_holds_every_spatial_kind():
 
     m = every_spatial_kind()
     core = m.compiled()
-    used = {core.element_kind(kw["name"]) for method, kw in m.elements()} - {"body"}
+    used = {core.element_kind(kw["name"]) for method, kw in m.elements} - {"body"}
     declared = {k.name for k in SPATIAL_KINDS if k.role != "body"}
     # the drivers and joint kinds a builder picks (angle or slide) are the ones in the core; a
     # stop's event function is the joint's coordinate, checked here through its driver

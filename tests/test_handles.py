@@ -193,7 +193,7 @@ def test_every_spatial_add_and_drive_method_returns_a_handle_and_planar_ones_are
     assert set(examples) == set(methods)
     for method in examples:
         h = examples[method]()
-        assert isinstance(h, mb.Handle) and h.model is m and m.elements()[-1][0] == method
+        assert isinstance(h, mb.Handle) and h.model is m and m.elements[-1][0] == method
         assert repr(h) == f"<lagmb {h.kind} {h.name!r}>"
     with pytest.raises(mb.ModelError, match="add_gear: gear elements are planar only; this model has dimension 3"):
         m.add_gear("gear", "a", "b", ratio=2.0)
@@ -215,8 +215,8 @@ def test_every_add_and_drive_method_returns_a_handle_printed_as_its_name(capsys)
     for method in examples:  # in the order written (joints before what refers to them)
         h = examples[method]()
         assert isinstance(h, mb.Handle), f"{method} returned {h!r}"
-        name = m.elements()[-1][1]["name"]
-        assert m.elements()[-1][0] == method
+        name = m.elements[-1][1]["name"]
+        assert m.elements[-1][0] == method
         assert str(h) == name and h.name == name and f"{h}" == name and f"{h:>30}" == f"{name:>30}"
         print(h)
         assert capsys.readouterr().out == name + "\n"
@@ -296,3 +296,31 @@ def test_something_neither_name_nor_handle_is_refused():
     r = mb.simulate(m, t_end=0.1, n_out=3)
     with pytest.raises(mb.ModelError, match="expected a joint or a driver"):
         r.reaction(object())
+
+
+def test_what_a_model_has_is_an_attribute_and_the_old_call_warns():
+    """One rule (as MuJoCo's and numpy's): what a model has is an
+    attribute (bodies, elements, parameters, parameter_info,
+    coordinate_names, frames, shapes), what is computed a method
+    (degrees_of_freedom(), assemble(), rank()). The method spelling of an
+    attribute (m.elements(), m.parameters(): before 0.1.0's release; and
+    m.bodies(), which was a TypeError) still gives the same value, with a
+    DeprecationWarning naming the attribute."""
+    import pickle
+
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", 1.0, 1.0 / 12.0, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    assert [b.name for b in m.bodies] == ["rod"]
+    assert [method for method, _ in m.elements] == ["add_body", "add_revolute"]
+    assert m.parameters["rod.mass"] == 1.0 and m.coordinate_names == ["rod.x", "rod.y", "rod.angle"]
+    assert {p["name"] for p in m.parameter_info} == set(m.parameters)
+    assert m.degrees_of_freedom() == 1
+    for name in ("bodies", "elements", "parameters", "parameter_info", "coordinate_names", "frames", "shapes"):
+        with pytest.warns(DeprecationWarning, match=f"Model.{name} is an attribute .*: write m.{name}, not "
+                                                    rf"m.{name}\(\)"):
+            called = getattr(m, name)()
+        assert called == getattr(m, name) and type(called) in (list, dict)
+    # (what pickles or goes to JSON is the plain list or dict)
+    assert type(pickle.loads(pickle.dumps(m.parameters))) is dict
+    assert type(pickle.loads(pickle.dumps(m.elements))) is list

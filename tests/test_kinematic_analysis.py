@@ -102,7 +102,7 @@ def massless_slider_crank():
     """The slider-crank of test_drivers.py with every mass and inertia 0."""
     m = slider_crank()
     massless = mb.Model(gravity=m.gravity)
-    for method, kw in m.elements():
+    for method, kw in m.elements:
         if method == "add_body":
             kw.update(mass=0.0, inertia=0.0)
         getattr(massless, method)(**kw)

@@ -253,7 +253,7 @@ def test_what_mujocos_flags_disable_lagmb_leaves_out(tmp_path, path, change, lef
     if left_out == "gravity":
         assert tuple(model.gravity) == (0.0, 0.0, 0.0)
     else:
-        assert left_out not in [values["name"] for _, values in model.elements()]
+        assert left_out not in [values["name"] for _, values in model.elements]
     assert _largest_difference_to_mj_forward(str(path), 5) < 1e-9
 
 
@@ -382,7 +382,7 @@ def test_a_slides_damping_is_mujocos(tmp_path):
     path.write_text(CHAIN_TEXT.replace(*_with(J3, 'damping="0.5"')))
     model = mb.load_mjcf(path, contacts="ignore")
     assert ("add_joint_friction", dict(name="j3_damping", joint="j3", viscous=0.5, preload=0.0,
-                                       slip_velocity=0.001)) in model.elements()
+                                       slip_velocity=0.001)) in model.elements
     assert _largest_difference_to_mj_forward(str(path), 4) < 1e-9
 
 
@@ -398,7 +398,7 @@ def test_a_joint_equality_couples_two_joints(tmp_path):
     model = mb.load_mjcf(path, contacts="ignore")
     m = mujoco.MjModel.from_xml_path(str(path))
     j1_0, j2_0 = (math.remainder(float(m.qpos0[m.jnt_qposadr[m.joint(n).id]]), 2 * math.pi) for n in ("j1", "j2"))
-    coupling = [kw for method, kw in model.elements() if method == "add_joint_coupling"]
+    coupling = [kw for method, kw in model.elements if method == "add_joint_coupling"]
     assert coupling == [dict(name="gear", joint="j2", leader="j1", multiplier=-0.5,
                              offset=pytest.approx(j2_0 + 0.5 * j1_0, abs=1e-15))]
     r = mb.simulate(model, 0.5, rtol=1e-9, n_out=6)
@@ -413,7 +413,7 @@ def test_a_joint_equality_couples_two_joints(tmp_path):
 # --- names and arguments (issue 39) ----------------------------------------------------------------------
 
 def _names(model):
-    return [values["name"] for _, values in model.elements()]
+    return [values["name"] for _, values in model.elements]
 
 
 def test_a_body_and_a_joint_may_share_a_name(tmp_path):
@@ -451,7 +451,7 @@ def test_lagmbs_damping_name_taken_by_a_joint_gets_a_number(tmp_path):
     with pytest.warns(mb.MjcfWarning, match="the damping of joint 'j1' is 'j1_damping_2' \\(joint 'j1_damping' has "
                                             "the name 'j1_damping'\\)"):
         model = mb.load_mjcf(path, contacts="ignore")
-    assert ("add_joint_friction", "j1_damping_2") in [(method, kw["name"]) for method, kw in model.elements()]
+    assert ("add_joint_friction", "j1_damping_2") in [(method, kw["name"]) for method, kw in model.elements]
 
 
 @pytest.mark.parametrize("path, contacts, words", [
@@ -529,7 +529,7 @@ def test_contacts_simulate_pairs_the_geoms_mujoco_would(tmp_path):
     path.write_text(DROP_TEXT)
     with pytest.warns(mb.MjcfWarning, match="leaves out geoms 'crate' and 'stick' \\(box-capsule\\)"):
         m = mb.load_mjcf(path, contacts="simulate", contact={"stiffness": 1e6, "restitution": 0.3})
-    contacts = {kw["name"]: kw for method, kw in m.elements() if method == "add_contact"}
+    contacts = {kw["name"]: kw for method, kw in m.elements if method == "add_contact"}
     assert sorted(contacts) == ["ball_stick", "ball_tip", "crate_tip", "floor_ball", "floor_crate", "floor_stick",
                                 "floor_tip"]
     assert contacts["floor_ball"]["friction"] == 0.6 and contacts["ball_stick"]["friction"] == 1.0

@@ -34,7 +34,7 @@ def same_run(a, b):
 
 
 def test_parameters_are_named_as_the_fmu_names_them():
-    p = pendulum(stiffness=20.0).parameters()
+    p = pendulum(stiffness=20.0).parameters
     assert p["rod.mass"] == 1.0
     assert p["rod.inertia"] == pytest.approx(1 / 12)
     assert (p["rod.position.x"], p["rod.position.y"]) == (0.5, 0.0)
@@ -42,7 +42,7 @@ def test_parameters_are_named_as_the_fmu_names_them():
     assert p["rod.angle.start"] == 0.0 and "rod.angle" not in p
     assert (p["pin.at.x"], p["pin.at.y"]) == (0.0, 0.0)
     assert p["spring.stiffness"] == 20.0 and p["spring.free_length"] == 1.0
-    info = {d["name"]: d for d in pendulum().parameter_info()}
+    info = {d["name"]: d for d in pendulum().parameter_info}
     assert info["rod.mass"]["unit"] == "kg" and info["rod.mass"]["element"] == "rod"
     assert info["pin.at.y"]["key"] == "at" and info["pin.at.y"]["component"] == 1
 
@@ -51,7 +51,7 @@ def test_spatial_parameters_have_three_components():
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
     b = m.add_body("b", mass=2.0, inertia=(0.1, 0.2, 0.3), position=(0.0, 0.0, -1.0))
     m.add_spherical("ball", m.ground, b, at=(0.0, 0.0, 0.0))
-    p = m.parameters()
+    p = m.parameters
     assert p["b.mass"] == 2.0
     assert [p[f"b.position.{c}"] for c in "xyz"] == [0.0, 0.0, -1.0]
     assert [p[f"ball.at.{c}"] for c in "xyz"] == [0.0, 0.0, 0.0]
@@ -77,7 +77,7 @@ def test_the_model_keeps_its_values():
     m = pendulum()
     before = mb.simulate(m, 0.5)
     mb.simulate(m, 0.5, parameters={"rod.mass": 3.0})
-    assert m.parameters()["rod.mass"] == 1.0
+    assert m.parameters["rod.mass"] == 1.0
     same_run(mb.simulate(m, 0.5), before)
     # an empty dict is no change
     same_run(mb.simulate(m, 0.5, parameters={}), before)

@@ -359,7 +359,7 @@ def _kind_of(model, method):
 def _without(model, names):
     """The model rebuilt without the elements named."""
     other = mb.Model(gravity=model.gravity, dimension=model.dimension)
-    for method, kw in model.elements():
+    for method, kw in model.elements:
         if kw["name"] not in names:
             getattr(other, method)(**kw)
     return other
@@ -377,7 +377,7 @@ def test_example_holds_its_kind_and_runs(kind):
     m, handle = EXAMPLES[kind]()
     assert handle.kind == kind
     assert handle.role == registry.BY_NAME[kind].role
-    assert (registry.BY_NAME[kind].method, handle.name) in [(meth, kw["name"]) for meth, kw in m.elements()]
+    assert (registry.BY_NAME[kind].method, handle.name) in [(meth, kw["name"]) for meth, kw in m.elements]
     r = mb.simulate(m, 0.02, n_out=3)
     assert np.isfinite(r.q).all()
 
@@ -390,7 +390,7 @@ def test_every_kind_has_a_derivative_check(kind):
     there; or DERIVATIVE_CHECKS names the test that checks it."""
     k = registry.BY_NAME[kind]
     m = _derivative_model(k.dimension)
-    names = {kw["name"] for method, kw in m.elements() if _kind_of(m, method) == kind}
+    names = {kw["name"] for method, kw in m.elements if _kind_of(m, method) == kind}
     if names:
         core = m.compiled()
         if k.role in ("joint", "driver"):
@@ -419,9 +419,9 @@ def test_every_kind_round_trips_through_a_scene(kind, tmp_path):
     mb.save_scene(m, path)
     back = load_scene(path).model
     assert (back.dimension, back.gravity) == (m.dimension, m.gravity)
-    assert [meth for meth, _ in back.elements()] == [meth for meth, _ in m.elements()]
-    mine = dict(m.elements())[registry.BY_NAME[kind].method]
-    theirs = dict(back.elements())[registry.BY_NAME[kind].method]
+    assert [meth for meth, _ in back.elements] == [meth for meth, _ in m.elements]
+    mine = dict(m.elements)[registry.BY_NAME[kind].method]
+    theirs = dict(back.elements)[registry.BY_NAME[kind].method]
     for key, value in mine.items():
         other = theirs[key]
         if isinstance(value, (mb.TimeFunction,)):

@@ -36,7 +36,7 @@ def test_npz_holds_the_run_and_every_joint_and_driver_by_default(tmp_path):
         assert sorted(d.files) == sorted(["t", "q", "v", "a", "lam", "energy", "residual", "coordinates",
                                           "reaction_O", "reaction_B", "reaction_C", "reaction_guide",
                                           "effort_motor"])
-        assert list(d["coordinates"]) == r.model.coordinate_names()
+        assert list(d["coordinates"]) == r.model.coordinate_names
         for name in ("t", "q", "v", "a", "lam", "energy", "residual"):
             assert np.array_equal(d[name], getattr(r, name))
         assert np.array_equal(d["reaction_C"], r.reaction("C")) and np.array_equal(d["effort_motor"],
@@ -51,7 +51,7 @@ def test_csv_holds_the_coordinates_and_what_is_listed_exactly(tmp_path):
     r = slider_crank_run()
     r.save(tmp_path / "plain.csv")
     rows = list(csv.reader(open(tmp_path / "plain.csv", newline="")))
-    assert rows[0] == ["t"] + r.model.coordinate_names() and len(rows) == 1 + len(r.t)
+    assert rows[0] == ["t"] + r.model.coordinate_names and len(rows) == 1 + len(r.t)
     r.save(tmp_path / "x.csv", reactions=["C"], efforts=["motor"], frame="joint", energy=True)
     rows = list(csv.reader(open(tmp_path / "x.csv", newline="")))
     assert rows[0][-5:] == ["C.f1", "C.f2", "C.torque", "motor.effort", "energy"]

@@ -160,7 +160,7 @@ def test_round_trip_bit_for_bit(tmp_path):
     save_scene(m, path, settings=settings, output=output)
     scene = load_scene(path)
     assert scene.settings == settings and scene.output == output
-    assert [method for method, _ in scene.model.elements()] == [method for method, _ in m.elements()]
+    assert [method for method, _ in scene.model.elements] == [method for method, _ in m.elements]
     assert scene.model.n_coordinates == m.n_coordinates == 14
     assert scene.model.n_constraints == m.n_constraints == 13
 
@@ -187,7 +187,7 @@ def test_round_trip_exact_floats(tmp_path):
         m.add_body(f"b{k}", mass=abs(v), inertia=abs(v) * 2.0, position=(v, -v), angle=v)
     path = str(tmp_path / "floats.toml")
     save_scene(m, path)
-    back = dict((kw["name"], kw) for method, kw in load_scene(path).model.elements())
+    back = dict((kw["name"], kw) for method, kw in load_scene(path).model.elements)
     for k, v in enumerate(values):
         kw = back[f"b{k}"]
         assert kw["mass"] == abs(v) and kw["inertia"] == abs(v) * 2.0

@@ -31,7 +31,7 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 def finite_difference(model, name, t_end, accessor, rel=1e-4, **run):
     """d accessor(result) / d p by central differences of two whole runs."""
-    p = model.parameters()[name]
+    p = model.parameters[name]
     step = rel * (abs(p) if p else 1.0)
     settings = dict(rtol=1e-12, atol=1e-14, method="ggl")
     settings.update(run)
@@ -108,7 +108,7 @@ def closed_form_height(t, k, c, m=1.0, y0=-1.0, free=1.0, g=G):
 @pytest.mark.parametrize("name", ["spring.stiffness", "spring.damping"])
 def test_a_damped_spring_s_sensitivities_are_the_closed_form_s_derivatives(name):
     model = damped_block()
-    k, c = model.parameters()["spring.stiffness"], model.parameters()["spring.damping"]
+    k, c = model.parameters["spring.stiffness"], model.parameters["spring.damping"]
     r = mb.simulate(model, 3.0, n_out=31, rtol=1e-10, atol=1e-12, sensitivities=[name])
     np.testing.assert_allclose(r.body("block").position[:, 1], closed_form_height(r.t, k, c), atol=1e-8)
     h = 1e-5 * (k if name == "spring.stiffness" else c)
@@ -134,7 +134,7 @@ def test_a_driven_slider_crank_s_reactions_and_motor_torque_have_the_sensitiviti
     s = r.sensitivity(name)
     run = dict(n_out=11, analysis="dynamic")
     assert_close(s.reaction("C"), finite_difference(model, name, 0.5, lambda x: x.reaction("C"), **run))
-    driver = [e for kind, e in ((k, v["name"]) for k, v in model.elements()) if kind == "drive_joint"][0]
+    driver = [e for kind, e in ((k, v["name"]) for k, v in model.elements) if kind == "drive_joint"][0]
     assert_close(s.effort(driver), finite_difference(model, name, 0.5, lambda x: x.effort(driver), **run))
     if name == "rod.mass":  # the drivers prescribe the motion: no mass moves it
         np.testing.assert_allclose(s.q, 0.0, atol=1e-9)
@@ -173,7 +173,7 @@ def test_what_cannot_be_differentiated_is_named():
         mb.simulate(model, 0.1).sensitivity("rod.mass")
     ball = mb.load_scene(EXAMPLES / "bouncing_ball.toml").model
     with pytest.raises(mb.ModelError, match="the motion jumps"):
-        mb.simulate(ball, 0.1, sensitivities=[next(iter(ball.parameters()))])
+        mb.simulate(ball, 0.1, sensitivities=[next(iter(ball.parameters))])
     rubbing = compound_pendulum()
     rubbing.add_joint_friction("rub", "pin", mu=0.1, pin_radius=0.01)
     with pytest.raises(mb.ModelError, match="joint friction \\('rub'\\)"):
@@ -189,7 +189,7 @@ def test_a_parameter_at_the_bound_of_its_range_is_differentiated_one_sided():
     form's derivative at c = 0 (a central difference of the formula, which
     takes c < 0) and with a one-sided second-order difference of whole runs."""
     model = damped_block()
-    k = model.parameters()["spring.stiffness"]
+    k = model.parameters["spring.stiffness"]
     undamped = {"spring.damping": 0.0}
     r = mb.simulate(model, 3.0, n_out=31, rtol=1e-10, atol=1e-12, parameters=undamped,
                     sensitivities=["spring.damping"])
@@ -211,7 +211,7 @@ def test_a_parameter_at_the_bound_of_its_range_is_differentiated_one_sided():
 
 
 def test_a_parameter_without_a_sensitivity_is_named_with_the_reason():
-    """model.parameters() lists numbers a run cannot be differentiated in:
+    """model.parameters lists numbers a run cannot be differentiated in:
     the message names the parameter and says why, not a model the user did
     not build (issue 39)."""
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))

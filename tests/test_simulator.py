@@ -523,7 +523,7 @@ def test_a_simulator_does_not_pickle_and_says_what_to_send_instead():
             send(sim)
     r = pickle.loads(pickle.dumps(sim.result()))
     assert np.array_equal(r.q[-1], sim.q) and r.t[-1] == sim.t
-    assert pickle.loads(pickle.dumps(sim.model)).parameters() == sim.model.parameters()
+    assert pickle.loads(pickle.dumps(sim.model)).parameters == sim.model.parameters
 
 
 def test_the_wall_time_is_the_time_spent_advancing():

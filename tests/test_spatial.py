@@ -547,7 +547,7 @@ def test_bad_spatial_input_is_a_model_error_naming_it(call, message):
     m.add_spherical("ball", m.ground, "a", (0.0, 0.0, 0.0))
     with pytest.raises(mb.ModelError, match=message):
         call(m)
-    assert [kw["name"] for _, kw in m.elements()] == ["a", "ball"]  # nothing half added
+    assert [kw["name"] for _, kw in m.elements] == ["a", "ball"]  # nothing half added
 
 
 @pytest.mark.parametrize("kwargs, message", [

@@ -79,11 +79,11 @@ def test_a_result_keeps_the_model_it_was_computed_with():
 def test_copies_are_edited_independently():
     m = pendulum()
     twin = m.copy()
-    assert copy.copy(m).elements() == m.elements()
+    assert copy.copy(m).elements == m.elements
     twin.add_torque("push", "rod", 2.0)
     assert not m.compiled().has("push") and twin.compiled().has("push")
-    assert [kw["name"] for _, kw in m.elements()] == ["rod", "pin"]
-    assert [kw["name"] for _, kw in twin.elements()] == ["rod", "pin", "push"]
+    assert [kw["name"] for _, kw in m.elements] == ["rod", "pin"]
+    assert [kw["name"] for _, kw in twin.elements] == ["rod", "pin", "push"]
     assert twin.bodies[0].model is twin and m.bodies[0].model is m
     free = mb.simulate(m, 0.5, n_out=2).q[-1]
     pushed = mb.simulate(twin, 0.5, n_out=2).q[-1]
@@ -106,7 +106,7 @@ def test_a_refused_element_leaves_the_model_as_it_was():
     before = m.compiled()
     with pytest.raises(mb.ModelError, match="revolute or translational"):
         m.add_joint_friction("drag", weld, mu=0.1)
-    assert "drag" not in [kw["name"] for _, kw in m.elements()]
+    assert "drag" not in [kw["name"] for _, kw in m.elements]
     assert m.compiled() is before  # nothing changed, nothing to recompile
     m.add_joint_friction("drag", "pin", viscous=0.1)  # the name is still free
     r = mb.simulate(m, 0.1, n_out=2)
@@ -143,7 +143,7 @@ def test_none_means_the_default():
     m = pendulum()
     m.add_force("push", "rod", (1.0, 0.0), point=None, local=None)
     m.add_body("free", 1.0, 0.1, position=None, velocity=None)
-    assert dict(m.elements())["add_force"]["local"] is False
+    assert dict(m.elements)["add_force"]["local"] is False
     assert m.compiled().initial_state()[0][3:5].tolist() == [0.0, 0.0]
 
 
@@ -196,7 +196,7 @@ def test_the_description_is_the_one_copy_of_the_model():
     m.add_torque("gust", "rod", wind)
     m.add_rotational_spring_damper("coil", m.ground, "rod", stiffness=2.0, torque=mb.Linear(0.5, 0.25))
     assert not {"_elements", "_bodies"} & set(vars(m))
-    given = dict((kw["name"], kw) for _, kw in m.elements())
+    given = dict((kw["name"], kw) for _, kw in m.elements)
     assert given["rod"]["position"] == (0.5, 0.0) and given["pin"]["body_i"] == "ground"
     force = given["shove"]["force"]
     assert force[1] is push and force[0] == mb.Constant(1.5)
@@ -206,7 +206,7 @@ def test_the_description_is_the_one_copy_of_the_model():
     assert _core.linear(0.5, 0.25).text == "linear 0.5 0.25"
     # replaying the description rebuilds the same model
     again = mb.Model(gravity=m.gravity)
-    for method, kwargs in m.elements():
+    for method, kwargs in m.elements:
         getattr(again, method)(**kwargs)
-    assert again.elements() == m.elements()
+    assert again.elements == m.elements
     np.testing.assert_array_equal(mb.simulate(again, 0.2, n_out=3).q, mb.simulate(m, 0.2, n_out=3).q)

@@ -278,7 +278,7 @@ def test_joint_damping_is_a_torque_against_the_rate():
     finally:
         os.remove(path)
     js = mb.JointSpace(model)
-    assert [kw["viscous"] for method, kw in model.elements() if method == "add_joint_friction"] == [0.7, 0.7]
+    assert [kw["viscous"] for method, kw in model.elements if method == "add_joint_friction"] == [0.7, 0.7]
     positions, rates, q_pin, v_pin = random_state(pm, js, np.random.default_rng(3))
     expected = pin.aba(pm, pm.createData(), q_pin, v_pin, -0.7 * v_pin)
     q, v, _ = js.coordinates(positions, rates)
@@ -411,7 +411,7 @@ def test_limits_are_stops(tmp_path):
     torque is the weight's torque about the axis, -m g (L/2) cos(1) along the
     angle (1e-9 relative)."""
     model = mb.load_urdf(write(tmp_path, ARM))
-    assert ("add_stop", "shoulder_limit") in [(method, values["name"]) for method, values in model.elements()]
+    assert ("add_stop", "shoulder_limit") in [(method, values["name"]) for method, values in model.elements]
     r = mb.simulate(model, 2.0, n_out=201, rtol=1e-9, atol=1e-11)
     assert [(x["kind"], x["label"]) for x in r.events] == [("impact", "upper"), ("capture", "upper")]
     resting = r.t > r.events[0]["t"]
@@ -439,7 +439,7 @@ def test_joint_friction_is_a_torque_against_the_rate(tmp_path):
       <limit lower="-1" upper="1" effort="10" velocity="1"/></joint></robot>""")
     path = write(tmp_path, text)
     model = mb.load_urdf(path, limits=False)
-    frictions = {kw["joint"]: (kw["viscous"], kw["preload"]) for method, kw in model.elements()
+    frictions = {kw["joint"]: (kw["viscous"], kw["preload"]) for method, kw in model.elements
                  if method == "add_joint_friction"}
     assert frictions == {"shoulder": (0.4, 0.3), "slide": (2.0, 1.5)}
     pm = pin.buildModelFromUrdf(str(path))
@@ -468,7 +468,7 @@ def test_a_mimic_joint_follows_its_leader():
     the fingers keep equal slides."""
     relpath = "panda_description/urdf/panda.urdf"
     model = load(relpath, mimic=True, positions={"panda_finger_joint1": 0.02})
-    couplings = [kw for method, kw in model.elements() if method == "add_joint_coupling"]
+    couplings = [kw for method, kw in model.elements if method == "add_joint_coupling"]
     assert couplings == [dict(name="panda_finger_joint2_mimic", joint="panda_finger_joint2",
                               leader="panda_finger_joint1", multiplier=1.0, offset=0.0)]
     js = mb.JointSpace(model)
@@ -517,7 +517,7 @@ def test_mimic_errors_name_the_joint(tmp_path):
     assert js.motion("elbow", q0, v0)[0] == pytest.approx(-0.5 * 0.4 + 0.1, abs=1e-14)
     r = mb.simulate(follows, 0.5, rtol=1e-9, n_out=6)
     assert r.joint("elbow").angle == pytest.approx(-0.5 * r.joint("shoulder").angle + 0.1, abs=1e-9)
-    assert loaded('<mimic joint="shoulder"/>', mimic=False).elements()[-1][0] == "add_revolute"
+    assert loaded('<mimic joint="shoulder"/>', mimic=False).elements[-1][0] == "add_revolute"
     for mimic, words in (('<mimic joint="elbow"/>', "mimics itself"),
                          ('<mimic/>', "needs the joint it mimics")):
         with pytest.raises(mb.UrdfError, match=f"line 10: joint 'elbow': .*{words}"):
@@ -902,7 +902,7 @@ def load_text(tmp_path, text, **options):
 
 
 def names(model):
-    return [values["name"] for _, values in model.elements()]
+    return [values["name"] for _, values in model.elements]
 
 
 def test_lower_limit_above_upper_is_an_error_and_equal_limits_lock_the_joint(tmp_path):
@@ -955,7 +955,7 @@ def test_numbers_in_every_decimal_form_are_read(tmp_path):
     text = ARM.replace('<mass value="1"/>', '<mass value=" +1.0E0 "/>').replace(
         '<origin xyz="0.5 0 0"/>', '<origin xyz="\n .5\t0.  -0e-3 "/>')
     model = load_text(tmp_path, text, limits=False)
-    assert model.elements()[0][1]["mass"] == 1.0
+    assert model.elements[0][1]["mass"] == 1.0
     assert model.compiled().initial_state()[0][:3] == pytest.approx([0.5, 0.0, 0.0])
 
 
@@ -1040,8 +1040,8 @@ def test_a_long_chain_of_mimics_loads_in_linear_time(tmp_path):
     expected = 0.1
     for _ in range(2, 3001):
         expected = 1.001 * expected + 0.001
-    assert model.elements()[-1][1]["name"] == "j3000_mimic"
-    angles = [kw["angle"] for method, kw in model.elements() if method == "add_revolute"]
+    assert model.elements[-1][1]["name"] == "j3000_mimic"
+    angles = [kw["angle"] for method, kw in model.elements if method == "add_revolute"]
     assert angles[-1] == pytest.approx(expected, rel=1e-12)
     cycle = mimic_chain(3000).replace('<axis xyz="0 0 1"/></joint>', '<axis xyz="0 0 1"/><mimic joint="j3000"/>'
                                       '</joint>', 1)  # (j1's: j1 mimics j3000)
@@ -1120,7 +1120,7 @@ def test_an_axis_is_a_direction_at_any_scale(tmp_path, axis):
     """Components 1e200 or 1e-200 (before: refused as "got (0, 0, 0)", or
     as zero) are the direction y, as "0 1 0"; "0 0 0" stays an error."""
     model = load_text(tmp_path, ARM.replace('<axis xyz="0 1 0"/>', f'<axis xyz="{axis}"/>'), limits=False)
-    assert model.elements()[1][1]["axis"] == (0.0, 1.0, 0.0)
+    assert model.elements[1][1]["axis"] == (0.0, 1.0, 0.0)
     with pytest.raises(mb.UrdfError, match="line 5: joint 'shoulder': the axis is zero"):
         load_text(tmp_path, ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>'), limits=False)
 
@@ -1224,7 +1224,7 @@ def test_an_inertia_no_body_has_is_built_with_the_nearest_a_body_has(tmp_path):
     assert "link 'upper', line 4: principal moments [-0.01, 0.1, 0.15" in message
     built = [float(x) for x in re.search(r"built with \[([^]]*)\]", message).group(1).split(",")]
     assert built == pytest.approx([0.01, 0.12, 0.13], abs=1e-15)
-    inertia = [kw["inertia"] for kind, kw in model.elements() if kind == "add_body"][0]
+    inertia = [kw["inertia"] for kind, kw in model.elements if kind == "add_body"][0]
     np.testing.assert_allclose(inertia, np.diag([0.01, 0.12, 0.13]), atol=1e-15)
     r = mb.simulate(model, 0.1, n_out=3, rtol=1e-10, atol=1e-12)
     assert r.joint("shoulder").acceleration[0] == pytest.approx(9.81 * 0.5 / (0.12 + 0.25), rel=1e-12)
@@ -1244,7 +1244,7 @@ def test_a_mesh_not_found_is_left_out_with_a_warning(tmp_path):
                                             r"\(the links' <inertial> give the dynamics.*link 'upper', line 3: "
                                             r"'package://nowhere/m.stl'"):
         model = load_text(tmp_path, text)
-    assert model.shapes == [] and model.elements() == load_text(tmp_path, ARM).elements()
+    assert model.shapes == [] and model.elements == load_text(tmp_path, ARM).elements
     with pytest.raises(mb.UrdfError, match=r"line 3: link 'upper': mesh 'package://nowhere/m.stl' not found "
                                            r"\(looked in .*strict=False"):
         load_text(tmp_path, text, strict=True)
@@ -1264,8 +1264,8 @@ def test_a_mimic_of_a_joint_the_file_does_not_have_is_a_joint_of_its_own(tmp_pat
                                             r"as a joint of its own that moves freely \(not coupled.*joint 'elbow', "
                                             r"line 10: mimics 'wrist'"):
         model = load_text(tmp_path, text, limits=False)
-    assert model.elements() == load_text(tmp_path, text, limits=False, mimic=False).elements()
-    assert "add_joint_coupling" not in [kind for kind, _ in model.elements()]
+    assert model.elements == load_text(tmp_path, text, limits=False, mimic=False).elements
+    assert "add_joint_coupling" not in [kind for kind, _ in model.elements]
     with pytest.raises(mb.UrdfError, match="line 10: joint 'elbow': mimics 'wrist', which is not a joint of the file"):
         load_text(tmp_path, text, limits=False, strict=True)
 
@@ -1278,7 +1278,7 @@ def test_an_origin_in_a_link_is_ignored_with_a_warning(tmp_path):
     text = ARM.replace('<link name="upper">', '<link name="upper"><origin xyz="1 2 3"/>')
     with pytest.warns(mb.UrdfWarning, match="robot.urdf, line 3: link 'upper': <origin> in <link> is ignored"):
         model = load_text(tmp_path, text, limits=False)
-    assert model.elements() == load_text(tmp_path, ARM, limits=False).elements()
+    assert model.elements == load_text(tmp_path, ARM, limits=False).elements
 
 
 def test_a_joint_and_a_link_of_one_name_are_each_found(tmp_path):
@@ -1298,7 +1298,7 @@ def test_a_joint_and_a_link_of_one_name_are_each_found(tmp_path):
     alpha = 9.81 * 0.5 / (0.1 + 0.25)
     assert r.reaction("upper")[0, 2] == pytest.approx(9.81 - 0.5 * alpha, rel=1e-9)
     model.add_stop("upper_stop", joint="upper", lower=-0.5, upper=0.5)  # (the alias where a joint is asked for)
-    assert model.elements()[-1][1]["joint"] == "upper_joint"
+    assert model.elements[-1][1]["joint"] == "upper_joint"
     with pytest.raises(mb.ModelError, match="an alias is a body's or frame's name"):
         model.add_joint_alias("somewhere", "upper_joint")
 
@@ -1315,7 +1315,7 @@ def test_so100s_gripper_link_and_gripper_joint_are_each_found():
     expected = pin.aba(pm, pd, pin.neutral(pm), np.zeros(pm.nv), np.zeros(pm.nv))
     gripper = pm.joints[pm.getJointId("gripper")].idx_v
     assert r.joint("gripper").acceleration[0] == pytest.approx(expected[gripper], rel=1e-9, abs=1e-12)
-    added = {kw["name"]: kw for method, kw in model.elements() if method == "add_body"}
+    added = {kw["name"]: kw for method, kw in model.elements if method == "add_body"}
     assert r.body("gripper").position[0] == pytest.approx(added["gripper"]["position"], abs=1e-12)
 
 
@@ -1374,7 +1374,7 @@ def test_the_panda_rests_on_its_limits_with_the_torques_of_inverse_dynamics(form
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", mb.UrdfWarning)
         model = mb.load_urdf(os.path.join(ROBOTS, relpath))
-    elements = model.elements()
+    elements = model.elements
     stops = {kw["joint"]: kw for kind, kw in elements if kind == "add_stop"}
     damping = {kw["joint"]: kw["viscous"] for kind, kw in elements if kind == "add_joint_friction"}
     mimics = [kw for kind, kw in elements if kind == "add_joint_coupling"]
@@ -1422,7 +1422,7 @@ def joint_values(model, r, joint):
     path = r.joint(joint)
     if not hasattr(path, "angle"):
         return path.slide
-    start = next(kw.get("angle", 0.0) for kind, kw in model.elements() if kw["name"] == joint)
+    start = next(kw.get("angle", 0.0) for kind, kw in model.elements if kw["name"] == joint)
     return path.angle + 2 * np.pi * np.round((start - path.angle[0]) / (2 * np.pi))
 
 
@@ -1430,7 +1430,7 @@ def limits_held(model, r, tolerance=1e-8):
     """{stop: how far (rad or m) its joint went beyond a limit} for the stops
     whose joint went beyond one by more than `tolerance` at an output."""
     beyond = {}
-    for kind, stop in model.elements():
+    for kind, stop in model.elements:
         if kind == "add_stop":
             s = joint_values(model, r, stop["joint"])
             excursion = max(float(np.max(stop["lower"] - s)), float(np.max(s - stop["upper"])))

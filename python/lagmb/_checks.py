@@ -44,7 +44,7 @@ def real(value, name):
 
 def parameters(model, values, who):
     """The compiled model `model` runs with the parameter values `values`
-    ({name: number}, model.parameters() names them): model.compiled() for
+    ({name: number}, model.parameters names them): model.compiled() for
     None or {}, else the compiled model built with those values (the core
     checks each as add_* does; an unknown name is a ModelError listing the
     parameters)."""

@@ -5,7 +5,7 @@ body's planar outline shape, the faces of a spatial shape (box, cylinder,
 sphere, STL mesh), the caption's words, the points a drawing traces
 (trace_points) and a model posed along a vibration mode.
 
-What it reads of the model comes from ``model.elements()`` (the add_* and
+What it reads of the model comes from ``model.elements`` (the add_* and
 drive_* calls with their arguments, counted by the role the registry of
 element kinds gives each) and, from the compiled model the run used, the
 local points where elements attach to the bodies (the core's outline and
@@ -34,7 +34,7 @@ class Scene:
         self.dimension = getattr(model, "dimension", 2)
         self.kinds = kinds = BY_METHOD if self.dimension == 2 else SPATIAL_BY_METHOD  # Model method -> Kind
         # what the run simulated: the model may have grown since
-        self.elements = [(method, kw) for method, kw in model.elements() if core.has(kw["name"])]
+        self.elements = [(method, kw) for method, kw in model.elements if core.has(kw["name"])]
         bodies = [b for b in model.bodies if core.has(b.name)]
         self.bodies = [b.name for b in bodies]
         self.kind_of = {kw["name"]: method for method, kw in self.elements}
@@ -155,7 +155,7 @@ class Scene:
 def effort_unit(elements, kinds, name):
     """The unit of a driver's, stop's or servo's effort (Result.effort):
     "N m" along an angle, "N" along a slide or a body's x, y (z), from the
-    kind of what it drives (``elements``: Model.elements(); ``kinds``: the
+    kind of what it drives (``elements``: Model.elements; ``kinds``: the
     registry's Model method -> Kind of the model's dimension); "N or N m"
     where it cannot be told."""
     kind_of = {kw["name"]: method for method, kw in elements}

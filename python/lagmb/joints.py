@@ -48,7 +48,7 @@ class JointSpace:
             self._r0[name] = q0[7 * k:7 * k + 3]
             self._R0[name] = _rotations.matrix(q0[7 * k + 3:7 * k + 7])
         parent_of, joints = {}, {}
-        for method, values in model.elements():
+        for method, values in model.elements:
             moves = _MOVING.get(registry.SPATIAL_BY_METHOD[method].coordinates)
             if moves is None:
                 continue
@@ -155,7 +155,7 @@ class JointSpace:
         configuration, as forward kinematics gives them (rad/s, m/s)."""
         q, v, _ = self.coordinates({}, rates)
         out = Model(gravity=self.model.gravity, dimension=3)
-        for method, values in self.model.elements():
+        for method, values in self.model.elements:
             if method == "add_body":
                 k = self._index[values["name"]]
                 values = dict(values, velocity=tuple(v[7 * k:7 * k + 3]),

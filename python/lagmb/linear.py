@@ -99,7 +99,7 @@ class Modes:
             k = max(pool, key=lambda j: rates[j])
             if rates[k] > 0:
                 return f"joint '{joints[k][0]}' ({'slide' if joints[k][1] else 'angle'})"
-        names = model.coordinate_names()
+        names = model.coordinate_names
         k = int(np.abs(shape).argmax())
         body, coordinate = names[k].rsplit(".", 1)
         if coordinate == "angle":

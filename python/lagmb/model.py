@@ -2,6 +2,7 @@
 
 import copy
 import threading
+import warnings
 
 import numpy as np
 
@@ -31,6 +32,14 @@ class Model:
     unless given: (gx, gy) in the plane, (gx, gy, gz) in space. ``name``:
     what pictures and pages call the model (load_urdf: the robot's name,
     load_scene: the file's, load_mjcf: the model's); None: unnamed.
+
+    What a model has is an attribute (``m.bodies``, ``m.elements``,
+    ``m.parameters``, ``m.parameter_info``, ``m.coordinate_names``,
+    ``m.frames``, ``m.shapes``, ``m.n_coordinates``); what is computed from
+    it is a method (``m.assemble()``, ``m.degrees_of_freedom()``,
+    ``m.rank()``, ``m.compiled()``, ``m.to_text()``). Calling an attribute
+    (``m.elements``, the spelling before 0.1.0's release) still works and
+    warns (DeprecationWarning).
 
     Every add_* and drive_* method returns the handle of what it added
     (mb.Handle; mb.Body for bodies and particles, ``ground`` for the
@@ -91,7 +100,7 @@ class Model:
         and the elements, replayed on a new Model (time functions by their
         fields, a Python callable by pickle's rules: a module-level function
         travels, a lambda does not). Handles and results stay with this one."""
-        return _rebuilt, (self.gravity, self.dimension, self.elements(), tuple(self._annotations), self.name)
+        return _rebuilt, (self.gravity, self.dimension, self.elements, tuple(self._annotations), self.name)
 
     # --- building --------------------------------------------------------
 
@@ -228,12 +237,14 @@ class Model:
                 break
         return model
 
+    @property
     def coordinate_names(self):
         """The names of the coordinates q in order, as the FMU names them:
         body.x, body.y, body.angle in the plane; body.x, .y, .z, .e0 ...
         .e3 (Euler parameters) in space."""
-        return list(self.compiled().coordinate_names())
+        return _Listed("coordinate_names", self.compiled().coordinate_names())
 
+    @property
     def parameters(self):
         """{name: value} of every number given to an element that a run may
         change (``simulate(..., parameters={...})``, ``Simulator``, the FMU's
@@ -243,13 +254,14 @@ class Model:
         A body's initial coordinate that shares its name with the coordinate
         ends in ".start" ("rod.angle.start"). Inertia tensors, orientations,
         flags and time functions are not parameters."""
-        return {p["name"]: p["value"] for p in self.compiled().parameters}
+        return _Named("parameters", {p["name"]: p["value"] for p in self.compiled().parameters})
 
+    @property
     def parameter_info(self):
         """The parameters with what they are: a list of dicts with name,
         element, key (the add_* argument), component (-1, or 0/1/2 for
         x/y/z), unit, doc and value."""
-        return [dict(p) for p in self.compiled().parameters]
+        return _Listed("parameter_info", [dict(p) for p in self.compiled().parameters])
 
     def _warn_redundant(self, rows, stacklevel=2, into=None):
         """RedundantConstraintWarning for the rows a run left out; stacklevel
@@ -312,11 +324,13 @@ class Model:
             "Check the joint points and the initial positions; the run starts from the assembled "
             "configuration."))
 
+    @property
     def elements(self):
         """Everything added, in order: (method name, keyword arguments) with
-        bodies by name, points as tuples and time functions as given.
-        Replaying them on Model(gravity=self.gravity, dimension=self.dimension)
-        rebuilds this model."""
+        bodies by name, points as tuples and time functions as given: the
+        model's description, which replayed on Model(gravity=self.gravity,
+        dimension=self.dimension) rebuilds it (a handle of an element:
+        the add_* call returned it, or give its name wherever a handle goes)."""
         bodies = [name for name, _ in self._spec.bodies]
         memo = {}  # one object per core input within this reading
         out = []
@@ -326,7 +340,7 @@ class Model:
             for param in kind.params:
                 given[param.name] = self._given(param, values.get(param.name), bodies, memo)
             out.append((kind.method, given))
-        return out
+        return _Listed("elements", out)
 
     def outline(self, body):
         """Local points (body axes) where joints and forces attach to a body,
@@ -351,8 +365,8 @@ class Model:
     def bodies(self):
         """Body handles, in the order of their coordinates."""
         kind = "spatial_body" if self.dimension == 3 else None
-        return [Body(name, self, k, kind or ("particle" if particle else "body"))
-                for k, (name, particle) in enumerate(self._spec.bodies)]
+        return _Listed("bodies", [Body(name, self, k, kind or ("particle" if particle else "body"))
+                                  for k, (name, particle) in enumerate(self._spec.bodies)])
 
     # --- frames and shapes (no part of the equations) -------------------
 
@@ -368,7 +382,7 @@ class Model:
         if self.dimension != 3:
             raise ModelError(f"{context}: frames are spatial only; this model has dimension {self.dimension}")
         name = _text(self._name(name), "frame name")
-        if name == "ground" or name in self._frames or name in {kw["name"] for _, kw in self.elements()}:
+        if name == "ground" or name in self._frames or name in {kw["name"] for _, kw in self.elements}:
             raise ModelError(f"{context}: the name is taken")
         body_name, R, r = _initial_pose(self, body, context)
         at = np.asarray(_vec3(position, f"{context}: position"), dtype=float)
@@ -384,7 +398,7 @@ class Model:
     @property
     def frames(self):
         """{name: Frame} of the frames added (add_frame)."""
-        return dict(self._frames)
+        return _Named("frames", self._frames)
 
     def add_joint_alias(self, name, joint):
         """A second name for a joint where the name is a body's or frame's:
@@ -396,7 +410,7 @@ class Model:
         context = f"joint alias '{name}'"
         name = _text(self._name(name), "alias")
         joint = name_of(self, joint, ("joint",), "joint", context)
-        elements = {kw["name"]: method for method, kw in self.elements()}
+        elements = {kw["name"]: method for method, kw in self.elements}
         if elements.get(name) != "add_body" and name not in self._frames:
             raise ModelError(f"{context}: an alias is a body's or frame's name (a joint's own name is free, "
                              "or another element's)")
@@ -458,7 +472,7 @@ class Model:
     @property
     def shapes(self):
         """The shapes added (add_shape), in order."""
-        return list(self._shapes)
+        return _Listed("shapes", self._shapes)
 
     def _orientation(self, orientation, context):
         try:
@@ -578,6 +592,46 @@ _CHECKS = {
 }
 
 
+def _called(name):
+    warnings.warn(f"Model.{name} is an attribute (what a model has): write m.{name}, not m.{name}(); "
+                  "the call is deprecated", DeprecationWarning, stacklevel=3)
+
+
+class _Listed(list):
+    """A list a Model attribute gives that may still be called, as it was a
+    method (``m.elements``): the call warns and gives the list."""
+
+    __slots__ = ("_attribute",)
+
+    def __init__(self, attribute, items):
+        super().__init__(items)
+        self._attribute = attribute
+
+    def __call__(self):
+        _called(self._attribute)
+        return list(self)
+
+    def __reduce__(self):  # (pickled as a plain list)
+        return list, (list(self),)
+
+
+class _Named(dict):
+    """A dict a Model attribute gives that may still be called (``m.parameters``): the call warns."""
+
+    __slots__ = ("_attribute",)
+
+    def __init__(self, attribute, items):
+        super().__init__(items)
+        self._attribute = attribute
+
+    def __call__(self):
+        _called(self._attribute)
+        return dict(self)
+
+    def __reduce__(self):
+        return dict, (dict(self),)
+
+
 def _rebuilt(gravity, dimension, elements, annotations=(), name=None):
     """A Model from what Model.__reduce__ gives."""
     model = Model(gravity=gravity, dimension=dimension, name=name)
@@ -592,7 +646,7 @@ def _initial_pose(model, body, context):
     name, index = model._body(body, "body", context)
     if index < 0:
         return name, np.eye(3), np.zeros(3)
-    values = next(kw for method, kw in model.elements() if method == "add_body" and kw["name"] == name)
+    values = next(kw for method, kw in model.elements if method == "add_body" and kw["name"] == name)
     R = _rotation(values["orientation"])
     return name, R, np.asarray(values["position"], dtype=float)
 

@@ -438,7 +438,7 @@ class Result:
         os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
         if npz:
             arrays = dict(t=self.t, q=self.q, v=self.v, a=self.a, energy=self.energy, residual=self.residual,
-                          coordinates=np.array(self.model.coordinate_names()))
+                          coordinates=np.array(self.model.coordinate_names))
             if not kinematic:
                 arrays["lam"] = self.lam
             for name in reactions:
@@ -448,7 +448,7 @@ class Result:
             with open(path, "wb") as fh:
                 np.savez(fh, **arrays)
             return
-        columns = ["t"] + self.model.coordinate_names()
+        columns = ["t"] + self.model.coordinate_names
         blocks = [self.t[:, None], self.q]
         force = ("f1", "f2") if frame == "joint" else ("fx", "fy")
         for name in reactions:
@@ -469,7 +469,7 @@ class Result:
     def _names_of(self, role):
         """The names of the run's elements of a role ("joint", "driver"), in the order added."""
         kinds = BY_METHOD if self.model.dimension == 2 else SPATIAL_BY_METHOD
-        return [given["name"] for method, given in self.model.elements() if kinds[method].role == role]
+        return [given["name"] for method, given in self.model.elements if kinds[method].role == role]
 
     def _finite(self, values, what):
         """values, read-only, if all are finite; else SimulationError naming

@@ -130,14 +130,14 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     state (``"given"``).
 
     ``parameters={"rod.mass": 2.0, ...}`` runs the model with other values
-    of the numbers its elements were given (``model.parameters()`` lists
+    of the numbers its elements were given (``model.parameters`` lists
     them with their values): the same as a model built with those values,
     without changing ``model``; the Result's reactions and energy are of
     that run. Each value is checked as ``add_*`` checks it.
 
     ``sensitivities=["rod.mass", "spring.stiffness", ...]`` integrates,
     beside the run, the derivatives of its solution with respect to those
-    parameters (``model.parameters()`` names them: every number given to an
+    parameters (``model.parameters`` names them: every number given to an
     element and the bodies' initial coordinates and velocities):
     ``r.sensitivity(name)`` gives dq/dp, dv/dp, da/dp, dlam/dp and the
     derivatives of positions, points, reactions and efforts (a

@@ -37,7 +37,7 @@ class Simulator:
     ``result()`` holds the state at ``t0``, at the end of every advance and,
     with ``output_interval`` (s), at each of its multiples after ``t0``.
     ``parameters={name: value}``: as in :func:`lagmb.simulate`, the model
-    runs with those values of its parameters (``model.parameters()``).
+    runs with those values of its parameters (``model.parameters``).
     """
 
     def __init__(self, model, *, t0=_D["t0"], rtol=_D["rtol"], atol=_D["atol"], formulation=_D["formulation"],

@@ -109,7 +109,7 @@ class PeakEffort:
         from ._drawing import effort_unit
 
         kinds = registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD
-        return effort_unit(model.elements(), kinds, self.driver)
+        return effort_unit(model.elements, kinds, self.driver)
 
     def __repr__(self):
         return f"peak_effort({self.driver!r})"
@@ -400,7 +400,7 @@ def _check_cases(model, cases, who):
     element's own ModelError), before any case runs; parameters as floats,
     run settings as one number or name each (a list, such as a
     per-coordinate atol, is a setting of the whole sweep, not a case's)."""
-    known = model.parameters()
+    known = model.parameters
     core = model.compiled()
     tried = set()
     out = []
@@ -661,7 +661,7 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     :func:`latin_hypercube`, :func:`sobol`); at most ``MAX_CASES``
     (10,000,000) cases, and no more than the machine's memory holds (both
     refused before any case is made). Names are
-    those of ``model.parameters()`` (the FMU's and ``lagmb info``'s:
+    those of ``model.parameters`` (the FMU's and ``lagmb info``'s:
     ``"crank.mass"``, ``"spring.stiffness"``, ``"rod.angle.start"``) and the
     run settings ``t_end``, ``rtol``, ``atol``, ``method``, ``formulation``,
     ``integrator``, ``analysis``, ``start``, ``max_step``, ``n_out``,
@@ -729,7 +729,7 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
             raise ModelError(f"{who}: outputs must be {{name: function of the Result}}, got {name!r}: {f!r}")
         if name in ("status", "warnings", "steps", "wall_time", "q", "case"):
             raise ModelError(f"{who}: the output name {name!r} is taken by what every case records")
-    coordinate_names = model.coordinate_names()
+    coordinate_names = model.coordinate_names
     t_out = None
     if histories is not None:
         t_out = [float(t) for t in array(histories, f"{who}: histories")]
@@ -756,7 +756,7 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
                      who)  # locked until the sweep ends
     # the units the Dataset's variables carry (attrs["units"]): the varied parameters' and the
     # built-in outputs' (a function of the user's has none)
-    units = {p["name"]: p["unit"] for p in model.parameter_info() if p["name"] in names}
+    units = {p["name"]: p["unit"] for p in model.parameter_info if p["name"] in names}
     units.update({name: unit for name, unit in _SETTING_UNITS.items() if name in names})
     units.update({name: f.unit(model) for name, f in outputs.items() if hasattr(f, "unit")})
     try:

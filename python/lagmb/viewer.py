@@ -235,7 +235,7 @@ def _texts(value, name):
 def _output_series(result, name):
     """(values (k,), unit) of one output by name."""
     model = result.model
-    coords = model.coordinate_names()
+    coords = model.coordinate_names
     out = _output_names.parse(name)
     if name in ("energy", "residual", "velocity_residual"):
         return np.asarray(getattr(result, name), dtype=float), {"energy": "J", "residual": "", "velocity_residual": ""}[name]
@@ -253,7 +253,7 @@ def _output_series(result, name):
                 return np.asarray(result.reaction(element)[:, k], dtype=float), "N m" if c.startswith("torque") else "N"
         if not out.rate and what == "effort" and registry.is_driver(core, element):
             kinds = registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD
-            return np.asarray(result.effort(element), dtype=float), effort_unit(model.elements(), kinds, element)
+            return np.asarray(result.effort(element), dtype=float), effort_unit(model.elements, kinds, element)
         if what in _output_names.JOINT_COORDINATES and core.joint_coordinate(element) is not None:
             path = result.joint(element)
             values = path.rate if out.rate else getattr(path, what, None)
@@ -345,7 +345,7 @@ def view_sweep(ds, model, folder="sweep_view", *, cases=None, outputs=None):
 
     if "q" not in getattr(ds, "data_vars", {}):
         raise ModelError("lagmb.view_sweep: the sweep has no time histories: run mb.sweep(..., histories=[times])")
-    names = model.coordinate_names()
+    names = model.coordinate_names
     if list(ds["coordinate"].values) != names:
         raise ModelError("lagmb.view_sweep: the sweep's coordinates are not this model's: give the model it ran")
     all_cases = [int(c) for c in ds["case"].values]
@@ -366,7 +366,7 @@ def view_sweep(ds, model, folder="sweep_view", *, cases=None, outputs=None):
     except OSError as e:
         raise ModelError(f"lagmb.view_sweep: cannot make {folder!r}: {e.strerror or e}") from None
     parameters = [c for c in ds.coords if c not in ("case", "time", "coordinate")]
-    known = set(model.parameters())
+    known = set(model.parameters)
     t = np.asarray(ds["time"].values, dtype=float)
     entries = []
     for case in chosen:

@@ -71,7 +71,7 @@ def load_robot(args):
         raise Exit(USAGE, str(e)) from None
     kinds = elements(3)
     listed = [SceneElement(kinds[method].table, kinds[method].type, values["name"], None)
-              for method, values in model.elements()]
+              for method, values in model.elements]
     if not model.bodies:
         raise Exit(USAGE, f"{args.scene}: no bodies: every link is fixed to the root (give --floating-base to "
                           "let the root move)")

@@ -96,7 +96,7 @@ def handle(args):
         say(f"inputs: {len(inputs)}" + (" (" + ", ".join(
             f"{i['name']} {i['initial']:g}" + (f" {i['unit']}" if i["unit"] else "") for i in inputs) + ")"
             if inputs else ""))
-        parameters = model.parameter_info()
+        parameters = model.parameter_info
         say(f"parameters: {len(parameters)}" + ("" if args.parameters else " (--parameters lists them)"))
         if args.parameters:
             width = max((len(p["name"]) for p in parameters), default=0)

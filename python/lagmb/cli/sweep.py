@@ -223,10 +223,10 @@ def _outputs(scene, specs):
 
     model = scene.model
     kinds = BY_METHOD if getattr(model, "dimension", 2) == 2 else SPATIAL_BY_METHOD
-    roles = {kw["name"]: kinds[method].role for method, kw in model.elements() if method in kinds}
+    roles = {kw["name"]: kinds[method].role for method, kw in model.elements if method in kinds}
     constraints = [name for name, role in roles.items() if role in ("joint", "driver")]
     drivers = [name for name, role in roles.items() if role == "driver"]
-    coordinates = model.coordinate_names()
+    coordinates = model.coordinate_names
     outputs = {}
     for spec in specs:
         kind, eq, arg = (s.strip() for s in spec.partition("="))

@@ -37,7 +37,7 @@ def _shared_inputs(model):
     from ..functions import Input
 
     places = {}  # id -> (input, [(element, parameter)])
-    for _, kwargs in model.elements():
+    for _, kwargs in model.elements:
         for param, value in kwargs.items():
             parts = value if isinstance(value, tuple) and len(value) in (2, 3) else (value,)
             for k, part in enumerate(parts):
@@ -72,7 +72,7 @@ def scene_text(model, settings=None, output=None):
         out += ([f"gravity = {toml_value(tuple(gravity))}"] if gravity is not None else []) + [""]
     kinds = elements(dimension)
     shared = _shared_inputs(model)
-    for method, kwargs in model.elements():
+    for method, kwargs in model.elements:
         name = kwargs.get("name")
         if method not in kinds:
             raise SceneError(f"cannot write element {name!r}: {method} has no scene table")
