@@ -28,6 +28,7 @@ class Progress:
         self._bar = None
         self._line = False
         self._shown = 0.0
+        self._width = 0  # the longest line written (a shorter one pads over it)
 
     def __call__(self, t):
         if not self.enabled:
@@ -67,8 +68,9 @@ class Progress:
                 where = f"t = {self.t0 + done:.6g} of {self.t_end:.6g} s"
             else:
                 where = f"{self.t0 + done:.0f} of {self.t_end:.0f} {self.unit}"
-            text = f"\r  {label}{where} ({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed{_left(elapsed, done, span)} "
-            self._width = max(getattr(self, "_width", 0), len(text))
+            text = (f"\r  {label}{where} ({100.0 * done / span:3.0f}%), {elapsed:.1f} s elapsed"
+                    f"{_left(elapsed, done, span)} ")
+            self._width = max(self._width, len(text))
             self.stream.write(text.ljust(self._width))
             self.stream.flush()
 
@@ -78,7 +80,7 @@ class Progress:
             self._bar.close()
             self._bar = None
         elif self._line:
-            self.stream.write("\r" + " " * max(70, getattr(self, "_width", 0)) + "\r")
+            self.stream.write("\r" + " " * max(70, self._width) + "\r")
             self.stream.flush()
             self._line = False
 

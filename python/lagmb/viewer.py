@@ -439,7 +439,9 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     docstring) and returns a :class:`View`; ``path=None`` keeps it in memory
     (a notebook shows it inline).
 
-    ``outputs``: names of the time plots beside the 3D view: "energy",
+    ``outputs``: names of the time plots beside the 3D view: "energy" (drawn
+    as its change from the start, E - E(t0), with E(t0) and the drift
+    written under its name),
     "residual", "velocity_residual", coordinates ("rod.angle") and their
     "der(...)", "<joint>.reaction.x" (".y", ".torque"; in space ".z",
     ".torque.x" ...), "<driver>.effort", "<joint>.angle" / ".slide". Default:
@@ -447,8 +449,9 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     ``trace``: points drawn as lines up to the current time, as
     :func:`lagmb.plotting.animate` takes them ((body, local point), a body,
     an element, "body:x,y", or a list). ``title``: the page's (default: the
-    model's name, Model.name, else its bodies and elements counted). ``max_frames``: outputs beyond it are thinned
-    evenly (the page holds 7 float32 numbers per body per frame). ``loop``:
+    model's name, Model.name, else its bodies and elements counted).
+    ``max_frames``: outputs beyond it are thinned evenly (the page holds 7
+    float32 numbers per body per frame). ``loop``:
     playing starts again at the end (:func:`view_mode`); ``lines``: the
     text under the title (default: the bodies, the method and its counts).
     ``forces=True``: each contact's force on its first shape (normal and

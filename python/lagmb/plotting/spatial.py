@@ -196,8 +196,10 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
             now["triangles"] = triangles
             solid_art.set_verts(list(triangles))
             solid_art.set_facecolor(np.concatenate([_shaded(p, tint[b]) for p, b in zip(placed, moving)]))
-            if getattr(ax, "M", None) is not None:  # (mplot3d projects collections when the axes draw, not
-                solid_art.do_3d_projection()          # when blitted; before a first draw there is no projection)
+            # mplot3d projects collections when the axes draw, not when blitted (and before a
+            # first draw there is no projection to apply)
+            if getattr(ax, "M", None) is not None:
+                solid_art.do_3d_projection()
         for b, art in zip(scene.bodies, body_art):
             c = centres[b][k]
             xyz = np.array([c] + [p for s in spokes[b] for p in (s[k], c)]) if spokes[b] else c[None, :]
