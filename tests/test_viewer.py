@@ -494,6 +494,8 @@ def test_a_page_is_titled_by_its_model_and_an_effort_by_its_unit(tmp_path):
     view(mb.simulate(m, 0.2, n_out=5), tmp_path / "lift.html", outputs=["jack.effort"])
     data = _page_data(tmp_path / "lift.html")
     assert data["title"] == "lift" and data["plots"][0]["unit"] == "N"
+    # the header says what the camera frames (every body over the whole run)
+    assert data["lines"][-1] == f"framed: the whole motion, {data['size']:.2g} m across (drag to turn, scroll to zoom)"
     assert m.copy().name == "lift"
 
 

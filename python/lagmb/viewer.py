@@ -649,7 +649,9 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     lines = lines if lines is not None else [", ".join(filter(None, [count(len(bodies), "body").replace("bodys", "bodies"),
                                      count(len(scene.joints), "joint"), count(len(scene.drivers), "driver")])),
              f"method {stats.get('method', stats.get('formulation', '?'))}: {stats_line(stats)}",
-             f"t = {t[0]:g} .. {t[-1]:g} s, {len(frames)} frames"]
+             f"t = {t[0]:g} .. {t[-1]:g} s, {len(frames)} frames",
+             # (the camera frames every body over the whole run, not the start alone: say so)
+             f"framed: the whole motion, {size:.2g} m across (drag to turn, scroll to zoom)"]
     if contacts:
         lines = list(lines) + [force_line]
     data = {
