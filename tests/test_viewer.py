@@ -519,3 +519,24 @@ def test_a_conserved_energy_is_drawn_as_its_change_and_flat_to_round_off(chromiu
     assert hi - lo == pytest.approx(1e-9 * plot["scale"], rel=1e-6) and drift < 1e-3 * (hi - lo)
     assert "drift max |E - E(t0)|" in page.evaluate("document.querySelector('.plot .note').textContent")
     page.close()
+
+
+def test_a_body_drawn_as_its_shapes_is_framed_by_them_not_by_its_inertia(tmp_path):
+    """A body the page draws as its shapes (a robot link's mesh; here a
+    0.2 m box) is framed by how far they reach, not by the box of its
+    inertia (a URDF's inflated inertias made robots small in a large
+    frame): the page's size follows the shape."""
+    def model(inertia):
+        m = mb.Model(dimension=3)
+        b = m.add_body("b", 1.0, inertia, position=(0.0, 0.0, 0.0))
+        m.add_shape(b, "box", (0.2, 0.2, 0.2), position=(0.0, 0.0, 0.0), role="visual")
+        return m
+
+    sizes = []
+    for inertia in ((0.01, 0.01, 0.01), (10.0, 10.0, 10.0)):  # the second: a 9.5 m inertia box
+        view(mb.simulate(model(inertia), 0.1, n_out=3), tmp_path / "b.html")
+        sizes.append(_page_data(tmp_path / "b.html")["size"])
+    # the centre widened by the box's reach (its half-diagonal r) along each axis: a cube of
+    # side 2 r, whose diagonal the page's size is
+    r = 0.5 * np.linalg.norm([0.2, 0.2, 0.2])
+    assert sizes[0] == sizes[1] == pytest.approx(2.0 * r * math.sqrt(3.0))

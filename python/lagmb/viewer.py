@@ -191,6 +191,24 @@ def _planar_parts(scene, body, colour, width):
     return parts
 
 
+def _shapes_reach(body, shapes):
+    """How far from a body's centre the shapes the page draws for it reach
+    (the visual ones, else the collision ones lagmb reads: as
+    _spatial_parts picks), or None where it has none to draw."""
+    mine = [s for s in shapes if s.body == body and s.kind != "plane"]
+    for role in ("visual", "collision"):
+        reach = None
+        for shape in (s for s in mine if s.role == role):
+            faces = shape_faces(shape)
+            if faces:
+                points = np.concatenate([np.asarray(f, dtype=float) for f in faces])
+                placed = np.asarray(shape.position, dtype=float) + points @ np.asarray(shape.rotation, dtype=float).T
+                reach = max(reach or 0.0, float(np.max(np.linalg.norm(placed, axis=1))))
+        if reach is not None:
+            return reach
+    return None
+
+
 def _spatial_parts(scene, body, colour, width, shapes):
     parts = []
     mine = [s for s in shapes if s.body == body]
@@ -515,10 +533,14 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     # each body's path widened by how far its own drawing reaches from its
     # centre (not every body's by the farthest reach of any: one inflated
     # inertia box made a robot small in a large frame)
+    shapes = list(getattr(model, "shapes", []) or [])
     for i, body in enumerate(bodies):
         reach = max([float(np.linalg.norm(p)) for p in scene.outlines.get(body, [])], default=0.0)
-        S = scene.second_moment(body) if dimension == 3 else None
-        if S is not None:
+        drawn = _shapes_reach(body, shapes) if dimension == 3 else None
+        S = scene.second_moment(body) if dimension == 3 and drawn is None else None
+        if drawn is not None:  # drawn as its meshes: as far as they reach, not its inertia box
+            reach = max(reach, drawn)
+        elif S is not None:
             reach = max(reach, float(np.sqrt(3.0 * max(np.trace(S), 0.0) / scene.mass[body])))
         if reach > 0.0:
             points[i] = np.vstack([points[i] - reach, points[i] + reach])
@@ -529,7 +551,6 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     center = 0.5 * (low + high)
 
     # geometry, once, in each body's axes
-    shapes = list(getattr(model, "shapes", []) or [])
     body_data = []
     for i, body in enumerate(bodies):
         colour = _PALETTE[i % len(_PALETTE)]
