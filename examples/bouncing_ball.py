@@ -1,6 +1,6 @@
 """A ball bouncing on the floor: compliant contact with restitution.
 
-    python examples/bouncing_ball.py [--picture bouncing_ball.png]
+    python examples/bouncing_ball.py [--picture bouncing_ball-picture.png] [--plot bouncing_ball.png]
 
 A ball (radius 0.1 m, 1 kg) is dropped from rest with its centre 1 m above
 the floor line y = 0. The contact "floor" (circle-line, Hunt-Crossley with
@@ -30,6 +30,13 @@ def build():
     return m
 
 
+def plot(result, path, **kwargs):
+    """Time histories with lagmb.plotting (needs matplotlib)."""
+    from lagmb.plotting import plot_result
+    plot_result(result, path, **kwargs)
+    print(f"plot written to {path}")
+
+
 def draw(result, path, **kwargs):
     """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
     from lagmb.plotting import picture
@@ -41,6 +48,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--picture", metavar="PATH",
                         help="draw the ball at the end with its centre's path to PATH (.png)")
+    parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
     r = mb.simulate(build(), t_end=2.5, rtol=1e-8, atol=1e-10, n_out=501)
     onsets = [e for e in r.events if e["label"] == "onset"]
@@ -58,6 +66,8 @@ def main(argv=None):
     print(f"steps = {r.stats['steps']}")
     if args.picture:
         draw(r, args.picture, trace="ball", title="a ball bouncing on the floor: its centre's path")
+    if args.plot:
+        plot(r, args.plot, what=("coordinates", "energy"))
 
 
 if __name__ == "__main__":

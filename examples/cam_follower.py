@@ -1,6 +1,6 @@
 """An eccentric cam lifting a flat-faced follower through a contact.
 
-    python examples/cam_follower.py [--picture cam_follower.png]
+    python examples/cam_follower.py [--picture cam_follower-picture.png] [--plot cam_follower.png]
 
 The cam (a circle of radius 0.05 m whose centre is 0.02 m from the pivot)
 turns about the ground pin at the origin, driven at 2 pi rad/s. The
@@ -38,6 +38,13 @@ def build():
     return m, d0
 
 
+def plot(result, path, **kwargs):
+    """Time histories with lagmb.plotting (needs matplotlib)."""
+    from lagmb.plotting import plot_result
+    plot_result(result, path, **kwargs)
+    print(f"plot written to {path}")
+
+
 def draw(result, path, **kwargs):
     """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
     from lagmb.plotting import picture
@@ -49,6 +56,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--picture", metavar="PATH",
                         help="draw cam and follower at the top of the lift to PATH (.png)")
+    parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
     m, d0 = build()
     r = mb.simulate(m, t_end=1.0, rtol=1e-8, atol=1e-10, n_out=1001)
@@ -62,6 +70,8 @@ def main(argv=None):
     if args.picture:  # at a quarter turn the cam's centre is highest: the follower at the top
         draw(r, args.picture, time=0.25, trace=[("cam", (ECC, 0.0))],
              title="an eccentric cam lifting a follower: the cam centre's circle")
+    if args.plot:
+        plot(r, args.plot)
 
 
 if __name__ == "__main__":

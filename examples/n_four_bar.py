@@ -1,7 +1,7 @@
 """N-four-bar mechanism (IFToMM multibody benchmark, problem A02) run through
 its singular positions with the "ali3p" formulation.
 
-    python examples/n_four_bar.py [N] [t_end] [step] [--picture PATH]     (defaults 2, 10, 1e-4)
+    python examples/n_four_bar.py [N] [t_end] [step] [--picture PATH] [--plot PATH]   (defaults 2, 10, 1e-4)
 
 2N + 1 uniform rods of 1 m and 1 kg: N + 1 cranks on ground pivots at
 x = 0, 1, ..., N and N couplers on top, so every window is a parallelogram.
@@ -61,6 +61,13 @@ def reference_b0(n_windows, t):
     return np.column_stack([np.cos(sol.y[0]), np.sin(sol.y[0])])
 
 
+def plot(result, path, **kwargs):
+    """Time histories with lagmb.plotting (needs matplotlib)."""
+    from lagmb.plotting import plot_result
+    plot_result(result, path, **kwargs)
+    print(f"plot written to {path}")
+
+
 def draw(result, path, **kwargs):
     """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
     from lagmb.plotting import picture
@@ -75,6 +82,7 @@ def main(argv=None):
     parser.add_argument("step", nargs="?", type=float, default=1e-4, help="ali3p's step in s (default 1e-4)")
     parser.add_argument("--picture", metavar="PATH", help="draw the mechanism at 1.2 s, past the first "
                         "singular position, with B0's path to PATH (.png)")
+    parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
     n_windows, t_end, step = args.n_windows, args.t_end, args.step
     model = build(n_windows)
@@ -96,6 +104,8 @@ def main(argv=None):
     if args.picture:
         draw(r, args.picture, time=min(t_end, 1.2), trace=[("crank0", (0.5, 0.0))],
              title=f"N-four-bar, N = {n_windows}: B0's path through the singular positions")
+    if args.plot:
+        plot(r, args.plot)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """A disk rolling down an incline on a compliant contact with friction.
 
-    python examples/rolling_disk.py [--picture rolling_disk.png]
+    python examples/rolling_disk.py [--picture rolling_disk-picture.png] [--plot rolling_disk.png]
 
 A uniform disk (radius 0.2 m, 2 kg, J = m R^2 / 2) rests on a 20 degree
 incline (the line through the origin along (cos a, -sin a)), pressed in by
@@ -38,6 +38,13 @@ def build():
     return m, d0
 
 
+def plot(result, path, **kwargs):
+    """Time histories with lagmb.plotting (needs matplotlib)."""
+    from lagmb.plotting import plot_result
+    plot_result(result, path, **kwargs)
+    print(f"plot written to {path}")
+
+
 def draw(result, path, **kwargs):
     """The mechanism at one output with a traced path (lagmb.plotting.picture, needs matplotlib)."""
     from lagmb.plotting import picture
@@ -49,6 +56,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--picture", metavar="PATH",
                         help="draw the disk at 1 s with a rim point's path to PATH (.png)")
+    parser.add_argument("--plot", metavar="PATH", help="write time histories to PATH (.png, .pdf)")
     args = parser.parse_args(argv)
     m, d0 = build()
     r = mb.simulate(m, t_end=1.0, rtol=1e-8, atol=1e-10, n_out=201)
@@ -70,6 +78,8 @@ def main(argv=None):
     if args.picture:  # a point on the rim traces a cycloid as the disk rolls
         draw(r, args.picture, trace=[("disk", (0.0, R))], title="a disk rolling down a 20 degree incline: "
              "a rim point's cycloid")
+    if args.plot:
+        plot(r, args.plot, what=("coordinates", "energy"))
 
 
 if __name__ == "__main__":
