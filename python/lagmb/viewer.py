@@ -191,15 +191,15 @@ def _planar_parts(scene, body, colour, width):
     return parts
 
 
-def _shapes_reach(body, shapes):
+def _shapes_reach(body, meshes):
     """How far from a body's centre the shapes the page draws for it reach
     (the visual ones, else the collision ones lagmb reads: as
-    _spatial_parts picks), or None where it has none to draw."""
-    mine = [s for s in shapes if s.body == body and s.kind != "plane"]
+    _spatial_parts picks), or None where it has none to draw. ``meshes``:
+    [(shape, its faces or None)], each file read once for the page."""
+    mine = [(s, f) for s, f in meshes if s.body == body]
     for role in ("visual", "collision"):
         reach = None
-        for shape in (s for s in mine if s.role == role):
-            faces = shape_faces(shape)
+        for shape, faces in ((s, f) for s, f in mine if s.role == role):
             if faces:
                 points = np.concatenate([np.asarray(f, dtype=float) for f in faces])
                 placed = np.asarray(shape.position, dtype=float) + points @ np.asarray(shape.rotation, dtype=float).T
@@ -209,12 +209,11 @@ def _shapes_reach(body, shapes):
     return None
 
 
-def _spatial_parts(scene, body, colour, width, shapes):
+def _spatial_parts(scene, body, colour, width, meshes):
     parts = []
-    mine = [s for s in shapes if s.body == body]
+    mine = [(s, f) for s, f in meshes if s.body == body]
     for role in ("visual", "collision"):  # the visual shapes, or else the collision ones lagmb reads (STL)
-        for shape in (s for s in mine if s.role == role):
-            faces = shape_faces(shape)
+        for shape, faces in ((s, f) for s, f in mine if s.role == role):
             if faces:
                 parts.append(_mesh(faces, shape, colour))
         if parts:
@@ -534,9 +533,12 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     # centre (not every body's by the farthest reach of any: one inflated
     # inertia box made a robot small in a large frame)
     shapes = list(getattr(model, "shapes", []) or [])
+    # the bodies' shapes with their faces, each mesh file read once (for the framing and the drawing)
+    meshes = [(sh, shape_faces(sh)) for sh in shapes if sh.kind != "plane" and sh.body != "ground"] \
+        if dimension == 3 else []
     for i, body in enumerate(bodies):
         reach = max([float(np.linalg.norm(p)) for p in scene.outlines.get(body, [])], default=0.0)
-        drawn = _shapes_reach(body, shapes) if dimension == 3 else None
+        drawn = _shapes_reach(body, meshes) if dimension == 3 else None
         S = scene.second_moment(body) if dimension == 3 and drawn is None else None
         if drawn is not None:  # drawn as its meshes: as far as they reach, not its inertia box
             reach = max(reach, drawn)
@@ -555,7 +557,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
     for i, body in enumerate(bodies):
         colour = _PALETTE[i % len(_PALETTE)]
         parts = (_planar_parts(scene, body, colour, width) if dimension == 2
-                 else _spatial_parts(scene, body, colour, width, shapes))
+                 else _spatial_parts(scene, body, colour, width, meshes))
         for name in scene.joints + scene.drivers:  # the joints: dots where they hold the body
             for b, local in scene.attachments(name):
                 if b == body:

@@ -21,17 +21,17 @@ def _body_shapes(model, bodies):
     triangles; meshes lagmb does not read (not STL) are left out."""
     from .._drawing import shape_faces
 
-    shapes = [sh for sh in getattr(model, "shapes", []) if sh.kind != "plane"]
-    drawable = {role: [sh for sh in shapes if sh.role == role and shape_faces(sh) is not None]
+    faces = [(sh, shape_faces(sh)) for sh in getattr(model, "shapes", []) if sh.kind != "plane"]  # (read once)
+    drawable = {role: [(sh, f) for sh, f in faces if sh.role == role and f is not None]
                 for role in ("collision", "visual")}
     chosen = drawable["collision"] or drawable["visual"]
     out = {}
-    for sh in chosen:
+    for sh, shape_faces_ in chosen:
         if sh.body != "ground" and sh.body not in bodies:
             continue
         R, r = np.asarray(sh.rotation, dtype=float), np.asarray(sh.position, dtype=float)
         triangles = []
-        for face in shape_faces(sh):
+        for face in shape_faces_:
             face = np.asarray(face, dtype=float)
             triangles += [face[[0, i, i + 1]] for i in range(1, len(face) - 1)]
         if triangles:
