@@ -69,7 +69,7 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
       with ``"adams"`` (Adams-Moulton, orders 1-12) CVODE cannot project,
       so the constraints drift unless ``baumgarte=(alpha, beta)`` is given;
       with ``"erk"`` ARKODE's explicit Runge-Kutta methods (ERKStep; order 8,
-      Fehlberg 7(8), by default; ``max_order`` 2-6 or 8 picks another), q
+      Prince-Dormand 8(7), by default; ``max_order`` 2-6 or 8 picks another), q
       and v projected after every accepted step, the steps stopped at the
       output times (its interpolant is less accurate than its steps): for
       non-stiff mechanisms, such as long free chains, where a few

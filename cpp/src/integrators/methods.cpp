@@ -65,7 +65,7 @@ const std::vector<Entry>& entries() {
     m.drifts = true;
     add(m, &cvode<true>);
     m = {"projection-erk", F::kProjection, I::kErk, "ARKODE ERKStep",
-         "ODE in accelerations, explicit Runge-Kutta (Fehlberg 7(8) by default), positions and velocities "
+         "ODE in accelerations, explicit Runge-Kutta (Prince-Dormand 8(7) by default), positions and velocities "
          "projected after each step; for non-stiff mechanisms such as long free chains",
          8};
     m.contact = false;

@@ -18,7 +18,7 @@ namespace lagmb {
 ///     smoothed sign of joint friction) times the run's span above
 ///     kStiffSpan, where an explicit method would take more than about
 ///     kStiffSpan / 5 steps for stability alone;
-///   - else the explicit projection-erk (Fehlberg 7(8) with projections),
+///   - else the explicit projection-erk (Prince-Dormand 8(7) with projections),
 ///     which on non-stiff mechanisms reaches an error in a fraction of the
 ///     implicit methods' time (bench/auto_method.py); should it give up
 ///     (its error test, or kAutoStiffSteps between two outputs), GGL takes
