@@ -380,3 +380,43 @@ def test_a_spatial_stop_holds_a_limit_beyond_pi():
     before = r.t <= impact["t"]
     assert angle[before].max() <= 3.6 + 1e-8 and angle[before].max() > 3.5
     assert abs(impact["speed_after"] + 0.5 * impact["speed_before"]) <= 1e-6 * abs(impact["speed_before"])
+
+
+def two_pendulums(restitution, dimension=2, apart=0.0):
+    """Two separate 1 m, 1 kg rods released level side by side, each hinged
+    at one end and falling onto its own lower stop at -pi/2 (the second's
+    limit `apart` rad lower): two impacts at the same instant that nothing
+    couples."""
+    if dimension == 2:
+        m = mb.Model(gravity=(0.0, -G))
+    else:
+        m = mb.Model(dimension=3, gravity=(0.0, 0.0, -G))
+    for i, x in enumerate([0.0, 2.0]):
+        if dimension == 2:
+            rod = m.add_body(f"rod{i}", mass=1.0, inertia=1.0 / 12.0, position=(x + 0.5, 0.0))
+            m.add_revolute(f"pin{i}", m.ground, rod, at=(x, 0.0))
+        else:
+            rod = m.add_body(f"rod{i}", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(x + 0.5, 0.0, 0.0))
+            m.add_revolute(f"pin{i}", m.ground, rod, at=(x, 0.0, 0.0), axis=(0.0, -1.0, 0.0))
+        m.add_stop(f"stop{i}", f"pin{i}", lower=-math.pi / 2 - (apart if i else 0.0), restitution=restitution)
+    return m
+
+
+@pytest.mark.parametrize("method", ["ggl", "index3", "index1", "projection-bdf", "projection-adams", "projection-erk"])
+@pytest.mark.parametrize("dimension", [2, 3])
+def test_independent_stops_struck_at_the_same_instant_each_rebound_by_their_own_restitution(method, dimension):
+    """Each rod strikes at sqrt(3 g) (1e-6 relative; index3 1e-4) and leaves
+    at e times its approach (e = 1 and 0.5), whether the limits are equal or 1e-9 rad apart (the
+    root functions flag one, the other is within rounding of its limit):
+    two impacts the joints do not couple are no plastic impact (both were
+    captured at 0 rad/s, all energy lost at e = 1, under GGL and
+    projection-bdf)."""
+    w = math.sqrt(3.0 * G)
+    for e, apart in [(1.0, 0.0), (0.5, 1e-9)]:
+        r = mb.simulate(two_pendulums(e, dimension, apart), t_end=0.7, rtol=1e-8, method=method)
+        impacts = [x for x in r.events if x["kind"] == "impact"][:2]
+        assert sorted(x["element"] for x in impacts) == ["stop0", "stop1"]
+        for x in impacts:  # (index3's velocities are only index-2 accurate)
+            assert x["speed_before"] == pytest.approx(-w, rel=1e-4 if method == "index3" else 1e-6)
+            assert x["speed_after"] == pytest.approx(-e * x["speed_before"], rel=1e-9)
+        assert not [x for x in r.events if x["kind"] == "capture"]

@@ -715,6 +715,31 @@ bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vect
   std::vector<int> captured;
   std::vector<char> held;  // (of the hit rows: the closed rows hold them)
   const VecX v_before = v;
+  // the open stops at their limits (within rounding of the positions) that
+  // the velocities v move into them, other than those hit, joined to the
+  // impact: their rows, and their limits held at the restart
+  auto join_approaching = [&](const VecX& velocities) {
+    std::vector<int> at_limit;
+    gaps(t, q, velocities);
+    const double near = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
+    for (size_t c = 0; c < contacts_.size(); ++c)
+      if (contacts_[c].info.exists && !is_closed(contacts_[c].row) && rows_.Phi[contacts_[c].row] <= near &&
+          rows_.phi_t[contacts_[c].row] < -v_scale && std::find(hit.begin(), hit.end(), int(c)) == hit.end())
+        at_limit.push_back(int(c));
+    std::vector<VecX> C_more;
+    VecX unused;
+    if (!at_limit.empty()) contact_rows(t, q, velocities, at_limit, C_more, unused);
+    for (size_t j = 0; j < at_limit.size(); ++j) {
+      hit.push_back(at_limit[j]), C_hit.push_back(C_more[j]);
+      on_limit_.push_back(contacts_[at_limit[j]].row);
+    }
+    return !at_limit.empty();
+  };
+  // stops struck at the same instant, the root functions having flagged
+  // some (two pendulums falling onto their own stops, their limits 1e-9 rad
+  // apart): each strikes with its own restitution; impulse() makes plastic
+  // only rows that depend on each other
+  if (!hit.empty()) join_approaching(v_before);
   VecX e(int(hit.size()));
   if (!hit.empty()) {
     for (size_t j = 0; j < hit.size(); ++j) e[int(j)] = contacts_[hit[j]].info.restitution;
@@ -723,30 +748,13 @@ bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vect
     // limit (an adjacent joint, a coupled finger) that it drives into its
     // limit takes part in it, so that no joint leaves an impact moving
     // beyond a limit; the impact is then plastic
-    for (bool added = true; added;) {
-      added = false;
-      std::vector<int> at_limit;
-      gaps(t, q, v);
-      const double near = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());
-      for (size_t c = 0; c < contacts_.size(); ++c)
-        if (contacts_[c].info.exists && !is_closed(contacts_[c].row) && rows_.Phi[contacts_[c].row] <= near &&
-            rows_.phi_t[contacts_[c].row] < -v_scale && std::find(hit.begin(), hit.end(), int(c)) == hit.end())
-          at_limit.push_back(int(c));
-      if (at_limit.empty()) break;
-      std::vector<VecX> C_more;
-      VecX unused;
-      contact_rows(t, q, v, at_limit, C_more, unused);
-      for (size_t j = 0; j < at_limit.size(); ++j) {
-        hit.push_back(at_limit[j]), C_hit.push_back(C_more[j]);
-        on_limit_.push_back(contacts_[at_limit[j]].row);
-      }
+    while (join_approaching(v)) {
       // (plastic for all: Newton's law at several contacts coupled through
       // the joints can give energy; the M-orthogonal jump onto g' = 0 for
       // each cannot)
       e.setZero(int(hit.size()));
       v = v_before;
       impulse(t, q, v, hit, C_hit, e, held);
-      added = true;
     }
     // a row the closed rows hold took no impulse: it has no impact
     for (size_t j = hit.size(); j-- > 0;)
