@@ -283,6 +283,31 @@ def test_unstabilized_methods_drift(drift_runs, method):
     assert last > 1e-6
 
 
+def test_a_restart_does_not_hide_constraints_that_came_apart():
+    """A spatial rod spinning at 50 rad/s about a pin without gravity, under
+    projection-adams at rtol 1e-3 (no projection, no Baumgarte terms): its
+    constraints drift 0.2 m in 0.44 s and its Euler parameters leave unit
+    length; without stops CVODE fails at t = 0.47. With stops at -7 and
+    100 rad the drifted joint rate (1e5 rad/s through the quaternions) fired
+    an impact, the restart projected the state back and the run "succeeded"
+    with the hinge point 1,498 m from the hinge. The event now fails the run,
+    naming the row that came apart, and keeps the outputs before it."""
+    m = mb.Model(dimension=3, gravity=(0.0, 0.0, 0.0))
+    m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0),
+               velocity=(0.0, 0.0, 25.0), angular_velocity=(0.0, -50.0, 0.0))
+    m.add_revolute("pin", m.ground, "rod", at=(0.0, 0.0, 0.0), axis=(0.0, -1.0, 0.0))
+    m.add_stop("stop", "pin", lower=-7.0, upper=100.0, restitution=0.5)
+    with pytest.raises(mb.SimulationError, match=r"constraints had come apart .*\|Phi\| = .* at 'rod") as failure:
+        mb.simulate(m, t_end=3.0, method="projection-adams", rtol=1e-3)
+    partial = failure.value.result
+    assert partial is not None and 0.4 < partial.t[-1] < 0.48
+    # the same rod under the default method (it keeps the constraints) strikes its upper stop at 100 / 50 s
+    r = mb.simulate(m, t_end=3.0, rtol=1e-6)
+    first = r.events[0]
+    assert first["label"] == "upper" and first["t"] == pytest.approx(100.0 / 50.0, rel=1e-6)
+    assert r.residual.max() <= 1e-8
+
+
 # --------------------------------------------------------------------------
 # 4. Adams-Moulton on the seed pendulum
 # --------------------------------------------------------------------------

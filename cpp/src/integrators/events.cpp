@@ -128,7 +128,25 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
 
 bool EventRunner::start(double t, const VecX& q, VecX& v) { return settle(t, q, v, true); }
 
+void EventRunner::check_on_constraints(double t, const VecX& q) {
+  assemble_constraints(model_, d_, q.data(), t);
+  if (d_.Phi.size() == 0) return;
+  Eigen::Index row = 0;
+  const double off = d_.Phi.cwiseAbs().maxCoeff(&row);
+  const double limit = 1e-2 * (1.0 + q.lpNorm<Eigen::Infinity>());
+  if (off <= limit) return;
+  throw plain_failure("the constraints had come apart before the event at t = " + fmt(t) + ": |Phi| = " + fmt(off) +
+                          " at '" + model_.constraint_name_of_row(int(row)) + "' (more than 1e-2 (1 + |q|) = " +
+                          fmt(limit) +
+                          "): the steps before it had lost the motion, and a restart would hide that. The methods "
+                          "that hold the constraints only through their second derivatives (index1, "
+                          "projection-adams) drift; use one that keeps them (ggl, projection-bdf, projection-erk), "
+                          "a smaller rtol, or baumgarte=(alpha, beta)",
+                      t);
+}
+
 bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
+  if (!at_start) check_on_constraints(t, q);
   step_end_t_ = sweep_t_ = force_t_[0] = force_t_[1] = values_t_ = NAN, step_bound_ = INFINITY;  // (a new start, or the equations jump here)
   values(t, q.data(), v.data(), g_.data());
   std::vector<int> fired(g_.size(), 0);
@@ -585,6 +603,7 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
 }
 
 bool EventRunner::handle(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
+  check_on_constraints(t, q);
   handled_ = fired;
   const bool restart = handle_stops(t, q, v, fired);
   if (sticks_.empty()) return restart;
