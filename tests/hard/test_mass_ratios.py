@@ -157,11 +157,14 @@ def test_positions_match_the_minimal_coordinate_reference(m_rod, m_crank):
 def test_light_links_cost_at_most_a_small_factor_in_accuracy():
     """Same accuracy as the well-scaled model: at rtol 1e-8 and 1e-10 the
     position error with the 1e-6 kg rod and 1e-3 kg crank is within 10x of
-    the 1 kg rod's (measured 2.3e-8 vs 1.3e-8 and 2.9e-10 vs 6.8e-11: ratios
-    1.8 and 4.3), and below 1e-7 m at rtol 1e-8."""
+    the 1 kg rod's, or of rtol x 0.01 m where that one is below it (round-off
+    decides among errors far below the tolerance: with the explicit method's
+    Prince-Dormand pair measured 3.3e-13 vs 6.9e-14 at rtol 1e-8 and 2.2e-12
+    vs 6.9e-14 at 1e-10; 2.3e-8 vs 1.3e-8 and 2.9e-10 vs 6.8e-11 with
+    Fehlberg's), and below 1e-7 m at rtol 1e-8."""
     for rtol in (1e-8, 1e-10):
         good, _, _ = errors(1.0, None, rtol)
         wide, _, _ = errors(1e-6, 1e-3, rtol)
-        assert wide < 10.0 * good, (rtol, wide, good)
+        assert wide < 10.0 * max(good, 1e-2 * rtol), (rtol, wide, good)
         if rtol == 1e-8:
             assert wide < 1e-7
