@@ -305,14 +305,19 @@ def test_free_redundant_parallelogram_turns_through_its_flat_positions():
     turn in 1 s, energy kept to its second-order error (4e-5 at h = 1 ms).
     So does the default (formulation "auto": the explicit projection method,
     whose accelerations come from the augmented system, defined at the flat
-    positions): energy to 1e-8 (seen 4e-10) and the end where ALI3-P at
-    h = 0.1 ms ends, to 1e-5 (seen 4.7e-7)."""
+    positions): energy to 1e-7 relative, never gained (seen 1.5e-8 lost
+    with the Prince-Dormand pair, in two steps that end at the two flat
+    positions the run passes, where Phi_q loses rank and the velocity
+    projection takes ~1e-8 of it each time; 4e-10 with Fehlberg 7(8), whose
+    steps ended elsewhere), and the end where ALI3-P at h = 0.1 ms ends, to
+    1e-5 (seen 4.7e-7)."""
     model = spatial_parallelogram(driven=False, rate=6.0)
     with pytest.warns(mb.RedundantConstraintWarning):
         default = mb.simulate(model, 1.0, rtol=1e-10, atol=1e-12)
         fine = mb.simulate(model, 1.0, formulation="ali3p", step=1e-4, n_out=2)
     assert default.stats["method_choice"].startswith("auto: projection-erk")
-    assert np.ptp(default.energy) < 1e-8 * np.abs(default.energy).max()
+    assert np.ptp(default.energy) < 1e-7 * np.abs(default.energy).max()
+    assert default.energy.max() <= default.energy[0] * (1.0 + 1e-12)
     assert np.abs(default.q[-1] - fine.q[-1]).max() < 1e-5
     with pytest.raises(mb.SimulationError, match="dead point"):  # (a failed run warns of nothing)
         mb.simulate(model, 1.0, rtol=1e-10, atol=1e-12, formulation="ggl")
