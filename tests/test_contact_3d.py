@@ -639,6 +639,29 @@ def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
     assert max(c.penetration[-1] for c in readings) <= (weight / mb.urdf.GROUND_CONTACT["stiffness"]) ** (2 / 3)
 
 
+def test_a_quadruped_loaded_into_the_ground_names_the_shapes_deep_in_it():
+    """Go1 loaded with its base frame at the ground (ground=0.0): 35 of its
+    collision shapes start in it, its calves' boxes deepest, 0.22 m in,
+    each pressing 6.3e6 N, 49,000 times the robot's weight. A
+    DeepContactWarning at the caller's line names them, the deepest first,
+    with both shapes and the depth; the run then fails at t = 0, and its
+    message (which said only that IDA's corrector failed) names them too."""
+    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mb.UrdfWarning)
+        m = mb.load_urdf(os.path.join(test_urdf.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
+                         ground=0.0)
+    with pytest.warns(mb.DeepContactWarning) as seen:
+        with pytest.raises(mb.SimulationError, match="failed at t = 0") as info:
+            mb.simulate(m, 0.5)
+    assert seen[0].filename == __file__
+    deepest = "'FR_calf_ground' 0.221 m deep (a box on 'FR_calf' and a plane on the ground, pressing with 6.35e+06 N"
+    assert str(seen[0].message).startswith("35 contacts start with their shapes deep inside each other: " + deepest)
+    assert info.value.t == 0.0 and deepest in str(info.value) and "and 32 more" in str(info.value)
+
+
 BLOCK_URDF = """<robot name="blocks">
   <link name="base">
     <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
