@@ -6,7 +6,7 @@ A contact at rest presses its shapes in until it carries its load: under
 the weight W of all the bodies on one point, (W / k)^(2/3). A start whose
 elastic force (the law at the start's positions, at rest) exceeds
 DEEP_LOAD W cannot be a resting state of any part of the model under
-gravity: its point is more than DEEP_LOAD^(2/3) = 4.6 times deeper than the
+gravity alone: its point is more than DEEP_LOAD^(2/3) = 4.6 times deeper than the
 whole weight would press it, and the contact throws the bodies apart (or
 holds them in, creeping out at the pace its damping allows), or the
 integrator fails at the first step. Without gravity, W is the bodies' mass
@@ -89,8 +89,8 @@ def warn(snapshot, core, q, t0, into=None, stacklevel=3):
         warning = DeepContactWarning(
             (f"{len(found)} contacts start with their shapes" if len(found) > 1 else "a contact starts with its shapes")
             + f" deep inside each other: {_listed(found, weight)}. At rest a contact carries at most the bodies' weight "
-            f"({weight:.3g} N); pressing with more than {DEEP_LOAD:g} times that, these throw the bodies apart (or, "
-            "their damping holding them, let them out slowly), or the solver fails at the start. Place the shapes "
+            f"({weight:.3g} N); one pressing with more than {DEEP_LOAD:g} times that throws the bodies apart (or, its "
+            "damping holding them, lets them out slowly), or the solver fails at the start. Place the shapes "
             "touching, or apart.")
         (into.append if into is not None else lambda w: warnings.warn(w, stacklevel=stacklevel + 1))(warning)
     return contacts, weight
