@@ -15,9 +15,11 @@ laws, the run's tolerance and the initial energy as the builder computed it
 from the drawn numbers (independently of the core).
 
 The scenes (strategy ``contact_cases``): 0-3 free bodies, each with a
-collision shape (sphere, capsule, box, cylinder; sometimes off its centre of
-mass and turned in it; sometimes a second shape, a sphere, on the same
-body), above, touching (to the last bit, or 1e-12 m off) or resting (a
+collision shape (sphere, capsule, box, cylinder, or a mesh: a box whose
+bottom face is drawn down to a low vertex, a little or far under it, at its
+centre or off it (a vertex extreme only in a narrow cone of directions);
+sometimes off its centre of mass and turned in it; sometimes a second
+shape, a sphere, on the same body), above, touching (to the last bit, or 1e-12 m off) or resting (a
 little pressed in) on a ground plane, level or tilted; random orientations
 (some aligned: a box flat, a cylinder lying), velocities (some at rest),
 angular velocities, masses and inertias (principal moments of a mass
@@ -58,7 +60,7 @@ name), for a run that succeeds:
   point's depth), "a stuck
   contact beyond its limit" (its friction force within mu_s F_n: the ellipse
   limit includes the torsion, the force alone must be within it); "a round
-  shape sticks" (only a box against a plane has stick rows);
+  shape sticks" (only a box or a mesh against a plane has stick rows);
 - events: "events miscounted" (r.stats against r.events), "events out of
   order"; onsets less releases of a contact count its pressing points as
   the geometry shows them at every output ("onsets and releases
@@ -160,7 +162,44 @@ def support(kind, size, axes, d):
         return float(sum(0.5 * size[i] * abs(c[i]) for i in range(3)))
     if kind == "cylinder":
         return 0.5 * size[1] * abs(c[2]) + size[0] * math.sqrt(max(0.0, 1.0 - c[2] * c[2]))
+    if kind == "mesh":
+        return float(np.max(mesh_vertices(size) @ c))
     raise ValueError(kind)
+
+
+def mesh_vertices(size):
+    """(9, 3) the vertices of a mesh with a low vertex, in its own axes: a
+    box of edges size[:3] whose bottom face is drawn down to a point
+    size[5] under it at (size[3], size[4]) times the edges (its corners,
+    then that point). Each is a vertex of its hull: a contact point."""
+    import numpy as np
+
+    lx, ly, lz, u, v, depth = size
+    corners = [(x * lx, y * ly, z * lz) for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)]
+    # (as the STL file holds them: single precision)
+    return np.array(corners + [(u * lx, v * ly, -0.5 * lz - depth)]).astype(np.float32).astype(float)
+
+
+def low_point_mesh(size):
+    """The STL file of mesh_vertices(size)'s shape (its bottom face four
+    triangles to the low point), written once per size in the temporary
+    folder. -> its path."""
+    import tempfile
+
+    import numpy as np
+
+    path = os.path.join(tempfile.gettempdir(), "lagmb_fuzz_mesh_" + "_".join(f"{x:.6g}" for x in size) + ".stl")
+    if not os.path.exists(path):
+        X = mesh_vertices(size)
+        faces = [(1, 3, 7), (1, 7, 5), (0, 1, 5), (0, 5, 4), (2, 6, 7), (2, 7, 3), (0, 2, 3), (0, 3, 1),
+                 (4, 5, 7), (4, 7, 6), (0, 4, 8), (4, 6, 8), (6, 2, 8), (2, 0, 8)]
+        data = b"lagmb fuzz".ljust(80, b" ") + len(faces).to_bytes(4, "little") + b"".join(
+            np.zeros(3, "<f4").tobytes() + X[list(f)].astype("<f4").tobytes() + b"\0\0" for f in faces)
+        part = f"{path}.{os.getpid()}"
+        with open(part, "wb") as f:  # (whole or not at all: workers may write it at once)
+            f.write(data)
+        os.replace(part, path)
+    return path
 
 
 def plane_gaps(kind, size, centre, axes, n, p0):
@@ -179,6 +218,8 @@ def plane_gaps(kind, size, centre, axes, n, p0):
         X = np.array([centre + axes @ (h * np.array(s)) for s in
                       [(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]])
         r = 0.0
+    elif kind == "mesh":  # every vertex of its hull
+        X, r = centre[None] + mesh_vertices(size) @ axes.T, 0.0
     else:  # cylinder: on each rim its deepest point and those at 90, 180, 270 degrees
         R, L = size
         a = axes[:, 2]
@@ -685,8 +726,8 @@ def _inertia(b, kind, size, mass):
     if how == "shape":
         if kind == "sphere":
             a = b_ = c = math.sqrt(0.2) * size[0]
-        elif kind == "box":
-            a, b_, c = (s / math.sqrt(12.0) for s in size)
+        elif kind in ("box", "mesh"):  # (a mesh: as its box)
+            a, b_, c = (s / math.sqrt(12.0) for s in size[:3])
         else:  # capsule, cylinder: a solid cylinder of its length (the capsule's caps ignored)
             R, L = size
             a = b_ = 0.5 * R
@@ -709,10 +750,15 @@ def _inertia(b, kind, size, mass):
 
 
 def _shape_kind(b, only=None):
-    """(kind, size) of a drawn shape (a capsule of length 0 among them: a sphere)."""
-    kind = b.pick(only or ["sphere", "capsule", "box", "cylinder"])
+    """(kind, size) of a drawn shape (a capsule of length 0 among them: a
+    sphere; a mesh: a box with a low vertex, mesh_vertices' size)."""
+    kind = b.pick(only or ["sphere", "capsule", "box", "cylinder", "mesh"])
     if kind == "box":
         size = tuple(b.pick([0.05, 0.1, 0.2, 0.4]) for _ in range(3))
+    elif kind == "mesh":  # the low vertex under the bottom face, a little or far
+        edges = tuple(b.pick([0.1, 0.2, 0.4, 1.0]) for _ in range(3))
+        where = tuple(b.pick([0.0, 0.1, -0.2, 0.4]) for _ in range(2))
+        size = edges + where + (_r(min(edges[:2]) * b.pick([0.01, 0.03, 0.1, 0.3])),)
     else:
         size = b.pick(SIZES[kind])
     return kind, size
@@ -757,7 +803,7 @@ def _add_contact(b, name, shape, other, plane_first=False):
                        "stiffness": law["stiffness"], "restitution": law["restitution"], "friction": mu,
                        "static_friction": extra.get("static_friction", mu),
                        "slip_velocity": extra.get("slip_velocity", 1e-4),
-                       "can_stick": other is None and s["kind"] == "box"})
+                       "can_stick": other is None and s["kind"] in ("box", "mesh")})
 
 
 def _body(b, name, kind, size, place, R, velocity, angular_velocity, src_R, exact=False):
@@ -800,8 +846,12 @@ def _body(b, name, kind, size, place, R, velocity, angular_velocity, src_R, exac
                       "angular_velocity": [float(x) for x in angular_velocity]}
     shape_axes_src = src_R if turn_src is None else (f"{src_R} @ {turn_src}" if src_R else turn_src)
     var = f"s{len(b.shapes)}"
-    b.add(f"{var} = m.add_shape({name!r}, {kind!r}, {size!r}, {centre!r}"
-          + (f", {shape_axes_src}" if shape_axes_src else "") + ", role='collision')")
+    # (a mesh: its file, written by the worker)
+    if kind == "mesh" and "import fuzz_contacts" not in b.lines:
+        b.add("import fuzz_contacts")
+    given = f"'mesh', (1.0, 1.0, 1.0)" if kind == "mesh" else f"{kind!r}, {size!r}"
+    b.add(f"{var} = m.add_shape({name!r}, {given}, {centre!r}" + (f", {shape_axes_src}" if shape_axes_src else "")
+          + (f", mesh=fuzz_contacts.low_point_mesh({size!r})" if kind == "mesh" else "") + ", role='collision')")
     b.shapes.append({"body": name, "kind": kind, "size": list(size), "centre": list(centre), "axes": axes.tolist(),
                      "var": var})
     return len(b.shapes) - 1

@@ -527,6 +527,94 @@ def test_a_mesh_touches_by_its_convex_hull():
         assert dict(again.elements)["add_contact"]["shape_a"][1] == "convex"
 
 
+def slab_with_a_low_point(path, depth, at=(0.2, 0.1)):
+    """A 1 m x 1 m x 0.1 m slab's surface as an STL file, its bottom face
+    drawn down to a point `depth` under it at (x, y) = at (four triangles
+    from its edges); -> its nine vertices (the corners, then the low point;
+    in single precision, as the file holds them)."""
+    corners = np.array([[x, y, z] for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.05, 0.05)])
+    low = np.array([at[0], at[1], -0.05 - depth])
+    faces = [(1, 3, 7), (1, 7, 5), (0, 1, 5), (0, 5, 4), (2, 6, 7), (2, 7, 3), (0, 2, 3), (0, 3, 1),
+             (4, 5, 7), (4, 7, 6)]  # the top and the sides
+    bottom = [(0, 4), (4, 6), (6, 2), (2, 0)]
+    write_stl(path, [corners[list(f)] for f in faces] + [np.array([corners[a], corners[b], low]) for a, b in bottom])
+    return np.vstack([corners, low]).astype(np.float32).astype(float)
+
+
+def vertex_heights(r, body, vertices):
+    """(k, n) the heights of a body's vertices (body axes) at each output."""
+    path = r.body(body)
+    return path.position[:, 2][:, None] + np.einsum("kj,nj->kn", path.rotation[:, 2, :], vertices)
+
+
+@pytest.mark.parametrize("depth", [0.02, 0.05])
+def test_a_slab_lands_and_rests_on_the_low_point_of_its_mesh(depth, tmp_path):
+    """A 10 kg slab whose mesh has a low point 2 cm (5 cm) under its bottom
+    face, dropped flat from 5 mm (the low point's height), lands on that
+    point and rests on it and an edge, as a 1 m slab with such a point
+    must (every vertex of the hull is a contact point: a hull sampled
+    along 162 directions left the point out, and the slab rested on its
+    corners with the point 2.1 (5.0) cm below the floor, the contact
+    reading 0.2 mm). At every output the contact reads the deepest
+    vertex's depth (1e-9 m), whose elastic energy k d^2.5 / 2.5 is within
+    what the drop has given up (the energy left; no energy gained); at
+    rest the low point is no deeper than the whole weight presses one
+    point, (W / k)^(2/3)."""
+    mass, k = 10.0, 1e7
+    vertices = slab_with_a_low_point(tmp_path / "slab.stl", depth)
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    z0 = 0.05 + depth + 0.005
+    m.add_body("slab", mass=mass, inertia=(mass * 1.01 / 12, mass * 1.01 / 12, mass * 2.0 / 12),
+               position=(0.0, 0.0, z0))
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    slab = m.add_shape("slab", "mesh", (1.0, 1.0, 1.0), (0.0, 0.0, z0), mesh=str(tmp_path / "slab.stl"),
+                       role="collision")
+    m.add_contact("floor", slab, floor, stiffness=k, restitution=0.5, friction=0.5)
+    r = mb.simulate(m, 2.0, rtol=1e-8, atol=1e-10, n_out=401)
+    heights = vertex_heights(r, "slab", vertices)
+    deepest = -heights.min(axis=1)
+    reading = r.contact("floor").penetration
+    assert np.max(np.abs(reading - deepest)) <= 1e-9
+    path = r.body("slab")
+    spent = mass * G * (z0 - path.position[:, 2]) - 0.5 * mass * np.sum(path.velocity ** 2, axis=1)
+    assert np.all(k * np.maximum(deepest, 0.0) ** 2.5 / 2.5 <= spent + 1e-6)
+    assert np.max(np.diff(r.energy)) <= 1e-6 * mass * G * z0
+    assert deepest.max() > 0.0 and np.all(np.abs(r.v[-1]) < 1e-3)
+    assert np.argmin(heights[-1]) == 8 and deepest[-1] <= (mass * G / k) ** (2 / 3)
+    assert np.sum(heights[-1] < 1e-3) == 3  # (the low point and an edge's two corners)
+
+
+def test_a_random_hull_dropped_tumbling_touches_by_its_deepest_point(tmp_path):
+    """A mesh of 300 random points about an ellipsoid (their hull: 133
+    vertices) dropped tumbling onto a plane: at every output the contact's penetration is the
+    deepest of all 300 points (a brute-force minimum of their heights,
+    1e-9 m), however the hull lands; the energy never rises (1e-7 J)."""
+    from scipy.spatial import ConvexHull
+    from scipy.spatial.transform import Rotation
+
+    rng = np.random.default_rng(5)
+    directions = rng.normal(size=(300, 3))
+    radii = 1.0 + 0.1 * rng.random((300, 1))  # (a rough ellipsoid: most points on its hull, some inside)
+    points = (directions / np.linalg.norm(directions, axis=1)[:, None] * radii * (0.1, 0.06, 0.04))
+    points = points.astype(np.float32).astype(float)  # (as the file holds them)
+    write_stl(tmp_path / "cloud.stl", points.reshape(100, 3, 3))
+    assert 100 <= len(ConvexHull(points).vertices) < 300
+    m = mb.Model(gravity=(0.0, 0.0, -G), dimension=3)
+    turn = Rotation.from_rotvec(0.8 * np.array([1.0, 2.0, -0.5]) / np.sqrt(5.25)).as_matrix()
+    centre = (0.0, 0.0, 0.02 - float(np.min(points @ turn.T[:, 2])))
+    m.add_body("rock", mass=1.0, inertia=(0.002, 0.004, 0.005), position=centre, orientation=turn,
+               angular_velocity=(3.0, -2.0, 5.0), velocity=(0.3, 0.0, -0.5))
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    rock = m.add_shape("rock", "mesh", (1.0, 1.0, 1.0), centre, turn, mesh=str(tmp_path / "cloud.stl"),
+                       role="collision")
+    m.add_contact("floor", rock, floor, stiffness=1e6, restitution=0.6, friction=0.4)
+    r = mb.simulate(m, 1.0, rtol=1e-8, atol=1e-10, n_out=401)
+    deepest = -vertex_heights(r, "rock", points).min(axis=1)
+    assert np.max(np.abs(r.contact("floor").penetration - deepest)) <= 1e-9
+    assert deepest.max() > 0.0 and len([e for e in r.events if e["label"] == "onset"]) >= 3
+    assert np.max(r.energy - np.minimum.accumulate(r.energy)) <= 1e-7
+
+
 def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
     """Unitree Go1 (example-robot-data) on a floating base, its limits on,
     dropped from 0.35 m above the ground (load_urdf(ground=...)): after 3 s
@@ -549,6 +637,29 @@ def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
     readings = [r.contact(name) for name in contacts]
     assert abs(sum(c.normal_force[-1] for c in readings) / weight - 1.0) <= 1e-3
     assert max(c.penetration[-1] for c in readings) <= (weight / mb.urdf.GROUND_CONTACT["stiffness"]) ** (2 / 3)
+
+
+def test_a_quadruped_loaded_into_the_ground_names_the_shapes_deep_in_it():
+    """Go1 loaded with its base frame at the ground (ground=0.0): 35 of its
+    collision shapes start in it, its calves' boxes deepest, 0.22 m in,
+    each pressing 6.3e6 N, 49,000 times the robot's weight. A
+    DeepContactWarning at the caller's line names them, the deepest first,
+    with both shapes and the depth; the run then fails at t = 0, and its
+    message (which said only that IDA's corrector failed) names them too."""
+    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mb.UrdfWarning)
+        m = mb.load_urdf(os.path.join(test_urdf.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
+                         ground=0.0)
+    with pytest.warns(mb.DeepContactWarning) as seen:
+        with pytest.raises(mb.SimulationError, match="failed at t = 0") as info:
+            mb.simulate(m, 0.5)
+    assert seen[0].filename == __file__
+    deepest = "'FR_calf_ground' 0.221 m deep (a box on 'FR_calf' and a plane on the ground, pressing with 6.35e+06 N"
+    assert str(seen[0].message).startswith("35 contacts start with their shapes deep inside each other: " + deepest)
+    assert info.value.t == 0.0 and deepest in str(info.value) and "and 32 more" in str(info.value)
 
 
 BLOCK_URDF = """<robot name="blocks">

@@ -11,6 +11,7 @@ offending name (and, for numbers, the value) appears in the message.
 
 import math
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -407,3 +408,75 @@ def test_an_argument_of_the_other_dimension_says_where_it_belongs():
     with pytest.raises(mb.ModelError, match="add_body: missing a required argument: 'mass'. It takes name, mass"):
         m.add_body("d", mas=1.0, inertia=0.1)
     assert len(m.bodies) == 1  # nothing was added
+
+
+# --------------------------------------------------------------------------
+# Contacts that start deep, and stiffnesses no material has
+# --------------------------------------------------------------------------
+
+def ball_in_slope(depth, stiffness=1e7):
+    """A 1 kg ball of radius 0.1 m started `depth` inside a 20 degree slope
+    (its centre on the slope's normal through the origin)."""
+    c, s = math.cos(math.radians(20.0)), math.sin(math.radians(20.0))
+    tilt = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    centre = tuple((0.1 - depth) * tilt[:, 2])
+    m = mb.Model(gravity=(0.0, 0.0, -9.81), dimension=3)
+    m.add_body("ball", mass=1.0, inertia=(0.004, 0.004, 0.004), position=centre)
+    slope = m.add_shape("ground", "plane", (), (0.0, 0.0, 0.0), tilt, role="collision")
+    ball = m.add_shape("ball", "sphere", (0.1,), centre, role="collision")
+    m.add_contact("on_slope", ball, slope, stiffness=stiffness, restitution=0.5, friction=0.5)
+    return m
+
+
+def test_a_ball_started_deep_in_a_slope_is_named_with_its_depth():
+    """16 cm inside the slope (deeper than its radius) the contact presses
+    with k d^1.5 = 6.4e5 N, 65,000 times the ball's weight: a
+    DeepContactWarning at the caller's line names the contact, its two
+    shapes, the depth and the force; index3 then fails at t = 0, and its
+    message names them too (a Simulator's failure as well)."""
+    with pytest.warns(mb.DeepContactWarning) as seen:
+        with pytest.raises(mb.SimulationError, match="failed at t = 0") as info:
+            mb.simulate(ball_in_slope(0.16), 1.0, method="index3")
+    assert seen[0].filename == __file__
+    text = str(seen[0].message)
+    for words in ("'on_slope' 0.16 m deep", "a sphere on 'ball' and a plane on the ground", "6.4e+05 N",
+                  "6.52e+04 times the bodies' weight"):
+        assert words in text
+    assert info.value.t == 0.0 and "It started with contacts deep (the deepest first): 'on_slope' 0.16 m deep" \
+        in str(info.value)
+    with pytest.warns(mb.DeepContactWarning, match="'on_slope' 0.16 m deep"):
+        sim = mb.Simulator(ball_in_slope(0.16), method="index3")
+    with pytest.raises(mb.SimulationError, match="'on_slope' 0.16 m deep"):
+        sim.advance(1.0)
+
+
+def test_a_contact_pressed_in_less_than_ten_weights_starts_without_a_word():
+    """The ball pressed in 4 times the depth its whole weight W gives one
+    point, (W / k)^(2/3), pushes with 4^1.5 = 8 W: no warning (the ball
+    hops off); 5 times, 11 W: warned."""
+    static = (9.81 / 1e7) ** (2 / 3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mb.simulate(ball_in_slope(4.0 * static), 0.01, n_out=3)
+    with pytest.warns(mb.DeepContactWarning, match=r"11.2 times the bodies' weight"):
+        mb.simulate(ball_in_slope(5.0 * static), 0.01, n_out=3)
+
+
+@pytest.mark.parametrize("stiffness, words", [
+    (1e30, "stiffness 1e+30 N/m^1.5 is stiffer than any material"), (2e13, "stiffness 2e+13 N/m^1.5 is stiffer"),
+    (math.inf, "stiffness must be finite, got inf"), (math.nan, "stiffness must be finite, got nan"),
+    (0.0, "stiffness must be positive and finite, got 0"),
+])
+def test_a_stiffness_no_material_has_is_refused(stiffness, words):
+    """A contact's stiffness is at most 1e13 N/m^1.5 (Hertz's (4/3) E*
+    sqrt(R) for diamond on diamond at R = 200 m), positive and finite: else
+    a ModelError at add_contact naming the contact and the value, in space
+    and in the plane."""
+    with pytest.raises(mb.ModelError, match=re.escape(words)) as info:
+        ball_in_slope(0.0, stiffness=stiffness)
+    assert "'on_slope'" in str(info.value)
+    m = pendulum()
+    with pytest.raises(mb.ModelError, match=re.escape(words)) as info:
+        m.add_contact("bump", "rod", (1.0, 0.0), 0.05, m.ground, (0.0, -2.0), (1.0, 0.0), stiffness=stiffness,
+                      restitution=0.5)
+    assert "'bump'" in str(info.value)

@@ -1,8 +1,9 @@
 """Fuzzed contacts: random bodies touching a ground plane and each other obey the laws of contact.
 
 Hypothesis draws scenes (tests/fuzz_contacts.py: 0-3 free bodies with a
-sphere, capsule, box or cylinder, sometimes two shapes, above, touching or
-resting on a level or tilted plane, sometimes a sphere meeting another
+sphere, capsule, box, cylinder or mesh (a box with a low vertex under a
+face), sometimes two shapes, above, touching or resting on a level or
+tilted plane, sometimes a sphere meeting another
 body's sphere, box or capsule, or one fixed on the ground; random poses,
 velocities, masses and inertias; stiffness 1e5..1e8, restitution 0.2..1,
 friction 0..1, static friction, slip velocity; every method that places

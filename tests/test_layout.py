@@ -133,7 +133,7 @@ PYTHON_LAYERS = [
     ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations",
      "_output_names"],
     ["model"],
-    ["result", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
+    ["result", "_deep_start", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
     ["_drawing"],
     ["scene", "plotting", "demo", "urdf", "mjcf", "_store", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],

@@ -5,6 +5,7 @@
 // gap's rate g' is that derivative along the velocities (d g / dt = g_c .
 // cd), for bodies turning and moving in general ways.
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "check.hpp"
@@ -24,6 +25,7 @@ using lagmb::collision::Motion;
 namespace {
 
 using Loc = Eigen::Matrix<double, 14, 1>;
+constexpr double kAll = std::numeric_limits<double>::infinity();  // (reach: every point exact)
 
 CollisionShape shape(CollisionShape::Kind kind, Vec3 size, Vec3 position, const Mat3& axes) {
   CollisionShape s;
@@ -61,7 +63,7 @@ std::vector<ContactPoint<double>> points_at(const lagmb::collision::Pair& pair, 
   Motion<double> A, B;
   motions(c.data(), cd.data(), A, B);
   std::vector<ContactPoint<double>> out(pair.points(a, b));
-  pair.at(a, b, A, B, out.data());
+  pair.at(a, b, A, B, out.data(), kAll);
   return out;
 }
 
@@ -83,8 +85,10 @@ void check_pair(const CollisionShape& a, const CollisionShape& b, const Loc& c, 
   }
   Motion<ContactDual> A, B;
   motions(x, xd, A, B);
+  std::vector<int> all(values.size());
+  for (size_t k = 0; k < values.size(); ++k) all[k] = int(k);
   std::vector<ContactPoint<ContactDual>> duals(values.size());
-  pair->derivative(a, b, A, B, duals.data());
+  pair->derivative(a, b, A, B, all.data(), int(all.size()), duals.data());
   // over body a's coordinates alone (the ground under it: OneBodyDual), the same first derivatives
   lagmb::collision::OneBodyDual y[14], yd[14];
   for (int k = 0; k < 14; ++k) {
@@ -95,7 +99,7 @@ void check_pair(const CollisionShape& a, const CollisionShape& b, const Loc& c, 
   Motion<lagmb::collision::OneBodyDual> A1, B1;
   motions(y, yd, A1, B1);
   std::vector<ContactPoint<lagmb::collision::OneBodyDual>> ones(values.size());
-  pair->one_body(a, b, A1, B1, ones.data());
+  pair->one_body(a, b, A1, B1, all.data(), int(all.size()), ones.data());
   for (size_t k = 0; k < values.size(); ++k) {
     CHECK((ones[k].gap.d.head<7>() - duals[k].gap.d.head<7>()).norm() <= 1e-13);
     CHECK((ones[k].gap_rate.d.tail<7>() - duals[k].gap_rate.d.segment<7>(14)).norm() <= 1e-13);
@@ -135,6 +139,53 @@ TEST_CASE(vertex_and_ball_pairs_against_a_moving_plane) {
   hull.vertices = {Vec3(0.1, 0, 0), Vec3(-0.1, 0.05, 0), Vec3(0, -0.1, 0.05), Vec3(0, 0, -0.12)};
   check_pair(hull, plane, c, cd);
   check_pair(shape(CollisionShape::kCylinder, Vec3(0.07, 0.15, 0), Vec3(0.02, 0.01, 0.0), own), plane, c, cd, 1);
+}
+
+TEST_CASE(a_hull_evaluates_in_full_only_the_vertices_asked_for) {
+  // a hull whose vertices are from below the plane to 10 cm above it:
+  // within reach 0 (touching) its points are those of reach infinity,
+  // beyond it their gaps alone (to rounding; rate and point NaN); over Dual
+  // numbers the touching ones asked for by number are those of all asked for
+  const Mat3 Ra = turn(0.4, Vec3(1, 2, 3));
+  Loc c, cd;
+  state(Vec3(0.0, 0.0, 0.05), Ra, Vec3::Zero(), Mat3::Identity(), c, cd);
+  const CollisionShape plane = shape(CollisionShape::kPlane, Vec3::Zero(), Vec3::Zero(), Mat3::Identity());
+  CollisionShape hull = shape(CollisionShape::kConvex, Vec3::Zero(), Vec3(0.01, 0.0, 0.0), turn(0.3, Vec3(0, 0, 1)));
+  hull.vertices = {Vec3(0.1, 0, 0), Vec3(-0.1, 0.05, 0), Vec3(0, -0.1, 0.05), Vec3(0, 0, -0.12), Vec3(0.03, 0.02, -0.09)};
+  const lagmb::collision::Pair* pair = lagmb::collision::find_pair(hull.kind, plane.kind);
+  const auto values = points_at(*pair, hull, plane, c, cd);
+  Motion<double> A0, B0;
+  motions(c.data(), cd.data(), A0, B0);
+  std::vector<ContactPoint<double>> near(values.size());
+  pair->at(hull, plane, A0, B0, near.data(), 0.0);
+  std::vector<int> all, touching;
+  for (size_t k = 0; k < values.size(); ++k) {
+    all.push_back(int(k));
+    CHECK_NEAR(near[k].gap, values[k].gap, 1e-16);
+    if (values[k].gap <= 0.0) {
+      touching.push_back(int(k));
+      CHECK(near[k].gap == values[k].gap && near[k].gap_rate == values[k].gap_rate);
+      CHECK((near[k].point.value() - values[k].point.value()).norm() == 0.0);
+    } else {
+      CHECK(std::isnan(near[k].gap_rate) && std::isnan(near[k].point.value().x()));
+    }
+  }
+  CHECK(!touching.empty() && touching.size() < values.size());
+  ContactDual x[14], xd[14];
+  for (int k = 0; k < 14; ++k) {
+    x[k] = ContactDual(c[k]), xd[k] = ContactDual(cd[k]);
+    x[k].d[k] = 1.0, xd[k].d[14 + k] = 1.0;
+  }
+  Motion<ContactDual> A, B;
+  motions(x, xd, A, B);
+  std::vector<ContactPoint<ContactDual>> every(all.size()), some(touching.size());
+  pair->derivative(hull, plane, A, B, all.data(), int(all.size()), every.data());
+  pair->derivative(hull, plane, A, B, touching.data(), int(touching.size()), some.data());
+  for (size_t j = 0; j < touching.size(); ++j) {
+    const auto& p = some[j];
+    const auto& q = every[touching[j]];
+    CHECK(p.gap.v == q.gap.v && (p.gap.d - q.gap.d).norm() == 0.0 && (p.gap_rate.d - q.gap_rate.d).norm() == 0.0);
+  }
 }
 
 TEST_CASE(ball_pairs_between_two_moving_bodies) {

@@ -14,7 +14,8 @@ CVODE or ARKODE; docs/methods.md says which method a model gets).
 
 from . import _core
 from .accuracy import METHODS, WorkPrecision, work_precision
-from .errors import AssemblyError, AssemblyWarning, ModelError, RedundantConstraintWarning, SimulationError
+from .errors import (AssemblyError, AssemblyWarning, DeepContactWarning, ModelError, RedundantConstraintWarning,
+                     SimulationError)
 from .functions import (Constant, Harmonic, Input, Linear, Polynomial, SmoothStep, Spline, TimeFunction,
                         time_function_from_dict)
 from .handles import Body, Handle
@@ -51,6 +52,7 @@ __all__ = [
     "Polynomial",
     "RedundantConstraintWarning",
     "AssemblyWarning",
+    "DeepContactWarning",
     "Result",
     "Sensitivity",
     "Scene",

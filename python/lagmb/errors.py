@@ -28,6 +28,17 @@ class AssemblyWarning(UserWarning):
     the five moved most, each with how far and how much it turned."""
 
 
+class DeepContactWarning(UserWarning):
+    """A run starts with the shapes of a contact deep inside each other:
+    pressing them with more than ten times the weight of all the bodies
+    (without gravity, their mass times 9.81 m/s^2), a start no part of the
+    model can rest in. Such a start throws the bodies apart (or, the
+    contact's damping holding them, lets them out slowly), or the solver
+    fails at the first step. The warning names each such contact, its two
+    shapes, its depth (m) and its force, the deepest first
+    (docs/modelling.md, "Starting in contact")."""
+
+
 class SimulationError(RuntimeError):
     """The solver could not go on.
 

@@ -741,21 +741,28 @@ def _shape_value(model, param, value, what, label):
     return (index, value.kind, size, position, axes, [])
 
 
-def _hull_vertices(shape, label, directions=162):
-    """Vertices of a mesh's convex hull that a contact uses: for each of
-    `directions` directions spread over the sphere, the vertex farthest
-    along it (each a vertex of the hull; the hull's other vertices, each
-    extreme only in a narrow cone of directions, are left out), scaled."""
+def _hull_vertices(shape, label):
+    """Every vertex of a mesh's convex hull (scaled, in the mesh's order of
+    unique points): the points a contact uses. Whatever plane a convex hull
+    meets, its deepest point is one of its vertices, so none may be left out
+    (a vertex sticking out of a face is extreme only in a narrow cone of
+    directions). The hull is Qhull's (SciPy), its coplanar points (on a
+    face or an edge, never deepest alone) left out."""
     from ._meshes import read_stl
 
     if not str(shape.mesh).lower().endswith(".stl"):
         raise ModelError(f"{label}: lagmb reads STL meshes only; {shape.mesh!r} cannot be a collision shape")
-    points = read_stl(shape.mesh).reshape(-1, 3) * np.asarray(shape.size, dtype=float)
-    points = np.unique(points, axis=0)
-    k = np.arange(directions) + 0.5
-    polar, azimuth = np.arccos(1.0 - 2.0 * k / directions), np.pi * (1.0 + 5.0**0.5) * k  # (a Fibonacci lattice)
-    d = np.stack([np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar)], axis=1)
-    chosen = np.unique(np.argmax(points @ d.T, axis=0))
+    try:
+        from scipy.spatial import ConvexHull
+    except ImportError:
+        raise ModelError(f"{label}: the convex hull of mesh {shape.mesh!r} is SciPy's (scipy.spatial.ConvexHull); "
+                         "install SciPy (pip install scipy) to make a mesh a collision shape") from None
+    points = np.unique(read_stl(shape.mesh).reshape(-1, 3) * np.asarray(shape.size, dtype=float), axis=0)
+    try:
+        chosen = np.sort(ConvexHull(points).vertices)
+    except (RuntimeError, ValueError):  # (Qhull's error: fewer than 4 points, or all in a plane)
+        raise ModelError(f"{label}: mesh {shape.mesh!r} scaled by {tuple(shape.size)} has no convex hull "
+                         f"with a volume ({len(points)} distinct points, in a plane or fewer than 4)") from None
     return [tuple(float(x) for x in points[i]) for i in chosen]
 
 

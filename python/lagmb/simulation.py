@@ -6,6 +6,7 @@ import numpy as np
 
 from . import _core
 from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
+from . import _deep_start
 from ._checks import parameters as _parameters, positive as _positive, real as _real
 from ._checks import show as _show, text as _text
 from .errors import ModelError, translated
@@ -201,10 +202,12 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     snapshot = model._snapshot()
     core = _parameters(snapshot, parameters, "simulate")
     sensitivities = _names(sensitivities, "simulate: sensitivities", "parameter names")
-    with _translate(model, core, snapshot):
+    into = WARNINGS_INTO.get()  # (a list that takes lagmb's warnings instead: a sweep's case in a thread)
+    start_contacts = _deep_start.warn(snapshot, core, core.initial_state()[0], t0, into=into) \
+        if options["start"] == "given" and analysis.strip().lower() != "kinematic" else ([], 0.0)
+    with _deep_start.noted(start_contacts, t0), _translate(model, core, snapshot):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
         raw = _core.simulate(core, options, progress, sensitivities)
-    into = WARNINGS_INTO.get()  # (a list that takes lagmb's warnings instead: a sweep's case in a thread)
     snapshot._warn_redundant(raw.get("dropped_rows", []), into=into)
     if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
         snapshot._warn_moved(core, raw["q"][0], into=into)

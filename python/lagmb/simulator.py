@@ -5,7 +5,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from . import _core, registry
+from . import _core, _deep_start, registry
 from ._checks import parameters as _parameters, real as _real, show as _show
 from .errors import ModelError
 from .handles import name_of
@@ -57,7 +57,12 @@ class Simulator:
         self._readings = {}  # joints(): {the joints asked for: [(name, slide?)]}
         self._snapshot = model._snapshot()  # the model it runs, whatever edits follow
         self._core_model = _parameters(self._snapshot, parameters, "Simulator")
-        with _translate(model, self._core_model, self._snapshot):
+        # (contacts deep at the start: warned of here, named by a failure at t0)
+        self._t0 = options["t0"]
+        self._start_contacts = _deep_start.warn(self._snapshot, self._core_model,
+                                                self._core_model.initial_state()[0], self._t0) \
+            if options["start"] == "given" else ([], 0.0)
+        with _deep_start.noted(self._start_contacts, self._t0), self._translated():
             self._sim = _core.Simulator(self._core_model, options, interval)
         start_state = self._sim.result()
         self._snapshot._warn_redundant(start_state.get("dropped_rows", []))
@@ -157,7 +162,7 @@ class Simulator:
         the integrator fails: :meth:`result` keeps the outputs reached, and
         the simulator refuses to go on until :meth:`set_state`."""
         t = _real(t, "t")
-        with self._translated():
+        with _deep_start.noted(self._start_contacts, self._t0), self._translated():
             self._sim.advance(t)
 
     def set_input(self, name, value):

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <type_traits>
 #include <utility>
 
 namespace lagmb::collision {
@@ -84,7 +86,7 @@ struct SpherePlane {
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     out[0] = ball_plane(a.position, a.size[0], A, PlaneFrame<T>(b, B));
   }
 };
@@ -96,7 +98,7 @@ struct CapsulePlane {
   static int points(const CollisionShape& a, const CollisionShape&) { return a.size[1] > 0.0 ? 2 : 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     const PlaneFrame<T> pl(b, B);
     const Vec3 half = 0.5 * a.size[1] * a.axes.col(2);
     out[0] = ball_plane<T>(a.position - half, a.size[0], A, pl);
@@ -110,7 +112,7 @@ struct BoxPlane {
   static int points(const CollisionShape&, const CollisionShape&) { return 8; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     const PlaneFrame<T> pl(b, B);
     for (int k = 0; k < 8; ++k) {
       const Vec3 corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
@@ -119,15 +121,39 @@ struct BoxPlane {
   }
 };
 
-/// The vertices of a convex hull.
+/// The vertices of a convex hull (every vertex of it: the deepest point of
+/// a convex shape below a plane is one of them). Each vertex's height over
+/// the plane first, in doubles: h_k = h_0 + m . v_k, with m the normal in
+/// the hull's own axes and h_0 its centre's height (three multiply-adds a
+/// vertex); a vertex within `reach` is then a ball_plane point of radius 0,
+/// one beyond it its gap h_k alone (rate and point NaN); over Dual numbers
+/// (`some`) only the vertices asked for: a hull of hundreds of vertices
+/// resting on a few costs little more than the few.
 struct ConvexPlane {
   static constexpr bool anchored = true;
   static int points(const CollisionShape& a, const CollisionShape&) { return int(a.vertices.size()); }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double reach) {
     const PlaneFrame<T> pl(b, B);
-    for (size_t k = 0; k < a.vertices.size(); ++k) out[k] = ball_plane<T>(a.position + a.axes * a.vertices[k], 0.0, A, pl);
+    const double h0 = value_of(dot(pl.n, A.point(a.position) - pl.P0));
+    const Vec3 n = pl.n.value(), m = a.axes.transpose() * rotate_back(A.p, pl.n).value();
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    for (size_t k = 0; k < a.vertices.size(); ++k) {
+      const double h = h0 + m.dot(a.vertices[k]);
+      if (h <= reach) {
+        out[k] = ball_plane<T>(a.position + a.axes * a.vertices[k], 0.0, A, pl);
+      } else {
+        out[k].gap = T(h), out[k].gap_rate = T(nan);
+        out[k].point = V3<T>(Vec3::Constant(nan)), out[k].normal = V3<T>(n);
+      }
+    }
+  }
+  template <class T>
+  static void some(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
+                   const int* which, int count, ContactPoint<T>* out) {
+    const PlaneFrame<T> pl(b, B);
+    for (int j = 0; j < count; ++j) out[j] = ball_plane<T>(a.position + a.axes * a.vertices[which[j]], 0.0, A, pl);
   }
 };
 
@@ -143,7 +169,7 @@ struct CylinderPlane {
   static int points(const CollisionShape&, const CollisionShape&) { return 8; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     using std::sqrt;
     const PlaneFrame<T> pl(b, B);
     const V3<T> w = A.rotate(a.axes.col(2)), wd = A.rotate_rate(a.axes.col(2));
@@ -182,7 +208,7 @@ struct SphereSphere {
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     // b's surface point on the line of centres, moving with b: Y = Y_b + R_b u
     ContactPoint<T> c = ball_point(A.point(a.position), A.point_velocity(a.position), a.size[0] + b.size[0],
                                    B.point(b.position), B.point_velocity(b.position));
@@ -199,7 +225,7 @@ struct SphereCapsule {
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     const Vec3 half = 0.5 * b.size[1] * b.axes.col(2);
     const V3<T> E0 = B.point(b.position - half), E1 = B.point(b.position + half);
     const V3<T> E0d = B.point_velocity(b.position - half), E1d = B.point_velocity(b.position + half);
@@ -226,7 +252,7 @@ struct CapsuleCapsule {
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     const Vec3 ha = 0.5 * a.size[1] * a.axes.col(2), hb = 0.5 * b.size[1] * b.axes.col(2);
     const V3<T> P0 = A.point(a.position - ha), P1 = A.point(a.position + ha);
     const V3<T> Q0 = B.point(b.position - hb), Q1 = B.point(b.position + hb);
@@ -264,7 +290,7 @@ struct SphereBox {
   static int points(const CollisionShape&, const CollisionShape&) { return 1; }
   template <class T>
   static void collide(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B,
-                      ContactPoint<T>* out) {
+                      ContactPoint<T>* out, double /*reach*/) {
     const V3<T> X = A.point(a.position), Xd = A.point_velocity(a.position);
     const V3<T> local = times<T>(b.axes.transpose(), rotate_back(B.p, X - B.r) - V3<T>(b.position));  // box axes
     const Vec3 h = 0.5 * b.size;
@@ -292,10 +318,30 @@ struct SphereBox {
   }
 };
 
+/// Whether a geometry gives some of its points alone (Geometry::some).
+template <class Geometry, class = void>
+struct GivesSome : std::false_type {};
+template <class Geometry>
+struct GivesSome<Geometry, std::void_t<decltype(&Geometry::template some<double>)>> : std::true_type {};
+
+/// The points which[0 .. count) of a geometry over T: its `some`, or all
+/// its points (a few) computed and those picked.
+template <class Geometry, class T>
+void some(const CollisionShape& a, const CollisionShape& b, const Motion<T>& A, const Motion<T>& B, const int* which,
+          int count, ContactPoint<T>* out) {
+  if constexpr (GivesSome<Geometry>::value) {
+    Geometry::some(a, b, A, B, which, count, out);
+  } else {
+    std::vector<ContactPoint<T>> all(Geometry::points(a, b));
+    Geometry::collide(a, b, A, B, all.data(), std::numeric_limits<double>::infinity());
+    for (int j = 0; j < count; ++j) out[j] = all[which[j]];
+  }
+}
+
 template <class Geometry>
 Pair line(CollisionShape::Kind a, CollisionShape::Kind b) {
   return {a, b, Geometry::anchored, &Geometry::points, &Geometry::template collide<double>,
-          &Geometry::template collide<ContactDual>, &Geometry::template collide<OneBodyDual>};
+          &some<Geometry, ContactDual>, &some<Geometry, OneBodyDual>};
 }
 
 const std::vector<Pair>& table() {

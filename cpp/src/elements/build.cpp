@@ -125,11 +125,21 @@ spatial::JointReading continuous_reading(Model& m, const std::string& joint, con
   return counter->reading;
 }
 
+/// The stiffest contact a material makes, N/m^1.5: Hertz's k = (4/3) E*
+/// sqrt(R) of a ball on a flat (Johnson, Contact Mechanics, 1985, 4.2), for
+/// diamond on diamond (E* = E / (2 (1 - nu^2)) = 5.3e11 Pa) reaches 1e13
+/// only at R = 200 m; steel on steel (E* = 1.15e11 Pa) at R = 1 m is 1.5e11.
+constexpr double kMaxContactStiffness = 1e13;
+
 ContactLaw contact_law(const Args& a, const std::string& label) {
   ContactLaw law;
   law.stiffness = a.real("stiffness");
   law.slip_velocity = a.real("slip_velocity");
   require_positive(law.stiffness, label, "stiffness");
+  if (!(law.stiffness <= kMaxContactStiffness))
+    throw ModelError(label + ": stiffness " + to_text(law.stiffness) + " N/m^1.5 is stiffer than any material makes a "
+                     "contact (Hertz's k = (4/3) E* sqrt(R): steel on steel 1.5e11 at R = 1 m, diamond on diamond "
+                     "1e13 at R = 200 m); give at most 1e13");
   require_positive(law.slip_velocity, label, "slip_velocity");
   law.restitution = a.real("restitution");
   if (!(law.restitution > 0.0 && law.restitution <= 1.0))
@@ -142,7 +152,7 @@ ContactLaw contact_law(const Args& a, const std::string& label) {
 
 std::vector<Param> contact_law_params() {
   return {
-      param::real("stiffness", "N/m^1.5", "contact stiffness k"),
+      param::real("stiffness", "N/m^1.5", "contact stiffness k, at most 1e13 (Hertz: (4/3) E* sqrt(R))"),
       param::real("restitution", "", "coefficient of restitution e in (0, 1]"),
       param::real("friction", 0.0, "", "Coulomb coefficient mu"),
       param::real("slip_velocity", 1e-4, "m/s", "v_s below which friction is smoothed"),

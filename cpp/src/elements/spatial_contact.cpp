@@ -30,6 +30,8 @@ void build_spatial_contact(Model& m, const std::string& name, const Args& a) {
   SpatialContact c = build::joining<SpatialContact>(m, name, sa.body, sb.body);
   c.shape_a = std::move(sa);
   c.shape_b = std::move(sb);
+  c.radius_a = c.shape_a.bounding_radius();
+  c.radius_b = c.shape_b.bounding_radius();
   c.pair = pair;
   c.swapped = swapped;
   c.points = pair->points(c.shape_a, c.shape_b);

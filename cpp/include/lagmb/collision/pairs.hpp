@@ -81,7 +81,12 @@ using OneBodyDual = Dual<14>;
 
 /// One line of the table: shapes of kinds (a, b), how many contact points
 /// they have (fixed for the pair: each is an event function) and the
-/// geometry that gives them, for both number types.
+/// geometry that gives them, for both number types. `at` fills out[0 ..
+/// points) and may give a point whose gap exceeds `reach` (m) its gap alone
+/// (its rate and point NaN: the law's force is 0 there; +infinity: every
+/// point in full); the Dual versions fill out[j] with point which[j], j <
+/// count (the pressing ones): a geometry of many points (a hull's vertices)
+/// evaluates in full only the few near touching.
 struct Pair {
   CollisionShape::Kind a, b;
   /// Whether each contact point is a material point of shape a (a vertex:
@@ -90,11 +95,11 @@ struct Pair {
   bool anchored;
   int (*points)(const CollisionShape& a, const CollisionShape& b);
   void (*at)(const CollisionShape& a, const CollisionShape& b, const Motion<double>& A, const Motion<double>& B,
-             ContactPoint<double>* out);
+             ContactPoint<double>* out, double reach);
   void (*derivative)(const CollisionShape& a, const CollisionShape& b, const Motion<ContactDual>& A,
-                     const Motion<ContactDual>& B, ContactPoint<ContactDual>* out);
+                     const Motion<ContactDual>& B, const int* which, int count, ContactPoint<ContactDual>* out);
   void (*one_body)(const CollisionShape& a, const CollisionShape& b, const Motion<OneBodyDual>& A,
-                   const Motion<OneBodyDual>& B, ContactPoint<OneBodyDual>* out);
+                   const Motion<OneBodyDual>& B, const int* which, int count, ContactPoint<OneBodyDual>* out);
 };
 
 /// The table's line for shapes of kinds (a, b), or null: the pairs are

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,10 @@ namespace lagmb {
 /// bounding spheres (a plane's half-space) are apart, Q = 0 and every event
 /// function reads their gap, a lower bound of each point's. Each point is an
 /// event function (its gap): onset (recording v_impact,k in the run's
-/// state) and release restart the integrator.
+/// state) and release restart the integrator. Narrow phase: forces and
+/// events take the points within kNear of touching in full and the others'
+/// gaps alone, the derivatives the pressing points alone (a hull of
+/// hundreds of vertices resting on a few costs a height per vertex).
 ///
 /// Stick (a pair whose points are material points of shape a, `anchored`,
 /// with friction): the contact is also three constraint rows, open (left
@@ -77,6 +81,7 @@ struct SpatialContact {
   std::string name;
   int body_i = -1, body_j = -1;
   CollisionShape shape_a, shape_b;  // on body i, body j
+  double radius_a = 0.0, radius_b = 0.0;  // their bounding_radius() (a hull's: over its vertices, found once)
   const collision::Pair* pair = nullptr;
   int points = 0;
   bool swapped = false;  // given as (b, a): readings are for the shape given first
@@ -106,10 +111,10 @@ struct SpatialContact {
     if (shape_b.kind == CollisionShape::kPlane) {
       const Vec4 pb = c.segment<4>(10);
       const Vec3 n = euler::rotate(pb, shape_b.axes.col(2));
-      return n.dot(Xa - c.segment<3>(7) - euler::rotate(pb, shape_b.position)) - shape_a.bounding_radius();
+      return n.dot(Xa - c.segment<3>(7) - euler::rotate(pb, shape_b.position)) - radius_a;
     }
     const Vec3 Xb = c.segment<3>(7) + euler::rotate(c.segment<4>(10), shape_b.position);
-    return (Xa - Xb).norm() - shape_a.bounding_radius() - shape_b.bounding_radius();
+    return (Xa - Xb).norm() - radius_a - radius_b;
   }
 
   /// Whether a step from c0 to c1 whose gaps are open at both ends, the
@@ -130,7 +135,7 @@ struct SpatialContact {
     // the turn between two Euler parameter vectors: 2 acos |p0 . p1|
     auto turn = [](const Vec4& p0, const Vec4& p1) { return 2.0 * std::acos(std::min(1.0, std::abs(p0.dot(p1)))); };
     const Vec3 D0 = centres(c0), D1 = centres(c1), step = D1 - D0;
-    const double Ra = shape_a.bounding_radius(), Rb = shape_b.bounding_radius();
+    const double Ra = radius_a, Rb = radius_b;
     const double s = step.squaredNorm() > 0.0 ? std::clamp(-D0.dot(step) / step.squaredNorm(), 0.0, 1.0) : 0.0;
     if (!((D0 + s * step).norm() < Ra + Rb)) return false;
     const double moved = step.norm() + turn(c0.segment<4>(3), c1.segment<4>(3)) * Ra +
@@ -138,12 +143,19 @@ struct SpatialContact {
     return moved > gap;
   }
 
-  /// The contact points at (c, cd).
-  std::vector<collision::ContactPoint<double>> contact_points(const Loc& c, const Loc& cd) const {
+  /// How near touching (m) a point is evaluated in full where only the
+  /// pressing ones and the gaps matter (forces, events): a point farther
+  /// may carry its gap alone (collision::Pair; a hull's vertices). Above
+  /// the gaps' rounding and the events' 1e-9 m band.
+  static constexpr double kNear = 1e-6;
+  static constexpr double kAll = std::numeric_limits<double>::infinity();
+
+  /// The contact points at (c, cd), those farther than `reach` perhaps their gaps alone.
+  std::vector<collision::ContactPoint<double>> contact_points(const Loc& c, const Loc& cd, double reach) const {
     collision::Motion<double> A, B;
     motions(c.data(), cd.data(), A, B);
     std::vector<collision::ContactPoint<double>> out(points);
-    pair->at(shape_a, shape_b, A, B, out.data());
+    pair->at(shape_a, shape_b, A, B, out.data(), reach);
     return out;
   }
 
@@ -155,17 +167,21 @@ struct SpatialContact {
     return pair->anchored ? p.point + p.gap * p.normal : p.point;
   }
 
-  /// Q at (c, cd) from the contact points `pts` (evaluated with the same numbers).
+  /// Q at (c, cd) from the contact points `pts` (evaluated with the same
+  /// numbers): pts[j] is point which[j] for j < count (which null: pts[k]
+  /// is point k, k < points).
   template <class T>
-  void generalized_force(const T* c, const T* cd, const collision::ContactPoint<T>* pts, const double* run,
-                         T* Q) const {
+  void generalized_force(const T* c, const T* cd, const collision::ContactPoint<T>* pts, const int* which,
+                         int count, const double* run, T* Q) const {
     using collision::V3;
     collision::Motion<T> A, B;
     motions(c, cd, A, B);
     V3<T> F, tau_i, tau_j;
     const bool slides = law.friction > 0.0 && !stuck(run);  // (stuck, the rows hold all the friction)
-    for (int k = 0; k < points; ++k) {
-      const collision::ContactPoint<T>& p = pts[k];
+    for (int j = 0; j < count; ++j) {
+      const collision::ContactPoint<T>& p = pts[j];
+      const int k = which ? which[j] : j;
+      if (!(value_of(p.gap) < 0.0)) continue;  // (apart: no force, and a far point has its gap alone)
       const T Fn = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
       if (!(value_of(Fn) > 0.0)) continue;
       V3<T> Fk = Fn * p.normal;
@@ -196,8 +212,8 @@ struct SpatialContact {
   Loc force(const Loc& c, const Loc& cd, const Instant&, const double* run) const {
     Loc Q = Loc::Zero();
     if (bounding_gap(c) > 0.0) return Q;
-    const auto pts = contact_points(c, cd);
-    generalized_force(c.data(), cd.data(), pts.data(), run, Q.data());
+    const auto pts = contact_points(c, cd, kNear);
+    generalized_force(c.data(), cd.data(), pts.data(), nullptr, points, run, Q.data());
     return Q;
   }
 
@@ -206,8 +222,13 @@ struct SpatialContact {
     Q_c.setZero();
     Q_cd.setZero();
     if (bounding_gap(c) > 0.0) return;
-    const auto values = contact_points(c, cd);
-    if (std::none_of(values.begin(), values.end(), [](const auto& p) { return p.gap < 0.0; })) return;
+    // over dual numbers, the pressing points alone (the others' force is 0)
+    const auto values = contact_points(c, cd, kNear);
+    std::vector<int> which;
+    for (int k = 0; k < points; ++k)
+      if (values[k].gap < 0.0) which.push_back(k);
+    const int count = int(which.size());
+    if (!count) return;
     if (body_j < 0) {  // (the ground: derivatives in body i's 7 + 7 only)
       using D = collision::OneBodyDual;
       D x[14], xd[14], Q[14];
@@ -218,9 +239,9 @@ struct SpatialContact {
       }
       collision::Motion<D> A, B;
       motions(x, xd, A, B);
-      std::vector<collision::ContactPoint<D>> pts(points);
-      pair->one_body(shape_a, shape_b, A, B, pts.data());
-      generalized_force(x, xd, pts.data(), run, Q);
+      std::vector<collision::ContactPoint<D>> pts(count);
+      pair->one_body(shape_a, shape_b, A, B, which.data(), count, pts.data());
+      generalized_force(x, xd, pts.data(), which.data(), count, run, Q);
       for (int b = 0; b < 14; ++b) {
         Q_c.block<1, 7>(b, 0) = Q[b].d.head<7>().transpose();
         Q_cd.block<1, 7>(b, 0) = Q[b].d.tail<7>().transpose();
@@ -237,9 +258,9 @@ struct SpatialContact {
     }
     collision::Motion<D> A, B;
     motions(x, xd, A, B);
-    std::vector<collision::ContactPoint<D>> pts(points);
-    pair->derivative(shape_a, shape_b, A, B, pts.data());
-    generalized_force(x, xd, pts.data(), run, Q);
+    std::vector<collision::ContactPoint<D>> pts(count);
+    pair->derivative(shape_a, shape_b, A, B, which.data(), count, pts.data());
+    generalized_force(x, xd, pts.data(), which.data(), count, run, Q);
     for (int b = 0; b < 14; ++b) {
       Q_c.row(b) = Q[b].d.head<14>().transpose();
       Q_cd.row(b) = Q[b].d.tail<14>().transpose();
@@ -249,7 +270,7 @@ struct SpatialContact {
   double potential(const Loc& c, const Instant&) const {
     if (bounding_gap(c) > 0.0) return 0.0;
     double V = 0.0;
-    for (const auto& p : contact_points(c, Loc::Zero())) V += law.potential(-p.gap);
+    for (const auto& p : contact_points(c, Loc::Zero(), kNear)) V += law.potential(-p.gap);
     return V;
   }
 
@@ -260,7 +281,7 @@ struct SpatialContact {
   /// (sum F_n,k P_k / sum F_n,k), the deepest penetration and the fastest
   /// slip among them; while open, the nearest point's gap and position.
   ContactReading reading(const Loc& c, const Loc& cd, const double* run) const {
-    const auto pts = contact_points(c, cd);
+    const auto pts = contact_points(c, cd, kAll);
     collision::Motion<double> A, B;
     motions(c.data(), cd.data(), A, B);
     ContactReading r;
@@ -319,7 +340,7 @@ struct SpatialContact {
     // rest, outside (+1e-9: a release likewise; a corner touching down at
     // rest is not an onset until it presses)
     constexpr double at_surface = 1e-9;
-    const auto pts = contact_points(c, cd);
+    const auto pts = contact_points(c, cd, kNear);
     for (int k = 0; k < points; ++k)
       g[k] = std::abs(pts[k].gap) > at_surface ? pts[k].gap : pts[k].gap_rate < 0.0 ? -at_surface : at_surface;
   }
@@ -327,7 +348,7 @@ struct SpatialContact {
   EventAction crossing(int k, const Loc& c, const Loc& cd, double, double* run, int direction) const {
     EventAction a;
     a.type = EventAction::kRestart;
-    a.speed = contact_points(c, cd)[k].gap_rate;
+    a.speed = contact_points(c, cd, kAll)[k].gap_rate;
     // (labelled by the way the function crossed where that is known: at a
     // point touching at rest its rate is rounding, of either sign)
     if (direction < 0 || (direction == 0 && a.speed < 0.0)) {
@@ -399,12 +420,13 @@ struct SpatialContact {
   Pressing pressing(const Loc& c, const Loc& cd, const double* run) const {
     Pressing out;
     if (bounding_gap(c) > 0.0) return out;
-    const auto pts = contact_points(c, cd);
+    const auto pts = contact_points(c, cd, kNear);
     collision::Motion<double> A, B;
     motions(c.data(), cd.data(), A, B);
     std::vector<double> Fn(points, 0.0);
     for (int k = 0; k < points; ++k) {
       const auto& p = pts[k];
+      if (!(p.gap < 0.0)) continue;  // (apart: no force)
       Fn[k] = law.normal_force(-p.gap, -p.gap_rate, run[run_state + k]);
       if (!(Fn[k] > 0.0)) continue;
       const Vec3 n = p.normal.value(), v = (A.velocity_at(acting_point(p)) - B.velocity_at(acting_point(p))).value();
@@ -445,7 +467,7 @@ struct SpatialContact {
       const Vec3 F = -(lam[0] * t1 + lam[1] * t2);
       // (the third row's torque about n: its gradient along a turn about n)
       const double torque = -lam[2] * 0.5 * (t2.dot(n.cross(u1)) - t1.dot(n.cross(u2))) + n.dot((X - now.centre).cross(F));
-      const double rho = std::max(now.radius, 1e-3 * shape_a.bounding_radius());
+      const double rho = std::max(now.radius, 1e-3 * radius_a);
       return law.static_friction * now.normal_force - std::sqrt(F.squaredNorm() + (torque / rho) * (torque / rho));
     }
     if (now.deepest < 0) return 1.0;
