@@ -271,7 +271,7 @@ def test_a_handle_from_another_model_is_refused_naming_both():
     (lambda m, h: m["m"].drive_joint("d", h["spring"], 0.0), "a joint", "rotational_spring_damper"),
     (lambda m, h: m["m"].add_revolute("x", h["pin"], h["rod"], at=(0.0, 0.0)), "a body", "revolute"),
     (lambda m, h: m["m"].add_torque("t", h["motor"], 1.0), "a body", "joint_driver"),
-    (lambda m, h: m["r"].effort(h["pin"]), "a driver", "revolute 'pin'"),
+    (lambda m, h: m["r"].effort(h["rod"]), "a joint or a driver or a stop", "body 'rod'"),
     (lambda m, h: m["r"].reaction(h["spring"]), "a joint or a driver", "rotational_spring_damper"),
     (lambda m, h: m["r"].friction(h["pin"]), "a joint friction", "revolute 'pin'"),
     (lambda m, h: m["r"].body(h["motor"]), "a body", "joint_driver 'motor'"),

@@ -132,8 +132,8 @@ def test_a_runs_data_are_made_of_the_runs():
 PYTHON_LAYERS = [
     ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations",
      "_output_names"],
-    ["model"],
-    ["result", "_deep_start", "simulation", "simulator", "statics", "linear", "accuracy", "joints"],
+    ["model", "_poses", "joints"],
+    ["result", "_deep_start", "simulation", "simulator", "statics", "linear", "accuracy"],
     ["_drawing"],
     ["scene", "plotting", "demo", "urdf", "mjcf", "_store", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],

@@ -383,6 +383,25 @@ def test_example_holds_its_kind_and_runs(kind):
 
 
 @pytest.mark.parametrize("kind", kinds())
+def test_a_kind_reads_the_effort_it_declares(kind):
+    """A kind whose registry entry says what Result.effort reads of it
+    (Kind.effort) gives that reading in its example's run, one column or
+    its effort_components' many, finite; a kind without one (a body, a
+    joint, a contact) is refused with a ModelError naming the element."""
+    m, handle = EXAMPLES[kind]()
+    declared = registry.BY_NAME[kind]
+    r = mb.simulate(m, 0.02, n_out=3)
+    if not declared.effort:
+        with pytest.raises(mb.ModelError, match=f"'{handle.name}'"):
+            r.effort(handle.name)
+        return
+    e = r.effort(handle)
+    assert e.shape == ((3,) if not declared.effort_components else (3, len(declared.effort_components)))
+    assert np.isfinite(e).all()
+    assert declared.effort.split()[0] == "the" and ("(N" in declared.effort)
+
+
+@pytest.mark.parametrize("kind", kinds())
 def test_every_kind_has_a_derivative_check(kind):
     """The kind is in the model of its dimension that tests/test_derivatives.py
     checks against finite differences, its rows among the constraint

@@ -136,6 +136,8 @@ py::list kinds_to_python() {
     d["params"] = params;
     d["dimension"] = k.dimension;
     d["coordinate"] = k.coordinate;
+    d["effort"] = k.effort;
+    d["effort_components"] = py::tuple(py::cast(k.effort_components));
     out.append(d);
   }
   return out;
@@ -316,19 +318,38 @@ void bind_model(py::module_& m) {
       .def(
           "reaction",
           [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
-             const RowMajor& lam, bool joint_axes, const RowMajor& inputs, const RowMajor& state) {
+             const RowMajor& lam, bool joint_axes, const RowMajor& inputs, const RowMajor& state, bool about_joint) {
             require_rows(model, q, model.n_coordinates(), "q");
             require_rows(model, lam, model.n_constraints(), "lam");
             require_outputs(t, {{&q, "q"}, {&lam, "lam"}});
             require_inputs(model, inputs, q.rows());
             require_state(model, state, q.rows());
-            return reactions(model, name, view_of(t, &q, nullptr, &lam, inputs, state), joint_axes);
+            return reactions(model, name, view_of(t, &q, nullptr, &lam, inputs, state), joint_axes, about_joint);
           },
           py::arg("name"), py::arg("t"), py::arg("q"), py::arg("lam"), py::arg("joint_axes") = false,
-          py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor(),
+          py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor(), py::arg("about_joint") = false,
           "Force and torque about the centre of mass that the element applies to its second body\n"
           "((x, y) and the torque in the plane, (x, y, z) and (x, y, z) in space); with joint_axes,\n"
-          "in the element's own axes.")
+          "in the element's own axes; with about_joint, the torque about the joint's point on that body.")
+      .def(
+          "effort",
+          [](const Model& model, const std::string& name, const Eigen::VectorXd& t, const RowMajor& q,
+             const RowMajor& v, const RowMajor& lam, const RowMajor& inputs, const RowMajor& state) {
+            require_rows(model, q, model.n_coordinates(), "q");
+            require_rows(model, v, model.n_coordinates(), "v");
+            require_outputs(t, {{&q, "q"}, {&v, "v"}});
+            if (lam.size()) {
+              require_rows(model, lam, model.n_constraints(), "lam");
+              require_outputs(t, {{&lam, "lam"}});
+            }
+            require_inputs(model, inputs, q.rows());
+            require_state(model, state, q.rows());
+            return efforts(model, name, view_of(t, &q, &v, lam.size() ? &lam : nullptr, inputs, state));
+          },
+          py::arg("name"), py::arg("t"), py::arg("q"), py::arg("v"), py::arg("lam") = RowMajor(),
+          py::arg("inputs") = RowMajor(), py::arg("state") = RowMajor(),
+          "What the element applies at each state, (k, width) as its kind's registry entry says\n"
+          "(Kind.effort, effort_components); a driver, stop or joint friction needs lam")
       .def(
           "joint_motion",
           [](const Model& model, const std::string& joint, bool slide, const RowMajor& q, const RowMajor& v,

@@ -20,6 +20,7 @@ from .functions import (Constant, Harmonic, Input, Linear, Polynomial, SmoothSte
                         time_function_from_dict)
 from .handles import Body, Handle
 from .model import Model
+from ._poses import Pose, Poses
 from .result import BodyPath, ContactPath, Result, Sensitivity
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import methods, simulate, solve_accelerations
@@ -82,6 +83,8 @@ __all__ = [
     "view_sweep",
     "View",
     "JointSpace",
+    "Pose",
+    "Poses",
     "inverse_dynamics",
     "UrdfError",
     "UrdfWarning",

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from . import _core, _rotations
+from . import _core, _poses, _rotations
 from . import registry
 from ._checks import flag as _flag, matrix_or_vector as _matrix_or_vector, real as _number, show
 from ._checks import text as _text, vec2 as _vec2, vec3 as _vec3
@@ -471,8 +471,16 @@ class Model:
 
     @property
     def shapes(self):
-        """The shapes added (add_shape), in order."""
+        """The shapes added (add_shape), in order; each Shape's ``position``
+        and ``rotation`` are in its body's axes, from its centre of mass
+        (add_shape takes them global): their global poses at a state are
+        :meth:`poses` ``.shapes``."""
         return _Listed("shapes", self._shapes)
+
+    # where things are at a state (forward kinematics, _poses.py)
+    poses = _poses.model_poses
+    pose = _poses.model_pose
+    lowest_point = _poses.model_lowest_point
 
     def _orientation(self, orientation, context):
         try:

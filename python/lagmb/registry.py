@@ -49,6 +49,8 @@ class Kind(NamedTuple):
     params: Tuple[Param, ...]
     dimension: int  # 2: planar models, 3: spatial ones
     coordinate: str = ""  # a joint's scalar coordinate: "angle", "slide", "angle and slide"; "" none
+    effort: str = ""  # what Result.effort reads of one (a line with its unit); "" none
+    effort_components: Tuple[str, ...] = ()  # its columns where it has several ("x", "y", ...)
 
     @property
     def what(self):
@@ -143,8 +145,11 @@ def markdown():
     for k in ALL_KINDS:
         where = f"[[{k.table}]]" + (f" type = \"{k.type}\"" if k.type else "")
         space = "" if k.dimension == 2 else "spatial "
-        out += [f"### {space}`{k.method}` ({k.name}: {k.role}; {space}scene `{where}`)", "", k.doc, "",
-                "| parameter | takes | unit | default | meaning |", "|---|---|---|---|---|"]
+        out += [f"### {space}`{k.method}` ({k.name}: {k.role}; {space}scene `{where}`)", "", k.doc, ""]
+        if k.effort:
+            columns = f" (columns {', '.join(k.effort_components)})" if k.effort_components else ""
+            out += [f"`r.effort(name)`{columns}: {k.effort}.", ""]
+        out += ["| parameter | takes | unit | default | meaning |", "|---|---|---|---|---|"]
         for p in k.params:
             takes = _TYPE_WORDS[p.type] + (" " + ", ".join(f"`{c}`" for c in p.choices) if p.choices else "")
             default = "required" if p.required else f"`{p.default!r}`"

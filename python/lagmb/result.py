@@ -34,7 +34,44 @@ def element_name(model, core, item, accepts, what, context):
 
 
 _CONSTRAINTS = ("joint", "driver")  # the elements with multipliers
+#: The points a reaction's torque may be taken about (Result.reaction's
+#: ``about``), each with whether it is the joint's point.
+REACTION_POINTS = {"centre of mass": False, "center of mass": False, "joint": True}
+
+
+def reaction_about(about):
+    """Whether a reaction's torque is asked about the joint's point (True)
+    or the second body's centre of mass (False); ModelError for another
+    ``about``."""
+    if not isinstance(about, str) or about not in REACTION_POINTS:
+        raise ModelError(f"about must be 'centre of mass' (the second body's, the default) or 'joint' (the "
+                         f"joint's point on it), got {about!r}")
+    return REACTION_POINTS[about]
 RESULTS_FORMATS = (".npz", ".csv")  # what Result.save writes
+
+
+#: The roles of the elements Result.effort is asked about: those of a kind
+#: without an effort (a joint, a contact) are refused by efforts(), saying
+#: where their force is read.
+EXERTING = ("joint", "driver", "stop", "force", "friction", "contact")
+
+
+def efforts(core, name, context, t, q, v, lam, inputs, state):
+    """What element ``name`` of the compiled model ``core`` applies at each
+    of the states (t, q, v): (k,), or (k, width) for a kind whose reading
+    has components (Kind.effort_components). ``lam``: a callable giving
+    the multipliers, asked only for a kind that reads them (a driver, stop,
+    planar joint friction); ``inputs``, ``state``: the inputs and run state
+    at each. ModelError for a contact or an element without an effort."""
+    kind = registry.kind_of(core, name)
+    if kind is not None and kind.role == "contact":
+        raise ModelError(f"{context}: '{name}' is a contact: its forces are Result.contact('{name}')")
+    if kind is None or not kind.effort:
+        raise ModelError(f"{context}: '{name}' is a {core.element_kind(name)}, which has no effort (drivers, "
+                         "stops, force elements and joint friction have one; a joint's force is its reaction)")
+    multipliers = lam() if kind.role in ("driver", "stop", "friction") else np.zeros((len(t), 0))
+    rows = core.effort(name, t, q, v, multipliers, inputs, state)
+    return rows if kind.effort_components else rows[:, 0]
 
 
 def results_format_problem(path):
@@ -320,37 +357,70 @@ class Result:
         row0, rows = self._core.constraint_rows(name)
         return self.lam[:, row0:row0 + rows]
 
-    def reaction(self, element, frame="global"):
+    def reaction(self, element, frame="global", about="centre of mass"):
         """(k, 3): force (x, y) in N on the element's second body, and the
         torque in N m about that body's centre of mass, from the element.
         frame="joint": the force in the element's own axes (docs/modelling.md).
         In a spatial model (k, 6): force (x, y, z) and torque (x, y, z), both
-        in the element's axes with frame="joint"."""
+        in the element's axes with frame="joint".
+
+        ``about``: the point the torque is taken about. "centre of mass"
+        (or "center of mass"; the default): the second body's centre of
+        mass, M_G. "joint": the joint's own point on the second body (a
+        revolute's pin, a spherical's or universal's centre, a
+        translational's ``at``, a distance's end on body_j; a weld's is
+        body_j's centre of mass), where Adams and Inventor report a
+        joint's moment: M_P = M_G + (r_G - r_P) x F with r_G the centre of
+        mass and r_P that point (the same F; with frame="joint" in the
+        joint's axes too). A door on a hinge reads 0 about its centre of
+        mass and its weight's couple m g d about the hinge. Drivers,
+        stops, gears and couplings have no point of their own: ModelError."""
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
+        about_joint = reaction_about(about)
         name = self._name(element, _CONSTRAINTS, "element", "Result.reaction")
         kind = registry.kind_of(self._core, name)
         if kind is not None and kind.role == "contact":
             raise ModelError(f"Result.reaction: '{name}' is a contact, not a joint or driver: its forces are "
                              f"Result.contact('{name}')")
         return self._core.reaction(name, self.t, self.q, self.lam, frame == "joint", self._inputs,
-                                   self._run_state)
+                                   self._run_state, about_joint)
 
     def effort(self, element):
-        """(k,) the force (N) or torque (N m) along a joint coordinate that a
-        driver applies to impose its motion, or that a stop applies while the
-        joint rests on a limit (0 while it is off its limits); positive along
-        the coordinate. A stop's two rows are its lower and upper gaps,
-        g = s - lower and upper - s, whose multipliers push with -lam along
-        +g: the force along s is lam_upper - lam_lower."""
-        name = self._name(element, ("driver", "stop"), "driver or stop", "Result.effort")
-        kind = registry.kind_of(self._core, name)
-        if kind is not None and kind.role == "stop":
-            lam = self.multipliers(name)
-            return lam[:, 1] - lam[:, 0]
-        if not registry.is_driver(self._core, name):
-            raise ModelError(f"'{name}' is not a driver or a stop")
-        return -self.multipliers(name)[:, 0]
+        """What a driver, stop, force element or joint friction applies at
+        each output, as its kind says (``lagmb info --kinds``: the line
+        "Result.effort" of each kind; ``registry.BY_NAME[kind].effort``):
+
+        - a driver: (k,) the force (N) or torque (N m) along what it
+          drives, imposing its motion, positive along the coordinate
+          (-lam of its row);
+        - a stop: (k,) the force or torque along the joint's coordinate
+          while the joint rests on a limit, 0 while it is off its limits
+          (its rows are the gaps s - lower and upper - s, whose multipliers
+          push with -lam along +g: lam_upper - lam_lower);
+        - a servo: (k,) its torque about the joint's axis (N m) or force
+          along its slide (N) on the joint's second body, as applied: after
+          the clamp to its limit;
+        - a spring-damper: (k,) its force F (N) along the line, positive
+          pushing the points apart, -k (l - l0) - c l' + f(t); a
+          rotational one: (k,) its torque (N m) on body_j;
+        - a bushing: (k, 6) the force on body_j along the axes of its frame
+          in body_i (N) and the torque about them (N m);
+        - an applied force: (k, 2) or (k, 3) its vector in global axes as
+          applied (a local one turned with its body; inputs at their values
+          in the run); an applied torque: (k,) in the plane, (k, 3) in
+          space;
+        - a joint friction: (k,) its torque (N m) or force (N) on the
+          joint's second body (as :meth:`friction`).
+
+        A driver's, stop's and a planar joint friction's come from the
+        multipliers (a kinematic analysis has none: KinematicOnlyError);
+        a force element's from the states and inputs. A joint has none
+        (its force is :meth:`reaction`), nor a contact (:meth:`contact`)."""
+        name = self._name(element, EXERTING, "element", "Result.effort")
+        rows = efforts(self._core, name, "Result.effort", self.t, self.q, self.v, lambda: self.lam, self._inputs,
+                       self._run_state)
+        return self._finite(rows, f"the effort of '{name}'")
 
     def contact(self, element):
         """What the contact `element` did at each output (a ContactPath:
@@ -414,12 +484,14 @@ class Result:
           coordinates (their names, :meth:`Model.coordinate_names`), lam
           (not for a kinematic analysis), ``reaction_NAME`` (k, 3) or (k,
           6) per joint or driver in ``reactions`` (default: every joint)
-          and ``effort_NAME`` per driver in ``efforts`` (default: every
+          and ``effort_NAME`` per element in ``efforts`` (drivers, stops,
+          force elements, joint friction: :meth:`effort`; default: every
           driver);
         - .csv: a header row, then one row per output time: t, the
           coordinates, per element in ``reactions`` NAME.fx, NAME.fy,
-          NAME.torque (NAME.f1, NAME.f2 with frame="joint"), per driver in
-          ``efforts`` NAME.effort (default: none of either), and the energy
+          NAME.torque (NAME.f1, NAME.f2 with frame="joint"), per element in
+          ``efforts`` NAME.effort (NAME.effort.x, ... for one of several
+          components; default: none of either), and the energy
           with ``energy=True``; floats as repr, so they read back exactly.
 
         ``frame``: the reactions' frame, as :meth:`reaction` takes it. A
@@ -455,8 +527,12 @@ class Result:
             columns += [f"{name}.{force[0]}", f"{name}.{force[1]}", f"{name}.torque"]
             blocks.append(self.reaction(name, frame=frame))
         for name in efforts:
-            columns.append(f"{name}.effort")
-            blocks.append(np.asarray(self.effort(name))[:, None])
+            effort = np.asarray(self.effort(name))
+            if effort.ndim == 1:
+                columns.append(f"{name}.effort")
+            else:  # (an applied force's components, a bushing's six)
+                columns += [f"{name}.effort.{c}" for c in registry.kind_of(self._core, str(name)).effort_components]
+            blocks.append(effort.reshape(len(self.t), -1))
         if energy:
             columns.append("energy")
             blocks.append(self.energy[:, None])
@@ -610,13 +686,13 @@ class Sensitivity:
         """d/dp of ``Result.multipliers(element)``."""
         return self._derivative(lambda r: r.multipliers(element))
 
-    def reaction(self, element, frame="global"):
-        """d/dp of ``Result.reaction(element, frame)``."""
-        return self._derivative(lambda r: r.reaction(element, frame))
+    def reaction(self, element, frame="global", about="centre of mass"):
+        """d/dp of ``Result.reaction(element, frame, about)``."""
+        return self._derivative(lambda r: r.reaction(element, frame, about))
 
-    def effort(self, driver):
-        """d/dp of ``Result.effort(driver)``."""
-        return self._derivative(lambda r: r.effort(driver))
+    def effort(self, element):
+        """d/dp of ``Result.effort(element)``."""
+        return self._derivative(lambda r: r.effort(element))
 
     @property
     def energy(self):

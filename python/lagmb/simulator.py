@@ -9,7 +9,7 @@ from . import _core, _deep_start, registry
 from ._checks import parameters as _parameters, real as _real, show as _show
 from .errors import ModelError
 from .handles import name_of
-from .result import BodyPath, JointPath, Result, element_name
+from .result import EXERTING, BodyPath, JointPath, Result, element_name, efforts
 from .model import checked as _model
 from .simulation import DEFAULTS as _D, _run_options, _translate
 
@@ -141,6 +141,19 @@ class Simulator:
                 self._readings[key] = reading
         motion = self._core_model.joint_motions(reading, self.q, self.v, self._sim.run_state)
         return motion[:, 0].copy(), motion[:, 1].copy()
+
+    def effort(self, element):
+        """What a driver, stop, force element or joint friction (handle or
+        name) applies now, as :meth:`lagmb.Result.effort` reads it at one
+        instant: a number (a servo's torque after its limit, a spring's
+        force, a driver's effort), or an array for an applied force's or a
+        bushing's components; at the inputs set now."""
+        name = element_name(self.model, self._core_model, element, EXERTING, "element", "Simulator.effort")
+        with self._translated():
+            rows = efforts(self._core_model, name, "Simulator.effort", np.array([self.t]), self.q[None],
+                           self.v[None], lambda: self.lam[None], np.asarray(self._sim.inputs, dtype=float)[None],
+                           np.asarray(self._sim.run_state, dtype=float)[None])
+        return float(rows[0]) if rows.ndim == 1 else rows[0].copy()
 
     @property
     def joint_names(self):

@@ -5,7 +5,7 @@ import numpy as np
 
 from . import _core
 from .errors import EquilibriumError, ModelError
-from .result import core_state, element_name, rebuilt_core, rotation_matrices
+from .result import core_state, element_name, reaction_about, rebuilt_core, rotation_matrices
 
 
 class EquilibriumBody:
@@ -82,14 +82,16 @@ class Equilibrium:
                                    rotation=rotation_matrices(x[None, 3:])[0])
         return EquilibriumBody(position=x[:2].copy(), angle=float(x[2]) if count == 3 else 0.0)
 
-    def reaction(self, element, frame="global"):
+    def reaction(self, element, frame="global", about="centre of mass"):
         """(3,): force (x, y) in N on the element's second body and the torque
-        in N m about its centre of mass, as Result.reaction."""
+        in N m about its centre of mass ((6,) in space), as Result.reaction;
+        ``about="joint"``: the torque about the joint's point instead."""
         if frame not in ("global", "joint"):
             raise ModelError(f"frame must be 'global' or 'joint', got {frame!r}")
+        about_joint = reaction_about(about)
         name = self._name(element, ("joint", "driver"), "element", "Equilibrium.reaction")
         out = self._core.reaction(name, np.array([self.t]), self.q[None, :],
-                                  self.lam[None, :], frame == "joint")
+                                  self.lam[None, :], frame == "joint", about_joint=about_joint)
         return np.asarray(out)[0]
 
     def __repr__(self):

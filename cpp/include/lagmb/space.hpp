@@ -20,11 +20,15 @@ struct Planar {
   static constexpr int local = 6;
   static constexpr int bodies = 2;
   using Axes = Mat2;
+  using Point = Vec2;
   static double ground_coordinate(int) { return 0.0; }
   /// The reaction on body j from the generalized force g = -Phi_c^T lam: the
-  /// last three of g; with `axes`, the force in those axes (A^T F).
-  static VecX reaction(const Local6& g, const Local6&, const Axes* axes) {
+  /// last three of g; with `about` a point P, the torque about P instead of
+  /// about body j's centre of mass r_j, M_P = M_G + (r_j - P) x F (the ground
+  /// as body j reads r_j = 0); with `axes`, the force in those axes (A^T F).
+  static VecX reaction(const Local6& g, const Local6& c, const Axes* axes, const Point* about = nullptr) {
     VecX w = g.tail<3>();
+    if (about) w[2] += cross(Vec2(c.segment<2>(3) - *about), Vec2(w.head<2>()));
     if (axes) w.head<2>() = axes->transpose() * w.head<2>();
     return w;
   }
@@ -40,12 +44,15 @@ struct Spatial {
   static constexpr int local = 14;
   static constexpr int bodies = 2;
   using Axes = Mat3;
+  using Point = Vec3;
   static double ground_coordinate(int a) { return a == 3 || a == 10 ? 1.0 : 0.0; }
+  /// With `about` a point P: the torque about P, n_P = n + (r_j - P) x F.
   static VecX reaction(const Eigen::Matrix<double, 14, 1>& g, const Eigen::Matrix<double, 14, 1>& c,
-                       const Axes* axes) {
+                       const Axes* axes, const Point* about = nullptr) {
     VecX w(6);
     w.head<3>() = g.segment<3>(7);
     w.tail<3>() = 0.5 * euler::E(c.segment<4>(10)) * g.segment<4>(10);
+    if (about) w.tail<3>() += Vec3(c.segment<3>(7) - *about).cross(Vec3(w.head<3>()));
     if (axes) {
       w.head<3>() = axes->transpose() * w.head<3>();
       w.tail<3>() = axes->transpose() * w.tail<3>();
@@ -63,10 +70,11 @@ struct SpatialJointPair {
   static constexpr int local = 28;
   static constexpr int bodies = 4;
   using Axes = Mat3;
+  using Point = Vec3;
   static double ground_coordinate(int a) { return a % 7 == 3 ? 1.0 : 0.0; }
   static VecX reaction(const Eigen::Matrix<double, 28, 1>& g, const Eigen::Matrix<double, 28, 1>& c,
-                       const Axes* axes) {
-    return Spatial::reaction(g.tail<14>(), c.tail<14>(), axes);
+                       const Axes* axes, const Point* about = nullptr) {
+    return Spatial::reaction(g.tail<14>(), c.tail<14>(), axes, about);
   }
 };
 

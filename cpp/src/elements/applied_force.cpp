@@ -31,7 +31,7 @@ void build_torque(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo force_kind() {
-  return {"force", "add_force", "forces", "force", Role::kForce,
+  return build::with_effort({"force", "add_force", "forces", "force", Role::kForce,
           "A force on a body: (fx, fy) of numbers or time functions, or a callable t -> (fx, fy), "
           "applied at `point`.",
           {
@@ -40,17 +40,19 @@ KindInfo force_kind() {
               param::optional_point("point", {"body"}, "where it acts (default: the centre of mass)"),
               param::flag("local", false, "components in the body's axes, turning with it"),
           },
-          build_force};
+          build_force},
+      "the force (fx, fy) (N) in global axes as applied (turned with the body where local)", {"x", "y"});
 }
 
 KindInfo torque_kind() {
-  return {"torque", "add_torque", "forces", "torque", Role::kForce,
+  return build::with_effort({"torque", "add_torque", "forces", "torque", Role::kForce,
           "A pure torque on a body.",
           {
               param::body("body", "the body turned"),
               param::function("torque", "N m", "the torque: a number, time function or callable", true),
           },
-          build_torque};
+          build_torque},
+      "the torque (N m) as applied");
 }
 
 }  // namespace lagmb

@@ -200,6 +200,12 @@ KindInfo in_space(KindInfo k) {
   return k;
 }
 
+KindInfo with_effort(KindInfo k, std::string effort, std::vector<std::string> components) {
+  k.effort = std::move(effort);
+  k.effort_components = std::move(components);
+  return k;
+}
+
 Vec3 unit_direction(const Args& a, const std::string& key, const std::string& label) {
   const Vec3 v = a.vec3(key);
   if (!(v.norm() > 0.0)) throw ModelError(label + ": " + key + " must be a non-zero vector, got " + to_text(v));

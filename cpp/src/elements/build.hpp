@@ -93,6 +93,10 @@ std::vector<Param> contact_law_params();
 
 /// A kind of a spatial model (KindInfo::dimension 3).
 KindInfo in_space(KindInfo k);
+/// A kind whose elements have an effort (KindInfo::effort: what
+/// Result.effort reads, with its unit; `components`: its columns' names
+/// where it has several).
+KindInfo with_effort(KindInfo k, std::string effort, std::vector<std::string> components = {});
 
 /// What a joint stop (planar or spatial) is given: its limits, checked (one
 /// at least, lower below upper), restitution in [0, 1] and rest_speed > 0;

@@ -35,25 +35,29 @@ void build_body_driver(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo joint_driver_kind() {
-  return {"joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
+  return build::with_effort({"joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
           "Prescribes a revolute's relative angle phi_j - phi_i, or a translational's slide (0 in the "
           "initial configuration), as f(t).",
           {
               param::joint("the revolute or translational joint driven"),
               param::motion("f", "rad or m", "the joint coordinate as a function of time", "function"),
           },
-          build_joint_driver};
+          build_joint_driver},
+      "the torque (N m) about a revolute's angle, or the force (N) along a translational's slide, that "
+      "imposes the motion, positive along increasing coordinate: -lam of its row");
 }
 
 KindInfo body_driver_kind() {
-  return {"body_driver", "drive_body", "drivers", "body", Role::kDriver,
+  return build::with_effort({"body_driver", "drive_body", "drivers", "body", Role::kDriver,
           "Prescribes a body's \"x\", \"y\" or \"angle\" as f(t).",
           {
               param::body("body", "the body driven"),
               param::choice("coordinate", {"x", "y", "angle"}, "the coordinate driven"),
               param::motion("f", "m or rad", "the coordinate as a function of time", "function"),
           },
-          build_body_driver};
+          build_body_driver},
+      "the force (N) along x or y, or the torque (N m) about the angle, that imposes the motion, positive "
+      "along increasing coordinate: -lam of its row");
 }
 
 }  // namespace lagmb

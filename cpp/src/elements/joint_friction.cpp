@@ -57,7 +57,7 @@ void build_joint_friction(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo joint_friction_kind() {
-  return {"joint_friction", "add_joint_friction", "forces", "joint_friction", Role::kFriction,
+  return build::with_effort({"joint_friction", "add_joint_friction", "forces", "joint_friction", Role::kFriction,
           "Friction in a revolute or translational joint: Coulomb with the load taken from the joint's "
           "own reaction, plus viscous. With sd the joint's relative rate, F = -(mu rho N + preload) "
           "sd / sqrt(sd^2 + slip_velocity^2) - viscous sd on body_j (body_i gets the opposite); revolute: "
@@ -73,7 +73,8 @@ KindInfo joint_friction_kind() {
               param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed"),
               param::real("load_smoothing", 1e-6, "N", "rounds |.| of the load near 0"),
           },
-          build_joint_friction};
+          build_joint_friction},
+      "the friction torque (N m) or force (N) on the joint's second body, as Result.friction reads it");
 }
 
 }  // namespace lagmb

@@ -23,7 +23,8 @@ void build_rotational_spring_damper(Model& m, const std::string& name, const Arg
 }  // namespace
 
 KindInfo rotational_spring_damper_kind() {
-  return {"rotational_spring_damper", "add_rotational_spring_damper", "forces", "rotational_spring_damper", Role::kForce,
+  return build::with_effort(
+      {"rotational_spring_damper", "add_rotational_spring_damper", "forces", "rotational_spring_damper", Role::kForce,
           "Torsion spring, damper and actuator between two bodies: the torque on body_j is "
           "-k (theta - theta0) - c theta' + tau(t), theta = phi_j - phi_i; body_i gets the opposite.",
           {
@@ -34,7 +35,9 @@ KindInfo rotational_spring_damper_kind() {
               param::optional_real("free_angle", "rad", "free angle theta0 (default: the initial relative angle)"),
               param::function("torque", "N m", "actuator torque tau(t) on body_j"),
           },
-          build_rotational_spring_damper};
+          build_rotational_spring_damper},
+      "the torque (N m) on body_j: -k (theta - theta0) - c theta' + tau(t), the actuator's torque as "
+      "applied included");
 }
 
 }  // namespace lagmb

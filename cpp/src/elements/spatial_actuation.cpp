@@ -108,25 +108,30 @@ void build_spatial_torque(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_joint_driver_kind() {
-  return build::in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
+  return build::with_effort(build::in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
                    "Prescribes a revolute's angle (about its axis; its `angle` in the initial configuration, 0 "
                    "by default), or a translational's or cylindrical's slide along its axis, as f(t).",
                    {param::joint("the revolute, cylindrical or translational joint driven"),
                     param::motion("f", "rad or m", "the joint coordinate as a function of time", "function")},
-                   build_spatial_joint_driver});
+                   build_spatial_joint_driver}),
+      "the torque (N m) about a revolute's angle, or the force (N) along a translational's slide, that "
+      "imposes the motion, positive along increasing coordinate: -lam of its row");
 }
 
 KindInfo spatial_body_driver_kind() {
-  return build::in_space({"spatial_body_driver", "drive_body", "drivers", "body", Role::kDriver,
+  return build::with_effort(build::in_space({"spatial_body_driver", "drive_body", "drivers", "body", Role::kDriver,
                    "Prescribes a coordinate \"x\", \"y\" or \"z\" of a body's centre of mass as f(t).",
                    {param::body("body", "the body driven"),
                     param::choice("coordinate", {"x", "y", "z"}, "the coordinate driven"),
                     param::motion("f", "m", "the coordinate as a function of time", "function")},
-                   build_spatial_body_driver});
+                   build_spatial_body_driver}),
+      "the force (N) along x, y or z that imposes the motion, positive along increasing coordinate: -lam of"
+      " its row");
 }
 
 KindInfo spatial_spring_damper_kind() {
-  return build::in_space({"spatial_spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
+  return build::with_effort(
+      build::in_space({"spatial_spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
                    "Translational spring-damper-actuator between point_i on body_i and point_j on body_j: "
                    "F = -k (l - l0) - c l' + f(t) along the line, F > 0 pushing the points apart.",
                    {param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "attachment on body_i"),
@@ -135,11 +140,14 @@ KindInfo spatial_spring_damper_kind() {
                     param::real("damping", 0.0, "N s/m", "damping coefficient c"),
                     param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
                     param::function("force", "N", "actuator force f(t), positive pushes the points apart")},
-                   build_spatial_spring_damper});
+                   build_spatial_spring_damper}),
+      "the force F (N) along the line between the points, positive pushing them apart: -k (l - l0) - c l' +"
+      " f(t), the actuator's force as applied included");
 }
 
 KindInfo spatial_rotational_spring_damper_kind() {
-  return build::in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
+  return build::with_effort(
+      build::in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
                    "rotational_spring_damper", Role::kForce,
                    "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (its `angle` in "
                    "the initial configuration, counting whole turns: it winds through any number): torque -k "
@@ -149,11 +157,13 @@ KindInfo spatial_rotational_spring_damper_kind() {
                     param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
                     param::real("free_angle", 0.0, "rad", "free angle theta0"),
                     param::function("torque", "N m", "actuator torque tau(t) on body_j")},
-                   build_spatial_rotational_spring_damper});
+                   build_spatial_rotational_spring_damper}),
+      "the torque (N m) about the axis on body_j: -k (theta - theta0) - c theta' + tau(t), the actuator's "
+      "torque as applied included");
 }
 
 KindInfo bushing_kind() {
-  return build::in_space({"bushing", "add_bushing", "forces", "bushing", Role::kForce,
+  return build::with_effort(build::in_space({"bushing", "add_bushing", "forces", "bushing", Role::kForce,
                    "Six-axis spring-damper between frames at `at` fixed in body_i and body_j (global axes of "
                    "the initial configuration): force -k delta - c delta' along each axis, torque -k rho - c "
                    "rho' about each (rho: the relative rotation, sin of the angle for a turn about one axis).",
@@ -163,24 +173,30 @@ KindInfo bushing_kind() {
                     param::vec3("damping", Vec3::Zero(), "N s/m", "translational damping (x, y, z)"),
                     param::vec3("rotational_stiffness", Vec3::Zero(), "N m/rad", "rotational stiffness (x, y, z)"),
                     param::vec3("rotational_damping", Vec3::Zero(), "N m s/rad", "rotational damping (x, y, z)")},
-                   build_bushing});
+                   build_bushing}),
+      "the force (N) on body_j along the axes of the frame fixed in body_i and the torque (N m) about them:"
+      " -k s - c s' for s = delta and rho (the torque for small relative turns)",
+      {"x", "y", "z", "torque.x", "torque.y", "torque.z"});
 }
 
 KindInfo spatial_force_kind() {
-  return build::in_space({"spatial_force", "add_force", "forces", "force", Role::kForce,
+  return build::with_effort(build::in_space({"spatial_force", "add_force", "forces", "force", Role::kForce,
                    "A force on a body at a point, each component a number or a function of time.",
                    {param::body("body", "the body pushed"), param::function_triple("force", "N", "(fx, fy, fz)"),
                     param::optional_point3("point", {"body"}, "where it acts (default: the centre of mass)"),
                     param::flag("local", false, "components in the body's axes, turning with it")},
-                   build_spatial_force});
+                   build_spatial_force}),
+      "the force (fx, fy, fz) (N) in global axes as applied (turned with the body where local)", {"x", "y", "z"});
 }
 
 KindInfo spatial_torque_kind() {
-  return build::in_space({"spatial_torque", "add_torque", "forces", "torque", Role::kForce,
+  return build::with_effort(build::in_space({"spatial_torque", "add_torque", "forces", "torque", Role::kForce,
                    "A torque on a body, each component a number or a function of time.",
                    {param::body("body", "the body turned"), param::function_triple("torque", "N m", "(tx, ty, tz)"),
                     param::flag("local", false, "components in the body's axes, turning with it")},
-                   build_spatial_torque});
+                   build_spatial_torque}),
+      "the torque (tx, ty, tz) (N m) in global axes as applied (turned with the body where local)",
+      {"x", "y", "z"});
 }
 
 }  // namespace lagmb

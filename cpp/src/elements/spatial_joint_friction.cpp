@@ -27,7 +27,7 @@ void build_spatial_joint_friction(Model& m, const std::string& name, const Args&
 }  // namespace
 
 KindInfo spatial_joint_friction_kind() {
-  return build::in_space(
+  return build::with_effort(build::in_space(
       {"spatial_joint_friction", "add_joint_friction", "forces", "joint_friction", Role::kForce,
        "Friction in a revolute or translational joint, independent of the joint's load (a URDF joint's "
        "<dynamics damping friction>): with sd the joint's rate, F = -preload sd / sqrt(sd^2 + "
@@ -37,7 +37,9 @@ KindInfo spatial_joint_friction_kind() {
         param::real("viscous", 0.0, "N m s/rad or N s/m", "viscous coefficient"),
         param::real("preload", 0.0, "N m or N", "the Coulomb friction torque or force"),
         param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed")},
-       build_spatial_joint_friction});
+       build_spatial_joint_friction}),
+      "the friction torque (N m) or force (N) on the joint's second body: -preload sd / sqrt(sd^2 + "
+      "slip_velocity^2) - viscous sd");
 }
 
 }  // namespace lagmb

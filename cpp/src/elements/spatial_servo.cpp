@@ -31,7 +31,7 @@ void build_spatial_joint_servo(Model& m, const std::string& name, const Args& a)
 }  // namespace
 
 KindInfo spatial_joint_servo_kind() {
-  return build::in_space({"spatial_joint_servo", "add_servo", "forces", "servo", Role::kForce,
+  return build::with_effort(build::in_space({"spatial_joint_servo", "add_servo", "forces", "servo", Role::kForce,
                    "A servo on a revolute's, cylindrical or translational joint's coordinate theta (an angle "
                    "counting whole turns, or a slide): the torque (force) along it on body_j "
                    "sat(kp (theta* - theta) + kd (theta*' - theta') + tau_ff), clamped to +-limit; theta* "
@@ -43,7 +43,9 @@ KindInfo spatial_joint_servo_kind() {
                     param::real("kd", 0.0, "N m s/rad or N s/m", "velocity gain kd"),
                     param::function("feedforward", "N m or N", "feed-forward torque tau_ff(t)"),
                     param::optional_real("limit", "N m or N", "the largest |torque| (None: no limit)")},
-                   build_spatial_joint_servo});
+                   build_spatial_joint_servo}),
+      "the torque (N m) about the joint's axis, or force (N) along its slide, on body_j as applied: after "
+      "the clamp to +-limit");
 }
 
 }  // namespace lagmb

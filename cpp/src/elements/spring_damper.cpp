@@ -30,7 +30,7 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spring_damper_kind() {
-  return {"spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
+  return build::with_effort({"spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
           "Spring, damper and actuator between point_i of body_i and point_j of body_j; the force "
           "-k (l - l0) - c l' + f(t) pushes the points apart.",
           {
@@ -43,7 +43,9 @@ KindInfo spring_damper_kind() {
               param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
               param::function("force", "N", "actuator force f(t), positive pushes the points apart"),
           },
-          build_spring_damper};
+          build_spring_damper},
+      "the force F (N) along the line between the points, positive pushing them apart: -k (l - l0) - c l' +"
+      " f(t), the actuator's force as applied included");
 }
 
 }  // namespace lagmb

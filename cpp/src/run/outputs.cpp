@@ -1,6 +1,8 @@
 // Reactions, efforts, friction, energy and residuals at a run's outputs (outputs.hpp).
 #include "lagmb/run/outputs.hpp"
 
+#include <stdexcept>
+
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/model/data.hpp"
 
@@ -58,7 +60,8 @@ OutputView OutputView::of(const Trajectory& tr) {
   return o;
 }
 
-OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes) {
+OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes,
+                     bool about_joint) {
   require(model, out, true, false, true);
   const ElementRef& r = constraint_element(model, element, "a joint or driver");
   const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
@@ -67,22 +70,44 @@ OutputRows reactions(const Model& model, const std::string& element, const Outpu
   OutputRows R(out.k, g.dimension() == 2 ? 3 : 6);
   for (int s = 0; s < out.k; ++s) {
     set_run_values(d, out, s);
-    R.row(s) = g.reaction(r.index, out.q + size_t(s) * n, d.at(out.t[s]), out.lam + size_t(s) * m, joint_axes)
+    R.row(s) = g.reaction(r.index, out.q + size_t(s) * n, d.at(out.t[s]), out.lam + size_t(s) * m, joint_axes,
+                          about_joint)
                    .transpose();
   }
   return R;
 }
 
-VecX efforts(const Model& model, const std::string& element, const OutputView& out) {
-  require(model, out, false, false, true);
-  const ElementRef& r = constraint_element(model, element, "a driver");
-  const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
-  if (const KindInfo* kind = model.given_kind(element); !kind || kind->role != Role::kDriver)
-    throw ModelError("'" + element + "' is " + model.describe(element) + ", not a driver");
-  const int row = g.placement(r.index).row0, m = model.n_constraints();
-  VecX e(out.k);
-  for (int s = 0; s < out.k; ++s) e[s] = -out.lam[size_t(s) * m + row];
-  return e;
+OutputRows efforts(const Model& model, const std::string& element, const OutputView& out) {
+  const ElementRef& r = model.find(element);
+  const KindInfo* kind = model.given_kind(element);
+  if (!kind || kind->effort.empty())
+    throw ModelError("'" + element + "' is " + model.describe(element) + ", which has no effort (drivers, stops, "
+                     "force elements and joint friction have one)");
+  const int width = kind->effort_components.empty() ? 1 : int(kind->effort_components.size());
+  OutputRows E(out.k, width);
+  if (r.type == ElementRef::kFriction) {
+    E.col(0) = friction(model, element, out).col(0);
+    return E;
+  }
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  if (r.type == ElementRef::kConstraint) {
+    require(model, out, false, false, true);
+    const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
+    for (int s = 0; s < out.k; ++s) E(s, 0) = g.effort(r.index, out.lam + size_t(s) * m);
+    return E;
+  }
+  const ForceGroupBase* g = r.type == ElementRef::kForce ? model.force_groups()[r.group].get() : nullptr;
+  if (!g || g->effort_size() != width)
+    throw std::logic_error("efforts: '" + element + "' (" + kind->name + ") reads " +
+                           std::to_string(g ? g->effort_size() : 0) + " numbers, its registry entry names " +
+                           std::to_string(width));
+  require(model, out, true, true, false);
+  Data d(model);
+  for (int s = 0; s < out.k; ++s) {
+    set_run_values(d, out, s);
+    g->effort(r.index, out.q + size_t(s) * n, out.v + size_t(s) * n, d.at(out.t[s]), E.row(s).data());
+  }
+  return E;
 }
 
 OutputRows friction(const Model& model, const std::string& element, const OutputView& out) {

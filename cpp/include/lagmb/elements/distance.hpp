@@ -33,6 +33,8 @@ struct DistanceJoint {
         rotation_derivative(c[5]) * s_j;
     return M;
   }
+  /// The link's end on body j (reactions about the joint).
+  Vec2 origin(const Local6& c, double) const { return c.segment<2>(3) + rotation(c[5]) * s_j; }
   Eigen::Matrix<double, 1, 1> phi(const Local6& c, double) const {
     const Vec2 v = d(c);
     return Eigen::Matrix<double, 1, 1>((v.squaredNorm() - length * length) / (2.0 * length));

@@ -25,6 +25,8 @@ struct PinInSlotJoint {
   Eigen::Matrix<double, 1, 6> jacobian(const Local6& c, double) const { return across.gradient(c); }
   void hessians(const Local6& c, double, Mat6* H) const { H[0] = across.hessian(c); }
   Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
+  /// The pin (reactions about the joint).
+  Vec2 origin(const Local6& c, double) const { return across.point_j(c); }
 };
 
 }  // namespace lagmb

@@ -50,6 +50,9 @@ struct ProjectedOffset {
   /// The line's direction u' in body i's axes (w turned -90 deg).
   Vec2 line_direction() const { return {w.y(), -w.x()}; }
 
+  /// The point s_j of body j, global.
+  Vec2 point_j(const Local6& c) const { return c.segment<2>(3) + rotation(c[5]) * s_j; }
+
   Vec2 offset(const Local6& c) const {
     return c.segment<2>(3) + rotation(c[5]) * s_j - c.segment<2>(0) - rotation(c[2]) * s_i;
   }

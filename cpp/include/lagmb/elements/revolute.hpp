@@ -64,6 +64,8 @@ struct RevoluteJoint {
     return rotation(c[5]) * s_j * (cd[5] * cd[5]) - rotation(c[2]) * s_i * (cd[2] * cd[2]);
   }
 
+  /// The joint point on body j (reactions about the joint).
+  Vec2 origin(const Local6& c, double) const { return c.segment<2>(3) + rotation(c[5]) * s_j; }
   Mat2 axes(const Local6& c, double) const {
     Vec2 e = -(rotation(c[5]) * s_j);
     if (e.norm() == 0.0) e = rotation(c[2]) * s_i;

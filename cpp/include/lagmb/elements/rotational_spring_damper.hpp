@@ -11,7 +11,7 @@ namespace lagmb {
 /// theta = phi_j - phi_i; the torque on body j is
 ///   tau = -k (theta - theta0) - c thetadot + tau_act(t),
 /// body i gets -tau. Q_c and Q_cd are constant: +-k and +-c on the angles.
-/// Potential k (theta - theta0)^2 / 2.
+/// Potential k (theta - theta0)^2 / 2. Its effort (Result.effort) is tau.
 struct RotationalSpringDamper {
   static constexpr bool state_dependent = true;
   static constexpr const char* kind = "rotational_spring_damper";
@@ -22,9 +22,12 @@ struct RotationalSpringDamper {
   double stiffness = 0.0, damping = 0.0, free_angle = 0.0;
   Drive actuator;  // may be null
 
+  double effort(const Local6& c, const Local6& cd, const Instant& t) const {
+    const double tau = -stiffness * (c[5] - c[2] - free_angle) - damping * (cd[5] - cd[2]);
+    return actuator ? tau + actuator.at(t).f : tau;
+  }
   Local6 force(const Local6& c, const Local6& cd, const Instant& t) const {
-    double tau = -stiffness * (c[5] - c[2] - free_angle) - damping * (cd[5] - cd[2]);
-    if (actuator) tau += actuator.at(t).f;
+    const double tau = effort(c, cd, t);
     Local6 Q = Local6::Zero();
     Q[2] = -tau;
     Q[5] = tau;

@@ -22,7 +22,9 @@ struct SpatialForceBase {
 
 /// A spring-damper-actuator on one scalar coordinate s(c) of the kind
 /// (`coordinate(c, want, t)`): F = -k (s - s0) - c s' + f(t) along s
-/// (spatial::add_spring_damper), potential k (s - s0)^2 / 2.
+/// (spatial::add_spring_damper), potential k (s - s0)^2 / 2. Its effort
+/// (Result.effort) is that F, the actuator's f(t) at the run's inputs
+/// included.
 template <class Kind>
 struct ScalarSpringDamper : SpatialForceBase {
   double stiffness = 0.0, damping = 0.0, free_value = 0.0;  // k, c, s0
@@ -30,6 +32,9 @@ struct ScalarSpringDamper : SpatialForceBase {
   static constexpr bool reads_inputs = true;
 
   double act(const Instant& t) const { return actuator ? actuator.at(t).f : 0.0; }
+  double effort(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t) const {
+    return spatial::spring_damper_force(self().coordinate(c, {}, t), cd, stiffness, damping, free_value, act(t));
+  }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t) const {
     spatial::Loc Q = spatial::Loc::Zero();
     spatial::add_spring_damper(self().coordinate(c, {}, t), cd, stiffness, damping, free_value, act(t), Q);
@@ -86,6 +91,9 @@ struct SpatialRotationalSpringDamper : ScalarSpringDamper<SpatialRotationalSprin
 ///                        (y_i . x_j - x_i . y_j) / 2)
 /// (rho is the rotation vector for small turns, sin(angle) for a turn about
 /// one axis); each gets F = -k s - c s'. Potential sum k s^2 / 2.
+/// Its effort (Result.effort) is the six F: the force on body j along the
+/// axes of body i's frame (N) and the torque about them (N m; for small
+/// relative turns, where rho is the rotation vector).
 struct Bushing : SpatialForceBase {
   static constexpr const char* kind = "bushing";
   Vec3 s_i = Vec3::Zero(), s_j = Vec3::Zero();
@@ -114,6 +122,12 @@ struct Bushing : SpatialForceBase {
   }
   double k(int a) const { return a < 3 ? stiffness[a] : rotational_stiffness[a - 3]; }
   double c(int a) const { return a < 3 ? damping[a] : rotational_damping[a - 3]; }
+  Eigen::Matrix<double, 6, 1> effort(const spatial::Loc& q, const spatial::Loc& qd, double) const {
+    const auto s = coordinates(q, {});
+    Eigen::Matrix<double, 6, 1> F;
+    for (int a = 0; a < 6; ++a) F[a] = spatial::spring_damper_force(s[a], qd, k(a), c(a), 0.0, 0.0);
+    return F;
+  }
   spatial::Loc force(const spatial::Loc& q, const spatial::Loc& qd, double) const {
     spatial::Loc Q = spatial::Loc::Zero();
     const auto s = coordinates(q, {});
@@ -141,6 +155,8 @@ struct Bushing : SpatialForceBase {
 /// body's axes, turning with it (F = A(p) F'). Virtual work F . d(r + A s):
 ///   Q_r = F,  Q_p = point_jacobian(p, s)^T F,
 /// and for a local force Q_p also depends on p through F = A(p) F'.
+/// Its effort (Result.effort) is F in global axes, as applied at the run's
+/// inputs.
 struct SpatialAppliedForce : SpatialForceBase {
   static constexpr const char* kind = "spatial_force";
   Vec3 s = Vec3::Zero();
@@ -151,9 +167,12 @@ struct SpatialAppliedForce : SpatialForceBase {
   Vec3 given(const Instant& t) const {
     return Vec3(components[0].at(t).f, components[1].at(t).f, components[2].at(t).f);
   }
-  spatial::Loc force(const spatial::Loc& c, const spatial::Loc&, const Instant& t) const {
+  Vec3 effort(const spatial::Loc& c, const spatial::Loc&, const Instant& t) const {
+    return local ? euler::rotate(c.segment<4>(3), given(t)) : given(t);
+  }
+  spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t) const {
     const Vec4 p = c.segment<4>(3);
-    const Vec3 F = local ? euler::rotate(p, given(t)) : given(t);
+    const Vec3 F = effort(c, cd, t);
     spatial::Loc Q = spatial::Loc::Zero();
     Q.head<3>() = F;
     Q.segment<4>(3) = euler::point_jacobian(p, s).transpose() * F;
@@ -181,6 +200,7 @@ struct SpatialAppliedForce : SpatialForceBase {
 /// A torque n on body i, global or (local) in the body's axes: Q_p =
 /// 2 E(p)^T n, or 2 G(p)^T n' (lagmb/spatial.hpp); linear in p:
 ///   E(p)^T n = X(n) p, X(n) = [[0, -n^T], [n, skew(n)]];  G(p)^T n' = W(n') p.
+/// Its effort (Result.effort) is n in global axes (A(p) n' for a local one).
 struct SpatialAppliedTorque : SpatialForceBase {
   static constexpr const char* kind = "spatial_torque";
   std::array<Drive, 3> components;
@@ -198,6 +218,9 @@ struct SpatialAppliedTorque : SpatialForceBase {
     X.block<3, 1>(1, 0) = n;
     X.block<3, 3>(1, 1) = skew(n);
     return X;
+  }
+  Vec3 effort(const spatial::Loc& c, const spatial::Loc&, const Instant& t) const {
+    return local ? euler::rotate(c.segment<4>(3), given(t)) : given(t);
   }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc&, const Instant& t) const {
     spatial::Loc Q = spatial::Loc::Zero();

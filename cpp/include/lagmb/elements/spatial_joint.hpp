@@ -42,6 +42,9 @@ struct SpatialJointBase {
                           spatial::body_point(c, spatial::kBodyI, s_i, want));
   }
   Mat3 axes(const spatial::Loc& c, double) const { return spatial::joint_axes(c, f_i, g_i, a_i); }
+  /// The joint point on body j, global (reactions about the joint; a weld's
+  /// is body j's centre of mass, a distance's the link's end on body j).
+  Vec3 origin(const spatial::Loc& c, double) const { return c.segment<3>(7) + euler::rotate(c.segment<4>(10), s_j); }
 
   /// The joint's scalar coordinate from its point and triple, with f_j
   /// body j's copy of f (joint_coordinate.hpp).

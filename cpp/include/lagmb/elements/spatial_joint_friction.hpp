@@ -19,11 +19,16 @@ namespace lagmb {
 /// coefficient (its damping), s' = s_c cd. As a generalized force Q = F
 /// s_c^T (power F s' <= 0), with
 ///   Q_c = F s_cc + F_s' s_c^T (s_cc cd)^T,   Q_cd = F_s' s_c^T s_c.
+/// Its effort (Result.effort) is F, on the joint's second body.
 struct SpatialJointFriction : SpatialForceBase {
   static constexpr const char* kind = "spatial_joint_friction";
   spatial::JointReading joint;
   JointFrictionLaw law;  // p.mu = 0
 
+  double effort(const spatial::Loc& c, const spatial::Loc& cd, double) const {
+    double dF_dN, dF_drate;
+    return law.value(0.0, joint(c, {}).gradient.dot(cd), dF_dN, dF_drate);
+  }
   spatial::Loc force(const spatial::Loc& c, const spatial::Loc& cd, double) const {
     const spatial::ScalarTerm s = joint(c, {});
     double dF_dN, dF_drate;

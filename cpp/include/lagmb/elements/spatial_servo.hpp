@@ -26,6 +26,7 @@ namespace lagmb {
 /// tau_ff) (spatial::add_spring_damper, exact Q_c and Q_cd); saturated, a
 /// constant +-tau_max along theta (Q_c = tau H_theta, Q_cd = 0). No
 /// potential: it is an actuator, its work enters r.energy as work done.
+/// Its effort (Result.effort) is tau as applied, after the clamp.
 struct SpatialJointServo : SpatialForceBase {
   static constexpr const char* kind = "spatial_joint_servo";
   static constexpr bool reads_inputs = true;
@@ -46,6 +47,10 @@ struct SpatialJointServo : SpatialForceBase {
   /// tau before the clamp.
   double demand(const spatial::ScalarTerm& s, const spatial::Loc& cd, const Set& set) const {
     return -kp * (s.value - set.value) - kd * s.gradient.dot(cd) + set.added;
+  }
+  double effort(const spatial::Loc& c, const spatial::Loc& cd, const Instant& t) const {
+    const double tau = demand(joint(c, {}, t), cd, at(t));
+    return std::abs(tau) <= limit ? tau : std::copysign(limit, tau);
   }
   void add(const spatial::ScalarTerm& s, const spatial::Loc& cd, const Instant& t, spatial::Loc& Q,
            spatial::Mat14* Q_c, spatial::Mat14* Q_cd) const {

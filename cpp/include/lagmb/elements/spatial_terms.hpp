@@ -225,10 +225,13 @@ inline ScalarTerm angle(const ScalarTerm& u, const ScalarTerm& w, const Want& wa
 ///   F = -k (s - s0) - c s' + f,   Q = F s_c^T,
 ///   Q_c = s_c^T (-k s_c - c (s_cc cd)^T) + F s_cc,   Q_cd = -c s_c^T s_c,
 /// added to Q (and, if given, to Q_c and Q_cd). Potential k (s - s0)^2 / 2.
+/// F alone is spring_damper_force (what the force kinds' efforts read).
+inline double spring_damper_force(const ScalarTerm& s, const Loc& cd, double k, double c, double s0, double f) {
+  return -k * (s.value - s0) - c * s.gradient.dot(cd) + f;
+}
 inline void add_spring_damper(const ScalarTerm& s, const Loc& cd, double k, double c, double s0, double f, Loc& Q,
                               Mat14* Q_c = nullptr, Mat14* Q_cd = nullptr) {
-  const double rate = s.gradient.dot(cd);
-  const double F = -k * (s.value - s0) - c * rate + f;
+  const double F = spring_damper_force(s, cd, k, c, s0, f);
   Q += F * s.gradient.transpose();
   if (Q_c) *Q_c += s.gradient.transpose() * (-k * s.gradient - c * (s.hessian * cd).transpose()) + F * s.hessian;
   if (Q_cd) *Q_cd -= c * s.gradient.transpose() * s.gradient;

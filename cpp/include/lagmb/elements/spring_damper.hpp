@@ -17,6 +17,7 @@ namespace lagmb {
 ///   Q_cd  = -c g g^T
 ///   Q_c   = g (-k g^T - c (L cd)^T) + F L,  L = d2l/dc2 = (D^T D + d_x H_x + d_y H_y - g g^T) / l
 /// (H_k: second derivatives of d_k as in distance.hpp). Potential k (l - l0)^2 / 2.
+/// Its effort (Result.effort) is F, the actuator's f_act(t) included.
 struct SpringDamper {
   static constexpr bool state_dependent = true;
   static constexpr const char* kind = "spring_damper";
@@ -48,6 +49,7 @@ struct SpringDamper {
     if (actuator) F += actuator.at(t).f;
     return F;
   }
+  double effort(const Local6& c, const Local6& cd, const Instant& t) const { return tension(geometry(c), cd, t); }
   Local6 force(const Local6& c, const Local6& cd, const Instant& t) const {
     const Geometry G = geometry(c);
     return tension(G, cd, t) * G.g;

@@ -23,6 +23,9 @@ struct StopLimits {
   }
   /// The gaps at coordinate s (an absent limit reads 0: its row is never closed).
   Eigen::Vector2d gaps(double s) const { return {has_lower ? s - lower : 0.0, has_upper ? upper - s : 0.0}; }
+  /// Its effort (Result.effort) from its rows' multipliers: the force along
+  /// s, -lam_0 pushing up from the lower limit, +lam_1 down from the upper.
+  double effort(const Eigen::Vector2d& lam) const { return lam[1] - lam[0]; }
 };
 
 /// The joint coordinate s is a revolute's relative angle phi_j - phi_i, or a

@@ -49,6 +49,8 @@ struct TranslationalJoint {
     H[1].setZero();
   }
   Mat2 axes(const Local6& c, double) const { return across.line_axes(c); }
+  /// The point `at` fixed on body j (reactions about the joint).
+  Vec2 origin(const Local6& c, double) const { return across.point_j(c); }
 };
 
 }  // namespace lagmb

@@ -8,7 +8,9 @@
 namespace lagmb {
 
 /// Phi_{1,2} = r_j - r_i - A_i s_i = 0, s_i = body j's centre in body i's axes;
-/// Phi_3 = phi_j - phi_i - phi0 = 0. Joint axes: body i's axes.
+/// Phi_3 = phi_j - phi_i - phi0 = 0. Joint axes: body i's axes. Its point
+/// (reactions about the joint) is body j's centre of mass, where its rows
+/// hold body j.
 struct WeldJoint {
   static constexpr int rows = 3;
   static constexpr bool time_dependent = false;
@@ -40,6 +42,7 @@ struct WeldJoint {
     H[1](2, 2) = a.y();
   }
   Mat2 axes(const Local6& c, double) const { return rotation(c[2]); }
+  Vec2 origin(const Local6& c, double) const { return c.segment<2>(3); }
 };
 
 }  // namespace lagmb

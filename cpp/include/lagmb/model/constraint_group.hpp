@@ -13,6 +13,12 @@
 //   void hessians(c, t, MatL H[rows])          d2 Phi_r / dc2
 //   Space::Axes axes(c, t)                     the joint's own axes (columns),
 //                                              for reactions in joint axes
+//   Space::Point origin(c, t)                  (a joint with a point) that point
+//                                              on body j, global: the torque of
+//                                              reactions about the joint
+//   double effort(lam)                         (a driver or stop whose effort is
+//                                              not -lam of its one row) what
+//                                              Result.effort reads, from its rows' lam
 //   and, if time dependent: phi_t, phi_tc (rows x L), phi_tt.
 // Everything the integrators need beyond that is derived here, once:
 //   gamma_r     = -v^T H_r v - 2 Phi_tc,r v - Phi_tt,r
@@ -105,6 +111,21 @@ time_argument_t<Kind> time_argument(const Instant& at) {
     return at.t;
 }
 
+/// A joint with a point of its own (a revolute's pin): Kind::origin(c, t).
+template <class Kind, class = void>
+struct has_origin : std::false_type {};
+template <class Kind>
+struct has_origin<Kind, std::void_t<decltype(std::declval<const Kind&>().origin(
+                            std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
+                            std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
+
+/// A driver or stop that says what its effort is: Kind::effort(lam of its rows).
+template <class Kind, class = void>
+struct has_row_effort : std::false_type {};
+template <class Kind>
+struct has_row_effort<Kind, std::void_t<decltype(std::declval<const Kind&>().effort(
+                                std::declval<const Eigen::Matrix<double, Kind::rows, 1>&>()))>> : std::true_type {};
+
 /// A kind may give gamma itself, `Rows gamma(c, cdot, t)`, where the
 /// general -cdot^T H_r cdot over full L x L Hessians costs more than the
 /// kind's closed form (the revolute joint of a long chain); tests check it
@@ -191,8 +212,15 @@ class ConstraintGroupBase {
   /// The reaction on the element's second body from its generalized force
   /// (space.hpp): in the plane force (x, y) and torque, in space force and
   /// torque (3 + 3), about its centre of mass in global axes; with
-  /// joint_axes in the element's own axes (the planar torque unchanged).
-  virtual VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes) const = 0;
+  /// joint_axes in the element's own axes (the planar torque unchanged);
+  /// with about_joint the torque about the joint's point on that body (its
+  /// kind's origin; ModelError for a kind without one).
+  virtual VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes,
+                        bool about_joint = false) const = 0;
+  /// What Result.effort reads of element k, a driver or a stop, from the
+  /// global multipliers: its kind's effort(lam of its rows) where it gives
+  /// one, else -lam of its one row (the force or torque along what it drives).
+  virtual double effort(int k, const double* lam) const = 0;
   /// 2 for planar kinds, 3 for spatial ones.
   virtual int dimension() const = 0;
   /// The scalar coordinate of element k (a revolute's angle, a
@@ -418,11 +446,31 @@ class ConstraintGroup final : public ConstraintGroupBase {
     return local_reaction(k, q, at, lam);
   }
 
-  VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes) const override {
+  VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes,
+                bool about_joint) const override {
     const Loc c = at_q(k, q);
-    if (!joint_axes) return S::reaction(local_reaction(k, q, at, lam), c, nullptr);
-    const typename S::Axes E = items[k].axes(c, time_argument<Kind>(at));
-    return S::reaction(local_reaction(k, q, at, lam), c, &E);
+    const auto t = time_argument<Kind>(at);
+    typename S::Point P;
+    if (about_joint) {
+      if constexpr (has_origin<Kind>::value)
+        P = items[k].origin(c, t);
+      else
+        throw ModelError("'" + items[k].name + "' (a " + Kind::kind + ") has no joint point to take the torque "
+                         "about; its reaction's torque is about its second body's centre of mass");
+    }
+    std::optional<typename S::Axes> E;
+    if (joint_axes) E = items[k].axes(c, t);
+    return S::reaction(local_reaction(k, q, at, lam), c, E ? &*E : nullptr, about_joint ? &P : nullptr);
+  }
+
+  double effort(int k, const double* lam) const override {
+    const Eigen::Map<const Rows> l(lam + place_[k].row0);
+    if constexpr (has_row_effort<Kind>::value)
+      return items[k].effort(Rows(l));
+    else if constexpr (R == 1)
+      return -l[0];
+    else
+      throw ModelError("'" + items[k].name + "' (a " + std::string(Kind::kind) + ") has no effort");
   }
 
  private:

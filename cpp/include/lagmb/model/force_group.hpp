@@ -41,6 +41,14 @@ class ForceGroupBase {
                                double* Q_q_values, double* Q_v_values) const = 0;
   /// Potential energy of the conservative part; 0 for dissipative kinds.
   virtual double potential(const double* q, const Instant& at) const = 0;
+  /// The numbers of what the kind applies that Result.effort reads (its
+  /// `effort`; KindInfo::effort says what they are): 0 for a kind without.
+  virtual int effort_size() const { return 0; }
+  /// Element k's effort at (q, v), `at` the time, the run's inputs and
+  /// state, into out (effort_size() numbers).
+  virtual void effort(int k, const double* q, const double* v, const Instant& at, double* out) const {
+    (void)k, (void)q, (void)v, (void)at, (void)out;
+  }
   /// Whether the kind is a contact (it has `reading`, ContactReading).
   virtual bool contact() const { return false; }
   /// A contact's element k at (q, v) with the run's state `run` (false: not a contact).
@@ -61,6 +69,25 @@ struct has_reading<Kind, Loc,
                                                                              std::declval<const double*>()))>>
     : std::true_type {};
 
+/// A force kind's effort (Result.effort): effort(c, cd, t) returning a
+/// number or a fixed-size vector; effort_size_of, how many numbers (0: the
+/// kind has none).
+template <class Kind, class Loc>
+using effort_t = std::decay_t<decltype(std::declval<const Kind&>().effort(
+    std::declval<const Loc&>(), std::declval<const Loc&>(), std::declval<time_argument_t<Kind>>()))>;
+template <class T>
+constexpr int count_of() {
+  if constexpr (std::is_arithmetic_v<T>)
+    return 1;
+  else
+    return T::RowsAtCompileTime;
+}
+template <class Kind, class Loc, class = void>
+struct effort_size_of : std::integral_constant<int, 0> {};
+template <class Kind, class Loc>
+struct effort_size_of<Kind, Loc, std::void_t<effort_t<Kind, Loc>>>
+    : std::integral_constant<int, count_of<effort_t<Kind, Loc>>()> {};
+
 /// Forces acting on (at most) two bodies, one container per kind. A kind is a
 /// plain struct with, in the L local coordinates c and velocities cd of its
 /// bodies (as in constraint_group.hpp; space.hpp):
@@ -74,7 +101,10 @@ struct has_reading<Kind, Loc,
 /// A kind with per-run state (see run_state_size in constraint_group.hpp)
 /// takes the run's state as a last argument of force and derivatives; a
 /// kind that reads_inputs (an actuator) takes the Instant for t. A contact
-/// kind has ContactReading reading(c, cd, run) (its readers: Result.contact).
+/// kind has ContactReading reading(c, cd, run) (its readers: Result.contact);
+/// any other kind may give what Result.effort reads of it,
+///   double effort(c, cd, t)  or  Eigen::Matrix<double, N, 1> effort(c, cd, t)
+/// (its registry entry, KindInfo::effort, says what and in which unit).
 template <class Kind>
 class ForceGroup final : public ForceGroupBase {
  public:
@@ -156,6 +186,19 @@ class ForceGroup final : public ForceGroupBase {
     double V = 0.0;
     for (size_t k = 0; k < items.size(); ++k) V += items[k].potential(gather_q<S>(q, coord_[k]), t);
     return V;
+  }
+
+  int effort_size() const override { return effort_size_of<Kind, Loc>::value; }
+  void effort(int k, const double* q, const double* v, const Instant& at, double* out) const override {
+    if constexpr (effort_size_of<Kind, Loc>::value > 0) {
+      const auto e = items[k].effort(gather_q<S>(q, coord_[k]), gather_v<L>(v, coord_[k]), time_argument<Kind>(at));
+      if constexpr (std::is_arithmetic_v<effort_t<Kind, Loc>>)
+        out[0] = e;
+      else
+        for (int a = 0; a < int(e.size()); ++a) out[a] = e[a];
+    } else {
+      (void)k, (void)q, (void)v, (void)at, (void)out;
+    }
   }
 
   bool contact() const override { return has_reading<Kind, Loc>::value; }

@@ -112,6 +112,14 @@ struct KindInfo {
   /// Messages name the kinds that have one; Python (Result.joint,
   /// JointSpace, drawings) and the FMU's units read it here, never a kind's name.
   std::string coordinate = {};
+  /// What Result.effort reads of an element of this kind, said next to its
+  /// equations (one line, with its unit); "" for a kind without one (a body,
+  /// a joint: its reaction; a contact: Result.contact). The kind's group
+  /// gives the numbers (outputs.hpp, efforts).
+  std::string effort = {};
+  /// The names of that reading's columns where it has several ("x", "y",
+  /// ...); none: one number per output.
+  std::vector<std::string> effort_components = {};
 
   const Param* param(const std::string& key) const;
 };

@@ -37,17 +37,28 @@ struct OutputView {
 /// body, about that body's centre of mass, at each output: (k, 3) in the
 /// plane (force x, y and the torque), (k, 6) in space (force, torque); in
 /// global axes, or in the element's own axes with joint_axes (the planar
-/// torque unchanged). From -Phi_c^T lam of the element's rows.
-OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes = false);
+/// torque unchanged). From -Phi_c^T lam of the element's rows. With
+/// about_joint the torque is about the joint's point on that body instead
+/// (its kind's origin: a revolute's pin), M_P = M_G + (r_G - r_P) x F;
+/// ModelError for a kind without a point (a driver, a gear).
+OutputRows reactions(const Model& model, const std::string& element, const OutputView& out, bool joint_axes = false,
+                     bool about_joint = false);
 
 /// The names of reactions()' columns, as an output name ends
 /// ("hinge.reaction.torque"): x, y, torque in the plane (dimension 2);
 /// x, y, z, torque.x, torque.y, torque.z in space (3).
 const std::vector<std::string>& reaction_components(int dimension);
 
-/// (k) what the driver `element` applies along what it drives (N or N m,
-/// positive along increasing driven coordinate): -lam of its row.
-VecX efforts(const Model& model, const std::string& element, const OutputView& out);
+/// (k, width) what `element` applies at each output, as its kind's registry
+/// entry says (KindInfo::effort, effort_components: width 1 unless it names
+/// several): a driver's force or torque along what it drives (-lam of its
+/// row), a stop's along its joint, a force element's as applied (a spring's
+/// tension, a servo's torque after its limit, an applied force's vector in
+/// global axes), a joint friction's torque or force. A force element's
+/// reading needs q and v (and the inputs and state it reads); a driver's,
+/// stop's and friction's lam. ModelError for an element whose kind has none
+/// (a joint: its reaction; a contact: contacts()).
+OutputRows efforts(const Model& model, const std::string& element, const OutputView& out);
 
 /// (k, 2) the joint friction `element`: its torque (N m) or force (N) on the
 /// joint's second body and the joint's relative rate (rad/s or m/s).
