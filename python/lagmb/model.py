@@ -99,8 +99,11 @@ class Model:
         """Pickled (and deep-copied) as its description: gravity, dimension
         and the elements, replayed on a new Model (time functions by their
         fields, a Python callable by pickle's rules: a module-level function
-        travels, a lambda does not). Handles and results stay with this one."""
-        return _rebuilt, (self.gravity, self.dimension, self.elements, tuple(self._annotations), self.name)
+        travels, a lambda does not), with its shapes and the hulls of its
+        collision meshes (the copy reads no mesh file again). Handles and
+        results stay with this one."""
+        return _rebuilt, (self.gravity, self.dimension, self.elements, tuple(self._annotations), self.name,
+                          dict(self._hulls))
 
     # --- building --------------------------------------------------------
 
@@ -632,9 +635,10 @@ class _Named(dict):
         return dict, (dict(self),)
 
 
-def _rebuilt(gravity, dimension, elements, annotations=(), name=None):
+def _rebuilt(gravity, dimension, elements, annotations=(), name=None, hulls=None):
     """A Model from what Model.__reduce__ gives."""
     model = Model(gravity=gravity, dimension=dimension, name=name)
+    model._hulls.update(hulls or {})
     for method, kwargs in list(elements) + list(annotations):
         getattr(model, method)(**kwargs)
     return model
@@ -669,6 +673,9 @@ class Frame(tuple):
     def __new__(cls, body, position, rotation):
         return super().__new__(cls, (body, position, rotation))
 
+    def __getnewargs__(self):  # (pickle and deepcopy call __new__ with these)
+        return tuple(self)
+
     body = property(lambda self: self[0])
     position = property(lambda self: self[1])
     rotation = property(lambda self: self[2])
@@ -686,6 +693,9 @@ class Shape(tuple):
 
     def __new__(cls, body, kind, size, position, rotation, mesh, role):
         return super().__new__(cls, (body, kind, size, position, rotation, mesh, role))
+
+    def __getnewargs__(self):  # (pickle and deepcopy call __new__ with these)
+        return tuple(self)
 
     body = property(lambda self: self[0])
     kind = property(lambda self: self[1])
