@@ -1,6 +1,7 @@
 """Building a mechanism: bodies, joints, gravity (docs/design.md, section 2.7)."""
 
 import copy
+import numbers
 import threading
 import warnings
 
@@ -560,6 +561,15 @@ def _choice_value(model, param, value, what, label):
     return value
 
 
+def _function_value(value, what, label, derivatives):
+    """A time function given as a number (checked as the argument ``label``
+    names: "servo 's': target must be finite"), a TimeFunction or a callable
+    (whose failures name the element, ``what``)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        value = _number(value, label)
+    return as_time_function(value, what, derivatives=derivatives)
+
+
 def _functions_value(n, components, result):
     """(f_1(t), ..., f_n(t)) given as n values or one callable giving all n."""
     def check(model, param, value, what, label):
@@ -585,8 +595,8 @@ _CHECKS = {
     "body": lambda model, param, value, what, label: model._body(value, param.name, what)[1],
     "joint": lambda model, param, value, what, label: model._joint(value, what),
     "choice": _choice_value,
-    "motion": lambda model, param, value, what, label: as_time_function(value, what),
-    "function": lambda model, param, value, what, label: as_time_function(value, what, derivatives=False),
+    "motion": lambda model, param, value, what, label: _function_value(value, what, label, True),
+    "function": lambda model, param, value, what, label: _function_value(value, what, label, False),
     "function_pair": _functions_value(2, "(fx, fy)", "(fx, fy)"),
     "vec3": lambda model, param, value, what, label: tuple(float(c) for c in _vec3(value, label)),
     "orientation": _matrix_or_vector_value(4, "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix"),
@@ -762,6 +772,9 @@ def _hull_vertices(shape, label, directions=162):
         raise ModelError(f"{label}: lagmb reads STL meshes only; {shape.mesh!r} cannot be a collision shape")
     points = read_stl(shape.mesh).reshape(-1, 3) * np.asarray(shape.size, dtype=float)
     points = np.unique(points, axis=0)
+    if len(points) == 0:
+        raise ModelError(f"{label}: the mesh {shape.mesh!r} has no triangles (0 in the file): a collision shape "
+                         "needs the vertices of a solid")
     k = np.arange(directions) + 0.5
     polar, azimuth = np.arccos(1.0 - 2.0 * k / directions), np.pi * (1.0 + 5.0**0.5) * k  # (a Fibonacci lattice)
     d = np.stack([np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar)], axis=1)
