@@ -71,7 +71,10 @@ name), for a run that succeeds:
   slip out of turn", "state disagrees with events" (the state reads "stick"
   exactly between a stick and its slip);
 - "contact readings refused", "non-finite contact reading": a successful
-  run gives finite readings.
+  run gives finite readings;
+- "pickles of contact models" (``check_pickles``, an op of its own): the
+  model and its Result survive a pickle and a deep copy, the copies the
+  same to the bit.
 The test (tests/test_fuzz_contacts.py) adds: the run either succeeds or
 raises mb.SimulationError / mb.ModelError with a message ("a refusal without
 a message"; "refused as Zeno": a compliant contact's touches last a time,
@@ -656,6 +659,33 @@ def check(r, meta):
         raise AssertionError(LAWS_BROKEN + "; ".join(laws) + "\n" + "\n".join(bad))
 
 
+def check_pickles(m, r):
+    """"pickles of contact models": the scene's model and its Result survive
+    a pickle and a deep copy (issue 56: a Shape could not be unpickled): the
+    same description and shapes, and the copied Result's arrays and contact
+    readings the original's, bit for bit. AssertionError as check's."""
+    import copy
+    import pickle
+
+    import numpy as np
+
+    bad = []
+    for how, model in (("pickled", pickle.loads(pickle.dumps(m))), ("deep-copied", copy.deepcopy(m))):
+        if model.to_text() != m.to_text() or model.shapes != m.shapes:
+            bad.append(f"pickles of contact models: the {how} model differs")
+    again = pickle.loads(pickle.dumps(r))
+    if not (np.array_equal(again.q, r.q) and again.events == r.events):
+        bad.append("pickles of contact models: the unpickled Result's q or events differ")
+    for kind, kw in m.elements:
+        if kind == "add_contact":
+            mine, theirs = r.contact(kw["name"]), again.contact(kw["name"])
+            if not (np.array_equal(mine.normal_force, theirs.normal_force) and
+                    list(mine.state) == list(theirs.state)):
+                bad.append(f"pickles of contact models: '{kw['name']}' reads otherwise in the unpickled Result")
+    if bad:
+        raise AssertionError(LAWS_BROKEN + "pickles of contact models\n" + "\n".join(bad))
+
+
 # ---------------------------------------------------------------------------
 # Drawing scenes (the parent side)
 # ---------------------------------------------------------------------------
@@ -1074,10 +1104,13 @@ def _pair_contact(b, name, sphere, other, swap=False):
 
 def case_ops(code, run, meta):
     """The worker's ops of a case: build, run (its result checked by the
-    mechanism fuzzer's result check), and the laws of contact."""
+    mechanism fuzzer's result check), the laws of contact, and the pickles
+    of the model and its Result (check_pickles)."""
     return [{"code": code + "\n", "kind": "build", "check": None},
             {"code": run + "\n", "kind": "simulate", "check": "result:r"},
             {"code": f"import fuzz_contacts\nfuzz_contacts.check(r, {meta!r})\n", "kind": "contact laws",
+             "check": None},
+            {"code": "import fuzz_contacts\nfuzz_contacts.check_pickles(m, r)\n", "kind": "pickles",
              "check": None}]
 
 

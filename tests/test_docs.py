@@ -158,3 +158,54 @@ def test_every_example_draws_its_mechanism_first():
             with open(os.path.join(EXAMPLES, script)) as f:
                 argv = gallery_sources.argv_for(f.read(), stem)
             assert argv[:1] == ["--picture"], (stem, argv)
+
+
+#: What needs an optional extra, as the README and docs write it in their blocks.
+EXTRA_FEATURES = {
+    "sweep": r"mb\.sweep\b|lagmb sweep|open_store|view_sweep",
+    "view": r"mb\.view(_mode|_sweep)?\(|lagmb\.view\(|--html",
+    "plot": r"plotting\.|--plot|--picture|--gif|--animate",
+    "mjcf": r"load_mjcf\(",
+    "fmu": r"lagmb fmu",
+}
+
+
+def code_blocks(lines):
+    """(first, end) line indices of the fenced and indented blocks of a Markdown page."""
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("```"):
+            j = i + 1
+            while j < len(lines) and not lines[j].startswith("```"):
+                j += 1
+            yield i, j + 1
+            i = j + 1
+        elif lines[i].startswith("    ") and (i == 0 or not lines[i - 1].strip()):
+            j = i
+            while j < len(lines) and (lines[j].startswith("    ") or not lines[j].strip()):
+                j += 1
+            yield i, j
+            i = j
+        else:
+            i += 1
+
+
+def test_every_block_that_needs_an_extra_names_it():
+    """Issue 56: README blocks needed extras they did not name (mb.sweep
+    without xarray failed bare; "Seeing a run" needs `view`). A block of the
+    README or docs/*.md that uses what an extra gives names the extra in
+    itself or in the text that introduces it (from the heading or the block
+    before): `sweep` extra, extra `sweep`, lagmb[sweep]."""
+    unnamed = []
+    for page in ["README.md"] + [os.path.join("docs", f) for f in sorted(os.listdir(DOCS)) if f.endswith(".md")]:
+        lines = open(os.path.join(ROOT, page), encoding="utf-8").read().splitlines()
+        after = 0  # the end of the last block
+        for first, end in code_blocks(lines):
+            intro = next((k for k in range(first - 1, after - 1, -1) if lines[k].startswith("#")), after)
+            block, context = "\n".join(lines[first:end]), "\n".join(lines[intro:end])
+            for extra, uses in EXTRA_FEATURES.items():
+                named = rf"lagmb\[[a-z,]*\b{extra}\b[a-z,]*\]|`{extra}` extra|'{extra}' extra|extra `{extra}`"
+                if re.search(uses, block) and not re.search(named, context):
+                    unnamed.append(f"{page}:{first + 1}: the '{extra}' extra: {lines[first].strip()[:70]}")
+            after = end
+    assert unnamed == []

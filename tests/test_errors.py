@@ -480,3 +480,17 @@ def test_a_stiffness_no_material_has_is_refused(stiffness, words):
         m.add_contact("bump", "rod", (1.0, 0.0), 0.05, m.ground, (0.0, -2.0), (1.0, 0.0), stiffness=stiffness,
                       restitution=0.5)
     assert "'bump'" in str(info.value)
+
+
+def test_a_collision_mesh_of_no_triangles_names_its_file(tmp_path):
+    """Issue 56: an STL of 0 triangles as a contact's mesh raised numpy's
+    "attempt to get argmax of an empty sequence"."""
+    empty = tmp_path / "empty.stl"
+    empty.write_text("solid empty\nendsolid empty\n")
+    m = mb.Model(gravity=(0.0, 0.0, -9.81), dimension=3)
+    m.add_body("gem", mass=1.0, inertia=(0.01, 0.01, 0.01), position=(0.0, 0.0, 0.2))
+    gem = m.add_shape("gem", "mesh", (0.1, 0.1, 0.1), (0.0, 0.0, 0.2), mesh=str(empty), role="collision")
+    floor = m.add_shape("ground", "plane", (), role="collision")
+    with pytest.raises(mb.ModelError, match=r"^spatial contact 'floor': shape_a: the mesh '.*empty\.stl' has no "
+                                            r"triangles \(0 in the file\)"):
+        m.add_contact("floor", gem, floor, stiffness=1e6, restitution=0.5)

@@ -4,7 +4,9 @@ extra (matplotlib and Pillow, trimesh, xarray, pandas, Dask, zarr, MuJoCo,
 Pinocchio, example-robot-data, FMPy, Sphinx, tqdm) raises ImportError, as in
 an environment that has only lagmb and its test requirements (numpy, SciPy,
 pytest, hypothesis). Slow (the suite again, about 90 s): `pytest -m slow
-tests/test_extras_absent.py`."""
+tests/test_extras_absent.py`. And lagmb itself, asked for what an absent
+extra gives (mb.sweep, lagmb.view, a plot), says which extra to install
+(mb.MissingExtraError), not Python's bare ModuleNotFoundError."""
 
 import os
 import subprocess
@@ -44,6 +46,59 @@ BLOCKER = textwrap.dedent(f"""\
 
     importlib.util.find_spec = _find_spec_absent
     """)
+
+
+def _absent(monkeypatch, *modules):
+    """Importing each of `modules` fails from here on, as if not installed."""
+    for module in modules:
+        monkeypatch.setitem(sys.modules, module, None)
+
+
+def _pendulum():
+    import lagmb as mb
+
+    m = mb.Model(gravity=(0.0, -9.81))
+    rod = m.add_body("rod", mass=1.0, inertia=1 / 12, position=(0.5, 0.0))
+    m.add_revolute("pin", m.ground, rod, at=(0.0, 0.0))
+    return m
+
+
+def test_a_sweep_without_its_extra_says_to_install_it(monkeypatch, tmp_path):
+    """Issue 56: mb.sweep without xarray raised a bare ModuleNotFoundError."""
+    import lagmb as mb
+
+    _absent(monkeypatch, "xarray")
+    with pytest.raises(mb.MissingExtraError, match=r"^mb.sweep needs xarray, from lagmb's optional 'sweep' extra: "
+                                                   r'pip install "lagmb\[sweep\]"$') as info:
+        mb.sweep(_pendulum(), {"rod.mass": [1.0, 2.0]}, t_end=0.1, progress=False)
+    error = info.value
+    assert (error.name, error.extra) == ("xarray", "sweep")
+    assert isinstance(error, ImportError) and isinstance(error, mb.ModelError)  # (either except catches it)
+    _absent(monkeypatch, "zarr")
+    (tmp_path / "study.zarr").mkdir()
+    (tmp_path / "study.zarr" / "zarr.json").write_text("{}")
+    with pytest.raises(mb.MissingExtraError, match=r"^sweep.open_store's store needs zarr, .*'sweep' extra"):
+        mb.sweep.open_store(tmp_path / "study.zarr")
+
+
+def test_a_view_and_a_plot_without_their_extras_say_to_install_them(monkeypatch, tmp_path):
+    import lagmb as mb
+    from lagmb import plotting, viewer
+
+    r = mb.simulate(_pendulum(), 0.1, n_out=3)
+    _absent(monkeypatch, "trimesh", "matplotlib")
+    viewer._three_js.cache_clear()  # (three.js read from trimesh once per process)
+    try:
+        with pytest.raises(mb.MissingExtraError, match=r"^lagmb.view needs three.js, which it takes from the trimesh "
+                                                       r"wheel, from lagmb's optional 'view' extra: "
+                                                       r'pip install "lagmb\[view\]"$') as info:
+            mb.view(r, tmp_path / "run.html")
+        assert (info.value.name, info.value.extra) == ("trimesh", "view")
+    finally:
+        viewer._three_js.cache_clear()
+    with pytest.raises(mb.MissingExtraError, match=r'^lagmb plotting needs matplotlib, .*pip install "lagmb\[plot\]"'):
+        plotting.plot_result(r, tmp_path / "run.png")
+    assert not (tmp_path / "run.html").exists() and not (tmp_path / "run.png").exists()
 
 
 @pytest.mark.slow

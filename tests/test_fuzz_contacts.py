@@ -14,7 +14,8 @@ pytest (the worker's TIMEOUT is each op's wall-time budget). Every run
 either succeeds and keeps the laws of fuzz_contacts.contact_problems (no
 energy gained, penetration within what the energy allows and as the
 geometry shows, a stuck contact holding still within mu_s F_n, a slipping
-one within mu F_n, events kept, finite readings; and the mechanism fuzzer's
+one within mu F_n, events kept, finite readings; the model and its Result
+pickled and deep-copied to the same numbers; and the mechanism fuzzer's
 result check), or raises mb.SimulationError / mb.ModelError with a message
 that is not a Zeno refusal (refusals are counted by message and printed;
 most runs must succeed). A broken law is a failure of its own kind (one

@@ -725,12 +725,17 @@ def test_numbers_whose_squares_overflow_are_refused_when_added(make, message):
 
 
 def test_an_input_that_overflows_the_state_is_named():
-    """A torque input of 1e308 gave IDA's "EwtSet function failed"."""
+    """A torque input of 1e308 gave IDA's "EwtSet function failed"; then it
+    was taken and the run named the body whose state overflowed. Now it is
+    refused where it is set (beyond 1e150: issue 56), and a value within
+    that the run still cannot take names the input where the run fails."""
     m = spatial_block()
     m.add_torque("t", "b", (mb.Input(0.0), 0.0, 0.0))
     sim = mb.Simulator(m)
-    sim.set_input("t", 1e308)
-    with pytest.raises(mb.SimulationError, match="not finite.*body 'b'"):
+    with pytest.raises(mb.ModelError, match=r"input 't' = 1e\+308 is beyond 1e\+150"):
+        sim.set_input("t", 1e308)
+    sim.set_input("t", 1e150)
+    with pytest.raises(mb.SimulationError, match=r"where inputs were set \(t = 0 s: 't' = 1e\+150 \(t\.torque\.x\)\)"):
         sim.advance(0.1)
 
 

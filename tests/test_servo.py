@@ -89,9 +89,11 @@ def test_a_simulator_moves_the_target_and_reads_the_joints():
     r = sim.result()
     assert now.angle == pytest.approx(r.joint("hinge").angle[-1], abs=1e-12)
     assert now.rate == pytest.approx(r.joint("hinge").rate[-1], abs=1e-12)
-    for bad in ([1.0, 2.0], ["x"], "7", [[1.0, "a"]]):
+    for bad in ([1.0, 2.0], "7", [[1.0, "a"]]):
         with pytest.raises(mb.ModelError, match="set_inputs takes"):
             sim.set_inputs(bad)
+    with pytest.raises(mb.ModelError, match="input 'aim' must be a number, got 'x'"):
+        sim.set_inputs(["x"])
     with pytest.raises(mb.ModelError, match="input 'aim' must be finite"):
         sim.set_inputs([float("nan")])
     with pytest.raises(mb.ModelError, match="not a revolute"):
@@ -106,6 +108,34 @@ def test_a_simulator_moves_the_target_and_reads_the_joints():
 def test_bad_servo_gains_are_refused(given, message):
     with pytest.raises(mb.ModelError, match=message):
         arm(target=0.0, **{"kp": 1.0, **given})
+
+
+@pytest.mark.parametrize("given, message", [
+    ({"target": math.nan}, "target must be finite, got nan"),
+    ({"target": math.inf}, "target must be finite, got inf"),
+    ({"feedforward": math.nan}, "feedforward must be finite, got nan"),
+    ({"kp": 1e300}, r"kp = 1e\+300 is beyond 1e\+150 N m/rad, the largest lagmb takes for a gain or an input: the "
+                    r"integrator's error norms square the forces it makes, and beyond that those squares overflow "
+                    r"double precision \(1.8e308\)"),
+    ({"kd": 1e200}, r"kd = 1e\+200 is beyond 1e\+150 N m s/rad"),
+    ({"limit": 1e151}, r"limit = 1e\+151 is beyond 1e\+150 N m"),
+])
+def test_a_servo_value_beyond_what_a_run_can_hold_is_named_where_it_is_given(given, message):
+    """Issue 56: kp = 1e300 was taken and the run failed at t = 0 with
+    IDA_REP_RES_ERR, naming neither the servo nor the value; a target of nan
+    was "Constant: c must be finite" (an internal class). Each names the
+    servo, its argument and the value, at add_servo."""
+    with pytest.raises(mb.ModelError, match="spatial joint servo 'servo': " + message):
+        arm(**{"target": 0.0, "kp": 1.0, **given})
+
+
+def test_a_servo_on_a_slide_names_its_gains_in_newtons():
+    m = mb.Model(dimension=3)
+    m.add_body("slider", mass=1.0, inertia=(0.1, 0.1, 0.1), position=(0.0, 0.0, 0.0))
+    rail = m.add_translational("rail", "ground", "slider", at=(0.0, 0.0, 0.0), axis=(1.0, 0.0, 0.0))
+    with pytest.raises(mb.ModelError, match=r"'servo': kp = 1e\+160 is beyond 1e\+150 N/m"):
+        m.add_servo("servo", rail, target=0.0, kp=1e160)
+    m.add_servo("servo", rail, target=0.0, kp=1e150)  # (the largest is taken)
 
 
 def test_a_servo_needs_a_joint_with_a_coordinate():

@@ -4,6 +4,7 @@ inputs set from outside between them, saved and restored."""
 import importlib.util
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -315,6 +316,94 @@ def test_bad_inputs_are_named():
     assert sim.input("push") == 0.0  # unchanged
     with pytest.raises(mb.ModelError, match="the model has no inputs"):
         mb.Simulator(pendulum()).set_input("motor", 1.0)
+
+
+def test_an_input_beyond_what_a_run_can_hold_is_named_where_it_is_set():
+    """Issue 56: set_input("push", 1e300) was taken, then the next advance
+    failed at t = 0 with IDA_REP_RES_ERR naming neither the input nor the
+    value. Past 1e150 (the largest lagmb takes for a gain or an input: the
+    squares of what it makes overflow a double) it is refused at once; a
+    value within it that the model cannot take (1e150 N on 2 kg) fails the
+    first step, and the failure names the input, the value and what it
+    feeds."""
+    sim = mb.Simulator(pushed_slider())
+    for bad in (1e300, -1e151):
+        with pytest.raises(mb.ModelError, match=rf"input 'push' = {re.escape(f'{bad:g}')} is beyond 1e\+150, the largest lagmb takes "
+                                                r"for a gain or an input: the integrator's error norms square"):
+            sim.set_input("push", bad)
+    with pytest.raises(mb.ModelError, match=r"input 'push' = 1e\+200 is beyond 1e\+150"):
+        sim.set_inputs({"push": 1e200})
+    assert sim.input("push") == 0.0
+    with pytest.raises(mb.ModelError, match=r"an input's initial value 1e\+300 is beyond 1e\+150"):
+        mb.Input(1e300)
+    sim.set_input("push", 1e150)  # (the largest is taken)
+    with pytest.raises(mb.SimulationError, match=r"It failed at once where inputs were set \(t = 0 s: 'push' = "
+                                                 r"1e\+150 \(push\.force\.x\)\); an input too large for this model"):
+        sim.advance(0.01)
+
+
+@pytest.mark.parametrize("given, message", [
+    (None, r"set_inputs takes a dict \{name: value\} or 1 numbers in the order of Simulator.inputs \(push\), got None"),
+    ([None], r"input 'push' must be a number, got None"),
+    (["fast"], r"input 'push' must be a number, got 'fast'"),
+    ([1.0, 2.0], r"set_inputs takes .* 1 numbers"),
+])
+def test_set_inputs_names_what_is_not_a_number(given, message):
+    """set_inputs(None) and set_inputs([None]) said "input 'push' must be
+    finite, got nan" (numpy had made None a nan)."""
+    sim = mb.Simulator(pushed_slider())
+    with pytest.raises(mb.ModelError, match=message):
+        sim.set_inputs(given)
+    sim.set_inputs(np.array([2.0]))
+    assert sim.input("push") == 2.0
+
+
+def test_simulator_joint_names_itself_for_an_element_that_is_no_joint():
+    """Simulator.joint(stop) said "Result.joint: ..."."""
+    model = pendulum()
+    model.add_stop("limit", "pin", lower=-1.0, upper=1.0)
+    sim = mb.Simulator(model)
+    with pytest.raises(mb.ModelError, match=r"^Simulator.joint: 'limit' is a stop, not a revolute"):
+        sim.joint("limit")
+
+
+def test_an_unstable_loop_driving_the_pandas_fingers_through_their_limits_names_what_holds_them():
+    """Issue 56: an unstable PD loop at 1 kHz on the Panda (gains 2000 N m/rad
+    and 100 N m s/rad on every joint, the fingers' too: the arm whirls at
+    up to 1.8e3 rad/s) ended with "stop 'panda_finger_joint2_limit' is
+    reached along a motion the joints and drivers prescribe (a driver
+    pushing through the limit, or a gimbal lock)", neither of which it was:
+    the finger's joint and its mimic are both on their limits, the first
+    held by its stop, the second tied to it by the coupling, and the state
+    at the event had drifted off them. The message names both stops and the
+    coupling, and says the motion drifted off what holds it. (Should the run
+    get through, the fingers must stay within their limits.)"""
+    import warnings
+
+    path = example("panda").panda_urdf()
+    if path is None:
+        pytest.skip("the Panda's URDF is example-robot-data's (the robots extra), not installed")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", mb.UrdfWarning)
+        m = mb.load_urdf(path)
+    joints = [f"panda_joint{k}" for k in range(1, 8)] + ["panda_finger_joint1"]
+    for j in joints:  # a torque (force) input on each joint
+        m.add_servo(f"{j}_drive", j, target=0.0, kp=0.0, kd=0.0, feedforward=mb.Input(0.0, name=f"{j}_tau"))
+    sim = mb.Simulator(m)
+    target = sim.joints(joints)[0] + 0.3
+    try:
+        while sim.t < 0.05:
+            q, rate = sim.joints(joints)
+            sim.set_inputs({f"{j}_tau": 2000.0 * (a - b) - 100.0 * c for j, a, b, c in zip(joints, target, q, rate)})
+            sim.advance(sim.t + 1e-3)
+    except mb.SimulationError as e:
+        said = " ".join(str(e).split())
+        assert said.startswith("at an event: stop 'panda_finger_joint2_limit' is reached at t = ")
+        assert ("where its joint is held by 'panda_finger_joint1_limit' (a spatial stop), to which "
+                "'panda_finger_joint2_mimic' (a joint coupling) ties it: both joints are at their limits") in said
+        assert "the motion has drifted off them" in said and "gimbal lock" not in said
+    fingers, _ = sim.joints(["panda_finger_joint1", "panda_finger_joint2"])
+    assert np.all(fingers <= 0.04 + 1e-8) and np.all(fingers >= -1e-8)
 
 
 def test_time_only_goes_forward():

@@ -311,8 +311,11 @@ def test_linearized_about_a_rest_on_a_stop_the_held_joint_is_fixed():
     rod = m2.add_body("rod", mass=1.0, inertia=1.0 / 12.0, position=(0.5, 0.0))
     m2.add_revolute("pin", m2.ground, rod, at=(0.0, 0.0))
     m2.add_stop("stop", "pin", lower=-beta)
-    with pytest.raises(mb.ModelError, match="stop 'stop' is at neither limit.*lower 0.785"):
+    # (issue 56: said as "tangent_at: held: ...", the core's function, not linearize's argument)
+    with pytest.raises(mb.ModelError, match=r"^linearize: at\['held'\]: stop 'stop' is at neither limit.*lower 0.785"):
         mb.linearize(m2, at={"q": np.array([0.5, 0.0, 0.0]), "v": np.zeros(3), "held": ["stop"]})
+    with pytest.raises(mb.ModelError, match=r"^linearize: at\['held'\]: .*'pin'.*not a stop"):
+        mb.linearize(m2, at={"q": np.array([0.5, 0.0, 0.0]), "v": np.zeros(3), "held": ["pin"]})
 
 
 def test_an_open_stop_leaves_the_modes_and_the_linearization_alone():

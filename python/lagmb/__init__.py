@@ -25,7 +25,7 @@ from .result import BodyPath, ContactPath, Result, Sensitivity
 from .scene import Scene, SceneError, load_scene, save_scene
 from .simulation import methods, simulate, solve_accelerations
 from .simulator import Simulator
-from .errors import EquilibriumError, KinematicOnlyError
+from .errors import EquilibriumError, KinematicOnlyError, MissingExtraError
 from .statics import Equilibrium, equilibrium
 from .linear import Descriptor, LinearSystem, Modes, linearize, modes
 from .joints import JointSpace, inverse_dynamics
@@ -74,6 +74,7 @@ __all__ = [
     "Equilibrium",
     "EquilibriumError",
     "KinematicOnlyError",
+    "MissingExtraError",
     "equilibrium",
     "modes",
     "Modes", "LinearSystem", "Descriptor", "linearize",

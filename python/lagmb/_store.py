@@ -20,7 +20,7 @@ import uuid
 import warnings
 
 from ._checks import show
-from .errors import ModelError
+from .errors import ModelError, extra_module
 
 # at most this many cases in one sweep or design: a typo (0:1:1e9, n=10**12)
 # is refused, not a machine filled with case lists (memory is checked too);
@@ -66,7 +66,7 @@ _ZARR = ("zarr.json", ".zgroup", ".zattrs", ".zarray", ".zmetadata")
 def _held(path, who):
     """The description in the store's root attributes (None if the Zarr
     store has none); ModelError naming the store if it cannot be read."""
-    import zarr
+    zarr = extra_module("zarr", "sweep", f"{who}'s store")
 
     try:
         held = zarr.open_group(path, mode="r").attrs.get("lagmb_sweep")
@@ -299,7 +299,7 @@ class Store:
     writes it."""
 
     def __init__(self, path, description, who):
-        import zarr
+        zarr = extra_module("zarr", "sweep", f"{who}'s store")
 
         self.path, self.who = _path(path, who), who
         check_store(self.path, who)  # before anything is written: nothing into a folder of another's
@@ -385,7 +385,7 @@ def ignored_warning(path, held, ignored, who, stacklevel):
 def read(path, held, whole, damaged, who, fate, stacklevel):
     """The Dataset of the store's whole batches; the damaged ones (and those
     that cannot be read) named in a warning, with their fate."""
-    import xarray as xr
+    xr = extra_module("xarray", "sweep", who)
 
     damaged = dict(damaged)
     parts = []

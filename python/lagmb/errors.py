@@ -1,6 +1,7 @@
 """Exceptions raised by lagmb (docs/design.md, section 6)."""
 
 import contextlib
+import importlib
 
 from . import _core
 
@@ -80,6 +81,32 @@ class KinematicOnlyError(ModelError):
     """A quantity a kinematic-only analysis does not compute (the multipliers
     and everything derived from them: reactions, driver efforts) was asked
     for. Run with analysis="inverse_dynamics" (all masses > 0) to get them."""
+
+
+class MissingExtraError(ModelError, ModuleNotFoundError):
+    """A feature needs a package of one of lagmb's optional extras, and it
+    is not installed: the message names the feature, the package and the
+    extra to install (``pip install "lagmb[sweep]"``). A ModelError and a
+    ModuleNotFoundError (an ImportError): ``.name`` is the missing module,
+    ``.extra`` the extra."""
+
+    def __init__(self, message, name=None, extra=None):
+        super().__init__(message)
+        self.name, self.extra = name, extra
+
+
+def extra_module(module, extra, who):
+    """The module ``module`` (imported), which ``who`` needs from lagmb's
+    optional extra ``extra``; MissingExtraError naming them where it
+    cannot be imported."""
+    try:
+        return importlib.import_module(module)
+    except ImportError as e:
+        missing = getattr(e, "name", None) or module
+        why = "" if missing.split(".")[0] == module.split(".")[0] else f" (it could not import {missing}: {e})"
+        raise MissingExtraError(f"{who} needs {module.split('.')[0]}{why}, from lagmb's optional '{extra}' extra: "
+                                f'pip install "lagmb[{extra}]"',
+                                module, extra) from None
 
 
 @contextlib.contextmanager

@@ -225,7 +225,7 @@ def as_time_function(value, where, derivatives=True, component=-1, components=2)
     if isinstance(value, TimeFunction):
         return value._impl
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        return Constant(value)._impl
+        return Constant(real(value, where))._impl  # (a non-finite number named as the argument it is)
     if callable(value):
         return _core.python_function(value, where, derivatives, component, components)
     raise ModelError(f"{where}: expected a number, a time function or a callable, got {value!r}")

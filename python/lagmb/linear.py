@@ -780,7 +780,14 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
         raise ModelError(f"{who}: joint friction ({', '.join(repr(f) for f in friction)}) switches with the sign "
                          "of the joint's rate and has no linearization; remove it to linearize")
     q, v, t, u, dropped, eq, held = _operating_point(model, core, at, input_values, who)
-    tangent = _core.tangent_at(core, q, v, t, u, dropped, held)
+    try:
+        tangent = _core.tangent_at(core, q, v, t, u, dropped, held)
+    except ModelError as e:  # (the core names its own function: said as linearize's, held as at['held'])
+        if type(e) is not ModelError or not str(e).startswith("tangent_at: "):
+            raise
+        text = str(e)[len("tangent_at: "):]
+        raise ModelError(f"{who}: " + ("at['held']: " + text[len("held: "):] if text.startswith("held: ") else text)
+                         ) from None
     n, m = len(q), core.n_constraints
     scale = 1.0 + np.abs(q).max(initial=0.0)
     phi = np.abs(np.asarray(tangent["Phi"])).max(initial=0.0)

@@ -1,6 +1,7 @@
 """Building a mechanism: bodies, joints, gravity (docs/design.md, section 2.7)."""
 
 import copy
+import numbers
 import threading
 import warnings
 
@@ -99,8 +100,11 @@ class Model:
         """Pickled (and deep-copied) as its description: gravity, dimension
         and the elements, replayed on a new Model (time functions by their
         fields, a Python callable by pickle's rules: a module-level function
-        travels, a lambda does not). Handles and results stay with this one."""
-        return _rebuilt, (self.gravity, self.dimension, self.elements, tuple(self._annotations), self.name)
+        travels, a lambda does not), with its shapes and the hulls of its
+        collision meshes (the copy reads no mesh file again). Handles and
+        results stay with this one."""
+        return _rebuilt, (self.gravity, self.dimension, self.elements, tuple(self._annotations), self.name,
+                          dict(self._hulls))
 
     # --- building --------------------------------------------------------
 
@@ -565,6 +569,15 @@ def _choice_value(model, param, value, what, label):
     return value
 
 
+def _function_value(value, what, label, derivatives):
+    """A time function given as a number (checked as the argument ``label``
+    names: "servo 's': target must be finite"), a TimeFunction or a callable
+    (whose failures name the element, ``what``)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        value = _number(value, label)
+    return as_time_function(value, what, derivatives=derivatives)
+
+
 def _functions_value(n, components, result):
     """(f_1(t), ..., f_n(t)) given as n values or one callable giving all n."""
     def check(model, param, value, what, label):
@@ -590,8 +603,8 @@ _CHECKS = {
     "body": lambda model, param, value, what, label: model._body(value, param.name, what)[1],
     "joint": lambda model, param, value, what, label: model._joint(value, what),
     "choice": _choice_value,
-    "motion": lambda model, param, value, what, label: as_time_function(value, what),
-    "function": lambda model, param, value, what, label: as_time_function(value, what, derivatives=False),
+    "motion": lambda model, param, value, what, label: _function_value(value, what, label, True),
+    "function": lambda model, param, value, what, label: _function_value(value, what, label, False),
     "function_pair": _functions_value(2, "(fx, fy)", "(fx, fy)"),
     "vec3": lambda model, param, value, what, label: tuple(float(c) for c in _vec3(value, label)),
     "orientation": _matrix_or_vector_value(4, "a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix"),
@@ -640,9 +653,10 @@ class _Named(dict):
         return dict, (dict(self),)
 
 
-def _rebuilt(gravity, dimension, elements, annotations=(), name=None):
+def _rebuilt(gravity, dimension, elements, annotations=(), name=None, hulls=None):
     """A Model from what Model.__reduce__ gives."""
     model = Model(gravity=gravity, dimension=dimension, name=name)
+    model._hulls.update(hulls or {})
     for method, kwargs in list(elements) + list(annotations):
         getattr(model, method)(**kwargs)
     return model
@@ -677,6 +691,9 @@ class Frame(tuple):
     def __new__(cls, body, position, rotation):
         return super().__new__(cls, (body, position, rotation))
 
+    def __getnewargs__(self):  # (pickle and deepcopy call __new__ with these)
+        return tuple(self)
+
     body = property(lambda self: self[0])
     position = property(lambda self: self[1])
     rotation = property(lambda self: self[2])
@@ -694,6 +711,9 @@ class Shape(tuple):
 
     def __new__(cls, body, kind, size, position, rotation, mesh, role):
         return super().__new__(cls, (body, kind, size, position, rotation, mesh, role))
+
+    def __getnewargs__(self):  # (pickle and deepcopy call __new__ with these)
+        return tuple(self)
 
     body = property(lambda self: self[0])
     kind = property(lambda self: self[1])
@@ -766,6 +786,9 @@ def _hull_vertices(shape, label):
         raise ModelError(f"{label}: the convex hull of mesh {shape.mesh!r} is SciPy's (scipy.spatial.ConvexHull); "
                          "install SciPy (pip install scipy) to make a mesh a collision shape") from None
     points = np.unique(read_stl(shape.mesh).reshape(-1, 3) * np.asarray(shape.size, dtype=float), axis=0)
+    if len(points) == 0:
+        raise ModelError(f"{label}: the mesh {shape.mesh!r} has no triangles (0 in the file): a collision shape "
+                         "needs the vertices of a solid")
     try:
         chosen = np.sort(ConvexHull(points).vertices)
     except (RuntimeError, ValueError):  # (Qhull's error: fewer than 4 points, or all in a plane)

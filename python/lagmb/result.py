@@ -168,14 +168,14 @@ class JointPath:
     every step, model/joint_turns.hpp: right however far apart the outputs
     are), a planar one is the bodies' angle difference."""
 
-    def __init__(self, result, name):
+    def __init__(self, result, name, who="Result.joint"):
         core = result._core
         kind = core.element_kind(name)
         declared = registry.kind_of(core, name)
         coordinates = declared.coordinates if declared else ()
         turns, slides = "angle" in coordinates, "slide" in coordinates
         if not (turns or slides):
-            raise ModelError(f"Result.joint: '{name}' is a {kind}, not a revolute, translational or cylindrical joint")
+            raise ModelError(f"{who}: '{name}' is a {kind}, not a revolute, translational or cylindrical joint")
         motion = {}
         for slide, present in ((False, turns), (True, slides)):
             if present:

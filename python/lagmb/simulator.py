@@ -7,7 +7,7 @@ import numpy as np
 
 from . import _core, _deep_start, registry
 from ._checks import parameters as _parameters, real as _real, show as _show
-from .errors import ModelError
+from .errors import ModelError, SimulationError
 from .handles import name_of
 from .result import EXERTING, BodyPath, JointPath, Result, element_name, efforts
 from .model import checked as _model
@@ -53,6 +53,7 @@ class Simulator:
         if interval < 0:
             raise ModelError(f"output_interval must be >= 0 (None: outputs at the ends of advances), got {interval}")
         self.model = model
+        self._changed = (None, {})  # (t, {input: value}): the inputs last set, and when
         self._joint_names = None
         self._readings = {}  # joints(): {the joints asked for: [(name, slide?)]}
         self._snapshot = model._snapshot()  # the model it runs, whatever edits follow
@@ -112,7 +113,7 @@ class Simulator:
         gives it at one instant: .angle (rad, counting whole turns) or .slide
         (m), .rate and .acceleration."""
         name = element_name(self.model, self._core_model, joint, ("joint",), "joint", "Simulator.joint")
-        path = JointPath(self._now(self.a), name)
+        path = JointPath(self._now(self.a), name, "Simulator.joint")
         return SimpleNamespace(**{key: float(value[0]) for key, value in vars(path).items()})
 
     def joints(self, joints=None):
@@ -175,15 +176,28 @@ class Simulator:
         the integrator fails: :meth:`result` keeps the outputs reached, and
         the simulator refuses to go on until :meth:`set_state`."""
         t = _real(t, "t")
-        with _deep_start.noted(self._start_contacts, self._t0), self._translated():
-            self._sim.advance(t)
+        try:
+            with _deep_start.noted(self._start_contacts, self._t0), self._translated():
+                self._sim.advance(t)
+        except SimulationError as e:
+            at, values = self._changed
+            if type(e) is not SimulationError or at is None or e.t != at or not values:
+                raise
+            # a failure at the instant inputs changed, before a step: name them and their values
+            feeds = {d["name"]: f"{d['element']}.{d['parameter']}" for d in self._core_model.inputs}
+            named = ", ".join(f"'{name}' = {value:g} ({feeds.get(name, name)})" for name, value in values.items())
+            raise SimulationError(f"{e} It failed at once where inputs were set (t = {at:g} s: {named}); an input "
+                                  "too large for this model (forces whose accelerations overflow the integrator's "
+                                  "arithmetic at its first step) fails so.", e.t, e.result) from e.__cause__
 
     def set_input(self, name, value):
         """Set an input (:attr:`inputs`) from :attr:`t` on. ``name``: the
         input's name, or a handle of the element it feeds."""
         value = _real(value, f"input {name!r}")
+        name = self._input_name(name)
         with self._translated():
-            self._sim.set_input(self._input_name(name), value)
+            self._sim.set_input(name, value)
+        self._note_inputs({name: value})
 
     def set_inputs(self, values):
         """Set several inputs at once from :attr:`t` on: a dict {name or
@@ -194,16 +208,24 @@ class Simulator:
             items = [(self._input_name(name), _real(value, f"input {name!r}")) for name, value in values.items()]
         else:
             names = [d["name"] for d in self._core_model.inputs]
-            try:
-                array = None if isinstance(values, (str, bytes)) else np.asarray(values, dtype=float).ravel()
-            except (TypeError, ValueError):
-                array = None
-            if array is None or array.size != len(names):
+            given = None
+            if not isinstance(values, (str, bytes)) and hasattr(values, "__iter__"):
+                try:  # (each value as given, not as float() makes it: None is no number, not nan)
+                    given = list(np.asarray(values, dtype=object).ravel())
+                except (TypeError, ValueError):
+                    given = None
+            if given is None or len(given) != len(names):
                 raise ModelError(f"set_inputs takes a dict {{name: value}} or {len(names)} numbers in the order "
                                  f"of Simulator.inputs ({', '.join(names)}), got {_show(values)}")
-            items = [(name, _real(float(value), f"input {name!r}")) for name, value in zip(names, array)]
+            items = [(name, _real(value, f"input {name!r}")) for name, value in zip(names, given)]
         with self._translated():
             self._sim.set_inputs([name for name, _ in items], [value for _, value in items])
+        self._note_inputs(dict(items))
+
+    def _note_inputs(self, values):
+        """Keeps the inputs set at this time (what a failure at once names)."""
+        at, known = self._changed
+        self._changed = (self.t, {**(known if at == self.t else {}), **values})
 
     def input(self, name):
         """The value of an input now."""
@@ -228,6 +250,7 @@ class Simulator:
             raise ModelError(f"set_state takes what state() returned, got {_show(state)}")
         with self._translated():
             self._sim.set_state(state)
+        self._changed = (None, {})
 
     def result(self):
         """Everything recorded so far, as a :class:`lagmb.Result`."""

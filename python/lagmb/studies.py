@@ -30,7 +30,7 @@ from . import _output_names
 from ._checks import array, decimal, real, show
 from ._store import MAX_CASES, Store, description, ignored_warning, open_store, read, scan
 from ._store import check_store  # noqa: F401 - public here: mb.sweep's and lagmb sweep -o's check of a store
-from .errors import ModelError, SimulationError
+from .errors import ModelError, SimulationError, extra_module
 from .model import Model, checked as _checked_model
 from .progress import Progress
 from .simulation import WARNINGS_INTO, simulate
@@ -708,7 +708,7 @@ def sweep(model, parameters, *, outputs=None, t_end=None, run=None, histories=No
     The grid's shape: :func:`as_grid`. ``ds.attrs["computed_cases"]`` counts
     the cases this call ran (0 for a finished store).
     """
-    import xarray  # noqa: F401 - the result's type; a clear ImportError now, not after the runs
+    extra_module("xarray", "sweep", "mb.sweep")  # the result's type: a clear error now, not after the runs
 
     who = "sweep"
     scene_settings = {}

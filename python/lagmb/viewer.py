@@ -31,7 +31,7 @@ from . import _checks, _output_names, _rotations, registry
 from ._checks import show
 from ._drawing import (Scene, effort_unit, mode_amplitude, outline_shape, posed, shape_faces, stats_line,
                        trace_points)
-from .errors import ModelError
+from .errors import MissingExtraError, ModelError
 
 _PALETTE = [(0.12, 0.47, 0.71), (1.0, 0.50, 0.05), (0.17, 0.63, 0.17), (0.84, 0.15, 0.16), (0.58, 0.40, 0.74),
             (0.55, 0.34, 0.29), (0.89, 0.47, 0.76), (0.50, 0.50, 0.50), (0.74, 0.74, 0.13), (0.09, 0.75, 0.81)]
@@ -47,8 +47,8 @@ def _three_js():
     try:
         files = importlib.resources.files("trimesh")
     except ModuleNotFoundError:
-        raise ModelError("lagmb.view needs three.js, which it takes from the trimesh wheel: "
-                         "pip install 'trimesh>=5' (lagmb's 'view' extra)") from None
+        raise MissingExtraError("lagmb.view needs three.js, which it takes from the trimesh wheel, from lagmb's "
+                                "optional 'view' extra: pip install \"lagmb[view]\"", "trimesh", "view") from None
     with zipfile.ZipFile(io.BytesIO((files / "resources" / "templates" / "viewer.zip").read_bytes())) as z:
         text = z.read("viewer.html.template").decode("utf-8")
     start = text.index("<script>") + len("<script>")

@@ -18,6 +18,16 @@ using Vec4 = Eigen::Vector4d;
 using VecX = Eigen::VectorXd;
 
 constexpr double kPi = 3.14159265358979323846;
+/// The largest magnitude a gain or an input value may have: the integrator's
+/// error norms square the forces they make, and beyond about 1e154 a square
+/// overflows a double (1.8e308); 1e150 leaves room for sums (load_urdf's
+/// LARGEST, for the numbers of a file, is the same).
+constexpr double kLargestGiven = 1e150;
+/// Why a value beyond kLargestGiven is refused, for messages.
+inline const char* largest_given_reason() {
+  return "the integrator's error norms square the forces it makes, and beyond that those squares overflow double "
+         "precision (1.8e308)";
+}
 
 /// Local coordinates of the (at most) two bodies an element connects. A
 /// planar element has (x_i, y_i, phi_i, x_j, y_j, phi_j); the ground, and the

@@ -223,6 +223,9 @@ TimeFunctionPtr time_function_from_text(std::istream& in) {
 
 std::shared_ptr<Input> input(double initial, std::string name) {
   require_finite(initial, "an input's initial value");
+  if (!(std::abs(initial) <= kLargestGiven))
+    throw ModelError("an input's initial value " + to_text(initial) + " is beyond " + to_text(kLargestGiven) +
+                     ", the largest lagmb takes for a gain or an input: " + largest_given_reason());
   return std::make_shared<Input>(initial, std::move(name));
 }
 

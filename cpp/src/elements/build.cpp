@@ -40,6 +40,12 @@ void require_nonnegative(double x, const std::string& element, const char* what)
     throw ModelError(element + ": " + what + " must be finite and >= 0, got " + to_text(x));
 }
 
+void require_within_largest(double x, const std::string& element, const char* what, const char* unit) {
+  if (!(std::abs(x) <= kLargestGiven))
+    throw ModelError(element + ": " + what + " = " + to_text(x) + " is beyond " + to_text(kLargestGiven) + " " + unit +
+                     ", the largest lagmb takes for a gain or an input: " + largest_given_reason());
+}
+
 void require_rigid(const Model& m, int body, const std::string& element, const char* why) {
   if (body != kGround && m.body(body).particle)
     throw ModelError(element + ": particle '" + m.body(body).name + "' " + why);

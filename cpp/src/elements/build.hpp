@@ -45,6 +45,8 @@ void require_positive(double x, const std::string& element, const char* what);
 void require_squarable(double x, const std::string& element, const char* what);
 /// ModelError "'<element>': <what>" unless x is finite and >= 0.
 void require_nonnegative(double x, const std::string& element, const char* what);
+/// ModelError naming `element`, `what` and x unless x is finite and |x| <= kLargestGiven (a gain).
+void require_within_largest(double x, const std::string& element, const char* what, const char* unit);
 
 /// A body that takes this element needs an angle (particles have none).
 void require_rigid(const Model& m, int body, const std::string& element, const char* why);

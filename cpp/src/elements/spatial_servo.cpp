@@ -19,8 +19,12 @@ void build_spatial_joint_servo(Model& m, const std::string& name, const Args& a)
   e.kd = a.real("kd");
   build::require_nonnegative(e.kp, label, "kp");
   build::require_nonnegative(e.kd, label, "kd");
+  const bool slides = c.slides && !c.turns;
+  build::require_within_largest(e.kp, label, "kp", slides ? "N/m" : "N m/rad");
+  build::require_within_largest(e.kd, label, "kd", slides ? "N s/m" : "N m s/rad");
   if (const auto limit = a.optional_real("limit")) {
     if (!(*limit > 0.0)) throw ModelError(label + ": limit must be > 0 (None: no limit), got " + to_text(*limit));
+    build::require_within_largest(*limit, label, "limit", slides ? "N" : "N m");
     e.limit = *limit;
   }
   e.target = build::drive(m, a.function("target"));

@@ -477,11 +477,53 @@ void EventRunner::contact_rows(double t, const VecX& q, const VecX& v, const std
   }
 }
 
-void EventRunner::driven_through(int contact, double t) const {
-  throw plain_failure("stop '" + model_.constraint_name_of_row(contacts_[contact].row) + "' is reached at t = " +
-                          fmt(t) + " along a motion the joints and drivers prescribe: no impact or stop force can "
-                          "change it (a driver pushing through the limit, or joints at a singular position that "
-                          "leaves no motion along it, such as a gimbal lock of three revolutes); the run stops here.",
+void EventRunner::driven_through(int contact, double t, double approach, double tolerance, const char* measure) {
+  const int row = contacts_[contact].row;
+  const std::string stop = model_.constraint_name_of_row(row);
+  // What leaves the stop's gap no motion: its gradient C (rows_.Phi_q, at
+  // this q: contact_rows) is a combination of the rows held (the joints,
+  // the closed rows of d_, which kkt_ holds factorized), C = Phi_q^T y with
+  // M x = C - Phi_q^T y ~ 0; the stops, couplings and drivers with a part
+  // in y are the ones to name
+  const VecX C = VecX(rows_.Phi_q.transpose().col(row));
+  VecX x(model_.n_coordinates()), y(model_.n_constraints());
+  kkt_.solve(C, VecX::Zero(model_.n_constraints()), x, y);
+  const double y_max = y.lpNorm<Eigen::Infinity>();
+  std::vector<std::string> stops, ties;
+  for (int r = 0; r < y.size(); ++r) {
+    if (!(std::abs(y[r]) > 1e-6 * y_max) || r == row) continue;
+    const ConstraintGroupBase& group = *model_.constraint_groups()[model_.group_of_row(r)];
+    const std::string kind = group.kind();
+    const bool tie = kind.find("coupling") != std::string::npos || kind.find("driver") != std::string::npos ||
+                     kind.find("gear") != std::string::npos || kind.find("rack") != std::string::npos;
+    if (!group.unilateral() && !tie) continue;  // (a joint's rows: the part of C the joints carry)
+    const std::string name = model_.constraint_name_of_row(r);
+    const std::string text = "'" + name + "' (" + model_.describe(name) + ")";
+    std::vector<std::string>& into = group.unilateral() ? stops : ties;
+    if (std::find(into.begin(), into.end(), text) == into.end()) into.push_back(text);
+  }
+  const auto listed = [](const std::vector<std::string>& items) {
+    std::string out;
+    for (size_t k = 0; k < items.size(); ++k) out += (k == 0 ? "" : k + 1 == items.size() ? " and " : ", ") + items[k];
+    return out;
+  };
+  const std::string moving = "its gap's " + std::string(measure) + " is " + fmt(approach) + " (beyond " +
+                             fmt(tolerance) + ")";
+  std::string what;
+  if (!stops.empty())  // (a closed stop and a coupling allow the gap no rate: only drift gives it one)
+    what = "its joint is held by " + listed(stops) +
+           (ties.empty() ? "" : ", to which " + listed(ties) + (ties.size() == 1 ? " ties" : " tie") + " it") +
+           ": both joints are at their limits, and this one cannot move along its limit apart. Yet " + moving +
+           ", which the held rows do not allow: the motion has drifted off them by that much (a violent motion, "
+           "such as an unstable controller's, outrunning the run's tolerances)";
+  else if (!ties.empty())
+    what = listed(ties) + (ties.size() == 1 ? " prescribes" : " prescribe") + " the motion along it and drive" +
+           (ties.size() == 1 ? "s" : "") + " the joint through the limit: " + moving;
+  else
+    what = "the joints leave no motion along it (a singular position, such as a gimbal lock of three revolutes), "
+           "and " + moving;
+  throw plain_failure("stop '" + stop + "' is reached at t = " + fmt(t) + " where " + what + ". No impact or stop "
+                          "force can act along a motion that is held: the run stops here.",
                       t);
 }
 
@@ -509,7 +551,7 @@ void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<in
     // its stop, approaching only by the velocity constraints' drift): such
     // a row takes no impulse
     if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {
-      if (!(std::abs(C[i].dot(v)) <= drift)) driven_through(which[i], t);
+      if (!(std::abs(C[i].dot(v)) <= drift)) driven_through(which[i], t, C[i].dot(v), drift, "rate");
       held[size_t(i)] = 1;
     }
   }
@@ -556,7 +598,7 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
     // a motion the drivers prescribe, or the closed rows hold (a mimic
     // finger whose leader rests on its own stop: its g'' is 0 to rounding)
     if (!(A(i, i) > 1e-10 * C[i].dot(d_.M_inv * C[i]))) {
-      if (b[i] < -tol) driven_through(which[i], t);
+      if (b[i] < -tol) driven_through(which[i], t, b[i], tol, "acceleration");
       may_close[i] = 0;
     }
   }

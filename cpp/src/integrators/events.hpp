@@ -156,7 +156,10 @@ class EventRunner {
   /// which open where their force is within rounding of 0.
   std::vector<int> rest_contacts(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
                                  const std::vector<int>& leaving);
-  [[noreturn]] void driven_through(int contact, double t) const;
+  /// Fails naming the stop `contact` reached where nothing can move along
+  /// it and what holds it (closed stops, couplings, drivers); `approach`:
+  /// its gap's rate or acceleration (`measure`), beyond `tolerance`.
+  [[noreturn]] void driven_through(int contact, double t, double approach, double tolerance, const char* measure);
 
   const Model& model_;
   Data d_;      // of the run: its left-out rows

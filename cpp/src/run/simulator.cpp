@@ -139,6 +139,9 @@ void Simulator::set_input(const std::string& name, double value) {
   const int k = input_slot(name);
   if (!std::isfinite(value))
     throw ModelError("Simulator: input '" + name + "' must be finite, got " + to_text(value));
+  if (!(std::abs(value) <= kLargestGiven))
+    throw ModelError("Simulator: input '" + name + "' = " + to_text(value) + " is beyond " + to_text(kLargestGiven) +
+                     ", the largest lagmb takes for a gain or an input: " + largest_given_reason());
   inputs_[k] = value;
   solved_ = solved_ && inputs_ == inputs_integrated_;
 }

@@ -5,26 +5,20 @@ legends."""
 
 import os
 
-_HINT = "lagmb plotting needs matplotlib: pip install 'lagmb[plot]'"
+from ..errors import extra_module
 
 
 def _matplotlib():
-    """The matplotlib pieces used here, or an ImportError with the install hint."""
-    try:
-        import matplotlib  # noqa: F401
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-    except ImportError as e:
-        raise ImportError(_HINT) from e
+    """The matplotlib pieces used here, or MissingExtraError (an ImportError) naming the 'plot' extra."""
+    extra_module("matplotlib", "plot", "lagmb plotting")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
     return Figure, FigureCanvasAgg
 
 
 def _pillow():
-    """Pillow, which writes the GIFs, or an ImportError with the install hint."""
-    try:
-        from PIL import Image  # noqa: F401
-    except ImportError as e:
-        raise ImportError(_HINT) from e
+    """Pillow, which writes the GIFs, or MissingExtraError naming the 'plot' extra."""
+    extra_module("PIL.Image", "plot", "lagmb plotting (a GIF)")
 
 
 def _figure(figsize, **kwargs):
