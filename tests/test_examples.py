@@ -239,13 +239,14 @@ def test_scene_gear_train_motor_torque():
 def test_bouncing_ball(outputs):
     """Drop from a 0.9 m gap: first touch at sqrt(2 h / g) = 0.42835 s (1e-7 s,
     printed to 8 decimals) at sqrt(2 g h) (1e-7 m/s); the rebound ratio is
-    within 2 % of e = 0.8 (the Flores law's own rebound is 0.986 e, see
-    tests/test_contact.py); five bounces in 2.5 s (10 events)."""
+    below e = 0.8 by at most 2.5e-3 of it (measured 1.7e-3: gravity presses
+    the ball down during the contact, tests/test_contact.py); five bounces
+    in 2.5 s (10 events)."""
     _, v = outputs("bouncing_ball")
     h = 0.9
     assert abs(v["first touch time"] - math.sqrt(2 * h / G)) <= 1e-7
     assert abs(v["first impact speed"] - math.sqrt(2 * G * h)) <= 1e-7
-    assert abs(v["effective restitution"] - 0.8) <= 0.02 * 0.8
+    assert -2.5e-3 * 0.8 <= v["effective restitution"] - 0.8 < 0.0
     assert v["contact events"] == 10
 
 

@@ -452,9 +452,14 @@ def test_contact_forces_are_drawn_as_arrows(chromium, tmp_path):
     vectors = [np.frombuffer(base64.b64decode(a["vectors"]), "<f4").reshape(-1, 3) for a in data["arrows"]]
     longest = max(np.linalg.norm(v, axis=1).max() for v in vectors)
     assert abs(longest - 0.1 * data["size"]) <= 1e-6 * data["size"]
-    c = r.contact("c0")
-    force = c.normal_force[-1] * c.normal[-1] + c.friction_force[-1]
-    assert np.allclose(vectors[0][-1] / np.linalg.norm(vectors[0][-1]), force / np.linalg.norm(force), atol=1e-6)
+    pressing_at_end = 0
+    for i, v in enumerate(vectors):  # (the box, bouncing, is in the air at the end)
+        c = r.contact(f"c{i}")
+        if c.normal_force[-1] > 0.0:
+            force = c.normal_force[-1] * c.normal[-1] + c.friction_force[-1]
+            assert np.allclose(v[-1] / np.linalg.norm(v[-1]), force / np.linalg.norm(force), atol=1e-6)
+            pressing_at_end += 1
+    assert pressing_at_end >= 2
     assert any(line.startswith("contact forces: ") for line in data["lines"])
     page, _ = open_page(chromium, path)
     page.evaluate(f"lagmbViewer.setFrame({len(r.t) - 1})")

@@ -148,9 +148,16 @@ ContactLaw contact_law(const Args& a, const std::string& label) {
                      "1e13 at R = 200 m); give at most 1e13");
   require_positive(law.slip_velocity, label, "slip_velocity");
   law.restitution = a.real("restitution");
+  // (no finite damping rebounds at 0: its damping c tends to 1/e)
   if (!(law.restitution > 0.0 && law.restitution <= 1.0))
-    throw ModelError(label + ": restitution must be in (0, 1] (the damping is 8 (1 - e) / (5 e)), got " +
-                     to_text(law.restitution));
+    throw ModelError(label + ": restitution must be in (0, 1], got " + to_text(law.restitution) +
+                     " (no finite damping rebounds at 0; restitution 0.01 rebounds at 1 % of the impact speed: "
+                     "practically no bounce)");
+  law.damping = ContactLaw::damping_for(law.restitution);
+  if (!std::isfinite(law.damping))
+    throw ModelError(label + ": restitution " + to_text(law.restitution) +
+                     " is too small: its damping, about 1 / e, is not a finite number (restitution 0.01 "
+                     "rebounds at 1 % of the impact speed: practically no bounce)");
   law.friction = a.real("friction");
   require_nonnegative(law.friction, label, "friction");
   return law;
@@ -159,7 +166,7 @@ ContactLaw contact_law(const Args& a, const std::string& label) {
 std::vector<Param> contact_law_params() {
   return {
       param::real("stiffness", "N/m^1.5", "contact stiffness k, at most 1e13 (Hertz: (4/3) E* sqrt(R))"),
-      param::real("restitution", "", "coefficient of restitution e in (0, 1]"),
+      param::real("restitution", "", "coefficient of restitution e in (0, 1]: the rebound speed over the impact speed"),
       param::real("friction", 0.0, "", "Coulomb coefficient mu"),
       param::real("slip_velocity", 1e-4, "m/s", "v_s below which friction is smoothed"),
   };

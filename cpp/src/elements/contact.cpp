@@ -30,8 +30,9 @@ KindInfo contact_kind() {
   KindInfo k = {"contact", "add_contact", "forces", "contact", Role::kContact,
           "Contact between a circle on circle_body and the line through `point` along `direction` on "
           "line_body; the circle belongs on the left of the direction. With penetration d > 0 the normal "
-          "force is k d^1.5 (1 + 8 (1 - e) / (5 e) d' / v_impact) (Hunt-Crossley damping calibrated to "
-          "the restitution e, Flores et al. 2011), v_impact the approach speed at contact onset; "
+          "force is k d^1.5 (1 + c d' / v_impact) (Hunt-Crossley damping with c (1 + e) = ln((1 + c) / (1 - c e)): "
+          "an impact under the contact force alone rebounds at exactly e times its speed), v_impact the "
+          "approach speed at contact onset (at least 1e-3 m/s); "
           "Coulomb friction -mu F_n v_t / sqrt(v_t^2 + v_s^2). Onset and release are events "
           "(Result.events) where the integrator restarts.",
           {

@@ -56,9 +56,10 @@ KindInfo spatial_contact_kind() {
       {"spatial_contact", "add_contact", "forces", "contact", Role::kContact,
        "Contact between two collision shapes (Model.add_shape) on different bodies (or one on the ground): "
        "the pair's geometry gives contact points (a sphere 1, a capsule's ends 2, a box's corners 8, a "
-       "convex hull's vertices), each with penetration d > 0 pressed by k d^1.5 (1 + 8 (1 - e) / (5 e) d' / "
-       "v_impact) along the normal (Hunt-Crossley damping calibrated to the restitution e, Flores et al. "
-       "2011; v_impact the approach speed at the point's onset) and Coulomb friction -mu F_n v_t / "
+       "convex hull's vertices), each with penetration d > 0 pressed by k d^1.5 (1 + c d' / v_impact) along "
+       "the normal (Hunt-Crossley damping with c (1 + e) = ln((1 + c) / (1 - c e)): an impact under the "
+       "contact force alone rebounds at exactly e times its speed; v_impact the approach speed at the "
+       "point's onset, at least 1e-3 m/s) and Coulomb friction -mu F_n v_t / "
        "sqrt(|v_t|^2 + v_s^2) against the slip velocity v_t in the tangent plane. Each point's onset and "
        "release is an event (Result.events) where the integrator restarts. Vertices against a plane (a box's "
        "corners, a hull's) stick: where every pressing point slips slower than v_s and the friction needed is "
