@@ -389,7 +389,7 @@ class Result:
     def effort(self, element):
         """What a driver, stop, force element or joint friction applies at
         each output, as its kind says (``lagmb info --kinds``: the line
-        "Result.effort" of each kind; ``registry.BY_NAME[kind].effort``):
+        "r.effort(name)" of each kind; ``registry.BY_NAME[kind].effort``):
 
         - a driver: (k,) the force (N) or torque (N m) along what it
           drives, imposing its motion, positive along the coordinate

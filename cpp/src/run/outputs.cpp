@@ -1,6 +1,7 @@
 // Reactions, efforts, friction, energy and residuals at a run's outputs (outputs.hpp).
 #include "lagmb/run/outputs.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "lagmb/assembly/assembly.hpp"
@@ -65,6 +66,14 @@ OutputRows reactions(const Model& model, const std::string& element, const Outpu
   require(model, out, true, false, true);
   const ElementRef& r = constraint_element(model, element, "a joint or driver");
   const ConstraintGroupBase& g = *model.constraint_groups()[r.group];
+  if (about_joint && !g.has_origin()) {
+    const KindInfo* kind = model.given_kind(element);
+    std::string what = kind ? kind->name : g.kind();
+    std::replace(what.begin(), what.end(), '_', ' ');
+    throw ModelError("'" + element + "' (" + what + ") has no point of its own to take its reaction's torque about "
+                     "(drivers, stops, gears, racks and couplings have none): its torque is about its second "
+                     "body's centre of mass");
+  }
   const int n = model.n_coordinates(), m = model.n_constraints();
   Data d(model);
   OutputRows R(out.k, g.dimension() == 2 ? 3 : 6);

@@ -29,6 +29,7 @@
 
 #include <array>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -113,9 +114,9 @@ time_argument_t<Kind> time_argument(const Instant& at) {
 
 /// A joint with a point of its own (a revolute's pin): Kind::origin(c, t).
 template <class Kind, class = void>
-struct has_origin : std::false_type {};
+struct has_origin_of : std::false_type {};
 template <class Kind>
-struct has_origin<Kind, std::void_t<decltype(std::declval<const Kind&>().origin(
+struct has_origin_of<Kind, std::void_t<decltype(std::declval<const Kind&>().origin(
                             std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
                             std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
 
@@ -217,6 +218,8 @@ class ConstraintGroupBase {
   /// kind's origin; ModelError for a kind without one).
   virtual VecX reaction(int k, const double* q, const Instant& at, const double* lam, bool joint_axes,
                         bool about_joint = false) const = 0;
+  /// Whether the kind has a point of its own (origin) to take that torque about.
+  virtual bool has_origin() const = 0;
   /// What Result.effort reads of element k, a driver or a stop, from the
   /// global multipliers: its kind's effort(lam of its rows) where it gives
   /// one, else -lam of its one row (the force or torque along what it drives).
@@ -452,16 +455,17 @@ class ConstraintGroup final : public ConstraintGroupBase {
     const auto t = time_argument<Kind>(at);
     typename S::Point P;
     if (about_joint) {
-      if constexpr (has_origin<Kind>::value)
+      if constexpr (has_origin_of<Kind>::value)
         P = items[k].origin(c, t);
       else
-        throw ModelError("'" + items[k].name + "' (a " + Kind::kind + ") has no joint point to take the torque "
-                         "about; its reaction's torque is about its second body's centre of mass");
+        throw std::logic_error(std::string("reaction: a ") + Kind::kind + " has no origin (ask has_origin)");
     }
     std::optional<typename S::Axes> E;
     if (joint_axes) E = items[k].axes(c, t);
     return S::reaction(local_reaction(k, q, at, lam), c, E ? &*E : nullptr, about_joint ? &P : nullptr);
   }
+
+  bool has_origin() const override { return has_origin_of<Kind>::value; }
 
   double effort(int k, const double* lam) const override {
     const Eigen::Map<const Rows> l(lam + place_[k].row0);
@@ -470,7 +474,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
     else if constexpr (R == 1)
       return -l[0];
     else
-      throw ModelError("'" + items[k].name + "' (a " + std::string(Kind::kind) + ") has no effort");
+      throw std::logic_error(std::string("effort: a ") + Kind::kind + " has none (its registry entry says so)");
   }
 
  private:
