@@ -13,7 +13,6 @@ import subprocess
 import sys
 import textwrap
 import threading
-import time
 import warnings
 import weakref
 
@@ -151,10 +150,6 @@ def test_a_step_bound_that_needs_too_many_steps_is_refused_up_front():
     assert failure.value.result is None or len(failure.value.result.t) < 101
 
 
-# a sanitized build (make test-asan) runs several times slower
-RESPONSE = 3.0 if "libasan" in os.environ.get("LD_PRELOAD", "") else 1.0
-
-
 def interrupt_after(seconds):
     """Sends SIGINT to this process after `seconds` (as Ctrl-C does). Python
     turns SIGINT into KeyboardInterrupt only if it was not ignored when the
@@ -167,36 +162,38 @@ def interrupt_after(seconds):
     return timer
 
 
-def test_ctrl_c_stops_a_long_run_within_a_second_and_keeps_the_outputs():
-    """SIGINT during a run that would take minutes (a 200-link chain over
-    100 s at rtol 1e-10) raises KeyboardInterrupt itself, well within a
-    second, carrying the outputs computed so far as .result."""
+def test_ctrl_c_stops_a_long_run_and_keeps_the_outputs():
+    """SIGINT half a second into a run that would take minutes (a 200-link
+    chain over 100 s at rtol 1e-10; 0.07 s of it computed by then on a busy
+    2-core machine) raises KeyboardInterrupt itself, carrying the outputs
+    computed so far as .result: they end before 10 s of the 100 asked (the
+    core looks for the interrupt every 20 ms of wall time; the test counts
+    how far the run got, not the seconds it took, which a loaded machine
+    stretches)."""
     m = chain(200)
     timer = interrupt_after(0.5)
-    start = time.monotonic()
     with pytest.raises(KeyboardInterrupt) as stop:
         mb.simulate(m, t_end=100.0, rtol=1e-10, n_out=100001)
-    waited = time.monotonic() - start - 0.5
     timer.cancel()
-    assert waited < RESPONSE
     partial = stop.value.result
-    assert partial is not None and len(partial.t) >= 1
+    assert partial is not None and 1 <= len(partial.t) and partial.t[-1] < 10.0
     assert np.all(np.isfinite(partial.q)) and np.all(np.isfinite(partial.lam))
     assert partial.a.shape == partial.q.shape
 
 
 def test_ctrl_c_stops_a_kinematic_analysis():
     """The kinematic analysis of a driven 100-link chain with a million outputs
-    stops at Ctrl-C too."""
+    stops at Ctrl-C too: its outputs end before 100 s of the 1,000 asked
+    (0.5 s of them on a busy 2-core machine)."""
     m = chain(100)
     for k in range(100):
         m.drive_joint(f"motor{k}", f"joint{k}", mb.Linear(0.1))
     timer = interrupt_after(0.5)
-    start = time.monotonic()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt) as stop:
         mb.simulate(m, t_end=1000.0, n_out=1_000_000)
     timer.cancel()
-    assert time.monotonic() - start - 0.5 < RESPONSE
+    partial = stop.value.result
+    assert partial is not None and partial.t[-1] < 100.0
 
 
 @pytest.mark.parametrize("exception", [KeyboardInterrupt, SystemExit])

@@ -78,8 +78,10 @@ class UrdfWarning(UserWarning):
     the message names the file, the line and the element: another name (one
     lagmb's one namespace already holds), an <origin> in a <link> ignored,
     an inertia no rigid body has, a mesh not found, a mimic of a joint the
-    file does not have, a joint held because no mass moves with it.
-    load_urdf(strict=True) refuses the last four instead."""
+    file does not have, a joint held because no mass moves with it; or it
+    names what the file's robot does that a run cannot follow (a chain of
+    revolutes that can reach a gimbal lock). load_urdf(strict=True)
+    refuses the last five instead."""
 
 
 class _Element:
@@ -502,7 +504,8 @@ GROUND_CONTACT = {"stiffness": 1e7, "restitution": 0.5, "friction": 0.8}
 
 
 def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_dirs=None,
-              gravity=(0.0, 0.0, -9.81), mimic=True, positions=None, strict=False, ground=None, contact=None):
+              gravity=(0.0, 0.0, -9.81), mimic=True, positions=None, hold=None, strict=False, ground=None,
+              contact=None):
     """A spatial :class:`lagmb.Model` of the robot a URDF file describes.
 
     Links joined by fixed joints become one body, named after the first link
@@ -572,13 +575,21 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     ``limits=False`` or a continuous middle joint), where the outer joints
     turning opposite ways then moves no mass or inertia (massless links
     between them: human.urdf's neck, shoulders and hips; point masses on the
-    axes: iCub's right hip), the middle joint is held at its initial value
-    in the same way, with one UrdfWarning naming it, its line, the lock's
-    angle and the outer joints: a run that reached the lock would stop
-    there, the forces not determining the motion.
+    axes: iCub's right hip), nothing is held: away from the lock the forces
+    determine every joint's motion (the chain moves what it carries as a
+    ball joint would), and only at the lock do they leave the outer joints'
+    turning opposite ways undetermined, so a run that reaches it fails
+    there. One UrdfWarning names each such middle joint, its line, the
+    lock's angle and the outer joints; ``hold=[the middle joint]`` keeps
+    the chain away from its lock, taking that joint's motion away.
+    ``hold``: names of joints of the file (revolute, continuous or
+    prismatic, not a mimic's follower) held where the model is built (at
+    ``positions``) as fixed joints, their limits and damping left out, a
+    leader's mimics held with it (as ``pin.buildReducedModel`` locks
+    joints).
     ``strict=True`` refuses each of these instead: a triangle inequality
     broken, a negative moment, a missing mesh, a mimic of an unknown joint,
-    a joint no mass moves with, a chain that reaches a gimbal lock.
+    a joint no mass moves with, a chain that can reach a gimbal lock.
     ``floating_base``, ``limits``, ``dynamics``, ``mimic`` and ``strict``
     are True or False (not strings or numbers).
 
@@ -627,6 +638,9 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
         law.update(contact)
     if positions is not None and not isinstance(positions, collections.abc.Mapping):
         raise UrdfError(f"load_urdf: positions must be a dict {{joint: angle or slide}}, got {_checks.show(positions)}")
+    if hold is not None and (isinstance(hold, (str, bytes, collections.abc.Mapping))
+                             or not isinstance(hold, collections.abc.Iterable)):
+        raise UrdfError(f"load_urdf: hold must be a list of joint names, got {_checks.show(hold)}")
     reader = _Reader(path, package_dirs, strict)
     links, joints, root, _ = reader.read()
     reader.warn_missing_meshes()
@@ -642,6 +656,8 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
             raise UrdfError(f"{reader.path}: positions: joint '{name}' mimics '{followers[name]['joint']}': give "
                             f"the position of '{followers[name]['joint']}' (or load with mimic=False)")
     value = _joint_values(reader, joints, positions, followers, limits)
+    if hold is not None:
+        _fix(joints, followers, _held_by_argument(reader, joints, followers, hold), value)
     for joint in joints.values():
         owner = f"joint '{joint['name']}'"
         if dynamics and (joint["damping"] > 0 or joint["friction"] > 0) and joint["type"] == "planar":
@@ -655,8 +671,7 @@ def load_urdf(path, *, floating_base=False, limits=True, dynamics=True, package_
     _check_inertias(reader, links, [link for link in order if group_of[link] != ground], strict)
     locks = _gimbal_locks(reader, links, joints, root, children, value, limits, followers, floating_base)
     if locks:
-        _hold(reader, joints, followers, locks, value, strict)
-        pose, group_of, order = _poses(reader, joints, root, children, value)
+        _warn_gimbal_locks(reader, joints, locks, strict)
     held = _held_joints(reader, links, joints, order, pose, followers, floating_base)
     if held:
         _hold(reader, joints, followers, held, value, strict)
@@ -894,10 +909,21 @@ def _mass_matrix(links, joints, order, pose, followers, floating_base):
     J_w^T I J_w, with each independent coordinate's twist at its joint) in
     the configuration of `pose`, and the joint of each of its columns (None:
     a planar, floating or base coordinate); (None, columns) where no column
-    is a joint that can be held or M is not finite."""
+    is a joint that can be held or M is not finite.
+
+    Summed as the composite-rigid-body algorithm sums it: with s_k the
+    unit twists (angular velocity, velocity of the point at the world
+    origin) of the coordinates, and S_k the spatial inertia about the
+    origin of every link that s_k moves, [[J_O, [h]x], [[h]x^T, m 1]]
+    (mass m, first moment h, inertia J_O about the origin, summed from the
+    leaves up), each pair of twists i above (or at) k adds s_i^T S_k s_k to
+    M[c_i, c_k] and M[c_k, c_i] (a mimic's follower adds to its leader's
+    column): time linear in the links times the depth of the tree, where
+    summing the links' m J_c^T J_c would be cubic in a long chain."""
     columns = {}  # independent coordinate -> its column
     holdable = []  # the joint of each column that may be held (None: a planar, floating or base coordinate)
     twists = {}  # joint -> [(column, twist (angular, velocity of the point at the world origin))]
+    leaders = _leaders(followers)
 
     def column(key, joint):
         if key not in columns:
@@ -920,10 +946,7 @@ def _mass_matrix(links, joints, order, pose, followers, floating_base):
         at = p_parent + R_parent @ joint["p"]
         axis = R_parent @ joint["R"] @ joint["axis"]
         if kind in MOVING:
-            leader, factor = joint["name"], 1.0
-            while leader in followers:
-                factor *= followers[leader]["multiplier"]
-                leader = followers[leader]["joint"]
+            leader, factor = leaders.get(joint["name"], (joint["name"], 1.0))
             twist = np.concatenate([axis, np.cross(at, axis)]) if kind in ("revolute", "continuous") else \
                 np.concatenate([np.zeros(3), axis])
             twists[joint["name"]] = [(column(leader, leader), factor * twist)]
@@ -941,27 +964,28 @@ def _mass_matrix(links, joints, order, pose, followers, floating_base):
         return None, holdable
     parent_joint = {joint["child"]: joint for joint in joints.values()}
     M = np.zeros((n, n))
-    jacobian = {}
+    below = {}  # link -> the spatial inertia of it and the links below it
+    for link, (m, h, J) in _subtree_inertias(links, joints, order, pose).items():
+        h = np.cross(np.eye(3), h)  # ([h]x: its rows e_i x h)
+        below[link] = np.block([[J, h], [h.T, m * np.eye(3)]])
     with np.errstate(all="ignore"):  # (values beyond what a model holds: refused when the bodies are built)
-        for link in order:
-            if link == root:
-                J = np.zeros((6, n))
-                for c, twist in base:
-                    J[:, c] += twist
-            else:
-                joint = parent_joint[link]
-                J = jacobian[joint["parent"]].copy()
-                for c, twist in twists.get(joint["name"], ()):
-                    J[:, c] += twist
-            jacobian[link] = J
-            data = links[link]
-            if data["mass"] == 0 and not data["inertia"].any():
-                continue
-            R, p = pose[link]
-            centre = p + R @ data["com"]
-            Jw = J[:3]
-            Jc = J[3:] + np.cross(Jw.T, centre).T  # (v_c = v_o + w x c)
-            M += data["mass"] * Jc.T @ Jc + Jw.T @ (R @ data["inertia"] @ R.T) @ Jw
+        # the twists above each link, walked in `order` (parents first, each subtree in turn): a link's
+        # ancestors' twists are the first `depth[parent]` rows, which its siblings' subtrees leave alone
+        rows = len(base) + sum(len(t) for t in twists.values())
+        path, path_columns, depth = np.zeros((rows, 6)), np.zeros(rows, dtype=int), {}
+
+        def add(link, moving, start):
+            for q, (c, twist) in enumerate(moving):
+                path[start + q], path_columns[start + q] = twist, c
+                values = path[:start + q + 1] @ (below[link] @ twist)
+                np.add.at(M, (path_columns[:start + q + 1], c), values)
+                np.add.at(M, (c, path_columns[:start + q]), values[:-1])
+            depth[link] = start + len(moving)
+
+        add(root, base, 0)
+        for link in order[1:]:
+            joint = parent_joint[link]
+            add(link, twists.get(joint["name"], ()), depth[joint["parent"]])
     if not np.all(np.isfinite(M)):
         return None, holdable
     return 0.5 * (M + M.T), holdable
@@ -1012,7 +1036,11 @@ def _held_joints(reader, links, joints, order, pose, followers, floating_base):
     if rest.size == 0:
         return held
     scale = 1.0 / np.sqrt(diagonal[rest])
-    values, vectors = np.linalg.eigh(M[np.ix_(rest, rest)] * np.outer(scale, scale))
+    scaled = M[np.ix_(rest, rest)] * np.outer(scale, scale)
+    values = np.linalg.eigvalsh(scaled)  # (the vectors, several times the work, only where needed)
+    if not np.any(values <= MOTIONLESS * values.max()):
+        return held
+    values, vectors = np.linalg.eigh(scaled)
     null = vectors[:, values <= MOTIONLESS * values.max()]
     if null.shape[1] == 0:
         return held
@@ -1046,16 +1074,20 @@ def _gimbal_locks(reader, links, joints, root, children, value, limits, follower
     joints where the model is built) has more motions that move no mass
     (_zero_modes) than where the model is built: J1 and J3 turning opposite
     ways moves nothing through massless links (human.urdf's neck, Z-X-Y
-    with X limited to +-1.5708, 3.7e-6 rad past the lock at -pi/2). J2 is
-    held at its initial angle (there J1's and J3's axes are apart), so that
-    the chain never reaches the lock. Joints that mimic others are not J2."""
+    with X limited to +-1.5708, 3.7e-6 rad past the lock at -pi/2). Only
+    there is that motion undetermined (elsewhere the three joints move what
+    J3 carries as a ball joint would), so nothing is held for it: the
+    caller warns. Joints that mimic others are not J2."""
     turning = ("revolute", "continuous")
     pose, group_of, order = _poses(reader, joints, root, children, value)
-    M, _ = _mass_matrix(links, joints, order, pose, followers, floating_base)
-    if M is None:
-        return []
-    built = _zero_modes(M)
+    built = None  # (the motions that move no mass where the model is built: counted at the first lock found)
+    parts = _subtree_inertias(links, joints, order, pose)
+    coupled = set(followers) | {leader for leader, _ in _leaders(followers).values()}
     hanging = {joint["child"]: joint for joint in joints.values()}
+    carried = {}  # group -> the revolutes on its links (each J2's candidates for J3: linear, not a scan of all)
+    for joint in joints.values():
+        if joint["type"] in turning:
+            carried.setdefault(group_of[joint["parent"]], []).append(joint)
     found = []
     for j2 in joints.values():
         if j2["type"] not in turning or j2["name"] in followers:
@@ -1072,9 +1104,7 @@ def _gimbal_locks(reader, links, joints, root, children, value, limits, follower
         b = b / np.linalg.norm(b)
         c = R2.T @ (p1 - p2)
         R_child, p_child = pose[j2["child"]]  # (J2's frame turned by its initial angle)
-        for j3 in joints.values():
-            if j3["type"] not in turning or group_of[j3["parent"]] != j2["child"]:
-                continue
+        for j3 in carried.get(j2["child"], ()):
             R3, p3 = pose[j3["parent"]]
             u = R_child.T @ (R3 @ j3["R"] @ j3["axis"])
             u = u / np.linalg.norm(u)
@@ -1101,10 +1131,31 @@ def _gimbal_locks(reader, links, joints, root, children, value, limits, follower
                         continue
                 else:
                     near, beyond = lock + 2 * np.pi * np.round((value[j2["name"]] - lock) / (2 * np.pi)), 0.0
-                at = dict(value, **{j2["name"]: float(near)})
-                for _ in followers:  # (J2's mimics with it)
-                    for follower, m in followers.items():
-                        at[follower] = m["multiplier"] * at[m["joint"]] + m["offset"]
+                if not {j1["name"], j2["name"], j3["name"]} & coupled:
+                    # a first look that costs no mass matrix (a long chain of revolutes through one point has a
+                    # lock at each joint): the energy of J1 and J3 turning opposite ways at 1 rad/s at the lock,
+                    # the links between J2 and J3 turned there (the line turned back instead), against J3's
+                    # (no motion that moves this much can be one the count below finds)
+                    axis1 = R1 @ j1["axis"] / np.linalg.norm(j1["axis"])
+                    turned = _rotations.turn(R2 @ a2, float(near) - value[j2["name"]])
+                    moved = _turning_inertia(_less(parts[j1["child"]], parts[j2["child"]]), axis1, p1) + \
+                        _turning_inertia(_less(parts[j2["child"]], parts[j3["child"]]), turned.T @ axis1,
+                                         p2 + turned.T @ (p1 - p2))
+                    axis3 = R3 @ j3["R"] @ j3["axis"]
+                    carried_by_j3 = _turning_inertia(parts[j3["child"]], axis3 / np.linalg.norm(axis3),
+                                                     p3 + R3 @ j3["p"])
+                    whole = parts[j1["child"]]
+                    with np.errstate(all="ignore"):
+                        slack = 1e-10 * (np.trace(whole[2]) + whole[0] * (p1 @ p1))  # (round-off of the sums)
+                    if moved > 1e-6 * (moved + 2 * carried_by_j3) + slack:
+                        continue
+                at = _joint_values(reader, joints, {name: x for name, x in value.items() if name not in followers}
+                                   | {j2["name"]: float(near)}, followers, False)  # (J2's mimics with it)
+                if built is None:
+                    M, _ = _mass_matrix(links, joints, order, pose, followers, floating_base)
+                    if M is None:
+                        return []
+                    built = _zero_modes(M)
                 pose_at, _, order_at = _poses(reader, joints, root, children, at)
                 M, _ = _mass_matrix(links, joints, order_at, pose_at, followers, floating_base)
                 if M is None or _zero_modes(M) <= built:
@@ -1124,13 +1175,50 @@ def _gimbal_locks(reader, links, joints, root, children, value, limits, follower
     return found
 
 
+def _subtree_inertias(links, joints, order, pose):
+    """{link: (mass, first moment, inertia about the world origin) of it and
+    every link below it} in the configuration of `pose` (`order`: parents
+    first): sums, so one subtree's less another's within it are the links
+    between."""
+    parent = {joint["child"]: joint["parent"] for joint in joints.values()}
+    out = {}
+    with np.errstate(all="ignore"):  # (values beyond what a model holds: refused when the bodies are built)
+        for link in reversed(order):  # (children first: each has added itself to its link when it comes)
+            data = links[link]
+            R, p = pose[link]
+            m, c = data["mass"], p + R @ data["com"]
+            own = (m, m * c, R @ data["inertia"] @ R.T + m * (c @ c * np.eye(3) - np.outer(c, c)))
+            out[link] = _plus(out[link], own) if link in out else own
+            if link in parent:
+                up = parent[link]
+                out[up] = _plus(out[up], out[link]) if up in out else out[link]
+    return out
+
+
+def _plus(part, other):
+    return part[0] + other[0], part[1] + other[1], part[2] + other[2]
+
+
+def _less(part, other):
+    return part[0] - other[0], part[1] - other[1], part[2] - other[2]
+
+
+def _turning_inertia(part, axis, point):
+    """The moment of inertia of `part` (mass m, first moment h, inertia
+    J_O about the world origin) about the line through `point` along the
+    unit `axis`: a . J_O a - 2 (a x h) . (a x point) + m |a x point|^2
+    (twice the kinetic energy of its turning at 1 rad/s about the line)."""
+    m, h, J = part
+    ap = np.cross(axis, point)
+    with np.errstate(all="ignore"):
+        return float(axis @ J @ axis - 2 * np.cross(axis, h) @ ap + m * ap @ ap)
+
+
 def _hold(reader, joints, followers, held, value, strict):
     """Each joint of `held` (and the followers of its mimics) fixed at its
     value, with one UrdfWarning naming each joint, its line and why; with
     strict a UrdfError naming the first."""
     def why(name, partners):
-        if isinstance(partners, str):  # (a gimbal lock's)
-            return partners
         if partners is None:
             return "no mass or inertia moves with it"
         others = [(other, rate) for other, rate in partners if other != name]
@@ -1145,17 +1233,13 @@ def _hold(reader, joints, followers, held, value, strict):
         reader.fail(joints[name]["element"], f"{why(name, partners)}, so the forces do not determine its motion"
                     f"{more}; strict=True refuses this: give the links it moves mass and inertia, or load with "
                     "strict=False to hold it at its initial position", f"joint '{name}'")
-    leaders = {name for name, _ in held}
+    mimics = _mimics(followers)
     shown = []
     for name, partners in held:
-        mimics = [f for f in followers if _leader(followers, f) == name]
-        also = f", with its mimic{'s' if len(mimics) > 1 else ''} {', '.join(repr(f) for f in mimics)}" if mimics else ""
+        also = f", with its mimic{'s' if len(mimics[name]) > 1 else ''} {', '.join(repr(f) for f in mimics[name])}" \
+            if mimics.get(name) else ""
         shown.append(f"joint '{name}' (line {joints[name]['element'].line}{also}): {why(name, partners)}")
-    for name in list(joints):
-        if name in leaders or (name in followers and _leader(followers, name) in leaders):
-            joint = joints[name]
-            joint.update(moves_as=joint["type"], type="fixed", locked=value[name], held=True)
-            followers.pop(name, None)
+    _fix(joints, followers, [name for name, _ in held], value)
     count = len(held)
     warnings.warn(UrdfWarning(
         f"{reader.path}: {count} joint{'s are' if count > 1 else ' is'} held at {'their' if count > 1 else 'its'} "
@@ -1163,6 +1247,88 @@ def _hold(reader, joints, followers, held, value, strict):
         f"and damping left out), because the forces would not determine {'their' if count > 1 else 'its'} "
         "motion: " + "; ".join(shown) + ". Give the links they move mass and inertia to let them move "
         "(strict=True refuses such a file)"), stacklevel=3)
+
+
+def _fix(joints, followers, names, value):
+    """The joints `names` (leaders or joints that mimic none) and the
+    followers of their mimics made fixed joints at their values: their
+    child links merge into their parents' bodies; `moves_as` keeps what
+    they were for the poses."""
+    mimics = _mimics(followers)
+    for name in names:
+        for joint in [name, *mimics.get(name, ())]:
+            joints[joint].update(moves_as=joints[joint]["type"], type="fixed", locked=value[joint], held=True)
+            followers.pop(joint, None)
+
+
+def _warn_gimbal_locks(reader, joints, locks, strict):
+    """One UrdfWarning naming each chain's middle joint, its line and its
+    lock (nothing is held: away from the lock the forces determine every
+    joint's motion); with strict a UrdfError naming the first."""
+    if strict:
+        name, reason = locks[0]
+        reader.fail(joints[name]["element"], f"{reason}, so there the forces do not determine their motion and a run "
+                    f"that reaches the lock fails; strict=True refuses this: give the links between them mass and "
+                    f"inertia off their axes, or load with strict=False (hold=['{name}'] keeps the chain away "
+                    "from the lock)", f"joint '{name}'")
+    count = len(locks)
+    shown = "; ".join(f"joint '{name}' (line {joints[name]['element'].line}): {reason}" for name, reason in locks)
+    names = ", ".join(repr(name) for name, _ in locks)
+    chains = "the chains away from their locks, taking those joints'" if count > 1 else \
+        "the chain away from the lock, taking that joint's"
+    warnings.warn(UrdfWarning(
+        f"{reader.path}: {count} chain{'s' if count > 1 else ''} of revolutes can reach a gimbal lock: {shown}. "
+        "Nothing is held (away from a lock the forces determine every joint's motion); at the lock they do not "
+        f"determine that turning, and a run that reaches it fails there. hold=[{names}] keeps {chains} motion "
+        "away; mass and inertia off the outer joints' axes in the links between them remove the lock "
+        "(strict=True refuses such a file)"), stacklevel=3)
+
+
+def _held_by_argument(reader, joints, followers, hold):
+    """The joints of load_urdf's `hold`: names of joints of the file with
+    one coordinate that follow no mimic (a leader's mimics are held with
+    it)."""
+    names = []
+    for name in hold:
+        joint = joints.get(name) if isinstance(name, str) else None
+        if joint is not None and joint.get("moves_as"):
+            raise UrdfError(f"{reader.path}: hold: joint '{name}' is locked at {joint['locked']!r} by its equal limits "
+                            "already")
+        if joint is None or joint["type"] not in MOVING:
+            movable = [j["name"] for j in joints.values() if j["type"] in MOVING]
+            raise UrdfError(f"{reader.path}: hold: {_checks.show(name)} is not a revolute, continuous or prismatic "
+                            f"joint of the file (those are: {', '.join(movable)})")
+        if name in followers:
+            raise UrdfError(f"{reader.path}: hold: joint '{name}' mimics '{followers[name]['joint']}': hold "
+                            f"'{_leader(followers, name)}' (its mimics are held with it), or load with mimic=False")
+        if name not in names:
+            names.append(name)
+    return names
+
+
+def _mimics(followers):
+    """{leader: [the joints whose chains of mimics end at it]}."""
+    out = {}
+    for name, (leader, _) in _leaders(followers).items():
+        out.setdefault(leader, []).append(name)
+    return out
+
+
+def _leaders(followers):
+    """{follower: (the joint its chain of mimics ends at, the product of the
+    multipliers along it)}, each chain walked once (linear in the number of
+    followers, where walking each follower's chain would be quadratic)."""
+    out = {}
+    for name in followers:
+        path, at = [], name
+        while at in followers and at not in out:
+            path.append(at)
+            at = followers[at]["joint"]
+        leader, factor = out.get(at, (at, 1.0))
+        for joint in reversed(path):  # (nearest the leader first)
+            factor *= followers[joint]["multiplier"]
+            out[joint] = (leader, factor)
+    return out
 
 
 def _leader(followers, name):
