@@ -6,6 +6,14 @@
 #include "lagmb/analyses/kinematics.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 #include "lagmb/assembly/assembly.hpp"
+#include "lagmb/elements/drivers.hpp"
+#include "lagmb/elements/gear.hpp"
+#include "lagmb/elements/joint_coupling.hpp"
+#include "lagmb/elements/rack_pinion.hpp"
+#include "lagmb/elements/revolute.hpp"
+#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/elements/spatial_stop.hpp"
+#include "lagmb/elements/stop.hpp"
 #include "lagmb/model/data.hpp"
 #include "models.hpp"
 
@@ -51,6 +59,20 @@ TEST_CASE(the_rank_counts_the_joints_equations_only) {
   const ConstraintRank r = constraint_rank(*model, model->initial_q(), 0.0);
   CHECK(r.equations == 2 && r.rank == 2 && r.dependent_rows.empty());
   CHECK(degrees_of_freedom(*model, 0.0) == 1);
+}
+
+// Where a stop is driven through its limit, the event runner names what holds
+// it: the stops (unilateral) and the kinds that prescribe or tie the joints'
+// motion (is_tie), never a joint's own rows; the kinds say which they are.
+TEST_CASE(drivers_couplings_gears_and_racks_tie_motion_joints_and_stops_do_not) {
+  CHECK(is_tie<AngleDriver>::value && is_tie<SlideDriver>::value && is_tie<CoordinateDriver>::value);
+  CHECK(is_tie<SpatialAngleDriver>::value && is_tie<SpatialSlideDriver>::value && is_tie<SpatialPositionDriver>::value);
+  CHECK(is_tie<JointCoupling>::value && is_tie<GearPair>::value && is_tie<RackPinion>::value);
+  CHECK(!is_tie<RevoluteJoint>::value && !is_tie<JointStop>::value && !is_tie<SpatialJointStop>::value);
+  CHECK(is_unilateral<JointStop>::value && !is_unilateral<GearPair>::value);
+  const auto model = pendulum_with_stop();  // a pin and a stop
+  CHECK(!model->constraint_groups()[model->group_of_row(0)]->ties_motion());
+  CHECK(!model->constraint_groups()[model->group_of_row(2)]->ties_motion());
 }
 
 LAGMB_TEST_MAIN()

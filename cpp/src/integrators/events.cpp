@@ -493,10 +493,7 @@ void EventRunner::driven_through(int contact, double t, double approach, double 
   for (int r = 0; r < y.size(); ++r) {
     if (!(std::abs(y[r]) > 1e-6 * y_max) || r == row) continue;
     const ConstraintGroupBase& group = *model_.constraint_groups()[model_.group_of_row(r)];
-    const std::string kind = group.kind();
-    const bool tie = kind.find("coupling") != std::string::npos || kind.find("driver") != std::string::npos ||
-                     kind.find("gear") != std::string::npos || kind.find("rack") != std::string::npos;
-    if (!group.unilateral() && !tie) continue;  // (a joint's rows: the part of C the joints carry)
+    if (!group.unilateral() && !group.ties_motion()) continue;  // (a joint's rows: the part of C the joints carry)
     const std::string name = model_.constraint_name_of_row(r);
     const std::string text = "'" + name + "' (" + model_.describe(name) + ")";
     std::vector<std::string>& into = group.unilateral() ? stops : ties;

@@ -18,6 +18,7 @@ struct DriverBase {
   int body_i = -1, body_j = -1;
   Drive f;  // the prescribed value
   static constexpr bool reads_inputs = true;
+  static constexpr bool ties_motion = true;  // (is_tie)
 
   Eigen::Matrix<double, 1, 1> phi_t(const Local6&, const Instant& t) const {
     return Eigen::Matrix<double, 1, 1>(-f.at(t).df);

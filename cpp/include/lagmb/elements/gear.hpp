@@ -28,6 +28,7 @@ struct GearPair {
   static constexpr int rows = 1;
   static constexpr bool time_dependent = false;
   static constexpr const char* kind = "gear";
+  static constexpr bool ties_motion = true;  // (is_tie)
 
   std::string name;
   int body_i = -1, body_j = -1;

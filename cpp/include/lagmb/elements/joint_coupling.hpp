@@ -27,6 +27,7 @@ struct JointCoupling {
   static constexpr int rows = 1;
   static constexpr bool time_dependent = false;
   static constexpr const char* kind = "joint_coupling";
+  static constexpr bool ties_motion = true;  // (is_tie)
   static constexpr bool reads_inputs = true;  // the Instant: the run's turns of the joints
   using Loc = LocalVec<28>;
   using Row = Eigen::Matrix<double, 1, 1>;

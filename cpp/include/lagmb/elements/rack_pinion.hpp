@@ -19,6 +19,7 @@ struct RackPinion {
   static constexpr int rows = 1;
   static constexpr bool time_dependent = false;
   static constexpr const char* kind = "rack_pinion";
+  static constexpr bool ties_motion = true;  // (is_tie)
 
   std::string name;
   int body_i = -1, body_j = -1;  // pinion, rack

@@ -79,6 +79,7 @@ struct SpatialDriverBase {
   int body_i = -1, body_j = -1;
   Drive f;  // the prescribed value
   static constexpr bool reads_inputs = true;
+  static constexpr bool ties_motion = true;  // (is_tie)
   Mat3 axes(const spatial::Loc&, const Instant&) const { return Mat3::Identity(); }
 };
 

@@ -175,6 +175,15 @@ struct is_stick : std::false_type {};
 template <class Kind>
 struct is_stick<Kind, std::void_t<decltype(Kind::stick_rows)>> : std::bool_constant<Kind::stick_rows> {};
 
+/// A kind whose rows prescribe or tie the motion of joints (a driver, a
+/// coupling, a gear, a rack and pinion) declares
+/// `static constexpr bool ties_motion = true;`: where a stop is driven
+/// through, the event runner names these beside the stops that hold it.
+template <class Kind, class = void>
+struct is_tie : std::false_type {};
+template <class Kind>
+struct is_tie<Kind, std::void_t<decltype(Kind::ties_motion)>> : std::bool_constant<Kind::ties_motion> {};
+
 template <class Kind, class = void>
 struct is_unilateral : std::false_type {};
 template <class Kind>
@@ -231,6 +240,8 @@ class ConstraintGroupBase {
   virtual std::optional<JointCoordinate> coordinate(int k) const = 0;
   /// Whether the kind's rows are unilateral (gaps), and what row r of element k does at contact.
   virtual bool unilateral() const = 0;
+  /// Whether the kind's rows prescribe or tie joints' motion (is_tie).
+  virtual bool ties_motion() const = 0;
   virtual UnilateralRow unilateral_row(int k, int r) const = 0;
   /// Whether the kind's rows hold stuck contacts (is_stick), and, for
   /// element k at (q, v) with the run's values `at` (its state) and the
@@ -288,6 +299,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
       return std::nullopt;
   }
   bool unilateral() const override { return is_unilateral<Kind>::value; }
+  bool ties_motion() const override { return is_tie<Kind>::value; }
   UnilateralRow unilateral_row(int k, int r) const override {
     if constexpr (is_unilateral<Kind>::value)
       return items[k].unilateral_row(r);
