@@ -1,10 +1,10 @@
 """The default method, formulation="auto", against every variable-step
 method it could have chosen, side by side in one run.
 
-    python bench/auto_method.py [--repeats 3] [--cases chain32 stiff8 ...]
+    python bench/accuracy/auto_method.py [--repeats 3] [--cases chain32 stiff8 ...]
 
 Cases (the issue's list): the planar chain of N = 32 and 512 rods (1 s,
-bench/chain.py), the stiff 8-rod chain (the chain with a rotational
+bench/performance/chain.py), the stiff 8-rod chain (the chain with a rotational
 spring-damper at every inner joint, k and c of bench/peers/reference.py:
 fastest mode 1e4 times the slowest, critically damped), the driven
 slider-crank (examples/, a kinematic analysis whatever the method), the
@@ -17,7 +17,7 @@ contact), then every method at rtol 1e-4 ..
 largest |q - q_ref| over the outputs. Runs are timed in --repeats rounds,
 each round every method's every run once (the order reversed every other
 round), fastest kept. The time to an error of 1e-6 and 1e-8 is
-interpolated log-log (bench/time_to.py); "auto / best" is auto's time over
+interpolated log-log (bench/common/time_to.py); "auto / best" is auto's time over
 the fastest method's. Writes bench/results/auto_method.json and prints a
 markdown table.
 """
@@ -30,27 +30,23 @@ import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "peers"))
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 import lagmb as mb  # noqa: E402
-from chain import chain  # noqa: E402
-from time_to import time_to  # noqa: E402
+from bench.common.chain import chain, stiff_chain as chain_with_dampers  # noqa: E402
+from bench.common.paths import EXAMPLES, RESULTS  # noqa: E402
+from bench.common.time_to import time_to  # noqa: E402
 
 STIFF8 = (4302034.334948224, 634.4098641722912)  # bench/peers/reference.py stiff_parameters(8): k, c
 
 
 def stiff_chain():
-    m = chain(8)
-    for i in range(1, 8):
-        m.add_rotational_spring_damper(f"sd{i}", f"rod{i - 1}", f"rod{i}", stiffness=STIFF8[0], damping=STIFF8[1])
-    return m
+    return chain_with_dampers(8, *STIFF8)
 
 
 def scene(name):
-    return mb.load_scene(os.path.join(ROOT, "examples", name + ".toml")).model
+    return mb.load_scene(os.path.join(EXAMPLES, name + ".toml")).model
 
 
 CASES = {
@@ -141,7 +137,7 @@ def main():
         b8, r8 = cell(1e-8)
         chose = (choice or "").split(",")[0].replace("auto: ", "")
         print(f"| {name} | {chose} | {b6} | {r6} | {b8} | {r8} |", flush=True)
-    with open(os.path.join(HERE, "results", "auto_method.json"), "w") as f:
+    with open(os.path.join(RESULTS, "auto_method.json"), "w") as f:
         json.dump(out, f, indent=1, default=str)
 
 

@@ -1,6 +1,6 @@
 """Many-link chains: what accuracy costs with each method, N = 8 .. 512.
 
-The chain of bench/chain.py over 1 s. For each N, every variable-step
+The chain of bench/common/chain.py over 1 s. For each N, every variable-step
 method of lagmb.METHODS runs at rtol 1e-2 .. 1e-11 (atol = 1e-2 rtol); its
 error is the tip rod's centre at t = 1 s against the minimal-coordinate
 reference of tests/references.py (RodChain: Lagrange's equations in
@@ -12,7 +12,7 @@ work-precision diagram.
 Prints a table, writes bench/results/chains_accuracy.json and, with
 matplotlib, chains_accuracy.png (error against time, one panel per N).
 
-    python bench/chains_accuracy.py [--n 8 32 128 512] [--repeat 3]
+    python bench/accuracy/chains_accuracy.py [--n 8 32 128 512] [--repeat 3]
 """
 
 import argparse
@@ -23,13 +23,14 @@ import platform
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 import lagmb as mb  # noqa: E402
-from chain import chain  # noqa: E402  (bench/chain.py)
-from references import RodChain  # noqa: E402
-from time_to import time_to  # noqa: E402  (bench/time_to.py)
+from bench.common.chain import chain  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.repo import RodChain  # noqa: E402
+from bench.common.time_to import time_to  # noqa: E402
 
 TARGETS = (1e-6, 1e-8)
 RTOLS = tuple(10.0 ** -k for k in range(2, 12))
@@ -94,7 +95,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--n", type=int, nargs="+", default=[8, 32, 128, 512])
     p.add_argument("--repeat", type=int, default=3, help="runs per tolerance; the fastest is kept")
-    p.add_argument("--out", default=os.path.join(HERE, "results", "chains_accuracy.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "chains_accuracy.json"))
     args = p.parse_args()
     methods = {m["name"]: mb.METHODS[m["name"]] for m in mb.methods() if not m["fixed_step"]}
     results = []

@@ -1,6 +1,6 @@
 """Cost of the singular passages of the N-four-bar (IFToMM A02) per method.
 
-    python bench/singular.py [N] [t_end]        (defaults 2, 10)
+    python bench/accuracy/singular.py [N] [t_end]        (defaults 2, 10)
 
 For each method: whether it reaches t_end, the time reached, steps, Newton
 iterations, LU factorizations, wall time, the relative energy error, max
@@ -9,6 +9,7 @@ iterations, LU factorizations, wall time, the relative energy error, max
 bench/results/singular_N<N>.json; nothing is asserted.
 """
 
+import argparse
 import json
 import os
 import platform
@@ -17,11 +18,14 @@ import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(HERE), "examples"))
-from n_four_bar import build, reference_b0  # noqa: E402
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.repo import n_four_bar  # noqa: E402  (examples/n_four_bar.py: the model and its reference)
+
+build, reference_b0 = n_four_bar.build, n_four_bar.reference_b0
 
 METHODS = [
     ("ggl rtol 1e-6", dict(rtol=1e-6, atol=1e-8)),
@@ -34,8 +38,11 @@ METHODS = [
 
 
 def main():
-    n = int(sys.argv[1]) if len(sys.argv) > 1 else 2
-    t_end = float(sys.argv[2]) if len(sys.argv) > 2 else 10.0
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("n", type=int, nargs="?", default=2, help="four-bars in the chain")
+    p.add_argument("t_end", type=float, nargs="?", default=10.0, help="simulated time (s)")
+    args = p.parse_args()
+    n, t_end = args.n, args.t_end
     print(f"N-four-bar (A02), N = {n}, t_end = {t_end} s")
     print(f"{'method':<22} {'t reached':>9} {'steps':>7} {'Newton':>7} {'LU':>7} {'wall s':>7} "
           f"{'dE/E':>9} {'max|Phi|':>9} {'B0 err':>9}")
@@ -61,7 +68,7 @@ def main():
                      "newton_iterations": s["newton_iterations"], "lu_factorizations": s["lu_factorizations"],
                      "wall_time_s": wall, "energy_error_relative": float(de),
                      "max_residual": float(r.residual.max()), "b0_error": float(err)})
-    out = os.path.join(HERE, "results", f"singular_N{n}.json")
+    out = os.path.join(RESULTS, f"singular_N{n}.json")
     with open(out, "w") as f:
         json.dump({"problem": "IFToMM A02 N-four-bar", "N": n, "t_end": t_end, "rows": rows,
                    "machine": platform.machine(), "python": platform.python_version()}, f, indent=2)

@@ -1,7 +1,7 @@
 """Work-precision diagrams: what each formulation and integrator pays for
 accuracy, on five problems.
 
-    python bench/work_precision.py [--problems seed double ...] [--quick]
+    python bench/accuracy/work_precision.py [--problems seed double ...] [--quick]
 
 Problems: the seed pendulum (2 s), a double pendulum over a chaotic interval
 (released from horizontal, 10 s), the slider-crank of examples/ (driven,
@@ -18,27 +18,27 @@ import json
 import os
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "examples"))
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-import chain as chain_bench  # noqa: E402  (bench/chain.py, next to this file)
 import lagmb as mb  # noqa: E402
+from bench.common.chain import chain as chain_model  # noqa: E402
+from bench.common.paths import EXAMPLES, RESULTS  # noqa: E402
 
 
 def chain(n, t_end):
-    return chain_bench.chain(n), t_end
+    return chain_model(n), t_end
 
 
 def problems():
     out = {
-        "seed": lambda: (mb.load_scene(os.path.join(ROOT, "examples", "seed_pendulum.toml")).model, 2.0),
+        "seed": lambda: (mb.load_scene(os.path.join(EXAMPLES, "seed_pendulum.toml")).model, 2.0),
         "double": lambda: chain(2, 10.0),
-        "slider_crank": lambda: (mb.load_scene(os.path.join(ROOT, "examples", "slider_crank.toml")).model, 1.0),
+        "slider_crank": lambda: (mb.load_scene(os.path.join(EXAMPLES, "slider_crank.toml")).model, 1.0),
         "chain32": lambda: chain(32, 1.0),
     }
     try:
-        from andrews import andrews_model
+        from bench.common.repo import andrews_model
 
         out["andrews"] = lambda: (andrews_model(), 0.03)
     except ImportError:
@@ -68,7 +68,7 @@ def main():
                    help="errors for the summary (default 1e-3 1e-6)")
     args = p.parse_args()
     tols = [10.0 ** -k for k in range(3, 8 if args.quick else 12)]
-    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
+    os.makedirs(RESULTS, exist_ok=True)
     summary = []
     for name, make in problems().items():
         if args.problems and name not in args.problems:
@@ -79,16 +79,16 @@ def main():
                                progress=lambda i, n, r: print(f"  [{i}/{n}] {r['method']} {r['rtol']:.0e} "
                                                               f"{r['status']}", file=sys.stderr, flush=True))
         print(wp.table())
-        wp.save(os.path.join(HERE, "results", f"wp_{name}.json"))
+        wp.save(os.path.join(RESULTS, f"wp_{name}.json"))
         try:
-            wp.plot(os.path.join(HERE, "results", f"wp_{name}.png"), title=f"{name}: t = 0 .. {t_end:g} s")
+            wp.plot(os.path.join(RESULTS, f"wp_{name}.png"), title=f"{name}: t = 0 .. {t_end:g} s")
         except ImportError:
             pass
         for target in args.targets:
             line = summarize(name, wp, target)
             summary.append(line)
             print(line, flush=True)
-    with open(os.path.join(HERE, "results", "wp_summary.json"), "w") as f:
+    with open(os.path.join(RESULTS, "wp_summary.json"), "w") as f:
         json.dump({"target_errors": args.targets, "tolerances": tols, "summary": summary}, f, indent=1)
     print("\n".join(["", "summary:"] + summary))
 

@@ -1,5 +1,5 @@
 """The time a sweep of runs takes to reach an error target, read off a
-work-precision curve (bench/chains_accuracy.py, bench/peers/compare.py)."""
+work-precision curve (bench/accuracy/chains_accuracy.py, bench/peers/compare.py)."""
 
 import math
 

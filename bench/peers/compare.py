@@ -40,7 +40,7 @@ run.
 
 Table: for each engine-method and target error (1e-6, 1e-8) the time to
 reach it, interpolated log-log between the run that first reaches it and
-the run before (bench/chains_accuracy.py time_to); a sweep that never
+the run before (bench/common/time_to.py); a sweep that never
 reaches a target gets a lower bound ">" = its slowest run. Ratios are
 engine time / lagmb's best time at the same target and N. "err min" is the
 sweep's smallest error; "conv" "yes" if its error came down with
@@ -62,6 +62,7 @@ missing one).
 """
 
 import argparse
+import importlib
 import json
 import math
 import os
@@ -71,25 +72,23 @@ import sys
 import time
 import warnings
 
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.record import one_blas_thread  # noqa: E402
+
 # one thread everywhere (BLAS/LAPACK behind SciPy and NumPy, OpenMP): every
 # engine integrates on one core, as lagmb, MuJoCo's mj_step and Exudyn
 # (numberOfThreads = 1) do; set before NumPy is imported
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+one_blas_thread()
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-BENCH = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-sys.path.insert(0, BENCH)
-
-import reference  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.time_to import decisive as shared_decisive, time_to  # noqa: E402
+from bench.peers import reference  # noqa: E402
 
 TARGETS = (1e-6, 1e-8)
 MAX_INNER = 20  # repetitions of one short run at most
-ENGINE_MODULES = ("peer_lagmb", "peer_pinocchio", "peer_mujoco", "peer_exudyn")
-
-
-from time_to import decisive as shared_decisive, time_to  # noqa: E402  (bench/time_to.py)
+ENGINE_MODULES = ("peer_lagmb", "peer_pinocchio", "peer_mujoco", "peer_exudyn")  # in bench/peers/
 
 
 def lower_bound(rows, target):
@@ -111,7 +110,7 @@ def _alarm(signum, frame):
 def load_engines(names, log):
     engines, skipped = [], []
     for mod_name in ENGINE_MODULES:
-        mod = __import__(mod_name)
+        mod = importlib.import_module(f"bench.peers.{mod_name}")
         if names and mod.NAME not in names:
             continue
         try:
@@ -408,7 +407,7 @@ def main():
     args.repeat = args.repeat or 2
     args.max_run = args.max_run or 10.0
     name = "peers_stiff" if args.stiff else "peers"
-    out = args.out or os.path.join(BENCH, "results", name + ".json")
+    out = args.out or os.path.join(RESULTS, name + ".json")
 
     def log(msg=""):
         print(msg, flush=True)

@@ -22,7 +22,7 @@ Scenes (3 s each, gravity 9.81 m/s^2 in -z):
          know where the bodies go writes) and with the 24 pairs that can
          meet (the floor, and each sphere with the box below it); MuJoCo
          finds its pairs itself (broad phase).
-  go1    Unitree Go1 (example-robot-data's URDF, found as bench/robots.py
+  go1    Unitree Go1 (example-robot-data's URDF, found as bench/robots/robots.py
          finds robots) on a floating base, its joint limits on, the file's
          joint damping (0.01 N m s/rad) and friction (0.2 N m), dropped with
          the floor 0.35 m below its base frame: lagmb's mb.load_urdf(path,
@@ -109,7 +109,7 @@ come within reach of each other (their bounding spheres, every 0.01 s of
 lagmb's reference), and the run with 144 pairs has no onset in a pair the
 24 leave out.
 
-    python bench/contact_peers.py [--repeat 5] [--scenes drop go1 slope] [--out bench/results/contact_peers.json]
+    python bench/peers/contact_peers.py [--repeat 5] [--scenes drop go1 slope] [--out bench/results/contact_peers.json]
 
 Writes bench/results/contact_peers.json, contact_peers.md (the table) and
 contact_peers.png (error against wall time), and prints the table.
@@ -126,16 +126,17 @@ import time
 import warnings
 import xml.etree.ElementTree as ET
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.record import one_blas_thread  # noqa: E402
+
+one_blas_thread()
 
 import numpy as np  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "peers"))
-from peer_lagmb import run_versions  # noqa: E402
-from robots import robots_dir  # noqa: E402  (example-robot-data's robots directory)
+from bench.common.paths import RESULTS, robots_dir  # noqa: E402
+from bench.common.record import run_versions  # noqa: E402
 G = 9.81
 T_END = 3.0
 T_CREEP = 2.0          # creep: displacement between T_CREEP and T_END
@@ -894,7 +895,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--repeat", type=int, default=5, help="timed rounds; the median is reported")
     p.add_argument("--scenes", nargs="+", default=["drop", "go1", "slope"], choices=["drop", "go1", "slope"])
-    p.add_argument("--out", default=os.path.join(HERE, "results", "contact_peers.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "contact_peers.json"))
     args = p.parse_args()
 
     def log(msg=""):
@@ -933,7 +934,7 @@ def main():
     with open(args.out, "w") as f:
         json.dump(doc, f, indent=1, default=jsonable)
     with open(stem + ".md", "w") as f:
-        f.write(f"# Contact in space: lagmb against MuJoCo (bench/contact_peers.py, {doc['date']})\n\n")
+        f.write(f"# Contact in space: lagmb against MuJoCo (bench/peers/contact_peers.py, {doc['date']})\n\n")
         f.write(f"lagmb {versions['lagmb']}, MuJoCo {versions['mujoco']}; 3 s each; "
                 f"median of {args.repeat} interleaved rounds; errors against each engine's own reference "
                 f"(lagmb rtol 1e-10; MuJoCo implicitfast {MJ_REF_DT:g} s, its variants {MJ_VARIANT_REF_DT:g} s); "

@@ -51,6 +51,9 @@ import warnings
 
 import numpy as np
 
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
 NAME = "exudyn"
 STEPS = tuple(25 * 2 ** j for j in range(13))
 RTOLS = tuple(10.0 ** (-k / 2) for k in range(6, 23))
@@ -219,6 +222,6 @@ class Engine:
 
 
 if __name__ == "__main__":
-    from selfcheck import selfcheck
+    from bench.peers.selfcheck import selfcheck
 
     selfcheck(sys.modules[__name__])

@@ -33,10 +33,14 @@ failed (unstable) and stops at the end of that chunk. The tip is rod N-1's centr
     /tmp/peers-venv/bin/python bench/peers/peer_mujoco.py [--n 8] [--stiff]
 """
 
+import os
 import sys
 import time
 
 import numpy as np
+
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 NAME = "mujoco"
 STEPS = tuple(25 * 2 ** j for j in range(13))  # 25 .. 102400 steps per second
@@ -149,7 +153,7 @@ def check_mjcf(n=8, k=100.0, c=1.0, seed=3):
 
 
 if __name__ == "__main__":
-    from selfcheck import selfcheck
+    from bench.peers.selfcheck import selfcheck
 
     if available()[0]:
         print(f"MJCF vs MjSpec model (N = 8, with springs): max |qacc difference| {check_mjcf():.1e}")

@@ -26,10 +26,14 @@ Self-check against the reference:
     /tmp/peers-venv/bin/python bench/peers/peer_pinocchio.py [--n 8] [--stiff]
 """
 
+import os
 import sys
 import time
 
 import numpy as np
+
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 NAME = "pinocchio"
 RTOLS = tuple(10.0 ** (-k / 2) for k in range(6, 23))
@@ -135,7 +139,7 @@ def check_jacobian(n=5, k=300.0, c=2.0, seed=2):
 
 
 if __name__ == "__main__":
-    from selfcheck import selfcheck
+    from bench.peers.selfcheck import selfcheck
 
     if available()[0]:
         print(f"analytic Jacobian vs central differences (N = 5): {check_jacobian():.1e}")

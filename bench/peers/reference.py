@@ -53,13 +53,14 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh, lu_factor, lu_solve
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-BENCH = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(os.path.dirname(BENCH), "tests"))
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-from references import RodChain, chain_coefficients  # noqa: E402
+from bench.common.chain import stiff_chain  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.repo import RodChain, chain_coefficients  # noqa: E402
 
-CACHE = os.path.join(BENCH, "results", "peers_reference.json")
+CACHE = os.path.join(RESULTS, "peers_reference.json")
 RATIO = 1e4  # omega_max / omega_min of the linearised stiff chain
 STIFF_TOL = 1e-11  # Radau rtol = atol of the stiff reference
 ZETA = 1.0  # damping ratio given to the fastest mode
@@ -237,7 +238,7 @@ class StiffRodChain:
 
 
 def tip_rodchain(n):
-    """Non-stiff reference exactly as bench/chains_accuracy.py computes it."""
+    """Non-stiff reference exactly as bench/accuracy/chains_accuracy.py computes it."""
     ref = RodChain(n)
     theta, _ = ref.solve([0.0, 1.0])
     return ref.centres(theta[1])[0, -1]
@@ -347,13 +348,10 @@ def check_stiff(n, params, tip, out, save=lambda: None):
             save()
     try:
         import lagmb as mb
-
-        sys.path.insert(0, HERE)
-        from peer_lagmb import lagmb_chain
     except ImportError as e:  # pragma: no cover
         out["lagmb"] = f"not checked: {e}"
         return out
-    model = lagmb_chain(n, params["stiffness"], params["damping"])
+    model = stiff_chain(n, params["stiffness"], params["damping"])
     for name in ("ggl", "projection-bdf"):
         for rtol in (1e-11, 1e-10):
             key = f"lagmb_{name}_rtol{rtol:g}_vs_reference"

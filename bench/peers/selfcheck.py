@@ -8,16 +8,11 @@ tolerance is refined and reach the targets):
 
 import argparse
 import math
-import os
-import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
+from bench.peers import reference
 
 
 def selfcheck(module):
-    import reference
-
     p = argparse.ArgumentParser(description=module.__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--n", type=int, default=8)

@@ -28,8 +28,8 @@ Engines:
              armature, a site at the tip), qpos = 0.1 after mj_resetData,
              RK4 with fixed steps h = 1/steps: doubling from 25 steps until
              below 1e-8, then for each target the fewest steps reaching it by
-             bisection to 1 % (bench/mujoco_urdf.py search, as
-             bench/robots.py).
+             bisection to 1 % (bench/robots/mujoco_urdf.py search, as
+             bench/robots/robots.py).
 
 Reference: Pinocchio ABA + DOP853 at rtol = atol = 1e-13, cross-checked
 against lagmb GGL at rtol 1e-11 and lagmb projection-erk at rtol 1e-13
@@ -55,13 +55,13 @@ every other slot and round; a run under --min-time (20 ms) is repeated
 until its runs add up to that (at most 20), and the fastest time of all
 rounds is kept. Times are those of the integration call only (models built
 and compiled beforehand). The time to a target is interpolated log-log
-between the run that first reaches it and the one before (bench/time_to.py);
+between the run that first reaches it and the one before (bench/common/time_to.py);
 a sweep that never reaches it gives a lower bound ">" (its slowest run); one
 whose loosest run already reaches it an upper bound "<=" (that run). A
 sweep stops after a run longer than --max-run seconds or when its next run
 is estimated longer (from the last two).
 
-    python bench/spatial_peers.py [--n 8 32 128] [--repeat 3] [--max-run 30]
+    python bench/peers/spatial_peers.py [--n 8 32 128] [--repeat 3] [--max-run 30]
         [--min-time 0.02] [--engines lagmb pinocchio mujoco] [--out FILE]
 
 Writes bench/results/spatial_peers.json and prints a markdown table.
@@ -76,15 +76,18 @@ import sys
 import time
 import warnings
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.record import one_blas_thread  # noqa: E402
+
+one_blas_thread()
 
 import numpy as np  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-
-from time_to import decisive as shared_decisive, time_to  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.record import build_id  # noqa: E402
+from bench.common.time_to import decisive as shared_decisive, time_to  # noqa: E402
 
 TARGETS = (1e-6, 1e-8)
 ANGLE0 = 0.1
@@ -93,7 +96,7 @@ INERTIA = (1e-4, 1.0 / 12.0, 1.0 / 12.0)
 AXES = (np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]))  # joint k: AXES[k % 2]
 RTOLS = tuple(10.0 ** (-k / 2) for k in range(4, 23))  # 1e-2 .. 1e-11, half decades
 MAX_INNER = 20
-CACHE = os.path.join(HERE, "results", "spatial_peers_reference.json")
+CACHE = os.path.join(RESULTS, "spatial_peers_reference.json")
 
 
 def turn(axis, angle):
@@ -435,7 +438,7 @@ def search_rtol(sweep, tip, max_run, log):
 
 def search_steps(sweep, tip, max_run, log, first=25, max_steps=25 * 2 ** 16):
     """Doubling from `first` until below every target, then bisection on the
-    number of steps for each target to 1 % (bench/mujoco_urdf.py search)."""
+    number of steps for each target to 1 % (bench/robots/mujoco_urdf.py search)."""
     cache = {}
 
     def point(steps):
@@ -675,7 +678,7 @@ def main():
     p.add_argument("--min-time", type=float, default=0.02,
                    help="a run shorter than this is repeated until its runs add up to it (s)")
     p.add_argument("--engines", nargs="+", default=list(ENGINES), choices=list(ENGINES))
-    p.add_argument("--out", default=os.path.join(HERE, "results", "spatial_peers.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "spatial_peers.json"))
     args = p.parse_args()
 
     def log(msg=""):
@@ -688,9 +691,7 @@ def main():
         except Exception as e:  # noqa: BLE001
             versions[name] = f"not importable: {e}"
     try:
-        sys.path.insert(0, os.path.join(HERE, "peers"))
         import lagmb as mb
-        from peer_lagmb import build_id
 
         versions["lagmb_build"] = build_id(mb)
     except Exception:  # noqa: BLE001

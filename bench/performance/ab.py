@@ -1,8 +1,8 @@
 """Two builds of lagmb side by side: is a change within noise?
 
-Runs the 100-link chain (bench/chain.py's model, 1 s, rtol 1e-6; GGL and the
+Runs the 100-link chain (bench/performance/chain.py's model, 1 s, rtol 1e-6; GGL and the
 explicit method), the 100-link spatial chain (tests/test_spatial.py's, 0.1 s,
-the same two methods) and the work-precision set (bench/work_precision.py's problems, every method of
+the same two methods) and the work-precision set (bench/accuracy/work_precision.py's problems, every method of
 lagmb.accuracy.METHODS at rtol 1e-6, atol 1e-8) with each build in turn,
 each in a fresh interpreter, alternating builds round by round so that the
 machine's load falls on both alike. Each build is a directory holding a
@@ -12,7 +12,7 @@ Prints, per case, the fastest wall time of each build, their ratio
 (new / base) and whether the deterministic counts (steps, residual
 evaluations, LU factorizations) agree; writes bench/results/ab.json.
 
-    python bench/ab.py BASE_DIR NEW_DIR [--rounds 5] [--out FILE]
+    python bench/performance/ab.py BASE_DIR NEW_DIR [--rounds 5] [--out FILE]
 """
 
 import argparse
@@ -22,20 +22,22 @@ import os
 import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.paths import RESULTS  # noqa: E402  (lagmb is imported by the worker only)
+
 COUNTS = ("steps", "residual_evals", "lu_factorizations")
 
 
 def worker():
     """One round in this interpreter: every case once; JSON on stdout."""
-    sys.path.insert(0, HERE)
-    sys.path.insert(0, os.path.join(HERE, "..", "tests"))
     # an editable install's finder comes before PYTHONPATH: drop it, so that
     # the build under test is the one imported (checked below)
     sys.meta_path[:] = [f for f in sys.meta_path if "editable" not in type(f).__module__.lower()]
-    import chain as chain_bench
-    from test_spatial import spatial_chain
-    import work_precision as wp_bench
+    from bench.common.chain import chain
+    from bench.common.repo import spatial_chain
+    from bench.accuracy import work_precision as wp_bench
     import lagmb as mb
     if not os.path.abspath(mb.__file__).startswith(os.environ["PYTHONPATH"]):
         raise SystemExit(f"imported {mb.__file__}, not the build in {os.environ['PYTHONPATH']}")
@@ -52,8 +54,8 @@ def worker():
         out[case] = {"wall_time": r.stats["wall_time"], **{k: r.stats[k] for k in COUNTS}}
 
     erk = dict(formulation="projection", integrator="erk")
-    record("chain100", chain_bench.chain(100), 1.0)
-    record("chain100/erk", chain_bench.chain(100), 1.0, **erk)
+    record("chain100", chain(100), 1.0)
+    record("chain100/erk", chain(100), 1.0, **erk)
     record("spatial_chain100", spatial_chain(100), 0.1)
     record("spatial_chain100/erk", spatial_chain(100), 0.1, **erk)
     for name, make in wp_bench.problems().items():
@@ -78,7 +80,7 @@ def main():
     p.add_argument("base")
     p.add_argument("new")
     p.add_argument("--rounds", type=int, default=5, help="runs of every case per build; the fastest is kept")
-    p.add_argument("--out", default=os.path.join(HERE, "results", "ab.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "ab.json"))
     args = p.parse_args()
 
     best = {"base": {}, "new": {}}

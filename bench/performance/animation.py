@@ -23,7 +23,7 @@ palette for each frame; blitting on one palette (what animate does).
 
 Prints tables and writes bench/results/animation.json and animation.md.
 
-    python bench/animation.py [--before REV] [--repeat 1] [--keep DIR] [--no-stages]
+    python bench/performance/animation.py [--before REV] [--repeat 1] [--keep DIR] [--no-stages]
 """
 
 import argparse
@@ -38,12 +38,13 @@ import sys
 import tempfile
 import time
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-EXAMPLES = os.path.join(ROOT, "examples")
-RESULTS = os.path.join(HERE, "results")
+import lagmb as mb  # noqa: E402
+from bench.common.paths import EXAMPLES, RESULTS, ROOT  # noqa: E402
+from bench.common.record import changed, git, load_average  # noqa: E402
+
 FRAMES = 300
 
 
@@ -203,14 +204,12 @@ def main():
 
     from lagmb import plotting
 
-    load_start = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
+    load_start = load_average()
     versions = []
     if args.before:
         versions.append((f"before ({args.before})", plotting_of(args.before)))
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
-                          text=True).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--", "python/lagmb/plotting"], cwd=ROOT,
-                           capture_output=True, text=True).stdout.strip()
+    head = git("rev-parse", "--short", "HEAD")
+    dirty = changed("python/lagmb/plotting")
     versions.append((f"now ({head}{' + changes' if dirty else ''})", plotting))
     folder = args.keep or tempfile.mkdtemp(prefix="lagmb-gifs-")
     os.makedirs(folder, exist_ok=True)
@@ -232,7 +231,7 @@ def main():
     print(f"GIFs in {folder}")
     if args.no_write:
         return
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
+    load = load_average()
     out = {"date": datetime.date.today().isoformat(), "machine": platform.platform(),
            "python": platform.python_version(), "cpus": os.cpu_count(),
            "load_average_1min_at_start": load_start, "load_average_1min_at_end": load, "repeat": args.repeat, "rows": rows, "stages": stage_rows}
@@ -240,7 +239,7 @@ def main():
     with open(os.path.join(RESULTS, "animation.json"), "w", encoding="utf-8") as f:
         json.dump(out, f, indent=1)
         f.write("\n")
-    lines = [f"# Drawing a {FRAMES}-frame GIF (bench/animation.py)", "",
+    lines = [f"# Drawing a {FRAMES}-frame GIF (bench/performance/animation.py)", "",
              f"{out['date']}, {out['machine']}, Python {out['python']}, {out['cpus']} CPUs, "
              f"load average {load_start:.2f} at the start, {load:.2f} at the end; best of {args.repeat} "
              "(the parts below: one run each).", "",

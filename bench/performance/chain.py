@@ -6,26 +6,22 @@ rtol 1e-6 (atol 1e-8). Prints a table and writes bench/results/chain.json.
 The claim to check: time per step per body stays flat in N (no quadratic
 term up to N = 1000).
 
-    python bench/chain.py [--n 1 2 4 ...] [--repeat 3] [--out FILE]
+    python bench/performance/chain.py [--n 1 2 4 ...] [--repeat 3] [--out FILE]
 """
 
 import argparse
 import json
 import os
 import platform
+import sys
 import time
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-
-def chain(n):
-    m = mb.Model(gravity=(0.0, -9.81))
-    prev = m.ground
-    for k in range(n):
-        rod = m.add_body(f"rod{k}", mass=1.0, inertia=1.0 / 12.0, position=(k + 0.5, 0.0))
-        m.add_revolute(f"pin{k}", prev, rod, at=(float(k), 0.0))
-        prev = rod
-    return m
+import lagmb as mb  # noqa: E402
+from bench.common.chain import chain  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
 
 
 def measure(n, repeat, rtol=1e-6, atol=1e-8, t_end=1.0):
@@ -56,7 +52,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--n", type=int, nargs="+", default=[1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1000])
     p.add_argument("--repeat", type=int, default=3, help="runs per N; the fastest is kept")
-    p.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results", "chain.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "chain.json"))
     args = p.parse_args()
 
     rows = []

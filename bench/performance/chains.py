@@ -1,6 +1,6 @@
 """Many-link chains: how set-up and runs grow with the number of links.
 
-The chain of bench/chain.py (uniform rods, L = 1 m, m = 1 kg, J = 1/12 kg m^2,
+The chain of bench/performance/chain.py (uniform rods, L = 1 m, m = 1 kg, J = 1/12 kg m^2,
 pinned at the origin, released horizontal at rest, gravity 9.81 m/s^2). For
 each N, in a fresh interpreter (so that its peak memory is its own):
 
@@ -16,10 +16,10 @@ Prints a table, fits the exponent p of time ~ N^p over N >= 1,000 for each
 phase, and writes bench/results/chains_setup.json (and chains_setup.png with
 matplotlib).
 
-    python bench/chains.py [--n 1000 2000 ...] [--t-end 0.1] [--run-max 100000]
+    python bench/performance/chains.py [--n 1000 2000 ...] [--t-end 0.1] [--run-max 100000]
 
 What accuracy costs with each method on the same chain (N = 8 to 512) is
-bench/chains_accuracy.py.
+bench/accuracy/chains_accuracy.py.
 """
 
 import argparse
@@ -31,9 +31,12 @@ import subprocess
 import sys
 import time
 
-from chain import chain  # the same chain as bench/chain.py
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+from bench.common.chain import chain  # noqa: E402  (the chain of bench/performance/chain.py)
+from bench.common.paths import RESULTS  # noqa: E402
+
 PHASES = ("build", "compile", "assemble", "run")
 
 
@@ -99,7 +102,7 @@ def main():
     p.add_argument("--n", type=int, nargs="+", default=[1000, 2000, 5000, 10000, 20000, 50000, 100000])
     p.add_argument("--t-end", type=float, default=0.1, help="simulated seconds of the run phase")
     p.add_argument("--run-max", type=int, default=100000, help="no run phase above this many links")
-    p.add_argument("--out", default=os.path.join(HERE, "results", "chains_setup.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "chains_setup.json"))
     p.add_argument("--worker", nargs=2, type=float, help=argparse.SUPPRESS)
     args = p.parse_args()
     if args.worker:

@@ -8,7 +8,7 @@ this shared machine says little; CPU time adds up to what a 2-core fresh
 set-up waits for, divided by 2). Prints the table, writes
 bench/results/compile_time.json.
 
-    python bench/compile_time.py [--jobs 2] [--label NAME] [-D CMAKE_OPTION=VALUE ...] [--keep DIR]
+    python bench/performance/compile_time.py [--jobs 2] [--label NAME] [-D CMAKE_OPTION=VALUE ...] [--keep DIR]
 """
 
 import argparse
@@ -22,8 +22,12 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RESULTS = os.path.join(ROOT, "bench", "results", "compile_time.json")
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.paths import RESULTS, ROOT  # noqa: E402
+
+RECORD = os.path.join(RESULTS, "compile_time.json")
 
 
 def launch(argv):
@@ -86,11 +90,11 @@ def main():
               "defines": args.defines, "cpu_total_s": round(total, 1), "wall_s": round(wall, 1),
               "calls": [{"target": short(c["output"]), "cpu_s": round(c["cpu"], 2)} for c in calls]}
     runs = []
-    if os.path.exists(RESULTS):
-        with open(RESULTS) as f:
+    if os.path.exists(RECORD):
+        with open(RECORD) as f:
             runs = json.load(f)
     runs = [r for r in runs if r["label"] != args.label] + [record]
-    with open(RESULTS, "w") as f:
+    with open(RECORD, "w") as f:
         json.dump(runs, f, indent=1)
 
 

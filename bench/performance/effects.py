@@ -14,7 +14,7 @@ Measured three ways, for the simulate call only:
 Prints a table and writes bench/results/effects.json; the claim is a
 difference under 1 %.
 
-    python bench/effects.py [--n 100] [--t-end 0.2] [--repeat 7] [--no-callgrind]
+    python bench/performance/effects.py [--n 100] [--t-end 0.2] [--repeat 7] [--no-callgrind]
 """
 
 import argparse
@@ -28,9 +28,12 @@ import subprocess
 import sys
 import tempfile
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS, ROOT  # noqa: E402
+
 SETTINGS = {"rtol": 1e-6, "atol": 1e-8, "n_out": 2}
 
 
@@ -146,7 +149,7 @@ def main():
     ap.add_argument("--no-callgrind", action="store_true")
     ap.add_argument("--callgrind-runs", type=int, default=3)
     ap.add_argument("--build-dir", default=os.path.join(tempfile.gettempdir(), "lagmb-effects-build"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "effects.json"))
+    ap.add_argument("--out", default=os.path.join(RESULTS, "effects.json"))
     args = ap.parse_args()
 
     work = tempfile.mkdtemp(prefix="lagmb-effects-")

@@ -1,13 +1,13 @@
 """What one Newton iteration of GGL costs on a long chain, and where it goes.
 
-The chain of bench/chain.py, 1 s at rtol 1e-6 (atol 1e-8), the default
+The chain of bench/performance/chain.py, 1 s at rtol 1e-6 (atol 1e-8), the default
 method (GGL, IDA BDF). For each N:
 
 - wall time per Newton iteration and per link (fastest of --repeat runs;
   IDA's nonlinear iterations from r.stats["newton_iterations"]);
 - the split of the instructions inside lagmb::simulate (valgrind callgrind,
   inclusive counts, on a copy of the module built without stripping; see
-  bench/effects.py) between the residual (GglFormulation::residual), the
+  bench/performance/effects.py) between the residual (GglFormulation::residual), the
   Newton matrix's assembly (GglFormulation::newton_matrix), its
   factorization (klu_factor, klu_refactor, klu_rcond), the solves
   (klu_solve) and the rest (IDA's own algorithm and vector operations,
@@ -15,7 +15,7 @@ method (GGL, IDA BDF). For each N:
 
 Prints a table and writes bench/results/ggl_newton.json.
 
-    python bench/ggl_newton.py [--n 128 512] [--repeat 3] [--no-callgrind]
+    python bench/performance/ggl_newton.py [--n 128 512] [--repeat 3] [--no-callgrind]
 """
 
 import argparse
@@ -28,12 +28,13 @@ import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 import lagmb as mb  # noqa: E402
-from chain import chain  # noqa: E402
-from effects import unstripped_module  # noqa: E402
+from bench.common.chain import chain  # noqa: E402
+from bench.common.paths import RESULTS, ROOT  # noqa: E402
+from bench.performance.effects import unstripped_module  # noqa: E402
 
 SETTINGS = {"t_end": 1.0, "rtol": 1e-6, "atol": 1e-8, "n_out": 2}
 # (label, callgrind function names whose inclusive counts make the part)
@@ -49,7 +50,7 @@ import json, sys
 sys.path.insert(0, sys.argv[1]); sys.path.insert(0, sys.argv[2])
 import lagmb as mb
 assert mb.__file__.startswith(sys.argv[1]), mb.__file__
-from chain import chain
+from bench.common.chain import chain
 m = chain(int(sys.argv[3])); m.compiled()
 r = mb.simulate(m, **json.loads(sys.argv[4]))
 print(json.dumps(r.stats))
@@ -71,7 +72,7 @@ def callgrind_split(pkg, n, work):
     out = os.path.join(work, f"ggl_{n}.callgrind")
     cmd = ["valgrind", "--tool=callgrind", "--toggle-collect=lagmb::simulate(*",
            "--toggle-collect=std::_Function_handler<void (double), pybind11_init__core*_M_invoke*",
-           f"--callgrind-out-file={out}", sys.executable, "-c", RUNNER, pkg, HERE, str(n), json.dumps(SETTINGS)]
+           f"--callgrind-out-file={out}", sys.executable, "-c", RUNNER, pkg, ROOT, str(n), json.dumps(SETTINGS)]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         raise RuntimeError(f"callgrind failed:\n{p.stderr[-2000:]}")
@@ -97,7 +98,7 @@ def main():
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--no-callgrind", action="store_true")
     p.add_argument("--build-dir", default=os.path.join(tempfile.gettempdir(), "lagmb-effects-build"))
-    p.add_argument("--out", default=os.path.join(HERE, "results", "ggl_newton.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "ggl_newton.json"))
     args = p.parse_args()
     use_callgrind = not args.no_callgrind and shutil.which("valgrind")
     pkg = unstripped_module(args.build_dir) if use_callgrind else None

@@ -19,7 +19,7 @@ iterations and factorizations, and the largest differences between the two
 analyses in positions (m, rad) and in the driver efforts (relative to the
 largest effort). Prints a table and writes bench/results/kinematic.json.
 
-    python bench/kinematic.py [--n 10 30 100] [--repeat 3] [--out FILE]
+    python bench/performance/kinematic.py [--n 10 30 100] [--repeat 3] [--out FILE]
 """
 
 import argparse
@@ -27,10 +27,15 @@ import json
 import math
 import os
 import platform
+import sys
 
 import numpy as np
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
 
 T_END, N_OUT, RTOL, ATOL = 1.0, 101, 1e-8, 1e-10
 TIGHT_RTOL, TIGHT_ATOL = 1e-10, 1e-12  # the dynamic run near the kinematic analysis' accuracy
@@ -113,7 +118,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--n", type=int, nargs="+", default=[10, 30, 100])
     p.add_argument("--repeat", type=int, default=3, help="runs per model; the fastest is kept")
-    p.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results", "kinematic.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "kinematic.json"))
     args = p.parse_args()
 
     cases = [("slider_crank", slider_crank)] + [(f"driven_chain_{n}", lambda n=n: driven_chain(n)) for n in args.n]

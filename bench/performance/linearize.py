@@ -27,11 +27,11 @@ Each call is timed --repeats times (the model compiled and the equilibrium
 found beforehand, SciPy imported by a first untimed call); min and median
 are reported, as the machine is shared and noisy. BLAS runs on one thread
 (OPENBLAS_NUM_THREADS etc. set to 1 unless already set, as in
-bench/spatial_peers.py): on the shared 2-core machine, busy with a
+bench/peers/spatial_peers.py): on the shared 2-core machine, busy with a
 compilation, threaded OpenBLAS made dense calls up to 50 times slower (a
 400 x 400 eigvals 5.2 s against 0.08 s on one thread).
 
-    python bench/linearize.py [--repeats 5] [--quick] [--dense-n 500 1000] [--out FILE]
+    python bench/performance/linearize.py [--repeats 5] [--quick] [--dense-n 500 1000] [--out FILE]
 
 Prints markdown tables and writes bench/results/linearize.json (with the
 git commit and date); --quick (N up to 100 for (a) and (b), 100 and 250 for
@@ -39,24 +39,24 @@ git commit and date); --quick (N up to 100 for (a) and (b), 100 and 250 for
 """
 
 import argparse
-import datetime
-import json
 import math
 import os
-import platform
-import subprocess
 import sys
-import time
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.record import one_blas_thread  # noqa: E402
+
+one_blas_thread()
 
 import numpy as np  # noqa: E402
 
 import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.record import changed, load_average, stamp, stamp_line, write_json  # noqa: E402
+from bench.common.timing import wall_times  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
 LENGTH, DENSITY, G, TILT = 100.0, 1.0, 9.81, 0.5
 LINEARIZE_N = [10, 25, 50, 100, 200]
 EQUILIBRIUM_N = LINEARIZE_N + [500, 1000]
@@ -88,11 +88,7 @@ def continuous_chain(count, length=LENGTH):
 
 def timed(call, repeats):
     """(min, median) wall seconds of `repeats` calls, and the last result."""
-    times, result = [], None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        result = call()
-        times.append(time.perf_counter() - t0)
+    times, result = wall_times(call, repeats)
     return float(np.min(times)), float(np.median(times)), result
 
 
@@ -101,10 +97,6 @@ def hanging(model):
     angles = eq.q[2::3]
     assert np.abs(angles + math.pi / 2).max() < 1e-9, "the chain does not hang straight down"
     return eq
-
-
-def git(*args):
-    return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True).stdout.strip()
 
 
 def main():
@@ -119,11 +111,8 @@ def main():
     repeats = args.repeats or (2 if args.quick else 5)
     small = lambda ns, top: [n for n in ns if n <= top] if args.quick else ns  # noqa: E731
     lin_n, eq_n, modes_n = small(LINEARIZE_N, 100), small(EQUILIBRIUM_N, 100), small(MODES_N, 250)
-    load_start = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
-    out = {"benchmark": "linearize", "date": datetime.datetime.now().isoformat(timespec="minutes"),
-           "commit": git("rev-parse", "--short", "HEAD"),
-           "changes": bool(git("status", "--porcelain", "--", "python/lagmb/linear.py", "python/lagmb/statics.py")),
-           "machine": platform.platform(), "python": platform.python_version(), "cpus": os.cpu_count(),
+    load_start = load_average()
+    out = {**stamp("linearize", bool(changed("python/lagmb/linear.py", "python/lagmb/statics.py"))),
            "numpy": np.__version__, "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS"),
            "repeats": repeats, "chain": dict(length=LENGTH, density=DENSITY, g=G, tilt=TILT),
            "linearize": [], "equilibrium": [], "modes": [], "dense_modes": []}
@@ -195,16 +184,12 @@ def main():
         finally:
             linear.SPARSE_ABOVE = above
 
-    out["load_average_1min"] = [load_start, os.getloadavg()[0] if hasattr(os, "getloadavg") else None]
-    print(f"\n{out['date']}, commit {out['commit']}{' + changes' if out['changes'] else ''}, {out['machine']}, "
-          f"{out['cpus']} CPUs, load average {out['load_average_1min'][0]:.2f} .. {out['load_average_1min'][1]:.2f}, "
+    out["load_average_1min"] = [load_start, load_average()]
+    print(f"\n{stamp_line(out)}, load average {out['load_average_1min'][0]:.2f} .. {out['load_average_1min'][1]:.2f}, "
           f"BLAS threads {out['blas_threads']}")
-    path = args.out or (None if args.quick else os.path.join(HERE, "results", "linearize.json"))
+    path = args.out or (None if args.quick else os.path.join(RESULTS, "linearize.json"))
     if path:
-        with open(path, "w", encoding="utf-8") as f:
-            json.dump(out, f, indent=1)
-            f.write("\n")
-        print(f"written: {os.path.relpath(path, ROOT)}")
+        write_json(path, out)
 
 
 if __name__ == "__main__":

@@ -52,7 +52,7 @@ t = 0 with or without sensitivities (the floor the error message names is
 difference of the residual, is good to about 1e-12 of its scale); that
 sensitivity run at atol 1e-14 is tried and its outcome recorded.
 
-    python bench/sensitivities.py [--repeats 7] [--quick] [--cases slider_crank chain32] [--out FILE]
+    python bench/performance/sensitivities.py [--repeats 7] [--quick] [--cases slider_crank chain32] [--out FILE]
 
 Prints a markdown table and writes bench/results/sensitivities.json (with
 the git commit and date); --quick (2 repeats, k = 1 and 4) writes nothing
@@ -61,24 +61,24 @@ skipped silently. BLAS on one thread (set unless already set).
 """
 
 import argparse
-import datetime
-import json
 import math
 import os
-import platform
-import subprocess
 import sys
 import time
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.record import one_blas_thread  # noqa: E402
+
+one_blas_thread()
 
 import numpy as np  # noqa: E402
 
 import lagmb as mb  # noqa: E402
+from bench.common.paths import EXAMPLES, RESULTS  # noqa: E402
+from bench.common.record import changed, load_average, stamp, stamp_line, write_json  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
 RTOL, ATOL, N_OUT = 1e-8, 1e-10, 101
 REF_RTOL, REF_ATOL = 1e-12, 1e-12
 PROBE_ATOL = 1e-14  # the sensitivity run is also tried at this atol, its failure recorded
@@ -101,7 +101,7 @@ def chain(n, tilt=1.0):
 
 
 def slider_crank():
-    return mb.load_scene(os.path.join(ROOT, "examples", "slider_crank.toml")).model
+    return mb.load_scene(os.path.join(EXAMPLES, "slider_crank.toml")).model
 
 
 CASES = {
@@ -122,10 +122,6 @@ CASES = {
 }
 STATS = ("steps", "residual_evals", "jacobian_evals", "lu_factorizations", "newton_iterations",
          "error_test_failures", "convergence_failures", "element_evaluations", "wall_time")
-
-
-def git(*args):
-    return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True).stdout.strip()
 
 
 def step_of(p):
@@ -278,12 +274,9 @@ def main():
     args = p.parse_args()
     repeats = args.repeats or (2 if args.quick else 7)
     ks = [1, 4] if args.quick else KS
-    load_start = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
+    load_start = load_average()
     started = time.perf_counter()
-    out = {"benchmark": "sensitivities", "date": datetime.datetime.now().isoformat(timespec="minutes"),
-           "commit": git("rev-parse", "--short", "HEAD"),
-           "changes": bool(git("status", "--porcelain", "--", "cpp", "python/lagmb")),
-           "machine": platform.platform(), "python": platform.python_version(), "cpus": os.cpu_count(),
+    out = {**stamp("sensitivities", bool(changed("cpp", "python/lagmb"))),
            "numpy": np.__version__, "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS"),
            "repeats": repeats, "rtol": RTOL, "atol": ATOL, "n_out": N_OUT, "method": "ggl",
            "fd_rel_step": REL_STEP, "cases": []}
@@ -345,17 +338,13 @@ def main():
         if probe != "ok":
             print(f"\n{row['case']}, the sensitivity run at rtol {REF_RTOL:g}, atol {PROBE_ATOL:g}: {probe}")
 
-    out["load_average_1min"] = [load_start, os.getloadavg()[0] if hasattr(os, "getloadavg") else None]
+    out["load_average_1min"] = [load_start, load_average()]
     out["seconds"] = time.perf_counter() - started
-    print(f"\n{out['date']}, commit {out['commit']}{' + changes' if out['changes'] else ''}, {out['machine']}, "
-          f"{out['cpus']} CPUs, load average {out['load_average_1min'][0]:.2f} .. {out['load_average_1min'][1]:.2f}, "
+    print(f"\n{stamp_line(out)}, load average {out['load_average_1min'][0]:.2f} .. {out['load_average_1min'][1]:.2f}, "
           f"BLAS threads {out['blas_threads']}, {out['seconds']:.0f} s")
-    path = args.out or (None if args.quick else os.path.join(HERE, "results", "sensitivities.json"))
+    path = args.out or (None if args.quick else os.path.join(RESULTS, "sensitivities.json"))
     if path:
-        with open(path, "w", encoding="utf-8") as f:
-            json.dump(out, f, indent=1)
-            f.write("\n")
-        print(f"written: {os.path.relpath(path, ROOT)}")
+        write_json(path, out)
 
 
 if __name__ == "__main__":

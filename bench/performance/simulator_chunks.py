@@ -13,7 +13,7 @@ every chunk.
 
 Prints tables and writes bench/results/simulator_chunks.json.
 
-    python bench/simulator_chunks.py [--repeat 3]
+    python bench/performance/simulator_chunks.py [--repeat 3]
 """
 
 import argparse
@@ -21,34 +21,26 @@ import json
 import os
 import platform
 import sys
-import time
 
 import numpy as np
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "examples"))
-import cart_pole  # noqa: E402
-from spatial_chain import planar_chain  # noqa: E402 - the chain of bench/spatial_chain.py
+import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.repo import cart_pole  # noqa: E402  (examples/cart_pole.py)
+from bench.common.timing import best_of  # noqa: E402
+from bench.performance.spatial_chain import planar_chain  # noqa: E402 - the chain of spatial_chain.py
 
 METHODS = {"ggl": dict(formulation="ggl"), "projection-erk": dict(formulation="projection", integrator="erk")}
-
-
-def best_of(repeat, run):
-    times, out = [], None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = run()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
 
 
 def chunks(repeat):
     model, rows = planar_chain(10), []
     for method, options in METHODS.items():
         options = dict(options, rtol=1e-8, atol=1e-10)
-        wall, one = best_of(repeat, lambda: mb.simulate(model, t_end=1.0, n_out=2, **options))
+        wall, one = best_of(lambda: mb.simulate(model, t_end=1.0, n_out=2, **options), repeat)
         rows.append(dict(method=method, chunks="simulate", steps=one.stats["steps"], seconds=wall, difference=0.0))
         for n in (1, 10, 100, 1000, 10000):
             def run():
@@ -56,7 +48,7 @@ def chunks(repeat):
                 for k in range(n):
                     sim.advance((k + 1) / n)
                 return sim
-            wall, sim = best_of(repeat, run)
+            wall, sim = best_of(run, repeat)
             rows.append(dict(method=method, chunks=n, steps=sim.stats["steps"], seconds=wall,
                              difference=float(np.max(np.abs(sim.q - one.q[-1])))))
     return rows
@@ -68,7 +60,7 @@ def controller(repeat):
         def run():
             cart_pole.PERIOD = period
             return cart_pole.balance(cart_pole.cart_pole(), t_end=10.0, rtol=1e-6)
-        wall, sim = best_of(repeat, run)
+        wall, sim = best_of(run, repeat)
         samples = round(10.0 / period)
         rows.append(dict(period=period, samples=samples, steps=sim.stats["steps"], restarts=sim.stats["restarts"],
                          seconds=wall, us_per_sample=1e6 * wall / samples))
@@ -91,8 +83,8 @@ def main():
     for r in b:
         print(f"{r['period']:10.3f} {r['samples']:8d} {r['steps']:7d} {r['restarts']:9d} {r['seconds']:9.3f} "
               f"{r['us_per_sample']:10.1f}")
-    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    with open(os.path.join(HERE, "results", "simulator_chunks.json"), "w") as f:
+    os.makedirs(RESULTS, exist_ok=True)
+    with open(os.path.join(RESULTS, "simulator_chunks.json"), "w") as f:
         json.dump(dict(machine=platform.platform(), python=platform.python_version(), chunks=a, controller=b),
                   f, indent=1)
 

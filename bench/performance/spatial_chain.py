@@ -5,12 +5,12 @@ N uniform rods (L = 0.1 m, m = 0.1 kg), a spherical joint at the ground and
 universal joints between them (the spatial chain of tests/test_spatial.py),
 released from horizontal under gravity; 0.1 s at rtol 1e-6 (atol 1e-8) with
 GGL and with the explicit method. Beside each, the same N as a planar chain
-(revolutes; bench/chain.py's geometry scaled alike), so the ratio is
+(revolutes; bench/performance/chain.py's geometry scaled alike), so the ratio is
 measured in one run on the same machine. Prints a table and writes
 bench/results/spatial_chain.json. The claim to check: time per step per
 body stays flat in N (linear cost) up to N = 1,000 and beyond.
 
-    python bench/spatial_chain.py [--n 10 100 1000 ...] [--repeat 3]
+    python bench/performance/spatial_chain.py [--n 10 100 1000 ...] [--repeat 3]
 """
 
 import argparse
@@ -22,10 +22,12 @@ import time
 
 import numpy as np
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
-from test_spatial import spatial_chain  # noqa: E402 - the chain the tests check
+import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS  # noqa: E402
+from bench.common.repo import spatial_chain  # noqa: E402 - the chain the tests check
 
 METHODS = {"ggl": dict(formulation="ggl"), "projection-erk": dict(formulation="projection", integrator="erk")}
 
@@ -58,7 +60,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--n", type=int, nargs="+", default=[10, 100, 1000, 10000])
     p.add_argument("--repeat", type=int, default=3, help="runs per case; the fastest is kept")
-    p.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results", "spatial_chain.json"))
+    p.add_argument("--out", default=os.path.join(RESULTS, "spatial_chain.json"))
     args = p.parse_args()
     rows = []
     print(f"{'N':>6} {'method':>15} {'spatial s':>10} {'steps':>6} {'us/step/body':>13} "

@@ -74,31 +74,31 @@ unless already set).
 
 import argparse
 import concurrent.futures
-import datetime
-import json
 import math
 import multiprocessing
 import os
-import platform
 import shutil
-import subprocess
 import sys
 import tempfile
 import threading
 import time
 import warnings
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.record import one_blas_thread  # noqa: E402
+
+one_blas_thread()
 
 import numpy as np  # noqa: E402
 
 import lagmb as mb  # noqa: E402
+from bench.common.paths import EXAMPLES, RESULTS  # noqa: E402
+from bench.common.record import changed, load_average, stamp, stamp_line, write_json  # noqa: E402
 from lagmb import _core, studies  # noqa: E402
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-SCENE = os.path.join(ROOT, "examples", "slider_crank.toml")
+SCENE = os.path.join(EXAMPLES, "slider_crank.toml")
 T_END = 1.0
 OUTPUT_INTERVAL = 0.0025  # s: the scene's 401 outputs in 1 s
 CALIBRATION_T_END = [0.25, 0.5, 1.0, 2.0]
@@ -113,14 +113,6 @@ OUTPUTS = {"torque": studies.peak_effort("motor"), "peak_C": studies.peak_reacti
 
 def n_out(t_end):
     return int(round(t_end / OUTPUT_INTERVAL)) + 1
-
-
-def git(*args):
-    return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True).stdout.strip()
-
-
-def load():
-    return os.getloadavg()[0] if hasattr(os, "getloadavg") else None
 
 
 def wait_for_quiet(limit, threshold=0.3, window=1.0):
@@ -386,7 +378,7 @@ def main():
     n = args.cases or (200 if args.quick else 1000)
     dask_batches = [1] if args.quick else DASK_BATCHES
     started = time.perf_counter()
-    loads = {"start": load()}
+    loads = {"start": load_average()}
 
     import dask
     import distributed
@@ -399,10 +391,7 @@ def main():
     settings = dict(t_end=T_END, rtol=1e-8, atol=1e-10, n_out=n_out(T_END))
     assert {k: scene.settings[k] for k in ("rtol", "atol")} == {"rtol": 1e-8, "atol": 1e-10}, scene.settings
     grid = {"rod.mass": np.linspace(1.0, 3.0, n)}
-    out = {"benchmark": "sweep", "date": datetime.datetime.now().isoformat(timespec="minutes"),
-           "commit": git("rev-parse", "--short", "HEAD"),
-           "changes": git("status", "--porcelain", "--", "cpp", "python/lagmb").splitlines(),
-           "machine": platform.platform(), "python": platform.python_version(), "cpus": os.cpu_count(),
+    out = {**stamp("sweep", changed("cpp", "python/lagmb")),
            "numpy": np.__version__, "dask": dask.__version__, "distributed": distributed.__version__,
            "xarray": xarray.__version__, "zarr": zarr.__version__,
            "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS"), "repeats": repeats, "cases": n,
@@ -429,7 +418,7 @@ def main():
         scaling[-1]["waited"], scaling[-1]["others_cores_before"] = waited, quiet
     out["thread_scaling"] = dict(cases=probe_count, rounds=scaling)
     out["busy_cores_speed"] = busy_cores_speed(model, settings, 20 if args.quick else 40, 4 if args.quick else 8)
-    loads["after_probe"] = load()
+    loads["after_probe"] = load_average()
 
     # start-up of each executor: made, then a warm-up sweep twice
     warm = {"rod.mass": np.linspace(1.0, 3.0, WARM)}
@@ -502,7 +491,7 @@ def main():
                     warnings._showwarnmsg_impl, warnings.showwarning = before
                 print(f"round {round_}: {name}: {row['wall']:.2f} s, {row['rate']:.0f} cases/s, overhead "
                       f"{row['overhead']:.3f}, others' CPU {row['others_cores']} cores", flush=True)
-            loads["rounds"].append(load())
+            loads["rounds"].append(load_average())
         startup["dask"] = dict({k: summary([x[k] for x in dask_startups]) for k in dask_startups[0]},
                                rounds=len(dask_startups))
         out["startup"] = startup
@@ -579,7 +568,7 @@ def main():
         close_dask()
         processes.shutdown()
         threads.shutdown()
-    loads["end"] = load()
+    loads["end"] = load_average()
 
     # summaries
     base = np.array([r["wall"] for r in rows["in_process"]])
@@ -748,15 +737,11 @@ def main():
           f"scheduler (this process) {b['per_task_cpu'] * 1e3:.1f} ms CPU per task (batch 1 against the default): "
           f"{b['client_and_scheduler_cpu']:.0f} s for the {e['tasks']} tasks, beside the compute")
 
-    print(f"\n{out['date']}, commit {out['commit']}{' + changes' if out['changes'] else ''}, {out['machine']}, "
-          f"{out['cpus']} CPUs, load average {loads['start']:.2f} .. {loads['end']:.2f} (rounds: "
+    print(f"\n{stamp_line(out)}, load average {loads['start']:.2f} .. {loads['end']:.2f} (rounds: "
           f"{', '.join(f'{x:.2f}' for x in loads['rounds'])}), {out['seconds']:.0f} s")
-    path = args.out or (None if args.quick else os.path.join(HERE, "results", "sweep.json"))
+    path = args.out or (None if args.quick else os.path.join(RESULTS, "sweep.json"))
     if path:
-        with open(path, "w", encoding="utf-8") as f:
-            json.dump(out, f, indent=1, default=float)
-            f.write("\n")
-        print(f"written: {os.path.relpath(path, ROOT)}")
+        write_json(path, out, default=float)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@ the slider-crank, the four-bar, the heavy top, a 1,000-link chain over 10 s
 at 100 frames per second, and the Panda arm from its URDF (meshes). Saves a
 screenshot of each in bench/results/viewer_<case>.png.
 
-    python bench/viewer.py [--quick]
+    python bench/performance/viewer.py [--quick]
 """
 
 import argparse
@@ -22,12 +22,15 @@ from pathlib import Path
 
 import numpy as np
 
-import lagmb as mb
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
-sys.path.insert(0, str(ROOT / "examples"))
-import browser  # noqa: E402  (the tests' DevTools driver)
+import lagmb as mb  # noqa: E402
+from bench.common.paths import RESULTS, ROOT  # noqa: E402
+from bench.common.record import git  # noqa: E402
+from bench.common.repo import browser  # noqa: E402  (the tests' DevTools driver)
+
+ROOT, RESULTS = Path(ROOT), Path(RESULTS)
 
 
 def chain(n, length=10.0, tilt=0.1):
@@ -54,7 +57,7 @@ def cases(quick):
     n, t_end = (100, 2.0) if quick else (1000, 10.0)
     out.append((f"chain{n}", lambda: mb.simulate(chain(n), t_end, n_out=int(100 * t_end) + 1, method="ggl",
                                                   rtol=1e-3, atol=1e-5), ["energy", "rod0.angle"]))
-    import panda
+    from bench.common.repo import panda
 
     urdf = panda.panda_urdf()
     if urdf:
@@ -95,7 +98,7 @@ def main():
                 page.evaluate("lagmbViewer.pause()")
                 page.evaluate(f"lagmbViewer.setFrame({state['frames'] // 2})")
                 page.wait_for(f"lagmbViewer.state().renders > {played['renders'] + 2}")
-                shot = ROOT / "bench" / "results" / f"viewer_{name}.png"
+                shot = RESULTS / f"viewer_{name}.png"
                 if not args.quick:
                     page.screenshot(shot)
                 page.close()
@@ -110,12 +113,11 @@ def main():
         b.close()
     if args.quick:
         return
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
-                            text=True).stdout.strip()
+    commit = git("rev-parse", "--short", "HEAD")
     version = subprocess.run([binary, "--version"], capture_output=True, text=True).stdout.strip()
     out = dict(date=datetime.now().isoformat(timespec="minutes"), commit=commit, machine=platform.platform(),
                cpus=os.cpu_count(), load=os.getloadavg(), browser=version, results=results)
-    (ROOT / "bench" / "results" / "viewer.json").write_text(json.dumps(out, indent=1))
+    (RESULTS / "viewer.json").write_text(json.dumps(out, indent=1))
     print("written: bench/results/viewer.json and the screenshots bench/results/viewer_*.png")
 
 

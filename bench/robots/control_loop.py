@@ -2,12 +2,12 @@
 at 1 kHz for 2 s: lagmb's Simulator driven from Python, lagmb's in-model
 servo, and MuJoCo's mj_step loop, side by side.
 
-The arm: example-robot-data's panda URDF (found as bench/robots.py finds
+The arm: example-robot-data's panda URDF (found as bench/robots/robots.py finds
 robots) with its <visual>/<collision> elements taken out and the two finger
 slides made fixed joints (the hand and fingers are one rigid body with
 link 7), so that every engine sees the same 7-joint tree; lagmb reads it
 with mb.load_urdf(limits=False, dynamics=False), Pinocchio with
-buildModelFromUrdf, MuJoCo with its URDF reader as bench/mujoco_urdf.py
+buildModelFromUrdf, MuJoCo with its URDF reader as bench/robots/mujoco_urdf.py
 builds it (damping, armature, limits off; contacts and constraints
 disabled). Gravity (0, 0, -9.81). Joints are matched by name.
 
@@ -66,7 +66,7 @@ the median is reported with the ratio to the MuJoCo Euler loop's median.
 After the rounds, one instrumented run of the lagmb loop (auto, rtol 1e-6)
 splits a tick's time into its parts.
 
-    python bench/control_loop.py [--repeat 5] [--out bench/results/control_loop.json]
+    python bench/robots/control_loop.py [--repeat 5] [--out bench/results/control_loop.json]
 
 writes the JSON and a Markdown table beside it (control_loop.md).
 """
@@ -83,14 +83,14 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-if HERE not in sys.path:
-    sys.path.insert(0, HERE)
-import mujoco_urdf as mjb  # noqa: E402
-from robots import ROBOTS, angle_error, robots_dir  # noqa: E402
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-sys.path.insert(0, os.path.join(HERE, "peers"))
-from peer_lagmb import run_versions  # noqa: E402
+from bench.common.paths import RESULTS, robots_dir  # noqa: E402
+from bench.common.record import run_versions  # noqa: E402
+from bench.robots import mujoco_urdf as mjb  # noqa: E402
+from bench.robots.robots import ROBOTS, angle_error  # noqa: E402
+
 
 Q0 = {"panda_joint1": 0.0, "panda_joint2": -0.785, "panda_joint3": 0.0, "panda_joint4": -2.356,
       "panda_joint5": 0.0, "panda_joint6": 1.571, "panda_joint7": 0.785}
@@ -362,7 +362,7 @@ def fmt_time(seconds):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5, help="timed rounds; the median is reported")
-    parser.add_argument("--out", default=os.path.join(HERE, "results", "control_loop.json"))
+    parser.add_argument("--out", default=os.path.join(RESULTS, "control_loop.json"))
     args = parser.parse_args(argv)
 
     import mujoco
@@ -554,7 +554,7 @@ def main(argv=None):
         json.dump(doc, f, indent=1, default=jsonable)
     stem = os.path.splitext(args.out)[0]
     with open(stem + ".md", "w") as f:
-        f.write(f"# PD + gravity compensation on the Panda at 1 kHz for 2 s (bench/control_loop.py, "
+        f.write(f"# PD + gravity compensation on the Panda at 1 kHz for 2 s (bench/robots/control_loop.py, "
                 f"{doc['date']})\n\n")
         f.write(f"lagmb {versions['lagmb']}, MuJoCo {versions['mujoco']}, Pinocchio {versions['pinocchio']}; "
                 f"{platform.machine()}, {os.cpu_count()} cores; median of {args.repeat} interleaved rounds. "

@@ -25,7 +25,7 @@ Each row: steps, steps per simulated second, wall time (best of
 the largest excursion beyond a limit (rad or m, every output). Writes
 bench/results/limits_rest.json and prints a table.
 
-    python bench/limits_rest.py [--robots panda,kinova,z1] [--t-end 5] [--repeats 3]
+    python bench/robots/limits_rest.py [--robots panda,kinova,z1] [--t-end 5] [--repeats 3]
 """
 
 import argparse
@@ -36,12 +36,12 @@ import sys
 import time
 import warnings
 
-import numpy as np
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-
-from robot_survey import limit_excursion  # noqa: E402 (bench/ on the path first)
+from bench.common.paths import RESULTS, robots_dir  # noqa: E402
+from bench.common.timing import best_of  # noqa: E402
+from bench.robots.robot_survey import limit_excursion  # noqa: E402
 
 ARMS = {
     "panda": "panda_description/urdf/panda.urdf",
@@ -95,11 +95,7 @@ def resting_pose(path):
 def run(model, t_end, repeats, **options):
     import lagmb as mb
 
-    wall, r = np.inf, None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        r = mb.simulate(model, t_end, **options)
-        wall = min(wall, time.perf_counter() - start)
+    wall, r = best_of(lambda: mb.simulate(model, t_end, **options), repeats)
     joints = mb.JointSpace(model).joints
     return {"steps": int(r.stats["steps"]), "steps_per_second": r.stats["steps"] / t_end, "wall_time": wall,
             "method": r.stats.get("method", r.stats.get("formulation")),
@@ -110,13 +106,12 @@ def run(model, t_end, repeats, **options):
 
 def main(argv=None):
     import lagmb as mb
-    from robots import robots_dir
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robots", default=",".join(ARMS))
     parser.add_argument("--t-end", type=float, default=5.0)
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--out", default=os.path.join(HERE, "results", "limits_rest.json"))
+    parser.add_argument("--out", default=os.path.join(RESULTS, "limits_rest.json"))
     args = parser.parse_args(argv)
     out = {"machine": platform.platform(), "lagmb": mb.__version__, "date": time.strftime("%Y-%m-%d"),
            "t_end": args.t_end, "robots": {}}

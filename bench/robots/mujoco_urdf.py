@@ -1,4 +1,4 @@
-"""MuJoCo beside lagmb and Pinocchio in bench/robots.py: a URDF robot as
+"""MuJoCo beside lagmb and Pinocchio in bench/robots/robots.py: a URDF robot as
 MuJoCo model that simulates what the other two do, its RK4 runs and the
 checks against the bench's reference.
 

@@ -17,7 +17,7 @@ Prints a table and the counts; writes bench/results/robot_survey.json and
 robot_survey.md. Not a timing benchmark: the times only show where a run
 is slow.
 
-    python bench/robot_survey.py [--t-end 2] [--timeout 300] [--robots a1,panda]
+    python bench/robots/robot_survey.py [--t-end 2] [--timeout 300] [--robots a1,panda]
 """
 
 import argparse
@@ -28,8 +28,10 @@ import os
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.paths import RESULTS, robots_dir  # noqa: E402
 
 
 def first_line(e, path=""):
@@ -126,13 +128,11 @@ def survey(path, t_end, timeout):
 
 
 def main(argv=None):
-    from robots import robots_dir
-
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--t-end", type=float, default=2.0)
     parser.add_argument("--timeout", type=float, default=300.0)
     parser.add_argument("--robots", help="comma-separated parts of the file names to keep (default: all)")
-    parser.add_argument("--out", default=os.path.join(HERE, "results", "robot_survey"))
+    parser.add_argument("--out", default=os.path.join(RESULTS, "robot_survey"))
     args = parser.parse_args(argv)
     root = robots_dir()
     paths = sorted(glob.glob(os.path.join(root, "**", "*.urdf"), recursive=True))
@@ -158,7 +158,7 @@ def main(argv=None):
     with open(args.out + ".md", "w") as f:
         f.write(f"# example-robot-data with mb.load_urdf's defaults, {args.t_end:g} s under gravity\n\n")
         f.write(f"{summary['files']} files: {loaded} load, {ran} run, {held} with every limit held to 1e-8 "
-                "(bench/robot_survey.py)\n\n| robot | load | run | excursion | steps | events | captures | releases | wall s |\n"
+                "(bench/robots/robot_survey.py)\n\n| robot | load | run | excursion | steps | events | captures | releases | wall s |\n"
                 "|---|---|---|---|---|---|---|---|---|\n")
         for name, r in rows.items():
             exc = r.get("limit_excursion")

@@ -8,7 +8,7 @@ tests/test_urdf.py), 1 s of free motion.
 - Reference: Pinocchio's ABA integrated by SciPy's DOP853 at rtol = atol =
   1e-13; every run below is measured against it (the largest joint-angle
   error at t = 1 s, mod 2 pi).
-- MuJoCo (bench/mujoco_urdf.py): the same URDF read by MuJoCo's URDF
+- MuJoCo (bench/robots/mujoco_urdf.py): the same URDF read by MuJoCo's URDF
   reader without its <visual>/<collision> elements (fixed joints fused),
   damping, friction, armature, limits and mimic equalities taken out,
   contacts and constraints disabled, gravity (0, 0, -9.81); joints matched
@@ -38,21 +38,24 @@ tests/test_urdf.py), 1 s of free motion.
   mj_resetData, the start state written, mj_step(nstep = n) and the joint
   angles read; the model is built beforehand, as lagmb's and Pinocchio's.
 
-    python bench/robots.py [--robots ur5,panda,solo12,go1,talos] [--repeats 3] [--out bench/results/robots.json]
+    python bench/robots/robots.py [--robots ur5,panda,solo12,go1,talos] [--repeats 3] [--out bench/results/robots.json]
 """
 
 import argparse
 import json
 import os
 import platform
-import site
 import sys
-import sysconfig
 import time
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+if not __package__:  # run as a file: the repository root on the path, for `import bench` (bench/README.md)
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from bench.common.paths import RESULTS, robots_dir  # noqa: E402
+from bench.common.timing import best_of  # noqa: E402
+
 ROBOTS = {
     "ur5": "ur_description/urdf/ur5_robot.urdf",
     "panda": "panda_description/urdf/panda.urdf",
@@ -64,26 +67,8 @@ TARGETS = (1e-6, 1e-8)
 RTOLS = tuple(10.0 ** (-k / 2) for k in range(10, 25))
 
 
-def robots_dir():
-    for base in sorted({sysconfig.get_paths()["purelib"], *site.getsitepackages()}):
-        path = os.path.join(base, "cmeel.prefix", "share", "example-robot-data", "robots")
-        if os.path.isdir(path):
-            return path
-    sys.exit("example-robot-data is not installed (pip install 'lagmb[robots]')")
-
-
 def angle_error(a, b):
     return float(np.max(np.abs(np.remainder(np.asarray(a) - np.asarray(b) + np.pi, 2 * np.pi) - np.pi)))
-
-
-def best(f, repeats):
-    """(fastest wall time, last value) of `repeats` calls."""
-    fastest, value = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        value = f()
-        fastest = min(fastest, time.perf_counter() - t0)
-    return fastest, value
 
 
 def timed(f, min_time=0.02, max_calls=10):
@@ -108,9 +93,7 @@ def check_mujoco(path, names, pm, pd, start, state, reference, rtol=1e-8):
     with "excluded": why)."""
     import pinocchio as pin
 
-    if HERE not in sys.path:
-        sys.path.insert(0, HERE)
-    import mujoco_urdf as mjb
+    from bench.robots import mujoco_urdf as mjb
 
     check = {}
     try:
@@ -198,9 +181,9 @@ def case(relpath, repeats):
                                                         reference)
 
     per_call = {}
-    per_call["pinocchio"] = min(best(lambda: [pin.aba(pm, pd, x, xd, np.zeros(pm.nv)) for _ in range(200)], 5)[0]
+    per_call["pinocchio"] = min(best_of(lambda: [pin.aba(pm, pd, x, xd, np.zeros(pm.nv)) for _ in range(200)], 5)[0]
                                 for _ in range(1)) / 200
-    per_call["lagmb"] = best(lambda: [mb.solve_accelerations(model, qc, vc) for _ in range(200)], 5)[0] / 200
+    per_call["lagmb"] = best_of(lambda: [mb.solve_accelerations(model, qc, vc) for _ in range(200)], 5)[0] / 200
     if rk4 is not None:
         per_call["mujoco"] = rk4.per_call(x, xd)
 
@@ -268,7 +251,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robots", default=",".join(ROBOTS))
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--out", default=os.path.join(HERE, "results", "robots.json"))
+    parser.add_argument("--out", default=os.path.join(RESULTS, "robots.json"))
     args = parser.parse_args(argv)
     import mujoco
     import pinocchio as pin

@@ -1,0 +1,1 @@
+"""What accuracy costs with each method: work-precision sweeps (bench/README.md)."""

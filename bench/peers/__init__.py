@@ -1,0 +1,1 @@
+"""lagmb against other engines on the same problems (bench/README.md)."""

@@ -1,0 +1,1 @@
+"""How the cost of lagmb's calls grows and where it goes (bench/README.md)."""
