@@ -64,7 +64,7 @@ machine is shared (2 cores): the load average is recorded, and for each
 sweep the CPU the whole machine used (/proc/stat) against what this
 process and its workers used (psutil), the difference being other jobs'.
 
-    python bench/sweep.py [--repeats 3] [--cases 1000] [--quick] [--out FILE]
+    python bench/performance/sweep.py [--repeats 3] [--cases 1000] [--quick] [--out FILE]
 
 Prints markdown tables and writes bench/results/sweep.json (with the git
 commit and date); --quick (200 cases, 2 rounds, Dask batch 1 and the
@@ -366,6 +366,378 @@ def run_sweep(scene, grid, executor, batch_size, workers):
     return row, ds
 
 
+# --- the measurements, in the order they run ------------------------------------------------
+
+
+def calibration(model, count):
+    """(0): one case in process at each t_end, printed as measured."""
+    print(f"(0) one case in process (studies._run_case: mb.simulate and the two outputs), an output every "
+          f"{OUTPUT_INTERVAL * 1e3:g} ms; min (median) of {count} cases\n")
+    print("| t_end (s) | outputs | case (ms) | core's run alone, wall_time (ms) |")
+    print("|---:|---:|---:|---:|")
+    rows = calibrate(model, count)
+    for row in rows:
+        print(f"| {row['t_end']:g} | {row['n_out']} | {row['case']['min'] * 1e3:.2f} ({row['case']['median'] * 1e3:.2f}) "
+              f"| {row['core']['min'] * 1e3:.2f} ({row['core']['median'] * 1e3:.2f}) |", flush=True)
+    return rows
+
+
+def probe_threads(out, model, settings, quick):
+    """(3), before any pool or cluster: forking a process with threads running is unsafe."""
+    probe_count = 60 if quick else 200
+    out["layers"] = layers(model, settings, 20 if quick else 50)
+    scaling = []
+    for _ in range(2 if quick else 3):
+        waited, quiet = wait_for_quiet(0 if quick else QUIET_WAIT / 2)
+        scaling.append(scaling_round(model, settings, probe_count))
+        scaling[-1]["waited"], scaling[-1]["others_cores_before"] = waited, quiet
+    out["thread_scaling"] = dict(cases=probe_count, rounds=scaling)
+    out["busy_cores_speed"] = busy_cores_speed(model, settings, 20 if quick else 40, 4 if quick else 8)
+
+
+class Executors:
+    """The pools, made once, and the Dask cluster, made anew for its
+    variants only; the start-up of each: made, then a warm-up sweep twice."""
+
+    def __init__(self, scene, warm):
+        import distributed
+
+        self.distributed, self.scene, self.warm = distributed, scene, warm
+        self.startup, self.holder = {}, {}
+        self.start("in_process", lambda: None, 1)
+        self.processes = self.start("processes", lambda: concurrent.futures.ProcessPoolExecutor(WORKERS), WORKERS)
+        self.threads = self.start("threads", lambda: concurrent.futures.ThreadPoolExecutor(WORKERS), WORKERS)
+
+    def start(self, name, make, workers):
+        t0 = time.perf_counter()
+        executor = make()
+        made = time.perf_counter() - t0
+        first, _ = run_sweep(self.scene, self.warm, executor, 1, workers)
+        second, _ = run_sweep(self.scene, self.warm, executor, 1, workers)
+        self.startup[name] = dict(made=made, first_sweep=first["wall"], second_sweep=second["wall"],
+                                  startup=made + first["wall"] - second["wall"])
+        return executor
+
+    def make_dask(self):
+        holder = self.holder
+        holder["cluster"] = self.distributed.LocalCluster(n_workers=WORKERS, threads_per_worker=1, processes=True,
+                                                          dashboard_address=None, silence_logs=40)
+        holder["client"] = self.distributed.Client(holder["cluster"])
+        return holder["client"]
+
+    def close_dask(self):
+        if self.holder.get("client") is not None:
+            self.holder.pop("client").close()
+            self.holder.pop("cluster").close()
+
+    def shutdown(self):
+        self.close_dask()
+        self.processes.shutdown()
+        self.threads.shutdown()
+
+
+def sweep_rounds(ex, scene, grid, n, repeats, dask_batches, quick, loads):
+    """(1)-(2): every variant once a round, the order reversed every other
+    round; the rows, the last Dataset of each variant, the thread sweeps
+    that left the warnings module redirected and the Dask start-ups."""
+    # the Dask cluster lives only while its variants run: idle, its five
+    # processes (scheduler in this one, 2 nannies, 2 workers) took about 0.1
+    # cores, which the other executors' second worker would miss
+    dask_startups = []
+    variants = {"in_process": (None, None, 1), "threads": (ex.threads, None, WORKERS),
+                "processes": (ex.processes, None, WORKERS), "dask": ("dask", None, WORKERS)}
+    for b in dask_batches:
+        variants[f"dask, batch {b}"] = ("dask", b, WORKERS)
+    rows = {name: [] for name in variants}
+    loads["rounds"], loads["waits"] = [], []
+    disturbed = 0
+    before = warnings_state()
+    last = {}
+    for round_ in range(repeats):
+        waited, quiet = wait_for_quiet(0 if quick else QUIET_WAIT)
+        loads["waits"].append(dict(waited=waited, others_cores=quiet))
+        order = list(variants) if round_ % 2 == 0 else list(reversed(variants))
+        for name in order:
+            executor, batch, workers = variants[name]
+            if executor == "dask":
+                if "client" not in ex.holder:
+                    ex.start("dask", ex.make_dask, WORKERS)
+                    dask_startups.append(ex.startup["dask"])
+                executor = ex.holder["client"]
+            elif "client" in ex.holder:
+                ex.close_dask()
+            row, ds = run_sweep(scene, grid, executor, batch, workers)
+            row["batch_size"] = batch or max(1, min(256, math.ceil(n / (4 * workers))))
+            row["tasks"] = math.ceil(n / row["batch_size"])
+            # the work of this process (the client; for Dask also the scheduler) per task
+            row["this_process_cpu_per_task"] = row["this_process_cores"] * row["wall"] / row["tasks"]
+            row["round"] = round_
+            row["workers"] = workers
+            rows[name].append(row)
+            last[name] = ds
+            if name == "threads" and warnings_state() != before:
+                disturbed += 1
+                warnings._showwarnmsg_impl, warnings.showwarning = before
+            print(f"round {round_}: {name}: {row['wall']:.2f} s, {row['rate']:.0f} cases/s, overhead "
+                  f"{row['overhead']:.3f}, others' CPU {row['others_cores']} cores", flush=True)
+        loads["rounds"].append(load_average())
+    return rows, last, disturbed, dask_startups
+
+
+def store_sweeps(scene, warm, grid, client, n, quick, reference):
+    """(4): sweeps into a Zarr store in a temporary directory, and one batch
+    written as the store writes it, in this process."""
+    tmp = tempfile.mkdtemp(prefix="lagmb_sweep_bench_")
+    stores = []
+    try:
+        t0 = time.perf_counter()  # the first store of this process imports zarr's codecs: apart
+        mb.sweep(scene, warm, outputs=OUTPUTS, t_end=T_END, n_out=n_out(T_END), executor=client, batch_size=1,
+                 store=os.path.join(tmp, "warm.zarr"), progress=False)
+        mb.sweep.open_store(os.path.join(tmp, "warm.zarr"))
+        store_warm = time.perf_counter() - t0
+        for b in ([None] if quick else [None, 256]):
+            path = os.path.join(tmp, f"study_{b}.zarr")
+            with Meter() as meter:
+                ds = mb.sweep(scene, grid, outputs=OUTPUTS, t_end=T_END, n_out=n_out(T_END), executor=client,
+                              batch_size=b, store=path, progress=False)
+            assert (ds["status"].values == "ok").all()
+            size = files = blocks = 0
+            for root, _, names in os.walk(path):
+                for f in names:
+                    st = os.stat(os.path.join(root, f))
+                    size, files, blocks = size + st.st_size, files + 1, blocks + st.st_blocks * 512
+            batches = sum(1 for x in os.listdir(path) if x.startswith("batch_"))
+            t0 = time.perf_counter()
+            mb.sweep.open_store(path)
+            reopen = time.perf_counter() - t0
+            stores.append(dict(batch_size=b or max(1, min(256, math.ceil(n / (4 * WORKERS)))), batches=batches,
+                               wall=meter.wall, rate=n / meter.wall, bytes=size, disk_bytes=blocks, files=files,
+                               bytes_per_case=size / n, disk_bytes_per_case=blocks / n,
+                               files_per_batch=files / batches, open_store=reopen,
+                               open_store_per_batch=reopen / batches))
+        # one batch written as the store writes it, in this process
+        writes = []
+        for b in sorted({min(125, n), min(256, n)}):
+            times = []
+            for k in range(3):
+                part = reference.isel(case=slice(0, b))
+                part.attrs = dict(part.attrs)
+                t0 = time.perf_counter()
+                part.to_zarr(os.path.join(tmp, "writes.zarr"), group=f"tmp_{b}_{k}", mode="w", consolidated=False)
+                os.rename(os.path.join(tmp, "writes.zarr", f"tmp_{b}_{k}"), os.path.join(tmp, "writes.zarr",
+                                                                                    f"batch_{b}_{k}"))
+                times.append(time.perf_counter() - t0)
+            writes.append(dict(batch_size=b, write=summary(times)))
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return dict(sweeps=stores, batch_writes=writes, first_store_of_the_process=store_warm)
+
+
+def serial_work(model, grid, ref, n):
+    """The sweep's serial work in this process, per case: the cases checked
+    before any run, the Dataset built after the last."""
+    cases = studies._cases(grid, "sweep")[0]
+    t0 = time.perf_counter()
+    checked = studies._check_cases(model, cases, "sweep")
+    check = (time.perf_counter() - t0) / n
+    records = {i: {"status": "ok", "warnings": "", "steps": int(ref["steps"].values[i]),
+                   "wall_time": float(ref["wall_time"].values[i]), "history": None,
+                   "outputs": {k: np.asarray(ref[k].values[i]) for k in OUTPUTS}} for i in range(n)}
+    t0 = time.perf_counter()
+    studies._dataset(checked, records, ["rod.mass"], OUTPUTS, [("rod.mass", list(grid["rod.mass"]))], None,
+                     model.coordinate_names)
+    dataset = (time.perf_counter() - t0) / n
+    return dict(check_cases=check, build_dataset=dataset)
+
+
+# --- summaries ----------------------------------------------------------------------------------
+
+
+def throughput_table(rows, n):
+    """(1)-(2) per variant: min and median over the rounds, the ratio to in
+    process, the quiet sweeps, the ratio at equal run speed."""
+    base = np.array([r["wall"] for r in rows["in_process"]])
+    table = {}
+    for name, rs in rows.items():
+        wall = np.array([r["wall"] for r in rs])
+        per_round = base / wall  # the ratio in each round
+        table[name] = dict(
+            batch_size=rs[0]["batch_size"], wall=summary(wall), rate=dict(best=n / wall.min(), median=n / np.median(wall)),
+            ratio=dict(of_best=float(base.min() / wall.min()), of_medians=float(np.median(base) / np.median(wall)),
+                       per_round=per_round.tolist()),
+            overhead=summary([r["overhead"] for r in rs]),
+            mean_case_wall_time=summary([r["mean_case_wall_time"] for r in rs]),
+            others_cores=summary([r["others_cores"] for r in rs if r["others_cores"] is not None] or [float("nan")]),
+            ours_cores=summary([r["ours_cores"] for r in rs]),
+            cases_per_cpu_second=summary([r["cases"] / (r["ours_cores"] * r["wall"]) for r in rs]),
+            this_process_cores=summary([r["this_process_cores"] for r in rs]),
+            this_process_cpu_per_task=summary([r["this_process_cpu_per_task"] for r in rs]))
+        # at equal run speed: the ratio if each worker's runs went as fast as in process's (same round)
+        equal = [r["workers"] * (1 + b["overhead"]) / (1 + r["overhead"]) for r, b in zip(rs, rows["in_process"])]
+        table[name]["ratio_at_equal_run_speed"] = summary(equal)
+        quiet = [r["wall"] for r in rs if r["others_cores"] is not None and r["others_cores"] < QUIET]
+        table[name]["quiet"] = dict(sweeps=len(quiet), rate=n / min(quiet) if quiet else None,
+                                    ratio=float(base.min() / min(quiet)) if quiet else None)
+    return table
+
+
+def estimate_study(out, n):
+    """The estimate: 1e6 cases on 100 machines x 2 cores, each machine as the Dask cluster here."""
+    table = out["table"]
+    base = np.array([r["wall"] for r in out["sweeps"]["in_process"]])
+    workers = PAPER_MACHINES * PAPER_CORES
+    tasks_batch = max(1, min(256, math.ceil(PAPER_CASES / (4 * workers))))
+    tasks = math.ceil(PAPER_CASES / tasks_batch)
+    writes_256 = next(w for w in out["store"]["batch_writes"] if w["batch_size"] == min(256, n))
+    store_bytes = [s["bytes_per_case"] for s in out["store"]["sweeps"]]
+    estimate = {}
+    cs = out["client_serial_per_case"]
+    store_default = out["store"]["sweeps"][-1]  # batch 256 in the full run
+    for key in ("min", "median"):
+        own = table["in_process"]["mean_case_wall_time"][key]  # the core's run alone, in process
+        per_case = {
+            # each worker with a core of its own: the run as in process, plus the Dask cluster's overhead
+            "own_cores": own * (1 + table["dask"]["overhead"][key]),
+            # this machine as it was: the 2-worker cluster's cases/s, per worker
+            "as_measured": WORKERS * table["dask"]["wall"][key] / n,
+        }
+        check, build = PAPER_CASES * cs["check_cases"], PAPER_CASES * cs["build_dataset"]
+        limit = tasks_batch / writes_256["write"][key]  # cases/s this process can write into a store
+        rows_ = {}
+        for basis, c in per_case.items():
+            compute = math.ceil(tasks / workers) * tasks_batch * c
+            rows_[basis] = dict(per_case_on_a_worker=c, compute=compute, total=check + compute + build,
+                                total_with_store=check + max(compute, PAPER_CASES / limit)
+                                + tasks * store_default["open_store_per_batch"])
+        per_task = out["dask_cpu_per_task"][key]
+        estimate[key] = dict(client_and_scheduler_cpu=tasks * per_task, per_task_cpu=per_task,
+                             per_case_in_process=(base.min() if key == "min" else np.median(base)) / n,
+                             core_run_in_process=own, ideal=PAPER_CASES * own / workers, check_cases=check,
+                             build_dataset=build, store_write_limit_cases_per_s=limit,
+                             open_store=tasks * store_default["open_store_per_batch"], **rows_)
+    return dict(cases=PAPER_CASES, machines=PAPER_MACHINES, cores=PAPER_CORES, workers=workers,
+                default_batch=tasks_batch, tasks=tasks, waves=math.ceil(tasks / workers),
+                store_bytes_per_case=store_bytes, store_gb=[PAPER_CASES * b / 1e9 for b in store_bytes],
+                **estimate)
+
+
+# --- tables -------------------------------------------------------------------------------------
+
+
+def print_throughput(out):
+    n, repeats, table = out["cases"], out["repeats"], out["table"]
+    print(f"\n(1)-(2) {n} cases of {T_END:g} s ({n_out(T_END)} outputs), min (median) of {repeats} rounds; "
+          f"ratio: cases/s over in process in the same rounds; overhead: (workers x wall - sum of the cases' "
+          f"wall_time) / sum of the cases' wall_time; quiet: the variant's sweeps during which the other jobs used "
+          f"under {QUIET} cores, the best of them against in process's best; at equal run speed: workers x (1 + "
+          f"overhead in process) / (1 + overhead), same round, best (median)\n")
+    print("| executor | batch | wall (s) | cases/s | ratio to in process | quiet: sweeps, ratio | overhead "
+          "| ratio at equal run speed | case's own run (ms) | our CPU (cores) | this process's CPU per task (ms) "
+          "| others' CPU (cores) |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name, t in table.items():
+        per_task = (f"{t['this_process_cpu_per_task']['min'] * 1e3:.1f} ({t['this_process_cpu_per_task']['median'] * 1e3:.1f})"
+                    if name.startswith(("processes", "dask")) else "-")
+        print(f"| {name} | {t['batch_size']} | {t['wall']['min']:.2f} ({t['wall']['median']:.2f}) "
+              f"| {t['rate']['best']:.0f} ({t['rate']['median']:.0f}) "
+              f"| {t['ratio']['of_best']:.2f} ({t['ratio']['of_medians']:.2f}) "
+              f"| {t['quiet']['sweeps']}, {'-' if t['quiet']['ratio'] is None else format(t['quiet']['ratio'], '.2f')} "
+              f"| {t['overhead']['min']:.3f} ({t['overhead']['median']:.3f}) "
+              f"| {t['ratio_at_equal_run_speed']['max']:.2f} ({t['ratio_at_equal_run_speed']['median']:.2f}) "
+              f"| {t['mean_case_wall_time']['min'] * 1e3:.2f} ({t['mean_case_wall_time']['median'] * 1e3:.2f}) "
+              f"| {t['ours_cores']['min']:.2f} ({t['ours_cores']['median']:.2f}) "
+              f"| {per_task} "
+              f"| {t['others_cores']['min']:.2f} ({t['others_cores']['median']:.2f}) |")
+
+
+def print_startup(startup):
+    print(f"\nStart-up (s): made + first warm-up sweep ({WARM} cases, batch 1) - the second\n")
+    print("| executor | made | first sweep | second sweep | start-up |")
+    print("|---|---:|---:|---:|---:|")
+    for name, st in startup.items():
+        if "rounds" in st:  # made again in each round: min (median)
+            print(f"| {name} ({st['rounds']} rounds) | " + " | ".join(
+                f"{st[k]['min']:.3f} ({st[k]['median']:.3f})" for k in ("made", "first_sweep", "second_sweep", "startup"))
+                + " |")
+        else:
+            print(f"| {name} | {st['made']:.3f} | {st['first_sweep']:.3f} | {st['second_sweep']:.3f} "
+                  f"| {st['startup']:.3f} |")
+
+
+def print_threads(out):
+    L = out["layers"]
+    probe_count, scaling = out["thread_scaling"]["cases"], out["thread_scaling"]["rounds"]
+    print("\n(3) a case's layers in process (ms), min (median)\n")
+    print("| core's run (wall_time) | _core.simulate | mb.simulate | case without outputs | case |")
+    print("|---:|---:|---:|---:|---:|")
+    print("| " + " | ".join(f"{L[k]['min'] * 1e3:.3f} ({L[k]['median'] * 1e3:.3f})" for k in
+                            ("core_wall_time", "core_call", "mb_simulate", "case_without_outputs", "case")) + " |")
+    print("\noutputs (ms): " + ", ".join(f"{k} {v['min'] * 1e3:.3f}" for k, v in L["outputs"].items()))
+    print(f"\nthe same work looped, cases/s ({probe_count} cases; ratio to 1 thread; the mean core's run "
+          f"(wall_time) and the share of the threads' or processes' time inside it; others: the other jobs' CPU "
+          f"meanwhile, cores)\n")
+    print("| work | round | 1 thread | 2 threads | 2 processes |")
+    print("|---|---:|---:|---:|---:|")
+    for i, rnd in enumerate(scaling):
+        for layer in ("core", "case"):
+            row = rnd[layer]
+            one = row["1 thread"]["rate"]
+            cells = []
+            for mode in ("1 thread", "2 threads", "2 processes"):
+                c = row[mode]
+                cell = f"{c['rate']:.0f} ({c['rate'] / one:.2f}), run {c['core_run'] * 1e3:.2f} ms, {c['in_core']:.2f} in it"
+                if c["others_cores"] is not None:
+                    cell += f", others {c['others_cores']:.1f}"
+                cells.append(cell)
+            print(f"| {layer} | {i} | " + " | ".join(cells) + " |")
+    speed = out["busy_cores_speed"]
+    print("\nthe core's run alone (median, ms) with one core busy and with both, alternated: "
+          + ", ".join(f"{r['one_busy'] * 1e3:.2f} / {r['two_busy'] * 1e3:.2f}" for r in speed)
+          + f"; median ratio {np.median([r['two_busy'] / r['one_busy'] for r in speed]):.2f}")
+    warned = out["threads_left_warnings_redirected"]
+    print(f"\nthread sweeps that left warnings redirected into a case's list: {warned['disturbed']} of "
+          f"{warned['sweeps']}")
+
+
+def print_store(out):
+    print("\n(4) the store\n")
+    print("| batch | batches | sweep (s) | cases/s | bytes/case | on disk/case | files/batch | open_store (s) |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for st in out["store"]["sweeps"]:
+        print(f"| {st['batch_size']} | {st['batches']} | {st['wall']:.2f} | {st['rate']:.0f} "
+              f"| {st['bytes_per_case']:.0f} | {st['disk_bytes_per_case']:.0f} | {st['files_per_batch']:.0f} "
+              f"| {st['open_store']:.2f} |")
+    print(f"\nthe first store of the process (imports; {WARM} cases): {out['store']['first_store_of_the_process']:.2f} s")
+    print("\none batch written (ms): " + ", ".join(f"batch {w['batch_size']} {w['write']['min'] * 1e3:.1f} "
+                                                  f"({w['write']['median'] * 1e3:.1f})"
+                                                  for w in out["store"]["batch_writes"]))
+    cs = out["client_serial_per_case"]
+    print(f"this process's serial work per case: cases checked {cs['check_cases'] * 1e6:.1f} us, Dataset built "
+          f"{cs['build_dataset'] * 1e6:.1f} us")
+
+
+def print_estimate(e):
+    workers = e["workers"]
+    print(f"\n1e6 cases on {PAPER_MACHINES} machines x {PAPER_CORES} cores ({workers} workers), default batch "
+          f"{e['default_batch']}, {e['tasks']} tasks in {e['waves']} waves; from the min (median) of (1)\n")
+    print("| basis | per case on a worker (ms) | compute (s) | + cases checked + Dataset (s) "
+          "| with a store instead of the Dataset (s) |")
+    print("|---|---:|---:|---:|---:|")
+    for basis, label in (("own_cores", "a core per worker: the core's run in process x (1 + Dask overhead)"),
+                         ("as_measured", "this machine as measured: 2 / the cluster's cases/s")):
+        b, m = e["min"][basis], e["median"][basis]
+        print(f"| {label} | {b['per_case_on_a_worker'] * 1e3:.2f} ({m['per_case_on_a_worker'] * 1e3:.2f}) "
+              f"| {b['compute']:.0f} ({m['compute']:.0f}) | {b['total']:.0f} ({m['total']:.0f}) "
+              f"| {b['total_with_store']:.0f} ({m['total_with_store']:.0f}) |")
+    b = e["min"]
+    print(f"\nideal (the core's runs alone over {workers} workers): {b['ideal']:.0f} s; this process: cases checked "
+          f"{b['check_cases']:.0f} s before the first task, Dataset {b['build_dataset']:.0f} s after the last; "
+          f"it writes a store at up to {b['store_write_limit_cases_per_s']:.0f} cases/s and reads it back in "
+          f"{b['open_store']:.0f} s; store {', '.join(f'{g:.2f}' for g in e['store_gb'])} GB; the client and the "
+          f"scheduler (this process) {b['per_task_cpu'] * 1e3:.1f} ms CPU per task (batch 1 against the default): "
+          f"{b['client_and_scheduler_cpu']:.0f} s for the {e['tasks']} tasks, beside the compute")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
@@ -398,345 +770,44 @@ def main():
            "model": "examples/slider_crank.toml", "varied": "rod.mass = linspace(1, 3, cases)",
            "settings": settings, "outputs": {k: repr(v) for k, v in OUTPUTS.items()}, "workers": WORKERS}
 
-    # (0)
-    print(f"(0) one case in process (studies._run_case: mb.simulate and the two outputs), an output every "
-          f"{OUTPUT_INTERVAL * 1e3:g} ms; min (median) of {10 if args.quick else 30} cases\n")
-    print("| t_end (s) | outputs | case (ms) | core's run alone, wall_time (ms) |")
-    print("|---:|---:|---:|---:|")
-    out["calibration"] = calibrate(model, 10 if args.quick else 30)
-    for row in out["calibration"]:
-        print(f"| {row['t_end']:g} | {row['n_out']} | {row['case']['min'] * 1e3:.2f} ({row['case']['median'] * 1e3:.2f}) "
-              f"| {row['core']['min'] * 1e3:.2f} ({row['core']['median'] * 1e3:.2f}) |", flush=True)
-
-    # (3) before any pool or cluster: forking a process with threads running is unsafe
-    probe_count = 60 if args.quick else 200
-    out["layers"] = layers(model, settings, 20 if args.quick else 50)
-    scaling = []
-    for _ in range(2 if args.quick else 3):
-        waited, quiet = wait_for_quiet(0 if args.quick else QUIET_WAIT / 2)
-        scaling.append(scaling_round(model, settings, probe_count))
-        scaling[-1]["waited"], scaling[-1]["others_cores_before"] = waited, quiet
-    out["thread_scaling"] = dict(cases=probe_count, rounds=scaling)
-    out["busy_cores_speed"] = busy_cores_speed(model, settings, 20 if args.quick else 40, 4 if args.quick else 8)
+    out["calibration"] = calibration(model, 10 if args.quick else 30)
+    probe_threads(out, model, settings, args.quick)
     loads["after_probe"] = load_average()
-
-    # start-up of each executor: made, then a warm-up sweep twice
     warm = {"rod.mass": np.linspace(1.0, 3.0, WARM)}
-    startup = {}
-
-    def start(name, make, workers):
-        t0 = time.perf_counter()
-        executor = make()
-        made = time.perf_counter() - t0
-        first, _ = run_sweep(scene, warm, executor, 1, workers)
-        second, _ = run_sweep(scene, warm, executor, 1, workers)
-        startup[name] = dict(made=made, first_sweep=first["wall"], second_sweep=second["wall"],
-                             startup=made + first["wall"] - second["wall"])
-        return executor
-
-    start("in_process", lambda: None, 1)
-    processes = start("processes", lambda: concurrent.futures.ProcessPoolExecutor(WORKERS), WORKERS)
-    threads = start("threads", lambda: concurrent.futures.ThreadPoolExecutor(WORKERS), WORKERS)
-    holder = {}
-
-    def make_dask():
-        holder["cluster"] = distributed.LocalCluster(n_workers=WORKERS, threads_per_worker=1, processes=True,
-                                                     dashboard_address=None, silence_logs=40)
-        holder["client"] = distributed.Client(holder["cluster"])
-        return holder["client"]
-
-    def close_dask():
-        if holder.get("client") is not None:
-            holder.pop("client").close()
-            holder.pop("cluster").close()
-
-    # the Dask cluster lives only while its variants run: idle, its five
-    # processes (scheduler in this one, 2 nannies, 2 workers) took about 0.1
-    # cores, which the other executors' second worker would miss
-    dask_startups = []
-    variants = {"in_process": (None, None, 1), "threads": (threads, None, WORKERS),
-                "processes": (processes, None, WORKERS), "dask": ("dask", None, WORKERS)}
-    for b in dask_batches:
-        variants[f"dask, batch {b}"] = ("dask", b, WORKERS)
-    rows = {name: [] for name in variants}
-    loads["rounds"], loads["waits"] = [], []
-    disturbed = 0
-    before = warnings_state()
-    last = {}
+    ex = Executors(scene, warm)
     try:
-        for round_ in range(repeats):
-            waited, quiet = wait_for_quiet(0 if args.quick else QUIET_WAIT)
-            loads["waits"].append(dict(waited=waited, others_cores=quiet))
-            order = list(variants) if round_ % 2 == 0 else list(reversed(variants))
-            for name in order:
-                executor, batch, workers = variants[name]
-                if executor == "dask":
-                    if "client" not in holder:
-                        start("dask", make_dask, WORKERS)
-                        dask_startups.append(startup["dask"])
-                    executor = holder["client"]
-                elif "client" in holder:
-                    close_dask()
-                row, ds = run_sweep(scene, grid, executor, batch, workers)
-                row["batch_size"] = batch or max(1, min(256, math.ceil(n / (4 * workers))))
-                row["tasks"] = math.ceil(n / row["batch_size"])
-                # the work of this process (the client; for Dask also the scheduler) per task
-                row["this_process_cpu_per_task"] = row["this_process_cores"] * row["wall"] / row["tasks"]
-                row["round"] = round_
-                row["workers"] = workers
-                rows[name].append(row)
-                last[name] = ds
-                if name == "threads" and warnings_state() != before:
-                    disturbed += 1
-                    warnings._showwarnmsg_impl, warnings.showwarning = before
-                print(f"round {round_}: {name}: {row['wall']:.2f} s, {row['rate']:.0f} cases/s, overhead "
-                      f"{row['overhead']:.3f}, others' CPU {row['others_cores']} cores", flush=True)
-            loads["rounds"].append(load_average())
-        startup["dask"] = dict({k: summary([x[k] for x in dask_startups]) for k in dask_startups[0]},
-                               rounds=len(dask_startups))
-        out["startup"] = startup
-        client = holder["client"] if "client" in holder else make_dask()
+        rows, last, disturbed, dask_startups = sweep_rounds(ex, scene, grid, n, repeats, dask_batches, args.quick,
+                                                            loads)
+        ex.startup["dask"] = dict({k: summary([x[k] for x in dask_startups]) for k in dask_startups[0]},
+                                  rounds=len(dask_startups))
+        out["startup"] = ex.startup
+        client = ex.holder["client"] if "client" in ex.holder else ex.make_dask()
         # every executor gives the in-process numbers
         for name, ds in last.items():
             for key in OUTPUTS:
                 np.testing.assert_array_equal(ds[key].values, last["in_process"][key].values)
-
         out["threads_left_warnings_redirected"] = dict(sweeps=repeats, disturbed=disturbed)
-
-        # (4) the store
-        tmp = tempfile.mkdtemp(prefix="lagmb_sweep_bench_")
-        stores = []
-        try:
-            t0 = time.perf_counter()  # the first store of this process imports zarr's codecs: apart
-            mb.sweep(scene, warm, outputs=OUTPUTS, t_end=T_END, n_out=n_out(T_END), executor=client, batch_size=1,
-                     store=os.path.join(tmp, "warm.zarr"), progress=False)
-            mb.sweep.open_store(os.path.join(tmp, "warm.zarr"))
-            store_warm = time.perf_counter() - t0
-            for b in ([None] if args.quick else [None, 256]):
-                path = os.path.join(tmp, f"study_{b}.zarr")
-                with Meter() as meter:
-                    ds = mb.sweep(scene, grid, outputs=OUTPUTS, t_end=T_END, n_out=n_out(T_END), executor=client,
-                                  batch_size=b, store=path, progress=False)
-                assert (ds["status"].values == "ok").all()
-                size = files = blocks = 0
-                for root, _, names in os.walk(path):
-                    for f in names:
-                        st = os.stat(os.path.join(root, f))
-                        size, files, blocks = size + st.st_size, files + 1, blocks + st.st_blocks * 512
-                batches = sum(1 for x in os.listdir(path) if x.startswith("batch_"))
-                t0 = time.perf_counter()
-                mb.sweep.open_store(path)
-                reopen = time.perf_counter() - t0
-                stores.append(dict(batch_size=b or max(1, min(256, math.ceil(n / (4 * WORKERS)))), batches=batches,
-                                   wall=meter.wall, rate=n / meter.wall, bytes=size, disk_bytes=blocks, files=files,
-                                   bytes_per_case=size / n, disk_bytes_per_case=blocks / n,
-                                   files_per_batch=files / batches, open_store=reopen,
-                                   open_store_per_batch=reopen / batches))
-            # one batch written as the store writes it, in this process
-            reference = last["in_process"]
-            writes = []
-            for b in sorted({min(125, n), min(256, n)}):
-                times = []
-                for k in range(3):
-                    part = reference.isel(case=slice(0, b))
-                    part.attrs = dict(part.attrs)
-                    t0 = time.perf_counter()
-                    part.to_zarr(os.path.join(tmp, "writes.zarr"), group=f"tmp_{b}_{k}", mode="w", consolidated=False)
-                    os.rename(os.path.join(tmp, "writes.zarr", f"tmp_{b}_{k}"), os.path.join(tmp, "writes.zarr",
-                                                                                        f"batch_{b}_{k}"))
-                    times.append(time.perf_counter() - t0)
-                writes.append(dict(batch_size=b, write=summary(times)))
-        finally:
-            shutil.rmtree(tmp, ignore_errors=True)
-        out["store"] = dict(sweeps=stores, batch_writes=writes, first_store_of_the_process=store_warm)
-
-        # the sweep's serial work in this process, per case
-        cases = studies._cases(grid, "sweep")[0]
-        t0 = time.perf_counter()
-        checked = studies._check_cases(model, cases, "sweep")
-        check = (time.perf_counter() - t0) / n
-        ref = last["in_process"]
-        records = {i: {"status": "ok", "warnings": "", "steps": int(ref["steps"].values[i]),
-                       "wall_time": float(ref["wall_time"].values[i]), "history": None,
-                       "outputs": {k: np.asarray(ref[k].values[i]) for k in OUTPUTS}} for i in range(n)}
-        t0 = time.perf_counter()
-        studies._dataset(checked, records, ["rod.mass"], OUTPUTS, [("rod.mass", list(grid["rod.mass"]))], None,
-                         model.coordinate_names)
-        dataset = (time.perf_counter() - t0) / n
-        out["client_serial_per_case"] = dict(check_cases=check, build_dataset=dataset)
+        out["store"] = store_sweeps(scene, warm, grid, client, n, args.quick, last["in_process"])
+        out["client_serial_per_case"] = serial_work(model, grid, last["in_process"], n)
     finally:
-        close_dask()
-        processes.shutdown()
-        threads.shutdown()
+        ex.shutdown()
     loads["end"] = load_average()
 
-    # summaries
-    base = np.array([r["wall"] for r in rows["in_process"]])
-    table = {}
-    for name, rs in rows.items():
-        wall = np.array([r["wall"] for r in rs])
-        per_round = base / wall  # the ratio in each round
-        table[name] = dict(
-            batch_size=rs[0]["batch_size"], wall=summary(wall), rate=dict(best=n / wall.min(), median=n / np.median(wall)),
-            ratio=dict(of_best=float(base.min() / wall.min()), of_medians=float(np.median(base) / np.median(wall)),
-                       per_round=per_round.tolist()),
-            overhead=summary([r["overhead"] for r in rs]),
-            mean_case_wall_time=summary([r["mean_case_wall_time"] for r in rs]),
-            others_cores=summary([r["others_cores"] for r in rs if r["others_cores"] is not None] or [float("nan")]),
-            ours_cores=summary([r["ours_cores"] for r in rs]),
-            cases_per_cpu_second=summary([r["cases"] / (r["ours_cores"] * r["wall"]) for r in rs]),
-            this_process_cores=summary([r["this_process_cores"] for r in rs]),
-            this_process_cpu_per_task=summary([r["this_process_cpu_per_task"] for r in rs]))
-        # at equal run speed: the ratio if each worker's runs went as fast as in process's (same round)
-        equal = [r["workers"] * (1 + b["overhead"]) / (1 + r["overhead"]) for r, b in zip(rs, rows["in_process"])]
-        table[name]["ratio_at_equal_run_speed"] = summary(equal)
-        quiet = [r["wall"] for r in rs if r["others_cores"] is not None and r["others_cores"] < QUIET]
-        table[name]["quiet"] = dict(sweeps=len(quiet), rate=n / min(quiet) if quiet else None,
-                                    ratio=float(base.min() / min(quiet)) if quiet else None)
     out["sweeps"] = rows
-    out["table"] = table
+    out["table"] = throughput_table(rows, n)
     # this process's CPU (the client and the Dask scheduler) per task: batch 1 against the default, same rounds
     cpu = lambda r: r["this_process_cores"] * r["wall"]  # noqa: E731
     slope = [(cpu(a) - cpu(b)) / (a["tasks"] - b["tasks"]) for a, b in zip(rows["dask, batch 1"], rows["dask"])]
     out["dask_cpu_per_task"] = summary(slope)
-
-    # the estimate: 1e6 cases on 100 machines x 2 cores, each machine as the Dask cluster here
-    workers = PAPER_MACHINES * PAPER_CORES
-    tasks_batch = max(1, min(256, math.ceil(PAPER_CASES / (4 * workers))))
-    tasks = math.ceil(PAPER_CASES / tasks_batch)
-    writes_256 = next(w for w in out["store"]["batch_writes"] if w["batch_size"] == min(256, n))
-    store_bytes = [s["bytes_per_case"] for s in out["store"]["sweeps"]]
-    estimate = {}
-    cs = out["client_serial_per_case"]
-    store_default = out["store"]["sweeps"][-1]  # batch 256 in the full run
-    for key in ("min", "median"):
-        own = table["in_process"]["mean_case_wall_time"][key]  # the core's run alone, in process
-        per_case = {
-            # each worker with a core of its own: the run as in process, plus the Dask cluster's overhead
-            "own_cores": own * (1 + table["dask"]["overhead"][key]),
-            # this machine as it was: the 2-worker cluster's cases/s, per worker
-            "as_measured": WORKERS * table["dask"]["wall"][key] / n,
-        }
-        check, build = PAPER_CASES * cs["check_cases"], PAPER_CASES * cs["build_dataset"]
-        limit = tasks_batch / writes_256["write"][key]  # cases/s this process can write into a store
-        rows_ = {}
-        for basis, c in per_case.items():
-            compute = math.ceil(tasks / workers) * tasks_batch * c
-            rows_[basis] = dict(per_case_on_a_worker=c, compute=compute, total=check + compute + build,
-                                total_with_store=check + max(compute, PAPER_CASES / limit)
-                                + tasks * store_default["open_store_per_batch"])
-        per_task = out["dask_cpu_per_task"][key]
-        estimate[key] = dict(client_and_scheduler_cpu=tasks * per_task, per_task_cpu=per_task,
-                             per_case_in_process=(base.min() if key == "min" else np.median(base)) / n,
-                             core_run_in_process=own, ideal=PAPER_CASES * own / workers, check_cases=check,
-                             build_dataset=build, store_write_limit_cases_per_s=limit,
-                             open_store=tasks * store_default["open_store_per_batch"], **rows_)
-    out["estimate"] = dict(cases=PAPER_CASES, machines=PAPER_MACHINES, cores=PAPER_CORES, workers=workers,
-                           default_batch=tasks_batch, tasks=tasks, waves=math.ceil(tasks / workers),
-                           store_bytes_per_case=store_bytes, store_gb=[PAPER_CASES * b / 1e9 for b in store_bytes],
-                           **estimate)
+    out["estimate"] = estimate_study(out, n)
     out["load_average_1min"] = loads
     out["seconds"] = time.perf_counter() - started
 
-    # tables
-    print(f"\n(1)-(2) {n} cases of {T_END:g} s ({n_out(T_END)} outputs), min (median) of {repeats} rounds; "
-          f"ratio: cases/s over in process in the same rounds; overhead: (workers x wall - sum of the cases' "
-          f"wall_time) / sum of the cases' wall_time; quiet: the variant's sweeps during which the other jobs used "
-          f"under {QUIET} cores, the best of them against in process's best; at equal run speed: workers x (1 + "
-          f"overhead in process) / (1 + overhead), same round, best (median)\n")
-    print("| executor | batch | wall (s) | cases/s | ratio to in process | quiet: sweeps, ratio | overhead "
-          "| ratio at equal run speed | case's own run (ms) | our CPU (cores) | this process's CPU per task (ms) "
-          "| others' CPU (cores) |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for name, t in table.items():
-        per_task = (f"{t['this_process_cpu_per_task']['min'] * 1e3:.1f} ({t['this_process_cpu_per_task']['median'] * 1e3:.1f})"
-                    if name.startswith(("processes", "dask")) else "-")
-        print(f"| {name} | {t['batch_size']} | {t['wall']['min']:.2f} ({t['wall']['median']:.2f}) "
-              f"| {t['rate']['best']:.0f} ({t['rate']['median']:.0f}) "
-              f"| {t['ratio']['of_best']:.2f} ({t['ratio']['of_medians']:.2f}) "
-              f"| {t['quiet']['sweeps']}, {'-' if t['quiet']['ratio'] is None else format(t['quiet']['ratio'], '.2f')} "
-              f"| {t['overhead']['min']:.3f} ({t['overhead']['median']:.3f}) "
-              f"| {t['ratio_at_equal_run_speed']['max']:.2f} ({t['ratio_at_equal_run_speed']['median']:.2f}) "
-              f"| {t['mean_case_wall_time']['min'] * 1e3:.2f} ({t['mean_case_wall_time']['median'] * 1e3:.2f}) "
-              f"| {t['ours_cores']['min']:.2f} ({t['ours_cores']['median']:.2f}) "
-              f"| {per_task} "
-              f"| {t['others_cores']['min']:.2f} ({t['others_cores']['median']:.2f}) |")
-
-    print(f"\nStart-up (s): made + first warm-up sweep ({WARM} cases, batch 1) - the second\n")
-    print("| executor | made | first sweep | second sweep | start-up |")
-    print("|---|---:|---:|---:|---:|")
-    for name, st in startup.items():
-        if "rounds" in st:  # made again in each round: min (median)
-            print(f"| {name} ({st['rounds']} rounds) | " + " | ".join(
-                f"{st[k]['min']:.3f} ({st[k]['median']:.3f})" for k in ("made", "first_sweep", "second_sweep", "startup"))
-                + " |")
-        else:
-            print(f"| {name} | {st['made']:.3f} | {st['first_sweep']:.3f} | {st['second_sweep']:.3f} "
-                  f"| {st['startup']:.3f} |")
-
-    L = out["layers"]
-    print("\n(3) a case's layers in process (ms), min (median)\n")
-    print("| core's run (wall_time) | _core.simulate | mb.simulate | case without outputs | case |")
-    print("|---:|---:|---:|---:|---:|")
-    print("| " + " | ".join(f"{L[k]['min'] * 1e3:.3f} ({L[k]['median'] * 1e3:.3f})" for k in
-                            ("core_wall_time", "core_call", "mb_simulate", "case_without_outputs", "case")) + " |")
-    print("\noutputs (ms): " + ", ".join(f"{k} {v['min'] * 1e3:.3f}" for k, v in L["outputs"].items()))
-    print(f"\nthe same work looped, cases/s ({probe_count} cases; ratio to 1 thread; the mean core's run "
-          f"(wall_time) and the share of the threads' or processes' time inside it; others: the other jobs' CPU "
-          f"meanwhile, cores)\n")
-    print("| work | round | 1 thread | 2 threads | 2 processes |")
-    print("|---|---:|---:|---:|---:|")
-    for i, rnd in enumerate(scaling):
-        for layer in ("core", "case"):
-            row = rnd[layer]
-            one = row["1 thread"]["rate"]
-            cells = []
-            for mode in ("1 thread", "2 threads", "2 processes"):
-                c = row[mode]
-                cell = f"{c['rate']:.0f} ({c['rate'] / one:.2f}), run {c['core_run'] * 1e3:.2f} ms, {c['in_core']:.2f} in it"
-                if c["others_cores"] is not None:
-                    cell += f", others {c['others_cores']:.1f}"
-                cells.append(cell)
-            print(f"| {layer} | {i} | " + " | ".join(cells) + " |")
-    speed = out["busy_cores_speed"]
-    print("\nthe core's run alone (median, ms) with one core busy and with both, alternated: "
-          + ", ".join(f"{r['one_busy'] * 1e3:.2f} / {r['two_busy'] * 1e3:.2f}" for r in speed)
-          + f"; median ratio {np.median([r['two_busy'] / r['one_busy'] for r in speed]):.2f}")
-    print(f"\nthread sweeps that left warnings redirected into a case's list: {disturbed} of {repeats}")
-
-    print("\n(4) the store\n")
-    print("| batch | batches | sweep (s) | cases/s | bytes/case | on disk/case | files/batch | open_store (s) |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for st in out["store"]["sweeps"]:
-        print(f"| {st['batch_size']} | {st['batches']} | {st['wall']:.2f} | {st['rate']:.0f} "
-              f"| {st['bytes_per_case']:.0f} | {st['disk_bytes_per_case']:.0f} | {st['files_per_batch']:.0f} "
-              f"| {st['open_store']:.2f} |")
-    print(f"\nthe first store of the process (imports; {WARM} cases): {out['store']['first_store_of_the_process']:.2f} s")
-    print("\none batch written (ms): " + ", ".join(f"batch {w['batch_size']} {w['write']['min'] * 1e3:.1f} "
-                                                  f"({w['write']['median'] * 1e3:.1f})" for w in writes))
-    cs = out["client_serial_per_case"]
-    print(f"this process's serial work per case: cases checked {cs['check_cases'] * 1e6:.1f} us, Dataset built "
-          f"{cs['build_dataset'] * 1e6:.1f} us")
-    e = out["estimate"]
-    print(f"\n1e6 cases on {PAPER_MACHINES} machines x {PAPER_CORES} cores ({workers} workers), default batch "
-          f"{e['default_batch']}, {e['tasks']} tasks in {e['waves']} waves; from the min (median) of (1)\n")
-    print("| basis | per case on a worker (ms) | compute (s) | + cases checked + Dataset (s) "
-          "| with a store instead of the Dataset (s) |")
-    print("|---|---:|---:|---:|---:|")
-    for basis, label in (("own_cores", "a core per worker: the core's run in process x (1 + Dask overhead)"),
-                         ("as_measured", "this machine as measured: 2 / the cluster's cases/s")):
-        b, m = e["min"][basis], e["median"][basis]
-        print(f"| {label} | {b['per_case_on_a_worker'] * 1e3:.2f} ({m['per_case_on_a_worker'] * 1e3:.2f}) "
-              f"| {b['compute']:.0f} ({m['compute']:.0f}) | {b['total']:.0f} ({m['total']:.0f}) "
-              f"| {b['total_with_store']:.0f} ({m['total_with_store']:.0f}) |")
-    b = e["min"]
-    print(f"\nideal (the core's runs alone over {workers} workers): {b['ideal']:.0f} s; this process: cases checked "
-          f"{b['check_cases']:.0f} s before the first task, Dataset {b['build_dataset']:.0f} s after the last; "
-          f"it writes a store at up to {b['store_write_limit_cases_per_s']:.0f} cases/s and reads it back in "
-          f"{b['open_store']:.0f} s; store {', '.join(f'{g:.2f}' for g in e['store_gb'])} GB; the client and the "
-          f"scheduler (this process) {b['per_task_cpu'] * 1e3:.1f} ms CPU per task (batch 1 against the default): "
-          f"{b['client_and_scheduler_cpu']:.0f} s for the {e['tasks']} tasks, beside the compute")
-
+    print_throughput(out)
+    print_startup(out["startup"])
+    print_threads(out)
+    print_store(out)
+    print_estimate(out["estimate"])
     print(f"\n{stamp_line(out)}, load average {loads['start']:.2f} .. {loads['end']:.2f} (rounds: "
           f"{', '.join(f'{x:.2f}' for x in loads['rounds'])}), {out['seconds']:.0f} s")
     path = args.out or (None if args.quick else os.path.join(RESULTS, "sweep.json"))
