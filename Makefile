@@ -28,7 +28,7 @@ test-asan:
 	scripts/test-asan.sh $(PYTHON)
 
 bench: $(STAMP)
-	$(PYTHON) bench/chain.py
+	$(PYTHON) bench/performance/chain.py
 
 # from scratch, so the gallery runs every example against the code as it is
 # (tests/test_docs.py builds the same pages, reusing the gallery's outputs)

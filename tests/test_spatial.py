@@ -588,7 +588,7 @@ def test_a_thousand_body_spatial_chain_costs_the_same_per_body():
     """What a step costs, counted: the Cholesky factor of the range-space
     system grows by the same 35 entries per link from 100 to 1,000 links, and
     an explicit run evaluates each element the same number of times per
-    right-hand side. (Times per step and link: bench/spatial_chain.py.)"""
+    right-hand side. (Times per step and link: bench/performance/spatial_chain.py.)"""
     runs = {n: mb.simulate(spatial_chain(n), 0.005, formulation="projection", integrator="erk", n_out=2)
             for n in (100, 1000)}
     nonzeros = {n: r.stats["factor_nonzeros"] for n, r in runs.items()}

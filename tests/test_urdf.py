@@ -1650,7 +1650,7 @@ def limits_held(model, r, tolerance=1e-8):
 
 #: The files of example-robot-data that do not load and fall 5 s onto their
 #: limits with every limit held to 1e-8, and the words of the error that
-#: says why (bench/robot_survey.py --t-end 5 finds the same).
+#: says why (bench/robots/robot_survey.py --t-end 5 finds the same).
 NOT_FALLING = {
     **SKIPPED,
 }
