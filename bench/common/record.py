@@ -38,10 +38,12 @@ def stamp(benchmark, changes):
             "machine": platform.platform(), "python": platform.python_version(), "cpus": os.cpu_count()}
 
 
-def stamp_line(out):
-    """The stamp as one printed line: date, commit (+ changes), machine, CPUs."""
-    return (f"{out['date']}, commit {out['commit']}{' + changes' if out['changes'] else ''}, {out['machine']}, "
+def stamp_line(out, loads=None):
+    """The stamp as one printed line: date, commit (+ changes), machine, CPUs
+    (and the load average at the start and the end, `loads`)."""
+    line = (f"{out['date']}, commit {out['commit']}{' + changes' if out['changes'] else ''}, {out['machine']}, "
             f"{out['cpus']} CPUs")
+    return line if loads is None else line + f", load average {loads[0]:.2f} .. {loads[1]:.2f}"
 
 
 def load_average():
@@ -50,7 +52,10 @@ def load_average():
 
 
 def write_json(path, out, **dump_options):
-    """`out` as indented JSON with a final newline; says where."""
+    """`out` as indented JSON with a final newline; says where. No path
+    (a --quick run without --out), nothing written."""
+    if not path:
+        return
     with open(path, "w", encoding="utf-8") as f:
         json.dump(out, f, indent=1, **dump_options)
         f.write("\n")

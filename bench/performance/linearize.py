@@ -185,11 +185,8 @@ def main():
             linear.SPARSE_ABOVE = above
 
     out["load_average_1min"] = [load_start, load_average()]
-    print(f"\n{stamp_line(out)}, load average {out['load_average_1min'][0]:.2f} .. {out['load_average_1min'][1]:.2f}, "
-          f"BLAS threads {out['blas_threads']}")
-    path = args.out or (None if args.quick else os.path.join(RESULTS, "linearize.json"))
-    if path:
-        write_json(path, out)
+    print(f"\n{stamp_line(out, out['load_average_1min'])}, BLAS threads {out['blas_threads']}")
+    write_json(args.out or (None if args.quick else os.path.join(RESULTS, "linearize.json")), out)
 
 
 if __name__ == "__main__":

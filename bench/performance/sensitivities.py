@@ -340,11 +340,9 @@ def main():
 
     out["load_average_1min"] = [load_start, load_average()]
     out["seconds"] = time.perf_counter() - started
-    print(f"\n{stamp_line(out)}, load average {out['load_average_1min'][0]:.2f} .. {out['load_average_1min'][1]:.2f}, "
-          f"BLAS threads {out['blas_threads']}, {out['seconds']:.0f} s")
-    path = args.out or (None if args.quick else os.path.join(RESULTS, "sensitivities.json"))
-    if path:
-        write_json(path, out)
+    print(f"\n{stamp_line(out, out['load_average_1min'])}, BLAS threads {out['blas_threads']}, "
+          f"{out['seconds']:.0f} s")
+    write_json(args.out or (None if args.quick else os.path.join(RESULTS, "sensitivities.json")), out)
 
 
 if __name__ == "__main__":

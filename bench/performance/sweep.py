@@ -808,11 +808,9 @@ def main():
     print_threads(out)
     print_store(out)
     print_estimate(out["estimate"])
-    print(f"\n{stamp_line(out)}, load average {loads['start']:.2f} .. {loads['end']:.2f} (rounds: "
+    print(f"\n{stamp_line(out, (loads['start'], loads['end']))} (rounds: "
           f"{', '.join(f'{x:.2f}' for x in loads['rounds'])}), {out['seconds']:.0f} s")
-    path = args.out or (None if args.quick else os.path.join(RESULTS, "sweep.json"))
-    if path:
-        write_json(path, out, default=float)
+    write_json(args.out or (None if args.quick else os.path.join(RESULTS, "sweep.json")), out, default=float)
 
 
 if __name__ == "__main__":
