@@ -31,7 +31,7 @@ bench: $(STAMP)
 	$(PYTHON) bench/performance/chain.py
 
 # from scratch, so the gallery runs every example against the code as it is
-# (tests/test_docs.py builds the same pages, reusing the gallery's outputs)
+# (tests/tools/test_docs.py builds the same pages, reusing the gallery's outputs)
 docs: $(STAMP)
 	rm -rf build/docs docs/gallery docs/generated
 	$(PYTHON) -m sphinx -W --keep-going -b html docs build/docs/html

@@ -13,7 +13,7 @@
 #    pip (cmeel-eigen; the C++ user's machine): examples/cpp built against
 #    the wheel's CMake package (`lagmb --cmake-prefix`) and run, and by a
 #    scikit-build-core project told nothing; an FMU made by `lagmb fmu`,
-#    checked by FMPy's validation, simulated, and tests/test_fmu.py.
+#    checked by FMPy's validation, simulated, and tests/formats/test_fmu.py.
 #
 # Needs root (debootstrap, chroot, mount) and the network for steps 1 and 3
 # and the first download of the wheelhouse. Usage: scripts/clean-room.sh DIST
@@ -139,6 +139,6 @@ assert problems == [], problems
 t_end = simulate_fmu("/tmp/cart_pole.fmu", stop_time=1.0)["time"][-1]
 print(f"ok      FMU: binaries {binaries}, FMPy validation clean, simulated to t = {t_end:g} s")
 EOF
-  python -m pytest -q -p no:cacheprovider tests/test_fmu.py 2>&1 | tail -n 1
+  python -m pytest -q -p no:cacheprovider tests/formats/test_fmu.py 2>&1 | tail -n 1
 '
 echo "clean-room: passed"

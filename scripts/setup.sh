@@ -28,7 +28,7 @@ fi
 # the viewer's tests open its pages in a headless Chromium; without one they are skipped with the reason
 if command -v dpkg >/dev/null 2>&1 && ! command -v chromium-headless-shell >/dev/null 2>&1 \
     && ! command -v chromium >/dev/null 2>&1; then
-  echo "setup: installing chromium-headless-shell with apt (for tests/test_viewer.py)"
+  echo "setup: installing chromium-headless-shell with apt (for tests/tools/test_viewer.py)"
   SUDO=""
   [ "$(id -u)" = 0 ] || SUDO=sudo
   { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \

@@ -44,13 +44,13 @@ for f in python/lagmb/*; do
   case "${f##*/}" in __pycache__|fmu_runtime|*.so) ;; *) ln -s "$ROOT/$f" $PKG/lagmb/ ;; esac
 done
 ln -s "$ROOT/$so" $PKG/lagmb/
-mkdir -p $PKG/lagmb/fmu_runtime  # what `lagmb fmu` puts in an FMU (tests/test_fmu.py)
+mkdir -p $PKG/lagmb/fmu_runtime  # what `lagmb fmu` puts in an FMU (tests/formats/test_fmu.py)
 for f in $BUILD/liblagmb_fmu.so cpp/fmu/fmi3.c cpp/fmu/lagmb_fmu.h; do ln -s "$ROOT/$f" $PKG/lagmb/fmu_runtime/; done
 
 # Python is not instrumented, so the ASan runtime has to be loaded first,
 # before the module (the UBSan runtime too: the module needs both). Tests that
 # start processes inherit all of this: python -m lagmb and the examples load
-# the sanitized module; tests/test_cpp_library.py runs cmake and the compiler
+# the sanitized module; tests/project/test_cpp_library.py runs cmake and the compiler
 # under the preloaded runtime (harmless) and builds its own, unsanitized copy
 # of the C++ library, as under make test.
 CXX=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' $BUILD/CMakeCache.txt)
@@ -58,7 +58,7 @@ LD_PRELOAD="$("$CXX" -print-file-name=libasan.so) $("$CXX" -print-file-name=libu
 # detect_leaks=0: CPython never frees much of what it allocates (interned
 # objects, module state), so LeakSanitizer would drown the report in leaks that
 # are not ours. exitcode=86: a sanitized process that dies is not mistaken for
-# the exit 1 of a failed run (tests/test_cli.py checks that exit code).
+# the exit 1 of a failed run (tests/tools/test_cli.py checks that exit code).
 # handle_abort=1: an abort (a failed _GLIBCXX_ASSERTIONS check) prints the C++
 # stack too, after the Python traceback from faulthandler.
 ASAN_OPTIONS=detect_leaks=0:handle_abort=1:exitcode=86

@@ -1,7 +1,7 @@
 """A headless Chromium driven over the DevTools protocol on a pipe
 (--remote-debugging-pipe: messages are JSON separated by NUL bytes on file
 descriptors 3 and 4), with the standard library only: open a page, evaluate
-JavaScript, click, take a screenshot. For tests/test_viewer.py."""
+JavaScript, click, take a screenshot. For tests/tools/test_viewer.py."""
 
 import base64
 import fcntl

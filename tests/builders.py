@@ -104,7 +104,7 @@ def hinged_rod_with_mesh(mesh, role, t_end=0.1, size=(1.0, 1.0, 1.0)):
 
 
 #: A one-link arm as a URDF file: hinged about y at the origin, its 1 kg centre
-#: of mass 0.5 m out along x, limits -1 .. 1 rad (tests/test_urdf.py, test_cli.py).
+#: of mass 0.5 m out along x, limits -1 .. 1 rad (tests/formats/test_urdf.py, test_cli.py).
 ARM_URDF = """<robot name="arm">
   <link name="base"/>
   <link name="upper"><inertial><origin xyz="0.5 0 0"/><mass value="1"/>

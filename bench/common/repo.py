@@ -16,7 +16,7 @@ from bench.common.paths import EXAMPLES, TESTS
 # name -> the module (on tests/ or examples/) that defines it; a module's
 # own name gives the module
 FROM = {
-    "spatial_chain": "test_spatial",  # tests/test_spatial.py
+    "spatial_chain": "elements.test_spatial",  # tests/elements/test_spatial.py
     "RodChain": "references",  # tests/references.py
     "chain_coefficients": "references",
     "browser": "browser",  # tests/browser.py, the DevTools driver

@@ -1,7 +1,7 @@
 """Two builds of lagmb side by side: is a change within noise?
 
 Runs the 100-link chain (bench/performance/chain.py's model, 1 s, rtol 1e-6; GGL and the
-explicit method), the 100-link spatial chain (tests/test_spatial.py's, 0.1 s,
+explicit method), the 100-link spatial chain (tests/elements/test_spatial.py's, 0.1 s,
 the same two methods) and the work-precision set (bench/accuracy/work_precision.py's problems, every method of
 lagmb.accuracy.METHODS at rtol 1e-6, atol 1e-8) with each build in turn,
 each in a fresh interpreter, alternating builds round by round so that the

@@ -46,7 +46,7 @@ error is about rtol / step = 1e-4), and the timed sensitivity against the
 rtol-1e-12 one. The reference FD's own noise, about 1e-12 |q| / step
 (|q| up to 32 m in the chain), bounds what the first two columns can show.
 atol is 1e-12 in the rtol-1e-12 runs:
-at atol 1e-14 (tests/test_sensitivities.py's) the 32-rod chain fails at
+at atol 1e-14 (tests/analyses/test_sensitivities.py's) the 32-rod chain fails at
 t = 0 with or without sensitivities (the floor the error message names is
 1.1e-12 there) and the slider-crank's sensitivity run fails (its F_p, a
 difference of the residual, is good to about 1e-12 of its scale); that

@@ -2,7 +2,7 @@
 against the plane.
 
 N uniform rods (L = 0.1 m, m = 0.1 kg), a spherical joint at the ground and
-universal joints between them (the spatial chain of tests/test_spatial.py),
+universal joints between them (the spatial chain of tests/elements/test_spatial.py),
 released from horizontal under gravity; 0.1 s at rtol 1e-6 (atol 1e-8) with
 GGL and with the explicit method. Beside each, the same N as a planar chain
 (revolutes; bench/performance/chain.py's geometry scaled alike), so the ratio is

@@ -3,7 +3,7 @@
 For each robot (fixed base, its URDF read by mb.load_urdf with limits,
 damping and mimic couplings left out, as Pinocchio builds it): the zero
 configuration with random joint rates in [-1, 1] rad/s (seed 1, as
-tests/test_urdf.py), 1 s of free motion.
+tests/formats/test_urdf.py), 1 s of free motion.
 
 - Reference: Pinocchio's ABA integrated by SciPy's DOP853 at rtol = atol =
   1e-13; every run below is measured against it (the largest joint-angle

@@ -2,7 +2,7 @@
 // multipliers solve_accelerations gives satisfy
 //   M a + Phi_q^T lam = Q   and   Phi_q a = gamma,
 // agree with a dense solve of the same matrix, and the seed pendulum's pin
-// carries m g / 4 at release (closed form, tests/test_pendulum.py).
+// carries m g / 4 at release (closed form, tests/elements/test_pendulum.py).
 #include <Eigen/Dense>
 #include <string>
 

@@ -46,7 +46,7 @@ import pytest
 
 import lagmb as mb
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from paths import ROOT  # noqa: E402
 EXAMPLE = os.path.join(ROOT, "examples", "andrews.py")
 SCENE = os.path.join(ROOT, "examples", "andrews.toml")
 

@@ -25,8 +25,7 @@ import pytest
 
 import lagmb as mb
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-EXAMPLES = os.path.join(os.path.dirname(os.path.dirname(HERE)), "examples")
+from paths import EXAMPLES  # noqa: E402
 sys.path.insert(0, EXAMPLES)
 from n_four_bar import build, reference_b0  # noqa: E402
 
