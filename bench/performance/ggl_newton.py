@@ -36,7 +36,7 @@ from bench.common.chain import chain  # noqa: E402
 from bench.common.paths import RESULTS, ROOT  # noqa: E402
 from bench.performance.effects import unstripped_module  # noqa: E402
 
-SETTINGS = {"t_end": 1.0, "rtol": 1e-6, "atol": 1e-8, "n_out": 2}
+SETTINGS = {"t_end": 1.0, "rtol": 1e-6, "atol": 1e-8, "n_out": 2, "method": "ggl"}  # GGL asked for: auto picks the explicit method here
 # (label, callgrind function names whose inclusive counts make the part)
 PARTS = (
     ("residual", ("lagmb::GglFormulation::residual(",)),

@@ -20,7 +20,7 @@ namespace lagmb {
 ///     kStiffSpan / 5 steps for stability alone;
 ///   - else the explicit projection-erk (Prince-Dormand 8(7) with projections),
 ///     which on non-stiff mechanisms reaches an error in a fraction of the
-///     implicit methods' time (bench/auto_method.py); should it give up
+///     implicit methods' time (bench/accuracy/auto_method.py); should it give up
 ///     (its error test, or kAutoStiffSteps between two outputs), GGL takes
 ///     over from its last step (Run::switch_to_ggl).
 struct MethodChoice {
