@@ -135,11 +135,11 @@ def test_each_shape_kinds_lowest_point(kind, size, expected):
 # --- robots: Pinocchio's forward kinematics, the Go1 on its floor -----------------------------------------
 
 def robots():
-    """Pinocchio and test_urdf's loaders (the test skips without the robots extra)."""
+    """Pinocchio and the URDF tests' loaders (formats/urdf_robots.py) (the test skips without the robots extra)."""
     pin = pytest.importorskip("pinocchio", reason="the robots extra (pin) is not installed")
-    import test_urdf  # (skips without example-robot-data)
+    from formats import urdf_robots  # (skips without example-robot-data)
 
-    return pin, test_urdf
+    return pin, urdf_robots
 
 
 def test_the_pandas_hand_is_where_pinocchio_puts_it():
@@ -147,10 +147,10 @@ def test_the_pandas_hand_is_where_pinocchio_puts_it():
     body) at three sets of joint values: Model.poses(positions=...) equals
     Pinocchio's framesForwardKinematics (oMf) to 1e-12 m and rad, and so
     does Model.pose at the coordinates of the same state."""
-    pin, test_urdf = robots()
+    pin, urdf_robots = robots()
     relpath = "panda_description/urdf/panda.urdf"
-    model = test_urdf.load(relpath)
-    pm = test_urdf.pinocchio_model(relpath)
+    model = urdf_robots.load(relpath)
+    pm = urdf_robots.pinocchio_model(relpath)
     pd = pm.createData()
     rng = np.random.default_rng(56)
     js = mb.JointSpace(model)
@@ -177,10 +177,10 @@ STAND = {f"{leg}_{joint}_joint": angle for leg in ("FR", "FL", "RR", "RL")
          for joint, angle in (("hip", 0.0), ("thigh", 0.8), ("calf", -1.5))}
 
 
-def go1(test_urdf, **options):
+def go1(urdf_robots, **options):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", mb.UrdfWarning)
-        return mb.load_urdf(os.path.join(test_urdf.ROBOTS, GO1), floating_base=True, **options)
+        return mb.load_urdf(os.path.join(urdf_robots.ROBOTS, GO1), floating_base=True, **options)
 
 
 def test_go1s_lowest_point_is_its_lowest_foot():
@@ -191,8 +191,8 @@ def test_go1s_lowest_point_is_its_lowest_foot():
     where lagmb builds the trunk: at the origin); to 1e-12 m."""
     import xml.etree.ElementTree as ET
 
-    pin, test_urdf = robots()
-    path = os.path.join(test_urdf.ROBOTS, GO1)
+    pin, urdf_robots = robots()
+    path = os.path.join(urdf_robots.ROBOTS, GO1)
     feet = {}
     for link in ET.parse(path).getroot().iter("link"):
         if link.get("name").endswith("_foot"):
@@ -202,7 +202,7 @@ def test_go1s_lowest_point_is_its_lowest_foot():
     assert len(feet) == 4 and {r for _, r in feet.values()} == {0.02}
     pm = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
     pd = pm.createData()
-    model = go1(test_urdf)
+    model = go1(urdf_robots)
     rng = np.random.default_rng(56)
     crouch = {j: a + rng.uniform(-0.3, 0.3) for j, a in STAND.items()}
     for positions in (STAND, crouch):
@@ -227,9 +227,9 @@ def test_go1_put_on_the_floor_its_lowest_point_gives_starts_on_its_feet():
     floor), and over 0.05 s of its weight coming down (no motors: the legs
     give) they press in less than (m g / k)^(2/3), the depth of its whole
     weight on one foot."""
-    _, test_urdf = robots()
-    z = go1(test_urdf, positions=STAND).lowest_point()[2]
-    model = go1(test_urdf, positions=STAND, ground=z)
+    _, urdf_robots = robots()
+    z = go1(urdf_robots, positions=STAND).lowest_point()[2]
+    model = go1(urdf_robots, positions=STAND, ground=z)
     r = mb.simulate(model, 0.05, n_out=6)
     contacts = [values["name"] for method, values in model.elements if method == "add_contact"]
     depth = {name: r.contact(name).penetration for name in contacts}

@@ -343,7 +343,7 @@ def kinds():
 def _derivative_model(dimension):
     """The model of tests/analyses/test_derivatives.py whose derivatives are checked
     for kinds of this dimension (its `state` fixture runs on each of MODELS)."""
-    import test_derivatives
+    from analyses import test_derivatives
 
     build = test_derivatives.every_kind if dimension == 2 else test_derivatives.every_spatial_kind
     assert build in test_derivatives.MODELS.values()

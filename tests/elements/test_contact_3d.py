@@ -622,12 +622,12 @@ def test_a_quadruped_dropped_on_the_ground_comes_to_rest():
     every speed is below 1e-3, the ground carries its weight (the normal
     forces sum to m g within 1e-3), and at rest no shape is deeper than the
     whole weight would press one point, (W / k)^(2/3)."""
-    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    from formats import urdf_robots  # (skips without Pinocchio and example-robot-data)
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", mb.UrdfWarning)  # (its inertias, as test_urdf reads them)
-        m = mb.load_urdf(os.path.join(test_urdf.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
+        m = mb.load_urdf(os.path.join(urdf_robots.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
                          ground=-0.35)
     contacts = [kw["name"] for method, kw in m.elements if method == "add_contact"]
     assert len(contacts) == len([s for s in m.shapes if s.role == "collision"]) - 1  # (all but the floor)
@@ -647,12 +647,12 @@ def test_a_quadruped_loaded_into_the_ground_names_the_shapes_deep_in_it():
     DeepContactWarning at the caller's line names them, the deepest first,
     with both shapes and the depth; the run then fails at t = 0, and its
     message (which said only that IDA's corrector failed) names them too."""
-    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    from formats import urdf_robots  # (skips without Pinocchio and example-robot-data)
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", mb.UrdfWarning)
-        m = mb.load_urdf(os.path.join(test_urdf.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
+        m = mb.load_urdf(os.path.join(urdf_robots.ROBOTS, "go1_description/urdf/go1.urdf"), floating_base=True,
                          ground=0.0)
     with pytest.warns(mb.DeepContactWarning) as seen:
         with pytest.raises(mb.SimulationError, match="failed at t = 0") as info:

@@ -233,17 +233,17 @@ def test_the_pandas_servos_hold_it_against_its_gravity_torques():
     there each servo's effort equals Pinocchio's generalized gravity
     (computeGeneralizedGravity) at the joint values reached, to 1e-7 N m."""
     pin = pytest.importorskip("pinocchio", reason="the robots extra (pin) is not installed")
-    import test_urdf
+    from formats import urdf_robots
 
     relpath = "panda_description/urdf/panda.urdf"
     pose = {f"panda_joint{k}": a for k, a in enumerate((0.3, -0.5, 0.2, -2.0, 0.1, 1.6, 0.7), start=1)}
     pose.update(panda_finger_joint1=0.02, panda_finger_joint2=0.02)
-    model = test_urdf.load(relpath, positions=pose)
+    model = urdf_robots.load(relpath, positions=pose)
     js = mb.JointSpace(model)
     for joint in js.joints:
         model.add_servo(f"{joint}_servo", joint, target=pose[joint], kp=2000.0, kd=100.0)
     r = mb.simulate(model, 4.0, n_out=5, rtol=1e-10, atol=1e-12)
-    pm = test_urdf.pinocchio_model(relpath)
+    pm = urdf_robots.pinocchio_model(relpath)
     pd = pm.createData()
     q = pin.neutral(pm)
     for jid in range(1, pm.njoints):

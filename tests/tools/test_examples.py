@@ -324,9 +324,9 @@ def test_go1_drop(outputs):
     13 bodies, 38 contacts (every collision shape of a moving body); at
     3 s every speed is below 1e-3, the floor carries the weight (normal
     forces / m g to 1e-6) and no shape is deeper than (m g / k)^(2/3)."""
-    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    from formats import urdf_robots  # (skips without Pinocchio and example-robot-data)
 
-    assert test_urdf.ROBOTS
+    assert urdf_robots.ROBOTS
     _, v = outputs("go1_drop")
     assert v["bodies"] == 13 and v["contacts"] == 38
     assert v["largest speed at 3 s"] < 1e-3
@@ -411,9 +411,9 @@ def test_panda(outputs):
     the arm loses the dampers' work plus what the impact took (> 0), and
     after the impact, where the captured stop does no work, what it loses
     equals the dampers' work to 1e-7 relative."""
-    import test_urdf  # (skips without Pinocchio and example-robot-data)
+    from formats import urdf_robots  # (skips without Pinocchio and example-robot-data)
 
-    assert test_urdf.ROBOTS
+    assert urdf_robots.ROBOTS
     _, v = outputs("panda")
     assert v["bodies"] == 9 and v["joints"] == 9
     assert v["impacts"] >= 1 and v["captures"] >= 1  # (today one of each: the shoulder's, and no release)

@@ -415,7 +415,7 @@ def test_spatial_shapes_and_a_floor_are_drawn(chromium, tmp_path):
     import json
     import re
 
-    import test_plotting
+    from tools import test_plotting
 
     r = mb.simulate(test_plotting._shapes_on_a_floor(), 0.5, n_out=11)
     path = tmp_path / "floor.html"
@@ -443,7 +443,7 @@ def test_contact_forces_are_drawn_as_arrows(chromium, tmp_path):
     import json
     import re
 
-    import test_plotting
+    from tools import test_plotting
 
     r = mb.simulate(test_plotting._shapes_on_a_floor(), 0.5, n_out=11)
     path = tmp_path / "forces.html"
