@@ -135,7 +135,7 @@ PYTHON_LAYERS = [
     ["model", "_poses", "joints"],
     ["result", "_deep_start", "simulation", "simulator", "statics", "linear", "accuracy"],
     ["_drawing"],
-    ["scene", "plotting", "demo", "urdf", "mjcf", "_store", "studies", "viewer"],
+    ["scene", "plotting", "demo", "_model_files", "urdf", "mjcf", "_store", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 
@@ -240,7 +240,7 @@ def test_kinds_are_known_by_their_registry_entry_not_their_name():
     found = []
     for path in sorted(package.rglob("*.py")):
         where = path.relative_to(package)
-        if where.parts[0] in ("urdf.py", "mjcf.py", "plotting"):
+        if where.parts[0] in ("urdf", "mjcf.py", "plotting"):
             continue
         found += [f"{where}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
                   if isinstance(node, ast.Constant) and node.value in named]
