@@ -135,7 +135,7 @@ PYTHON_LAYERS = [
     ["model", "_poses", "joints"],
     ["result", "_deep_start", "simulation", "simulator", "statics", "linear", "accuracy"],
     ["_drawing"],
-    ["scene", "plotting", "demo", "_model_files", "urdf", "mjcf", "_store", "studies", "viewer"],
+    ["scene", "plotting", "demo", "_model_files", "urdf", "mjcf", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 
