@@ -5,7 +5,7 @@ the unit its values carry.
 
 import numpy as np
 
-from .. import _output_names
+from .. import _output_names, registry
 from ..errors import ModelError
 
 
@@ -67,11 +67,8 @@ class PeakEffort:
         return float(np.abs(r.effort(self.driver)).max())
 
     def unit(self, model):
-        from .. import registry
-        from .._drawing import effort_unit
-
         kinds = registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD
-        return effort_unit(model.elements, kinds, self.driver)
+        return registry.effort_unit(model.elements, kinds, self.driver)
 
     def __repr__(self):
         return f"peak_effort({self.driver!r})"
