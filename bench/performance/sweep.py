@@ -42,7 +42,7 @@ process at t_end 0.25 .. 2 s, and T_END = 1 s is the one near 10 ms.
         is at times much slower while both cores are busy: (3) measures
         it, alternating one busy core with two).
     (3) threads: the same per-case work (the core's run alone, and a whole
-        sweep case: studies._run_case) looped on 1 thread, 2 threads and 2
+        sweep case: studies.runs.run_case) looped on 1 thread, 2 threads and 2
         forked processes; the cost of each layer of a case in process (the
         core's run, _core.simulate with the conversion of its result,
         mb.simulate, the case with its outputs): what holds the GIL; the
@@ -97,6 +97,7 @@ import lagmb as mb  # noqa: E402
 from bench.common.paths import EXAMPLES, RESULTS  # noqa: E402
 from bench.common.record import changed, load_average, stamp, stamp_line, write_json  # noqa: E402
 from lagmb import _core, studies  # noqa: E402
+from lagmb.studies import cases as study_cases, dataset as study_dataset, runs  # noqa: E402
 
 SCENE = os.path.join(EXAMPLES, "slider_crank.toml")
 T_END = 1.0
@@ -205,11 +206,11 @@ def calibrate(model, count):
     rows = []
     for t_end in CALIBRATION_T_END:
         settings = dict(t_end=t_end, rtol=1e-8, atol=1e-10, n_out=n_out(t_end))
-        studies._run_case(model, {"rod.mass": 2.0}, settings, OUTPUTS, None)
+        runs.run_case(model, {"rod.mass": 2.0}, settings, OUTPUTS, None)
         walls, cores = [], []
         for k in range(count):
             t0 = time.perf_counter()
-            record = studies._run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, OUTPUTS, None)
+            record = runs.run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, OUTPUTS, None)
             walls.append(time.perf_counter() - t0)
             cores.append(record["wall_time"])
             assert record["status"] == "ok", record["status"]
@@ -247,8 +248,8 @@ def layers(model, settings, count):
     calls = {
         "core_call": lambda k: _core.simulate(*core_args),
         "mb_simulate": lambda k: mb.simulate(model, t_end, parameters={"rod.mass": 1.0 + 1e-3 * k}, **run),
-        "case_without_outputs": lambda k: studies._run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, {}, None),
-        "case": lambda k: studies._run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, OUTPUTS, None),
+        "case_without_outputs": lambda k: runs.run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, {}, None),
+        "case": lambda k: runs.run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, OUTPUTS, None),
     }
     times = {name: [] for name in calls}
     core = []
@@ -282,7 +283,7 @@ def scaling_round(model, settings, count):
     core_args = captured_core_call(model, settings)
     work = {
         "core": lambda k: _core.simulate(*core_args)["stats"]["wall_time"],
-        "case": lambda k: studies._run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, OUTPUTS, None)["wall_time"],
+        "case": lambda k: runs.run_case(model, {"rod.mass": 1.0 + 1e-3 * k}, settings, OUTPUTS, None)["wall_time"],
     }
     fork = multiprocessing.get_context("fork")
     out = {}
@@ -371,7 +372,7 @@ def run_sweep(scene, grid, executor, batch_size, workers):
 
 def calibration(model, count):
     """(0): one case in process at each t_end, printed as measured."""
-    print(f"(0) one case in process (studies._run_case: mb.simulate and the two outputs), an output every "
+    print(f"(0) one case in process (studies.runs.run_case: mb.simulate and the two outputs), an output every "
           f"{OUTPUT_INTERVAL * 1e3:g} ms; min (median) of {count} cases\n")
     print("| t_end (s) | outputs | case (ms) | core's run alone, wall_time (ms) |")
     print("|---:|---:|---:|---:|")
@@ -536,16 +537,16 @@ def store_sweeps(scene, warm, grid, client, n, quick, reference):
 def serial_work(model, grid, ref, n):
     """The sweep's serial work in this process, per case: the cases checked
     before any run, the Dataset built after the last."""
-    cases = studies._cases(grid, "sweep")[0]
+    cases = study_cases.cases_of(grid, "sweep")[0]
     t0 = time.perf_counter()
-    checked = studies._check_cases(model, cases, "sweep")
+    checked = study_cases.checked_cases(model, cases, "sweep")
     check = (time.perf_counter() - t0) / n
     records = {i: {"status": "ok", "warnings": "", "steps": int(ref["steps"].values[i]),
                    "wall_time": float(ref["wall_time"].values[i]), "history": None,
                    "outputs": {k: np.asarray(ref[k].values[i]) for k in OUTPUTS}} for i in range(n)}
     t0 = time.perf_counter()
-    studies._dataset(checked, records, ["rod.mass"], OUTPUTS, [("rod.mass", list(grid["rod.mass"]))], None,
-                     model.coordinate_names)
+    study_dataset.dataset(checked, records, ["rod.mass"], OUTPUTS, [("rod.mass", list(grid["rod.mass"]))], None,
+                          model.coordinate_names)
     dataset = (time.perf_counter() - t0) / n
     return dict(check_cases=check, build_dataset=dataset)
 

@@ -165,3 +165,16 @@ def decimal(text, name):
     if math.isinf(value):
         raise ModelError(f"{name}: {show(word)} is too large for a float")
     return value
+
+
+def string_list(value, who, what):
+    """A list of strings given as a list (or tuple, ...) of them; None: []."""
+    if value is None:
+        return []
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise ModelError(f"{who} must be a list of {what}, got {show(value)}")
+    value = list(value)
+    for x in value:
+        if not isinstance(x, str):
+            raise ModelError(f"{who} must be a list of {what}, got {show(x)} among them")
+    return value

@@ -20,7 +20,7 @@ from ._checks import decimal, show
 from ._meshes import read_stl
 from .errors import ModelError
 from .handles import Handle, name_of
-from .registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD
+from .registry import BY_METHOD, ROLE_WORDS, ROLES, SPATIAL_BY_METHOD, effort_unit
 
 
 class Scene:
@@ -150,22 +150,6 @@ class Scene:
 
     def effort_unit(self, name):
         return effort_unit(self.elements, self.kinds, name)
-
-
-def effort_unit(elements, kinds, name):
-    """The unit of a driver's, stop's or servo's effort (Result.effort):
-    "N m" along an angle, "N" along a slide or a body's x, y (z), from the
-    kind of what it drives (``elements``: Model.elements; ``kinds``: the
-    registry's Model method -> Kind of the model's dimension); "N or N m"
-    where it cannot be told."""
-    kind_of = {kw["name"]: method for method, kw in elements}
-    kw = next((k for c, k in elements if k.get("name") == name), {})
-    if kind_of.get(name) == "drive_body":
-        return "N m" if kw.get("coordinate") == "angle" else "N"
-    if "joint" in kw:  # a joint's driver or stop: along its coordinate
-        joint = kinds.get(kind_of.get(str(kw["joint"])))
-        return "N" if joint is not None and "slide" in joint.coordinates else "N m"  # (a cylindrical's driver slides)
-    return "N or N m"
 
 
 def _inertia_tensor(inertia, dimension):

@@ -89,7 +89,7 @@ def _identifier(name):
 def setup_text(scene):
     """The text the FMU carries: the scene's model, its run options and
     outputs (CoSimulationSetup). ModelError for what an FMU cannot hold."""
-    from .simulation import DEFAULTS, _run_options
+    from ._run_options import DEFAULTS, run_options
 
     settings = dict(scene.settings)
     analysis = settings.pop("analysis", "auto")
@@ -97,7 +97,7 @@ def setup_text(scene):
         raise ModelError(f"an FMU integrates the equations of motion: analysis {analysis!r} is not for an FMU")
     for key in ("t_end", "t_out", "n_out"):  # the importer sets the time span and the steps
         settings.pop(key, None)
-    options = _run_options(**{key: settings.get(key, default) for key, default in (
+    options = run_options(**{key: settings.get(key, default) for key, default in (
         ("t0", DEFAULTS["t0"]), ("rtol", DEFAULTS["rtol"]), ("atol", DEFAULTS["atol"]),
         ("formulation", DEFAULTS["formulation"]), ("integrator", None), ("max_step", None), ("step", None),
         ("max_order", None), ("baumgarte", None), ("max_steps", DEFAULTS["max_steps"]),

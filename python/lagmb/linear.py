@@ -766,7 +766,7 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     Dense linear algebra: for models of up to a few hundred coordinates.
     """
     from .model import checked as _model
-    from .simulation import _names
+    from ._checks import string_list
 
     who = "linearize"
     _model(model, who)
@@ -808,7 +808,7 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     if inputs is None:
         used = list(range(len(infos)))
     else:
-        names = [inputs] if isinstance(inputs, str) else _names(inputs, f"{who}: inputs", "input names")
+        names = [inputs] if isinstance(inputs, str) else string_list(inputs, f"{who}: inputs", "input names")
         for name in names:
             if name not in all_inputs:
                 raise ModelError(f"{who}: no input {name!r}; the model's inputs are "
@@ -859,7 +859,7 @@ def linearize(model, at=None, inputs=None, outputs=None, *, coordinates="indepen
     B = np.vstack([np.zeros((k, p)), L @ da_u])
 
     out = _Outputs(model, core, names if outputs is None else
-                   ([outputs] if isinstance(outputs, str) else _names(outputs, f"{who}: outputs", "output names")),
+                   ([outputs] if isinstance(outputs, str) else string_list(outputs, f"{who}: outputs", "output names")),
                    (q, v, lam, t, u), used, who)
     C = np.hstack([out.Cq @ T + out.Cv @ V + out.Cl @ (dl_q @ T + dl_v @ V), out.Cv @ T + out.Cl @ dl_v @ T])
     D = out.Cu + out.Cl @ dl_u

@@ -20,7 +20,7 @@ from . import _checks
 from .errors import ModelError
 from .functions import Constant
 from .model import Model
-from .urdf import LARGEST, _Namespace
+from ._model_files import GROUND_CONTACT, LARGEST, Namespace
 
 
 class MjcfError(ModelError):
@@ -157,7 +157,7 @@ def load_mjcf(path, *, contacts="warn", contact=None):
     equalities = range(0 if disabled(off.mjDSBL_EQUALITY, off.mjDSBL_CONSTRAINT) else m.neq)
     names = {0: "ground"}  # body id -> its name in the model
     label = {}  # (kind, id) -> the model's name of a body, joint or equality: the file's names first
-    space = _Namespace()
+    space = Namespace()
     elements = [("body", obj.mjOBJ_BODY, b) for b in range(1, m.nbody) if group[b] == b] + \
         [("joint", obj.mjOBJ_JOINT, j) for j in range(m.njnt) if m.jnt_type[j] != mujoco.mjtJoint.mjJNT_FREE] + \
         [("equality", obj.mjOBJ_EQUALITY, e) for e in equalities if m.eq_active0[e]]
@@ -289,8 +289,6 @@ def _contacts(model, m, d, path, colliding, group, names, space, given, no_filte
     """The collision shapes of the colliding geoms and a contact for each
     pair MuJoCo tests (load_mjcf, contacts="simulate")."""
     import mujoco
-
-    from .urdf import GROUND_CONTACT
 
     obj, geom = mujoco.mjtObj, mujoco.mjtGeom
 

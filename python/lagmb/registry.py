@@ -158,3 +158,19 @@ def markdown():
             out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
         out.append("")
     return "\n".join(out)
+
+
+def effort_unit(elements, kinds, name):
+    """The unit of a driver's, stop's or servo's effort (Result.effort):
+    "N m" along an angle, "N" along a slide or a body's x, y (z), from the
+    kind of what it drives (``elements``: Model.elements; ``kinds``: the
+    registry's Model method -> Kind of the model's dimension); "N or N m"
+    where it cannot be told."""
+    method_of = {kw["name"]: method for method, kw in elements}
+    kw = next((k for c, k in elements if k.get("name") == name), {})
+    if method_of.get(name) == "drive_body":
+        return "N m" if kw.get("coordinate") == "angle" else "N"
+    if "joint" in kw:  # a joint's driver or stop: along its coordinate
+        joint = kinds.get(method_of.get(str(kw["joint"])))
+        return "N" if joint is not None and "slide" in joint.coordinates else "N m"  # (a cylindrical's driver slides)
+    return "N or N m"

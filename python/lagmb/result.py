@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _core, _rotations, registry
 from ._rotations import matrix as rotation_matrices  # (statics reads it from here)
-from .errors import KinematicOnlyError, ModelError, SimulationError
+from .errors import KinematicOnlyError, ModelError, SimulationError, translated
 from .handles import name_of
 from .registry import BY_METHOD, SPATIAL_BY_METHOD
 
@@ -701,3 +701,14 @@ class Sensitivity:
 
     def __repr__(self):
         return f"<lagmb.Sensitivity to {self.parameter} = {self.value:g}: {len(self.q)} outputs>"
+
+
+def translated_run(model=None, core=None, snapshot=None):
+    """errors.translated for a run of `model` (compiled: `core`; as the
+    run saw it: `snapshot`): a failed run's partial outputs as a Result on
+    the exception (simulate, Simulator, equilibrium, solve_accelerations)."""
+    def partial_result(raw):
+        partial = Result(model, core, raw, snapshot)
+        return partial if len(partial.t) else None
+
+    return translated(partial_result if model is not None else None)

@@ -7,32 +7,18 @@ import numpy as np
 from . import _core
 from ._checks import INT_MAX as _INT_MAX, array as _array, integer as _integer
 from . import _deep_start
-from ._checks import parameters as _parameters, positive as _positive, real as _real
-from ._checks import show as _show, text as _text
-from .errors import ModelError, translated
+from ._checks import parameters as _parameters, real as _real, string_list, text as _text
+from ._run_options import DEFAULTS, method_options, run_options  # noqa: F401 - method_options: public here too
+from .errors import ModelError
 from .model import checked as _model
-from .result import Result
+from .result import Result, translated_run
 
-#: What every run takes by default: the core's SimulationOptions, by field
-#: name (the one place the defaults live; the signatures below read it).
-DEFAULTS = _core.default_options()
 _D = DEFAULTS
-
-
 
 #: Where simulate's warnings go in this context: None (the warnings module)
 #: or a list that takes them (mb.sweep's cases: catch_warnings is not
 #: thread-safe, and threads run cases).
 WARNINGS_INTO = contextvars.ContextVar("lagmb_simulate_warnings_into", default=None)
-
-def _translate(model=None, core=None, snapshot=None):
-    """errors.translated, the partial outputs of a failed run of `model`
-    (compiled: `core`; as the run saw it: `snapshot`) as a Result."""
-    def partial_result(raw):
-        partial = Result(model, core, raw, snapshot)
-        return partial if len(partial.t) else None
-
-    return translated(partial_result if model is not None else None)
 
 
 def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n_out"], t_out=None, t0=_D["t0"],
@@ -182,10 +168,10 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     t_end = _real(t_end, "t_end")
     if not t_end > t0:
         raise ModelError(f"t_end must be finite and greater than t0 = {t0}, got {t_end}")
-    options = _run_options(t0=t0, rtol=rtol, atol=atol, formulation=formulation, integrator=integrator,
-                           max_step=max_step, step=step, max_order=max_order, baumgarte=baumgarte,
-                           max_steps=max_steps, start=start, newton_rtol=newton_rtol, newton_atol=newton_atol,
-                           method=method)
+    options = run_options(t0=t0, rtol=rtol, atol=atol, formulation=formulation, integrator=integrator,
+                          max_step=max_step, step=step, max_order=max_order, baumgarte=baumgarte,
+                          max_steps=max_steps, start=start, newton_rtol=newton_rtol, newton_atol=newton_atol,
+                          method=method)
     if t_out is not None and t_out.size > 1 and not np.all(np.diff(t_out) > 0):
         raise ModelError("t_out must be strictly increasing")
     if t_out is not None and t_out.size > _INT_MAX:
@@ -201,100 +187,17 @@ def simulate(model, t_end=None, *, rtol=_D["rtol"], atol=_D["atol"], n_out=_D["n
     # changes neither the run nor its Result
     snapshot = model._snapshot()
     core = _parameters(snapshot, parameters, "simulate")
-    sensitivities = _names(sensitivities, "simulate: sensitivities", "parameter names")
+    sensitivities = string_list(sensitivities, "simulate: sensitivities", "parameter names")
     into = WARNINGS_INTO.get()  # (a list that takes lagmb's warnings instead: a sweep's case in a thread)
     start_contacts = _deep_start.warn(snapshot, core, core.initial_state()[0], t0, into=into) \
         if options["start"] == "given" and analysis.strip().lower() != "kinematic" else ([], 0.0)
-    with _deep_start.noted(start_contacts, t0), _translate(model, core, snapshot):
+    with _deep_start.noted(start_contacts, t0), translated_run(model, core, snapshot):
         options.update(t_end=t_end, t_out=[] if t_out is None else list(t_out), n_out=n_out, analysis=analysis)
         raw = _core.simulate(core, options, progress, sensitivities)
     snapshot._warn_redundant(raw.get("dropped_rows", []), into=into)
     if options["start"] == "given" and len(raw["t"]) and raw["t"][0] == t0:
         snapshot._warn_moved(core, raw["q"][0], into=into)
     return Result(model._run_model(snapshot, into=into), core, raw, snapshot)
-
-
-def _names(value, who, what):
-    """A list of strings given as a list (or tuple, ...) of them; None: []."""
-    if value is None:
-        return []
-    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
-        raise ModelError(f"{who} must be a list of {what}, got {_show(value)}")
-    value = list(value)
-    for x in value:
-        if not isinstance(x, str):
-            raise ModelError(f"{who} must be a list of {what}, got {_show(x)} among them")
-    return value
-
-
-def method_options(method=None, formulation=_D["formulation"], integrator=None):
-    """(formulation, integrator) for a run: from ``method``, a name that
-    :func:`methods` lists (or "auto"), in any case; else from ``formulation``
-    (which may be such a name too) and ``integrator`` ("" for the
-    formulation's first). ModelError for an unknown name, or for ``method``
-    given beside a formulation or an integrator."""
-    by_name = {m["name"]: m for m in _core.methods()}
-    if method is not None:
-        name = _text(method, "method").strip().lower()
-        if name != "auto" and name not in by_name:
-            raise ModelError(f"method {method!r} is not one of: {', '.join(['auto'] + list(by_name))}")
-        if integrator is not None or _text(formulation, "formulation").strip().lower() != _D["formulation"]:
-            raise ModelError(f"method {method!r} names the formulation and the integrator together: give method, "
-                             "or formulation and integrator, not both")
-        return ("auto", "") if name == "auto" else (by_name[name]["formulation"], by_name[name]["integrator"])
-    formulation = _text(formulation, "formulation").strip().lower()
-    integrator = "" if integrator is None else _text(integrator, "integrator").strip().lower()
-    listed = by_name.get(formulation)
-    if listed is not None and listed["formulation"] != formulation:  # "projection-erk" as a formulation
-        if integrator and integrator != listed["integrator"]:
-            raise ModelError(f"formulation {formulation!r} names integrator {listed['integrator']!r}, "
-                             f"got integrator {integrator!r}")
-        return listed["formulation"], listed["integrator"]
-    return formulation, integrator
-
-
-def _run_options(*, t0, rtol, atol, formulation, integrator, max_step, step, max_order, baumgarte, max_steps,
-                 start, newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None):
-    """The options every dynamic run takes, checked, by the names of the
-    core's SimulationOptions (simulate and Simulator). The choices
-    (formulation, integrator, start, analysis) are checked to be strings
-    here and parsed by the core, which lists the valid ones."""
-    rtol = _positive(rtol, "rtol")
-    formulation, integrator = method_options(method, formulation, integrator)
-    if formulation == "ali3p" and not (np.ndim(atol) == 0 and rtol == _D["rtol"] and atol == _D["atol"]):
-        raise ModelError("formulation 'ali3p' takes fixed steps without error control: rtol and atol do not "
-                         f"apply; its Newton corrections are bounded by newton_rtol (default {_D['newton_rtol']}) "
-                         f"and newton_atol (default {_D['newton_atol']})")
-    newton_rtol = _positive(newton_rtol, "newton_rtol")
-    newton_atol = _positive(newton_atol, "newton_atol")
-    atol_coordinates = []
-    if np.ndim(atol) > 0:  # one per coordinate (for q_i and v_i)
-        atol_coordinates = [_positive(float(a), "atol entry") for a in _array(atol, "atol")]
-        atol = float(np.mean(atol_coordinates)) if atol_coordinates else 1e-8
-    atol = _positive(atol, "atol")
-    max_step = 0.0 if max_step is None else _positive(max_step, "max_step")
-    if step is not None:  # the fixed step of ali3p travels as max_step
-        if formulation != "ali3p":
-            raise ModelError(f"step applies to formulation 'ali3p' (fixed step); "
-                             f"for {formulation!r} bound the step with max_step")
-        max_step = _positive(step, "step")
-    # None: the method's highest; the core checks the method's range
-    max_order = 0 if max_order is None else _integer(max_order, "max_order", 1, _INT_MAX)
-    if baumgarte is None:
-        alpha, beta = 0.0, 0.0
-    else:
-        try:
-            alpha, beta = baumgarte
-        except (TypeError, ValueError):
-            raise ModelError(f"baumgarte must be a pair (alpha, beta) of numbers, got {baumgarte!r}") from None
-        alpha, beta = _real(alpha, "baumgarte alpha"), _real(beta, "baumgarte beta")
-    # None: no bound (Ctrl-C still stops the run)
-    max_steps = 0 if max_steps is None else _integer(max_steps, "max_steps", 1, 2**62)
-    start = _text(start, "start")
-    return dict(t0=t0, rtol=rtol, atol=atol, atol_coordinates=atol_coordinates, max_step=max_step,
-                max_steps=max_steps, max_order=max_order, formulation=formulation, integrator=integrator,
-                baumgarte_alpha=alpha, baumgarte_beta=beta, start=start, newton_rtol=newton_rtol,
-                newton_atol=newton_atol)
 
 
 def solve_accelerations(model, q, v, t=0.0):
@@ -308,7 +211,7 @@ def solve_accelerations(model, q, v, t=0.0):
     t = _real(t, "t")
     if q.shape != (n,) or v.shape != (n,):
         raise ModelError(f"q and v must have {n} entries, got {q.size} and {v.size}")
-    with _translate(model, core):
+    with translated_run(model, core):
         return _core.solve_accelerations(core, q, v, t)
 
 

@@ -9,9 +9,9 @@ from . import _core, _deep_start, registry
 from ._checks import parameters as _parameters, real as _real, show as _show
 from .errors import ModelError, SimulationError
 from .handles import name_of
-from .result import EXERTING, BodyPath, JointPath, Result, element_name, efforts
+from .result import EXERTING, BodyPath, JointPath, Result, element_name, efforts, translated_run
 from .model import checked as _model
-from .simulation import DEFAULTS as _D, _run_options, _translate
+from ._run_options import DEFAULTS as _D, run_options
 
 
 class Simulator:
@@ -44,10 +44,10 @@ class Simulator:
                  integrator=None, max_step=None, step=None, max_steps=_D["max_steps"], max_order=None,
                  baumgarte=None, start=_D["start"], output_interval=None, parameters=None,
                  newton_rtol=_D["newton_rtol"], newton_atol=_D["newton_atol"], method=None):
-        options = _run_options(t0=_real(t0, "t0"), rtol=rtol, atol=atol, formulation=formulation,
-                               integrator=integrator, max_step=max_step, step=step, max_order=max_order,
-                               baumgarte=baumgarte, max_steps=max_steps, start=start, newton_rtol=newton_rtol,
-                               newton_atol=newton_atol, method=method)
+        options = run_options(t0=_real(t0, "t0"), rtol=rtol, atol=atol, formulation=formulation,
+                              integrator=integrator, max_step=max_step, step=step, max_order=max_order,
+                              baumgarte=baumgarte, max_steps=max_steps, start=start, newton_rtol=newton_rtol,
+                              newton_atol=newton_atol, method=method)
         _model(model, "Simulator")
         interval = 0.0 if output_interval is None else _real(output_interval, "output_interval")
         if interval < 0:
@@ -282,4 +282,4 @@ class Simulator:
         raise ModelError(f"an input is named by a string or a handle, got {_show(name)}")
 
     def _translated(self):
-        return _translate(self.model, self._core_model, self._snapshot)
+        return translated_run(self.model, self._core_model, self._snapshot)

@@ -123,7 +123,7 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     under gravity) or if the one found is unstable (naming the mode), unless
     ``allow_unstable=True``; AssemblyError if the joints cannot be closed.
     """
-    from .simulation import _translate
+    from .result import translated_run
 
     from ._checks import INT_MAX, flag as _flag, integer as _integer, real as _real
     from .model import checked as _model
@@ -138,7 +138,7 @@ def equilibrium(model, t=0.0, *, tol=1e-12, max_iterations=100, allow_unstable=F
     stability = _flag(stability, "equilibrium: stability")
     snapshot = model._snapshot()  # an edit from another thread meanwhile changes nothing here
     core = snapshot.compiled()
-    with _translate(model, core, snapshot):
+    with translated_run(model, core, snapshot):
         try:
             raw = _core.equilibrium(core, t, tol, max_iterations, allow_unstable, stability)
         except _core.UserFunctionError as e:  # a force or driver function failed

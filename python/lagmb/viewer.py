@@ -29,7 +29,7 @@ import numpy as np
 
 from . import _checks, _output_names, _rotations, registry
 from ._checks import show
-from ._drawing import (Scene, effort_unit, mode_amplitude, outline_shape, posed, shape_faces, stats_line,
+from ._drawing import (Scene, mode_amplitude, outline_shape, posed, shape_faces, stats_line,
                        trace_points)
 from .errors import MissingExtraError, ModelError
 
@@ -41,7 +41,7 @@ _FLOOR = (0.80, 0.80, 0.78)  # a plane shape: a floor
 
 
 @lru_cache(maxsize=1)
-def _three_js():
+def three_js():
     """three.js r140 and its TrackballControls, as the trimesh wheel ships
     them (the script of its viewer template, before the template's own code)."""
     try:
@@ -270,7 +270,7 @@ def _output_series(result, name):
                 return np.asarray(result.reaction(element)[:, k], dtype=float), "N m" if c.startswith("torque") else "N"
         if not out.rate and what == "effort" and registry.is_driver(core, element):
             kinds = registry.BY_METHOD if model.dimension == 2 else registry.SPATIAL_BY_METHOD
-            return np.asarray(result.effort(element), dtype=float), effort_unit(model.elements, kinds, element)
+            return np.asarray(result.effort(element), dtype=float), registry.effort_unit(model.elements, kinds, element)
         if what in _output_names.JOINT_COORDINATES and core.joint_coordinate(element) is not None:
             path = result.joint(element)
             values = path.rate if out.rate else getattr(path, what, None)
@@ -687,7 +687,7 @@ def view(result, path="run.html", *, outputs=None, trace=None, title=None, max_f
         "loop": bool(loop),
     }
     template = (importlib.resources.files("lagmb") / "viewer.html").read_text(encoding="utf-8")
-    page = _fill(template, {"TITLE": html.escape(title), "THREE": _three_js(),
+    page = _fill(template, {"TITLE": html.escape(title), "THREE": three_js(),
                             "DATA": _script_json(data), "POSES": _b64(poses)})
     if path is None:
         return View(page, None)

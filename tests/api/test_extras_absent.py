@@ -83,7 +83,7 @@ def test_a_view_and_a_plot_without_their_extras_say_to_install_them(monkeypatch,
 
     r = mb.simulate(_pendulum(), 0.1, n_out=3)
     _absent(monkeypatch, "trimesh", "matplotlib")
-    viewer._three_js.cache_clear()  # (three.js read from trimesh once per process)
+    viewer.three_js.cache_clear()  # (three.js read from trimesh once per process)
     try:
         with pytest.raises(mb.MissingExtraError, match=r"^lagmb.view needs three.js, which it takes from the trimesh "
                                                        r"wheel, from lagmb's optional 'view' extra: "
@@ -91,7 +91,7 @@ def test_a_view_and_a_plot_without_their_extras_say_to_install_them(monkeypatch,
             mb.view(r, tmp_path / "run.html")
         assert (info.value.name, info.value.extra) == ("trimesh", "view")
     finally:
-        viewer._three_js.cache_clear()
+        viewer.three_js.cache_clear()
     with pytest.raises(mb.MissingExtraError, match=r'^lagmb plotting needs matplotlib, .*pip install "lagmb\[plot\]"'):
         plotting.plot_result(r, tmp_path / "run.png")
     assert not (tmp_path / "run.html").exists() and not (tmp_path / "run.png").exists()

@@ -166,7 +166,7 @@ def mimic_visits(monkeypatch):
                 visits[self.name] += 1
             return super().__getitem__(key)
 
-    read = lagmb.urdf._Reader.read
+    read = lagmb.urdf.reader.Reader.read
 
     def counting_read(reader):
         links, joints, root, rest = read(reader)
@@ -175,7 +175,7 @@ def mimic_visits(monkeypatch):
                 joint["mimic"] = Visited(name, joint["mimic"])
         return links, joints, root, rest
 
-    monkeypatch.setattr(lagmb.urdf._Reader, "read", counting_read)
+    monkeypatch.setattr(lagmb.urdf.reader.Reader, "read", counting_read)
     return visits
 
 

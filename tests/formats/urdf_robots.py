@@ -66,7 +66,7 @@ def pinocchio_model(relpath, floating_base=False, js=None):
     hips in romeo_laas_small.urdf, whose merged links add no mass) given
     the moments lagmb builds instead (test_an_inertia_no_body_has_is_built_
     with_the_nearest_a_body_has checks them)."""
-    from lagmb.urdf import _nearest_rigid_moments
+    from lagmb.urdf.inertias import nearest_rigid_moments
 
     path = os.path.join(ROBOTS, relpath)
     model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer()) if floating_base else \
@@ -78,7 +78,7 @@ def pinocchio_model(relpath, floating_base=False, js=None):
             moments, axes = np.linalg.eigh(inertia.inertia)
             if moments.min() < -1e-9 * np.abs(moments).max():
                 model.inertias[jid] = pin.Inertia(inertia.mass, inertia.lever,
-                                                  axes @ np.diag(_nearest_rigid_moments(moments)) @ axes.T)
+                                                  axes @ np.diag(nearest_rigid_moments(moments)) @ axes.T)
         held = [jid for jid in range(1, model.njoints) if model.joints[jid].shortname() != "JointModelFreeFlyer"
                 and lagmb_name(js, model.names[jid]) not in js.joints]
         if held:

@@ -134,9 +134,9 @@ PYTHON_LAYERS = [
     ["_core", "_version", "errors", "progress", "registry", "_checks", "functions", "handles", "_meshes", "_rotations",
      "_output_names"],
     ["model", "_poses", "joints"],
-    ["result", "_deep_start", "simulation", "simulator", "statics", "linear", "accuracy"],
+    ["result", "_deep_start", "_run_options", "simulation", "simulator", "statics", "linear", "accuracy"],
     ["_drawing"],
-    ["scene", "plotting", "demo", "urdf", "mjcf", "_store", "studies", "viewer"],
+    ["scene", "plotting", "demo", "_model_files", "urdf", "mjcf", "studies", "viewer"],
     ["fmu", "cli", "__main__", "__init__"],
 ]
 
@@ -173,21 +173,83 @@ def test_python_imports_point_down():
     assert upward == []
 
 
-def test_no_module_reads_private_names_of_plotting():
-    """What the viewer and the command line share with the pictures sits in
-    its own module (lagmb._drawing, lagmb._meshes), not among plotting's
-    private names."""
+def private_names_read(path, package):
+    """The private names (one leading underscore) that a module of the
+    package reads from another module: ``from .x import _name`` (relative
+    or ``lagmb.``), or ``x._name`` of a module it imported. A private
+    *module* (``from . import _checks``, lagmb._core, a package's
+    ``_figures``) is not one: it may be imported anywhere in the package;
+    what it holds for others it names publicly."""
     import ast
 
-    package = ROOT / "python" / "lagmb"
-    found = []
-    for path in sorted(package.rglob("*.py")):
-        if "plotting" in path.relative_to(package).parts:
+    here = path.relative_to(package).parent
+    found, modules = [], set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if not isinstance(node, ast.ImportFrom):
             continue
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and node.module and node.module.endswith("plotting"):
-                found += [f"{path.relative_to(package)}: {a.name}" for a in node.names if a.name.startswith("_")]
+        if node.level:
+            base = package / here
+            for _ in range(node.level - 1):
+                base = base.parent
+        elif (node.module or "").split(".")[0] == "lagmb":
+            base = package.parent
+        else:
+            continue
+        target = base.joinpath(*(node.module or "").split(".")) if node.module else base
+        for alias in node.names:
+            is_module = (target / f"{alias.name}.py").exists() or (target / alias.name).is_dir() or \
+                (target == package and alias.name == "_core")  # (the compiled core)
+            if is_module:
+                modules.add(alias.asname or alias.name)
+            elif alias.name.startswith("_") and not alias.name.startswith("__"):
+                found.append(f"{path.relative_to(package)}:{node.lineno}: imports {alias.name} from "
+                             f"{'.' * node.level}{node.module or ''}")
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in modules \
+                and node.attr.startswith("_") and not node.attr.startswith("__"):
+            found.append(f"{path.relative_to(package)}:{node.lineno}: reads {node.value.id}.{node.attr}")
+    return found
+
+
+def test_no_module_reads_another_modules_private_names():
+    """A name with a leading underscore is private to its module: no other
+    module of lagmb imports it or reads it off the module. What modules
+    share is public in the module whose job it is (the run options in
+    lagmb._run_options for simulate, Simulator and the FMU; a failed run's
+    partial Result in lagmb.result; what URDF and MJCF share in
+    lagmb._model_files; the pictures' matplotlib set-up in
+    lagmb.plotting._figures). A leading underscore on a *module* (lagmb._checks,
+    lagmb._rotations, lagmb._core) keeps it out of the public API, not out
+    of the package: its public names are for lagmb's other modules."""
+    package = ROOT / "python" / "lagmb"
+    found = [line for path in sorted(package.rglob("*.py")) for line in private_names_read(path, package)]
     assert found == []
+
+
+def test_the_private_name_rule_sees_both_ways_of_reading_a_name(tmp_path):
+    """private_names_read finds `from .x import _name` and `x._name`, and
+    passes a private module and its public names."""
+    package = tmp_path / "lagmb"
+    (package / "plotting").mkdir(parents=True)
+    for name in ("__init__.py", "_checks.py", "viewer.py", "plotting/__init__.py", "plotting/_figures.py"):
+        (package / name).write_text("")
+    (package / "plotting" / "history.py").write_text(
+        "from . import _figures\nfrom ._figures import new_figure, _colour\nfrom .. import viewer, _checks\n"
+        "viewer._three_js()\n_checks.show(1)\n_figures.new_figure()\n")
+    assert private_names_read(package / "plotting" / "history.py", package) == [
+        "plotting/history.py:2: imports _colour from ._figures", "plotting/history.py:4: reads viewer._three_js"]
+
+
+#: The longest a Python module of lagmb may be (lines): past it, a module
+#: holds more than one job (docs/design.md; HELPERS: files under 900 lines).
+MAX_MODULE_LINES = 900
+
+
+def test_no_python_module_is_over_900_lines():
+    package = ROOT / "python" / "lagmb"
+    long = {str(p.relative_to(package)): n for p in sorted(package.rglob("*.py"))
+            if (n := len(p.read_text().splitlines())) > MAX_MODULE_LINES}
+    assert long == {}
 
 
 # --- the layers as docs/design.md lists them -------------------------------------
@@ -241,7 +303,7 @@ def test_kinds_are_known_by_their_registry_entry_not_their_name():
     found = []
     for path in sorted(package.rglob("*.py")):
         where = path.relative_to(package)
-        if where.parts[0] in ("urdf.py", "mjcf.py", "plotting"):
+        if where.parts[0] in ("urdf", "mjcf.py", "plotting"):
             continue
         found += [f"{where}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
                   if isinstance(node, ast.Constant) and node.value in named]

@@ -274,16 +274,16 @@ def test_frame_plan_plays_the_span_in_span_over_speed():
     frames of 30 or 40 ms that add up to 2 s; half speed doubles the frames;
     a cap of 20 frames makes each last 100 ms. Frame i shows t0 + i span/n."""
     t = np.linspace(1.0, 3.0, 401)
-    times, durations = gif_frames._frame_plan(t, fps=25, speed=1.0)
+    times, durations = gif_frames.frame_plan(t, fps=25, speed=1.0)
     assert len(times) == 50 and set(durations) == {40}
     np.testing.assert_allclose(times, 1.0 + 0.04 * np.arange(50), rtol=0, atol=1e-12)
-    times, durations = gif_frames._frame_plan(t, fps=30, speed=1.0)
+    times, durations = gif_frames.frame_plan(t, fps=30, speed=1.0)
     assert len(times) == 60 and set(durations) == {30, 40} and sum(durations) == 2000
-    times, durations = gif_frames._frame_plan(t, fps=25, speed=0.5)
+    times, durations = gif_frames.frame_plan(t, fps=25, speed=0.5)
     assert len(times) == 100 and sum(durations) == 4000
-    times, durations = gif_frames._frame_plan(t, fps=25, speed=1.0, frames=20)
+    times, durations = gif_frames.frame_plan(t, fps=25, speed=1.0, frames=20)
     assert len(times) == 20 and set(durations) == {100}
-    times, durations = gif_frames._frame_plan(t, fps=50, speed=100.0)  # 20 ms: one frame per 20 ms at most
+    times, durations = gif_frames.frame_plan(t, fps=50, speed=100.0)  # 20 ms: one frame per 20 ms at most
     assert len(times) == 1
 
 
@@ -312,9 +312,9 @@ def test_a_run_shorter_than_a_second_plays_in_one_by_default_and_says_so(mpl, tm
     speed is given it is slowed down to last 1 s (25 frames), and the title
     says the speed; speed=1 keeps real time."""
     r = mb.simulate(double_pendulum(), t_end=0.2, n_out=21)
-    times, _ = gif_frames._frame_plan(r.t, fps=25, speed=0.2)
+    times, _ = gif_frames.frame_plan(r.t, fps=25, speed=0.2)
     scene = _drawing.Scene(r)
-    drawing = planar_drawing._planar_drawing(scene, gif_frames._resample(r, times), [], (320, 240), 100, 0.2)
+    drawing = planar_drawing.planar_drawing(scene, gif_frames.resample(r, times), [], (320, 240), 100, 0.2)
     assert drawing.fig.axes[0].get_title() == "lagmb: 2 bodies, 2 joints, played at 0.2 × real time"
     plotting.animate(r, tmp_path / "slow.gif", size=(320, 240))
     assert len(gif_durations(tmp_path / "slow.gif")) == 25 and sum(gif_durations(tmp_path / "slow.gif")) == 1000
@@ -344,8 +344,8 @@ def test_frames_between_outputs_are_interpolated_from_positions_and_velocities()
     at the outputs themselves they are the outputs."""
     coarse = mb.simulate(double_pendulum(), t_end=1.0, n_out=21)
     fine = mb.simulate(double_pendulum(), t_end=1.0, n_out=101)
-    times, _ = gif_frames._frame_plan(coarse.t, fps=25, speed=1.0)
-    shown = gif_frames._resample(coarse, times)
+    times, _ = gif_frames.frame_plan(coarse.t, fps=25, speed=1.0)
+    shown = gif_frames.resample(coarse, times)
     np.testing.assert_allclose(shown.t, fine.t[:-1:4], rtol=0, atol=1e-12)
     error = np.max(np.abs(shown.q - fine.q[:-1:4]))
     straight = np.column_stack([np.interp(times, coarse.t, q) for q in coarse.q.T])
@@ -405,7 +405,7 @@ def test_a_rod_pinned_at_one_end_is_drawn_to_both_ends(mpl):
     assert len(scene1.outlines["lower"]) == 1
     np.testing.assert_allclose(scene1.drawn_outline("lower"), [[-0.5, 0.0], [0.5, 0.0]], atol=1e-12)
     # and the line drawn at the first frame runs from the elbow (1, 0) to the tip (1, -1)
-    drawing = planar_drawing._planar_drawing(scene1, r1, [], (320, 240), 100, 1.0)
+    drawing = planar_drawing.planar_drawing(scene1, r1, [], (320, 240), 100, 1.0)
     drawing.update(0)
     x, y = drawing.artists["bodies"][1].get_data()
     np.testing.assert_allclose(sorted(zip(x, y), key=lambda p: -p[1]), [[1.0, 0.0], [1.0, -1.0]], atol=1e-9)
@@ -429,7 +429,7 @@ def test_a_contact_is_drawn_as_its_circle_and_its_line(mpl):
     m.add_contact("hit", ball, (0.6, 0.4), 0.1, plank, (0.0, 0.0), (math.cos(0.1), math.sin(0.1)), stiffness=1e6,
                   restitution=0.6, friction=0.4)
     r = mb.simulate(m, t_end=1.0, n_out=11)
-    drawing = planar_drawing._planar_drawing(_drawing.Scene(r), r, [], (320, 240), 100, 1.0)
+    drawing = planar_drawing.planar_drawing(_drawing.Scene(r), r, [], (320, 240), 100, 1.0)
     (circle,), (line,) = drawing.artists["circles"], drawing.artists["lines"]
     plank_angle = r.body("plank").angle
     for k in (0, 5, 10):
@@ -452,10 +452,10 @@ def test_a_spatial_body_is_drawn_with_its_axes_turning_with_it(mpl):
     inertia box (a flat square: the inertia (2, 2, 4) g m^2 of a disc) has
     its corners where the rotation puts them."""
     r = mb.load_scene(os.path.join(EXAMPLES, "heavy_top.toml")).run(n_out=201)
-    times, _ = gif_frames._frame_plan(r.t, fps=25, speed=1.0)
-    shown = gif_frames._resample(r, times)
+    times, _ = gif_frames.frame_plan(r.t, fps=25, speed=1.0)
+    shown = gif_frames.resample(r, times)
     scene = _drawing.Scene(r)
-    drawing = spatial_drawing._spatial_drawing(scene, shown, [], (320, 240), 100, (20.0, -70.0), 1.0)
+    drawing = spatial_drawing.spatial_drawing(scene, shown, [], (320, 240), 100, (20.0, -70.0), 1.0)
     top = r.body("top")
     lengths = drawing.triad_lengths["top"]  # x and y a fifth past the square, z a 25th of the scene
     corners = scene.box("top")
@@ -686,7 +686,7 @@ def test_a_planar_picture_is_animates_frame_with_the_paths_travelled(mpl, tmp_pa
     r = mb.simulate(m, t_end=1.0, n_out=11)
     path = tmp_path / "rod.png"
     captured = {}
-    original = plotting.pictures._planar_drawing
+    original = plotting.pictures.planar_drawing
 
     def spy(scene, shown, trace, size, dpi, speed):
         drawing = original(scene, shown, trace, size, dpi, speed)
@@ -694,7 +694,7 @@ def test_a_planar_picture_is_animates_frame_with_the_paths_travelled(mpl, tmp_pa
         return drawing
 
     mp = pytest.MonkeyPatch()
-    mp.setattr(plotting.pictures, "_planar_drawing", spy)
+    mp.setattr(plotting.pictures, "planar_drawing", spy)
     try:
         assert plotting.picture(r, path, time=0.52, trace=[("rod", (0.5, 0.0))], title="a rod") == 1
     finally:
@@ -760,7 +760,7 @@ def test_an_animation_draws_a_plane_as_a_floor_under_the_bodies(mpl):
 
     r = mb.simulate(_shapes_on_a_floor(), 0.5, n_out=11)
     scene = _drawing.Scene(r)
-    drawing = spatial_drawing._spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
+    drawing = spatial_drawing.spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
     ax = drawing.fig.axes[0]
     floor, solids = [c for c in ax.collections if isinstance(c, Poly3DCollection)]
     assert floor.get_zorder() == 0 and solids.get_zorder() > 0 and not ax.computed_zorder
@@ -779,7 +779,7 @@ def test_an_animation_draws_bodies_with_shapes_as_their_shapes(mpl):
 
     r = mb.simulate(_shapes_on_a_floor(), 0.5, n_out=11)
     scene = _drawing.Scene(r)
-    drawing = spatial_drawing._spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
+    drawing = spatial_drawing.spatial_drawing(scene, r, [], (320, 240), 100, (20.0, -60.0), 1.0)
     solids = _body_shapes(r.model, scene.bodies)
     assert set(solids) == {"b0", "b1", "b2", "b3"}
     assert drawing.artists["boxes"] == [] and drawing.artists["triad"] == []

@@ -414,7 +414,7 @@ def test_the_lock_of_a_process_that_died_is_taken_over_even_while_its_forked_wor
     four_cases(store)
     # the sweep's process locks the store, forks a worker (which inherits the
     # lock file's descriptor, as a process pool's fork does) and dies
-    script = (f"import os, sys, time\nfrom lagmb import _store\nlock = _store.Lock({str(store)!r}, 'sweep')\n"
+    script = (f"import os, sys, time\nfrom lagmb.studies.store import Lock\nlock = Lock({str(store)!r}, 'sweep')\n"
               "worker = os.fork()\nif worker == 0:\n    time.sleep(60)\n    os._exit(0)\n"
               "print(worker, flush=True)\nos._exit(0)\n")
     proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
@@ -462,12 +462,13 @@ def test_a_store_on_a_file_system_without_locks_is_used_with_a_warning(tmp_path,
 
 
 def test_a_batch_written_twice_is_not_an_error(tmp_path):
-    from lagmb import _store, studies
+    from lagmb import studies
+    from lagmb.studies.store import Store
 
     store = tmp_path / "study.zarr"
     ds = four_cases(store)
     held = studies.check_store(store)
-    writer = _store.Store(store, held, "sweep")
+    writer = Store(store, held, "sweep")
     try:
         part = ds.isel(case=[0, 1])
         writer.write(0, 0, 2, part)  # already there and whole

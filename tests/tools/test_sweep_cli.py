@@ -300,8 +300,8 @@ def test_o_takes_a_study_s_store_only_and_one_sweep_at_a_time(capsys, tmp_path):
     store = tmp_path / "study.zarr"
     assert lagmb(capsys, *args, "-o", store)[0] == 0
     # another process holds the store's lock, as a sweep writing it does
-    holder = subprocess.Popen([sys.executable, "-c", "import sys; from lagmb import _store; "
-                               f"lock = _store.Lock({str(store)!r}, 'sweep'); print('held', flush=True); "
+    holder = subprocess.Popen([sys.executable, "-c", "import sys; from lagmb.studies.store import Lock; "
+                               f"lock = Lock({str(store)!r}, 'sweep'); print('held', flush=True); "
                                "sys.stdin.read()"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
         assert holder.stdout.readline() == "held\n"

@@ -75,9 +75,9 @@ def handle(args):
         need_matplotlib("animating")
     if html_page:
         try:
-            from ..viewer import _three_js
+            from ..viewer import three_js
 
-            _three_js()
+            three_js()
         except ModelError as e:  # three.js comes with the 'view' extra
             raise Exit(USAGE, f"--html {html_page}: {e}") from None
 

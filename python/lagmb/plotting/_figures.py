@@ -8,7 +8,7 @@ import os
 from ..errors import extra_module
 
 
-def _matplotlib():
+def load_matplotlib():
     """The matplotlib pieces used here, or MissingExtraError (an ImportError) naming the 'plot' extra."""
     extra_module("matplotlib", "plot", "lagmb plotting")
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -16,31 +16,31 @@ def _matplotlib():
     return Figure, FigureCanvasAgg
 
 
-def _pillow():
+def load_pillow():
     """Pillow, which writes the GIFs, or MissingExtraError naming the 'plot' extra."""
     extra_module("PIL.Image", "plot", "lagmb plotting (a GIF)")
 
 
-def _figure(figsize, **kwargs):
+def new_figure(figsize, **kwargs):
     """A Figure on an Agg canvas, outside pyplot (closing it is dropping it)."""
-    Figure, FigureCanvasAgg = _matplotlib()
+    Figure, FigureCanvasAgg = load_matplotlib()
     fig = Figure(figsize=figsize, **kwargs)
     FigureCanvasAgg(fig)
     return fig
 
 
-def _save(fig, path, **kwargs):
+def save_figure(fig, path, **kwargs):
     path = os.fspath(path)
     folder = os.path.dirname(os.path.abspath(path))
     os.makedirs(folder, exist_ok=True)
     fig.savefig(path, **kwargs)
 
 
-def _colour(i):
+def cycle_colour(i):
     return f"C{i % 10}"
 
 
-def _legend(ax, title=None, handles=None, ncol=1):
+def add_legend(ax, title=None, handles=None, ncol=1):
     kwargs = {"handles": handles} if handles is not None else {}
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8,
               title=title, title_fontsize=8, frameon=False, ncol=ncol, **kwargs)

@@ -5,10 +5,10 @@ import numpy as np
 
 from .._drawing import Scene, trace_points
 from ..errors import ModelError
-from ._figures import _matplotlib, _pillow
-from .frames import _FPS, MAX_FPS, _MAX_FRAMES, checked_setting, _frame_plan, _resample, _write_gif
-from .planar import _planar_drawing
-from .spatial import _spatial_drawing
+from ._figures import load_matplotlib, load_pillow
+from .frames import DEFAULT_FPS, MAX_FPS, MAX_FRAMES, checked_setting, frame_plan, resample, write_gif
+from .planar import planar_drawing
+from .spatial import spatial_drawing
 
 def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size=(640, 480), dpi=100,
             view=(25.0, -60.0), progress=True, max_frames=None):
@@ -63,16 +63,16 @@ def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size
     list. A traced (body, point) also joins its body's shape. ``size`` is
     the picture in pixels. Returns the path written.
     """
-    _matplotlib()
-    _pillow()  # there before anything is drawn
+    load_matplotlib()
+    load_pillow()  # there before anything is drawn
     if max_frames is not None:
         if frames is not None:
             raise ModelError("animate: give frames or its old name max_frames, not both")
         frames = max_frames
-    fps = _FPS if fps is None else checked_setting("animate: fps", fps, 0.0, MAX_FPS)
+    fps = DEFAULT_FPS if fps is None else checked_setting("animate: fps", fps, 0.0, MAX_FPS)
     if speed is not None:
         speed = checked_setting("animate: speed", speed, 0.0)
-    frames = _MAX_FRAMES if frames is None else checked_setting("animate: frames", frames, 0, whole=True)
+    frames = MAX_FRAMES if frames is None else checked_setting("animate: frames", frames, 0, whole=True)
     t = np.asarray(result.t)
     if len(t) == 0:
         raise ModelError("animate: the result has no outputs")
@@ -81,13 +81,13 @@ def animate(result, path, *, fps=None, speed=None, frames=None, trace=None, size
         speed = span if 0.0 < span < 1.0 else 1.0
     scene = Scene(result)
     trace = trace_points(result.model, trace)
-    times, durations = _frame_plan(t, fps, speed, frames)
-    shown = _resample(result, times)
+    times, durations = frame_plan(t, fps, speed, frames)
+    shown = resample(result, times)
     if scene.dimension == 3:
-        drawing = _spatial_drawing(scene, shown, trace, size, dpi, view, speed)
+        drawing = spatial_drawing(scene, shown, trace, size, dpi, view, speed)
     else:
-        drawing = _planar_drawing(scene, shown, trace, size, dpi, speed)
+        drawing = planar_drawing(scene, shown, trace, size, dpi, speed)
     from ..progress import Progress
 
     with Progress(times[0], t[-1], enabled=bool(progress), label="drawn") as bar:
-        return _write_gif(drawing, path, durations, lambda k: bar(times[k]))
+        return write_gif(drawing, path, durations, lambda k: bar(times[k]))

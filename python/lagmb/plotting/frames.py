@@ -11,12 +11,12 @@ from .._checks import decimal
 from .._drawing import unit_orientations
 from ..errors import ModelError
 
-_FPS = 25       # default frames per second: 40 ms a frame, four ticks of a GIF's 10 ms clock
+DEFAULT_FPS = 25  # default frames per second: 40 ms a frame, four ticks of a GIF's 10 ms clock
 MAX_FPS = 50   # GIF viewers show a frame of 10 ms for 100 ms: 20 ms is the shortest kept
-_MAX_FRAMES = 1000  # unless asked: Pillow holds every frame until the GIF is written (0.3 MB at 640 x 480)
+MAX_FRAMES = 1000  # unless asked: Pillow holds every frame until the GIF is written (0.3 MB at 640 x 480)
 
 
-def _frame_plan(t, fps, speed, frames=None):
+def frame_plan(t, fps, speed, frames=None):
     """(times (n,), durations in ms (n,)) of the frames of a run with output
     times t: n frames spread evenly from the first output on, frame i showing
     t0 + i * span / n, so that the GIF plays the span in span / speed s.
@@ -41,7 +41,7 @@ def _frame_plan(t, fps, speed, frames=None):
     return times, (10 * np.diff(np.concatenate(([0.0], ends)))).astype(int)
 
 
-def _resample(result, times):
+def resample(result, times):
     """The result at the frame times, as a Result (q and v; a and lam zero):
     q by cubic Hermite interpolation between the outputs around each time
     (q and q' = v at both; exact at the outputs), linear where an event
@@ -81,14 +81,14 @@ def _resample(result, times):
     return Result(result.model, core, raw)
 
 
-def _time_format(times):
+def time_format(times):
     dt = np.diff(times)
     dt = dt[dt > 0]
     digits = 2 if not len(dt) else int(np.clip(math.ceil(-math.log10(dt.min())) + 1, 2, 9))
     return f"t = {{:.{digits}f}} s"
 
 
-def _speed_words(speed):
+def speed_words(speed):
     """What the title says of the speed: nothing in real time."""
     if speed == 1.0:
         return ""
@@ -116,7 +116,7 @@ def checked_setting(name, value, low, high=None, whole=False):
     return int(number) if whole else number
 
 
-class _Drawing:
+class Drawing:
     """A figure of a run's frames: ``update(k)`` sets the ``animated``
     artists to frame k; everything else is drawn once. ``artists`` names
     the animated ones (for tests)."""
@@ -126,7 +126,7 @@ class _Drawing:
         self.animated = [a for v in artists.values() for a in (v if isinstance(v, list) else [v])]
 
 
-def _write_gif(drawing, path, durations, progress=None):
+def write_gif(drawing, path, durations, progress=None):
     """Draws each frame of drawing into a GIF at path, frame k lasting
     durations[k] ms; returns the path. The fixed part of the figure is drawn
     once and copied under each frame (blitting); the frame's pixels go from

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import _rotations
 from .._drawing import Scene, stats_line
-from ._figures import _colour, _figure, _legend, _matplotlib, _save
+from ._figures import cycle_colour, new_figure, add_legend, load_matplotlib, save_figure
 
 _MAX_LINES = 8    # lines (legend entries) per subplot
 _MAX_BODIES = 6   # bodies in the coordinate plots (their legend adds the x / y keys)
@@ -43,7 +43,7 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     unknown = [w for w in what if w not in _PANELS]
     if unknown:
         raise ValueError(f"plot_result: unknown panel(s) {unknown}; choose from {list(_PANELS)}")
-    _matplotlib()
+    load_matplotlib()
     scene = Scene(result)
     t = np.asarray(result.t)
 
@@ -99,7 +99,7 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     if not panels:
         raise ValueError(f"plot_result: nothing to plot for what={tuple(what)}")
 
-    fig = _figure((8.5, 1.2 + 2.0 * len(panels)), constrained_layout=True)
+    fig = new_figure((8.5, 1.2 + 2.0 * len(panels)), constrained_layout=True)
     if hasattr(fig, "get_layout_engine"):  # matplotlib >= 3.6: a little air at the edges
         fig.get_layout_engine().set(w_pad=0.1, h_pad=0.06)
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
@@ -114,7 +114,7 @@ def plot_result(result, path=None, *, what=_PANELS, dpi=120):
     fig.suptitle(f"lagmb: {title}" + (f"\n{stats}, {len(t)} outputs" if stats else ""),
                  fontsize=11)
     if path is not None:
-        _save(fig, path, dpi=dpi)
+        save_figure(fig, path, dpi=dpi)
     return fig
 
 
@@ -177,21 +177,21 @@ def _positions(ax, result, scene, bodies=None):
     for i, b in enumerate(shown):
         pos = result.body(b).position
         for axis, style in enumerate(styles):
-            ax.plot(result.t, pos[:, axis], color=_colour(i), lw=1.4, ls=style)
-        handles.append(Line2D([], [], color=_colour(i), lw=2, label=b))
+            ax.plot(result.t, pos[:, axis], color=cycle_colour(i), lw=1.4, ls=style)
+        handles.append(Line2D([], [], color=cycle_colour(i), lw=2, label=b))
     handles += [Line2D([], [], color="0.3", lw=1.4, ls=style, label="xyz"[axis])
                 for axis, style in enumerate(styles)]
     ax.set_ylabel("centre of mass\n" + ", ".join("xyz"[:scene.dimension]) + " (m)")
-    _legend(ax, _shown(shown, len(bodies), "bodies"), handles)
+    add_legend(ax, _shown(shown, len(bodies), "bodies"), handles)
 
 
 def _angles(ax, result, scene):
     rigid = [(i, b) for i, b in enumerate(scene.bodies) if b not in scene.particles]
     shown = rigid[:_MAX_BODIES]
     for i, b in shown:
-        ax.plot(result.t, _angle(result, b), color=_colour(i), lw=1.4, label=b)
+        ax.plot(result.t, _angle(result, b), color=cycle_colour(i), lw=1.4, label=b)
     ax.set_ylabel("angle φ (rad)" if scene.dimension == 2 else "turned from the start\n(rad)")
-    _legend(ax, _shown(shown, len(rigid), "bodies"))
+    add_legend(ax, _shown(shown, len(rigid), "bodies"))
 
 
 def _angle(result, body):
@@ -205,10 +205,10 @@ def _angle(result, body):
 
 def _lines(ax, t, series, total, what, ylabel):
     for i, (name, y) in enumerate(series.items()):
-        ax.plot(t, y, color=_colour(i), lw=1.4, label=name)
+        ax.plot(t, y, color=cycle_colour(i), lw=1.4, label=name)
     ax.set_ylabel(ylabel)
     _least_span(ax, list(series.values()))
-    _legend(ax, _shown(list(series), total, what))
+    add_legend(ax, _shown(list(series), total, what))
 
 
 def _least_span(ax, ys, fraction=1e-9):
@@ -231,7 +231,7 @@ def _energy(ax, t, energy):
     ax.plot(t, energy - e0, color="C3", lw=1.4, label=f"E(0) = {e0:.6g} J")
     ax.set_ylabel("energy change\nE − E(0) (J)")
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4), useOffset=False)
-    _legend(ax)
+    add_legend(ax)
 
 
 def _residual(ax, t, residual):

@@ -8,10 +8,10 @@ import numpy as np
 
 from .._drawing import Scene, counted, mode_amplitude, posed
 from ..errors import ModelError
-from ._figures import _matplotlib, _pillow
-from .frames import MAX_FPS, checked_setting, _write_gif
-from .planar import _planar_drawing
-from .spatial import _spatial_drawing
+from ._figures import load_matplotlib, load_pillow
+from .frames import MAX_FPS, checked_setting, write_gif
+from .planar import planar_drawing
+from .spatial import spatial_drawing
 
 _MODE_CYCLE = 2.0     # s: a cycle of a mode plays in 2 s (at the default frames), whatever its frequency
 
@@ -53,8 +53,8 @@ def animate_mode(modes, index=0, path=None, *, amplitude=None, cycles=2, fps=25,
     """
     from ..linear import Modes
 
-    _matplotlib()
-    _pillow()  # there before anything is drawn
+    load_matplotlib()
+    load_pillow()  # there before anything is drawn
     if not isinstance(modes, Modes):
         raise ModelError(f"animate_mode: modes must be what mb.modes(model) returns, got {type(modes).__name__}")
     count = len(modes)
@@ -82,9 +82,9 @@ def animate_mode(modes, index=0, path=None, *, amplitude=None, cycles=2, fps=25,
                    phase / omega if kind == "vibration" else phase)
     scene = Scene(shown)
     if scene.dimension == 3:
-        drawing = _spatial_drawing(scene, shown, [], size, dpi, view, 1.0)
+        drawing = spatial_drawing(scene, shown, [], size, dpi, view, 1.0)
     else:
-        drawing = _planar_drawing(scene, shown, [], size, dpi, 1.0)
+        drawing = planar_drawing(scene, shown, [], size, dpi, 1.0)
     title = f"mode {index}: {frequency:.4g} Hz ({kind})"
     if kind != "vibration":  # no time to stamp: the title says how it moves instead
         title += "\n" + ("it moves freely" if kind == "rigid-body" else f"it grows as exp({omega:.3g} t)") \
@@ -94,10 +94,10 @@ def animate_mode(modes, index=0, path=None, *, amplitude=None, cycles=2, fps=25,
     ends = np.round(100.0 * np.arange(1, frames + 1) / fps)  # hundredths of a second, as animate counts
     durations = (10 * np.diff(np.concatenate(([0.0], ends)))).astype(int)
     if path is not None:
-        return _write_gif(drawing, path, durations)
+        return write_gif(drawing, path, durations)
     import tempfile
 
     with tempfile.TemporaryDirectory() as folder:
-        written = _write_gif(drawing, os.path.join(folder, "mode.gif"), durations)
+        written = write_gif(drawing, os.path.join(folder, "mode.gif"), durations)
         with open(written, "rb") as f:
             return f.read()

@@ -7,9 +7,9 @@ import numpy as np
 from .._checks import real, show, vec2
 from .._drawing import Scene, shape_faces, trace_points
 from ..errors import ModelError
-from ._figures import _colour, _figure, _matplotlib, _save
-from .frames import _resample
-from .planar import _planar_drawing
+from ._figures import cycle_colour, new_figure, load_matplotlib, save_figure
+from .frames import resample
+from .planar import planar_drawing
 
 
 def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), size=(640, 640), dpi=100,
@@ -45,7 +45,7 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
     t = np.asarray(result.t)
     k = len(t) - 1 if time is None else int(np.argmin(np.abs(t - real(time, "plotting.picture: time"))))
     scene = Scene(result)
-    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    fig = new_figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
     ax = fig.add_subplot(projection="3d")
     ax.view_init(elev=float(view[0]), azim=float(view[1]))
     light = np.array([0.4, -0.5, 0.8]) / np.linalg.norm([0.4, -0.5, 0.8])
@@ -80,7 +80,7 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
         world = [r + f @ R.T for f in faces]
         normals = [np.cross(f[1] - f[0], f[2] - f[0]) for f in world]
         shade = np.array([abs(n @ light) / (np.linalg.norm(n) or 1.0) for n in normals])
-        base = np.array(_rgb(_colour(bodies.index(shape.body)) if shape.body in bodies else
+        base = np.array(_rgb(cycle_colour(bodies.index(shape.body)) if shape.body in bodies else
                              "0.85" if shape.kind == "plane" else "0.6"))
         colours = [(*(base * (0.45 + 0.55 * s)), 1.0) for s in shade]
         # one collection per polygon size: matplotlib pads ragged polygons (a
@@ -115,25 +115,25 @@ def picture(result, path, *, time=None, role="collision", view=(20.0, -50.0), si
                                                              if skipped else "")
     ax.set_title(title or f"lagmb: {scene.heading()}", fontsize=10)
     ax.text2D(0.02, 0.02, caption, transform=ax.transAxes, fontsize=8)
-    _save(fig, path)
+    save_figure(fig, path)
     return drawn
 
 
 def _planar_picture(result, path, time, size, dpi, title, trace):
     """picture() of a planar model: animate's drawing of one frame, at the
     output nearest ``time``, the traced paths up to it."""
-    _matplotlib()
+    load_matplotlib()
     t = np.asarray(result.t)
     if len(t) == 0:
         raise ModelError("plotting.picture: the result has no outputs")
     k = len(t) - 1 if time is None else int(np.argmin(np.abs(t - real(time, "plotting.picture: time"))))
     scene = Scene(result)
     traced = trace_points(result.model, trace, "plotting.picture: trace")
-    drawing = _planar_drawing(scene, _resample(result, t[k:k + 1]), traced, size, dpi, 1.0)
+    drawing = planar_drawing(scene, resample(result, t[k:k + 1]), traced, size, dpi, 1.0)
     drawing.update(0)
     if title:
         drawing.fig.axes[0].set_title(title, fontsize=10)
-    _save(drawing.fig, path)
+    save_figure(drawing.fig, path)
     return len(scene.bodies)
 
 

@@ -5,8 +5,8 @@ its line) and traced paths."""
 import numpy as np
 
 from .._drawing import outline_shape
-from ._figures import _colour, _figure
-from .frames import _Drawing, _speed_words, _time_format
+from ._figures import cycle_colour, new_figure
+from .frames import Drawing, speed_words, time_format
 
 def _zigzag(p, q, width, coils=6):
     """Points of a spring drawn from p to q."""
@@ -23,7 +23,7 @@ def _zigzag(p, q, width, coils=6):
     return p + np.outer(s * length, u) + np.outer(offset, n)
 
 
-def _planar_drawing(scene, shown, trace, size, dpi, speed):
+def planar_drawing(scene, shown, trace, size, dpi, speed):
     """The planar drawing of the frames ``shown`` (a Result at the frame
     times) of scene's run (see animate)."""
     from matplotlib.patches import Polygon
@@ -96,7 +96,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     centre = 0.5 * (lo + hi)
     lo, hi = centre - 0.5 * scale * box, centre + 0.5 * scale * box
 
-    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    fig = new_figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
     ax = fig.add_axes(rect)
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])
@@ -104,7 +104,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.grid(alpha=0.25)
-    ax.set_title(f"lagmb: {scene.heading()}{_speed_words(speed)}", fontsize=10)
+    ax.set_title(f"lagmb: {scene.heading()}{speed_words(speed)}", fontsize=10)
 
     # fixed things: slide guides, supports, the paths ahead
     for at, axis in guides:
@@ -116,7 +116,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
         ax.add_patch(Polygon(tri, closed=True, facecolor="0.75", edgecolor="0.2", lw=1,
                              zorder=2))
         ax.plot([p[0] - mark, p[0] + mark], [p[1] - mark] * 2, color="0.2", lw=1.5, zorder=2)
-    trace_colours = [_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
+    trace_colours = [cycle_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
     for c, path_ in zip(trace_colours, traces):
         ax.plot(*path_.T, color=c, lw=1, alpha=0.2, zorder=1)
 
@@ -125,7 +125,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     line_art = [ax.plot([], [], color="0.3", lw=2.0, zorder=2)[0] for _ in lines]
     circle_art = []
     for b, c, R in circles:
-        colour = _colour(scene.bodies.index(b)) if b in scene.bodies else "0.3"
+        colour = cycle_colour(scene.bodies.index(b)) if b in scene.bodies else "0.3"
         art = Circle((0.0, 0.0), R, fill=False, edgecolor=colour, lw=2.0, zorder=4)
         ax.add_patch(art)
         circle_art.append(art)
@@ -135,7 +135,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     body_art = []
     for i, b in enumerate(scene.bodies):
         local, closed = shapes[b]
-        c = _colour(i)
+        c = cycle_colour(i)
         if closed:
             art = Polygon(np.zeros((len(local), 2)), closed=True, facecolor=c, alpha=0.35,
                           edgecolor=c, lw=2.5, zorder=3)
@@ -151,7 +151,7 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     stamp = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
                     family="monospace", zorder=6,
                     bbox={"facecolor": "white", "edgecolor": "0.8", "alpha": 0.85})
-    stamp_format = _time_format(t)
+    stamp_format = time_format(t)
 
     def update(k):
         for b, art in zip(scene.bodies, body_art):
@@ -188,4 +188,4 @@ def _planar_drawing(scene, shown, trace, size, dpi, speed):
     # in the order of their zorder: each frame draws them one by one, in this order
     artists = {"traces": trace_done, "lines": line_art, "links": link_art, "bodies": body_art,
                "circles": circle_art, "pins": pin_art, "centres": centre_art, "stamp": stamp}
-    return _Drawing(fig, artists, update)
+    return Drawing(fig, artists, update)

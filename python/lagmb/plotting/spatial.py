@@ -5,8 +5,8 @@ floor a plane shape on the ground makes."""
 
 import numpy as np
 
-from ._figures import _colour, _figure
-from .frames import _Drawing, _speed_words, _time_format
+from ._figures import cycle_colour, new_figure
+from .frames import Drawing, speed_words, time_format
 
 _TRIAD_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")  # body axes x, y, z: red, green, blue
 _POKE = 1.2  # a body's axes reach this far past its inertia box
@@ -57,7 +57,7 @@ def _box_edges(corners):
     return np.array([p for a, b in pairs for p in (corners[a], corners[b], gap)])
 
 
-def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
+def spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     """The spatial drawing of the frames ``shown``: each body as lines from
     its centre of mass to the points where elements attach to it (a rod
     pinned at one end drawn whole, as in the plane; a dot alone if none),
@@ -118,7 +118,7 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     triad = {b: np.maximum(0.08 * half, _POKE * np.abs(corners[b]).max(axis=0) if b in corners else 0.0)
              for b in turning}
 
-    fig = _figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
+    fig = new_figure((size[0] / dpi, size[1] / dpi), dpi=dpi)
     ax = fig.add_subplot(projection="3d")
     ax.view_init(elev=elevation, azim=azimuth)
     for axis, set_lim, label in zip(range(3), (ax.set_xlim, ax.set_ylim, ax.set_zlim), "xyz"):
@@ -126,7 +126,7 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
         getattr(ax, f"set_{label}label")(f"{label} (m)")
     if hasattr(ax, "set_box_aspect"):
         ax.set_box_aspect((1, 1, 1))
-    ax.set_title(f"lagmb: {scene.heading()}{_speed_words(speed)}", fontsize=10)
+    ax.set_title(f"lagmb: {scene.heading()}{speed_words(speed)}", fontsize=10)
     floors = [sh for sh in getattr(result.model, "shapes", []) if sh.body == "ground" and sh.kind == "plane"]
     if floors:  # a plane on the ground: a floor under everything (drawn first, whatever its depth)
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
@@ -151,14 +151,14 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
             ax.add_collection3d(Poly3DCollection(list(still), facecolors=_shaded(still, to_rgb("0.6")),
                                                  edgecolors="none"))
         moving = [b for b in scene.bodies if b in solids]
-        tint = {b: to_rgb(_colour(scene.bodies.index(b))) for b in moving}
+        tint = {b: to_rgb(cycle_colour(scene.bodies.index(b))) for b in moving}
         # one collection for all the bodies' triangles: mplot3d orders polygons by depth within one
         solid_art = Poly3DCollection([np.zeros((3, 3))], edgecolors="none")
         ax.add_collection3d(solid_art)
     if supports:
         s = np.array(supports, dtype=float)
         ax.plot(s[:, 0], s[:, 1], s[:, 2], "^", ms=9, color="0.75", mec="0.2")
-    trace_colours = [_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
+    trace_colours = [cycle_colour(scene.bodies.index(b)) if b in scene.bodies else "k" for b, _ in trace]
     for c, path_ in zip(trace_colours, traces):
         ax.plot(*path_.T, color=c, lw=1, alpha=0.2)
 
@@ -176,16 +176,16 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
 
     trace_done = [ax.plot([], [], [], color=c, lw=1.3)[0] for c in trace_colours]
     link_art = [ax.plot([], [], [], color="0.35", lw=1.2)[0] for _ in links]
-    box_art = {b: ax.plot([], [], [], color=_colour(scene.bodies.index(b)), lw=1.0, alpha=0.8)[0]
+    box_art = {b: ax.plot([], [], [], color=cycle_colour(scene.bodies.index(b)), lw=1.0, alpha=0.8)[0]
                for b in boxes}
-    body_art = [ax.plot([], [], [], color=_colour(i), lw=4, solid_capstyle="round")[0]
+    body_art = [ax.plot([], [], [], color=cycle_colour(i), lw=4, solid_capstyle="round")[0]
                 for i, _ in enumerate(scene.bodies)]
     triad_art = [ax.plot([], [], [], color=c, lw=1.6)[0] for c in _TRIAD_COLOURS] if turning else []
     centre_art = ax.plot([], [], [], "o", ms=3.5, color="0.1")[0]
     joint_art = ax.plot([], [], [], "o", ms=5.5, mfc="white", mec="0.15", mew=1.2)[0]
     stamp = ax.text2D(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
                       family="monospace")
-    stamp_format = _time_format(t)
+    stamp_format = time_format(t)
 
     now = {}  # what the last update placed (for tests)
 
@@ -227,7 +227,7 @@ def _spatial_drawing(scene, shown, trace, size, dpi, view, speed):
     artists = {"traces": trace_done, "links": link_art, "boxes": list(box_art.values()),
                "solids": [solid_art] if solid_art is not None else [], "bodies": body_art,
                "triad": triad_art, "centres": centre_art, "joints": joint_art, "stamp": stamp}
-    drawing = _Drawing(fig, artists, update)
+    drawing = Drawing(fig, artists, update)
     drawing.triad_lengths = triad  # {body: (3,) m}
     drawing.now = now  # {"triangles": (k, 3, 3) m} the shapes as the last frame placed them
     drawing.floors = floor_faces if floors else []  # [(4, 3)] the floors' squares (m)

@@ -5,7 +5,7 @@ import os
 
 import numpy as np
 
-from ._figures import _colour, _figure, _legend, _matplotlib, _save
+from ._figures import cycle_colour, new_figure, add_legend, load_matplotlib, save_figure
 
 _SWEEP_RECORDS = ("status", "warnings", "steps", "wall_time", "q")  # what every case records
 _SWEEP_LINES = 8  # values of a second parameter drawn as lines; more: a heat map
@@ -142,7 +142,7 @@ def plot_sweep(ds, path=None, outputs=None, *, dpi=120):
     if "case" not in ds.dims or "status" not in ds:
         raise ValueError("plot_sweep: not a parameter study: give mb.sweep's Dataset or the path of its store")
     names = sweep_outputs(ds, outputs)
-    _matplotlib()
+    load_matplotlib()
     varied, fixed = _sweep_parameters(ds)
     ok = ds["status"].values == "ok"
     n = ds.sizes["case"]
@@ -156,7 +156,7 @@ def plot_sweep(ds, path=None, outputs=None, *, dpi=120):
                 varied = [second, first]  # the one with fewer values makes the lines
             else:
                 heat = True
-    fig = _figure((8.5, 1.3 + (2.9 if heat else 2.4) * len(names)), constrained_layout=True)
+    fig = new_figure((8.5, 1.3 + (2.9 if heat else 2.4) * len(names)), constrained_layout=True)
     if hasattr(fig, "get_layout_engine"):
         fig.get_layout_engine().set(w_pad=0.1, h_pad=0.06)
     axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
@@ -165,7 +165,7 @@ def plot_sweep(ds, path=None, outputs=None, *, dpi=120):
         y = np.asarray(ds[name].values, dtype=float)
         use = ok & np.isfinite(y)
         if not varied:
-            ax.plot(ds["case"].values[use], y[use], "o", ms=5, color=_colour(0))
+            ax.plot(ds["case"].values[use], y[use], "o", ms=5, color=cycle_colour(0))
             ax.set_xlabel("case")
         elif len(varied) == 1 or (len(varied) == 2 and grid and not heat):
             note = _sweep_lines(ax, varied, y, use, legend=k == 0)
@@ -195,7 +195,7 @@ def plot_sweep(ds, path=None, outputs=None, *, dpi=120):
         lines.append(", ".join(f"{name} = {value}" for name, value in fixed.items()))
     fig.suptitle("\n".join(lines), fontsize=10)
     if path is not None:
-        _save(fig, path, dpi=dpi)
+        save_figure(fig, path, dpi=dpi)
     return fig
 
 
@@ -205,7 +205,7 @@ def _sweep_lines(ax, varied, y, use, legend):
     x = first.positions()
     if len(varied) == 1:
         order = np.argsort(x[use], kind="stable")
-        ax.plot(x[use][order], y[use][order], "o-", ms=3.5, lw=1.5, color=_colour(0))
+        ax.plot(x[use][order], y[use][order], "o-", ms=3.5, lw=1.5, color=cycle_colour(0))
         return ""
     second = varied[1]
     for i, v in enumerate(second.distinct):
@@ -213,9 +213,9 @@ def _sweep_lines(ax, varied, y, use, legend):
         if not mask.any():
             continue  # every case failed: not in the legend either
         order = np.argsort(x[mask], kind="stable")
-        ax.plot(x[mask][order], y[mask][order], "o-", ms=3.5, lw=1.5, color=_colour(i), label=second.text(v))
+        ax.plot(x[mask][order], y[mask][order], "o-", ms=3.5, lw=1.5, color=cycle_colour(i), label=second.text(v))
     if legend:
-        _legend(ax, title=second.label)
+        add_legend(ax, title=second.label)
     return ""
 
 
@@ -229,11 +229,11 @@ def _sweep_band(ax, varied, y, use, legend):
         mask = use & (x == v)
         if mask.any():
             xs.append(v), mean.append(y[mask].mean()), low.append(y[mask].min()), high.append(y[mask].max())
-    ax.fill_between(xs, low, high, color=_colour(0), alpha=0.2, lw=0, label="min to max")
-    ax.plot(xs, mean, "o-", ms=3.5, lw=1.5, color=_colour(0), label="mean")
+    ax.fill_between(xs, low, high, color=cycle_colour(0), alpha=0.2, lw=0, label="min to max")
+    ax.plot(xs, mean, "o-", ms=3.5, lw=1.5, color=cycle_colour(0), label="mean")
     others = ", ".join(p.name for p in varied[1:])
     if legend:
-        _legend(ax, title=f"over {others}")
+        add_legend(ax, title=f"over {others}")
     return f"mean and range over {others}"
 
 

@@ -553,7 +553,8 @@ class Reader:
         default, which the run resolves: no integrator, and max_order
         within what every variable-step method takes (the smallest of their
         highest orders)."""
-        from ..simulation import method_options, methods
+        from .._run_options import method_options
+        from ..simulation import methods
 
         try:
             formulation, integrator = method_options(settings.get("method"), settings.get("formulation", "auto"),

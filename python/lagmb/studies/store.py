@@ -2,8 +2,8 @@
 -o``): a Zarr folder holding the sweep's description in its root
 attributes and one group per finished batch, each with a marker of its
 files written last, so that a batch is whole or is computed again; a lock
-file keeps a second sweep out while one writes. lagmb.studies runs the
-cases and hands each batch's Dataset here; ``check_store`` and
+file keeps a second sweep out while one writes. lagmb.studies.study runs
+the cases and hands each batch's Dataset here; ``check_store`` and
 ``open_store`` are public as ``lagmb.studies``'s (docs/api.rst).
 """
 
@@ -19,8 +19,8 @@ import threading
 import uuid
 import warnings
 
-from ._checks import show
-from .errors import ModelError, extra_module
+from .._checks import show
+from ..errors import ModelError, extra_module
 
 # at most this many cases in one sweep or design: a typo (0:1:1e9, n=10**12)
 # is refused, not a machine filled with case lists (memory is checked too);
