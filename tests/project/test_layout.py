@@ -307,6 +307,7 @@ def test_kinds_are_known_by_their_registry_entry_not_their_name():
             continue
         found += [f"{where}:{node.lineno}: {node.value!r}" for node in ast.walk(ast.parse(path.read_text()))
                   if isinstance(node, ast.Constant) and node.value in named]
+    assert found == []
 
 
 def test_each_subcommand_of_the_command_line_stands_alone():
