@@ -10,7 +10,7 @@
 #include "lagmb/elements/contact_law.hpp"
 #include "lagmb/elements/stop.hpp"
 #include "lagmb/elements/joint_coordinate.hpp"
-#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/elements/joint_reading.hpp"
 #include "lagmb/elements/projected_offset.hpp"
 #include "lagmb/spatial.hpp"
 #include "lagmb/model/model.hpp"
@@ -70,7 +70,7 @@ struct JointOf : JointCoordinate {
   ElementRef joint;
 };
 JointOf joint_coordinate(const Model& m, const std::string& joint, const std::string& element);
-/// How a spatial element reads that coordinate (spatial_drivers.hpp), an
+/// How a spatial element reads that coordinate (joint_reading.hpp), an
 /// angle within pi of `center` (rad).
 spatial::JointReading joint_reading(const JointCoordinate& c, double center);
 /// The joint's coordinate (its angle within pi of `around`, or its slide)

@@ -8,8 +8,8 @@
 #include <limits>
 #include <string>
 
-#include "lagmb/elements/spatial_drivers.hpp"
-#include "lagmb/elements/spatial_forces.hpp"
+#include "lagmb/elements/joint_reading.hpp"
+#include "lagmb/elements/spatial_force_base.hpp"
 #include "lagmb/elements/spatial_terms.hpp"
 #include "lagmb/time_function.hpp"
 
