@@ -1,19 +1,8 @@
 // Bodies and particles: how users add them (registry.hpp).
-#include "lagmb/elements/body.hpp"
-
-#include <Eigen/Eigenvalues>
-
 #include "elements/build.hpp"
+#include "lagmb/model/body.hpp"
 
 namespace lagmb {
-
-bool Body::has_mass_and_inertia() const {
-  if (!(mass > 0)) return false;
-  if (particle) return true;
-  if (!spatial) return inertia > 0;
-  const Vec3 moments = Eigen::SelfAdjointEigenSolver<Mat3>(inertia_tensor).eigenvalues();
-  return moments.minCoeff() > 1e-12 * moments.maxCoeff();
-}
 
 namespace {
 

@@ -9,9 +9,9 @@
 
 #include "lagmb/elements/contact_law.hpp"
 #include "lagmb/elements/stop.hpp"
-#include "lagmb/elements/joint_coordinate.hpp"
-#include "lagmb/elements/joint_reading.hpp"
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/model/joint_coordinate.hpp"
+#include "lagmb/model/joint_reading.hpp"
+#include "lagmb/projected_offset.hpp"
 #include "lagmb/spatial.hpp"
 #include "lagmb/model/model.hpp"
 #include "lagmb/model/registry.hpp"

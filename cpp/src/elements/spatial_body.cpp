@@ -2,7 +2,7 @@
 #include "lagmb/elements/spatial_body.hpp"
 
 #include "elements/build.hpp"
-#include "lagmb/elements/body.hpp"
+#include "lagmb/model/body.hpp"
 
 namespace lagmb {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/spatial_terms.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/spatial_terms.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {

@@ -2,7 +2,7 @@
 // cylindrical joint's) angle, or a translational's or cylindrical's slide.
 #pragma once
 
-#include "lagmb/elements/joint_reading.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/elements/spatial_driver_base.hpp"
 
 namespace lagmb {

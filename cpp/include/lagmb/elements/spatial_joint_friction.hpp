@@ -6,7 +6,7 @@
 #include <string>
 
 #include "lagmb/elements/joint_friction.hpp"
-#include "lagmb/elements/joint_reading.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/elements/spatial_force_base.hpp"
 
 namespace lagmb {

@@ -2,7 +2,7 @@
 // angle.
 #pragma once
 
-#include "lagmb/elements/joint_reading.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/elements/spatial_force_base.hpp"
 
 namespace lagmb {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/spatial_terms.hpp"
 
 namespace lagmb {
 
