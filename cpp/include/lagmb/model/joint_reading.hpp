@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "lagmb/spatial_terms.hpp"
+#include "lagmb/time_function.hpp"
 
 namespace lagmb {
 
