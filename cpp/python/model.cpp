@@ -135,7 +135,7 @@ py::list kinds_to_python() {
     d["doc"] = k.doc;
     d["params"] = params;
     d["dimension"] = k.dimension;
-    d["coordinate"] = k.coordinate;
+    d["coordinate"] = coordinate_name(k.coordinate);
     d["effort"] = k.effort;
     d["effort_components"] = py::tuple(py::cast(k.effort_components));
     out.append(d);

@@ -30,20 +30,25 @@ void build_bushing(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo bushing_kind() {
-  return build::with_effort(build::in_space({"bushing", "add_bushing", "forces", "bushing", Role::kForce,
-                   "Six-axis spring-damper between frames at `at` fixed in body_i and body_j (global axes of "
-                   "the initial configuration): force -k delta - c delta' along each axis, torque -k rho - c "
-                   "rho' about each (rho: the relative rotation, sin of the angle for a turn about one axis).",
-                   {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
-                    param::point3("at", {"body_i", "body_j"}, "the frames' origin"),
-                    param::vec3("stiffness", Vec3::Zero(), "N/m", "translational stiffness (x, y, z)"),
-                    param::vec3("damping", Vec3::Zero(), "N s/m", "translational damping (x, y, z)"),
-                    param::vec3("rotational_stiffness", Vec3::Zero(), "N m/rad", "rotational stiffness (x, y, z)"),
-                    param::vec3("rotational_damping", Vec3::Zero(), "N m s/rad", "rotational damping (x, y, z)")},
-                   build_bushing}),
-      "the force (N) on body_j along the axes of the frame fixed in body_i and the torque (N m) about them:"
-      " -k s - c s' for s = delta and rho (the torque for small relative turns)",
-      {"x", "y", "z", "torque.x", "torque.y", "torque.z"});
+  return build::kind("bushing")
+      .method("add_bushing")
+      .table("forces")
+      .type("bushing")
+      .role(Role::kForce)
+      .in_space()
+      .doc("Six-axis spring-damper between frames at `at` fixed in body_i and body_j (global axes of "
+           "the initial configuration): force -k delta - c delta' along each axis, torque -k rho - c "
+           "rho' about each (rho: the relative rotation, sin of the angle for a turn about one axis).")
+      .params({param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+               param::point3("at", {"body_i", "body_j"}, "the frames' origin"),
+               param::vec3("stiffness", Vec3::Zero(), "N/m", "translational stiffness (x, y, z)"),
+               param::vec3("damping", Vec3::Zero(), "N s/m", "translational damping (x, y, z)"),
+               param::vec3("rotational_stiffness", Vec3::Zero(), "N m/rad", "rotational stiffness (x, y, z)"),
+               param::vec3("rotational_damping", Vec3::Zero(), "N m s/rad", "rotational damping (x, y, z)")})
+      .build(build_bushing)
+      .effort("the force (N) on body_j along the axes of the frame fixed in body_i and the torque (N m) about them:"
+              " -k s - c s' for s = delta and rho (the torque for small relative turns)",
+              {"x", "y", "z", "torque.x", "torque.y", "torque.z"});
 }
 
 }  // namespace lagmb

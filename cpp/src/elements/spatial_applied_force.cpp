@@ -17,13 +17,19 @@ void build_spatial_force(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_force_kind() {
-  return build::with_effort(build::in_space({"spatial_force", "add_force", "forces", "force", Role::kForce,
-                   "A force on a body at a point, each component a number or a function of time.",
-                   {param::body("body", "the body pushed"), param::function_triple("force", "N", "(fx, fy, fz)"),
-                    param::optional_point3("point", {"body"}, "where it acts (default: the centre of mass)"),
-                    param::flag("local", false, "components in the body's axes, turning with it")},
-                   build_spatial_force}),
-      "the force (fx, fy, fz) (N) in global axes as applied (turned with the body where local)", {"x", "y", "z"});
+  return build::kind("spatial_force")
+      .method("add_force")
+      .table("forces")
+      .type("force")
+      .role(Role::kForce)
+      .in_space()
+      .doc("A force on a body at a point, each component a number or a function of time.")
+      .params({param::body("body", "the body pushed"), param::function_triple("force", "N", "(fx, fy, fz)"),
+               param::optional_point3("point", {"body"}, "where it acts (default: the centre of mass)"),
+               param::flag("local", false, "components in the body's axes, turning with it")})
+      .build(build_spatial_force)
+      .effort("the force (fx, fy, fz) (N) in global axes as applied (turned with the body where local)",
+              {"x", "y", "z"});
 }
 
 }  // namespace lagmb

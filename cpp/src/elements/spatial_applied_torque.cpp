@@ -16,13 +16,18 @@ void build_spatial_torque(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_torque_kind() {
-  return build::with_effort(build::in_space({"spatial_torque", "add_torque", "forces", "torque", Role::kForce,
-                   "A torque on a body, each component a number or a function of time.",
-                   {param::body("body", "the body turned"), param::function_triple("torque", "N m", "(tx, ty, tz)"),
-                    param::flag("local", false, "components in the body's axes, turning with it")},
-                   build_spatial_torque}),
-      "the torque (tx, ty, tz) (N m) in global axes as applied (turned with the body where local)",
-      {"x", "y", "z"});
+  return build::kind("spatial_torque")
+      .method("add_torque")
+      .table("forces")
+      .type("torque")
+      .role(Role::kForce)
+      .in_space()
+      .doc("A torque on a body, each component a number or a function of time.")
+      .params({param::body("body", "the body turned"), param::function_triple("torque", "N m", "(tx, ty, tz)"),
+               param::flag("local", false, "components in the body's axes, turning with it")})
+      .build(build_spatial_torque)
+      .effort("the torque (tx, ty, tz) (N m) in global axes as applied (turned with the body where local)",
+              {"x", "y", "z"});
 }
 
 }  // namespace lagmb

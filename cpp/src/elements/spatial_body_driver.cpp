@@ -17,14 +17,19 @@ void build_spatial_body_driver(Model& m, const std::string& name, const Args& a)
 }  // namespace
 
 KindInfo spatial_body_driver_kind() {
-  return build::with_effort(build::in_space({"spatial_body_driver", "drive_body", "drivers", "body", Role::kDriver,
-                   "Prescribes a coordinate \"x\", \"y\" or \"z\" of a body's centre of mass as f(t).",
-                   {param::body("body", "the body driven"),
-                    param::choice("coordinate", {"x", "y", "z"}, "the coordinate driven"),
-                    param::motion("f", "m", "the coordinate as a function of time", "function")},
-                   build_spatial_body_driver}),
-      "the force (N) along x, y or z that imposes the motion, positive along increasing coordinate: -lam of"
-      " its row");
+  return build::kind("spatial_body_driver")
+      .method("drive_body")
+      .table("drivers")
+      .type("body")
+      .role(Role::kDriver)
+      .in_space()
+      .doc("Prescribes a coordinate \"x\", \"y\" or \"z\" of a body's centre of mass as f(t).")
+      .params({param::body("body", "the body driven"),
+               param::choice("coordinate", {"x", "y", "z"}, "the coordinate driven"),
+               param::motion("f", "m", "the coordinate as a function of time", "function")})
+      .build(build_spatial_body_driver)
+      .effort("the force (N) along x, y or z that imposes the motion, positive along increasing coordinate: -lam of"
+              " its row");
 }
 
 }  // namespace lagmb

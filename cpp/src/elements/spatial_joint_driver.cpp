@@ -30,14 +30,19 @@ void build_spatial_joint_driver(Model& m, const std::string& name, const Args& a
 }  // namespace
 
 KindInfo spatial_joint_driver_kind() {
-  return build::with_effort(build::in_space({"spatial_joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
-                   "Prescribes a revolute's angle (about its axis; its `angle` in the initial configuration, 0 "
-                   "by default), or a translational's or cylindrical's slide along its axis, as f(t).",
-                   {param::joint("the revolute, cylindrical or translational joint driven"),
-                    param::motion("f", "rad or m", "the joint coordinate as a function of time", "function")},
-                   build_spatial_joint_driver}),
-      "the torque (N m) about a revolute's angle, or the force (N) along a translational's slide, that "
-      "imposes the motion, positive along increasing coordinate: -lam of its row");
+  return build::kind("spatial_joint_driver")
+      .method("drive_joint")
+      .table("drivers")
+      .type("joint")
+      .role(Role::kDriver)
+      .in_space()
+      .doc("Prescribes a revolute's angle (about its axis; its `angle` in the initial configuration, 0 "
+           "by default), or a translational's or cylindrical's slide along its axis, as f(t).")
+      .params({param::joint("the revolute, cylindrical or translational joint driven"),
+               param::motion("f", "rad or m", "the joint coordinate as a function of time", "function")})
+      .build(build_spatial_joint_driver)
+      .effort("the torque (N m) about a revolute's angle, or the force (N) along a translational's slide, that "
+              "imposes the motion, positive along increasing coordinate: -lam of its row");
 }
 
 }  // namespace lagmb

@@ -24,20 +24,23 @@ void build_spatial_rotational_spring_damper(Model& m, const std::string& name, c
 }  // namespace
 
 KindInfo spatial_rotational_spring_damper_kind() {
-  return build::with_effort(
-      build::in_space({"spatial_rotational_spring_damper", "add_rotational_spring_damper", "forces",
-                   "rotational_spring_damper", Role::kForce,
-                   "Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (its `angle` in "
-                   "the initial configuration, counting whole turns: it winds through any number): torque -k "
-                   "(theta - theta0) - c theta' + tau(t) about the axis on body_j.",
-                   {param::joint("the revolute or cylindrical joint"),
-                    param::real("stiffness", 0.0, "N m/rad", "torsion stiffness k"),
-                    param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
-                    param::real("free_angle", 0.0, "rad", "free angle theta0"),
-                    param::function("torque", "N m", "actuator torque tau(t) on body_j")},
-                   build_spatial_rotational_spring_damper}),
-      "the torque (N m) about the axis on body_j: -k (theta - theta0) - c theta' + tau(t), the actuator's "
-      "torque as applied included");
+  return build::kind("spatial_rotational_spring_damper")
+      .method("add_rotational_spring_damper")
+      .table("forces")
+      .type("rotational_spring_damper")
+      .role(Role::kForce)
+      .in_space()
+      .doc("Torsion spring-damper-actuator on a revolute's (or cylindrical joint's) angle theta (its `angle` in "
+           "the initial configuration, counting whole turns: it winds through any number): torque -k "
+           "(theta - theta0) - c theta' + tau(t) about the axis on body_j.")
+      .params({param::joint("the revolute or cylindrical joint"),
+               param::real("stiffness", 0.0, "N m/rad", "torsion stiffness k"),
+               param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
+               param::real("free_angle", 0.0, "rad", "free angle theta0"),
+               param::function("torque", "N m", "actuator torque tau(t) on body_j")})
+      .build(build_spatial_rotational_spring_damper)
+      .effort("the torque (N m) about the axis on body_j: -k (theta - theta0) - c theta' + tau(t), the actuator's "
+              "torque as applied included");
 }
 
 }  // namespace lagmb

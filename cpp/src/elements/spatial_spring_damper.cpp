@@ -27,19 +27,23 @@ void build_spatial_spring_damper(Model& m, const std::string& name, const Args& 
 }  // namespace
 
 KindInfo spatial_spring_damper_kind() {
-  return build::with_effort(
-      build::in_space({"spatial_spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
-                   "Translational spring-damper-actuator between point_i on body_i and point_j on body_j: "
-                   "F = -k (l - l0) - c l' + f(t) along the line, F > 0 pushing the points apart.",
-                   {param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "attachment on body_i"),
-                    param::body("body_j", "the second body"), param::point3("point_j", {"body_j"}, "attachment on body_j"),
-                    param::real("stiffness", 0.0, "N/m", "spring stiffness k"),
-                    param::real("damping", 0.0, "N s/m", "damping coefficient c"),
-                    param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
-                    param::function("force", "N", "actuator force f(t), positive pushes the points apart")},
-                   build_spatial_spring_damper}),
-      "the force F (N) along the line between the points, positive pushing them apart: -k (l - l0) - c l' +"
-      " f(t), the actuator's force as applied included");
+  return build::kind("spatial_spring_damper")
+      .method("add_spring_damper")
+      .table("forces")
+      .type("spring_damper")
+      .role(Role::kForce)
+      .in_space()
+      .doc("Translational spring-damper-actuator between point_i on body_i and point_j on body_j: "
+           "F = -k (l - l0) - c l' + f(t) along the line, F > 0 pushing the points apart.")
+      .params({param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "attachment on body_i"),
+               param::body("body_j", "the second body"), param::point3("point_j", {"body_j"}, "attachment on body_j"),
+               param::real("stiffness", 0.0, "N/m", "spring stiffness k"),
+               param::real("damping", 0.0, "N s/m", "damping coefficient c"),
+               param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
+               param::function("force", "N", "actuator force f(t), positive pushes the points apart")})
+      .build(build_spatial_spring_damper)
+      .effort("the force F (N) along the line between the points, positive pushing them apart: -k (l - l0) - c l' +"
+              " f(t), the actuator's force as applied included");
 }
 
 }  // namespace lagmb

@@ -38,7 +38,7 @@ std::string driven_unit(const ModelSpec& spec, const ModelSpec::Element& driver)
   if (const std::string c = text("coordinate"); !c.empty()) return c == "angle" ? "rad" : "m";
   if (const std::string joint = text("joint"); !joint.empty())
     if (const auto* e = element_of(spec, joint))
-      return e->args.kind().coordinate == "angle" ? "rad" : "m";
+      return e->args.kind().coordinate == CoordinateKind::kAngle ? "rad" : "m";
   return "";
 }
 
