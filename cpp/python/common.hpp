@@ -91,20 +91,6 @@ inline SimulationOptions options_from(const py::dict& options, const std::string
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-inline void require_inputs(const Model& model, const RowMajor& inputs, Eigen::Index outputs) {
-  if (inputs.size() && (inputs.rows() != outputs || inputs.cols() != Eigen::Index(model.inputs().size())))
-    throw ModelError("inputs must have one row per output and one column per input of the model (" +
-                     std::to_string(model.inputs().size()) + ")");
-}
-
-/// A run's element state at each output (Result's run_state): one row per
-/// output and Model::run_state_size columns, or empty.
-inline void require_state(const Model& model, const RowMajor& state, Eigen::Index outputs) {
-  if (state.size() && (state.rows() != outputs || state.cols() != Eigen::Index(model.run_state_size())))
-    throw ModelError("state must have one row per output and " + std::to_string(model.run_state_size()) +
-                     " columns (the model's run state)");
-}
-
 /// The outputs Python holds as a core OutputView (no copy): t, and the
 /// arrays given (null: not read); `inputs` empty: their initial values;
 /// `state` empty: the run state at a run's start.
@@ -121,20 +107,62 @@ inline OutputView view_of(const Eigen::VectorXd& t, const RowMajor* q, const Row
   return out;
 }
 
-inline void require_rows(const Model& model, const RowMajor& x, int cols, const char* what) {
-  if (!model.finalized()) throw ModelError("the model is not finalized");
-  if (x.cols() != cols)
-    throw ModelError(std::string(what) + " must have " + std::to_string(cols) + " columns, got " +
-                     std::to_string(x.cols()));
-}
+/// The one check of the arrays a query of a compiled model reads (Model.reaction,
+/// effort, energy, mass_matrix, ...), each named in the order the query reads
+/// them: q, v and a have a column per coordinate, lam and w one per
+/// constraint; at output times t every array has one row per time, and
+/// inputs and state (empty: not given) one row per time and a column per
+/// input of the model, or per double of its run state (Result.run_state).
+///   Given(model, t).coordinates(q, "q").multipliers(lam, "lam").inputs(inputs).state(state);
+/// Given(model) checks one state (vectors), or states the query counts itself.
+class Given {
+ public:
+  explicit Given(const Model& model, Eigen::Index states = -1) : model_(model), states_(states) {
+    if (!model.finalized()) throw ModelError("the model is not finalized");
+  }
+  Given(const Model& model, const Eigen::VectorXd& t) : Given(model, t.size()) { t_ = &t; }
 
-/// Per-output arrays must all have one row per output time.
-inline void require_outputs(const Eigen::VectorXd& t, std::initializer_list<std::pair<const RowMajor*, const char*>> arrays) {
-  for (const auto& [x, what] : arrays)
-    if (x->rows() != t.size())
-      throw ModelError(std::string(what) + " has " + std::to_string(x->rows()) + " rows but t has " +
-                       std::to_string(t.size()) + " entries: one row per output time");
-}
+  const Given& coordinates(const RowMajor& x, const char* what) const {
+    return columns(x.rows(), x.cols(), model_.n_coordinates(), what);
+  }
+  const Given& coordinates(const Eigen::VectorXd& x, const char* what) const {
+    return columns(1, x.size(), model_.n_coordinates(), what);
+  }
+  const Given& multipliers(const RowMajor& x, const char* what) const {
+    return columns(x.rows(), x.cols(), model_.n_constraints(), what);
+  }
+  const Given& multipliers(const Eigen::VectorXd& x, const char* what) const {
+    return columns(1, x.size(), model_.n_constraints(), what);
+  }
+  /// lam where a query reads it only if given (empty: not).
+  const Given& multipliers_if_given(const RowMajor& lam) const { return lam.size() ? multipliers(lam, "lam") : *this; }
+  const Given& inputs(const RowMajor& x) const {
+    if (x.size() && (x.rows() != states_ || x.cols() != Eigen::Index(model_.inputs().size())))
+      throw ModelError("inputs must have one row per output and one column per input of the model (" +
+                       std::to_string(model_.inputs().size()) + ")");
+    return *this;
+  }
+  const Given& state(const RowMajor& x) const {
+    if (x.size() && (x.rows() != states_ || x.cols() != Eigen::Index(model_.run_state_size())))
+      throw ModelError("state must have one row per output and " + std::to_string(model_.run_state_size()) +
+                       " columns (the model's run state)");
+    return *this;
+  }
+
+ private:
+  const Given& columns(Eigen::Index rows, Eigen::Index cols, int want, const char* what) const {
+    if (cols != want)
+      throw ModelError(std::string(what) + " must have " + std::to_string(want) + " columns, got " +
+                       std::to_string(cols));
+    if (t_ && rows != t_->size())
+      throw ModelError(std::string(what) + " has " + std::to_string(rows) + " rows but t has " +
+                       std::to_string(t_->size()) + " entries: one row per output time");
+    return *this;
+  }
+  const Model& model_;
+  Eigen::Index states_;
+  const Eigen::VectorXd* t_ = nullptr;
+};
 
 inline py::handle g_simulation_error, g_assembly_error, g_user_function_error;
 
@@ -351,6 +379,16 @@ struct OwnFunction {
 void bind_errors(py::module_& m);     // module.cpp: exceptions and their translation
 void bind_functions(py::module_& m);  // functions.cpp: time functions and inputs
 void bind_model(py::module_& m);      // model.cpp: ModelSpec, compiled Model, the registry
+
+/// The compiled Model's queries, by what they answer (model_queries.cpp).
+using ModelClass = py::class_<Model, std::shared_ptr<Model>>;
+void bind_model_structure(ModelClass& model);  // sizes, names, inputs, parameters, what each element is
+void bind_model_readings(ModelClass& model);   // at a run's outputs: reactions, efforts, contacts, energy, ...
+void bind_model_terms(ModelClass& model);      // the equations' terms at one state: Phi_q, M, gamma, Q, ...
+/// Where elements attach to a body: [(x, y)] or [(x, y, z)] (Model::outline).
+py::list outline_of(const Model& model, int body);
+/// Where an element attaches: [(body index, x, y[, z])] (Model::attachments).
+py::list attachments_of(const Model& model, const std::string& element);
 void bind_runs(py::module_& m);       // runs.cpp: simulate, Simulator, one-instant solves, methods, options
 void bind_fmu(py::module_& m);        // fmu.cpp: the co-simulation behind an FMU
 void bind_statics(py::module_& m);    // statics.cpp: equilibrium, degrees of freedom

@@ -15,13 +15,14 @@ using namespace lagmb_test;
 
 namespace {
 
-/// "angle", "slide", "angle and slide" or "" as the group's coordinate() has it.
-std::string equations_coordinate(const Model& model, const std::string& name) {
+/// An angle, a slide, both or none, as the group's coordinate() has it.
+CoordinateKind equations_coordinate(const Model& model, const std::string& name) {
   const ElementRef& r = model.find(name);
-  if (r.type != ElementRef::kConstraint) return "";
+  if (r.type != ElementRef::kConstraint) return CoordinateKind::kNone;
   const auto c = model.constraint_groups()[r.group]->coordinate(r.index);
-  if (!c) return "";
-  return c->turns && c->slides ? "angle and slide" : c->turns ? "angle" : "slide";
+  if (!c) return CoordinateKind::kNone;
+  if (c->turns && c->slides) return CoordinateKind::kAngleAndSlide;
+  return c->turns ? CoordinateKind::kAngle : CoordinateKind::kSlide;
 }
 
 }  // namespace
@@ -80,7 +81,7 @@ TEST_CASE(each_joint_kind_declares_the_coordinate_its_equations_have) {
   const auto crank = slider_crank();
   for (const std::string name : {"O", "guide"}) {
     CHECK(crank->given_kind(name)->coordinate == equations_coordinate(*crank, name));
-    CHECK(!crank->given_kind(name)->coordinate.empty());
+    CHECK(crank->given_kind(name)->coordinate != CoordinateKind::kNone);
   }
   for (const std::string kind : {"spatial_revolute", "spatial_translational", "cylindrical"}) {
     ModelSpec spec(3);
@@ -89,7 +90,7 @@ TEST_CASE(each_joint_kind_declares_the_coordinate_its_equations_have) {
                              {"axis", Vec3(0.2, -0.3, 0.9)}});
     const auto model = spec.compile();
     CHECK(model->given_kind("joint")->coordinate == equations_coordinate(*model, "joint"));
-    CHECK(!model->given_kind("joint")->coordinate.empty());
+    CHECK(model->given_kind("joint")->coordinate != CoordinateKind::kNone);
   }
   ModelSpec spec(3);
   spec.add("spatial_body", "b", {{"mass", 2.0}, {"inertia", Vec3(0.3, 0.2, 0.4)}, {"position", Vec3(0.8, -0.4, 0.5)}});
@@ -98,8 +99,8 @@ TEST_CASE(each_joint_kind_declares_the_coordinate_its_equations_have) {
                                   {"axis_i", Vec3(1.0, 0.0, 0.0)}, {"axis_j", Vec3(0.0, 1.0, 0.0)}});
   const auto model = spec.compile();
   for (const std::string name : {"ball", "cross"}) {
-    CHECK(model->given_kind(name)->coordinate.empty());
-    CHECK(equations_coordinate(*model, name).empty());
+    CHECK(model->given_kind(name)->coordinate == CoordinateKind::kNone);
+    CHECK(equations_coordinate(*model, name) == CoordinateKind::kNone);
   }
 }
 

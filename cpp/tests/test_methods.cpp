@@ -124,4 +124,29 @@ TEST_CASE(a_run_is_refused_what_its_method_does_not_do) {
   CHECK_THROWS(ModelError, simulate(*model, o), "Baumgarte terms apply to the methods index1, projection-adams");
 }
 
+TEST_CASE(a_fixed_step_method_refuses_the_tolerances_of_error_control) {
+  // ali3p has no error control: rtol and atol given to it would be ignored
+  // silently; its Newton iteration has tolerances of its own
+  const auto model = pendulum();
+  const char* refused =
+      "simulate: formulation 'ali3p' takes fixed steps without error control: rtol and atol do not apply; its "
+      "Newton corrections are bounded by newton_rtol (default 1e-10) and newton_atol (default 1e-12)";
+  SimulationOptions o = quick(Formulation::kAli3p);
+  o.max_step = 1e-3;
+  o.rtol = 1e-10;
+  CHECK_THROWS(ModelError, simulate(*model, o), refused);
+  o = quick(Formulation::kAli3p);
+  o.max_step = 1e-3;
+  o.atol = 1e-12;
+  CHECK_THROWS(ModelError, simulate(*model, o), refused);
+  o = quick(Formulation::kAli3p);
+  o.max_step = 1e-3;
+  o.atol_coordinates.assign(model->n_coordinates(), 1e-8);
+  CHECK_THROWS(ModelError, simulate(*model, o), refused);
+  o = quick(Formulation::kAli3p);
+  o.max_step = 1e-3;
+  o.newton_rtol = 1e-8;  // its own tolerances it takes
+  CHECK(simulate(*model, o).t.size() > 1);
+}
+
 LAGMB_TEST_MAIN()

@@ -52,6 +52,8 @@ def run_options(*, t0, rtol, atol, formulation, integrator, max_step, step, max_
     here and parsed by the core, which lists the valid ones."""
     rtol = _positive(rtol, "rtol")
     formulation, integrator = method_options(method, formulation, integrator)
+    # the core refuses the same (run_options.cpp, for C++ and FMU callers); checked here first, with the
+    # message Python has always given (no "simulate: " before it), before atol's own checks
     if formulation == "ali3p" and not (np.ndim(atol) == 0 and rtol == _D["rtol"] and atol == _D["atol"]):
         raise ModelError("formulation 'ali3p' takes fixed steps without error control: rtol and atol do not "
                          f"apply; its Newton corrections are bounded by newton_rtol (default {_D['newton_rtol']}) "

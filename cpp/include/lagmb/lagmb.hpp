@@ -1,8 +1,8 @@
 // lagmb: planar and spatial multibody dynamics in Cartesian coordinates with Lagrange
 // multipliers. Include this header to use the library from C++. The headers
 // sit in folders by layer, each including only from the layers before it
-// (docs/design.md, section 2): the basic types here, then model/ (with the
-// element kinds, elements/), spec/, solvers/, assembly/, analyses/,
+// (docs/design.md, section 2): the basic types here, then model/, the
+// element kinds (elements/), spec/, solvers/, assembly/, analyses/,
 // integrators/, run/ and fmu/.
 #pragma once
 

@@ -9,7 +9,7 @@
 #include "lagmb/model/coordinates.hpp"
 #include "lagmb/assembly/assembly.hpp"
 #include "lagmb/elements/drivers.hpp"
-#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/model/data.hpp"
 #include "lagmb/solvers/sparse_qr.hpp"

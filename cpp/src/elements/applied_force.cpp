@@ -31,28 +31,37 @@ void build_torque(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo force_kind() {
-  return build::with_effort({"force", "add_force", "forces", "force", Role::kForce,
-          "A force on a body: (fx, fy) of numbers or time functions, or a callable t -> (fx, fy), "
-          "applied at `point`.",
-          {
-              param::body("body", "the body pushed"),
-              param::function_pair("force", "N", "(fx, fy)"),
-              param::optional_point("point", {"body"}, "where it acts (default: the centre of mass)"),
-              param::flag("local", false, "components in the body's axes, turning with it"),
-          },
-          build_force},
-      "the force (fx, fy) (N) in global axes as applied (turned with the body where local)", {"x", "y"});
+  return build::kind("force")
+      .method("add_force")
+      .table("forces")
+      .type("force")
+      .role(Role::kForce)
+      .doc("A force on a body: (fx, fy) of numbers or time functions, or a callable t -> (fx, fy), "
+           "applied at `point`.")
+      .params({
+          param::body("body", "the body pushed"),
+          param::function_pair("force", "N", "(fx, fy)"),
+          param::optional_point("point", {"body"}, "where it acts (default: the centre of mass)"),
+          param::flag("local", false, "components in the body's axes, turning with it"),
+      })
+      .build(build_force)
+      .effort("the force (fx, fy) (N) in global axes as applied (turned with the body where local)",
+              {"x", "y"});
 }
 
 KindInfo torque_kind() {
-  return build::with_effort({"torque", "add_torque", "forces", "torque", Role::kForce,
-          "A pure torque on a body.",
-          {
-              param::body("body", "the body turned"),
-              param::function("torque", "N m", "the torque: a number, time function or callable", true),
-          },
-          build_torque},
-      "the torque (N m) as applied");
+  return build::kind("torque")
+      .method("add_torque")
+      .table("forces")
+      .type("torque")
+      .role(Role::kForce)
+      .doc("A pure torque on a body.")
+      .params({
+          param::body("body", "the body turned"),
+          param::function("torque", "N m", "the torque: a number, time function or callable", true),
+      })
+      .build(build_torque)
+      .effort("the torque (N m) as applied");
 }
 
 }  // namespace lagmb

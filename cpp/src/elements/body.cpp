@@ -1,19 +1,8 @@
 // Bodies and particles: how users add them (registry.hpp).
-#include "lagmb/elements/body.hpp"
-
-#include <Eigen/Eigenvalues>
-
 #include "elements/build.hpp"
+#include "lagmb/model/body.hpp"
 
 namespace lagmb {
-
-bool Body::has_mass_and_inertia() const {
-  if (!(mass > 0)) return false;
-  if (particle) return true;
-  if (!spatial) return inertia > 0;
-  const Vec3 moments = Eigen::SelfAdjointEigenSolver<Mat3>(inertia_tensor).eigenvalues();
-  return moments.minCoeff() > 1e-12 * moments.maxCoeff();
-}
 
 namespace {
 
@@ -54,29 +43,35 @@ void build_particle(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo body_kind() {
-  return {"body", "add_body", "bodies", "", Role::kBody,
-          "A rigid body with coordinates x, y (its centre of mass) and phi (its angle).",
-          {
-              param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
-              param::real("inertia", "kg m^2", "moment of inertia about the centre of mass"),
-              param::vec2("position", Vec2::Zero(), "m", "initial position of the centre of mass"),
-              param::real("angle", 0.0, "rad", "initial angle"),
-              param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity of the centre of mass"),
-              param::real("angular_velocity", 0.0, "rad/s", "initial angular velocity"),
-          },
-          build_body};
+  return build::kind("body")
+      .method("add_body")
+      .table("bodies")
+      .role(Role::kBody)
+      .doc("A rigid body with coordinates x, y (its centre of mass) and phi (its angle).")
+      .params({
+          param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
+          param::real("inertia", "kg m^2", "moment of inertia about the centre of mass"),
+          param::vec2("position", Vec2::Zero(), "m", "initial position of the centre of mass"),
+          param::real("angle", 0.0, "rad", "initial angle"),
+          param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity of the centre of mass"),
+          param::real("angular_velocity", 0.0, "rad/s", "initial angular velocity"),
+      })
+      .build(build_body);
 }
 
 KindInfo particle_kind() {
-  return {"particle", "add_particle", "particles", "", Role::kBody,
-          "A point mass with coordinates x, y and no angle: it takes revolutes, distances, "
-          "springs and forces at its centre, not joints that need an angle.",
-          {
-              param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
-              param::point("position", {}, "initial position"),
-              param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity"),
-          },
-          build_particle};
+  return build::kind("particle")
+      .method("add_particle")
+      .table("particles")
+      .role(Role::kBody)
+      .doc("A point mass with coordinates x, y and no angle: it takes revolutes, distances, "
+           "springs and forces at its centre, not joints that need an angle.")
+      .params({
+          param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
+          param::point("position", {}, "initial position"),
+          param::vec2("velocity", Vec2::Zero(), "m/s", "initial velocity"),
+      })
+      .build(build_particle);
 }
 
 }  // namespace lagmb

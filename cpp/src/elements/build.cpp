@@ -81,7 +81,8 @@ JointOf joint_coordinate(const Model& m, const std::string& joint, const std::st
     // the kinds of this space that have a coordinate, by the names users give them
     std::vector<std::string> kinds;
     for (const KindInfo& k : element_kinds())
-      if (k.dimension == m.dimension() && !k.coordinate.empty()) kinds.push_back(k.type.empty() ? k.name : k.type);
+      if (k.dimension == m.dimension() && k.coordinate != CoordinateKind::kNone)
+        kinds.push_back(k.type.empty() ? k.name : k.type);
     std::string listed;
     for (size_t i = 0; i < kinds.size(); ++i)
       listed += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + kinds[i];
@@ -206,17 +207,6 @@ std::vector<Param> stop_params() {
       param::real("capture_time", 1e-6, "s",
                   "a rebound whose remaining bounces would end within this time comes to rest on the limit"),
   };
-}
-
-KindInfo in_space(KindInfo k) {
-  k.dimension = 3;
-  return k;
-}
-
-KindInfo with_effort(KindInfo k, std::string effort, std::vector<std::string> components) {
-  k.effort = std::move(effort);
-  k.effort_components = std::move(components);
-  return k;
 }
 
 Vec3 unit_direction(const Args& a, const std::string& key, const std::string& label) {

@@ -9,9 +9,9 @@
 
 #include "lagmb/elements/contact_law.hpp"
 #include "lagmb/elements/stop.hpp"
-#include "lagmb/elements/joint_coordinate.hpp"
-#include "lagmb/elements/spatial_drivers.hpp"
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/model/joint_coordinate.hpp"
+#include "lagmb/model/joint_reading.hpp"
+#include "lagmb/projected_offset.hpp"
 #include "lagmb/spatial.hpp"
 #include "lagmb/model/model.hpp"
 #include "lagmb/model/registry.hpp"
@@ -70,7 +70,7 @@ struct JointOf : JointCoordinate {
   ElementRef joint;
 };
 JointOf joint_coordinate(const Model& m, const std::string& joint, const std::string& element);
-/// How a spatial element reads that coordinate (spatial_drivers.hpp), an
+/// How a spatial element reads that coordinate (joint_reading.hpp), an
 /// angle within pi of `center` (rad).
 spatial::JointReading joint_reading(const JointCoordinate& c, double center);
 /// The joint's coordinate (its angle within pi of `around`, or its slide)
@@ -93,12 +93,51 @@ std::vector<Param> contact_law_params();
 
 // --- spatial kinds -----------------------------------------------------------
 
-/// A kind of a spatial model (KindInfo::dimension 3).
-KindInfo in_space(KindInfo k);
-/// A kind whose elements have an effort (KindInfo::effort: what
-/// Result.effort reads, with its unit; `components`: its columns' names
-/// where it has several).
-KindInfo with_effort(KindInfo k, std::string effort, std::vector<std::string> components = {});
+/// A kind's registry entry (KindInfo), each field named where it is given:
+///   return build::kind("bushing")
+///       .method("add_bushing")
+///       .table("forces")
+///       .type("bushing")
+///       .role(Role::kForce)
+///       .in_space()
+///       .doc("...")
+///       .params({...})
+///       .build(build_bushing)
+///       .effort("...", {"x", "y", "z", ...});
+class KindBuilder {
+ public:
+  explicit KindBuilder(std::string name) { k_.name = std::move(name); }
+  /// The Python Model method that adds one ("add_revolute").
+  KindBuilder& method(std::string method) { return set(&KindInfo::method, std::move(method)); }
+  /// Its scene table ("joints").
+  KindBuilder& table(std::string table) { return set(&KindInfo::table, std::move(table)); }
+  /// Its `type` in that table (not given: the table has this one kind).
+  KindBuilder& type(std::string type) { return set(&KindInfo::type, std::move(type)); }
+  KindBuilder& role(Role role) { return set(&KindInfo::role, role); }
+  /// A kind of a spatial model (KindInfo::dimension 3; not given: planar).
+  KindBuilder& in_space() { return set(&KindInfo::dimension, 3); }
+  /// A joint kind's scalar coordinate.
+  KindBuilder& coordinate(CoordinateKind coordinate) { return set(&KindInfo::coordinate, coordinate); }
+  KindBuilder& doc(std::string doc) { return set(&KindInfo::doc, std::move(doc)); }
+  KindBuilder& params(std::vector<Param> params) { return set(&KindInfo::params, std::move(params)); }
+  KindBuilder& build(decltype(KindInfo::build) build) { return set(&KindInfo::build, std::move(build)); }
+  /// A kind whose elements have an effort: what Result.effort reads, with its
+  /// unit; `components`: its columns' names where it has several.
+  KindBuilder& effort(std::string effort, std::vector<std::string> components = {}) {
+    k_.effort_components = std::move(components);
+    return set(&KindInfo::effort, std::move(effort));
+  }
+  operator KindInfo() const { return k_; }
+
+ private:
+  template <class Field, class Value>
+  KindBuilder& set(Field KindInfo::*field, Value&& value) {
+    k_.*field = std::forward<Value>(value);
+    return *this;
+  }
+  KindInfo k_;
+};
+inline KindBuilder kind(std::string name) { return KindBuilder(std::move(name)); }
 
 /// What a joint stop (planar or spatial) is given: its limits, checked (one
 /// at least, lower below upper), restitution in [0, 1] and rest_speed > 0;

@@ -27,23 +27,27 @@ void build_contact(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo contact_kind() {
-  KindInfo k = {"contact", "add_contact", "forces", "contact", Role::kContact,
-          "Contact between a circle on circle_body and the line through `point` along `direction` on "
-          "line_body; the circle belongs on the left of the direction. With penetration d > 0 the normal "
-          "force is k d^1.5 (1 + c d' / v_impact) (Hunt-Crossley damping with c (1 + e) = ln((1 + c) / (1 - c e)): "
-          "an impact under the contact force alone rebounds at exactly e times its speed), v_impact the "
-          "approach speed at contact onset (at least 1e-3 m/s); "
-          "Coulomb friction -mu F_n v_t / sqrt(v_t^2 + v_s^2). Onset and release are events "
-          "(Result.events) where the integrator restarts.",
-          {
-              param::body("circle_body", "the body carrying the circle"),
-              param::point("center", {"circle_body"}, "centre of the circle"),
-              param::real("radius", "m", "radius of the circle"),
-              param::body("line_body", "the body carrying the line (or the ground)"),
-              param::point("point", {}, "a point of the line"),
-              param::direction("direction", "direction of the line (the circle on its left)"),
-          },
-          build_contact};
+  KindInfo k = build::kind("contact")
+      .method("add_contact")
+      .table("forces")
+      .type("contact")
+      .role(Role::kContact)
+      .doc("Contact between a circle on circle_body and the line through `point` along `direction` on "
+           "line_body; the circle belongs on the left of the direction. With penetration d > 0 the normal "
+           "force is k d^1.5 (1 + c d' / v_impact) (Hunt-Crossley damping with c (1 + e) = ln((1 + c) / (1 - c e)): "
+           "an impact under the contact force alone rebounds at exactly e times its speed), v_impact the "
+           "approach speed at contact onset (at least 1e-3 m/s); "
+           "Coulomb friction -mu F_n v_t / sqrt(v_t^2 + v_s^2). Onset and release are events "
+           "(Result.events) where the integrator restarts.")
+      .params({
+          param::body("circle_body", "the body carrying the circle"),
+          param::point("center", {"circle_body"}, "centre of the circle"),
+          param::real("radius", "m", "radius of the circle"),
+          param::body("line_body", "the body carrying the line (or the ground)"),
+          param::point("point", {}, "a point of the line"),
+          param::direction("direction", "direction of the line (the circle on its left)"),
+      })
+      .build(build_contact);
   for (Param& p : build::contact_law_params()) k.params.push_back(std::move(p));
   return k;
 }

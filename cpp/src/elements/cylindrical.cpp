@@ -20,15 +20,19 @@ void build_cylindrical(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo cylindrical_kind() {
-  KindInfo k = build::in_space({"cylindrical", "add_cylindrical", "joints", "cylindrical", Role::kJoint,
-                  "body_j slides along and turns about the line through `at` along `axis`, fixed in body_i "
-                  "(4 equations).",
-                  {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
-                   param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
-                   param::direction3("axis", "the axis")},
-                  build_cylindrical});
-  k.coordinate = "angle and slide";
-  return k;
+  return build::kind("cylindrical")
+      .method("add_cylindrical")
+      .table("joints")
+      .type("cylindrical")
+      .role(Role::kJoint)
+      .in_space()
+      .coordinate(CoordinateKind::kAngleAndSlide)
+      .doc("body_j slides along and turns about the line through `at` along `axis`, fixed in body_i "
+           "(4 equations).")
+      .params({param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+               param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
+               param::direction3("axis", "the axis")})
+      .build(build_cylindrical);
 }
 
 }  // namespace lagmb

@@ -24,16 +24,20 @@ void build_distance(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo distance_kind() {
-  return {"distance", "add_distance", "joints", "distance", Role::kJoint,
-          "A massless rigid link of `length` between point_i of body_i and point_j of body_j.",
-          {
-              param::body("body_i", "the first body"),
-              param::point("point_i", {"body_i"}, "the link's end on body_i"),
-              param::body("body_j", "the second body"),
-              param::point("point_j", {"body_j"}, "the link's end on body_j"),
-              param::optional_real("length", "m", "the link's length (default: the initial distance)"),
-          },
-          build_distance};
+  return build::kind("distance")
+      .method("add_distance")
+      .table("joints")
+      .type("distance")
+      .role(Role::kJoint)
+      .doc("A massless rigid link of `length` between point_i of body_i and point_j of body_j.")
+      .params({
+          param::body("body_i", "the first body"),
+          param::point("point_i", {"body_i"}, "the link's end on body_i"),
+          param::body("body_j", "the second body"),
+          param::point("point_j", {"body_j"}, "the link's end on body_j"),
+          param::optional_real("length", "m", "the link's length (default: the initial distance)"),
+      })
+      .build(build_distance);
 }
 
 }  // namespace lagmb

@@ -35,29 +35,37 @@ void build_body_driver(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo joint_driver_kind() {
-  return build::with_effort({"joint_driver", "drive_joint", "drivers", "joint", Role::kDriver,
-          "Prescribes a revolute's relative angle phi_j - phi_i, or a translational's slide (0 in the "
-          "initial configuration), as f(t).",
-          {
-              param::joint("the revolute or translational joint driven"),
-              param::motion("f", "rad or m", "the joint coordinate as a function of time", "function"),
-          },
-          build_joint_driver},
-      "the torque (N m) about a revolute's angle, or the force (N) along a translational's slide, that "
-      "imposes the motion, positive along increasing coordinate: -lam of its row");
+  return build::kind("joint_driver")
+      .method("drive_joint")
+      .table("drivers")
+      .type("joint")
+      .role(Role::kDriver)
+      .doc("Prescribes a revolute's relative angle phi_j - phi_i, or a translational's slide (0 in the "
+           "initial configuration), as f(t).")
+      .params({
+          param::joint("the revolute or translational joint driven"),
+          param::motion("f", "rad or m", "the joint coordinate as a function of time", "function"),
+      })
+      .build(build_joint_driver)
+      .effort("the torque (N m) about a revolute's angle, or the force (N) along a translational's slide, that "
+              "imposes the motion, positive along increasing coordinate: -lam of its row");
 }
 
 KindInfo body_driver_kind() {
-  return build::with_effort({"body_driver", "drive_body", "drivers", "body", Role::kDriver,
-          "Prescribes a body's \"x\", \"y\" or \"angle\" as f(t).",
-          {
-              param::body("body", "the body driven"),
-              param::choice("coordinate", {"x", "y", "angle"}, "the coordinate driven"),
-              param::motion("f", "m or rad", "the coordinate as a function of time", "function"),
-          },
-          build_body_driver},
-      "the force (N) along x or y, or the torque (N m) about the angle, that imposes the motion, positive "
-      "along increasing coordinate: -lam of its row");
+  return build::kind("body_driver")
+      .method("drive_body")
+      .table("drivers")
+      .type("body")
+      .role(Role::kDriver)
+      .doc("Prescribes a body's \"x\", \"y\" or \"angle\" as f(t).")
+      .params({
+          param::body("body", "the body driven"),
+          param::choice("coordinate", {"x", "y", "angle"}, "the coordinate driven"),
+          param::motion("f", "m or rad", "the coordinate as a function of time", "function"),
+      })
+      .build(build_body_driver)
+      .effort("the force (N) along x or y, or the torque (N m) about the angle, that imposes the motion, positive "
+              "along increasing coordinate: -lam of its row");
 }
 
 }  // namespace lagmb

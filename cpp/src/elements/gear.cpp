@@ -39,19 +39,23 @@ void build_gear(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo gear_kind() {
-  return {"gear", "add_gear", "joints", "gear", Role::kJoint,
-          "Gear pair with omega_j / omega_i = ratio while the centres stay put (negative: external, "
-          "positive: internal); pitch radii from the initial centre distance.",
-          {
-              param::body("body_i", "the first gear"),
-              param::body("body_j", "the second gear"),
-              param::real("ratio", "", "omega_j / omega_i with the centres fixed"),
-              param::optional_point("center_i", {"body_i"}, "centre of gear i (default: its centre of mass; "
-                                                            "required on the ground)"),
-              param::optional_point("center_j", {"body_j"}, "centre of gear j (default: its centre of mass; "
-                                                            "required on the ground)"),
-          },
-          build_gear};
+  return build::kind("gear")
+      .method("add_gear")
+      .table("joints")
+      .type("gear")
+      .role(Role::kJoint)
+      .doc("Gear pair with omega_j / omega_i = ratio while the centres stay put (negative: external, "
+           "positive: internal); pitch radii from the initial centre distance.")
+      .params({
+          param::body("body_i", "the first gear"),
+          param::body("body_j", "the second gear"),
+          param::real("ratio", "", "omega_j / omega_i with the centres fixed"),
+          param::optional_point("center_i", {"body_i"}, "centre of gear i (default: its centre of mass; "
+                                                        "required on the ground)"),
+          param::optional_point("center_j", {"body_j"}, "centre of gear j (default: its centre of mass; "
+                                                        "required on the ground)"),
+      })
+      .build(build_gear);
 }
 
 }  // namespace lagmb

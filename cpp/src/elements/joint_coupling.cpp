@@ -36,18 +36,22 @@ void build_joint_coupling(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo joint_coupling_kind() {
-  return build::in_space(
-      {"joint_coupling", "add_joint_coupling", "joints", "coupling", Role::kJoint,
-       "Couples two joints: the coordinate s of `joint` (a revolute's angle or a translational's slide) follows "
-       "the `leader`'s, s = multiplier s_leader + offset (a URDF <mimic>, an MJCF <joint> equality; a gear or "
-       "a belt between two joints' axes). One equation over the four bodies of the two joints; its reaction "
-       "is the torque (force) it applies along joint's coordinate on joint's second body. Angles count "
-       "whole turns: the joints may turn any number of times.",
-       {param::joint("the joint that follows (a revolute or translational joint)"),
-        param::joint("leader", "the joint it follows"),
-        param::real("multiplier", 1.0, "1", "m in s = m s_leader + offset (rad/rad, m/m, rad/m or m/rad)"),
-        param::real("offset", 0.0, "rad or m", "the offset s0")},
-       build_joint_coupling});
+  return build::kind("joint_coupling")
+      .method("add_joint_coupling")
+      .table("joints")
+      .type("coupling")
+      .role(Role::kJoint)
+      .in_space()
+      .doc("Couples two joints: the coordinate s of `joint` (a revolute's angle or a translational's slide) follows "
+           "the `leader`'s, s = multiplier s_leader + offset (a URDF <mimic>, an MJCF <joint> equality; a gear or "
+           "a belt between two joints' axes). One equation over the four bodies of the two joints; its reaction "
+           "is the torque (force) it applies along joint's coordinate on joint's second body. Angles count "
+           "whole turns: the joints may turn any number of times.")
+      .params({param::joint("the joint that follows (a revolute or translational joint)"),
+               param::joint("leader", "the joint it follows"),
+               param::real("multiplier", 1.0, "1", "m in s = m s_leader + offset (rad/rad, m/m, rad/m or m/rad)"),
+               param::real("offset", 0.0, "rad or m", "the offset s0")})
+      .build(build_joint_coupling);
 }
 
 }  // namespace lagmb

@@ -57,24 +57,28 @@ void build_joint_friction(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo joint_friction_kind() {
-  return build::with_effort({"joint_friction", "add_joint_friction", "forces", "joint_friction", Role::kFriction,
-          "Friction in a revolute or translational joint: Coulomb with the load taken from the joint's "
-          "own reaction, plus viscous. With sd the joint's relative rate, F = -(mu rho N + preload) "
-          "sd / sqrt(sd^2 + slip_velocity^2) - viscous sd on body_j (body_i gets the opposite); revolute: "
-          "rho = pin_radius, N = |joint force|; translational: rho = 1, N = |normal force| + "
-          "|reaction moment| / bearing_length (the moment only if bearing_length is given).",
-          {
-              param::joint("the revolute or translational joint"),
-              param::real("mu", 0.0, "", "Coulomb coefficient"),
-              param::real("viscous", 0.0, "N m s/rad or N s/m", "viscous coefficient"),
-              param::optional_real("pin_radius", "m", "revolute: friction arm of the load (needed with mu > 0)"),
-              param::optional_real("bearing_length", "m", "translational: L in |N| + |M| / L"),
-              param::real("preload", 0.0, "N m or N", "load-independent Coulomb part"),
-              param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed"),
-              param::real("load_smoothing", 1e-6, "N", "rounds |.| of the load near 0"),
-          },
-          build_joint_friction},
-      "the friction torque (N m) or force (N) on the joint's second body, as Result.friction reads it");
+  return build::kind("joint_friction")
+      .method("add_joint_friction")
+      .table("forces")
+      .type("joint_friction")
+      .role(Role::kFriction)
+      .doc("Friction in a revolute or translational joint: Coulomb with the load taken from the joint's "
+           "own reaction, plus viscous. With sd the joint's relative rate, F = -(mu rho N + preload) "
+           "sd / sqrt(sd^2 + slip_velocity^2) - viscous sd on body_j (body_i gets the opposite); revolute: "
+           "rho = pin_radius, N = |joint force|; translational: rho = 1, N = |normal force| + "
+           "|reaction moment| / bearing_length (the moment only if bearing_length is given).")
+      .params({
+          param::joint("the revolute or translational joint"),
+          param::real("mu", 0.0, "", "Coulomb coefficient"),
+          param::real("viscous", 0.0, "N m s/rad or N s/m", "viscous coefficient"),
+          param::optional_real("pin_radius", "m", "revolute: friction arm of the load (needed with mu > 0)"),
+          param::optional_real("bearing_length", "m", "translational: L in |N| + |M| / L"),
+          param::real("preload", 0.0, "N m or N", "load-independent Coulomb part"),
+          param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed"),
+          param::real("load_smoothing", 1e-6, "N", "rounds |.| of the load near 0"),
+      })
+      .build(build_joint_friction)
+      .effort("the friction torque (N m) or force (N) on the joint's second body, as Result.friction reads it");
 }
 
 }  // namespace lagmb

@@ -19,16 +19,20 @@ void build_pin_in_slot(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo pin_in_slot_kind() {
-  return {"pin_in_slot", "add_pin_in_slot", "joints", "pin_in_slot", Role::kJoint,
-          "The pin of body_j at `at` moves along the slot of body_i through `at` in direction `axis`; "
-          "rotation is free.",
-          {
-              param::body("body_i", "the body with the slot"),
-              param::body("body_j", "the body with the pin"),
-              param::point("at", {"body_i", "body_j"}, "the pin, on the slot line"),
-              param::direction("axis", "direction of the slot"),
-          },
-          build_pin_in_slot};
+  return build::kind("pin_in_slot")
+      .method("add_pin_in_slot")
+      .table("joints")
+      .type("pin_in_slot")
+      .role(Role::kJoint)
+      .doc("The pin of body_j at `at` moves along the slot of body_i through `at` in direction `axis`; "
+           "rotation is free.")
+      .params({
+          param::body("body_i", "the body with the slot"),
+          param::body("body_j", "the body with the pin"),
+          param::point("at", {"body_i", "body_j"}, "the pin, on the slot line"),
+          param::direction("axis", "direction of the slot"),
+      })
+      .build(build_pin_in_slot);
 }
 
 }  // namespace lagmb

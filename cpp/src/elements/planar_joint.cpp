@@ -18,13 +18,18 @@ void build_planar(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo planar_joint_kind() {
-  return build::in_space({"planar", "add_planar", "joints", "planar", Role::kJoint,
-                  "body_j slides and turns in the plane through `at` with normal `normal`, fixed in body_i "
-                  "(3 equations).",
-                  {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
-                   param::point3("at", {"body_i", "body_j"}, "a point of the plane"),
-                   param::direction3("normal", "the plane's normal")},
-                  build_planar});
+  return build::kind("planar")
+      .method("add_planar")
+      .table("joints")
+      .type("planar")
+      .role(Role::kJoint)
+      .in_space()
+      .doc("body_j slides and turns in the plane through `at` with normal `normal`, fixed in body_i "
+           "(3 equations).")
+      .params({param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+               param::point3("at", {"body_i", "body_j"}, "a point of the plane"),
+               param::direction3("normal", "the plane's normal")})
+      .build(build_planar);
 }
 
 }  // namespace lagmb

@@ -25,17 +25,21 @@ void build_rack_pinion(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo rack_pinion_kind() {
-  return {"rack_pinion", "add_rack_pinion", "joints", "rack_pinion", Role::kJoint,
-          "The pinion (centre at its centre of mass) rolls without slipping on the rack's pitch line "
-          "along `axis`; the pinion is on the left of the axis (axis turned +90 deg points from the rack "
-          "to it).",
-          {
-              param::body("pinion", "the pinion"),
-              param::body("rack", "the rack (or the ground)"),
-              param::real("radius", "m", "pitch radius of the pinion"),
-              param::direction("axis", "direction of the rack's pitch line"),
-          },
-          build_rack_pinion};
+  return build::kind("rack_pinion")
+      .method("add_rack_pinion")
+      .table("joints")
+      .type("rack_pinion")
+      .role(Role::kJoint)
+      .doc("The pinion (centre at its centre of mass) rolls without slipping on the rack's pitch line "
+           "along `axis`; the pinion is on the left of the axis (axis turned +90 deg points from the rack "
+           "to it).")
+      .params({
+          param::body("pinion", "the pinion"),
+          param::body("rack", "the rack (or the ground)"),
+          param::real("radius", "m", "pitch radius of the pinion"),
+          param::direction("axis", "direction of the rack's pitch line"),
+      })
+      .build(build_rack_pinion);
 }
 
 }  // namespace lagmb

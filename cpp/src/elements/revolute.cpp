@@ -33,19 +33,22 @@ void build_revolute(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo revolute_kind() {
-  KindInfo k = {"revolute", "add_revolute", "joints", "revolute", Role::kJoint,
-          "Pins body_i and body_j together at the global point `at` (in the initial configuration), "
-          "or at `local_i` on body_i and `local_j` on body_j (each in its body's own axes).",
-          {
-              param::body("body_i", "the first body (the reaction is the force on it)"),
-              param::body("body_j", "the second body"),
-              param::optional_point("at", {"body_i", "body_j"}, "the joint point"),
-              param::local_point("local_i", "body_i", "the joint point on body_i (instead of `at`)"),
-              param::local_point("local_j", "body_j", "the joint point on body_j (instead of `at`)"),
-          },
-          build_revolute};
-  k.coordinate = "angle";
-  return k;
+  return build::kind("revolute")
+      .method("add_revolute")
+      .table("joints")
+      .type("revolute")
+      .role(Role::kJoint)
+      .coordinate(CoordinateKind::kAngle)
+      .doc("Pins body_i and body_j together at the global point `at` (in the initial configuration), "
+           "or at `local_i` on body_i and `local_j` on body_j (each in its body's own axes).")
+      .params({
+          param::body("body_i", "the first body (the reaction is the force on it)"),
+          param::body("body_j", "the second body"),
+          param::optional_point("at", {"body_i", "body_j"}, "the joint point"),
+          param::local_point("local_i", "body_i", "the joint point on body_i (instead of `at`)"),
+          param::local_point("local_j", "body_j", "the joint point on body_j (instead of `at`)"),
+      })
+      .build(build_revolute);
 }
 
 }  // namespace lagmb

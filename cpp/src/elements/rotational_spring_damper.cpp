@@ -23,21 +23,24 @@ void build_rotational_spring_damper(Model& m, const std::string& name, const Arg
 }  // namespace
 
 KindInfo rotational_spring_damper_kind() {
-  return build::with_effort(
-      {"rotational_spring_damper", "add_rotational_spring_damper", "forces", "rotational_spring_damper", Role::kForce,
-          "Torsion spring, damper and actuator between two bodies: the torque on body_j is "
-          "-k (theta - theta0) - c theta' + tau(t), theta = phi_j - phi_i; body_i gets the opposite.",
-          {
-              param::body("body_i", "the first body"),
-              param::body("body_j", "the second body"),
-              param::real("stiffness", 0.0, "N m/rad", "torsion stiffness k"),
-              param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
-              param::optional_real("free_angle", "rad", "free angle theta0 (default: the initial relative angle)"),
-              param::function("torque", "N m", "actuator torque tau(t) on body_j"),
-          },
-          build_rotational_spring_damper},
-      "the torque (N m) on body_j: -k (theta - theta0) - c theta' + tau(t), the actuator's torque as "
-      "applied included");
+  return build::kind("rotational_spring_damper")
+      .method("add_rotational_spring_damper")
+      .table("forces")
+      .type("rotational_spring_damper")
+      .role(Role::kForce)
+      .doc("Torsion spring, damper and actuator between two bodies: the torque on body_j is "
+           "-k (theta - theta0) - c theta' + tau(t), theta = phi_j - phi_i; body_i gets the opposite.")
+      .params({
+          param::body("body_i", "the first body"),
+          param::body("body_j", "the second body"),
+          param::real("stiffness", 0.0, "N m/rad", "torsion stiffness k"),
+          param::real("damping", 0.0, "N m s/rad", "damping coefficient c"),
+          param::optional_real("free_angle", "rad", "free angle theta0 (default: the initial relative angle)"),
+          param::function("torque", "N m", "actuator torque tau(t) on body_j"),
+      })
+      .build(build_rotational_spring_damper)
+      .effort("the torque (N m) on body_j: -k (theta - theta0) - c theta' + tau(t), the actuator's torque as "
+              "applied included");
 }
 
 }  // namespace lagmb

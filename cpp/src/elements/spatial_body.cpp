@@ -2,7 +2,7 @@
 #include "lagmb/elements/spatial_body.hpp"
 
 #include "elements/build.hpp"
-#include "lagmb/elements/body.hpp"
+#include "lagmb/model/body.hpp"
 
 namespace lagmb {
 
@@ -44,28 +44,30 @@ void build_spatial_body(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_body_kind() {
-  KindInfo k{"spatial_body", "add_body", "bodies", "", Role::kBody,
-             "A rigid body in space with coordinates r (its centre of mass, x, y, z) and Euler parameters p "
-             "(a unit quaternion w, x, y, z: its orientation, body axes into global axes).",
-             {
-                 param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
-                 param::inertia("inertia",
-                                "inertia about the centre of mass in body axes: principal moments (Ixx, Iyy, Izz) "
-                                "or a 3 x 3 tensor"),
-                 param::vec3("position", Vec3::Zero(), "m", "initial position of the centre of mass"),
-                 param::orientation("orientation",
-                                    "initial orientation: a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix, "
-                                    "body axes into global axes"),
-                 param::vec3("velocity", Vec3::Zero(), "m/s", "initial velocity of the centre of mass"),
-                 param::vec3("angular_velocity", Vec3::Zero(), "rad/s", "initial angular velocity (global axes)"),
-                 param::flag("rigid_inertia", true,
-                             "True: refuse principal moments that break the triangle inequality (no rigid body has "
-                             "them); False: accept them (robot files hold such inertias; the mass matrix needs "
-                             "positive semi-definite moments only)"),
-             },
-             build_spatial_body};
-  k.dimension = 3;
-  return k;
+  return build::kind("spatial_body")
+      .method("add_body")
+      .table("bodies")
+      .role(Role::kBody)
+      .in_space()
+      .doc("A rigid body in space with coordinates r (its centre of mass, x, y, z) and Euler parameters p "
+           "(a unit quaternion w, x, y, z: its orientation, body axes into global axes).")
+      .params({
+          param::real("mass", "kg", "mass (0: massless: a dynamic run needs its joints to hold it)"),
+          param::inertia("inertia",
+                         "inertia about the centre of mass in body axes: principal moments (Ixx, Iyy, Izz) "
+                         "or a 3 x 3 tensor"),
+          param::vec3("position", Vec3::Zero(), "m", "initial position of the centre of mass"),
+          param::orientation("orientation",
+                             "initial orientation: a unit quaternion (w, x, y, z) or a 3 x 3 rotation matrix, "
+                             "body axes into global axes"),
+          param::vec3("velocity", Vec3::Zero(), "m/s", "initial velocity of the centre of mass"),
+          param::vec3("angular_velocity", Vec3::Zero(), "rad/s", "initial angular velocity (global axes)"),
+          param::flag("rigid_inertia", true,
+                      "True: refuse principal moments that break the triangle inequality (no rigid body has "
+                      "them); False: accept them (robot files hold such inertias; the mass matrix needs "
+                      "positive semi-definite moments only)"),
+      })
+      .build(build_spatial_body);
 }
 
 }  // namespace lagmb

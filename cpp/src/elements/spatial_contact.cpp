@@ -52,21 +52,25 @@ void build_spatial_contact(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_contact_kind() {
-  KindInfo k = build::in_space(
-      {"spatial_contact", "add_contact", "forces", "contact", Role::kContact,
-       "Contact between two collision shapes (Model.add_shape) on different bodies (or one on the ground): "
-       "the pair's geometry gives contact points (a sphere 1, a capsule's ends 2, a box's corners 8, a "
-       "convex hull's vertices), each with penetration d > 0 pressed by k d^1.5 (1 + c d' / v_impact) along "
-       "the normal (Hunt-Crossley damping with c (1 + e) = ln((1 + c) / (1 - c e)): an impact under the "
-       "contact force alone rebounds at exactly e times its speed; v_impact the approach speed at the "
-       "point's onset, at least 1e-3 m/s) and Coulomb friction -mu F_n v_t / "
-       "sqrt(|v_t|^2 + v_s^2) against the slip velocity v_t in the tangent plane. Each point's onset and "
-       "release is an event (Result.events) where the integrator restarts. Vertices against a plane (a box's "
-       "corners, a hull's) stick: where every pressing point slips slower than v_s and the friction needed is "
-       "within static_friction times F_n, three constraint rows hold the contact in place (its events 'stick' "
-       "and 'slip').",
-       {param::shape("shape_a", "the first shape"), param::shape("shape_b", "the second shape")},
-       build_spatial_contact});
+  KindInfo k = build::kind("spatial_contact")
+      .method("add_contact")
+      .table("forces")
+      .type("contact")
+      .role(Role::kContact)
+      .in_space()
+      .doc("Contact between two collision shapes (Model.add_shape) on different bodies (or one on the ground): "
+           "the pair's geometry gives contact points (a sphere 1, a capsule's ends 2, a box's corners 8, a "
+           "convex hull's vertices), each with penetration d > 0 pressed by k d^1.5 (1 + c d' / v_impact) along "
+           "the normal (Hunt-Crossley damping with c (1 + e) = ln((1 + c) / (1 - c e)): an impact under the "
+           "contact force alone rebounds at exactly e times its speed; v_impact the approach speed at the "
+           "point's onset, at least 1e-3 m/s) and Coulomb friction -mu F_n v_t / "
+           "sqrt(|v_t|^2 + v_s^2) against the slip velocity v_t in the tangent plane. Each point's onset and "
+           "release is an event (Result.events) where the integrator restarts. Vertices against a plane (a box's "
+           "corners, a hull's) stick: where every pressing point slips slower than v_s and the friction needed is "
+           "within static_friction times F_n, three constraint rows hold the contact in place (its events 'stick' "
+           "and 'slip').")
+      .params({param::shape("shape_a", "the first shape"), param::shape("shape_b", "the second shape")})
+      .build(build_spatial_contact);
   for (Param& p : build::contact_law_params()) k.params.push_back(std::move(p));
   k.params.push_back(param::optional_real("static_friction", "",
                                           "mu_s, what a stuck contact holds (default: friction; at least friction)"));

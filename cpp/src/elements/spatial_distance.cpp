@@ -23,13 +23,20 @@ void build_spatial_distance(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_distance_kind() {
-  return build::in_space({"spatial_distance", "add_distance", "joints", "distance", Role::kJoint,
-                  "A massless rigid link between point_i on body_i and point_j on body_j (1 equation; its "
-                  "multiplier is the tension).",
-                  {param::body("body_i", "the first body"), param::point3("point_i", {"body_i"}, "the link's end on body_i"),
-                   param::body("body_j", "the second body"), param::point3("point_j", {"body_j"}, "the link's end on body_j"),
-                   param::optional_real("length", "m", "the link's length (default: the initial distance)")},
-                  build_spatial_distance});
+  return build::kind("spatial_distance")
+      .method("add_distance")
+      .table("joints")
+      .type("distance")
+      .role(Role::kJoint)
+      .in_space()
+      .doc("A massless rigid link between point_i on body_i and point_j on body_j (1 equation; its "
+           "multiplier is the tension).")
+      .params({param::body("body_i", "the first body"),
+               param::point3("point_i", {"body_i"}, "the link's end on body_i"),
+               param::body("body_j", "the second body"),
+               param::point3("point_j", {"body_j"}, "the link's end on body_j"),
+               param::optional_real("length", "m", "the link's length (default: the initial distance)")})
+      .build(build_spatial_distance);
 }
 
 }  // namespace lagmb

@@ -27,19 +27,23 @@ void build_spatial_joint_friction(Model& m, const std::string& name, const Args&
 }  // namespace
 
 KindInfo spatial_joint_friction_kind() {
-  return build::with_effort(build::in_space(
-      {"spatial_joint_friction", "add_joint_friction", "forces", "joint_friction", Role::kForce,
-       "Friction in a revolute or translational joint, independent of the joint's load (a URDF joint's "
-       "<dynamics damping friction>): with sd the joint's rate, F = -preload sd / sqrt(sd^2 + "
-       "slip_velocity^2) - viscous sd, a torque about the axis (force along it) on the joint's second body, "
-       "the opposite on the first. Coulomb friction from the joint's load (mu) is planar only so far.",
-       {param::joint("the revolute or translational joint"),
-        param::real("viscous", 0.0, "N m s/rad or N s/m", "viscous coefficient"),
-        param::real("preload", 0.0, "N m or N", "the Coulomb friction torque or force"),
-        param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed")},
-       build_spatial_joint_friction}),
-      "the friction torque (N m) or force (N) on the joint's second body: -preload sd / sqrt(sd^2 + "
-      "slip_velocity^2) - viscous sd");
+  return build::kind("spatial_joint_friction")
+      .method("add_joint_friction")
+      .table("forces")
+      .type("joint_friction")
+      .role(Role::kForce)
+      .in_space()
+      .doc("Friction in a revolute or translational joint, independent of the joint's load (a URDF joint's "
+           "<dynamics damping friction>): with sd the joint's rate, F = -preload sd / sqrt(sd^2 + "
+           "slip_velocity^2) - viscous sd, a torque about the axis (force along it) on the joint's second body, "
+           "the opposite on the first. Coulomb friction from the joint's load (mu) is planar only so far.")
+      .params({param::joint("the revolute or translational joint"),
+               param::real("viscous", 0.0, "N m s/rad or N s/m", "viscous coefficient"),
+               param::real("preload", 0.0, "N m or N", "the Coulomb friction torque or force"),
+               param::real("slip_velocity", 1e-3, "rad/s or m/s", "below it the sign function is smoothed")})
+      .build(build_spatial_joint_friction)
+      .effort("the friction torque (N m) or force (N) on the joint's second body: -preload sd / sqrt(sd^2 + "
+              "slip_velocity^2) - viscous sd");
 }
 
 }  // namespace lagmb

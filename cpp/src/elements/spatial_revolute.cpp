@@ -25,17 +25,22 @@ void build_spatial_revolute(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_revolute_kind() {
-  KindInfo k = build::in_space({"spatial_revolute", "add_revolute", "joints", "revolute", Role::kJoint,
-                  "Hinge: body_j turns about the line through `at` along `axis`, fixed in body_i (5 equations).",
-                  {param::body("body_i", "the first body (the multipliers of the point are the force on it)"),
-                   param::body("body_j", "the second body"), param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
-                   param::direction3("axis", "the hinge axis"),
-                   param::real("angle", 0.0, "rad",
-                               "the joint's angle in the initial configuration (what its drivers, stops and "
-                               "springs read there)")},
-                  build_spatial_revolute});
-  k.coordinate = "angle";
-  return k;
+  return build::kind("spatial_revolute")
+      .method("add_revolute")
+      .table("joints")
+      .type("revolute")
+      .role(Role::kJoint)
+      .in_space()
+      .coordinate(CoordinateKind::kAngle)
+      .doc("Hinge: body_j turns about the line through `at` along `axis`, fixed in body_i (5 equations).")
+      .params({param::body("body_i", "the first body (the multipliers of the point are the force on it)"),
+               param::body("body_j", "the second body"),
+               param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
+               param::direction3("axis", "the hinge axis"),
+               param::real("angle", 0.0, "rad",
+                           "the joint's angle in the initial configuration (what its drivers, stops and "
+                           "springs read there)")})
+      .build(build_spatial_revolute);
 }
 
 }  // namespace lagmb

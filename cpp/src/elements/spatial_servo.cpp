@@ -35,21 +35,26 @@ void build_spatial_joint_servo(Model& m, const std::string& name, const Args& a)
 }  // namespace
 
 KindInfo spatial_joint_servo_kind() {
-  return build::with_effort(build::in_space({"spatial_joint_servo", "add_servo", "forces", "servo", Role::kForce,
-                   "A servo on a revolute's, cylindrical or translational joint's coordinate theta (an angle "
-                   "counting whole turns, or a slide): the torque (force) along it on body_j "
-                   "sat(kp (theta* - theta) + kd (theta*' - theta') + tau_ff), clamped to +-limit; theta* "
-                   "and tau_ff functions of time or mb.Input (a step: theta*' = 0). Evaluated inside the "
-                   "integrator: a control law needs no Python per step.",
-                   {param::joint("the revolute, cylindrical or translational joint"),
-                    param::motion("target", "rad or m", "the target theta*(t)", "target"),
-                    param::real("kp", 0.0, "N m/rad or N/m", "position gain kp"),
-                    param::real("kd", 0.0, "N m s/rad or N s/m", "velocity gain kd"),
-                    param::function("feedforward", "N m or N", "feed-forward torque tau_ff(t)"),
-                    param::optional_real("limit", "N m or N", "the largest |torque| (None: no limit)")},
-                   build_spatial_joint_servo}),
-      "the torque (N m) about the joint's axis, or force (N) along its slide, on body_j as applied: after "
-      "the clamp to +-limit");
+  return build::kind("spatial_joint_servo")
+      .method("add_servo")
+      .table("forces")
+      .type("servo")
+      .role(Role::kForce)
+      .in_space()
+      .doc("A servo on a revolute's, cylindrical or translational joint's coordinate theta (an angle "
+           "counting whole turns, or a slide): the torque (force) along it on body_j "
+           "sat(kp (theta* - theta) + kd (theta*' - theta') + tau_ff), clamped to +-limit; theta* "
+           "and tau_ff functions of time or mb.Input (a step: theta*' = 0). Evaluated inside the "
+           "integrator: a control law needs no Python per step.")
+      .params({param::joint("the revolute, cylindrical or translational joint"),
+               param::motion("target", "rad or m", "the target theta*(t)", "target"),
+               param::real("kp", 0.0, "N m/rad or N/m", "position gain kp"),
+               param::real("kd", 0.0, "N m s/rad or N s/m", "velocity gain kd"),
+               param::function("feedforward", "N m or N", "feed-forward torque tau_ff(t)"),
+               param::optional_real("limit", "N m or N", "the largest |torque| (None: no limit)")})
+      .build(build_spatial_joint_servo)
+      .effort("the torque (N m) about the joint's axis, or force (N) along its slide, on body_j as applied: after "
+              "the clamp to +-limit");
 }
 
 }  // namespace lagmb

@@ -25,19 +25,22 @@ void build_spatial_stop(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_stop_kind() {
-  return build::with_effort(build::in_space(
-      {"spatial_stop", "add_stop", "stops", "", Role::kStop,
-       "Limits a revolute's angle (its turns counted: limits any distance apart) or a translational's slide "
-       "to lower <= s <= upper (their "
-       "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is "
-       "an impact: s' reverses with Newton's restitution e and the integrator restarts. A joint that comes to rest "
-       "on the limit is captured: the limit holds as a joint equation whose multiplier is the stop's force "
-       "(Result.effort), until the stop would have to pull, where it releases.",
-       build::stop_params(),
-       build_spatial_stop}),
-      "the force (N) along the joint's slide or torque (N m) about its angle while the joint rests on a "
-      "limit (0 while it is off its limits), positive along increasing coordinate: lam_upper - lam_lower of"
-      " its two rows");
+  return build::kind("spatial_stop")
+      .method("add_stop")
+      .table("stops")
+      .role(Role::kStop)
+      .in_space()
+      .doc("Limits a revolute's angle (its turns counted: limits any distance apart) or a translational's slide "
+           "to lower <= s <= upper (their "
+           "`angle` or `slide` in the initial configuration, 0 by default). Reaching a limit with approaching speed is "
+           "an impact: s' reverses with Newton's restitution e and the integrator restarts. A joint that comes to rest "
+           "on the limit is captured: the limit holds as a joint equation whose multiplier is the stop's force "
+           "(Result.effort), until the stop would have to pull, where it releases.")
+      .params(build::stop_params())
+      .build(build_spatial_stop)
+      .effort("the force (N) along the joint's slide or torque (N m) about its angle while the joint rests on a "
+              "limit (0 while it is off its limits), positive along increasing coordinate: lam_upper - lam_lower of"
+              " its two rows");
 }
 
 }  // namespace lagmb

@@ -21,18 +21,22 @@ void build_spatial_translational(Model& m, const std::string& name, const Args& 
 }  // namespace
 
 KindInfo spatial_translational_kind() {
-  KindInfo k = build::in_space({"spatial_translational", "add_translational", "joints", "translational", Role::kJoint,
-                  "Prismatic joint: body_j slides along the line through `at` along `axis`, fixed in body_i, "
-                  "without turning (5 equations).",
-                  {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
-                   param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
-                   param::direction3("axis", "the sliding direction"),
-                   param::real("slide", 0.0, "m",
-                               "the joint's slide in the initial configuration: body_j's joint point is that far "
-                               "along the axis from body_i's (what its drivers, stops and springs read there)")},
-                  build_spatial_translational});
-  k.coordinate = "slide";
-  return k;
+  return build::kind("spatial_translational")
+      .method("add_translational")
+      .table("joints")
+      .type("translational")
+      .role(Role::kJoint)
+      .in_space()
+      .coordinate(CoordinateKind::kSlide)
+      .doc("Prismatic joint: body_j slides along the line through `at` along `axis`, fixed in body_i, "
+           "without turning (5 equations).")
+      .params({param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+               param::point3("at", {"body_i", "body_j"}, "a point on the axis"),
+               param::direction3("axis", "the sliding direction"),
+               param::real("slide", 0.0, "m",
+                           "the joint's slide in the initial configuration: body_j's joint point is that far "
+                           "along the axis from body_i's (what its drivers, stops and springs read there)")})
+      .build(build_spatial_translational);
 }
 
 }  // namespace lagmb

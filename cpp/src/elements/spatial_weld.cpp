@@ -30,10 +30,15 @@ void build_spatial_weld(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spatial_weld_kind() {
-  return build::in_space({"spatial_weld", "add_weld", "joints", "weld", Role::kJoint,
-                  "Fixes body_j to body_i in their initial relative pose (6 equations).",
-                  {param::body("body_i", "the first body"), param::body("body_j", "the body fixed to it")},
-                  build_spatial_weld});
+  return build::kind("spatial_weld")
+      .method("add_weld")
+      .table("joints")
+      .type("weld")
+      .role(Role::kJoint)
+      .in_space()
+      .doc("Fixes body_j to body_i in their initial relative pose (6 equations).")
+      .params({param::body("body_i", "the first body"), param::body("body_j", "the body fixed to it")})
+      .build(build_spatial_weld);
 }
 
 }  // namespace lagmb

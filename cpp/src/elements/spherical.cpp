@@ -15,11 +15,16 @@ void build_spherical(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spherical_kind() {
-  return build::in_space({"spherical", "add_spherical", "joints", "spherical", Role::kJoint,
-                  "Ball joint: the point `at` of body_j stays at the point `at` of body_i (3 equations).",
-                  {param::body("body_i", "the first body (the multipliers are the force on it)"),
-                   param::body("body_j", "the second body"), param::point3("at", {"body_i", "body_j"}, "the joint point")},
-                  build_spherical});
+  return build::kind("spherical")
+      .method("add_spherical")
+      .table("joints")
+      .type("spherical")
+      .role(Role::kJoint)
+      .in_space()
+      .doc("Ball joint: the point `at` of body_j stays at the point `at` of body_i (3 equations).")
+      .params({param::body("body_i", "the first body (the multipliers are the force on it)"),
+               param::body("body_j", "the second body"), param::point3("at", {"body_i", "body_j"}, "the joint point")})
+      .build(build_spherical);
 }
 
 }  // namespace lagmb

@@ -30,22 +30,26 @@ void build_spring_damper(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo spring_damper_kind() {
-  return build::with_effort({"spring_damper", "add_spring_damper", "forces", "spring_damper", Role::kForce,
-          "Spring, damper and actuator between point_i of body_i and point_j of body_j; the force "
-          "-k (l - l0) - c l' + f(t) pushes the points apart.",
-          {
-              param::body("body_i", "the first body"),
-              param::point("point_i", {"body_i"}, "attachment on body_i"),
-              param::body("body_j", "the second body"),
-              param::point("point_j", {"body_j"}, "attachment on body_j"),
-              param::real("stiffness", 0.0, "N/m", "spring stiffness k"),
-              param::real("damping", 0.0, "N s/m", "damping coefficient c"),
-              param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
-              param::function("force", "N", "actuator force f(t), positive pushes the points apart"),
-          },
-          build_spring_damper},
-      "the force F (N) along the line between the points, positive pushing them apart: -k (l - l0) - c l' +"
-      " f(t), the actuator's force as applied included");
+  return build::kind("spring_damper")
+      .method("add_spring_damper")
+      .table("forces")
+      .type("spring_damper")
+      .role(Role::kForce)
+      .doc("Spring, damper and actuator between point_i of body_i and point_j of body_j; the force "
+           "-k (l - l0) - c l' + f(t) pushes the points apart.")
+      .params({
+          param::body("body_i", "the first body"),
+          param::point("point_i", {"body_i"}, "attachment on body_i"),
+          param::body("body_j", "the second body"),
+          param::point("point_j", {"body_j"}, "attachment on body_j"),
+          param::real("stiffness", 0.0, "N/m", "spring stiffness k"),
+          param::real("damping", 0.0, "N s/m", "damping coefficient c"),
+          param::optional_real("free_length", "m", "free length l0 (default: the initial distance)"),
+          param::function("force", "N", "actuator force f(t), positive pushes the points apart"),
+      })
+      .build(build_spring_damper)
+      .effort("the force F (N) along the line between the points, positive pushing them apart: -k (l - l0) - c l' +"
+              " f(t), the actuator's force as applied included");
 }
 
 }  // namespace lagmb

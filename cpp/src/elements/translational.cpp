@@ -20,18 +20,21 @@ void build_translational(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo translational_kind() {
-  KindInfo k = {"translational", "add_translational", "joints", "translational", Role::kJoint,
-          "body_j slides relative to body_i along the line through `at` with direction `axis` "
-          "(global, initial configuration), without rotating.",
-          {
-              param::body("body_i", "the body carrying the guide"),
-              param::body("body_j", "the sliding body"),
-              param::point("at", {"body_i", "body_j"}, "a point of the sliding line"),
-              param::direction("axis", "direction of sliding"),
-          },
-          build_translational};
-  k.coordinate = "slide";
-  return k;
+  return build::kind("translational")
+      .method("add_translational")
+      .table("joints")
+      .type("translational")
+      .role(Role::kJoint)
+      .coordinate(CoordinateKind::kSlide)
+      .doc("body_j slides relative to body_i along the line through `at` with direction `axis` "
+           "(global, initial configuration), without rotating.")
+      .params({
+          param::body("body_i", "the body carrying the guide"),
+          param::body("body_j", "the sliding body"),
+          param::point("at", {"body_i", "body_j"}, "a point of the sliding line"),
+          param::direction("axis", "direction of sliding"),
+      })
+      .build(build_translational);
 }
 
 }  // namespace lagmb

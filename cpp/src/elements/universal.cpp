@@ -27,14 +27,19 @@ void build_universal(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo universal_kind() {
-  return build::in_space({"universal", "add_universal", "joints", "universal", Role::kJoint,
-                  "Hooke joint at `at`: body_i turns about axis_i (fixed in it), body_j about axis_j (fixed in "
-                  "it), the two perpendicular (4 equations).",
-                  {param::body("body_i", "the first body"), param::body("body_j", "the second body"),
-                   param::point3("at", {"body_i", "body_j"}, "the centre of the cross"),
-                   param::direction3("axis_i", "the cross's axis fixed in body_i"),
-                   param::direction3("axis_j", "the cross's axis fixed in body_j (perpendicular to axis_i)")},
-                  build_universal});
+  return build::kind("universal")
+      .method("add_universal")
+      .table("joints")
+      .type("universal")
+      .role(Role::kJoint)
+      .in_space()
+      .doc("Hooke joint at `at`: body_i turns about axis_i (fixed in it), body_j about axis_j (fixed in "
+           "it), the two perpendicular (4 equations).")
+      .params({param::body("body_i", "the first body"), param::body("body_j", "the second body"),
+               param::point3("at", {"body_i", "body_j"}, "the centre of the cross"),
+               param::direction3("axis_i", "the cross's axis fixed in body_i"),
+               param::direction3("axis_j", "the cross's axis fixed in body_j (perpendicular to axis_i)")})
+      .build(build_universal);
 }
 
 }  // namespace lagmb

@@ -23,13 +23,17 @@ void build_weld(Model& m, const std::string& name, const Args& a) {
 }  // namespace
 
 KindInfo weld_kind() {
-  return {"weld", "add_weld", "joints", "weld", Role::kJoint,
-          "Fixes body_j to body_i in their initial relative pose.",
-          {
-              param::body("body_i", "the first body"),
-              param::body("body_j", "the body fixed to it"),
-          },
-          build_weld};
+  return build::kind("weld")
+      .method("add_weld")
+      .table("joints")
+      .type("weld")
+      .role(Role::kJoint)
+      .doc("Fixes body_j to body_i in their initial relative pose.")
+      .params({
+          param::body("body_i", "the first body"),
+          param::body("body_j", "the body fixed to it"),
+      })
+      .build(build_weld);
 }
 
 }  // namespace lagmb

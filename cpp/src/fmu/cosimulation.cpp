@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "lagmb/integrators/methods.hpp"
 #include "lagmb/model/coordinates.hpp"
 #include "lagmb/model/model.hpp"
 
@@ -38,7 +39,7 @@ std::string driven_unit(const ModelSpec& spec, const ModelSpec::Element& driver)
   if (const std::string c = text("coordinate"); !c.empty()) return c == "angle" ? "rad" : "m";
   if (const std::string joint = text("joint"); !joint.empty())
     if (const auto* e = element_of(spec, joint))
-      return e->args.kind().coordinate == "angle" ? "rad" : "m";
+      return e->args.kind().coordinate == CoordinateKind::kAngle ? "rad" : "m";
   return "";
 }
 
@@ -252,7 +253,11 @@ void CoSimulation::start_run() {
   if (!changed.empty()) model_ = with_parameters(*model_, changed);
   SimulationOptions o = setup_.options;
   o.t0 = t0_;
-  if (tolerance_ > 0.0) o.rtol = tolerance_;
+  // the importer's tolerance is for the method's error control (FMI: a suggestion); a fixed-step
+  // method has none, and the run refuses tolerances given to it
+  bool fixed_step = false;
+  for (const Method& m : methods()) fixed_step = fixed_step || (m.formulation == o.formulation && m.fixed_step);
+  if (tolerance_ > 0.0 && !fixed_step) o.rtol = tolerance_;
   sim_ = std::make_unique<Simulator>(*model_, o);
   for (size_t k = 0; k < inputs_.size(); ++k) sim_->set_input(model_->inputs()[k].name, inputs_[k]);
 }

@@ -27,6 +27,16 @@ const char* role_name(Role role) {
   return "?";
 }
 
+const char* coordinate_name(CoordinateKind coordinate) {
+  switch (coordinate) {
+    case CoordinateKind::kNone: return "";
+    case CoordinateKind::kAngle: return "angle";
+    case CoordinateKind::kSlide: return "slide";
+    case CoordinateKind::kAngleAndSlide: return "angle and slide";
+  }
+  return "";
+}
+
 const Param* KindInfo::param(const std::string& key) const {
   for (const Param& p : params)
     if (p.name == key) return &p;

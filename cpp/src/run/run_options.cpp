@@ -52,6 +52,13 @@ const Method& validate_run_options(const Model& model, const SimulationOptions& 
       if (m.*has) s += (s.empty() ? "" : ", ") + m.name;
     return s;
   };
+  // a fixed-step method has no error control: tolerances given to it would be ignored
+  const SimulationOptions defaults;
+  if (method.fixed_step && (o.rtol != defaults.rtol || o.atol != defaults.atol || !o.atol_coordinates.empty()))
+    throw ModelError(at + "formulation '" + name_of(method.formulation) +
+                     "' takes fixed steps without error control: rtol and atol do not apply; its Newton corrections "
+                     "are bounded by newton_rtol (default " + to_text(defaults.newton_rtol) +
+                     ") and newton_atol (default " + to_text(defaults.newton_atol) + ")");
   if (method.fixed_step && o.max_step == 0.0)
     throw ModelError(at + "formulation '" + name_of(method.formulation) +
                      "' takes fixed steps: give the step as max_step (step= in Python)");

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/projected_offset.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {

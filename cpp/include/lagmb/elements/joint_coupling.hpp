@@ -6,7 +6,7 @@
 #include <array>
 #include <string>
 
-#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/elements/spatial_joint.hpp"
 
 namespace lagmb {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/projected_offset.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {

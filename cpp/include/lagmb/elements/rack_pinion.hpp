@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/projected_offset.hpp"
 
 namespace lagmb {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "lagmb/elements/joint_coordinate.hpp"
+#include "lagmb/model/joint_coordinate.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {

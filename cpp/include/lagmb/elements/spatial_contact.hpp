@@ -10,7 +10,7 @@
 
 #include "lagmb/collision/pairs.hpp"
 #include "lagmb/elements/contact_law.hpp"
-#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/spatial_terms.hpp"
 #include "lagmb/model/event_group.hpp"
 
 namespace lagmb {

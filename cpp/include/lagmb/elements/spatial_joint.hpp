@@ -12,8 +12,8 @@
 
 #include <string>
 
-#include "lagmb/elements/joint_coordinate.hpp"
-#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/model/joint_coordinate.hpp"
+#include "lagmb/spatial_terms.hpp"
 
 namespace lagmb {
 

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "lagmb/elements/joint_friction.hpp"
-#include "lagmb/elements/spatial_drivers.hpp"
-#include "lagmb/elements/spatial_forces.hpp"
+#include "lagmb/model/joint_reading.hpp"
+#include "lagmb/elements/spatial_force_base.hpp"
 
 namespace lagmb {
 

@@ -8,9 +8,9 @@
 #include <limits>
 #include <string>
 
-#include "lagmb/elements/spatial_drivers.hpp"
-#include "lagmb/elements/spatial_forces.hpp"
-#include "lagmb/elements/spatial_terms.hpp"
+#include "lagmb/model/joint_reading.hpp"
+#include "lagmb/elements/spatial_force_base.hpp"
+#include "lagmb/spatial_terms.hpp"
 #include "lagmb/time_function.hpp"
 
 namespace lagmb {

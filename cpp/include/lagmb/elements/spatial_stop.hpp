@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/elements/stop.hpp"
 
 namespace lagmb {

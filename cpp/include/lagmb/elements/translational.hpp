@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "lagmb/elements/joint_coordinate.hpp"
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/model/joint_coordinate.hpp"
+#include "lagmb/projected_offset.hpp"
 
 namespace lagmb {
 

@@ -35,7 +35,7 @@
 #include <utility>
 #include <vector>
 
-#include "lagmb/elements/joint_coordinate.hpp"
+#include "lagmb/model/joint_coordinate.hpp"
 #include "lagmb/model/contact_reading.hpp"
 #include "lagmb/space.hpp"
 #include "lagmb/sparsity.hpp"

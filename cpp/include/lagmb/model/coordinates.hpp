@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "lagmb/elements/body.hpp"
+#include "lagmb/model/body.hpp"
 
 namespace lagmb {
 

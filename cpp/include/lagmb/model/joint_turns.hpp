@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "lagmb/elements/spatial_drivers.hpp"
+#include "lagmb/model/joint_reading.hpp"
 #include "lagmb/model/constraint_group.hpp"
 #include "lagmb/types.hpp"
 

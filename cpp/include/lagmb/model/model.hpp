@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "lagmb/model/constraint_group.hpp"
-#include "lagmb/elements/body.hpp"
-#include "lagmb/elements/gravity.hpp"
+#include "lagmb/model/body.hpp"
+#include "lagmb/model/gravity.hpp"
 #include "lagmb/model/event_group.hpp"
 #include "lagmb/model/force_group.hpp"
 #include "lagmb/model/friction_group.hpp"

@@ -91,9 +91,17 @@ struct Param {
 enum class Role { kBody, kJoint, kDriver, kForce, kFriction, kStop, kContact };
 const char* role_name(Role role);
 
+/// The scalar coordinate a joint kind has, as its kind's coordinate() gives
+/// it (joint_coordinate.hpp); kNone for the kinds without one.
+enum class CoordinateKind { kNone, kAngle, kSlide, kAngleAndSlide };
+/// "angle", "slide", "angle and slide", "" (kNone): what Python, scenes and
+/// the FMU read.
+const char* coordinate_name(CoordinateKind coordinate);
+
 class Args;
 
-/// One element kind.
+/// One element kind. Each kind declares its entry with every field named
+/// (build::kind in cpp/src/elements/build.hpp).
 struct KindInfo {
   std::string name;    // "revolute"
   std::string method;  // the Python Model method that adds one: "add_revolute"
@@ -108,10 +116,10 @@ struct KindInfo {
   /// method name (add_revolute) may have a kind in each.
   int dimension = 2;
   /// A joint's scalar coordinate, as its kind's coordinate() gives it
-  /// (joint_coordinate.hpp): "angle", "slide", "angle and slide"; "" none.
-  /// Messages name the kinds that have one; Python (Result.joint,
-  /// JointSpace, drawings) and the FMU's units read it here, never a kind's name.
-  std::string coordinate = {};
+  /// (joint_coordinate.hpp). Messages name the kinds that have one; Python
+  /// (Result.joint, JointSpace, drawings: coordinate_name) and the FMU's
+  /// units read it here, never a kind's name.
+  CoordinateKind coordinate = CoordinateKind::kNone;
   /// What Result.effort reads of an element of this kind, said next to its
   /// equations (one line, with its unit); "" for a kind without one (a body,
   /// a joint: its reaction; a contact: Result.contact). The kind's group

@@ -3,7 +3,7 @@
 // to its equations; constraint_group.hpp hands it out by element.
 #pragma once
 
-#include "lagmb/elements/projected_offset.hpp"
+#include "lagmb/projected_offset.hpp"
 #include "lagmb/types.hpp"
 
 namespace lagmb {

@@ -1,4 +1,4 @@
-#include "lagmb/elements/gravity.hpp"
+#include "lagmb/model/gravity.hpp"
 
 #include "lagmb/model/model.hpp"
 
