@@ -1,4 +1,4 @@
-// The active set of unilateral rows (docs/design.md 5.1): a stop's two rows
+// The active set of unilateral rows (docs/methods.md, "The active set, step by step"): a stop's two rows
 // (its gaps) are rows of Phi that a Data leaves out until a run closes them;
 // the closed set sits beside the redundant rows, shared by the run's Data;
 // the rank and the degrees of freedom count the joints' equations only.

@@ -1,4 +1,4 @@
-"""Stops that hold: the active set of unilateral rows (docs/design.md 5.1).
+"""Stops that hold: the active set of unilateral rows (docs/methods.md, "The active set, step by step").
 
 A joint that comes to rest on its limit is captured: the limit becomes a
 joint equation whose multiplier is the stop's force (Result.effort), until

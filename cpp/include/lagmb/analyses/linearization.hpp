@@ -66,7 +66,7 @@ struct StateTangent {
 /// singular at the state. Without dropped_rows, the rows redundant at
 /// (q, t) are found as a run finds them (redundancy.hpp). The stops `held`
 /// (by name) hold their joints on the limit they are at (within 1e-8 (1 +
-/// |q|)) as the joint rows they are while captured (docs/design.md 5.1);
+/// |q|)) as the joint rows they are while captured (docs/methods.md, "The active set, step by step");
 /// the other stops' rows are open. ModelError for a name that is no stop or
 /// a stop at neither limit.
 StateTangent tangent_at(const Model& model, const VecX& q, const VecX& v, double t, const VecX& u,

@@ -1,6 +1,6 @@
 // The spatial kind "spatial_stop" (registry.hpp; its builder in
 // cpp/src/elements/spatial_stop.cpp): a joint limit in space, a pair of
-// unilateral rows (docs/design.md 5.1).
+// unilateral rows (docs/methods.md, "The active set, step by step").
 #pragma once
 
 #include <string>

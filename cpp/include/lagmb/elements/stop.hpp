@@ -1,4 +1,4 @@
-// Joint stop (limit): a unilateral bound on a joint coordinate (docs/design.md 5.1).
+// Joint stop (limit): a unilateral bound on a joint coordinate (docs/methods.md, "The active set, step by step").
 #pragma once
 
 #include <string>

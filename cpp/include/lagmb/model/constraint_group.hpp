@@ -151,7 +151,7 @@ struct has_rates<Kind, std::void_t<decltype(std::declval<const Kind&>().rates(
                            std::declval<const LocalVec<space_of_t<Kind>::local>&>(),
                                std::declval<time_argument_t<Kind>>()))>> : std::true_type {};
 
-/// A unilateral kind (a joint stop: docs/design.md 5.1) declares
+/// A unilateral kind (a joint stop: docs/methods.md, "The active set, step by step") declares
 ///   static constexpr bool unilateral = true;
 ///   UnilateralRow unilateral_row(int r) const;
 /// Its rows are gaps g_r >= 0 (Phi_r = g_r), open (left out, as a
