@@ -3,7 +3,7 @@
 // sit in folders by layer, each including only from the layers before it
 // (docs/design.md, section 2): the basic types here, then model/, the
 // element kinds (elements/), spec/, solvers/, assembly/, analyses/,
-// integrators/, run/ and fmu/.
+// events/, integrators/, run/ and fmu/.
 #pragma once
 
 #include "lagmb/errors.hpp"
@@ -39,6 +39,8 @@
 #include "lagmb/analyses/linearization.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 #include "lagmb/analyses/stiffness.hpp"
+
+#include "lagmb/events/event_runner.hpp"
 
 #include "lagmb/integrators/methods.hpp"
 

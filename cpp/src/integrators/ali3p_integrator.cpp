@@ -21,7 +21,7 @@
 #include <sstream>
 
 #include "formulations/ali3p.hpp"
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "integrators/integrators.hpp"
 
 namespace lagmb {

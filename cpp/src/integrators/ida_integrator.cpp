@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "formulations/dae.hpp"
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "integrators/integrators.hpp"
 #include "lagmb/solvers/sundials.hpp"
 #include "lagmb/time_function.hpp"

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "events/integrator_failure.hpp"
 #include "formulations/dae.hpp"
 #include "lagmb/integrators/methods.hpp"
 #include "lagmb/analyses/consistent_state.hpp"
@@ -66,19 +67,6 @@ inline double minimum_step(const IntegrationPlan& plan) {
   const double T = std::max({std::abs(plan.t0), std::abs(plan.t_end), 1.0});
   return 100.0 * std::numeric_limits<double>::epsilon() * T;
 }
-
-/// The integrator gave up at time t; what() carries its diagnosis.
-struct IntegratorFailure : std::runtime_error {
-  IntegratorFailure(const std::string& what, double t_reached)
-      : std::runtime_error(what), t(t_reached) {}
-  double t;
-  VecX q;  // positions at t (the last accepted step), for the diagnosis
-  bool diagnose = true;  // false: the message is complete (no Jacobian diagnosis)
-  /// The integrator itself gave up (its error test or step count), not a
-  /// user function or an event: another method may still get through
-  /// (formulation "auto" then runs on with GGL: Run::step_to).
-  bool integrator_gave_up = false;
-};
 
 /// One integrator as the shared stepping loop sees it.
 class Stepper {

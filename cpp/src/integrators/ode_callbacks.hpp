@@ -9,7 +9,7 @@
 #include <exception>
 #include <string>
 
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "formulations/projection.hpp"
 #include "integrators/integrators.hpp"
 #include "solvers/nvector_ops.hpp"

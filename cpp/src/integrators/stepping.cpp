@@ -4,7 +4,7 @@
 #include <limits>
 #include <sstream>
 
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "integrators/integrators.hpp"
 #include "lagmb/errors.hpp"
 #include "lagmb/interrupt.hpp"

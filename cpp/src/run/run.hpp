@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "integrators/integrators.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 #include "run/method_choice.hpp"

@@ -5,7 +5,7 @@
 #include <memory>
 #include <sstream>
 
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "integrators/integrators.hpp"
 #include "run/run.hpp"
 #include "lagmb/analyses/diagnosis.hpp"

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "integrators/events.hpp"
+#include "lagmb/events/event_runner.hpp"
 #include "integrators/integrators.hpp"
 #include "lagmb/analyses/redundancy.hpp"
 

@@ -158,7 +158,7 @@ struct has_rates<Kind, std::void_t<decltype(std::declval<const Kind&>().rates(
 /// redundant row is: Data::close_rows) unless the run's active set has
 /// closed them; while closed, g_r = 0 and the multiplier is the force:
 /// f_r = -lam_r >= 0 pushes along +dg_r/dq. The event runner
-/// (cpp/src/integrators/events.cpp) opens and closes them.
+/// (cpp/src/events/) opens and closes them.
 struct UnilateralRow {
   bool exists = true;         // false: a limit the element does not have (the row stays open)
   double restitution = 0.0;   // Newton's e at an impact

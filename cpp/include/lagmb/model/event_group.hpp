@@ -27,7 +27,7 @@
 //                                              passed through a g_r < 0 and out
 //                                              again: the runner then looks
 //                                              inside the step
-// The runner (cpp/src/integrators/events.cpp) applies the actions; the steppers only see
+// The runner (cpp/src/events/) applies the actions; the steppers only see
 // "a root was found" and restart from the state the runner hands back. A
 // model without event elements has no group: no root functions are given to
 // SUNDIALS and nothing is evaluated. (Stops are not event kinds: their

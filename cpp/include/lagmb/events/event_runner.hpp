@@ -2,12 +2,19 @@
 // integrators — those of its event elements (contact switches) and those of
 // its unilateral rows (stops: the gap of an open row, the force of a closed
 // one) — and applies what happens at their crossings: restarts, impacts,
-// and the active set's captures and releases (docs/design.md 5.1). The
+// and the active set's captures and releases (docs/methods.md, "The active set, step by step"). The
 // steppers never name a kind.
+//
+// Its sources, cpp/src/events/, one job each: event_runner.cpp (the event
+// functions' layout, handle(), the Zeno guard), detection.cpp (values,
+// missed, grazed), impacts.cpp (the impulse, the LCP of the contacts at
+// rest), active_set.cpp (settle, the stops' actions), sticks.cpp (the
+// contacts' stick states), restart.cpp (the consistent restart).
 #pragma once
 
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "lagmb/analyses/consistent_state.hpp"
@@ -69,7 +76,7 @@ class EventRunner {
   /// grazed(): where a closed row's force changes fast for its margin from
   /// 0 (a load's time function moving it while the joints rest), the step
   /// that would let a parabola through its ends and middle miss a release.
-  double step_bound() const { return step_bound_; }
+  double step_bound() const { return window_.step_bound; }
   /// Applies the actions of the flagged crossings at (t, q, v); v gets the
   /// velocity jump of impacts, the run's Data its new active set. Returns
   /// true if the integrator must restart.
@@ -84,6 +91,7 @@ class EventRunner {
   long events = 0, impacts = 0, captures = 0, releases = 0, root_evals = 0;
 
  private:
+  // --- the event functions' layout (fixed at construction) ---------------
   struct Root {
     int group, element, index;
   };
@@ -92,10 +100,6 @@ class EventRunner {
   struct Sweep {
     int group, element, root0, count;
   };
-  /// grazed()'s part for the stops (rows: indices into contacts_) and for
-  /// the event elements passed through (roots: their event functions).
-  double grazed_stops(double t0, double t1, const Interpolant& at, std::vector<int>& rows);
-  double passed_through(double t0, double t1, const Interpolant& at, std::vector<int>& roots);
   /// A unilateral row and what its element says it does.
   struct Contact {
     int row;
@@ -107,6 +111,83 @@ class EventRunner {
   struct Stick {
     int group, element, row0, root0, roots;
   };
+
+  // --- what the runner remembers between calls ----------------------------
+  /// What the detection keeps of the last step so that the next one, which
+  /// starts at its end, need not evaluate its start again. Valid while the
+  /// motion goes on unbroken from that end: every action, restart and jump
+  /// of the equations forgets it (forget(): the times NaN, which no step's
+  /// start equals, and no step bound).
+  struct StepWindow {
+    /// passed_through(): the last step's end and its positions.
+    double sweep_t = NAN;
+    VecX sweep_q;
+    /// grazed_stops(): the unilateral rows' gaps and rates at the last
+    /// step's end (gaps_t), which start the next step; the step's start's
+    /// (buffers kept from step to step).
+    double gaps_t = NAN;
+    VecX end_gaps, end_rates, start_gaps, start_rates;
+    /// grazed_stops(): the closed rows' forces at the last step's start and
+    /// end (force_t[0], force_t[1]; force[0], force[1]), and buffers: this
+    /// step's end, its middle, a sample (force[2..4]).
+    double force_t[2] = {NAN, NAN};
+    VecX force[5];
+    /// values(): the time of its last solve of the closed rows' forces, and
+    /// those forces (a step's end's: grazed_stops() reads them).
+    double values_t = NAN;
+    VecX values_force;
+    /// grazed_stops(): see step_bound().
+    double step_bound = INFINITY;
+    void forget() { gaps_t = sweep_t = force_t[0] = force_t[1] = values_t = NAN, step_bound = INFINITY; }
+  };
+  /// An event function whose crossing the last restart acted on: it reads
+  /// as on `side` (where the crossing went) while it is on the other within
+  /// `within` of 0, until a step's end finds it on `side`.
+  struct Pin {
+    int root, side;
+    double within;
+  };
+  /// What the last events acted on leave for the restart and the steps
+  /// after it (the active set's memory of them).
+  struct LastEvents {
+    /// The crossings the last handle() or settle() acted on (-1, +1: which
+    /// way); consistent() pins them.
+    std::vector<int> handled;
+    /// Rows whose crossing the last handle() acted on: restart_state() puts
+    /// them on their limits (and clears them).
+    std::vector<int> on_limit;
+    /// Rows the last handle() released: restart_state() starts them at rest.
+    std::vector<int> released;
+    /// The crossings handle() gets were found by missed(), after the step
+    /// passed them (set by missed(), read and cleared by handle_stops()).
+    bool late = false;
+    /// The rows that rebounded (e > 0) at the last impact, their speeds
+    /// g' > 0 after it, and its time (NaN: none yet); cleared where an
+    /// active set changes without an impact.
+    std::vector<int> rebounded;
+    std::vector<double> rebound_speed;
+    double rebound_t = NAN;
+    /// The last restart's time (consistent(); NaN: none yet) and the rows
+    /// it left open on their limits (released or rebounding), until a
+    /// step's end finds them off (grazed_stops()).
+    double restart_t = NAN;
+    std::vector<int> left;
+    /// consistent()'s pins, until a step's end finds them on their side (grazed()).
+    std::vector<Pin> pins;
+  };
+  /// The Zeno guard's count: events at (almost) one instant (count_event).
+  struct Burst {
+    double t_last = -INFINITY;  // the last event's time
+    int count = 0;              // events in a row within 1e-9 (1 + |t|) of the one before
+  };
+
+  // --- detection.cpp ---------------------------------------------------------
+  /// grazed()'s part for the stops (rows: indices into contacts_) and for
+  /// the event elements passed through (roots: their event functions).
+  double grazed_stops(double t0, double t1, const Interpolant& at, std::vector<int>& rows);
+  double passed_through(double t0, double t1, const Interpolant& at, std::vector<int>& roots);
+
+  // --- restart.cpp -----------------------------------------------------------
   /// At an event or a jump of the equations: the state the run restarts
   /// from is the motion's, on its constraints; one off them by more than
   /// 1e-2 (1 + |q|) is an IntegratorFailure naming the row (a method that
@@ -116,8 +197,16 @@ class EventRunner {
   /// at 1e5 rad/s through quaternions far from unit; the restart's
   /// projection would hide it and the run go on from a motion it lost).
   void check_on_constraints(double t, const VecX& q);
+  /// rows_.Phi and rows_.phi_t (= Phi_q v) of the unilateral rows at (t, q, v).
+  void gaps(double t, const VecX& q, const VecX& v);
+  /// consistent()'s projection, without the crossings it causes.
+  ConsistentState restart_state(double t, const VecX& q, const VecX& v);
+
+  // --- active_set.cpp --------------------------------------------------------
   /// The stops' and event elements' part of handle().
   bool handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
+
+  // --- sticks.cpp ------------------------------------------------------------
   /// The contacts' stick states at (t, q, v) after the other events acted
   /// (fired: this call's crossings): a stuck contact whose friction margin
   /// is negative, or that nothing presses, is released (its rows opened,
@@ -127,16 +216,8 @@ class EventRunner {
   /// is within its limit (else disarmed); a disarmed one crossing up to 2 v_s
   /// is armed. Returns true if a row opened or closed.
   bool handle_sticks(double t, const VecX& q, const VecX& v, const std::vector<int>& fired);
-  bool is_closed(int row) const;
-  /// Whether the last restart left `row` open on its limit (released or
-  /// rebounding) and no step's end has found it off the limit since.
-  bool left(int row) const;
-  /// Whether `row` rebounded (e > 0) at the last impact.
-  bool rebounding(int row) const;
-  /// rows_.Phi and rows_.phi_t (= Phi_q v) of the unilateral rows at (t, q, v).
-  void gaps(double t, const VecX& q, const VecX& v);
-  /// Counts an event at t; IntegratorFailure after 1000 at one instant (Zeno).
-  void count_event(double t, const std::string& element, const char* kind);
+
+  // --- impacts.cpp -----------------------------------------------------------
   /// Rows of the contacts `which` (indices into contacts_) of Phi_q at q, and
   /// their curvature terms (gamma_r at q, v): g_r'' = C_r qdd - gamma_r.
   void contact_rows(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
@@ -161,51 +242,35 @@ class EventRunner {
   /// its gap's rate or acceleration (`measure`), beyond `tolerance`.
   [[noreturn]] void driven_through(int contact, double t, double approach, double tolerance, const char* measure);
 
+  // --- event_runner.cpp ------------------------------------------------------
+  bool is_closed(int row) const;
+  /// Whether the last restart left `row` open on its limit (released or
+  /// rebounding) and no step's end has found it off the limit since.
+  bool left(int row) const;
+  /// Whether `row` rebounded (e > 0) at the last impact.
+  bool rebounding(int row) const;
+  /// Counts an event at t; IntegratorFailure after 1000 at one instant (Zeno).
+  void count_event(double t, const std::string& element, const char* kind);
+
   const Model& model_;
   Data d_;      // of the run: its left-out rows
   Data rows_;   // every row, unilateral ones closed: the gaps and their gradients
   AugmentedSystem kkt_;
-  /// consistent()'s projection, without the crossings it causes.
-  ConsistentState restart_state(double t, const VecX& q, const VecX& v);
-  std::vector<Root> roots_;      // of the event elements
-  std::vector<int> handled_;     // the crossings the last handle() acted on (-1, +1: which way)
-  /// An event function whose crossing the last restart acted on: it reads
-  /// as on `side` (where the crossing went) while it is on the other within
-  /// `within` of 0, until a step's end finds it on `side`.
-  struct Pin {
-    int root, side;
-    double within;
-  };
-  std::vector<Pin> pins_;
-  std::vector<Sweep> sweeps_;    // of those that may be passed through
-  double sweep_t_ = NAN;         // passed_through(): the last step's end and its positions
-  VecX sweep_q_;
+  double position_tol_;
+  std::vector<Root> roots_;        // of the event elements
+  std::vector<Sweep> sweeps_;      // of those that may be passed through
   std::vector<Contact> contacts_;  // the unilateral rows, ascending
   std::vector<int> unilateral_groups_;
-  std::vector<Stick> sticks_;     // the contacts that can stick; their event functions follow the stops'
-  size_t sticks_base_ = 0;        // the first of those
+  std::vector<Stick> sticks_;      // the contacts that can stick; their event functions follow the stops'
+  size_t sticks_base_ = 0;         // the first of those
   std::vector<int> dir_;
+  // scratch of the last values() or acceleration solve: settle() and
+  // missed() read lam_ (its tolerance) right after their values()
   std::vector<double> g_;
   VecX qdd_, lam_;
-  double step_end_t_ = NAN;        // grazed(): the last step's end, whose gaps and rates
-  VecX step_end_g_, step_end_r_;   // start the next step (NaN: an event acted since);
-  VecX step_start_g_, step_start_r_;  // the step's start's (buffers)
-  double force_t_[2] = {NAN, NAN};  // grazed(): the closed rows' forces at the last step's start and end
-  VecX force_f_[5];                 // (and buffers: this step's end, its middle, a sample)
-  double step_bound_ = INFINITY;    // grazed(): see step_bound()
-  double values_t_ = NAN;           // values(): the time of its last solve of the closed rows' forces,
-  VecX values_f_;                   // and those forces
-  double restart_t_ = NAN;  // the last restart's time (consistent()) and the rows it left open on their
-  std::vector<int> left_;   // limits (until a step's end finds them off)
-  std::vector<int> rebounded_;  // rows that rebounded (e > 0) at the last handle()
-  std::vector<double> rebound_speed_;  // and their speeds g' (> 0) after it, at
-  double rebound_t_ = NAN;             // this time
-  double position_tol_;
-  bool late_ = false;           // the crossings handle() gets were found by missed(), after the step passed them
-  std::vector<int> released_;  // rows the last handle() released: consistent() starts them at rest
-  std::vector<int> on_limit_;  // rows whose crossing the last handle() acted on: consistent() puts them on it
-  double t_last_ = -INFINITY;
-  int burst_ = 0;
+  StepWindow window_;
+  LastEvents last_;
+  Burst burst_;
 };
 
 }  // namespace lagmb
