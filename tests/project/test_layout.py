@@ -288,6 +288,26 @@ def test_design_lists_the_layers_the_tests_enforce():
     assert python == PYTHON_LAYERS
 
 
+def test_design_names_every_public_header_of_each_layer():
+    """Each row of the C++ layer table names the public headers of its layer
+    (lagmb/<layer>/*.hpp; the base's directly in lagmb/), but the elements,
+    which the row describes as one header per kind: a header added to a
+    layer must be added to its row."""
+    text = (ROOT / "docs" / "design.md").read_text()
+    section = text.split("### 2.0 Layers", 1)[1].split("\n### ", 1)[0]
+    rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `(\w+)` \| ([^|]*) \|", section, re.M)}
+    include = CPP / "include" / "lagmb"
+    missing = []
+    for layer in layers():
+        if layer == "elements":
+            continue
+        folder = include if layer == "base" else include / layer
+        for header in sorted(folder.glob("*.hpp")):
+            if header.stem != "lagmb" and not re.search(rf"\b{header.stem}\b", rows[layer]):
+                missing.append(f"{layer}: {header.name}")
+    assert missing == []
+
+
 def test_kinds_are_known_by_their_registry_entry_not_their_name():
     """What an element is (a driver; a joint with an angle or a slide) is
     read from its kind's entry (lagmb.registry: role, coordinates), so a new
