@@ -24,6 +24,9 @@ class TimeFunction {
   /// The function as text that time_function_from_text reads back exactly
   /// ("harmonic 0.5 6.28 0 0"); "" for one that has none (a Python callable).
   virtual std::string text() const { return ""; }
+  /// Whether f changes with t (false: a constant, or an input, which holds
+  /// its value between the jumps a Simulator makes).
+  virtual bool varies() const { return true; }
 };
 using TimeFunctionPtr = std::shared_ptr<TimeFunction>;
 
@@ -64,6 +67,7 @@ class Input final : public TimeFunction {
   explicit Input(double initial, std::string name = "") : initial_(initial), name_(std::move(name)) {}
   TimeValue eval(double) const override { return {initial_, 0.0, 0.0}; }
   std::string text() const override;
+  bool varies() const override { return false; }
   double initial() const { return initial_; }
   const std::string& name() const { return name_; }
 

@@ -30,6 +30,7 @@ struct Constant final : TimeFunction {
   explicit Constant(double c_) : c(c_) {}
   TimeValue eval(double) const override { return {c, 0.0, 0.0}; }
   std::string text() const override { return "constant" + numbers({c}); }
+  bool varies() const override { return false; }
 };
 
 /// start + rate t (its own kind, so that its text reads back as what was given)

@@ -11,10 +11,10 @@
 
 namespace lagmb {
 
-bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start) {
+bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start, const double* lam) {
   if (!at_start) check_on_constraints(t, q);
   window_.forget();  // (a new start, or the equations jump here)
-  values(t, q.data(), v.data(), g_.data());
+  values(t, q.data(), v.data(), g_.data(), lam);
   std::vector<int> fired(g_.size(), 0);
   bool any = false, beyond = false;
   const double tol = 1e-9 * (1.0 + q.lpNorm<Eigen::Infinity>());

@@ -11,7 +11,7 @@
 
 namespace lagmb {
 
-void EventRunner::values(double t, const double* q, const double* v, double* g) {
+void EventRunner::values(double t, const double* q, const double* v, double* g, const double* lam) {
   ++root_evals;
   int offset = 0;
   for (const auto& group : model_.event_groups()) {
@@ -25,8 +25,16 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
     if ((g[p.root] > 0.0) != (p.side > 0) && std::abs(g[p.root]) <= p.within) g[p.root] = p.side * 1e-300;
   if (contacts_.empty() && sticks_.empty()) return;
   if (!d_.closed_rows().empty()) {
-    solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
-    window_.values_t = t, window_.values_force = -lam_;  // (a step's end's: grazed() reads them)
+    if (lam)
+      lam_ = Eigen::Map<const VecX>(lam, model_.n_constraints());
+    else
+      solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
+    // (a step's start's and end's: grazed() reads them)
+    if (t != window_.values_t) {
+      window_.values_t_before = window_.values_t;
+      window_.values_force_before.swap(window_.values_force);
+    }
+    window_.values_t = t, window_.values_force = -lam_;
   }
   for (size_t j = 0; j < sticks_.size(); ++j) {
     const double x = model_.constraint_groups()[sticks_[j].group]->stick_root(sticks_[j].element, q, v, d_.at(t),
@@ -55,8 +63,8 @@ void EventRunner::values(double t, const double* q, const double* v, double* g) 
   }
 }
 
-bool EventRunner::missed(double t, const double* q, const double* v, std::vector<int>& fired) {
-  values(t, q, v, g_.data());
+bool EventRunner::missed(double t, const double* q, const double* v, std::vector<int>& fired, const double* lam) {
+  values(t, q, v, g_.data(), lam);
   fired.assign(g_.size(), 0);
   bool any = false;
   const size_t base = roots_.size();
@@ -82,7 +90,8 @@ bool EventRunner::missed(double t, const double* q, const double* v, std::vector
   return any;
 }
 
-double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired) {
+double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired,
+                           const Multipliers& lam) {
   window_.step_bound = INFINITY;
   if (!(t1 > t0)) return NAN;
   if (!last_.pins.empty()) {  // (a pinned function that a step's end finds on its new side is free again)
@@ -91,13 +100,13 @@ double EventRunner::grazed(double t0, double t1, const Interpolant& at, std::vec
     std::vector<double> g(g_.size());
     const std::vector<Pin> pins = last_.pins;
     last_.pins.clear();
-    values(t1, q, v, g.data());
+    values(t1, q, v, g.data(), lam ? lam(t1, q, v) : nullptr);
     for (const Pin& p : pins)
       if ((g[size_t(p.root)] > 0.0) != (p.side > 0)) last_.pins.push_back(p);
   }
   std::vector<int> roots, rows;
   const double passed = passed_through(t0, t1, at, roots);
-  const double grazing = contacts_.empty() ? NAN : grazed_stops(t0, t1, at, rows);
+  const double grazing = contacts_.empty() ? NAN : grazed_stops(t0, t1, at, lam, rows);
   const double t_tol = 1e-14 * (std::abs(t1) + (t1 - t0));
   if (std::isnan(passed) && std::isnan(grazing)) return NAN;
   fired.assign(g_.size(), 0);
@@ -157,7 +166,8 @@ double EventRunner::passed_through(double t0, double t1, const Interpolant& at, 
   return earliest;
 }
 
-double EventRunner::grazed_stops(double t0, double t1, const Interpolant& at, std::vector<int>& rows) {
+double EventRunner::grazed_stops(double t0, double t1, const Interpolant& at, const Multipliers& lam,
+                                 std::vector<int>& rows) {
   const double *q = nullptr, *v = nullptr;
   const int n = model_.n_coordinates();
   auto gap = [&](double t, int row, double* rate) {
@@ -191,6 +201,10 @@ double EventRunner::grazed_stops(double t0, double t1, const Interpolant& at, st
     if (!contacts_[c].info.exists || is_closed(row)) continue;
     // (a row starts on its limit after a restart: its gap 0 to rounding)
     if (!(g0[row] > -1e-10 && g1[row] > 0.0)) continue;
+    // (one resting on its limit at both ends, held there: a stop duplicating
+    // a closed one through a coupling; a grazing crossing must rise beyond
+    // 1e-10 first, below)
+    if (std::max(g0[row], g1[row]) <= 1e-10 && h * std::max(std::abs(r0[row]), std::abs(r1[row])) <= 1e-10) continue;
     // the cubic Hermite through (g, g') at the ends: a turn far from the limit is passed over
     double cubic_min = INFINITY;
     for (int i = 1; i < 4 * kSamples; ++i) {
@@ -239,21 +253,31 @@ double EventRunner::grazed_stops(double t0, double t1, const Interpolant& at, st
   // a closed row's force dipping below 0 and back within the step (a
   // release shorter than the steps at rest: with the joints at rest the
   // state does not bound the step, a load's time function alone moves the
-  // force): the force at the step's ends and middle (one acceleration solve;
-  // the end's is the root functions' own), candidates where the parabola
-  // through them or the cubic through them and the last step's start, less
-  // their difference (the parabola's error), dips below half the least of
-  // them, then the force on the interpolant (16 samples) and the first
-  // crossing by bisection; the next step is bounded so that the parabola's
-  // error estimate stays within a quarter of the margin (step_bound())
-  if (!d_.closed_rows().empty()) {
+  // force; where nothing follows time, the force follows the state, which
+  // the step resolves): the force at the step's ends and middle (one
+  // acceleration solve; the ends' are the root functions' own), candidates
+  // where the parabola through them or the cubic through them and the last
+  // step's start, less their difference (the parabola's error), dips below
+  // half the least of them, then the force on the interpolant (16 samples)
+  // and the first crossing by bisection; the next step is bounded so that
+  // the parabola's error estimate stays within a quarter of the margin
+  // (step_bound())
+  if (!d_.closed_rows().empty() && forces_follow_time_) {
     auto force = [&](double t, VecX& f) {
       at(t, q, v);
-      solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
+      const double* solved = lam ? lam(t, q, v) : nullptr;
+      if (solved)
+        lam_ = Eigen::Map<const VecX>(solved, model_.n_constraints());
+      else
+        solve_accelerations(model_, d_, kkt_, q, v, t, qdd_.data(), lam_.data());
       f = -lam_;
     };
     VecX &f0 = window_.force[1], &f1 = window_.force[2], &fm = window_.force[3];
-    if (!(window_.force_t[1] == t0)) force(t0, f0), window_.force_t[0] = NAN;
+    if (!(window_.force_t[1] == t0)) {
+      window_.force_t[0] = NAN;
+      if (window_.values_t_before == t0) f0 = window_.values_force_before;
+      else force(t0, f0);
+    }
     if (window_.values_t == t1) f1 = window_.values_force;
     else force(t1, f1);
     const double tm = t0 + 0.5 * h, ta = window_.force_t[0];

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "events/integrator_failure.hpp"
+#include "lagmb/time_function.hpp"
 
 namespace lagmb {
 
@@ -55,6 +56,9 @@ EventRunner::EventRunner(const Model& model, const Data& run, double position_to
         sticks_.push_back(s);
       }
   dir_.insert(dir_.end(), sticks_.size(), 0);
+  forces_follow_time_ = !model.time_dependent_groups().empty() ||
+                        std::any_of(model.time_functions().begin(), model.time_functions().end(),
+                                    [](const TimeFunctionPtr& f) { return f->varies(); });
   g_.resize(dir_.size());
   qdd_.resize(model.n_coordinates());
   lam_.resize(model.n_constraints());

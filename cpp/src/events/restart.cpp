@@ -49,7 +49,7 @@ ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) 
   std::vector<double> before(g_.size()), after(g_.size());
   last_.pins.clear();  // (the last restart's: these values are the functions' own)
   values(t, q.data(), v.data(), before.data());
-  values(t, state.q.data(), state.v.data(), after.data());
+  values(t, state.q.data(), state.v.data(), after.data(), state.lam.data());  // (solved on the rows now closed)
   for (size_t i = 0; i < n; ++i) {
     if (i < last_.handled.size() && last_.handled[i]) {
       // crossed (last_.handled[i]: which way): pinned to its new side until a

@@ -27,6 +27,8 @@ ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, d
   dq_.resize(n_);
   zero_n_ = VecX::Zero(n_);
   factored_q_.resize(n_);
+  solved_.q.resize(n_);
+  solved_.v.resize(n_);
   rhs_.resize(n_ + nc_);
   sol_.resize(n_ + nc_);
   Kb_.resize(n_);
@@ -37,10 +39,35 @@ ProjectionFormulation::ProjectionFormulation(const Model& model, double alpha, d
   w_.resize(nc_);
 }
 
+bool ProjectionFormulation::SolvedAt::same(double t_, const double* q_, const double* v_, const Data& d) const {
+  const long n = q.size();
+  return valid && t_ == t && std::equal(q_, q_ + n, q.data()) && std::equal(v_, v_ + n, v.data()) &&
+         d.run->inputs == inputs && d.run->state == state && d.dropped_rows() == rows;
+}
+
+void ProjectionFormulation::SolvedAt::set(double t_, const double* q_, const double* v_, const Data& d) {
+  const long n = q.size();
+  t = t_;
+  std::copy(q_, q_ + n, q.data());
+  std::copy(v_, v_ + n, v.data());
+  inputs = d.run->inputs;
+  state = d.run->state;
+  rows = d.dropped_rows();
+  valid = true;
+}
+
+bool ProjectionFormulation::accelerations(double t, const double* q, const double* v) {
+  if (solved_.same(t, q, v, d_)) return true;
+  solved_.valid = false;
+  if (!solve_accelerations_at(t, q, v)) return false;
+  solved_.set(t, q, v, d_);
+  return true;
+}
+
 /// qdd and lam at (t, q, v) from the augmented system; false if its matrix
 /// is singular. With Baumgarte terms:
 ///   Phi_q qdd = gamma - 2 alpha (Phi_q v + Phi_t) - beta^2 Phi.
-bool ProjectionFormulation::accelerations(double t, const double* q, const double* v) {
+bool ProjectionFormulation::solve_accelerations_at(double t, const double* q, const double* v) {
   if (!factorize_at(t, q)) return false;
   assemble_forces(model_, d_, q, v, t);
   assemble_gamma(model_, d_, q, v, t);

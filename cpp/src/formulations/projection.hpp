@@ -28,6 +28,18 @@ class ProjectionFormulation {
   /// f = (v, qdd) at (t, y); false if the augmented matrix is singular or
   /// qdd is not finite (recoverable: the integrator cuts the step).
   bool right_hand_side(double t, const double* y, double* f);
+  /// qdd and lam at (t, q, v) from the augmented system (qdd(), lam());
+  /// false as right_hand_side. The last solution is remembered with where it
+  /// was solved: a call at the same (t, q, v), the run's values (inputs,
+  /// element state) and rows unchanged, is answered without a solve (a
+  /// step's end, where the root functions, the output and the next step's
+  /// first stage all ask).
+  bool accelerations(double t, const double* q, const double* v);
+  const VecX& qdd() const { return qdd_; }
+  const VecX& lam() const { return lam_; }
+  /// Whether Baumgarte terms stabilize the accelerations (then qdd and lam
+  /// are not the motion's own: Phi_q qdd = gamma holds only as alpha, beta -> 0).
+  bool baumgarte() const { return alpha_ != 0.0 || beta_ != 0.0; }
   /// Takes (t, y) and its multipliers as the point the Newton matrix is
   /// linearized at; false as right_hand_side.
   bool linearize(double t, const double* y);
@@ -45,7 +57,17 @@ class ProjectionFormulation {
   void count(Stats& stats) const;
 
  private:
-  bool accelerations(double t, const double* q, const double* v);
+  /// accelerations() without the memory.
+  bool solve_accelerations_at(double t, const double* q, const double* v);
+  /// Where accelerations() last solved (qdd_, lam_ hold its solution).
+  struct SolvedAt {
+    bool valid = false;
+    double t = 0.0;
+    VecX q, v, inputs, state;
+    std::vector<int> rows;  // the rows left out
+    bool same(double t, const double* q, const double* v, const Data& d) const;
+    void set(double t, const double* q, const double* v, const Data& d);
+  };
   /// Phi_q and M at (t, q) in d_, factorized in kkt_; nothing is redone
   /// where the last factorization was at this (t, q) with the same rows left
   /// out (the first stage of a step, at the state the projection ended at).
@@ -68,6 +90,7 @@ class ProjectionFormulation {
   std::vector<int> diag_;
   KluLU lu_;
   long factorizations_ = 0, projections_ = 0;
+  SolvedAt solved_;
 };
 
 }  // namespace lagmb

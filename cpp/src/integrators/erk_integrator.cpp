@@ -271,8 +271,13 @@ struct ErkStepper final : ErkParts, OdeStepper {
   }
   void root_info(int* fired) override { check(ERKStepGetRootInfo(s.mem, fired), "ERKStepGetRootInfo", s.ctx); }
   void interpolate(double t, const double*& q, const double*& v) override {
+    // (the step's ends are states of the motion, on the constraints)
     if (t == end_.t || end_.t == start_.t) {
       q = end_.y.data(), v = q + n;
+      return;
+    }
+    if (t == start_.t) {
+      q = start_.y.data(), v = q + n;
       return;
     }
     accelerations(start_);

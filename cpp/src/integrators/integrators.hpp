@@ -98,6 +98,14 @@ class Stepper {
   virtual bool root_found(std::vector<int>& fired) { (void)fired; return false; }
   /// Velocities of the last accepted step (or of the root).
   virtual const double* velocities() const { return nullptr; }
+  /// qdd and lam at (t, q, v) on the run's rows, as the stepper's own
+  /// formulation solves them (remembered there: at a step's end the root
+  /// functions, the output and the next step's first stage share one
+  /// solve); false where it has none to give (the caller solves them).
+  virtual bool motion_at(double t, const double* q, const double* v, const double*& qdd, const double*& lam) {
+    (void)t, (void)q, (void)v, (void)qdd, (void)lam;
+    return false;
+  }
   /// Restarts at order 1 from a new consistent state at time t (after a
   /// velocity jump or a change of the equations).
   virtual void reset(double t, const ConsistentState& s) { (void)s; restart(t); }
@@ -166,6 +174,8 @@ class StepLoop {
   /// After a step from t0 to t1 without a root: the time a stop's limit was
   /// crossed and left inside it (EventRunner::grazed), or infinity.
   double grazed(double t0, double t1);
+  /// The multipliers at (t, q, v) the stepper's formulation has (null: none).
+  const double* multipliers(double t, const double* q, const double* v);
   /// The crossing grazed() found at t, h after the step's start (flagged in
   /// fired_): the impact there and the stepper restarted from it (the rest
   /// of the step dropped). False if nothing happened there (the step stands).

@@ -50,11 +50,15 @@ inline int ode_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
   });
 }
 
-/// The model's event functions at (t, q, v).
+/// The model's event functions at (t, q, v); the closed stops' forces from
+/// the formulation's multipliers (at a step's end, the next step's first
+/// stage then finds them solved).
 inline int ode_roots(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
   return guarded(data, [&](OdeUserData& p) {
     const double* yy = N_VGetArrayPointer(y);
-    p.events->values(t, yy, yy + p.ode.n(), g);
+    const double *q = yy, *v = yy + p.ode.n();
+    const bool solved = p.events->reads_multipliers() && !p.ode.baumgarte() && p.ode.accelerations(t, q, v);
+    p.events->values(t, q, v, g, solved ? p.ode.lam().data() : nullptr);
     return 0;
   });
 }
@@ -125,6 +129,11 @@ class OdeStepper : public Stepper {
   void reset(double t, const ConsistentState& state) override {
     load_state(y_, state, n);
     restart(t);
+  }
+  bool motion_at(double t, const double* q, const double* v, const double*& qdd, const double*& lam) override {
+    if (p.ode.baumgarte() || !p.ode.accelerations(t, q, v)) return false;
+    qdd = p.ode.qdd().data(), lam = p.ode.lam().data();
+    return true;
   }
 
  protected:

@@ -43,7 +43,8 @@ bool StepLoop::act(double t, bool at_stop) {
     // stepped over): the elements act, and the run restarts from the
     // state they leave, at order 1
     const bool root = stepper_.root_found(fired_);
-    if (root || plan_.events->missed(t, stepper_.positions(), stepper_.velocities(), fired_)) {
+    const double *q = stepper_.positions(), *v = stepper_.velocities();
+    if (root || plan_.events->missed(t, q, v, fired_, multipliers(t, q, v))) {
       if (act_on_crossings(t, stepper_.positions(), stepper_.velocities())) {
         if (at_breakpoint(t, at_stop)) ++next_break_;  // the event fell on a breakpoint: pass it
         stepper_.set_stop(stop_time());
@@ -62,7 +63,8 @@ bool StepLoop::act(double t, bool at_stop) {
       q_event_ = Eigen::Map<const VecX>(stepper_.positions(), n);
       v_event_ = Eigen::Map<const VecX>(stepper_.velocities(), n);
       try {
-        settled = plan_.events->settle(t, q_event_, v_event_);
+        settled = plan_.events->settle(t, q_event_, v_event_, false,
+                                       multipliers(t, q_event_.data(), v_event_.data()));
         if (settled) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
       } catch (const SimulationError& e) {
         throw IntegratorFailure(std::string("at a breakpoint: ") + e.what(), t);
@@ -80,8 +82,15 @@ double StepLoop::grazed(double t0, double t1) {
   // graze one limit before it reaches another)
   if (!plan_.events || !(t1 > t0)) return INFINITY;
   const double t = plan_.events->grazed(
-      t0, t1, [&](double at, const double*& q, const double*& v) { stepper_.interpolate(at, q, v); }, fired_);
+      t0, t1, [&](double at, const double*& q, const double*& v) { stepper_.interpolate(at, q, v); }, fired_,
+      [&](double at, const double* q, const double* v) { return multipliers(at, q, v); });
   return std::isnan(t) ? INFINITY : t;
+}
+
+const double* StepLoop::multipliers(double t, const double* q, const double* v) {
+  if (!plan_.events->reads_multipliers()) return nullptr;  // (none to give: it reads none)
+  const double *qdd = nullptr, *lam = nullptr;
+  return stepper_.motion_at(t, q, v, qdd, lam) ? lam : nullptr;
 }
 
 bool StepLoop::act_on_crossings(double t, const double* q, const double* v) {

@@ -42,7 +42,8 @@ std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Tra
 }
 
 void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
-                   double t, const double* q, const double* v, const Data::RunValues& values, bool solve) {
+                   double t, const double* q, const double* v, const Data::RunValues& values, bool solve,
+                   const double* qdd, const double* lam) {
   auto stop = [&](const std::string& why) {
     IntegratorFailure f(why, t);
     f.diagnose = false;  // the message is complete
@@ -56,6 +57,12 @@ void record_output(const Model& model, Data& d, AugmentedSystem& kkt, Redundancy
   tr.v.insert(tr.v.end(), v, v + n);
   tr.inputs.insert(tr.inputs.end(), values.inputs.data(), values.inputs.data() + values.inputs.size());
   tr.run_state.insert(tr.run_state.end(), values.state.data(), values.state.data() + values.state.size());
+  const int m = tr.m;
+  if (solve && qdd && lam && Eigen::Map<const VecX>(qdd, n).allFinite() && Eigen::Map<const VecX>(lam, m).allFinite()) {
+    tr.a.insert(tr.a.end(), qdd, qdd + n);
+    tr.lam.insert(tr.lam.end(), lam, lam + m);
+    return;
+  }
   if (solve)
     if (const std::string why = solve_outputs(model, d, kkt, tr, tr.size() - 1); !why.empty()) {
       tr.truncate(solved_outputs(tr));

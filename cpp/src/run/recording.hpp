@@ -19,12 +19,14 @@ namespace lagmb {
 std::string solve_outputs(const Model& model, Data& d, AugmentedSystem& kkt, Trajectory& tr, int first = 0);
 
 /// Appends the output (t, q, v) and the run's values there (its inputs and
-/// element state) to `tr`, and with `solve` its a and lam;
-/// first checks the rows left out as redundant (`watch`). Throws
-/// IntegratorFailure (diagnose = false) with why, keeping only the outputs
-/// solved before.
+/// element state) to `tr`, and with `solve` its a and lam (`qdd`, `lam`
+/// where the caller has them solved at (t, q, v) on the run's rows, else
+/// solved here); first checks the rows left out as redundant (`watch`).
+/// Throws IntegratorFailure (diagnose = false) with why, keeping only the
+/// outputs solved before.
 void record_output(const Model& model, Data& d, AugmentedSystem& kkt, RedundancyWatch& watch, Trajectory& tr,
-                   double t, const double* q, const double* v, const Data::RunValues& values, bool solve);
+                   double t, const double* q, const double* v, const Data::RunValues& values, bool solve,
+                   const double* qdd = nullptr, const double* lam = nullptr);
 
 /// Outputs of `tr` whose a and lam were solved.
 int solved_outputs(const Trajectory& tr);

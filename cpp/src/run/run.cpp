@@ -8,6 +8,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "lagmb/assembly/assembly.hpp"
 #include "lagmb/integrators/methods.hpp"
 
 namespace lagmb {
@@ -70,7 +71,10 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
 }
 
 void Run::record(double t, const double* q, const double* v, bool solve) {
-  record_output(model, data, kkt, *watch, outputs, t, q, v, *data.run, solve);
+  // (at a step's end the stepper's formulation has them solved)
+  const double *qdd = nullptr, *lam = nullptr;
+  if (!(solve && stepper_ && stepper_->motion_at(t, q, v, qdd, lam))) qdd = lam = nullptr;
+  record_output(model, data, kkt, *watch, outputs, t, q, v, *data.run, solve, qdd, lam);
   if (!sensitivities) return;
   std::vector<VecX> s, sp;
   stepper_->sensitivities(t, s, sp);
@@ -102,6 +106,26 @@ void Run::restart_stepper(double t, const ConsistentState& from) {
   stepper_->resume(t, from);
   loop_->restarted(t);
   ++restarts_;
+}
+
+bool Run::resume_in_place(double t, const VecX& q, const VecX& v, ConsistentState& now) {
+  const int n = model.n_coordinates(), m = model.n_constraints();
+  if (!stepper_ || loop_->t() != t || !std::equal(q.data(), q.data() + n, stepper_->positions()) ||
+      !std::equal(v.data(), v.data() + n, stepper_->velocities()))
+    return false;
+  if (m > 0) {
+    assemble_constraints(model, data, q.data(), t);
+    if (!(data.Phi.lpNorm<Eigen::Infinity>() <= 1e-12 * (1.0 + q.lpNorm<Eigen::Infinity>()))) return false;
+  }
+  const double *qdd = nullptr, *lam = nullptr;
+  if (!stepper_->motion_at(t, q.data(), v.data(), qdd, lam)) return false;
+  now.q = q, now.v = v;
+  now.qdd = Eigen::Map<const VecX>(qdd, n);
+  now.lam = Eigen::Map<const VecX>(lam, m);
+  now.dropped_rows = data.redundant_rows();
+  if (events && events->settle(t, now.q, now.v, false, now.lam.data())) now = events->consistent(t, now.q, now.v);
+  restart_stepper(t, now);
+  return true;
 }
 
 void Run::step_to(double target, const std::vector<double>& t_out, size_t& k, const Record& record) {

@@ -80,6 +80,16 @@ class Run {
   /// The stepper restarted at order 1 from `from` at time t (the run's
   /// values changed there: an input); keeps its solver session.
   void restart_stepper(double t, const ConsistentState& from);
+  /// A Simulator's new input values at the state the stepper reached: (t,
+  /// q, v) its last step's end, which the new values leave on the
+  /// constraints (no input moved a driver: |Phi| within 1e-12 (1 + |q|)).
+  /// Nothing is projected: the events settle with the multipliers the
+  /// stepper's formulation solves there (its next step's first stage),
+  /// and the stepper resumes (from the events' consistent state where the
+  /// active set changed). Returns that state, or false (nothing done) where
+  /// the state is not the stepper's or the formulation has no multipliers
+  /// to give: the caller restarts from a consistent state (restart_stepper).
+  bool resume_in_place(double t, const VecX& q, const VecX& v, ConsistentState& now);
   /// Steps the stepper until the time reached is at least `target`,
   /// calling record(q, v) for t_out[k], k counting on: first for the times
   /// inside the step taken last (a Simulator's steps pass the time asked

@@ -168,9 +168,13 @@ void Simulator::new_stepper() {
 }
 
 void Simulator::restart_for_inputs() {
-  // a jump in a force, or in a driver's value (positions assembled anew)
-  const ConsistentState start = consistent_start();
-  run_->restart_stepper(t_, start);
+  // a jump in a force (the state the steps reached goes on, unprojected),
+  // or in a driver's value (positions assembled anew)
+  ConsistentState start;
+  if (!run_->resume_in_place(t_, q_, v_, start)) {
+    start = consistent_start();
+    run_->restart_stepper(t_, start);
+  }
   ++run_->input_changes;
   q_ = start.q, v_ = start.v, a_ = start.qdd, lam_ = start.lam;
   solved_ = true;

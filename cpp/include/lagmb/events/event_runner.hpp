@@ -36,8 +36,17 @@ class EventRunner {
   int* directions() { return dir_.data(); }
   /// g at (q, v, t), all event functions: the event elements' in their
   /// order, then one per unilateral row (Model::unilateral_rows): an open
-  /// row's gap g_r = Phi_r, a closed row's force f_r = -lam_r (solved at q, v).
-  void values(double t, const double* q, const double* v, double* g);
+  /// row's gap g_r = Phi_r, a closed row's force f_r = -lam_r. `lam`: the
+  /// multipliers at (t, q, v) on the run's rows where the caller has them
+  /// (the stepper's formulation solved them: Stepper::motion_at); null: they
+  /// are solved here (where a row is closed).
+  void values(double t, const double* q, const double* v, double* g, const double* lam = nullptr);
+  /// Whether values() reads multipliers (a stop is closed): then a caller
+  /// that has them solved at (t, q, v) saves it a solve.
+  bool reads_multipliers() const { return !d_.closed_rows().empty(); }
+  /// The multipliers at (t, q, v) on the run's rows, where the stepper has
+  /// them (Stepper::motion_at); null: the runner solves them.
+  using Multipliers = std::function<const double*(double t, const double* q, const double* v)>;
   /// At the start: a joint beyond a limit is a ModelError; one at a limit
   /// gets its impact (moving into it) or its capture (pressing on it) now.
   /// Returns true if the state or the active set changed.
@@ -46,12 +55,14 @@ class EventRunner {
   /// time function): closed stops whose force would pull are released,
   /// joints at a limit get their impact or capture. Returns true if the
   /// state or the active set changed, or a joint is beyond a limit (then
-  /// restart from consistent(), which puts it back on the limit).
-  bool settle(double t, const VecX& q, VecX& v, bool at_start = false);
+  /// restart from consistent(), which puts it back on the limit). `lam`:
+  /// the multipliers at (t, q, v) where the caller has them (values()).
+  bool settle(double t, const VecX& q, VecX& v, bool at_start = false, const double* lam = nullptr);
   /// After a step that found no root: event functions of direction -1 that
   /// are below zero with the motion still going further (a crossing the
-  /// integrator missed) are flagged in `fired`. Returns true if any.
-  bool missed(double t, const double* q, const double* v, std::vector<int>& fired);
+  /// integrator missed) are flagged in `fired`. Returns true if any. `lam`
+  /// as values().
+  bool missed(double t, const double* q, const double* v, std::vector<int>& fired, const double* lam = nullptr);
   /// The state of the last step at a time inside it (the stepper's interpolant).
   using Interpolant = std::function<void(double t, const double*& q, const double*& v)>;
   /// After a step from t0 to t1 that found no root: an open stop whose gap
@@ -62,16 +73,22 @@ class EventRunner {
   /// cubic through the ends' gaps and rates dips near 0, the gap's minimum
   /// is found on the interpolant (bisection on g'), and if it is below 0,
   /// the first crossing before it (bisection on g). A closed row's force is
-  /// looked at the same way (a release inside the step: the force at the
-  /// step's middle too, the interpolant sampled where a parabola through it
-  /// dips near 0), and sets step_bound(). Returns that time (the earliest
-  /// over the rows, its rows flagged in `fired`), or NaN if none.
+  /// looked at the same way where a force or driver of the model follows a
+  /// function of time (a release inside the step, the joints at rest: the
+  /// force at the step's middle too, the interpolant sampled where a
+  /// parabola through it dips near 0), and sets step_bound(); where none
+  /// does, the forces are functions of the state, which the step's error
+  /// control resolves as it resolves the accelerations, and are read at
+  /// the step's ends (which the root functions read already). Returns that
+  /// time (the earliest over the rows, its rows flagged in `fired`), or NaN
+  /// if none. `lam`: the stepper's multipliers (null: the runner solves).
   /// After a step that found no root, too: an event element whose functions
   /// are all positive at both ends but whose shapes may have passed through
   /// each other within the step (EventGroupBase::may_pass: a fast ball
   /// across a small one) is looked at on the interpolant (16 samples, then
   /// the first crossing by bisection); the earlier of the two times.
-  double grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired);
+  double grazed(double t0, double t1, const Interpolant& at, std::vector<int>& fired,
+                const Multipliers& lam = nullptr);
   /// The time the next step should not pass (INFINITY: none), set by
   /// grazed(): where a closed row's force changes fast for its margin from
   /// 0 (a load's time function moving it while the joints rest), the step
@@ -132,13 +149,15 @@ class EventRunner {
     /// step's end, its middle, a sample (force[2..4]).
     double force_t[2] = {NAN, NAN};
     VecX force[5];
-    /// values(): the time of its last solve of the closed rows' forces, and
-    /// those forces (a step's end's: grazed_stops() reads them).
-    double values_t = NAN;
-    VecX values_force;
+    /// values(): the times of its last two reads of the closed rows' forces,
+    /// and those forces (a step's start's and end's: grazed_stops() reads them).
+    double values_t = NAN, values_t_before = NAN;
+    VecX values_force, values_force_before;
     /// grazed_stops(): see step_bound().
     double step_bound = INFINITY;
-    void forget() { gaps_t = sweep_t = force_t[0] = force_t[1] = values_t = NAN, step_bound = INFINITY; }
+    void forget() {
+      gaps_t = sweep_t = force_t[0] = force_t[1] = values_t = values_t_before = NAN, step_bound = INFINITY;
+    }
   };
   /// An event function whose crossing the last restart acted on: it reads
   /// as on `side` (where the crossing went) while it is on the other within
@@ -184,7 +203,7 @@ class EventRunner {
   // --- detection.cpp ---------------------------------------------------------
   /// grazed()'s part for the stops (rows: indices into contacts_) and for
   /// the event elements passed through (roots: their event functions).
-  double grazed_stops(double t0, double t1, const Interpolant& at, std::vector<int>& rows);
+  double grazed_stops(double t0, double t1, const Interpolant& at, const Multipliers& lam, std::vector<int>& rows);
   double passed_through(double t0, double t1, const Interpolant& at, std::vector<int>& roots);
 
   // --- restart.cpp -----------------------------------------------------------
@@ -263,6 +282,7 @@ class EventRunner {
   std::vector<int> unilateral_groups_;
   std::vector<Stick> sticks_;      // the contacts that can stick; their event functions follow the stops'
   size_t sticks_base_ = 0;         // the first of those
+  bool forces_follow_time_ = false;  // a force or driver follows a varying function of time (grazed_stops)
   std::vector<int> dir_;
   // scratch of the last values() or acceleration solve: settle() and
   // missed() read lam_ (its tolerance) right after their values()
