@@ -17,7 +17,10 @@ struct Stats {
   long residual_evals = 0;
   long jacobian_evals = 0;
   long lu_factorizations = 0;         // of the Newton matrix
-  long augmented_factorizations = 0;  // of the augmented matrix (projection formulation)
+  // of the augmented matrix: the projection formulation's, the run's (its
+  // start, restarts and solved outputs) and the event runner's (closed
+  // stops' forces, impacts, active sets)
+  long augmented_factorizations = 0;
   long projections = 0;               // coordinate projections (projection formulation)
   long newton_iterations = 0;
   long error_test_failures = 0;

@@ -77,6 +77,15 @@ void Data::leave_out(const Model& model) {
                       std::back_inserter(open));
   l.rows.clear();
   std::set_union(l.redundant.begin(), l.redundant.end(), open.begin(), open.end(), std::back_inserter(l.rows));
+  // (the groups of switched rows: their elements with a closed row)
+  l.evaluated.assign(model.constraint_groups().size(), {});
+  for (int r : model.switched_rows()) l.evaluated[size_t(model.group_of_row(r))].switched = true;
+  for (int r : l.closed) {
+    auto& e = l.evaluated[size_t(model.group_of_row(r))].elements;
+    const int k = model.element_in_group_of_row(r);
+    if (e.empty() || e.back() != k) e.push_back(k);
+  }
+  for (auto& e : l.evaluated) std::sort(e.elements.begin(), e.elements.end());
   l.slots.clear();
   if (l.rows.empty()) return;
   const SpMat& J = model.jacobian_pattern();
@@ -95,35 +104,39 @@ void drop_rows(const Data& d, SpMat& A) {
   for (int s : d.dropped_slots()) A.valuePtr()[s] = 0.0;
 }
 
-/// A unilateral group whose rows are all open in d (every stop off its
-/// limits): its rows read 0 = 0, so it is not evaluated (an open stop costs
-/// its gap functions only, which the event runner evaluates).
-bool all_open(const Model& model, const Data& d, int group) {
-  const auto& g = *model.constraint_groups()[group];
-  if (!g.unilateral() && !g.sticks()) return false;
-  for (int r : d.closed_rows())
-    if (model.group_of_row(r) == group) return false;
-  return true;
+/// Of a group of switched rows (stops, stuck contacts), only the elements
+/// with a closed row are evaluated: an open one's rows read 0 = 0, and it
+/// costs its gap functions only, which the event runner evaluates. True if
+/// none is (the group is skipped).
+bool all_open(const Data& d, int group) {
+  const std::vector<int>* only = d.evaluated_elements(group);
+  return only && only->empty();
+}
+
+/// How many elements of group gi the kernels evaluate in d (of its `size`).
+int evaluated_count(const Data& d, int group, int size) {
+  const std::vector<int>* only = d.evaluated_elements(group);
+  return only ? int(only->size()) : size;
 }
 
 }  // namespace
 
 void assemble_constraints(const Model& model, Data& d, const double* q, double t) {
   for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
-    if (all_open(model, d, gi)) continue;
+    if (all_open(d, gi)) continue;
     const auto& g = model.constraint_groups()[gi];
-    g->phi(q, d.at(t), d.Phi.data());
-    d.element_evaluations += g->size();
+    g->phi(q, d.at(t), d.Phi.data(), d.evaluated_elements(gi));
+    d.element_evaluations += evaluated_count(d, gi, g->size());
   }
   drop_rows(d, d.Phi);
 }
 
 void assemble_jacobian(const Model& model, Data& d, const double* q, double t) {
   for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
-    if (all_open(model, d, gi)) continue;
+    if (all_open(d, gi)) continue;
     const auto& g = model.constraint_groups()[gi];
-    g->jacobian(q, d.at(t), d.Phi_q.valuePtr());
-    d.element_evaluations += g->size();
+    g->jacobian(q, d.at(t), d.Phi_q.valuePtr(), d.evaluated_elements(gi));
+    d.element_evaluations += evaluated_count(d, gi, g->size());
   }
   drop_rows(d, d.Phi_q);
   if (!model.constant_mass()) assemble_mass(model, d, q);
@@ -140,10 +153,10 @@ void assemble_phi_t(const Model& model, Data& d, const double* q, double t) {
 
 void assemble_gamma(const Model& model, Data& d, const double* q, const double* v, double t) {
   for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
-    if (all_open(model, d, gi)) continue;
+    if (all_open(d, gi)) continue;
     const auto& g = model.constraint_groups()[gi];
-    g->gamma(q, v, d.at(t), d.gamma.data());
-    d.element_evaluations += g->size();
+    g->gamma(q, v, d.at(t), d.gamma.data(), d.evaluated_elements(gi));
+    d.element_evaluations += evaluated_count(d, gi, g->size());
   }
   drop_rows(d, d.gamma);
 }
@@ -151,10 +164,10 @@ void assemble_gamma(const Model& model, Data& d, const double* q, const double* 
 void assemble_velocity_jacobian(const Model& model, Data& d, const double* q, const double* v,
                                 double t) {
   for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
-    if (all_open(model, d, gi)) continue;
+    if (all_open(d, gi)) continue;
     const auto& g = model.constraint_groups()[gi];
-    g->velocity_jacobian(q, v, d.at(t), d.Vq.valuePtr());
-    d.element_evaluations += g->size();
+    g->velocity_jacobian(q, v, d.at(t), d.Vq.valuePtr(), d.evaluated_elements(gi));
+    d.element_evaluations += evaluated_count(d, gi, g->size());
   }
   drop_rows(d, d.Vq);
 }
@@ -164,7 +177,7 @@ void assemble_constraint_hessian(const Model& model, Data& d, const double* q, d
   // (the weights of dropped rows are their multipliers: zero)
   d.H.coeffs().setZero();
   for (int gi = 0; gi < int(model.constraint_groups().size()); ++gi) {
-    if (all_open(model, d, gi)) continue;
+    if (all_open(d, gi)) continue;
     const auto& g = model.constraint_groups()[gi];
     g->add_hessian(q, d.at(t), w, d.H.valuePtr());
     d.element_evaluations += g->size();

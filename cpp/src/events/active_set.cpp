@@ -11,7 +11,7 @@
 
 namespace lagmb {
 
-bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start, const double* lam) {
+bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start, const double* lam, const double* qdd) {
   if (!at_start) check_on_constraints(t, q);
   window_.forget();  // (a new start, or the equations jump here)
   values(t, q.data(), v.data(), g_.data(), lam);
@@ -49,12 +49,12 @@ bool EventRunner::settle(double t, const VecX& q, VecX& v, bool at_start, const 
   const VecX v0 = v;
   const std::vector<int> closed0 = d_.closed_rows();
   last_.handled = fired;  // (what consistent() then pins)
-  if (any) handle_stops(t, q, v, fired);
+  if (any) handle_stops(t, q, v, fired, qdd);
   if (!sticks_.empty()) handle_sticks(t, q, v, fired);
   return v != v0 || d_.closed_rows() != closed0 || beyond;
 }
 
-bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired) {
+bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired, const double* qdd) {
   bool restart = false;
   window_.forget();  // (the state may jump here)
   last_.on_limit.clear();
@@ -227,8 +227,10 @@ bool EventRunner::handle_stops(double t, const VecX& q, VecX& v, const std::vect
   candidates.insert(candidates.end(), captured.begin(), captured.end());
   candidates.insert(candidates.end(), resting.begin(), resting.end());
   std::sort(candidates.begin(), candidates.end());
-  const std::vector<int> closed = rest_contacts(t, q, v, candidates, leaving);
-  d_.close_rows(model_, closed);
+  // (qdd holds for the state before any impact and the rows closed before it)
+  const std::vector<int> closed =
+      rest_contacts(t, q, v, candidates, leaving, hit.empty() && captured.empty() ? qdd : nullptr);
+  if (closed != d_.closed_rows()) d_.close_rows(model_, closed);
   for (int c : candidates) {
     const int row = contacts_[c].row;
     const bool was = std::binary_search(closed_before.begin(), closed_before.end(), row);

@@ -118,7 +118,7 @@ void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<in
 }
 
 std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
-                                            const std::vector<int>& leaving) {
+                                            const std::vector<int>& leaving, const double* qdd) {
   const int n = model_.n_coordinates(), m = model_.n_constraints(), k = int(which.size());
   std::vector<VecX> C;
   VecX curvature;
@@ -127,7 +127,15 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
   std::vector<int> held;
   for (int row : d_.closed_rows())
     if (std::none_of(which.begin(), which.end(), [&](int c) { return contacts_[c].row == row; })) held.push_back(row);
-  d_.close_rows(model_, held);
+  if (qdd && held == d_.closed_rows()) {
+    // (every candidate open already: the caller's accelerations are b's; if
+    // none presses on its limit, none closes and nothing is solved)
+    const Eigen::Map<const VecX> a(qdd, n);
+    VecX b(k);
+    for (int j = 0; j < k; ++j) b[j] = C[j].dot(a) - curvature[j];
+    if (k == 0 || b.minCoeff() >= -1e-9 * (1.0 + b.lpNorm<Eigen::Infinity>())) return held;
+  }
+  if (held != d_.closed_rows()) d_.close_rows(model_, held);
   solve_accelerations(model_, d_, kkt_, q.data(), v.data(), t, qdd_.data(), lam_.data());
   // a force f_j >= 0 along the gradient C_j (f_j = -lam_j) adds X_j f_j to qdd: g'' = b + A f
   Eigen::MatrixXd A(k, k), X(n, k);

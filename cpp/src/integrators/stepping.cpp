@@ -63,8 +63,9 @@ bool StepLoop::act(double t, bool at_stop) {
       q_event_ = Eigen::Map<const VecX>(stepper_.positions(), n);
       v_event_ = Eigen::Map<const VecX>(stepper_.velocities(), n);
       try {
-        settled = plan_.events->settle(t, q_event_, v_event_, false,
-                                       multipliers(t, q_event_.data(), v_event_.data()));
+        const double *qdd = nullptr, *lam = nullptr;
+        if (!stepper_.motion_at(t, q_event_.data(), v_event_.data(), qdd, lam)) qdd = lam = nullptr;
+        settled = plan_.events->settle(t, q_event_, v_event_, false, lam, qdd);
         if (settled) stepper_.reset(t, plan_.events->consistent(t, q_event_, v_event_));
       } catch (const SimulationError& e) {
         throw IntegratorFailure(std::string("at a breakpoint: ") + e.what(), t);

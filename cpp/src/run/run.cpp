@@ -123,7 +123,8 @@ bool Run::resume_in_place(double t, const VecX& q, const VecX& v, ConsistentStat
   now.qdd = Eigen::Map<const VecX>(qdd, n);
   now.lam = Eigen::Map<const VecX>(lam, m);
   now.dropped_rows = data.redundant_rows();
-  if (events && events->settle(t, now.q, now.v, false, now.lam.data())) now = events->consistent(t, now.q, now.v);
+  if (events && events->settle(t, now.q, now.v, false, now.lam.data(), now.qdd.data()))
+    now = events->consistent(t, now.q, now.v);
   restart_stepper(t, now);
   return true;
 }
@@ -181,6 +182,7 @@ Stats Run::stats() const {
   }
   s.restarts += restarts_;
   s.input_changes = input_changes;
+  s.augmented_factorizations += kkt.factorizations() + (events ? events->factorizations() : 0);
   // the start, the outputs' solves and the checks of the dropped rows
   s.element_evaluations += data.element_evaluations + watch->element_evaluations();
   name_method(s, *current_);

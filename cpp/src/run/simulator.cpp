@@ -154,7 +154,8 @@ double Simulator::input(const std::string& name) const {
 ConsistentState Simulator::consistent_start() {
   ConsistentState start = make_consistent(model(), run_->data, run_->kkt, q_, v_, t_);
   // a stop held under the old input values may let go (or a joint at its limit be pressed on) under the new
-  if (run_->events && run_->events->settle(t_, start.q, start.v)) start = run_->events->consistent(t_, start.q, start.v);
+  if (run_->events && run_->events->settle(t_, start.q, start.v, false, start.lam.data(), start.qdd.data()))
+    start = run_->events->consistent(t_, start.q, start.v);
   return start;
 }
 

@@ -55,9 +55,12 @@ class EventRunner {
   /// time function): closed stops whose force would pull are released,
   /// joints at a limit get their impact or capture. Returns true if the
   /// state or the active set changed, or a joint is beyond a limit (then
-  /// restart from consistent(), which puts it back on the limit). `lam`:
-  /// the multipliers at (t, q, v) where the caller has them (values()).
-  bool settle(double t, const VecX& q, VecX& v, bool at_start = false, const double* lam = nullptr);
+  /// restart from consistent(), which puts it back on the limit). `lam`,
+  /// `qdd`: the multipliers and accelerations at (t, q, v) on the run's
+  /// rows where the caller has them (values(); a joint resting on a limit
+  /// that its acceleration does not press on then costs no solve).
+  bool settle(double t, const VecX& q, VecX& v, bool at_start = false, const double* lam = nullptr,
+              const double* qdd = nullptr);
   /// After a step that found no root: event functions of direction -1 that
   /// are below zero with the motion still going further (a crossing the
   /// integrator missed) are flagged in `fired`. Returns true if any. `lam`
@@ -103,6 +106,9 @@ class EventRunner {
   /// across 0 (not one handle() just acted on) is a crossing here: its
   /// action is taken and recorded.
   ConsistentState consistent(double t, const VecX& q, const VecX& v);
+
+  /// Factorizations of the augmented matrix the runner made (its own solves).
+  long factorizations() const { return kkt_.factorizations(); }
 
   std::vector<EventRecord> records;
   long events = 0, impacts = 0, captures = 0, releases = 0, root_evals = 0;
@@ -222,8 +228,9 @@ class EventRunner {
   ConsistentState restart_state(double t, const VecX& q, const VecX& v);
 
   // --- active_set.cpp --------------------------------------------------------
-  /// The stops' and event elements' part of handle().
-  bool handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired);
+  /// The stops' and event elements' part of handle(); `qdd`: the
+  /// accelerations at (t, q, v) on the run's rows, if the caller has them.
+  bool handle_stops(double t, const VecX& q, VecX& v, const std::vector<int>& fired, const double* qdd = nullptr);
 
   // --- sticks.cpp ------------------------------------------------------------
   /// The contacts' stick states at (t, q, v) after the other events acted
@@ -253,9 +260,12 @@ class EventRunner {
   /// g' = 0), those whose force f >= 0 holds them while the others'
   /// accelerations g'' >= 0 (an LCP at acceleration level, solved by
   /// principal pivoting); `leaving`: contacts whose release was found,
-  /// which open where their force is within rounding of 0.
+  /// which open where their force is within rounding of 0. `qdd`: the
+  /// accelerations at (t, q, v) on the run's rows, if the caller has them:
+  /// where every contact of `which` is open and none presses (g'' >= 0),
+  /// they are the answer (none closes) without a solve.
   std::vector<int> rest_contacts(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
-                                 const std::vector<int>& leaving);
+                                 const std::vector<int>& leaving, const double* qdd = nullptr);
   /// Fails naming the stop `contact` reached where nothing can move along
   /// it and what holds it (closed stops, couplings, drivers); `approach`:
   /// its gap's rate or acceleration (`measure`), beyond `tolerance`.

@@ -208,14 +208,18 @@ class ConstraintGroupBase {
   virtual void bind(const SpMat& jacobian, const SpMat& hessian) = 0;
 
   // kernels; q, v, lam are global vectors, outputs are written at the
-  // element's rows or slots; `at` is the time and the run's inputs
-  virtual void phi(const double* q, const Instant& at, double* Phi) const = 0;
-  virtual void jacobian(const double* q, const Instant& at, double* Phi_q_values) const = 0;
+  // element's rows or slots; `at` is the time and the run's inputs;
+  // `only`: the elements to evaluate (ascending; null: every one), e.g. a
+  // group of stops whose open ones' rows read 0 = 0 (assembly.hpp)
+  virtual void phi(const double* q, const Instant& at, double* Phi, const std::vector<int>* only = nullptr) const = 0;
+  virtual void jacobian(const double* q, const Instant& at, double* Phi_q_values,
+                        const std::vector<int>* only = nullptr) const = 0;
   virtual void add_phi_t(const double* q, const Instant& at, double* phi_t) const = 0;
-  virtual void gamma(const double* q, const double* v, const Instant& at, double* gamma) const = 0;
+  virtual void gamma(const double* q, const double* v, const Instant& at, double* gamma,
+                     const std::vector<int>* only = nullptr) const = 0;
   virtual void add_hessian(const double* q, const Instant& at, const double* w, double* H_values) const = 0;
-  virtual void velocity_jacobian(const double* q, const double* v, const Instant& at,
-                                 double* Vq_values) const = 0;
+  virtual void velocity_jacobian(const double* q, const double* v, const Instant& at, double* Vq_values,
+                                 const std::vector<int>* only = nullptr) const = 0;
   /// Generalized force -Phi_c^T lam the element applies on its two bodies,
   /// in local coordinates (L of them).
   virtual VecX generalized_reaction(int k, const double* q, const Instant& at, const double* lam) const = 0;
@@ -379,20 +383,20 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void phi(const double* q, const Instant& at, double* Phi) const override {
+  void phi(const double* q, const Instant& at, double* Phi, const std::vector<int>* only) const override {
     const auto t = time_argument<Kind>(at);
-    for (size_t k = 0; k < items.size(); ++k) {
+    each(only, [&](size_t k) {
       const Rows f = items[k].phi(at_q(k, q), t);
       for (int r = 0; r < R; ++r) Phi[place_[k].row0 + r] = f[r];
-    }
+    });
   }
 
-  void jacobian(const double* q, const Instant& at, double* values) const override {
+  void jacobian(const double* q, const Instant& at, double* values, const std::vector<int>* only) const override {
     const auto t = time_argument<Kind>(at);
-    for (size_t k = 0; k < items.size(); ++k) {
+    each(only, [&](size_t k) {
       const Jac J = items[k].jacobian(at_q(k, q), t);
       scatter_jac(k, J, values);
-    }
+    });
   }
 
   void add_phi_t(const double* q, const Instant& at, double* out) const override {
@@ -405,10 +409,11 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void gamma(const double* q, const double* v, const Instant& at, double* out) const override {
+  void gamma(const double* q, const double* v, const Instant& at, double* out,
+             const std::vector<int>* only) const override {
     const auto t = time_argument<Kind>(at);
     std::array<MatL, R> H;
-    for (size_t k = 0; k < items.size(); ++k) {
+    each(only, [&](size_t k) {
       const Loc c = at_q(k, q), cd = at_v(k, v);
       Rows g;
       if constexpr (has_own_gamma<Kind>::value) {
@@ -422,7 +427,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
       if constexpr (Kind::time_dependent)
         g -= 2.0 * items[k].phi_tc(c, t) * cd + items[k].phi_tt(c, t);
       for (int r = 0; r < R; ++r) out[place_[k].row0 + r] = g[r];
-    }
+    });
   }
 
   void add_hessian(const double* q, const Instant& at, const double* w, double* values) const override {
@@ -439,11 +444,11 @@ class ConstraintGroup final : public ConstraintGroupBase {
     }
   }
 
-  void velocity_jacobian(const double* q, const double* v, const Instant& at,
-                         double* values) const override {
+  void velocity_jacobian(const double* q, const double* v, const Instant& at, double* values,
+                         const std::vector<int>* only) const override {
     const auto t = time_argument<Kind>(at);
     std::array<MatL, R> H;
-    for (size_t k = 0; k < items.size(); ++k) {
+    each(only, [&](size_t k) {
       const Loc c = at_q(k, q), cd = at_v(k, v);
       Jac V;
       if constexpr (has_rates<Kind>::value) {
@@ -454,7 +459,7 @@ class ConstraintGroup final : public ConstraintGroupBase {
       }
       if constexpr (Kind::time_dependent) V += items[k].phi_tc(c, t);
       scatter_jac(k, V, values);
-    }
+    });
   }
 
   VecX generalized_reaction(int k, const double* q, const Instant& at, const double* lam) const override {
@@ -499,6 +504,14 @@ class ConstraintGroup final : public ConstraintGroupBase {
 
   Loc at_q(size_t k, const double* q) const { return gather_q<S>(q, place_[k].coord); }
   Loc at_v(size_t k, const double* v) const { return gather_v<L>(v, place_[k].coord); }
+  /// f(k) for the elements `only` (null: every one).
+  template <class F>
+  void each(const std::vector<int>* only, F&& f) const {
+    if (only)
+      for (int k : *only) f(size_t(k));
+    else
+      for (size_t k = 0; k < items.size(); ++k) f(k);
+  }
 
   Loc local_reaction(int k, const double* q, const Instant& at, const double* lam) const {
     const Jac J = items[k].jacobian(at_q(k, q), time_argument<Kind>(at));

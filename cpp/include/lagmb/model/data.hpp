@@ -62,6 +62,14 @@ struct Data {
   /// The rows left out as redundant (sorted), and the unilateral rows closed.
   const std::vector<int>& redundant_rows() const { return left_out_->redundant; }
   const std::vector<int>& closed_rows() const { return left_out_->closed; }
+  /// Of constraint group `group` (Model::constraint_groups), the elements
+  /// the kernels evaluate (assembly.hpp): null for every one; for a group
+  /// whose rows a run opens and closes (stops, stuck contacts) those with a
+  /// closed row (ascending; empty: none, every row open reads 0 = 0).
+  const std::vector<int>* evaluated_elements(int group) const {
+    const auto& e = left_out_->evaluated;
+    return size_t(group) < e.size() && e[size_t(group)].switched ? &e[size_t(group)].elements : nullptr;
+  }
   /// Sets the rows left out as redundant, in the set this Data reads: for a
   /// Data of a run (Rows::kRun), the run's. The closed rows stay closed.
   void drop_rows(const Model& model, std::vector<int> rows);
@@ -98,6 +106,11 @@ struct Data {
   struct LeftOutRows {
     std::vector<int> redundant;  // sorted
     std::vector<int> closed;     // sorted unilateral rows in contact
+    struct Evaluated {
+      bool switched = false;  // a group of switched rows (Model::switched_rows)
+      std::vector<int> elements;  // then its elements with a closed row
+    };
+    std::vector<Evaluated> evaluated;  // per constraint group
     std::vector<int> rows;       // redundant and open unilateral rows, sorted
     std::vector<int> slots;      // their entries in the values of Phi_q
   };

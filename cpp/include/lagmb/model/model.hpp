@@ -259,6 +259,8 @@ class Model {
   int group_of_row(int row) const { return constraint_order_[row_owner_[row]].first; }
   /// The element (its place in insertion order) a constraint row belongs to; an element's rows are consecutive.
   int element_of_row(int row) const { return row_owner_[row]; }
+  /// The element a constraint row belongs to, as its index within its group.
+  int element_in_group_of_row(int row) const { return constraint_order_[row_owner_[row]].second; }
   /// Body owning coordinate `coord` of q.
   const Body& body_of_coordinate(int coord) const;
   /// Positions in q of the local coordinates of a pair of bodies:
