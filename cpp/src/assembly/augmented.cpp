@@ -7,7 +7,7 @@
 
 namespace lagmb {
 
-AugmentedPattern::AugmentedPattern(const Model& model) {
+AugmentedPattern::AugmentedPattern(const Model& model, bool open_rows_out) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   const SpMat& J = model.jacobian_pattern();
   SparsityPattern p(n + m, n + m);
@@ -25,18 +25,36 @@ AugmentedPattern::AugmentedPattern(const Model& model) {
   for (int i = 0; i < m; ++i) reg_slots.push_back(slot(K, n + i, n + i));
   jac_slots = embed_slots(J, K, n, 0);
   jact_slots = embed_slots(J, K, 0, n, true);
-  if (model.positive_mass() && m > 0) setup_schur(model);
+  if (model.positive_mass() && m > 0) setup_schur(model, open_rows_out);
 }
 
-void AugmentedPattern::setup_schur(const Model& model) {
+void AugmentedPattern::setup_schur(const Model& model, bool open_rows_out) {
   const int n = model.n_coordinates(), m = model.n_constraints();
   const SpMat& J = model.jacobian_pattern();
   const SpMat& Minv = model.mass_pattern();  // M^-1 has M's block pattern
+  // the rows S is made of (open_rows_out: not the switched ones), and the
+  // entries of Phi_q in them, column by column
+  std::vector<char> kept(size_t(m), 1);
+  if (open_rows_out)
+    for (int r : model.switched_rows()) kept[size_t(r)] = 0;
+  std::vector<int> kept_rows;
+  for (int r = 0; r < m; ++r)
+    if (kept[size_t(r)]) kept_rows.push_back(r);
+  const int ms = int(kept_rows.size());
+  if (ms == 0) return;  // (nothing left: the every-row pattern serves)
+  std::vector<int> col_outer(size_t(n) + 1), row_of;  // the kept entries' CSC arrays (rows: the constraints')
+  std::vector<int> entries;
+  for (int c = 0; c < n; ++c) {
+    col_outer[size_t(c)] = int(entries.size());
+    for (int k = J.outerIndexPtr()[c]; k < J.outerIndexPtr()[c + 1]; ++k)
+      if (kept[size_t(J.innerIndexPtr()[k])]) entries.push_back(k), row_of.push_back(J.innerIndexPtr()[k]);
+  }
+  col_outer[size_t(n)] = int(entries.size());
+  const int* outer = col_outer.data();
+  const int* row = row_of.data();
   // J M^-1 keeps J's pattern where each block of M^-1 joins columns with the
   // same rows (a spatial body's Euler parameters: every element declares all
   // four); otherwise the LU takes every solve
-  const int* outer = J.outerIndexPtr();
-  const int* row = J.innerIndexPtr();
   for (int c = 0; c < n; ++c)
     for (SpMat::InnerIterator it(Minv, c); it; ++it) {
       const int a = int(it.row());
@@ -45,7 +63,8 @@ void AugmentedPattern::setup_schur(const Model& model) {
         return;
     }
   range_space = true;
-  j_outer.assign(outer, outer + n + 1);
+  if (open_rows_out) j_entries = entries;
+  j_outer = col_outer;
   // S = J M^-1 J^T: entry (r_a, r_b) gathers J(r_a, c) J(r_b, c) / M_c over the columns c
   auto each_pair = [&](auto&& f) {
     for (int c = 0; c < n; ++c)
@@ -54,32 +73,32 @@ void AugmentedPattern::setup_schur(const Model& model) {
   };
   // S's blocks: each element's rows (at most 12 to a block); the columns'
   // rows join theirs in S
-  std::vector<int> block_of_row(m), block_sizes;
-  for (int r = 0; r < m; ++r) {
-    const bool same = r > 0 && model.element_of_row(r) == model.element_of_row(r - 1) && block_sizes.back() < 12;
+  std::vector<int> block_of_row(size_t(m), -1), block_sizes, place_in_block(size_t(m), 0);
+  for (int i = 0; i < ms; ++i) {
+    const int r = kept_rows[size_t(i)];
+    const bool same = i > 0 && model.element_of_row(r) == model.element_of_row(kept_rows[size_t(i) - 1]) &&
+                      block_sizes.back() < 12;
     if (!same) block_sizes.push_back(0);
-    block_of_row[r] = int(block_sizes.size()) - 1;
-    ++block_sizes.back();
+    block_of_row[size_t(r)] = int(block_sizes.size()) - 1;
+    place_in_block[size_t(r)] = block_sizes.back()++;
   }
   std::vector<std::pair<int, int>> edges;
   each_pair([&](int, int a, int b) {
-    if (block_of_row[row[a]] != block_of_row[row[b]]) edges.emplace_back(block_of_row[row[a]], block_of_row[row[b]]);
+    const int ba = block_of_row[size_t(row[a])], bb = block_of_row[size_t(row[b])];
+    if (ba != bb) edges.emplace_back(ba, bb);
   });
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   S = BlockCholeskyPattern(block_sizes, edges);
   // rows renumbered block by block in the elimination order
-  new_of_old.resize(m);
-  old_of_new.resize(m);
-  for (int r = 0; r < m; ++r) {
-    const int b = block_of_row[r], k = S.position_of(b);
-    int first = r;
-    while (first > 0 && block_of_row[first - 1] == b) --first;
-    new_of_old[r] = S.start(k) + (r - first);
-    old_of_new[new_of_old[r]] = r;
+  new_of_old.assign(size_t(m), -1);
+  old_of_new.resize(size_t(ms));
+  for (int r : kept_rows) {
+    new_of_old[size_t(r)] = S.start(S.position_of(block_of_row[size_t(r)])) + place_in_block[size_t(r)];
+    old_of_new[size_t(new_of_old[size_t(r)])] = r;
   }
-  j_row.resize(J.nonZeros());
-  for (Eigen::Index k = 0; k < J.nonZeros(); ++k) j_row[k] = new_of_old[row[k]];
+  j_row.resize(entries.size());
+  for (size_t k = 0; k < entries.size(); ++k) j_row[k] = new_of_old[size_t(row[k])];
   auto entry = [&](int a, int b) {
     return std::pair{std::max(j_row[a], j_row[b]), std::min(j_row[a], j_row[b])};  // (lower triangle)
   };
@@ -102,11 +121,13 @@ void AugmentedPattern::setup_schur(const Model& model) {
     }
     c = end;
   }
-  for (int i = 0; i < m; ++i) s_diag.push_back(S.slot(i, i));
+  for (int i = 0; i < ms; ++i) s_diag.push_back(S.slot(i, i));
 }
 
 AugmentedSystem::AugmentedSystem(const Model& model)
     : p_(&model.derived<AugmentedPattern>()),
+      every_(p_),
+      open_(nullptr),
       n_(model.n_coordinates()),
       m_(model.n_constraints()),
       eps_(1e-9 / model.mass_scale()),
@@ -130,7 +151,23 @@ AugmentedSystem::AugmentedSystem(const Model& model)
     S_.resize(p_->S.values());
     s_diagonal_.resize(m_);
     ++symbolic_analyses_;
+    if (!model.switched_rows().empty()) {
+      const AugmentedPattern& open = model.derived<OpenRowsPattern>();
+      if (open.range_space) open_ = &open;
+    }
   }
+}
+
+void AugmentedSystem::use_pattern(const AugmentedPattern* pattern) {
+  if (pattern == p_) return;
+  p_ = pattern;
+  const int rows = int(p_->s_diag.size());
+  S_.resize(p_->S.values());
+  s_diagonal_.resize(rows);
+  s_rhs_.resize(rows);
+  work_.resize(rows);
+  lam_.resize(rows);
+  lam_prev_.resize(rows);
 }
 
 long AugmentedSystem::factor_nonzeros() const { return schur_ ? p_->S.factor_nonzeros() : 0; }
@@ -138,9 +175,9 @@ long AugmentedSystem::factor_nonzeros() const { return schur_ ? p_->S.factor_non
 void AugmentedSystem::fill_lu_matrix(const Data& d) {
   const double* J = d.Phi_q.valuePtr();
   double* K = K_.valuePtr();
-  for (size_t k = 0; k < p_->mass_slots.size(); ++k) K[p_->mass_slots[k]] = d.M.valuePtr()[k];
-  for (int i = 0; i < m_; ++i) K[p_->reg_slots[i]] = -eps_;
-  for (size_t k = 0; k < p_->jac_slots.size(); ++k) K[p_->jac_slots[k]] = K[p_->jact_slots[k]] = J[k];
+  for (size_t k = 0; k < every_->mass_slots.size(); ++k) K[every_->mass_slots[k]] = d.M.valuePtr()[k];
+  for (int i = 0; i < m_; ++i) K[every_->reg_slots[i]] = -eps_;
+  for (size_t k = 0; k < every_->jac_slots.size(); ++k) K[every_->jac_slots[k]] = K[every_->jact_slots[k]] = J[k];
 }
 
 bool AugmentedSystem::factorize(const Data& d) {
@@ -151,8 +188,14 @@ bool AugmentedSystem::factorize(const Data& d) {
   for (Eigen::Index k = 0; k < nnz; ++k)
     if (!std::isfinite(J[k])) return false;
   if (!diagonal_mass_ && !d.M.coeffs().allFinite()) return false;  // (a constant M is finite by construction)
-  if (p_->range_space) {
-    std::copy(J, J + nnz, j_values_.data());  // solve() uses the factorized Phi_q and M^-1
+  if (every_->range_space) {
+    // (S without the stops' and stuck contacts' rows where none is closed)
+    use_pattern(open_ && d.closed_rows().empty() ? open_ : every_);
+    // solve() uses the factorized Phi_q and M^-1
+    if (p_->j_entries.empty())
+      std::copy(J, J + nnz, j_values_.data());
+    else
+      for (size_t k = 0; k < p_->j_entries.size(); ++k) j_values_[Eigen::Index(k)] = J[p_->j_entries[k]];
     m_inv_.coeffs() = d.M_inv.coeffs();
     if (factorize_schur(d)) return schur_ = factorized_ = true;
     // not positive definite in rounding (extreme scales): the LU decides
@@ -208,7 +251,8 @@ void AugmentedSystem::assemble_schur(const Data& d) {
   }
   // a dropped (redundant) row has no entries; a unit diagonal keeps S definite, and its
   // right side is zero, so its multiplier stays 0
-  for (int r : d.dropped_rows()) S[p_->s_diag[p_->new_of_old[r]]] = 1.0 / mass_scale_;
+  for (int r : d.dropped_rows())
+    if (const int k = p_->new_of_old[size_t(r)]; k >= 0) S[p_->s_diag[size_t(k)]] = 1.0 / mass_scale_;
 }
 
 bool AugmentedSystem::factorize_schur(const Data& d) {
@@ -216,7 +260,7 @@ bool AugmentedSystem::factorize_schur(const Data& d) {
   // more than 1e-8 of its row's diagonal (the row is nearly a combination of
   // the rows before it: L_kk^2 / S_kk is the part they do not explain)...
   assemble_schur(d);
-  for (int k = 0; k < m_; ++k) s_diagonal_[k] = S_[p_->s_diag[k]];
+  for (int k = 0; k < int(p_->s_diag.size()); ++k) s_diagonal_[k] = S_[p_->s_diag[size_t(k)]];
   if (p_->S.factorize(S_.data(), s_diagonal_.data(), 1e-8)) {
     regularized_ = false;
     return true;
@@ -231,7 +275,8 @@ bool AugmentedSystem::factorize_schur(const Data& d) {
 void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2) {
   const double* J = j_values_.data();
   // s = J M^-1 b1 - b2, in S's order
-  for (int k = 0; k < m_; ++k) s_rhs_[k] = -b2[p_->old_of_new[k]];
+  const int rows = int(p_->old_of_new.size());  // (S's: without the open stops' where none is closed)
+  for (int k = 0; k < rows; ++k) s_rhs_[k] = -b2[p_->old_of_new[size_t(k)]];
   const int* mo = m_inv_.outerIndexPtr();
   const double* mv = m_inv_.valuePtr();
   if (diagonal_mass_)
@@ -256,8 +301,11 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
     residual = eps_ * (lam_ - lam_prev_).lpNorm<Eigen::Infinity>();
   }
   // x2 in the constraints' numbering; x1 = M^-1 (b1 - J^T x2)
-  x2.resize(m_);
-  for (int k = 0; k < m_; ++k) x2[p_->old_of_new[k]] = lam_[k];
+  if (rows < m_)
+    x2.setZero(m_);
+  else
+    x2.resize(m_);
+  for (int k = 0; k < rows; ++k) x2[p_->old_of_new[size_t(k)]] = lam_[k];
   x1.resize(n_);
   for (int c = 0; c < n_; ++c) {
     double f = b1[c];

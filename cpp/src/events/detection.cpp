@@ -45,16 +45,17 @@ void EventRunner::values(double t, const double* q, const double* v, double* g, 
   const Instant at = rows_.at(t);
   for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->phi(q, at, rows_.Phi.data());
   const double at_limit = 1e-10;
+  // (the rates of the open rows at their limits: their elements' gradients alone)
   bool rates = false;
+  std::vector<int> one(1);
   for (const Contact& c : contacts_)
-    if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= at_limit) rates = true;
-  double at_rest = 0.0;
-  if (rates) {
-    for (int gi : unilateral_groups_) model_.constraint_groups()[gi]->jacobian(q, at, rows_.Phi_q.valuePtr());
-    rows_.phi_t.setZero();  // (scratch: Phi_q v of the gaps)
-    add_jacobian_times(rows_, v, rows_.phi_t.data());
-    at_rest = 1e-9 * (1.0 + Eigen::Map<const VecX>(v, model_.n_coordinates()).lpNorm<Eigen::Infinity>());
-  }
+    if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= at_limit) {
+      one[0] = c.element;
+      model_.constraint_groups()[size_t(c.group)]->jacobian(q, at, rows_.Phi_q.valuePtr(), &one);
+      rows_.phi_t[c.row] = rate(c, v);
+      rates = true;
+    }
+  const double at_rest = 1e-9 * (1.0 + Eigen::Map<const VecX>(v, model_.n_coordinates()).lpNorm<Eigen::Infinity>());
   for (const Contact& c : contacts_) {
     double x = !c.info.exists ? 1.0 : is_closed(c.row) ? -lam_[c.row] : rows_.Phi[c.row];
     if (rates && !is_closed(c.row) && c.info.exists && std::abs(x) <= at_limit)

@@ -35,9 +35,17 @@ EventRunner::EventRunner(const Model& model, const Data& run, double position_to
     unilateral_groups_.push_back(gi);
     for (int k = 0; k < constraints[gi]->size(); ++k)
       for (int r = 0; r < constraints[gi]->rows(k); ++r)
-        contacts_.push_back({constraints[gi]->placement(k).row0 + r, constraints[gi]->unilateral_row(k, r)});
+        contacts_.push_back({constraints[gi]->placement(k).row0 + r, constraints[gi]->unilateral_row(k, r), gi, k, {}});
   }
   std::sort(contacts_.begin(), contacts_.end(), [](const Contact& a, const Contact& b) { return a.row < b.row; });
+  const SpMat& J = rows_.Phi_q;
+  for (int col = 0; col < J.outerSize(); ++col)
+    for (int s = J.outerIndexPtr()[col]; s < J.outerIndexPtr()[col + 1]; ++s) {
+      const int row = J.innerIndexPtr()[s];
+      auto c = std::lower_bound(contacts_.begin(), contacts_.end(), row,
+                                [](const Contact& a, int r) { return a.row < r; });
+      if (c != contacts_.end() && c->row == row) c->entries.emplace_back(col, s);
+    }
   // a gap crossing to negative (an impact), a force crossing to negative (a release)
   dir_.insert(dir_.end(), contacts_.size(), -1);
   // a contact's stick state: both ways (stick_root)

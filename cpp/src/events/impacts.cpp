@@ -16,15 +16,20 @@ namespace lagmb {
 
 void EventRunner::contact_rows(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
                                std::vector<VecX>& C, VecX& curvature) {
-  assemble_jacobian(model_, rows_, q.data(), t);
-  assemble_gamma(model_, rows_, q.data(), v.data(), t);
-  const SpMat JT = rows_.Phi_q.transpose();  // column r: row r of Phi_q
+  const Instant at = rows_.at(t);
+  std::vector<int> one(1);
   C.clear();
   curvature.resize(int(which.size()));
   for (size_t j = 0; j < which.size(); ++j) {
-    const int row = contacts_[which[j]].row;
-    C.push_back(VecX(JT.col(row)));
-    curvature[int(j)] = rows_.gamma[row];
+    const Contact& c = contacts_[size_t(which[j])];
+    const ConstraintGroupBase& group = *model_.constraint_groups()[size_t(c.group)];
+    one[0] = c.element;
+    group.jacobian(q.data(), at, rows_.Phi_q.valuePtr(), &one);
+    group.gamma(q.data(), v.data(), at, rows_.gamma.data(), &one);
+    VecX row = VecX::Zero(model_.n_coordinates());
+    for (const auto& [col, slot] : c.entries) row[col] = rows_.Phi_q.valuePtr()[slot];
+    C.push_back(std::move(row));
+    curvature[int(j)] = rows_.gamma[c.row];
   }
 }
 

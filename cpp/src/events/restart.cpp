@@ -39,6 +39,12 @@ void EventRunner::gaps(double t, const VecX& q, const VecX& v) {
   add_jacobian_times(rows_, v.data(), rows_.phi_t.data());
 }
 
+double EventRunner::rate(const Contact& c, const double* v) const {
+  double r = 0.0;
+  for (const auto& [col, slot] : c.entries) r += rows_.Phi_q.valuePtr()[slot] * v[col];
+  return r;
+}
+
 ConsistentState EventRunner::consistent(double t, const VecX& q, const VecX& v) {
   ConsistentState state = restart_state(t, q, v);
   if (roots_.empty()) return state;

@@ -46,6 +46,9 @@ namespace lagmb {
 /// (COLAMD) and refined with K0's residual. Either way the pattern is fixed
 /// by the model, so the orderings and the layouts are made once per model
 /// (AugmentedPattern, shared by its runs); factorize() is numeric only.
+/// Where no stop or stuck contact is closed (Data::closed_rows empty), S
+/// leaves their rows out altogether (OpenRowsPattern): a joint's limits
+/// that nothing touches cost nothing in the factorization.
 
 /// What an AugmentedSystem needs of the model's patterns alone, made once
 /// per model (Model::derived) and shared by every run: K's pattern and
@@ -53,16 +56,19 @@ namespace lagmb {
 /// the AMD order of S's rows, S's upper-triangle pattern and where each
 /// column run's products go in it.
 struct AugmentedPattern {
-  explicit AugmentedPattern(const Model& model);
+  /// `open_rows_out`: S without the rows a run opens and closes
+  /// (Model::switched_rows: stops, stuck contacts), for where all are open.
+  explicit AugmentedPattern(const Model& model, bool open_rows_out = false);
 
   SpMat K;  // pattern of [M Phi_q^T; Phi_q -eps I] (values zero)
   std::vector<int> mass_slots, jac_slots, jact_slots, reg_slots;
   bool range_space = false;  // positive masses, constraints, and J M^-1 keeps J's pattern
   // the range-space path
-  std::vector<int> j_outer;     // Phi_q's column starts (its pattern)
-  std::vector<int> j_row;       // each Phi_q entry's row of S (AMD order)
+  std::vector<int> j_entries;   // Phi_q's entries S is made of (empty: every one)
+  std::vector<int> j_outer;     // their column starts
+  std::vector<int> j_row;       // each one's row of S (AMD order)
   std::vector<int> old_of_new;  // S's row k is constraint row old_of_new[k]
-  std::vector<int> new_of_old;
+  std::vector<int> new_of_old;  // -1: a row S leaves out
   BlockCholeskyPattern S;  // S's blocks (an element's rows), their order and L's layout
   // Phi_q's columns in runs with the same rows (a body's position, its Euler
   // parameters): each run adds the dense product J_g (J M^-1)_g^T, rows x
@@ -76,7 +82,12 @@ struct AugmentedPattern {
   std::vector<int> s_diag;  // S's diagonal (new numbering) in its values
 
  private:
-  void setup_schur(const Model& model);
+  void setup_schur(const Model& model, bool open_rows_out);
+};
+
+/// The model's AugmentedPattern with S leaving out every switched row (Model::derived).
+struct OpenRowsPattern : AugmentedPattern {
+  explicit OpenRowsPattern(const Model& model) : AugmentedPattern(model, true) {}
 };
 
 class AugmentedSystem {
@@ -111,7 +122,12 @@ class AugmentedSystem {
   bool factorize_schur(const Data& d);
   void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
 
-  const AugmentedPattern* p_;  // the model's (Model::derived)
+  /// Points S at `pattern` (the model's every-row one, or its open-rows one).
+  void use_pattern(const AugmentedPattern* pattern);
+
+  const AugmentedPattern* p_;      // the one S was last assembled in
+  const AugmentedPattern* every_;  // the model's (Model::derived)
+  const AugmentedPattern* open_;   // S without the switched rows; null: the model has none
   int n_, m_;
   double eps_;
   SpMat K_;

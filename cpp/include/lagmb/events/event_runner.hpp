@@ -127,6 +127,8 @@ class EventRunner {
   struct Contact {
     int row;
     UnilateralRow info;
+    int group, element;  // its element (Model::constraint_groups, its index there)
+    std::vector<std::pair<int, int>> entries;  // its entries in Phi_q: (column, slot in the values)
   };
   /// A contact that can stick (constraint_group.hpp, is_stick): its
   /// group, element and first row, and its points' event functions (the
@@ -224,6 +226,8 @@ class EventRunner {
   void check_on_constraints(double t, const VecX& q);
   /// rows_.Phi and rows_.phi_t (= Phi_q v) of the unilateral rows at (t, q, v).
   void gaps(double t, const VecX& q, const VecX& v);
+  /// g_r' = Phi_q,r v of contact c, from its entries of rows_.Phi_q (evaluated).
+  double rate(const Contact& c, const double* v) const;
   /// consistent()'s projection, without the crossings it causes.
   ConsistentState restart_state(double t, const VecX& q, const VecX& v);
 
@@ -245,7 +249,8 @@ class EventRunner {
 
   // --- impacts.cpp -----------------------------------------------------------
   /// Rows of the contacts `which` (indices into contacts_) of Phi_q at q, and
-  /// their curvature terms (gamma_r at q, v): g_r'' = C_r qdd - gamma_r.
+  /// their curvature terms (gamma_r at q, v): g_r'' = C_r qdd - gamma_r
+  /// (their elements evaluated alone, in rows_).
   void contact_rows(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
                     std::vector<VecX>& C, VecX& curvature);
   /// The impulse at an impact of the contacts `which` (approaching),
