@@ -160,6 +160,11 @@ def lagmb_go1(path):
 
 def mujoco_go1(path, opts):
     """MuJoCo's model of the file (see the module's docstring)."""
+    return mujoco_go1_spec(path, opts).compile()
+
+
+def mujoco_go1_spec(path, opts):
+    """mujoco_go1's MjSpec before compiling (actuators may be added to it)."""
     import mujoco
 
     root = ET.parse(path).getroot()
@@ -189,7 +194,7 @@ def mujoco_go1(path, opts):
     spec.option.impratio = opts["impratio"]
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.gravity = [0.0, 0.0, -G]
-    return spec.compile()
+    return spec
 
 
 # --------------------------------------------------------------------------
