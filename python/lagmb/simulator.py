@@ -56,6 +56,7 @@ class Simulator:
         self._changed = (None, {})  # (t, {input: value}): the inputs last set, and when
         self._joint_names = None
         self._readings = {}  # joints(): {the joints asked for: [(name, slide?)]}
+        self._input_order = None  # _inputs()
         self._snapshot = model._snapshot()  # the model it runs, whatever edits follow
         self._core_model = _parameters(self._snapshot, parameters, "Simulator")
         # (contacts deep at the start: warned of here, named by a failure at t0)
@@ -204,6 +205,13 @@ class Simulator:
         handle: value}, or a sequence of values for every input in the order
         of :attr:`inputs`. One restart of the integrator, as one
         :meth:`set_input`."""
+        if isinstance(values, np.ndarray) and values.dtype.kind == "f" and values.shape == (len(self._inputs()),):
+            # (a controller's array every tick: the core checks each value, naming the input)
+            names = self._inputs()
+            with self._translated():
+                self._sim.set_inputs(names, values.tolist())
+            self._note_inputs(dict(zip(names, values.tolist())))
+            return
         if isinstance(values, dict):
             items = [(self._input_name(name), _real(value, f"input {name!r}")) for name, value in values.items()]
         else:
@@ -221,6 +229,12 @@ class Simulator:
         with self._translated():
             self._sim.set_inputs([name for name, _ in items], [value for _, value in items])
         self._note_inputs(dict(items))
+
+    def _inputs(self):
+        """The input names in the order of :attr:`inputs` (made once)."""
+        if self._input_order is None:
+            self._input_order = [d["name"] for d in self._core_model.inputs]
+        return self._input_order
 
     def _note_inputs(self, values):
         """Keeps the inputs set at this time (what a failure at once names)."""
