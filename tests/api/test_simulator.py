@@ -358,6 +358,24 @@ def test_set_inputs_names_what_is_not_a_number(given, message):
     assert sim.input("push") == 2.0
 
 
+def test_set_inputs_of_a_float_array_is_checked_and_runs_as_a_dict():
+    """A controller's array of every input (its fast path: the core checks
+    each value) names a value that is not finite or too large, and moves
+    the model as the same values given by name."""
+    sim = mb.Simulator(pushed_slider())
+    with pytest.raises(mb.ModelError, match=r"input 'push' must be finite, got nan"):
+        sim.set_inputs(np.array([np.nan]))
+    with pytest.raises(mb.ModelError, match=r"input 'push' = 1e\+200 is beyond 1e\+150"):
+        sim.set_inputs(np.array([1e200]))
+    by_name = mb.Simulator(pushed_slider())
+    for k in range(5):
+        sim.set_inputs(np.array([float(k)]))
+        by_name.set_inputs({"push": float(k)})
+        sim.advance(0.01 * (k + 1))
+        by_name.advance(0.01 * (k + 1))
+    assert np.array_equal(sim.q, by_name.q) and np.array_equal(sim.v, by_name.v)
+
+
 def test_simulator_joint_names_itself_for_an_element_that_is_no_joint():
     """Simulator.joint(stop) said "Result.joint: ..."."""
     model = pendulum()
