@@ -3,7 +3,9 @@ the revolute chains of bench/peers/spatial_peers.py (N = 32, 128) and the
 Franka Panda of bench/robots/robots.py (example-robot-data's URDF, limits,
 damping and mimic off: 9 bodies, 63 coordinates), each integrated for 1 s
 by projection-erk at rtol 1e-8 (atol 1e-10), from rest in its built pose
-(the Panda with the rates of robots.py: uniform in [-1, 1] rad/s, seed 1).
+(the Panda with the rates of robots.py: uniform in [-1, 1] rad/s, seed 1);
+beside them the planar chain of bench/common/chain.py (N = 32, 128: the
+plane's side of the same code, which must not get slower).
 
 Per case: the wall time of the run (median of --repeat), its right-hand
 sides (residual_evals), projections and steps, and the wall time per
@@ -12,7 +14,7 @@ the projections' and the stepper's share included; `perf record` on
 --perf splits it). --dump writes the final q, v and lam of each case (for
 comparing two builds to rounding).
 
-    python bench/performance/spatial_rhs.py [--cases chain32 chain128 panda] [--repeat 5]
+    python bench/performance/spatial_rhs.py [--cases chain32 chain128 panda planar32 planar128] [--repeat 5]
         [--dump FILE.npz] [--json]
 
 Run it under two builds in turn (PYTHONPATH=<a copy of the other build's
@@ -33,6 +35,7 @@ if not __package__:  # run as a file: the repository root on the path, for `impo
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
 import lagmb as mb  # noqa: E402
+from bench.common.chain import chain  # noqa: E402
 from bench.common.paths import robots_dir  # noqa: E402
 from bench.peers.spatial_engines import lagmb_chain  # noqa: E402
 
@@ -50,7 +53,8 @@ def panda():
 
 def cases(names):
     make = {"chain8": lambda: lagmb_chain(8), "chain32": lambda: lagmb_chain(32),
-            "chain128": lambda: lagmb_chain(128), "panda": panda}
+            "chain128": lambda: lagmb_chain(128), "panda": panda,
+            "planar32": lambda: chain(32), "planar128": lambda: chain(128)}
     return {name: make[name]() for name in names}
 
 
