@@ -189,6 +189,8 @@ bool AugmentedPattern::setup_reduced(const Model& model, std::vector<int>& r_row
     bodies.push_back(b);
     c += 4;
   }
+  r_is_jacobian = bodies.empty() && j_source.size() == size_t(J.nonZeros());
+  for (size_t e = 0; r_is_jacobian && e < j_source.size(); ++e) r_is_jacobian = j_source[e] == int(e);
   const int n_columns = int(q_column.size());
   m_inv.resize(n_columns, n_columns);
   m_inv.setFromTriplets(m_inv_entries.begin(), m_inv_entries.end());
@@ -267,6 +269,10 @@ bool AugmentedSystem::reduce_jacobian(const Data& d) {
     if (p_->new_of_old[r] < 0) return false;  // (a normalization row left out)
   const double* J = d.Phi_q.valuePtr();
   double* R = j_values_.data();
+  if (p_->r_is_jacobian) {
+    std::copy(J, J + d.Phi_q.nonZeros(), R);
+    return true;
+  }
   const int* source = p_->j_source.data();
   for (size_t e = 0; e < p_->j_source.size(); ++e)
     if (source[e] >= 0) R[e] = J[source[e]];

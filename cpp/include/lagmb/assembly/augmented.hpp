@@ -79,6 +79,7 @@ struct AugmentedPattern {
   std::vector<int> j_outer;     // R's column starts (its pattern)
   std::vector<int> j_row;       // each R entry's row of S (AMD order)
   std::vector<int> j_source;    // the Phi_q entry each R entry copies (-1: a body-rate column's, computed)
+  bool r_is_jacobian = false;   // R is Phi_q entry for entry (no spatial body): copied whole
   std::vector<int> q_column;    // R's column c is q's column q_column[c] (-1: a body-rate column)
   std::vector<int> old_of_new;  // S's row k is constraint row old_of_new[k]
   std::vector<int> new_of_old;  // (-1: a normalization row, not in S)
