@@ -267,6 +267,7 @@ void bind_model_terms(ModelClass& model) {
             Given(model).coordinates(q, "q");
             Data d(model);
             assemble_mass(model, d, q.data());
+            assemble_mass_inverse(model, d, q.data());
             return py::make_tuple(Eigen::MatrixXd(d.M), Eigen::MatrixXd(d.M_inv));
           },
           py::arg("q"), "M(q) and M(q)^-1 (dense; block diagonal).")

@@ -292,7 +292,10 @@ def test_a_restart_does_not_hide_constraints_that_came_apart():
     100 rad the drifted joint rate (1e5 rad/s through the quaternions) fired
     an impact, the restart projected the state back and the run "succeeded"
     with the hinge point 1,498 m from the hinge. The event now fails the run,
-    naming the row that came apart, and keeps the outputs before it."""
+    naming the row that came apart, and keeps the outputs before it. (When
+    it fails, rounding decides, as the drift grows unchecked: at rtol 0.9e-3
+    .. 1.1e-3 between 0.45 and 1.35 s; 0.45 s here before the augmented
+    system took the bodies' rates, 0.51 s since, 2026-12-08.)"""
     m = mb.Model(dimension=3, gravity=(0.0, 0.0, 0.0))
     m.add_body("rod", 1.0, (1e-3, 1.0 / 12.0, 1.0 / 12.0), position=(0.5, 0.0, 0.0),
                velocity=(0.0, 0.0, 25.0), angular_velocity=(0.0, -50.0, 0.0))
@@ -301,7 +304,7 @@ def test_a_restart_does_not_hide_constraints_that_came_apart():
     with pytest.raises(mb.SimulationError, match=r"constraints had come apart .*\|Phi\| = .* at 'rod") as failure:
         mb.simulate(m, t_end=3.0, method="projection-adams", rtol=1e-3)
     partial = failure.value.result
-    assert partial is not None and 0.4 < partial.t[-1] < 0.48
+    assert partial is not None and 0.4 < partial.t[-1] < 0.6
     # the same rod under the default method (it keeps the constraints) strikes its upper stop at 100 / 50 s
     r = mb.simulate(m, t_end=3.0, rtol=1e-6)
     first = r.events[0]

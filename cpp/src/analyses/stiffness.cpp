@@ -52,6 +52,7 @@ ForceRates force_rates(const Model& model, const double* q, const double* v, dou
   const int n = model.n_coordinates();
   const int m = model.n_constraints();
   assemble_mass(model, d, q);
+  assemble_mass_inverse(model, d, q);
   assemble_force_derivatives(model, d, q, v, t);
   // (the joints' inverse mass where the augmented matrix factorizes; M^-1 else)
   std::unique_ptr<AugmentedSystem> kkt;

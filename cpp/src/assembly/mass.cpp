@@ -15,20 +15,26 @@ void init_mass(const Model& model, Data& d) {
     d.M.valuePtr()[slots[i]] = diagonal[i];
     d.M_inv.valuePtr()[slots[i]] = diagonal[i] > 0.0 ? 1.0 / diagonal[i] : 0.0;
   }
-  if (!model.constant_mass()) assemble_mass(model, d, model.initial_q().data());
+  if (model.constant_mass()) return;
+  const VecX q = model.initial_q();
+  assemble_mass(model, d, q.data());
+  assemble_mass_inverse(model, d, q.data());
 }
 
 void assemble_mass(const Model& model, Data& d, const double* q) {
   double* M = d.M.valuePtr();
+  for (const Model::SpatialMass& s : model.spatial_masses()) {
+    const Mat4 block = rotational_mass::block(Eigen::Map<const Vec4>(q + s.p), s.J);
+    for (int a = 0; a < 16; ++a) M[s.slots[a]] = block.data()[a];
+  }
+}
+
+void assemble_mass_inverse(const Model& model, Data& d, const double* q) {
   double* M_inv = d.M_inv.valuePtr();
   for (const Model::SpatialMass& s : model.spatial_masses()) {
-    const Vec4 p = Eigen::Map<const Vec4>(q + s.p);
-    const Mat4 block = rotational_mass::block(p, s.J);
-    for (int a = 0; a < 16; ++a) M[s.slots[a]] = block.data()[a];
-    if (s.jbar > 0.0) {
-      const Mat4 inverse = rotational_mass::inverse(p, s.J_inverse, s.jbar);
-      for (int a = 0; a < 16; ++a) M_inv[s.slots[a]] = inverse.data()[a];
-    }
+    if (!(s.jbar > 0.0)) continue;
+    const Mat4 inverse = rotational_mass::inverse(Eigen::Map<const Vec4>(q + s.p), s.J_inverse, s.jbar);
+    for (int a = 0; a < 16; ++a) M_inv[s.slots[a]] = inverse.data()[a];
   }
 }
 

@@ -94,6 +94,7 @@ void EventRunner::impulse(double t, const VecX& q, VecX& v, const std::vector<in
     X.col(j) = x;
   }
   held.assign(size_t(k), 0);
+  assemble_mass_inverse(model_, d_, q.data());
   const double drift = 1e-6 * (1.0 + v.lpNorm<Eigen::Infinity>());
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < k; ++j) A(i, j) = C[i].dot(X.col(j));
@@ -150,6 +151,7 @@ std::vector<int> EventRunner::rest_contacts(double t, const VecX& q, const VecX&
     kkt_.solve(C[j], zero_m, x, y);
     X.col(j) = x;
   }
+  assemble_mass_inverse(model_, d_, q.data());
   // (tolerances in acceleration units)
   const double tol = 1e-9 * (1.0 + b.lpNorm<Eigen::Infinity>());
   std::vector<char> in(k, 0), may_close(k, 1), is_leaving(k, 0);

@@ -52,10 +52,15 @@ void add_jacobian_times(const Data& d, const double* x, double* y);
 
 /// Writes the constant entries of d.M and d.M_inv (1/M_ii; 0 where M_ii = 0).
 void init_mass(const Model& model, Data& d);
-/// d.M = M(q), d.M_inv = M(q)^-1: the spatial bodies' blocks (nothing to do
-/// for a planar model). assemble_jacobian calls it: whatever solves with
-/// Phi_q at q (the augmented system) finds M at the same q.
+/// d.M = M(q): the spatial bodies' blocks (nothing to do for a planar
+/// model). assemble_jacobian calls it: whatever solves with Phi_q at q (the
+/// augmented system) finds M at the same q.
 void assemble_mass(const Model& model, Data& d, const double* q);
+/// d.M_inv = M(q)^-1: the spatial bodies' blocks, for what reads M^-1
+/// itself (an impact's mobilities, the force rates' power iteration); the
+/// augmented system does not (its Schur complement takes the bodies'
+/// constant inverse mass in body rates), so assemble_jacobian leaves it.
+void assemble_mass_inverse(const Model& model, Data& d, const double* q);
 /// y = M a (M as assembled in d).
 void mass_times(const Data& d, const double* a, double* y);
 /// y = M^-1 b (as assembled in d).

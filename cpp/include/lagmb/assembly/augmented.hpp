@@ -42,6 +42,20 @@ namespace lagmb {
 /// by construction of x1): each refinement costs one pair of triangular
 /// solves and no product with K. Rows dropped as redundant get a unit
 /// diagonal (their right sides are zero, so their multipliers stay 0).
+/// A spatial body's Euler parameters p enter S in body rates (exact, not an
+/// approximation): with P = [G(p); p^T] (P P^T = |p|^2 I) and p'' =
+/// P^T y / |p|^2, y = (z, y4), z = G(p) p'' (half the angular acceleration
+/// in body axes) and y4 = p^T p'', the mass block P M_p P^T / |p|^4 is
+/// the constant diag(4 J', 4 jbar) (elements/spatial_body.hpp's M_p), and
+/// the normalization row p^T p'' = b_N reads y4 = b_N: y4 is known, its
+/// column moves to the right side and the row leaves S. S is then
+/// assembled from R = the Jacobian with z's three columns Phi_p G^T / |p|^2
+/// in place of p's four, over a constant block-diagonal M^-1 (1 / m, and
+/// (4 J')^-1 on z): 5 rows per revolute link and 6 columns instead of 6 and
+/// 7. Back: p'' = (G^T z + p y4) / |p|^2, and the normalization row's
+/// multiplier lam_N = (p^T b1_p) / |p|^2 - 4 jbar y4 - (Phi_p p / |p|^2)^T lam
+/// from y4's equation. A run that leaves a normalization row out (found
+/// redundant) takes the LU instead.
 /// Otherwise (a massless body, for kinematics) K is factorized by sparse LU
 /// (COLAMD) and refined with K0's residual. Either way the pattern is fixed
 /// by the model, so the orderings and the layouts are made once per model
@@ -63,16 +77,37 @@ struct AugmentedPattern {
   SpMat K;  // pattern of [M Phi_q^T; Phi_q -eps I] (values zero)
   std::vector<int> mass_slots, jac_slots, jact_slots, reg_slots;
   bool range_space = false;  // positive masses, constraints, and J M^-1 keeps J's pattern
-  // the range-space path
-  std::vector<int> j_entries;   // Phi_q's entries S is made of (empty: every one)
-  std::vector<int> j_outer;     // their column starts
-  std::vector<int> j_row;       // each one's row of S (AMD order)
+  // the range-space path, on R (Phi_q with each spatial body's Euler
+  // parameters in body rates z; Phi_q itself in the plane): n_r columns,
+  // the rows other than the normalizations
+  int n_r = 0;
+  std::vector<int> j_outer;     // R's column starts (its pattern)
+  std::vector<int> j_row;       // each R entry's row of S (AMD order)
+  std::vector<int> j_source;    // the Phi_q entry each R entry copies (-1: a body-rate column's, computed)
+  bool r_is_jacobian = false;   // R is Phi_q entry for entry (no spatial body): copied whole
+  std::vector<int> q_column;    // R's column c is q's column q_column[c] (-1: a body-rate column)
   std::vector<int> old_of_new;  // S's row k is constraint row old_of_new[k]
-  std::vector<int> new_of_old;  // -1: a row S leaves out
+  std::vector<int> new_of_old;  // (-1: a normalization row, or a switched row left out, not in S)
+  std::vector<char> switched_out;  // per constraint row: a switched row S leaves out (open_rows_out)
+  SpMat m_inv;                  // M^-1 over R's columns: constant, block diagonal
+  bool diagonal_m_inv = true;   // (every block 1 x 1)
+  /// A spatial body in body rates: its Euler parameters' columns p .. p + 3
+  /// of Phi_q hold the same `rows` rows from entries q_entry0[0..3], the
+  /// normalization row at offset norm (its values are p); its z columns
+  /// z .. z + 2 of R hold the others, in order, from entries r_entry0[0..2].
+  struct BodyRates {
+    int p, z, norm_row, rows, norm;
+    std::vector<int> in_r;  // the rows (offsets into its `rows`) R holds: all but norm (and those left out)
+    std::array<int, 4> q_entry0;
+    std::array<int, 3> r_entry0;
+    double mass4;  // 4 jbar: y4's mass
+  };
+  std::vector<BodyRates> bodies;
   BlockCholeskyPattern S;  // S's blocks (an element's rows), their order and L's layout
-  // Phi_q's columns in runs with the same rows (a body's position, its Euler
-  // parameters): each run adds the dense product J_g (J M^-1)_g^T, rows x
-  // rows, to S; its lower triangle goes to S's entries run_slots[slot0 ..)
+  // R's columns in runs with the same rows (a body's position and rates, or
+  // in the plane its coordinates): each run adds the dense product
+  // R_g (R M^-1)_g^T, rows x rows, to S; its lower triangle goes to S's
+  // entries run_slots[slot0 ..)
   struct ColumnRun {
     int entry0, rows, width, slot0;
   };
@@ -83,6 +118,9 @@ struct AugmentedPattern {
 
  private:
   void setup_schur(const Model& model, bool open_rows_out);
+  /// R's pattern, its rows and columns, m_inv and bodies from Phi_q's
+  /// pattern; false if a spatial body's parameters cannot go to body rates.
+  bool setup_reduced(const Model& model, std::vector<int>& r_rows, bool open_rows_out);
 };
 
 /// The model's AugmentedPattern with S leaving out every switched row (Model::derived).
@@ -94,7 +132,7 @@ class AugmentedSystem {
  public:
   explicit AugmentedSystem(const Model& model);
 
-  /// Factorizes K with the current d.Phi_q and d.M (d.M_inv); false if the
+  /// Factorizes K with the current d.Phi_q and d.M; false if the
   /// factorization fails or K is not finite.
   bool factorize(const Data& d);
   /// Solves K [x1; x2] = [b1; b2] (sizes n, m), refining against eps = 0.
@@ -119,6 +157,7 @@ class AugmentedSystem {
  private:
   void fill_lu_matrix(const Data& d);
   void assemble_schur(const Data& d);
+  bool reduce_jacobian(const Data& d);
   bool factorize_schur(const Data& d);
   void solve_range_space(const VecX& b1, const VecX& b2, VecX& x1, VecX& x2);
 
@@ -132,7 +171,7 @@ class AugmentedSystem {
   double eps_;
   SpMat K_;
   double mass_scale_;
-  bool diagonal_mass_;  // M constant and diagonal (a planar model)
+  bool constant_mass_;  // no spatial body
   SupernodalLU lu_;
   bool lu_analyzed_ = false;
   bool factorized_ = false;
@@ -140,13 +179,16 @@ class AugmentedSystem {
   int factorizations_ = 0;
   // the range-space path
   bool schur_ = false, regularized_ = false;
-  VecX j_values_;  // Phi_q's values at the last factorization
-  SpMat m_inv_;    // M^-1 at the last factorization (block diagonal)
+  VecX j_values_;  // R's values at the last factorization
+  VecX y4_column_;  // per entry of a body's first z column of R: its row's Phi_p p / |p|^2
+  VecX body_p_;     // the bodies' Euler parameters at the last factorization (4 each)
+  VecX body_y_;     // per body in a solve: y4 and (p^T b1_p) / |p|^2
+  VecX b_r_, x_r_;  // scratch over R's columns
   VecX S_;         // S's lower triangle in p_->S's panels, then its factor L
   VecX s_diagonal_;  // S's diagonal before the factorization (new numbering)
   VecX s_rhs_, work_, lam_, lam_prev_, w_n_;
   VecX run_product_;  // the lower triangle of the largest run's product, by columns
-  VecX j_scaled_;  // J M^-1, per entry (a block of M^-1 mixes columns with the same rows)
+  VecX j_scaled_;  // R M^-1, per entry (a block of M^-1 mixes columns with the same rows)
   int symbolic_analyses_ = 0;
 };
 

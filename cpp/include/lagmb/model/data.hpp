@@ -36,7 +36,7 @@ struct Data {
   SpMat Q_q;    // dQ/dq                                          (n x n)
   SpMat Q_v;    // dQ/dv                                          (n x n)
   SpMat M;      // mass matrix M(q), pattern Model::mass_pattern() (n x n)
-  SpMat M_inv;  // M(q)^-1, the same pattern (block diagonal)      (n x n)
+  SpMat M_inv;  // M(q)^-1 (assemble_mass_inverse), M's pattern  (n x n)
   SpMat M_qa;   // d(M(q) a)/dq for a vector a, the same pattern   (n x n)
 
   // joint friction Q_f(q, v, lam) (sized only if the model has friction)
