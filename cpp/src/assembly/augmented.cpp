@@ -402,9 +402,12 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
   const double* J = j_values_.data();
   const int nr = p.n_r, ms = p.S.rows();
   // b1 over R's columns: q's own, and each body's G(p) b1_p / |p|^2; the
-  // body's y4 = b2_N (its normalization row) and (p^T b1_p) / |p|^2
-  for (int c = 0; c < nr; ++c)
-    if (p.q_column[c] >= 0) b_r_[c] = b1[p.q_column[c]];
+  // body's y4 = b2_N (its normalization row) and (p^T b1_p) / |p|^2 (where
+  // R is Phi_q, b1 and x1 are over R's columns themselves)
+  const bool plain = p.r_is_jacobian;
+  if (!plain)
+    for (int c = 0; c < nr; ++c)
+      if (p.q_column[c] >= 0) b_r_[c] = b1[p.q_column[c]];
   for (size_t i = 0; i < p.bodies.size(); ++i) {
     const AugmentedPattern::BodyRates& b = p.bodies[i];
     const Vec4 e = body_p_.segment<4>(4 * i), f = b1.segment<4>(b.p);
@@ -420,10 +423,11 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
     const double y4 = body_y_[2 * i];
     for (int k = b.r_entry0[0]; k < p.j_outer[b.z + 1]; ++k) s_rhs_[p.j_row[k]] += y4_column_[k] * y4;
   }
+  const VecX& b_r = plain ? b1 : b_r_;
   if (p.diagonal_m_inv)
-    for (int c = 0; c < nr; ++c) w_n_[c] = p.m_inv.valuePtr()[c] * b_r_[c];
+    for (int c = 0; c < nr; ++c) w_n_[c] = p.m_inv.valuePtr()[c] * b_r[c];
   else
-    w_n_.noalias() = p.m_inv * b_r_;
+    w_n_.noalias() = p.m_inv * b_r;
   for (int c = 0; c < nr; ++c) {
     const double w = w_n_[c];
     for (int k = p.j_outer[c]; k < p.j_outer[c + 1]; ++k) s_rhs_[p.j_row[k]] += J[k] * w;
@@ -443,20 +447,22 @@ void AugmentedSystem::solve_range_space(const VecX& b1, const VecX& b2, VecX& x1
   }
   // x_r = M^-1 (b_r - R^T lam)
   for (int c = 0; c < nr; ++c) {
-    double f = b_r_[c];
+    double f = b_r[c];
     for (int k = p.j_outer[c]; k < p.j_outer[c + 1]; ++k) f -= J[k] * lam_[p.j_row[k]];
     w_n_[c] = f;
   }
-  if (p.diagonal_m_inv)
-    for (int c = 0; c < nr; ++c) x_r_[c] = p.m_inv.valuePtr()[c] * w_n_[c];
-  else
-    x_r_.noalias() = p.m_inv * w_n_;
-  // back to q and the constraints' numbering: p'' = (G^T z + p y4) / |p|^2,
-  // lam_N from y4's equation 4 jbar y4 + (Phi_p p / |p|^2)^T lam + lam_N = (p^T b1_p) / |p|^2
   x1.resize(n_);
   x2.setZero(m_);  // (a row S leaves out: an open stop's, 0)
-  for (int c = 0; c < nr; ++c)
-    if (p.q_column[c] >= 0) x1[p.q_column[c]] = x_r_[c];
+  VecX& x_r = plain ? x1 : x_r_;
+  if (p.diagonal_m_inv)
+    for (int c = 0; c < nr; ++c) x_r[c] = p.m_inv.valuePtr()[c] * w_n_[c];
+  else
+    x_r.noalias() = p.m_inv * w_n_;
+  // back to q and the constraints' numbering: p'' = (G^T z + p y4) / |p|^2,
+  // lam_N from y4's equation 4 jbar y4 + (Phi_p p / |p|^2)^T lam + lam_N = (p^T b1_p) / |p|^2
+  if (!plain)
+    for (int c = 0; c < nr; ++c)
+      if (p.q_column[c] >= 0) x1[p.q_column[c]] = x_r_[c];
   for (int k = 0; k < ms; ++k) x2[p.old_of_new[k]] = lam_[k];
   for (size_t i = 0; i < p.bodies.size(); ++i) {
     const AugmentedPattern::BodyRates& b = p.bodies[i];
