@@ -71,6 +71,7 @@ Run::Run(const Model& given, std::shared_ptr<const Model> with_parameters_, cons
 }
 
 void Run::record(double t, const double* q, const double* v, bool solve) {
+  if (current_->drifts) check_held(t, q);
   // (at a step's end the stepper's formulation has them solved)
   const double *qdd = nullptr, *lam = nullptr;
   if (!(solve && stepper_ && stepper_->motion_at(t, q, v, qdd, lam))) qdd = lam = nullptr;
@@ -83,6 +84,25 @@ void Run::record(double t, const double* q, const double* v, bool solve) {
     outputs.sensitivities.insert(outputs.sensitivities.end(), s[i].data(), s[i].data() + 2 * n + m);
     outputs.sensitivity_a.insert(outputs.sensitivity_a.end(), sp[i].data() + n, sp[i].data() + 2 * n);
   }
+}
+
+void Run::check_held(double t, const double* q) {
+  const int n = model.n_coordinates();
+  if (model.n_constraints() == 0) return;
+  assemble_constraints(model, data, q, t);
+  Eigen::Index row = 0;
+  const double off = data.Phi.cwiseAbs().maxCoeff(&row);
+  const double limit = 1e-2 * (1.0 + Eigen::Map<const VecX>(q, n).lpNorm<Eigen::Infinity>());
+  if (off <= limit) return;
+  IntegratorFailure f("the constraints had come apart by the output at t = " + to_text(t) + ": |Phi| = " +
+                          to_text(off) + " at '" + model.constraint_name_of_row(int(row)) +
+                          "' (more than 1e-2 (1 + |q|) = " + to_text(limit) + "): " + current_->name +
+                          " holds them only through their second derivatives and its steps lost the motion. Use "
+                          "a method that keeps them (ggl, projection-bdf, projection-erk), a smaller rtol, or "
+                          "baumgarte=(alpha, beta)",
+                      t);
+  f.diagnose = false;
+  throw f;
 }
 
 void Run::start_stepper(double t, const ConsistentState& from) {
