@@ -26,6 +26,7 @@ struct OdeUserData {
   ProjectionFormulation& ode;
   EventRunner* events = nullptr;
   std::exception_ptr error;
+  bool rhs_failed = false;  // a right-hand side failed in a recoverable manner (ode_rhs returned 1)
   VecX correction;  // scratch: the change a projection of our own makes to (q, v)
 };
 
@@ -46,7 +47,9 @@ int guarded(void* data, Body&& body) {
 /// augmented system is singular.
 inline int ode_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
   return guarded(data, [&](OdeUserData& p) {
-    return p.ode.right_hand_side(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)) ? 0 : 1;
+    if (p.ode.right_hand_side(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot))) return 0;
+    p.rhs_failed = true;
+    return 1;
   });
 }
 
