@@ -131,23 +131,29 @@ TEST_CASE(spatial_revolute) {
                     5);
 }
 
-TEST_CASE(spatial_revolute_closed_forms_equal_its_terms) {
-  // the revolute's own Phi_c and gamma (elements/spatial_revolute.hpp) against
-  // the gradients and convective terms of its rows as terms() gives them
-  SpatialRevoluteJoint joint;
-  joint.s_i = Vec3(0.3, -0.2, 0.1), joint.s_j = Vec3(-0.4, 0.25, 0.2);
-  joint.a_j = Vec3(0.2, -0.3, 0.9).normalized();
-  euler::complete_basis(Vec3(0.6, 0.0, 0.8), joint.f_i, joint.g_i);
-  const auto& terms = static_cast<const spatial::TermJoint<SpatialRevoluteJoint, 5>&>(joint);
+/// A spatial joint's own Phi_c and gamma (its elements/*.hpp) against the
+/// gradients and convective terms of its rows as terms() gives them, at
+/// random states (unit Euler parameters, any velocities).
+template <class Joint>
+void check_closed_forms_equal_terms(const Joint& joint) {
+  const auto& terms = static_cast<const spatial::TermJoint<Joint, 5>&>(joint);
   for (int trial = 0; trial < 5; ++trial) {
     spatial::Loc c = spatial::Loc::Random(), cd = spatial::Loc::Random();
     c.segment<4>(3).normalize();
     c.segment<4>(10).normalize();
-    const double scale = 1.0 + terms.jacobian(c, 0.0).lpNorm<Eigen::Infinity>();
-    CHECK_NEAR((joint.jacobian(c, 0.0) - terms.jacobian(c, 0.0)).lpNorm<Eigen::Infinity>(), 0.0, 1e-14 * scale);
-    const double g_scale = 1.0 + terms.gamma(c, cd, 0.0).lpNorm<Eigen::Infinity>();
-    CHECK_NEAR((joint.gamma(c, cd, 0.0) - terms.gamma(c, cd, 0.0)).lpNorm<Eigen::Infinity>(), 0.0, 1e-14 * g_scale);
+    const double scale = 1.0 + terms.jacobian(c, 0.0).template lpNorm<Eigen::Infinity>();
+    CHECK_NEAR((joint.jacobian(c, 0.0) - terms.jacobian(c, 0.0)).template lpNorm<Eigen::Infinity>(), 0.0, 1e-14 * scale);
+    const double g_scale = 1.0 + terms.gamma(c, cd, 0.0).template lpNorm<Eigen::Infinity>();
+    CHECK_NEAR((joint.gamma(c, cd, 0.0) - terms.gamma(c, cd, 0.0)).template lpNorm<Eigen::Infinity>(), 0.0, 1e-14 * g_scale);
   }
+}
+
+TEST_CASE(spatial_revolute_closed_forms_equal_its_terms) {
+  SpatialRevoluteJoint joint;
+  joint.s_i = Vec3(0.3, -0.2, 0.1), joint.s_j = Vec3(-0.4, 0.25, 0.2);
+  joint.a_j = Vec3(0.2, -0.3, 0.9).normalized();
+  euler::complete_basis(Vec3(0.6, 0.0, 0.8), joint.f_i, joint.g_i);
+  check_closed_forms_equal_terms(joint);
 }
 
 TEST_CASE(spatial_translational) {
@@ -159,23 +165,12 @@ TEST_CASE(spatial_translational) {
 }
 
 TEST_CASE(spatial_translational_closed_forms_equal_its_terms) {
-  // the translational's own Phi_c and gamma (elements/spatial_translational.hpp)
-  // against the gradients and convective terms of its rows as terms() gives them
   SpatialTranslationalJoint joint;
   joint.s_i = Vec3(0.3, -0.2, 0.1), joint.s_j = Vec3(-0.4, 0.25, 0.2);
   joint.a_j = Vec3(0.2, -0.3, 0.9).normalized();
   joint.g_j = Vec3(0.9, 0.1, -0.2).normalized();
   euler::complete_basis(Vec3(0.6, 0.0, 0.8), joint.f_i, joint.g_i);
-  const auto& terms = static_cast<const spatial::TermJoint<SpatialTranslationalJoint, 5>&>(joint);
-  for (int trial = 0; trial < 5; ++trial) {
-    spatial::Loc c = spatial::Loc::Random(), cd = spatial::Loc::Random();
-    c.segment<4>(3).normalize();
-    c.segment<4>(10).normalize();
-    const double scale = 1.0 + terms.jacobian(c, 0.0).lpNorm<Eigen::Infinity>();
-    CHECK_NEAR((joint.jacobian(c, 0.0) - terms.jacobian(c, 0.0)).lpNorm<Eigen::Infinity>(), 0.0, 1e-14 * scale);
-    const double g_scale = 1.0 + terms.gamma(c, cd, 0.0).lpNorm<Eigen::Infinity>();
-    CHECK_NEAR((joint.gamma(c, cd, 0.0) - terms.gamma(c, cd, 0.0)).lpNorm<Eigen::Infinity>(), 0.0, 1e-14 * g_scale);
-  }
+  check_closed_forms_equal_terms(joint);
 }
 
 LAGMB_TEST_MAIN()

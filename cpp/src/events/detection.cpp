@@ -47,11 +47,10 @@ void EventRunner::values(double t, const double* q, const double* v, double* g, 
   const double at_limit = 1e-10;
   // (the rates of the open rows at their limits: their elements' gradients alone)
   bool rates = false;
-  std::vector<int> one(1);
   for (const Contact& c : contacts_)
     if (c.info.exists && !is_closed(c.row) && std::abs(rows_.Phi[c.row]) <= at_limit) {
-      one[0] = c.element;
-      model_.constraint_groups()[size_t(c.group)]->jacobian(q, at, rows_.Phi_q.valuePtr(), &one);
+      one_[0] = c.element;
+      model_.constraint_groups()[size_t(c.group)]->jacobian(q, at, rows_.Phi_q.valuePtr(), &one_);
       rows_.phi_t[c.row] = rate(c, v);
       rates = true;
     }

@@ -17,15 +17,14 @@ namespace lagmb {
 void EventRunner::contact_rows(double t, const VecX& q, const VecX& v, const std::vector<int>& which,
                                std::vector<VecX>& C, VecX& curvature) {
   const Instant at = rows_.at(t);
-  std::vector<int> one(1);
   C.clear();
   curvature.resize(int(which.size()));
   for (size_t j = 0; j < which.size(); ++j) {
     const Contact& c = contacts_[size_t(which[j])];
     const ConstraintGroupBase& group = *model_.constraint_groups()[size_t(c.group)];
-    one[0] = c.element;
-    group.jacobian(q.data(), at, rows_.Phi_q.valuePtr(), &one);
-    group.gamma(q.data(), v.data(), at, rows_.gamma.data(), &one);
+    one_[0] = c.element;
+    group.jacobian(q.data(), at, rows_.Phi_q.valuePtr(), &one_);
+    group.gamma(q.data(), v.data(), at, rows_.gamma.data(), &one_);
     VecX row = VecX::Zero(model_.n_coordinates());
     for (const auto& [col, slot] : c.entries) row[col] = rows_.Phi_q.valuePtr()[slot];
     C.push_back(std::move(row));

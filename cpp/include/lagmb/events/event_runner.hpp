@@ -303,6 +303,7 @@ class EventRunner {
   // missed() read lam_ (its tolerance) right after their values()
   std::vector<double> g_;
   VecX qdd_, lam_;
+  std::vector<int> one_ = std::vector<int>(1);  // scratch: one element for a group's kernels (`only`)
   StepWindow window_;
   LastEvents last_;
   Burst burst_;
